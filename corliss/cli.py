@@ -1,0 +1,151 @@
+"""The ``corliss`` command.
+
+``corliss run [SCENE] [--out DIR] [--json]``
+    Simulate a scene (the bundled default without SCENE); write the card PNG, the
+    CSVs with their meta files and the summary JSON; print a short summary, or the
+    summary as JSON with ``--json``.
+``corliss events SCENE [--json]``
+    The valve events of each end, without simulating.
+``corliss list gears|effects``
+    What the registries hold.
+
+A user's mistake exits with code 2 and a one-paragraph message, no traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import logging
+import sys
+from pathlib import Path
+
+from corliss import units
+from corliss.errors import InputError
+
+
+def _load(path: str | None):
+    from corliss.scene import default_scene_path, load_scene
+    return load_scene(path if path is not None else default_scene_path())
+
+
+def _fmt(v, unit, digits=4):
+    return "never" if v is None else f"{v:.{digits}g} {unit}"
+
+
+def _print_summary(result, files) -> None:
+    s = result.summary
+    us = result.scene.output.units == "US"
+    P = units.to_unit
+    print(f"{s['title']}")
+    print(f"  model {s['model']}, effects {', '.join(s['effects']) or 'none'}, "
+          f"fidelity {s['fidelity']}, {s['speed_rpm']:.1f} rpm")
+    if us:
+        print(f"  indicated power  {s['indicated_power_hp']:.2f} ihp")
+        print(f"  m.e.p.           head {P(s['mep_head_Pa'], 'psia'):.2f}, crank "
+              f"{P(s['mep_crank_Pa'], 'psia'):.2f}, mean {P(s['mep_mean_Pa'], 'psia'):.2f} psi")
+        wr = s["water_rate_lb_per_ihp_h"]
+        print(f"  steam            {s['steam_rate_kg_per_h'] / units.POUND_kg:.1f} lb/h, "
+              f"{_fmt(wr, 'lb per ihp-hour')}")
+    else:
+        print(f"  indicated power  {s['indicated_power_W'] / 1e3:.2f} kW")
+        print(f"  m.e.p.           head {s['mep_head_Pa'] / 1e5:.3f}, crank "
+              f"{s['mep_crank_Pa'] / 1e5:.3f}, mean {s['mep_mean_Pa'] / 1e5:.3f} bar")
+        print(f"  steam            {s['steam_rate_kg_per_h']:.1f} kg/h, "
+              f"{_fmt(s['water_rate_kg_per_kWh'], 'kg/kWh')}")
+    for end, ev in s["events"].items():
+        print(f"  {end:5s} end        cut-off {_fmt(ev['cutoff_frac'], '', 3)}, release "
+              f"{_fmt(ev['release_frac'], '', 3)}, compression {_fmt(ev['compression_frac'], '', 3)}"
+              " (fractions of stroke)")
+    conv = s["cycles_to_converge"]
+    print(f"  cycles           {s['cycles_simulated']} simulated"
+          + (f", periodic after {conv}" if conv else "") + f"; {s['wall_time_s']:.2f} s")
+    for kind, path in files.items():
+        print(f"  wrote {kind:10s} {path}")
+
+
+def cmd_run(args) -> int:
+    from corliss.engine.simulate import simulate
+    from corliss.results import summary_json
+    scene = _load(args.scene)
+    if args.fidelity:
+        scene = scene.with_fidelity(args.fidelity)
+    if args.cycles is not None:
+        if args.cycles < 1:
+            raise InputError("--cycles", args.cycles, "a whole number of cycles >= 1")
+        scene = scene.replace_run(cycles=args.cycles)
+    out = Path(args.out if args.out is not None else scene.output.dir)
+    result = simulate(scene)
+    files = result.write(out)
+    if args.json:
+        print(summary_json(result.summary))
+    else:
+        _print_summary(result, files)
+    return 0
+
+
+def cmd_events(args) -> int:
+    from corliss.engine.simulate import scene_events
+    scene = _load(args.scene)
+    ev = scene_events(scene)
+    if args.json:
+        print(json.dumps(ev, indent=2))
+        return 0
+    for end, e in ev.items():
+        print(f"{end} end")
+        for k, v in e.items():
+            print(f"  {k:20s} {v if v is None else round(v, 6)}")
+    return 0
+
+
+def cmd_list(args) -> int:
+    if args.what == "gears":
+        from corliss.valves import GEARS
+        for name, g in sorted(GEARS.items()):
+            print(f"{name:20s} {g.summary}")
+    else:
+        from corliss.engine.options import EFFECTS, PLANNED_EFFECTS
+        for name, text in EFFECTS.items():
+            print(f"{name:20s} {text}")
+        for name in PLANNED_EFFECTS:
+            print(f"{name:20s} (planned, not in this version)")
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="corliss", description="Steam-engine cycle and governing "
+                                "simulator: indicator cards, valve events, governing.")
+    p.add_argument("-v", "--verbose", action="store_true", help="log progress to stderr")
+    sub = p.add_subparsers(dest="command", required=True)
+    r = sub.add_parser("run", help="simulate a scene and write its card, CSV and meta")
+    r.add_argument("scene", nargs="?", help="scene TOML (default: the bundled default scene)")
+    r.add_argument("--out", help="output directory (default: the scene's [output] dir)")
+    r.add_argument("--json", action="store_true", help="print the summary as JSON")
+    r.add_argument("--fidelity", choices=("reference", "standard", "fast"),
+                   help="override the scene's fidelity preset")
+    r.add_argument("--cycles", type=int, help="simulate exactly N cycles")
+    r.set_defaults(func=cmd_run)
+    e = sub.add_parser("events", help="valve events of each end, without simulating")
+    e.add_argument("scene", help="scene TOML")
+    e.add_argument("--json", action="store_true", help="print JSON")
+    e.set_defaults(func=cmd_events)
+    ls = sub.add_parser("list", help="list registries")
+    ls.add_argument("what", choices=("gears", "effects"))
+    ls.set_defaults(func=cmd_list)
+    return p
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
+    logging.basicConfig(level=logging.DEBUG if args.verbose else logging.WARNING,
+                        format="%(levelname)s %(name)s: %(message)s")
+    try:
+        return args.func(args)
+    except InputError as exc:
+        print(f"corliss: {exc} Nothing was simulated and no files were written.",
+              file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,1 @@
+"""Engine: geometry, cylinder ends, model assembly, integration, ideal card."""

@@ -1,0 +1,202 @@
+"""Cylinder ends with ideal ports: the textbook model without ``port_flow``.
+
+While an end is open to the chest its pressure is chest pressure; while open to the
+exhaust, back pressure; while closed, its steam expands or is compressed
+reversibly and adiabatically (constant entropy, real steam).  The processes, for a
+control volume of mass m, volume V and specific enthalpy h:
+
+* opening to a reservoir at a different pressure, at constant volume: if the
+  reservoir is higher, a filling ``m2 u2 = m1 u1 + (m2 - m1) h_res`` to its pressure;
+  if lower, a blow-down in which the steam left behind expands isentropically
+  (the standard filling-and-emptying idealisation);
+* open, volume growing: inflow at the reservoir's enthalpy at constant pressure,
+  ``d(m h) = h_res dm`` (from dU = h_res dm - p dV with dp = 0);
+* open, volume shrinking: outflow at the cylinder's own state.
+
+These are what the crank-resolved model tends to as the port areas grow without
+bound; the ideal card with ``expansion = "isentropic"`` is the same stepping with
+admission from dead centre to cut-off.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from corliss.thermo.steam import State, Steam
+
+CLOSED, STEAM, EXHAUST = 0, 1, 2
+
+
+@dataclass
+class EndTrace:
+    """One end over one cycle of the ideal-port stepping (arrays over the grid)."""
+
+    theta_rad: np.ndarray
+    V_m3: np.ndarray
+    p_Pa: np.ndarray
+    T_K: np.ndarray
+    x: np.ndarray
+    m_kg: np.ndarray
+    work_J: float
+    m_chest_kg: float      # net mass from the chest over the cycle
+    H_chest_J: float       # net enthalpy from the chest
+    m_exhaust_kg: float    # net mass from the exhaust (negative: to it)
+    H_exhaust_J: float
+
+
+def _fill(steam: Steam, st: State, m: float, V: float, res: State) -> tuple[State, float]:
+    """Constant-volume filling from a reservoir at higher pressure."""
+    U = m * st.u
+
+    def excess(m2):
+        u2 = (U + (m2 - m) * res.h) / m2
+        return steam.du(m2 / V, u2).p - res.p
+
+    hi = m * 1.5
+    while excess(hi) < 0.0:
+        hi *= 2.0
+    m2 = brentq(excess, m, hi, xtol=1e-14 * m, rtol=1e-12)
+    return steam.du(m2 / V, (U + (m2 - m) * res.h) / m2), m2
+
+
+def _open_step(steam: Steam, st: State, m: float, V1: float, res: State):
+    """One step open to a reservoir at its pressure: returns state, mass, inflow, enthalpy in."""
+    if V1 * st.rho <= m:                  # shrinking: outflow at own state
+        m1 = V1 * st.rho
+        return st, m1, m1 - m, st.h * (m1 - m)
+    H = m * st.h
+    h1 = st.h
+    for _ in range(30):
+        s1 = steam.ph(res.p, h1)
+        m1 = V1 * s1.rho
+        h_new = (H + res.h * (m1 - m)) / m1
+        if abs(h_new - h1) < 1e-9 * abs(h1):
+            h1 = h_new
+            break
+        h1 = h_new
+    s1 = steam.ph(res.p, h1)
+    m1 = V1 * s1.rho
+    return s1, m1, m1 - m, res.h * (m1 - m)
+
+
+def step_end(steam: Steam, theta: np.ndarray, V: np.ndarray, conn: np.ndarray,
+             st: State, m: float, chest: State, exhaust: State) -> tuple[EndTrace, State, float]:
+    """Step one end through one cycle of the grid.
+
+    Parameters
+    ----------
+    theta, V : ndarray
+        Crank angles [rad] and end volumes [m3], ``n + 1`` points.
+    conn : ndarray of int
+        Connection over each of the ``n`` intervals: CLOSED, STEAM or EXHAUST.
+    st, m : State, float
+        State and mass [kg] at ``theta[0]``.
+    chest, exhaust : State
+        Reservoir states.
+
+    Returns
+    -------
+    trace, state, mass
+        The cycle's trace, and the state and mass at its end.
+    """
+    n = len(theta) - 1
+    p = np.empty(n + 1)
+    T = np.empty(n + 1)
+    x = np.empty(n + 1)
+    mm = np.empty(n + 1)
+    work = m_ch = H_ch = m_ex = H_ex = 0.0
+    prev = CLOSED
+    for i in range(n):
+        c = int(conn[i])
+        if c != CLOSED and (c != prev or i == 0):
+            res = chest if c == STEAM else exhaust
+            if st.p < res.p * (1 - 1e-12):
+                st2, m2 = _fill(steam, st, m, V[i], res)
+                dm, dH = m2 - m, res.h * (m2 - m)
+            elif st.p > res.p * (1 + 1e-12):
+                st2 = steam.ps(res.p, st.s)
+                m2 = V[i] * st2.rho
+                dm, dH = m2 - m, m2 * st2.u - m * st.u   # energy left = enthalpy carried out
+            else:
+                st2, m2, dm, dH = st, m, 0.0, 0.0
+            if c == STEAM:
+                m_ch += dm
+                H_ch += dH
+            else:
+                m_ex += dm
+                H_ex += dH
+            st, m = st2, m2
+        prev = c
+        p[i], T[i], x[i], mm[i] = st.p, st.T, st.x, m
+        p0 = st.p
+        if c == CLOSED:
+            st = steam.ds(m / V[i + 1], st.s)
+            work += 0.5 * (p0 + st.p) * (V[i + 1] - V[i])
+        else:
+            res = chest if c == STEAM else exhaust
+            st, m1, dm, dH = _open_step(steam, st, m, V[i + 1], res)
+            work += res.p * (V[i + 1] - V[i])
+            m = m1
+            if c == STEAM:
+                m_ch += dm
+                H_ch += dH
+            else:
+                m_ex += dm
+                H_ex += dH
+    p[n], T[n], x[n], mm[n] = st.p, st.T, st.x, m
+    trace = EndTrace(theta, V, p, T, x, mm, work, m_ch, H_ch, m_ex, H_ex)
+    return trace, st, m
+
+
+def run_cycles(steam: Steam, theta: np.ndarray, volumes: tuple[np.ndarray, np.ndarray],
+               conns: tuple[np.ndarray, np.ndarray], chest: State, exhaust: State,
+               tol: float, max_cycles: int, cycles: int | None = None):
+    """Repeat the cycle until the indicated work is periodic.
+
+    Returns
+    -------
+    traces : list of (EndTrace, EndTrace)
+        Head and crank traces of every cycle run.
+    converged_after : int or None
+        Cycles it took (None when ``cycles`` fixed the count or it did not converge).
+    """
+    states = []
+    for V in volumes:   # start each end full of exhaust steam
+        states.append((exhaust, V[0] * exhaust.rho))
+    traces = []
+    w_prev = None
+    n_max = cycles if cycles is not None else max_cycles
+    converged = None
+    for k in range(1, n_max + 1):
+        out = []
+        for j in range(2):
+            tr, st, m = step_end(steam, theta, volumes[j], conns[j], *states[j], chest, exhaust)
+            states[j] = (st, m)
+            out.append(tr)
+        traces.append(tuple(out))
+        w = out[0].work_J + out[1].work_J
+        if cycles is None and w_prev is not None and abs(w - w_prev) <= tol * max(abs(w), 1e-300):
+            converged = k
+            break
+        w_prev = w
+    return traces, converged
+
+
+def connection_from_areas(open_steam: np.ndarray, open_exhaust: np.ndarray) -> np.ndarray:
+    """Connection code of each interval from port-open masks (steam wins a blow-through)."""
+    c = np.full(open_steam.shape, CLOSED, dtype=np.int8)
+    c[open_exhaust] = EXHAUST
+    c[open_steam] = STEAM
+    return c
+
+
+def stepping_grid(breakpoints: np.ndarray, step_rad: float) -> np.ndarray:
+    """A crank grid over [0, 2 pi] with at most ``step_rad`` spacing, through every kink."""
+    n = max(int(math.ceil(2 * math.pi / step_rad)), 4)
+    g = np.union1d(np.linspace(0.0, 2 * math.pi, n + 1), np.asarray(breakpoints) % (2 * math.pi))
+    g = g[np.concatenate([[True], np.diff(g) > 1e-10])]
+    return g

@@ -1,0 +1,135 @@
+"""Slider-crank kinematics and the volumes of the two cylinder ends.
+
+Crank angle ``theta`` = 0 at head-end dead centre (piston farthest from the shaft).
+Piston displacement from the head-end dead centre, towards the shaft, with crank
+radius R and connecting rod L (Marks Art. 96 III, eqs. 239-241)::
+
+    s(theta) = R (1 - cos theta) + L - sqrt(L^2 - R^2 sin^2 theta)
+
+and with an infinite rod (no ``rod_angularity`` effect) ``s = R (1 - cos theta)``.
+The head end's volume is its clearance plus ``A_head s``; the crank end's is its
+clearance plus ``A_crank (S - s)``, where ``A_crank`` is the piston area less the
+piston rod.  Clearance is a fraction of that end's swept volume.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class EngineSpec:
+    """A double-acting cylinder (all SI).
+
+    Attributes
+    ----------
+    bore_m, stroke_m, connecting_rod_m, piston_rod_diameter_m : float
+        Cylinder bore, piston stroke, connecting rod centre to centre, piston rod
+        diameter [m].
+    clearance : tuple of float
+        Clearance volume of the (head, crank) end as a fraction of that end's swept
+        volume [-].
+    """
+
+    bore_m: float
+    stroke_m: float
+    connecting_rod_m: float
+    piston_rod_diameter_m: float
+    clearance: tuple[float, float]
+
+
+@dataclass(frozen=True)
+class CylinderGeometry:
+    """Kinematics and end volumes of one cylinder.
+
+    Parameters
+    ----------
+    spec : EngineSpec
+    rod_angularity : bool
+        True: exact slider crank; False: infinite connecting rod.
+    """
+
+    spec: EngineSpec
+    rod_angularity: bool = True
+
+    @property
+    def crank_m(self) -> float:
+        """Crank radius R [m]."""
+        return 0.5 * self.spec.stroke_m
+
+    @property
+    def area_head_m2(self) -> float:
+        """Piston area on the head side [m2]."""
+        return math.pi / 4.0 * self.spec.bore_m ** 2
+
+    @property
+    def area_crank_m2(self) -> float:
+        """Piston area on the crank side, less the piston rod [m2]."""
+        return self.area_head_m2 - math.pi / 4.0 * self.spec.piston_rod_diameter_m ** 2
+
+    @property
+    def swept_m3(self) -> tuple[float, float]:
+        """Swept volume of the (head, crank) end [m3]."""
+        return (self.area_head_m2 * self.spec.stroke_m, self.area_crank_m2 * self.spec.stroke_m)
+
+    @property
+    def clearance_m3(self) -> tuple[float, float]:
+        """Clearance volume of the (head, crank) end [m3]."""
+        sh, sc = self.swept_m3
+        return (self.spec.clearance[0] * sh, self.spec.clearance[1] * sc)
+
+    def piston_m(self, theta):
+        """Piston displacement from head-end dead centre [m]."""
+        R = self.crank_m
+        th = np.asarray(theta, dtype=float)
+        s = R * (1.0 - np.cos(th))
+        if self.rod_angularity:
+            L = self.spec.connecting_rod_m
+            s = s + L - np.sqrt(L * L - (R * np.sin(th)) ** 2)
+        return s
+
+    def dpiston_m_per_rad(self, theta):
+        """Derivative of the piston displacement with crank angle [m/rad]."""
+        R = self.crank_m
+        th = np.asarray(theta, dtype=float)
+        ds = R * np.sin(th)
+        if self.rod_angularity:
+            L = self.spec.connecting_rod_m
+            ds = ds + R * R * np.sin(th) * np.cos(th) / np.sqrt(L * L - (R * np.sin(th)) ** 2)
+        return ds
+
+    def fraction(self, theta):
+        """Piston position as a fraction of stroke from head-end dead centre [-]."""
+        return self.piston_m(theta) / self.spec.stroke_m
+
+    def volumes_m3(self, theta):
+        """Volumes of the (head, crank) ends [m3] at crank angle ``theta`` [rad]."""
+        s = self.piston_m(theta)
+        ch, cc = self.clearance_m3
+        return (ch + self.area_head_m2 * s,
+                cc + self.area_crank_m2 * (self.spec.stroke_m - s))
+
+    def dvolumes_m3_per_rad(self, theta):
+        """Derivatives of the end volumes with crank angle [m3/rad]."""
+        ds = self.dpiston_m_per_rad(theta)
+        return (self.area_head_m2 * ds, -self.area_crank_m2 * ds)
+
+    def theta_at_fraction(self, frac: float, end: str) -> float:
+        """Crank angle [rad] where that end's own stroke has run ``frac`` [-].
+
+        The head end's stroke runs from theta = 0 to pi, the crank end's from pi to
+        2 pi; the inverse is found by bisection (the motion is monotonic there).
+        """
+        target = frac if end == "head" else 1.0 - frac
+        lo, hi = (0.0, math.pi) if end == "head" else (math.pi, 2.0 * math.pi)
+        rising = end == "head"
+        for _ in range(80):
+            mid = 0.5 * (lo + hi)
+            if (self.fraction(mid) < target) == rising:
+                lo = mid
+            else:
+                hi = mid
+        return 0.5 * (lo + hi)

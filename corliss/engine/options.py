@@ -1,0 +1,68 @@
+"""The knobs of a run: effects a scene may name, and fidelity presets.
+
+Effects are switched by the scene alone; the model is assembled from those named
+(DESIGN.md, "Effects").  Fidelity presets are documented sets of knobs, each knob
+also settable alone in ``[run]``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+#: Effects a scene may name, with what each does.  Only these are implemented; the
+#: others of DESIGN.md are refused by name until they land.
+EFFECTS: dict[str, str] = {
+    "port_flow": "finite port areas with discharge coefficient, choking and reverse flow; "
+                 "without it, admission and exhaust are at chest and back pressure",
+    "rod_angularity": "exact slider crank with the finite connecting rod; without it, an "
+                      "infinite rod",
+}
+
+#: Effects of the design that this version does not have yet.
+PLANNED_EFFECTS = ("steam_chest", "wall_heat", "leakage", "inertia", "friction")
+
+MODELS = ("crank_resolved", "ideal")
+EXPANSION_LAWS = ("hyperbolic", "isentropic")
+METHODS = ("LSODA", "BDF", "Radau", "RK45", "DOP853")
+
+
+@dataclass(frozen=True)
+class Fidelity:
+    """One set of accuracy knobs.
+
+    Attributes
+    ----------
+    name : str
+        Preset it came from (or ``"custom"``).
+    properties : str
+        Steam-property tier.
+    method : str
+        ``scipy.integrate.solve_ivp`` method.
+    rtol : float
+        Relative tolerance of the integrator [-].
+    portmap_points : int
+        Uniform crank-angle intervals of the PortMap (kinks are added) [-].
+    convergence_tolerance : float
+        Stop when the cycle-to-cycle change of indicated work is below this
+        fraction [-].
+    max_cycles : int
+        Give up (with a warning in the summary) after this many cycles.
+    output_step_deg : float
+        Crank-angle step of the time series and cards [deg].
+    """
+
+    name: str
+    properties: str
+    method: str
+    rtol: float
+    portmap_points: int
+    convergence_tolerance: float
+    max_cycles: int
+    output_step_deg: float
+
+
+PRESETS: dict[str, Fidelity] = {
+    "reference": Fidelity("reference", "heos", "LSODA", 1e-9, 5760, 1e-6, 60, 0.25),
+    "standard": Fidelity("standard", "heos", "LSODA", 1e-6, 1440, 1e-4, 40, 1.0),
+    "fast": Fidelity("fast", "heos", "LSODA", 1e-4, 720, 1e-3, 20, 2.0),
+}

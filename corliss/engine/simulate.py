@@ -1,0 +1,261 @@
+"""Assemble the model a scene asks for, run it, and hand back a Result.
+
+Only the effects the scene names are assembled: without ``port_flow`` the ends take
+chest and back pressure through ideal ports (:mod:`corliss.engine.equilibrium`);
+without ``rod_angularity`` the connecting rod is infinite.  ``model = "ideal"`` is
+the algebraic card (:mod:`corliss.engine.ideal_card`).
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import time
+from typing import Callable
+
+import numpy as np
+import pandas as pd
+
+from corliss.engine import equilibrium as eq
+from corliss.engine.crank_resolved import CrankResolved, quad_index
+from corliss.engine.geometry import CylinderGeometry
+from corliss.engine.ideal_card import card_area, hyperbolic_card, indicated_steam_kg
+from corliss.results import CYCLE_QUANTITIES, Result
+from corliss.scene import Scene
+from corliss.thermo.steam import State, Steam, make_steam
+from corliss.valves import events as valve_events
+from corliss.valves import gear_type, tabulate
+
+log = logging.getLogger(__name__)
+TWO_PI = 2.0 * math.pi
+EQUILIBRIUM_STEP_DEG = 0.25
+
+
+def geometry_of(scene: Scene) -> CylinderGeometry:
+    """The cylinder geometry, with the connecting rod only if ``rod_angularity`` is named."""
+    return CylinderGeometry(scene.engine, rod_angularity=scene.run.has("rod_angularity"))
+
+
+def build_gear(scene: Scene):
+    """The scene's valve gear object."""
+    return gear_type(scene.gear_type).build(scene.gear)
+
+
+def scene_events(scene: Scene) -> dict:
+    """Valve events of both ends, without simulating."""
+    geo = geometry_of(scene)
+    return valve_events(build_gear(scene), lambda t: float(geo.fraction(t)))
+
+
+def reservoir_states(scene: Scene, steam: Steam) -> tuple[State, State]:
+    """(chest, exhaust): supply steam at the chest; dry saturated steam at back pressure."""
+    s = scene.supply
+    chest = (steam.pt(s.pressure_Pa, s.temperature_K) if s.temperature_K is not None
+             else steam.px(s.pressure_Pa, s.dryness))
+    return chest, steam.px(scene.exhaust.pressure_Pa, 1.0)
+
+
+def simulate(scene: Scene, *, portmap_scale: float = 1.0,
+             progress: Callable[[int, float], None] | None = None) -> Result:
+    """Run a scene.
+
+    Parameters
+    ----------
+    scene : Scene
+    portmap_scale : float
+        Multiply every port area by this factor (for studies of the port-flow limit).
+    progress : callable, optional
+        Called after each cycle with (cycle number, relative change of work).
+
+    Returns
+    -------
+    Result
+    """
+    t0 = time.perf_counter()
+    fid = scene.run.fidelity
+    steam = make_steam(fid.properties)
+    chest, exhaust = reservoir_states(scene, steam)
+    geo = geometry_of(scene)
+    gear = build_gear(scene)
+    ev = valve_events(gear, lambda t: float(geo.fraction(t)))
+    if scene.run.model == "ideal":
+        if scene.run.expansion == "hyperbolic":
+            data = _ideal_hyperbolic(scene, geo, ev, chest, exhaust)
+        else:
+            data = _equilibrium(scene, geo, steam, chest, exhaust, _ideal_schedule(ev, geo))
+    elif scene.run.has("port_flow"):
+        pm = tabulate(gear, fid.portmap_points)
+        if portmap_scale != 1.0:
+            pm = pm.scaled(portmap_scale)
+        data = _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress)
+    else:
+        pm = tabulate(gear, fid.portmap_points)
+        data = _equilibrium(scene, geo, steam, chest, exhaust, _portmap_schedule(pm), pm)
+    data["wall_time_s"] = time.perf_counter() - t0
+    return Result(scene=scene, events=ev, geometry=geo, chest=chest, exhaust=exhaust,
+                  property_tier=steam.name, **data)
+
+
+# --- crank-resolved with port flow -------------------------------------------------
+
+def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
+    fid = scene.run.fidelity
+    omega = scene.run.speed_rad_s
+    model = CrankResolved(geo, pm, steam, chest, exhaust, omega, fid.method, fid.rtol)
+    step = math.radians(fid.output_step_deg)
+    out_theta = np.linspace(0.0, TWO_PI, int(round(TWO_PI / step)) + 1)
+    y = model.initial_state()
+    rows, samples_all = [], []
+    w_prev = None
+    converged = None
+    n_max = scene.run.cycles or fid.max_cycles
+    for k in range(1, n_max + 1):
+        y, samples = model.cycle(y, 0.0, out_theta)
+        row = {"cycle": k}
+        for e, end in enumerate(("head", "crank")):
+            for q, unit in CYCLE_QUANTITIES:
+                row[f"{q}_{end}_{unit}"] = y[quad_index(e, q)]
+        rows.append(row)
+        samples_all.append(samples)
+        w = row["work_head_J"] + row["work_crank_J"]
+        change = abs(w - w_prev) / max(abs(w), 1e-300) if w_prev is not None else math.inf
+        if progress:
+            progress(k, change)
+        log.debug("cycle %d: work %.6g J, change %.3g", k, w, change)
+        if scene.run.cycles is None and change <= fid.convergence_tolerance:
+            converged = k
+            break
+        w_prev = w
+    # post-process states to pressures etc.
+    ts = []
+    for k, s in enumerate(samples_all):
+        cols = {"cycle": np.full(out_theta.size, k + 1),
+                "crank_angle_deg": np.degrees(out_theta + TWO_PI * k),
+                "time_s": (out_theta + TWO_PI * k) / omega}
+        Vh, Vc = geo.volumes_m3(out_theta)
+        for e, (end, V) in enumerate((("head", Vh), ("crank", Vc))):
+            m, U = s[2 * e], s[2 * e + 1]
+            st = [steam.du(mi / vi, ui / mi) for mi, ui, vi in zip(m, U, V)]
+            cols[f"p_{end}_Pa"] = np.array([x.p for x in st])
+            cols[f"T_{end}_K"] = np.array([x.T for x in st])
+            cols[f"x_{end}"] = np.array([x.x for x in st])
+            cols[f"V_{end}_m3"] = V
+            cols[f"m_{end}_kg"] = m
+        ts.append(pd.DataFrame(cols))
+    timeseries = pd.concat(ts, ignore_index=True)
+    return {"timeseries": timeseries, "cycles": pd.DataFrame(rows),
+            "cycles_to_converge": converged, "portmap": pm, "nfev": model.nfev}
+
+
+# --- ideal ports (no port_flow) and the isentropic ideal card -----------------------
+
+def _portmap_schedule(pm):
+    def schedule(theta):
+        mid = 0.5 * (theta[1:] + theta[:-1])
+        mask = pm.open_mask(mid)
+        return (eq.connection_from_areas(mask[0], mask[1]),
+                eq.connection_from_areas(mask[2], mask[3]))
+    return schedule, pm.breakpoints_rad
+
+
+def _ideal_schedule(ev, geo):
+    """Admission from dead centre to cut-off; exhaust from release to compression."""
+    def window(theta, a_deg, b_deg):
+        if a_deg is None or b_deg is None:
+            return np.zeros(theta.size, dtype=bool)
+        a, b = math.radians(a_deg), math.radians(b_deg)
+        t = theta % TWO_PI
+        return ((t - a) % TWO_PI) < ((b - a) % TWO_PI)
+
+    h, c = ev["head"], ev["crank"]
+    bps = [math.radians(v) for v in (0.0, 180.0, h["cutoff_deg"], h["release_deg"],
+                                     h["compression_deg"], c["cutoff_deg"], c["release_deg"],
+                                     c["compression_deg"]) if v is not None]
+
+    def schedule(theta):
+        mid = 0.5 * (theta[1:] + theta[:-1])
+        hs = window(mid, 0.0, h["cutoff_deg"])
+        he = window(mid, h["release_deg"], h["compression_deg"])
+        cs = window(mid, 180.0, c["cutoff_deg"])
+        ce = window(mid, c["release_deg"], c["compression_deg"])
+        return eq.connection_from_areas(hs, he), eq.connection_from_areas(cs, ce)
+    return schedule, np.asarray(bps)
+
+
+def _equilibrium(scene, geo, steam, chest, exhaust, sched, pm=None):
+    schedule, bps = sched
+    theta = eq.stepping_grid(bps, math.radians(EQUILIBRIUM_STEP_DEG))
+    conns = schedule(theta)
+    vols = geo.volumes_m3(theta)
+    fid = scene.run.fidelity
+    traces, converged = eq.run_cycles(steam, theta, vols, conns, chest, exhaust,
+                                      fid.convergence_tolerance, fid.max_cycles, scene.run.cycles)
+    rows, ts = [], []
+    omega = scene.run.speed_rad_s
+    for k, (th_, tc_) in enumerate(traces):
+        row = {"cycle": k + 1}
+        for end, tr in (("head", th_), ("crank", tc_)):
+            row[f"m_chest_{end}_kg"] = tr.m_chest_kg
+            row[f"H_chest_{end}_J"] = tr.H_chest_J
+            row[f"m_exhaust_{end}_kg"] = tr.m_exhaust_kg
+            row[f"H_exhaust_{end}_J"] = tr.H_exhaust_J
+            row[f"work_{end}_J"] = tr.work_J
+        rows.append(row)
+        cols = {"cycle": np.full(theta.size, k + 1),
+                "crank_angle_deg": np.degrees(theta + TWO_PI * k),
+                "time_s": (theta + TWO_PI * k) / omega}
+        for end, tr in (("head", th_), ("crank", tc_)):
+            cols[f"p_{end}_Pa"] = tr.p_Pa
+            cols[f"T_{end}_K"] = tr.T_K
+            cols[f"x_{end}"] = tr.x
+            cols[f"V_{end}_m3"] = tr.V_m3
+            cols[f"m_{end}_kg"] = tr.m_kg
+        ts.append(pd.DataFrame(cols))
+    return {"timeseries": pd.concat(ts, ignore_index=True), "cycles": pd.DataFrame(rows),
+            "cycles_to_converge": converged, "portmap": pm, "nfev": 0}
+
+
+# --- hyperbolic ideal card ------------------------------------------------------------
+
+def _ideal_hyperbolic(scene, geo, ev, chest, exhaust):
+    p_s, p_b = chest.p, exhaust.p
+    row = {"cycle": 1}
+    cols = {}
+    th_all = []
+    for e, end in enumerate(("head", "crank")):
+        x = ev[end]
+        f_c = x["cutoff_frac"] if x["cutoff_frac"] is not None else 0.0
+        f_r = x["release_frac"] if x["release_frac"] is not None else 1.0
+        f_k = x["compression_frac"] if x["compression_frac"] is not None else 0.0
+        Vc, Vs = geo.clearance_m3[e], geo.swept_m3[e]
+        frac, V, p = hyperbolic_card(Vc, Vs, f_c, f_r, f_k, p_s, p_b)
+        row[f"work_{end}_J"] = card_area(V, p)
+        m = indicated_steam_kg(Vc, Vs, f_c, f_k, chest, exhaust)
+        row[f"m_chest_{end}_kg"] = m
+        row[f"H_chest_{end}_J"] = m * chest.h
+        row[f"m_exhaust_{end}_kg"] = -m
+        row[f"H_exhaust_{end}_J"] = float("nan")
+        # crank angles of the card points: forward stroke then return stroke
+        half = np.array([geo.theta_at_fraction(min(max(f, 0.0), 1.0), "head") for f in
+                         (frac if end == "head" else 1.0 - frac)])
+        n = frac.size
+        fwd = np.zeros(n, dtype=bool)
+        fwd[: 3 * (n // 5)] = True     # admission, expansion, release to end of stroke
+        if end == "head":
+            th = np.where(fwd, half, TWO_PI - half)
+        else:
+            th = np.where(fwd, TWO_PI - half, half)
+        cols[end] = (th, V, p)
+        th_all.append(th)
+    grid = np.radians(np.arange(0.0, 360.0 + 1e-9, scene.run.fidelity.output_step_deg))
+    data = {"cycle": np.ones(grid.size, dtype=int), "crank_angle_deg": np.degrees(grid),
+            "time_s": grid / scene.run.speed_rad_s}
+    for end, (th, V, p) in cols.items():
+        order = np.argsort(th, kind="stable")
+        data[f"p_{end}_Pa"] = np.interp(grid, th[order], p[order])
+        data[f"V_{end}_m3"] = np.interp(grid, th[order], V[order])
+    cards = {end: pd.DataFrame({"frac": (V - geo.clearance_m3[e]) / geo.swept_m3[e],
+                                "V_m3": V, "p_Pa": p})
+             for e, (end, (th, V, p)) in enumerate(cols.items())}
+    return {"timeseries": pd.DataFrame(data), "cycles": pd.DataFrame([row]),
+            "cycles_to_converge": 1, "portmap": None, "nfev": 0, "ideal_cards": cards}

@@ -1,0 +1,30 @@
+"""The one exception type for a user's mistake."""
+
+from __future__ import annotations
+
+
+class InputError(ValueError):
+    """Bad input: names the offending key and value and says what would be valid.
+
+    The CLI turns this into a one-paragraph message and exit code 2.
+
+    Parameters
+    ----------
+    key : str
+        Dotted scene key, e.g. ``"valve_gear.lap"``.
+    value : object
+        The value as given.
+    expected : str
+        What would be valid, in words.
+    """
+
+    def __init__(self, key: str, value: object, expected: str):
+        self.key = key
+        self.value = value
+        self.expected = expected
+        super().__init__(f"{key} = {value!r} is not valid: expected {expected}.")
+
+    def with_prefix(self, prefix: str) -> "InputError":
+        """The same error with its key placed under ``prefix`` (a table name)."""
+        key = self.key if self.key.startswith(prefix + ".") else f"{prefix}.{self.key}"
+        return InputError(key, self.value, self.expected)

@@ -1,0 +1,90 @@
+"""Plots in period style.  Every function takes ``ax=None``, returns what it drew and
+never calls ``show()``.
+
+The indicator card is drawn as the indicator drew it: pressure against piston
+position (the drum turned with the crosshead), both ends on one card, gauge pressure
+(psig, or bar gauge in SI) with the atmospheric line, and the events marked.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from corliss import units
+
+_EVENT_MARK = {"cutoff": ("c/o", "v"), "release": ("rel", "s"), "compression": ("comp", "^"),
+               "admission": ("adm", "o")}
+
+
+def plot_card(result, ax=None, units_system: str | None = None) -> dict:
+    """Indicator card of both ends of the last cycle.
+
+    Parameters
+    ----------
+    result : Result
+    ax : matplotlib Axes, optional
+    units_system : str, optional
+        ``"US"`` (psig, inches of stroke) or ``"SI"`` (bar gauge, mm); default from
+        the scene.
+
+    Returns
+    -------
+    dict
+        ``{"ax": ax, "lines": {...}, "markers": [...]}``.
+    """
+    import matplotlib.pyplot as plt
+
+    system = units_system or result.scene.output.units
+    if ax is None:
+        _, ax = plt.subplots(figsize=(9, 5.5))
+    baro = result.scene.supply.barometer_Pa
+    p_unit, x_unit = ("psig", "in") if system == "US" else ("barg", "mm")
+    stroke = result.geometry.spec.stroke_m
+    cards = result.cards
+    lines = {}
+    style = {"head": dict(color="k", lw=1.4, ls="-"), "crank": dict(color="0.25", lw=1.4, ls="--")}
+    for end, card in cards.items():
+        x = units.to_unit(card["piston_frac"].to_numpy() * stroke, x_unit)
+        y = units.to_unit(card["p_Pa"].to_numpy(), p_unit, barometer_Pa=baro)
+        (lines[end],) = ax.plot(x, y, label=f"{end} end", **style[end])
+    xs = units.to_unit(stroke, x_unit)
+    ax.axhline(0.0, color="0.35", lw=0.8)
+    ax.text(xs * 0.995, 0.0, "atmosphere", ha="right", va="bottom", fontsize=8, color="0.35")
+    vac = units.to_unit(0.0, p_unit, barometer_Pa=baro)
+    ax.axhline(vac, color="0.6", lw=0.6, ls=":")
+    ax.text(xs * 0.995, vac, "zero pressure", ha="right", va="bottom", fontsize=7, color="0.5")
+    markers = []
+    geo = result.geometry
+    for end, ev in result.events.items():
+        card = cards[end]
+        for name, (label, m) in _EVENT_MARK.items():
+            deg = ev.get(f"{name}_deg")
+            if deg is None:
+                continue
+            th = np.radians(deg)
+            frac = float(geo.fraction(th))
+            if "crank_angle_deg" in card:
+                ang = np.mod(card["crank_angle_deg"].to_numpy(), 360.0)
+                i = int(np.argmin(np.abs(((ang - deg) + 180.0) % 360.0 - 180.0)))
+                p = card["p_Pa"].iloc[i]
+            else:
+                i = int(np.argmin(np.abs(card["piston_frac"].to_numpy() - frac)))
+                p = card["p_Pa"].iloc[i]
+            xm = units.to_unit(frac * stroke, x_unit)
+            ym = units.to_unit(p, p_unit, barometer_Pa=baro)
+            markers.append(ax.plot([xm], [ym], m, ms=4, color=style[end]["color"])[0])
+            ax.annotate(label, (xm, ym), textcoords="offset points", xytext=(3, 4), fontsize=7,
+                        color=style[end]["color"])
+    s = result.summary
+    ax.set_xlim(-0.02 * xs, 1.02 * xs)
+    ax.set_xlabel(f"piston position from head-end dead centre [{x_unit}]")
+    ax.set_ylabel(f"pressure [{p_unit}]")
+    ax.set_title(f"{result.scene.title}\n{s['speed_rpm']:.0f} rpm, "
+                 f"{s['indicated_power_hp']:.1f} ihp, m.e.p. "
+                 f"{units.to_unit(s['mep_mean_Pa'], 'psia' if system == 'US' else 'bar'):.1f} "
+                 f"{'psi' if system == 'US' else 'bar'}", fontsize=10)
+    ax.grid(True, color="0.9", lw=0.5)
+    ax.legend(loc="upper right", fontsize=8, frameon=False)
+    for side in ("top", "right"):
+        ax.spines[side].set_visible(False)
+    return {"ax": ax, "lines": lines, "markers": markers}

@@ -1,0 +1,278 @@
+"""What a run hands back: time series, per-cycle table, cards, summary; CSV + meta.
+
+Inside, every frame is SI with the unit in each column name (``p_head_Pa``).  On
+output the scene's ``[output] units`` chooses US (psia, ft3, degF, lb, ft lbf) or SI
+(kPa absolute, m3, degC, kg, J); column names carry the unit either way, and a
+``.meta.json`` beside each CSV records the package and CoolProp versions, the
+property tier, the resolved scene, the unit of every column and the time.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import json
+import math
+import os
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from corliss import units
+
+#: Per-cycle quadratures of each end and their SI units.
+CYCLE_QUANTITIES = (("m_chest", "kg"), ("H_chest", "J"), ("m_exhaust", "kg"),
+                    ("H_exhaust", "J"), ("work", "J"))
+
+#: SI suffix -> (US suffix, US unit, SI suffix, SI unit) for output frames.
+_OUTPUT_UNITS = {
+    "Pa": ("psia", "psia", "kPa_abs", "kPa"),
+    "m3": ("ft3", "ft3", "m3", "m3"),
+    "K": ("degF", "degF", "degC", "degC"),
+    "kg": ("lb", "lb", "kg", "kg"),
+    "J": ("ft_lbf", "ft lbf", "J", "J"),
+}
+
+
+def convert_frame(df: pd.DataFrame, system: str, barometer_Pa: float) -> tuple[pd.DataFrame, dict]:
+    """A copy of an SI frame in ``system`` ("US" or "SI") and the unit of each column."""
+    out = {}
+    col_units = {}
+    for col in df.columns:
+        base, _, suffix = col.rpartition("_")
+        if base and suffix in _OUTPUT_UNITS:
+            us_sfx, us_unit, si_sfx, si_unit = _OUTPUT_UNITS[suffix]
+            sfx, unit = (us_sfx, us_unit) if system == "US" else (si_sfx, si_unit)
+            name = f"{base}_{sfx}"
+            out[name] = units.to_unit(df[col].to_numpy(dtype=float), unit,
+                                      barometer_Pa=barometer_Pa)
+            col_units[name] = unit + (" absolute" if suffix == "Pa" else "")
+        else:
+            out[col] = df[col].to_numpy()
+            col_units[col] = {"crank_angle_deg": "deg", "time_s": "s"}.get(col, "-")
+    return pd.DataFrame(out), col_units
+
+
+def package_version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+    try:
+        return version("corliss")
+    except PackageNotFoundError:  # running from a source tree
+        return "0+unknown"
+
+
+def _write_atomic(path: Path, write) -> None:
+    """Write through a temporary file in the same directory, then rename."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    os.close(fd)
+    try:
+        write(tmp)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+@dataclass
+class Result:
+    """The outcome of :func:`corliss.simulate`.
+
+    Attributes
+    ----------
+    scene : Scene
+    events : dict
+        Valve events of each end (the JSON contract).
+    timeseries : DataFrame
+        State of both ends over every simulated cycle, SI.
+    cycles : DataFrame
+        One row per cycle: work, mass and enthalpy from the chest and the exhaust.
+    cycles_to_converge : int or None
+        Cycles until the indicated work was periodic (None if ``cycles`` fixed it).
+    """
+
+    scene: object
+    events: dict
+    geometry: object
+    chest: object
+    exhaust: object
+    property_tier: str
+    timeseries: pd.DataFrame
+    cycles: pd.DataFrame
+    cycles_to_converge: int | None
+    portmap: object
+    nfev: int
+    wall_time_s: float
+    ideal_cards: dict | None = None
+    _summary: dict | None = field(default=None, repr=False)
+
+    # --- derived quantities -------------------------------------------------------
+    @property
+    def last_cycle(self) -> pd.Series:
+        return self.cycles.iloc[-1]
+
+    @property
+    def cards(self) -> dict[str, pd.DataFrame]:
+        """Card of each end over the last cycle: piston fraction, volume, pressure (SI).
+
+        ``piston_frac`` is the piston position as a fraction of the stroke from the
+        head-end dead centre, the abscissa of an indicator card.
+        """
+        if self.ideal_cards is not None:
+            out = {}
+            for end, df in self.ideal_cards.items():
+                frac = df["frac"] if end == "head" else 1.0 - df["frac"]
+                out[end] = pd.DataFrame({"piston_frac": frac.to_numpy(),
+                                         "V_m3": df["V_m3"].to_numpy(),
+                                         "p_Pa": df["p_Pa"].to_numpy()})
+            return out
+        ts = self.timeseries[self.timeseries["cycle"] == self.timeseries["cycle"].max()]
+        th = np.radians(ts["crank_angle_deg"].to_numpy()) % (2 * math.pi)
+        frac = self.geometry.fraction(th)
+        return {end: pd.DataFrame({"crank_angle_deg": ts["crank_angle_deg"].to_numpy(),
+                                   "piston_frac": frac,
+                                   "V_m3": ts[f"V_{end}_m3"].to_numpy(),
+                                   "p_Pa": ts[f"p_{end}_Pa"].to_numpy()})
+                for end in ("head", "crank")}
+
+    @property
+    def summary(self) -> dict:
+        """The run's summary: the JSON contract keys and more (all SI unless named)."""
+        if self._summary is None:
+            self._summary = self._make_summary()
+        return self._summary
+
+    def _make_summary(self) -> dict:
+        run = self.scene.run
+        row = self.last_cycle
+        w_h, w_c = float(row["work_head_J"]), float(row["work_crank_J"])
+        w = w_h + w_c
+        rev_per_s = run.speed_rad_s / (2 * math.pi)
+        power = w * rev_per_s
+        sw_h, sw_c = self.geometry.swept_m3
+        steam_cycle = float(row["m_chest_head_kg"] + row["m_chest_crank_kg"])
+        steam_rate = steam_cycle * rev_per_s * 3600.0
+        m_exh = float(row["m_exhaust_head_kg"] + row["m_exhaust_crank_kg"])
+        H_in = float(row["H_chest_head_J"] + row["H_chest_crank_J"])
+        H_ex = float(row["H_exhaust_head_J"] + row["H_exhaust_crank_J"])
+        p_peak = float(np.nanmax(np.concatenate([c["p_Pa"].to_numpy() for c in self.cards.values()])))
+        mass_err = abs(steam_cycle + m_exh) / abs(steam_cycle) if steam_cycle else None
+        energy_err = (abs(H_in + H_ex - w) / abs(H_in) if math.isfinite(H_ex) and H_in else None)
+        power_kW = power / 1000.0
+        ihp = power / units.HP_W
+
+        def ratio(a, b):
+            return a / b if b > 0 else None
+
+        return {
+            "title": self.scene.title,
+            "model": run.model,
+            "effects": list(run.effects),
+            "fidelity": run.fidelity.name,
+            "property_tier": self.property_tier,
+            "speed_rpm": run.speed_rpm,
+            "indicated_power_W": power,
+            "indicated_power_hp": ihp,
+            "indicated_work_J_per_cycle": w,
+            "mep_head_Pa": w_h / sw_h,
+            "mep_crank_Pa": w_c / sw_c,
+            "mep_mean_Pa": w / (sw_h + sw_c),
+            "steam_per_cycle_kg": steam_cycle,
+            "steam_rate_kg_per_h": steam_rate,
+            "water_rate_kg_per_kWh": ratio(steam_rate, power_kW),
+            "water_rate_lb_per_ihp_h": ratio(steam_rate / units.POUND_kg, ihp),
+            "peak_pressure_Pa": p_peak,
+            "supply_pressure_Pa": self.chest.p,
+            "exhaust_pressure_Pa": self.exhaust.p,
+            "cycles_simulated": int(len(self.cycles)),
+            "cycles_to_converge": self.cycles_to_converge,
+            "mass_balance_error": mass_err,
+            "energy_balance_error": energy_err,
+            "rhs_evaluations": self.nfev,
+            "wall_time_s": self.wall_time_s,
+            "events": self.events,
+        }
+
+    # --- output -------------------------------------------------------------------
+    def meta(self, columns: dict | None = None, file: str | None = None) -> dict:
+        """Metadata for a CSV: versions, property tier, resolved scene, units, time."""
+        from corliss.thermo.steam import coolprop_version
+        return {
+            "file": file,
+            "corliss_version": package_version(),
+            "coolprop_version": coolprop_version(),
+            "property_backend": self.property_tier,
+            "created_utc": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+            "units_system": self.scene.output.units,
+            "pressure": "absolute",
+            "columns": columns,
+            "scene_file": self.scene.source,
+            "scene": _jsonable(self.scene.resolved()),
+            "summary": _jsonable(self.summary),
+        }
+
+    def to_csv(self, path: str | Path, table: str = "timeseries", units_system: str | None = None) -> Path:
+        """Write the time series (or ``table="cycles"``) as CSV with a ``.meta.json`` beside it.
+
+        Returns the CSV path.  Both files are written atomically.
+        """
+        path = Path(path)
+        system = units_system or self.scene.output.units
+        df = self.timeseries if table == "timeseries" else self.cycles
+        out, col_units = convert_frame(df, system, self.scene.supply.barometer_Pa)
+        _write_atomic(path, lambda p: out.to_csv(p, index=False, float_format="%.9g"))
+        meta_path = path.with_suffix(".meta.json")
+        meta = self.meta(col_units, path.name)
+        _write_atomic(meta_path, lambda p: Path(p).write_text(json.dumps(meta, indent=2)))
+        return path
+
+    def plot_card(self, ax=None, units_system: str | None = None):
+        """Period-style indicator card of both ends; see :func:`corliss.plot.plot_card`."""
+        from corliss.plot import plot_card
+        return plot_card(self, ax=ax, units_system=units_system)
+
+    def write(self, out_dir: str | Path) -> dict[str, Path]:
+        """Write the card PNG, the time-series and per-cycle CSVs with meta, and summary JSON."""
+        out_dir = Path(out_dir)
+        stem = self.scene.name
+        files = {
+            "timeseries": self.to_csv(out_dir / f"{stem}.timeseries.csv"),
+            "cycles": self.to_csv(out_dir / f"{stem}.cycles.csv", table="cycles"),
+        }
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots(figsize=(9, 5.5))
+        self.plot_card(ax=ax)
+        png = out_dir / f"{stem}.card.png"
+        _write_atomic(png, lambda p: fig.savefig(p, dpi=130, bbox_inches="tight", format="png"))
+        plt.close(fig)
+        files["card"] = png
+        sj = out_dir / f"{stem}.summary.json"
+        _write_atomic(sj, lambda p: Path(p).write_text(json.dumps(_jsonable(self.summary), indent=2)))
+        files["summary"] = sj
+        return files
+
+
+def _jsonable(obj):
+    """Turn numpy scalars, tuples and NaN into plain JSON values."""
+    if isinstance(obj, dict):
+        return {str(k): _jsonable(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_jsonable(v) for v in obj]
+    if isinstance(obj, (np.floating, float)):
+        f = float(obj)
+        return f if math.isfinite(f) else None
+    if isinstance(obj, (np.integer,)):
+        return int(obj)
+    if isinstance(obj, np.bool_):
+        return bool(obj)
+    return obj
+
+
+def summary_json(summary: dict) -> str:
+    """The summary as the JSON text of ``corliss run --json``."""
+    return json.dumps(_jsonable(summary), indent=2)

@@ -1,0 +1,332 @@
+"""A TOML scene into frozen, validated specs in SI.
+
+Every dimensional value is a quantity string with its unit; unknown keys, missing
+units and impossible geometry are :class:`~corliss.errors.InputError` naming the key,
+the value and what would be valid, raised before any work starts.  The format is
+described in DESIGN.md and shown by ``scenes/default.toml``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+
+from corliss import units
+from corliss.engine.geometry import EngineSpec
+from corliss.engine.options import (EFFECTS, EXPANSION_LAWS, METHODS, MODELS,
+                                    PLANNED_EFFECTS, PRESETS, Fidelity)
+from corliss.errors import InputError
+from corliss.tables import Table
+from corliss.thermo.steam import BACKENDS, HEOSSteam
+from corliss.valves import gear_type
+
+SECTIONS = ("title", "engine", "supply", "exhaust", "valve_gear", "run", "output")
+LATER_SECTIONS = ("governor", "flywheel", "load")
+
+
+@dataclass(frozen=True)
+class SupplySpec:
+    """Steam at the chest (all SI).
+
+    Attributes
+    ----------
+    pressure_Pa : float
+        Absolute pressure [Pa].
+    temperature_K : float or None
+        Superheated temperature [K]; None for saturated or wet steam.
+    dryness : float
+        Dryness fraction [-] when not superheated (1 = dry saturated).
+    barometer_Pa : float
+        Atmospheric pressure [Pa] that gauge readings were taken against.
+    """
+
+    pressure_Pa: float
+    temperature_K: float | None
+    dryness: float
+    barometer_Pa: float
+
+
+@dataclass(frozen=True)
+class ExhaustSpec:
+    """Back pressure: atmosphere, condenser or receiver, held constant.
+
+    Attributes
+    ----------
+    pressure_Pa : float
+        Absolute back pressure [Pa].
+    """
+
+    pressure_Pa: float
+
+
+@dataclass(frozen=True)
+class RunSpec:
+    """What to simulate and how accurately.
+
+    Attributes
+    ----------
+    mode : str
+        ``"steady"`` (constant speed).
+    model : str
+        ``"crank_resolved"`` or ``"ideal"``.
+    speed_rad_s : float
+        Crank speed [rad/s].
+    effects : tuple of str
+        Effects named by the scene.
+    fidelity : Fidelity
+        Accuracy knobs (a preset with any single knob overridden).
+    cycles : int or None
+        Simulate exactly this many cycles; None: run until periodic.
+    expansion : str
+        Expansion law of the ideal card: ``"hyperbolic"`` or ``"isentropic"``.
+    """
+
+    mode: str
+    model: str
+    speed_rad_s: float
+    effects: tuple[str, ...]
+    fidelity: Fidelity
+    cycles: int | None
+    expansion: str
+
+    @property
+    def speed_rpm(self) -> float:
+        return self.speed_rad_s / units.RPM_RAD_S
+
+    def has(self, effect: str) -> bool:
+        """True when the scene names ``effect``."""
+        return effect in self.effects
+
+
+@dataclass(frozen=True)
+class OutputSpec:
+    """Where and how results are written.
+
+    Attributes
+    ----------
+    units : str
+        ``"US"`` or ``"SI"`` in CSV and plots.
+    dir : str
+        Output directory, relative to the working directory.
+    """
+
+    units: str
+    dir: str
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A validated scene, all SI.  Build it with :func:`load_scene`."""
+
+    title: str
+    engine: EngineSpec
+    supply: SupplySpec
+    exhaust: ExhaustSpec
+    gear_type: str
+    gear: object
+    run: RunSpec
+    output: OutputSpec
+    name: str = "scene"
+    source: str | None = None
+
+    def resolved(self) -> dict:
+        """The scene as resolved SI values (for result metadata)."""
+        d = dataclasses.asdict(self)
+        d["gear"] = dataclasses.asdict(self.gear)
+        return d
+
+    def replace_run(self, **changes) -> "Scene":
+        """A copy with fields of ``run`` changed (e.g. ``cycles=3``)."""
+        return dataclasses.replace(self, run=dataclasses.replace(self.run, **changes))
+
+    def with_fidelity(self, name: str) -> "Scene":
+        """A copy at another fidelity preset."""
+        if name not in PRESETS:
+            raise InputError("run.fidelity", name, "one of " + ", ".join(PRESETS))
+        return self.replace_run(fidelity=PRESETS[name])
+
+
+def _pair_fraction(t: Table, key: str) -> tuple[float, float]:
+    raw = t.raw(key)
+    vals = raw if isinstance(raw, list) else [raw, raw]
+    if len(vals) != 2 or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in vals):
+        raise InputError(t.key(key), raw, "a fraction of the swept volume, or [head, crank]")
+    for v in vals:
+        if not 0.0 < v < 1.0:
+            raise InputError(t.key(key), raw, "a clearance fraction between 0 and 1 "
+                             "(zero clearance makes compression pressure infinite)")
+    return (float(vals[0]), float(vals[1]))
+
+
+def _engine(t: Table) -> EngineSpec:
+    bore = t.length("bore", positive=True)
+    stroke = t.length("stroke", positive=True)
+    rod = t.length("connecting_rod", positive=True)
+    if rod <= stroke / 2.0:
+        raise InputError(t.key("connecting_rod"), t.raw("connecting_rod"),
+                         f"a connecting rod longer than the crank (half the stroke, "
+                         f"{stroke / 2 / units.INCH_m:.4g} in)")
+    prd = t.length("piston_rod_diameter", "0 in")
+    if not 0.0 <= prd < bore:
+        raise InputError(t.key("piston_rod_diameter"), t.raw("piston_rod_diameter"),
+                         "a piston rod diameter from zero up to less than the bore")
+    spec = EngineSpec(bore, stroke, rod, prd, _pair_fraction(t, "clearance"))
+    t.finish()
+    return spec
+
+
+def _supply(t: Table) -> SupplySpec:
+    p = t.pressure("pressure")
+    temp_raw = t.raw("temperature", "saturated")
+    dryness = 1.0
+    temperature = None
+    if t.has("dryness"):
+        dryness = t.number("dryness")
+        if not 0.0 < dryness <= 1.0:
+            raise InputError(t.key("dryness"), dryness, "a dryness fraction in (0, 1]")
+        if temp_raw != "saturated":
+            raise InputError(t.key("dryness"), dryness,
+                             "dryness only with saturated (wet) steam, not with a temperature")
+    if temp_raw != "saturated":
+        temperature = t.quantity("temperature", "temperature")
+        if p >= 22.064e6:
+            raise InputError(t.key("pressure"), t.raw("pressure"), "a subcritical pressure")
+        t_sat = HEOSSteam().t_sat(p)
+        if temperature < t_sat - 1e-6:
+            raise InputError(t.key("temperature"), temp_raw,
+                             f"\"saturated\" or a temperature at or above saturation "
+                             f"({t_sat - 273.15:.1f} degC at this pressure)")
+        if temperature - t_sat < 1e-3:
+            temperature = None
+    t.finish()
+    return SupplySpec(p, temperature, dryness, t.barometer_Pa)
+
+
+def _run(t: Table) -> RunSpec:
+    mode = t.choice("mode", ("steady", "transient"), "steady")
+    if mode == "transient":
+        raise InputError(t.key("mode"), mode, "\"steady\": transient runs (speed as a state, "
+                         "flywheel and governor) are not in this version yet")
+    model = t.choice("model", MODELS, "crank_resolved")
+    speed = t.quantity("speed", "speed")
+    if not speed > 0.0:
+        raise InputError(t.key("speed"), t.raw("speed"), "a speed greater than zero")
+    effects = t.raw("effects", ["port_flow", "rod_angularity"])
+    if not isinstance(effects, list) or not all(isinstance(e, str) for e in effects):
+        raise InputError(t.key("effects"), effects, "a list of effect names")
+    for e in effects:
+        if e in PLANNED_EFFECTS:
+            raise InputError(t.key("effects"), e, "an effect this version has ("
+                             + ", ".join(EFFECTS) + f"); {e!r} is planned but not built yet")
+        if e not in EFFECTS:
+            raise InputError(t.key("effects"), e, "one of " + ", ".join(EFFECTS))
+    preset = t.choice("fidelity", tuple(PRESETS), "standard")
+    fid = PRESETS[preset]
+    changes = {}
+    if t.has("properties"):
+        changes["properties"] = t.choice("properties", tuple(BACKENDS))
+    if t.has("method"):
+        changes["method"] = t.choice("method", METHODS)
+    if t.has("rtol"):
+        changes["rtol"] = t.number("rtol")
+        if not 1e-13 <= changes["rtol"] <= 1e-2:
+            raise InputError(t.key("rtol"), changes["rtol"], "a tolerance between 1e-13 and 1e-2")
+    if t.has("convergence_tolerance"):
+        changes["convergence_tolerance"] = t.number("convergence_tolerance")
+        if not 0.0 < changes["convergence_tolerance"] < 0.5:
+            raise InputError(t.key("convergence_tolerance"), changes["convergence_tolerance"],
+                             "a fraction between 0 and 0.5")
+    if t.has("max_cycles"):
+        changes["max_cycles"] = t.integer("max_cycles")
+        if changes["max_cycles"] < 2:
+            raise InputError(t.key("max_cycles"), changes["max_cycles"], "an integer >= 2")
+    if t.has("portmap_points"):
+        changes["portmap_points"] = t.integer("portmap_points")
+        if changes["portmap_points"] < 90:
+            raise InputError(t.key("portmap_points"), changes["portmap_points"], "an integer >= 90")
+    if changes:
+        fid = dataclasses.replace(fid, name="custom", **changes)
+    cycles = None
+    if t.has("cycles"):
+        cycles = t.integer("cycles")
+        if cycles < 1:
+            raise InputError(t.key("cycles"), cycles, "a whole number of cycles >= 1")
+    expansion = t.choice("expansion", EXPANSION_LAWS, "hyperbolic")
+    t.finish()
+    return RunSpec(mode, model, speed, tuple(dict.fromkeys(effects)), fid, cycles, expansion)
+
+
+def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) -> Scene:
+    """Validate a parsed TOML document into a :class:`Scene`.
+
+    Raises
+    ------
+    InputError
+        Naming the first offending key.
+    """
+    for key in data:
+        if key in LATER_SECTIONS:
+            raise InputError(key, "[...]", "no [governor], [flywheel] or [load] section: "
+                             "governed and transient runs are not in this version yet")
+        if key not in SECTIONS:
+            raise InputError(key, data[key], "a known section: " + ", ".join(SECTIONS))
+    for key in SECTIONS[1:6]:
+        if key not in data:
+            raise InputError(key, None, f"a [{key}] section: it is required")
+    sup = Table(data["supply"], "supply")
+    barometer = sup.pressure("barometer", "14.696 psia")
+    sup.barometer_Pa = barometer
+    engine = _engine(Table(data["engine"], "engine", barometer))
+    supply = _supply(sup)
+    ex = Table(data["exhaust"], "exhaust", barometer)
+    exhaust = ExhaustSpec(ex.pressure("pressure"))
+    ex.finish()
+    if not supply.pressure_Pa > exhaust.pressure_Pa:
+        raise InputError("supply.pressure", data["supply"].get("pressure"),
+                         f"a supply pressure above the exhaust pressure "
+                         f"({data['exhaust'].get('pressure')!r} = "
+                         f"{exhaust.pressure_Pa / units.PSI_Pa:.4g} psia)")
+    vg = Table(data["valve_gear"], "valve_gear", barometer)
+    gt = gear_type(vg.raw("type"))
+    gear = gt.parse(vg)
+    vg.finish()
+    run = _run(Table(data["run"], "run", barometer))
+    out = Table(data.get("output", {}), "output", barometer)
+    output = OutputSpec(out.choice("units", ("US", "SI"), "US"), out.string("dir", "out"))
+    out.finish()
+    title = data.get("title", name)
+    if not isinstance(title, str):
+        raise InputError("title", title, "a string")
+    return Scene(title, engine, supply, exhaust, gt.name, gear, run, output, name, source)
+
+
+def load_scene(path: str | Path) -> Scene:
+    """Read and validate a scene file.
+
+    Parameters
+    ----------
+    path : str or Path
+        A TOML scene.
+
+    Raises
+    ------
+    InputError
+        If the file is missing, is not TOML, or any key is invalid.
+    """
+    p = Path(path)
+    if not p.is_file():
+        raise InputError("scene", str(path), "the path of an existing scene file (.toml)")
+    try:
+        data = tomllib.loads(p.read_text(encoding="utf-8"))
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError("scene", str(path), f"a TOML file ({exc})") from None
+    return scene_from_dict(data, name=p.stem, source=str(p))
+
+
+def default_scene_path() -> Path:
+    """The bundled default scene (a 12 x 24 in slide-valve engine)."""
+    from importlib.resources import files
+    return Path(str(files("corliss.scenes") / "default.toml"))

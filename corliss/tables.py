@@ -1,0 +1,107 @@
+"""Reading one TOML table of a scene: typed getters that name the key on error.
+
+Every getter records the key it read; :meth:`Table.finish` then refuses any key that
+was not read, so a misspelt key is an error instead of a silent default.
+"""
+
+from __future__ import annotations
+
+import math
+
+from corliss import units
+from corliss.errors import InputError
+
+_MISSING = object()
+
+
+class Table:
+    """A scene table with its dotted name and the scene's barometer.
+
+    Parameters
+    ----------
+    data : dict
+        The TOML table.
+    name : str
+        Its dotted name in the scene, e.g. ``"valve_gear"``.
+    barometer_Pa : float
+        Atmospheric pressure [Pa] for gauge readings.
+    """
+
+    def __init__(self, data: dict, name: str, barometer_Pa: float = units.STANDARD_ATMOSPHERE_Pa):
+        if not isinstance(data, dict):
+            raise InputError(name, data, "a table (a [section] in the scene)")
+        self.data = data
+        self.name = name
+        self.barometer_Pa = barometer_Pa
+        self._read: set[str] = set()
+
+    def key(self, key: str) -> str:
+        """Dotted name of ``key`` in this table."""
+        return f"{self.name}.{key}" if self.name else key
+
+    def has(self, key: str) -> bool:
+        self._read.add(key)
+        return key in self.data
+
+    def raw(self, key: str, default=_MISSING):
+        """The value as written; a missing key without a default is an error."""
+        self._read.add(key)
+        if key in self.data:
+            return self.data[key]
+        if default is _MISSING:
+            raise InputError(self.key(key), None, "a value: this key is required")
+        return default
+
+    def quantity(self, key: str, kind: str, default=_MISSING) -> float:
+        raw = self.raw(key, default)
+        return units.parse(raw, kind, self.key(key), barometer_Pa=self.barometer_Pa)
+
+    def length(self, key: str, default=_MISSING, *, positive: bool = False) -> float:
+        v = self.quantity(key, "length", default)
+        if positive and not v > 0.0:
+            raise InputError(self.key(key), self.raw(key), "a length greater than zero")
+        return v
+
+    def pressure(self, key: str, default=_MISSING) -> float:
+        v = self.quantity(key, "pressure", default)
+        if not v > 0.0:
+            raise InputError(self.key(key), self.raw(key, default),
+                             "a pressure above absolute zero (check gauge and vacuum readings "
+                             f"against the barometer, {self.barometer_Pa / units.PSI_Pa:.4g} psia)")
+        return v
+
+    def angle(self, key: str, default=_MISSING) -> float:
+        return self.quantity(key, "angle", default)
+
+    def number(self, key: str, default=_MISSING) -> float:
+        v = self.raw(key, default)
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+            raise InputError(self.key(key), v, "a plain number")
+        return float(v)
+
+    def integer(self, key: str, default=_MISSING) -> int:
+        v = self.raw(key, default)
+        if isinstance(v, bool) or not isinstance(v, int):
+            raise InputError(self.key(key), v, "a whole number")
+        return v
+
+    def string(self, key: str, default=_MISSING) -> str:
+        v = self.raw(key, default)
+        if not isinstance(v, str):
+            raise InputError(self.key(key), v, "a string")
+        return v
+
+    def choice(self, key: str, choices: tuple[str, ...], default=_MISSING) -> str:
+        v = self.raw(key, default)
+        if v not in choices:
+            raise InputError(self.key(key), v, "one of " + ", ".join(repr(c) for c in choices))
+        return v
+
+    def finish(self) -> None:
+        """Refuse keys that no getter read (misspellings, keys of another gear)."""
+        unknown = sorted(set(self.data) - self._read)
+        if unknown:
+            k = unknown[0]
+            known = ", ".join(sorted(self._read))
+            raise InputError(self.key(k), self.data[k],
+                             f"a known key; {self.name or 'the scene'} takes: {known}")

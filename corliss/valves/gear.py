@@ -1,0 +1,86 @@
+"""What every valve gear provides, and the registry of gears by name.
+
+A gear is built from its frozen spec and answers one question: for crank angles
+``theta`` [rad], how far is each of the four ports of a double-acting cylinder open?
+It answers with *signed openings* [m]: the distance the controlling valve edge has
+travelled past the port edge, positive when open, negative when the port is covered
+(its magnitude then being the lap still to travel).  The physical opening is the
+signed opening clipped to [0, port width]; the open area is that times the port
+length times the number of openings.
+
+Port order everywhere: head steam, head exhaust, crank steam, crank exhaust.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable, ClassVar
+
+import numpy as np
+
+from corliss.errors import InputError
+
+PORTS = ("head_steam", "head_exhaust", "crank_steam", "crank_exhaust")
+
+
+class ValveGear:
+    """Base class of a valve gear.
+
+    Subclasses set ``name`` and ``spec`` and implement :meth:`signed_openings`,
+    :meth:`port_widths` and :meth:`port_lengths`.
+    """
+
+    name: ClassVar[str] = "abstract"
+    summary: ClassVar[str] = ""
+
+    def signed_openings(self, theta: np.ndarray) -> np.ndarray:  # pragma: no cover
+        """Signed opening of each port [m], shape ``(4, len(theta))``."""
+        raise NotImplementedError
+
+    def port_widths(self) -> np.ndarray:  # pragma: no cover
+        """Width of each port [m] (the most the valve can open it), shape ``(4,)``."""
+        raise NotImplementedError
+
+    def port_lengths(self) -> np.ndarray:  # pragma: no cover
+        """Length of each port [m] times its number of openings, shape ``(4,)``."""
+        raise NotImplementedError
+
+    def discharge_coefficients(self) -> np.ndarray:  # pragma: no cover
+        """Discharge coefficient of each port [-], shape ``(4,)``."""
+        raise NotImplementedError
+
+    def openings(self, theta: np.ndarray) -> np.ndarray:
+        """Physical opening of each port [m], clipped to [0, port width]."""
+        s = self.signed_openings(np.atleast_1d(theta))
+        return np.clip(s, 0.0, self.port_widths()[:, None])
+
+    def areas(self, theta: np.ndarray) -> np.ndarray:
+        """Open area of each port [m2], shape ``(4, len(theta))``."""
+        return self.openings(theta) * self.port_lengths()[:, None]
+
+
+@dataclass(frozen=True)
+class GearType:
+    """A registry entry: how to read a gear's scene table and build it."""
+
+    name: str
+    summary: str
+    parse: Callable[[object], object]        # corliss.tables.Table -> spec
+    build: Callable[[object], ValveGear]     # spec -> gear
+
+
+GEARS: dict[str, GearType] = {}
+
+
+def register(gear_type: GearType) -> GearType:
+    """Add a gear type to the registry."""
+    GEARS[gear_type.name] = gear_type
+    return gear_type
+
+
+def gear_type(name: object) -> GearType:
+    """Look a gear type up by name; an unknown name is an :class:`InputError`."""
+    if name not in GEARS:
+        raise InputError("valve_gear.type", name, "a gear from the registry: "
+                         + ", ".join(sorted(GEARS)))
+    return GEARS[name]

@@ -1,0 +1,80 @@
+"""A gear tabulated once: the open area of every port over crank angle.
+
+The hot loop reads areas from this table by linear interpolation, never calling the
+gear.  The grid is uniform plus every angle where a port opens, closes or reaches
+full opening, so the piecewise-linear table is exact at the kinks, and the
+integrator can stop there (``breakpoints``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from corliss.valves.events import crossings
+from corliss.valves.gear import PORTS, ValveGear
+
+TWO_PI = 2.0 * math.pi
+
+
+@dataclass(frozen=True)
+class PortMap:
+    """Open area of the four ports against crank angle.
+
+    Attributes
+    ----------
+    theta_rad : ndarray
+        Crank angles [rad], increasing, from 0 to 2 pi inclusive.
+    area_m2 : ndarray
+        Open area [m2], shape ``(4, len(theta_rad))``, in the order of
+        :data:`corliss.valves.gear.PORTS`.
+    cd : ndarray
+        Discharge coefficient of each port [-], shape ``(4,)``.
+    breakpoints_rad : ndarray
+        Angles in [0, 2 pi) where any port opens, closes or reaches full opening.
+    """
+
+    theta_rad: np.ndarray
+    area_m2: np.ndarray
+    cd: np.ndarray
+    breakpoints_rad: np.ndarray
+
+    def areas(self, theta: float) -> np.ndarray:
+        """Open areas [m2] of the four ports at crank angle ``theta`` [rad] (any turn)."""
+        t = theta % TWO_PI
+        return np.array([np.interp(t, self.theta_rad, a) for a in self.area_m2])
+
+    def open_mask(self, theta: np.ndarray) -> np.ndarray:
+        """Boolean ``(4, n)``: which ports are open at each angle [rad]."""
+        t = np.asarray(theta) % TWO_PI
+        return np.vstack([np.interp(t, self.theta_rad, a) > 0.0 for a in self.area_m2])
+
+    def scaled(self, factor: float) -> "PortMap":
+        """The same map with every area multiplied by ``factor`` (a study device)."""
+        return PortMap(self.theta_rad, self.area_m2 * factor, self.cd, self.breakpoints_rad)
+
+    @property
+    def ports(self) -> tuple[str, ...]:
+        return PORTS
+
+
+def tabulate(gear: ValveGear, n: int = 1440) -> PortMap:
+    """Tabulate a gear to a :class:`PortMap` on ``n`` uniform intervals plus its kinks."""
+    widths = gear.port_widths()
+    kinks = []
+    for port in range(4):
+        kinks += [t for t, _ in crossings(gear, port, 0.0)]
+        kinks += [t for t, _ in crossings(gear, port, float(widths[port]))]
+    kinks = np.unique(np.round(np.asarray(kinks, dtype=float) % TWO_PI, 12))
+    grid = np.union1d(np.linspace(0.0, TWO_PI, n + 1), kinks)
+    # drop uniform points closer than 1e-9 rad to a kink (keep the kink itself)
+    keep = np.ones(grid.size, dtype=bool)
+    for k in kinks:
+        near = np.abs(grid - k) < 1e-9
+        near[np.argmin(np.abs(grid - k))] = False
+        keep &= ~near
+    grid = grid[keep]
+    return PortMap(theta_rad=grid, area_m2=gear.areas(grid), cd=gear.discharge_coefficients(),
+                   breakpoints_rad=kinks)

@@ -1,0 +1,209 @@
+"""The plain D slide valve driven by a single eccentric.
+
+Valve displacement, positive in the sense that opens the head-end steam port
+(Spangler, *Valve-Gears*, Art. 13, eq. 4)::
+
+    x(theta) = r sin(theta + delta)                       Zeuner (infinite rod)
+
+With an eccentric rod of finite length ``g`` the rod end falls short of its
+harmonic position by ``g - sqrt(g^2 - r^2 cos^2(theta + delta))``, always towards the
+shaft (Marks, *Relative Proportions*, Art. 96, eqs. 229-232: Zeuner's "missing
+quantity").  The valve takes that shortfall with the sign ``sigma``: +1 for a
+directly connected valve taking steam outside, -1 through a reverse lever or with
+steam inside (Spangler Arts. 24, 29: either reversal puts the eccentric behind the
+crank).  A valve set for equal lead (the usual practice; Marks Art. 96: "equalizing
+the lead very nearly equalizes the cut-off") has its zero at the mean of its two
+dead-point positions, so the correction vanishes at both dead centres::
+
+    x(theta) = r sin(theta + delta)
+               + sigma [ sqrt(g^2 - r^2 cos^2 delta) - sqrt(g^2 - r^2 cos^2(theta + delta)) ]
+
+A valve set for equal extreme travels (``setting = "mid_travel"``) keeps the whole
+correction instead.
+
+Port openings (Spangler Art. 15 and Art. 2.3 of the notes): head steam ``x - l_h``,
+head exhaust ``-x - e_h``, crank steam ``-x - l_c``, crank exhaust ``x - e_c``, with
+``l`` the steam lap and ``e`` the exhaust lap of each end (negative for clearance).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from corliss import units
+from corliss.errors import InputError
+from corliss.valves.gear import GearType, ValveGear, register
+from corliss.tables import Table
+
+
+@dataclass(frozen=True)
+class SlideValveSpec:
+    """A plain slide valve and its eccentric (all SI).
+
+    Attributes
+    ----------
+    eccentricity_m : float
+        Eccentric throw r, half the valve travel [m].
+    lap_m : tuple of float
+        Steam lap of the (head, crank) end [m].
+    exhaust_lap_m : tuple of float
+        Exhaust lap of the (head, crank) end [m]; negative = exhaust clearance.
+    angular_advance_rad : float
+        Angular advance delta [rad].
+    port_width_m, port_length_m : float
+        Width of each steam port in the direction of valve travel, and its length
+        across the valve face [m].
+    discharge_coefficient : float
+        Of the port opening [-].
+    eccentric_rod_m : float or None
+        Eccentric rod plus valve stem length [m]; None for the Zeuner motion.
+    connection : str
+        ``"direct"`` or ``"reverse_lever"``.
+    steam : str
+        ``"outside"`` (D valve) or ``"inside"`` (piston valve).
+    setting : str
+        ``"equal_lead"`` or ``"mid_travel"``.
+    ports_per_end : int
+        Number of openings each edge uncovers (2 for a double-ported valve).
+    """
+
+    eccentricity_m: float
+    lap_m: tuple[float, float]
+    exhaust_lap_m: tuple[float, float]
+    angular_advance_rad: float
+    port_width_m: float
+    port_length_m: float
+    discharge_coefficient: float = 0.7
+    eccentric_rod_m: float | None = None
+    connection: str = "direct"
+    steam: str = "outside"
+    setting: str = "equal_lead"
+    ports_per_end: int = 1
+
+    @property
+    def sigma(self) -> int:
+        """Sign with which the rod-end shortfall moves the valve [-]."""
+        a = 1 if self.steam == "outside" else -1
+        b = 1 if self.connection == "direct" else -1
+        return a * b
+
+    @property
+    def lead_m(self) -> tuple[float, float]:
+        """Zeuner lead of each end, r sin(delta) - lap [m] (Spangler Art. 14)."""
+        rs = self.eccentricity_m * math.sin(self.angular_advance_rad)
+        return (rs - self.lap_m[0], rs - self.lap_m[1])
+
+
+class SlideValve(ValveGear):
+    """Plain D slide valve or piston valve on a single eccentric."""
+
+    name = "slide_valve"
+    summary = "plain D slide valve or piston valve on one eccentric (Spangler Ch. I-IV)"
+
+    def __init__(self, spec: SlideValveSpec):
+        self.spec = spec
+
+    def travel(self, theta: np.ndarray) -> np.ndarray:
+        """Valve displacement x [m] in the sense that opens the head steam port."""
+        s = self.spec
+        phase = np.asarray(theta) + s.angular_advance_rad
+        x = s.eccentricity_m * np.sin(phase)
+        g = s.eccentric_rod_m
+        if g is not None:
+            r = s.eccentricity_m
+            short = g - np.sqrt(g * g - (r * np.cos(phase)) ** 2)
+            if s.setting == "equal_lead":
+                short = short - (g - math.sqrt(g * g - (r * math.cos(s.angular_advance_rad)) ** 2))
+            x = x + s.sigma * short
+        return x
+
+    def zeuner_travel(self, theta: np.ndarray) -> np.ndarray:
+        """Valve displacement of the Zeuner (infinite rod) motion [m]."""
+        s = self.spec
+        return s.eccentricity_m * np.sin(np.asarray(theta) + s.angular_advance_rad)
+
+    def signed_openings(self, theta):
+        x = self.travel(theta)
+        lh, lc = self.spec.lap_m
+        eh, ec = self.spec.exhaust_lap_m
+        return np.vstack([x - lh, -x - eh, -x - lc, x - ec])
+
+    def port_widths(self):
+        return np.full(4, self.spec.port_width_m)
+
+    def port_lengths(self):
+        return np.full(4, self.spec.port_length_m * self.spec.ports_per_end)
+
+    def discharge_coefficients(self):
+        return np.full(4, self.spec.discharge_coefficient)
+
+
+def _pair(t: Table, key: str, kind: str, default=None) -> tuple[float, float]:
+    """A value given once for both ends, or as [head, crank]."""
+    raw = t.raw(key, default)
+    if isinstance(raw, list):
+        if len(raw) != 2:
+            raise InputError(t.key(key), raw, "one value, or a list [head, crank] of two")
+        return (units.parse(raw[0], kind, t.key(key)), units.parse(raw[1], kind, t.key(key)))
+    v = units.parse(raw, kind, t.key(key))
+    return (v, v)
+
+
+def parse_slide_valve(t: Table) -> SlideValveSpec:
+    """Read a ``[valve_gear] type = "slide_valve"`` table (see the scene example)."""
+    r = t.length("eccentricity", positive=True)
+    lap = _pair(t, "lap", "length")
+    exhaust_lap = _pair(t, "exhaust_lap", "length", "0 in")
+    for end, l in zip(("head", "crank"), lap):
+        if l >= r:
+            raise InputError(t.key("lap"), t.raw("lap"),
+                             f"a lap smaller than the eccentricity ({r / units.INCH_m:.4g} in): "
+                             f"with lap >= eccentricity the {end}-end steam port never opens")
+    for end, e in zip(("head", "crank"), exhaust_lap):
+        if e >= r:
+            raise InputError(t.key("exhaust_lap"), t.raw("exhaust_lap"),
+                             "an exhaust lap smaller than the eccentricity: the "
+                             f"{end}-end exhaust would never open")
+    has_lead, has_adv = t.has("lead"), t.has("angular_advance")
+    if has_lead == has_adv:
+        raise InputError(t.key("lead"), t.raw("lead"),
+                         "exactly one of lead or angular_advance (not both, not neither)")
+    if has_lead:
+        lead = t.length("lead")
+        arg = (lap[0] + lead) / r
+        if not -1.0 <= arg <= 1.0:
+            raise InputError(t.key("lead"), t.raw("lead"),
+                             "a lead with lap + lead no larger than the eccentricity "
+                             f"({r / units.INCH_m:.4g} in)")
+        delta = math.asin(arg)
+    else:
+        delta = t.angle("angular_advance")
+        if not -math.pi / 2 < delta < math.pi / 2:
+            raise InputError(t.key("angular_advance"), t.raw("angular_advance"),
+                             "an angle between -90 deg and 90 deg")
+    g = t.length("eccentric_rod", positive=True) if t.has("eccentric_rod") else None
+    if g is not None and g <= r:
+        raise InputError(t.key("eccentric_rod"), t.raw("eccentric_rod"),
+                         "an eccentric rod longer than the eccentricity")
+    cd = t.number("discharge_coefficient", 0.7)
+    if not 0.0 < cd <= 1.0:
+        raise InputError(t.key("discharge_coefficient"), cd, "a number in (0, 1]")
+    ports = t.integer("ports_per_end", 1)
+    if ports < 1:
+        raise InputError(t.key("ports_per_end"), ports, "an integer >= 1")
+    return SlideValveSpec(
+        eccentricity_m=r, lap_m=lap, exhaust_lap_m=exhaust_lap, angular_advance_rad=delta,
+        port_width_m=t.length("port_width", positive=True),
+        port_length_m=t.length("port_length", positive=True),
+        discharge_coefficient=cd, eccentric_rod_m=g,
+        connection=t.choice("connection", ("direct", "reverse_lever"), "direct"),
+        steam=t.choice("steam", ("outside", "inside"), "outside"),
+        setting=t.choice("setting", ("equal_lead", "mid_travel"), "equal_lead"),
+        ports_per_end=ports,
+    )
+
+
+register(GearType("slide_valve", SlideValve.summary, parse_slide_valve, SlideValve))

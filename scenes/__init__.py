@@ -1,0 +1,1 @@
+"""Example scenes, installed as package data (``corliss.scenes``)."""
