@@ -35,6 +35,9 @@ TWO_PI = 2.0 * math.pi
 N_DYN = 4        # m_head, U_head, m_crank, U_crank
 N_QUAD = 5       # per end: m_chest, H_chest, m_exhaust, H_exhaust, work
 N_STATE = N_DYN + 2 * N_QUAD
+RHO_MIN = 1e-4       # [kg/m3], steam at about 15 Pa and 100 degC
+U_MIN = 2.0e5        # [J/kg], wet steam of low dryness near 50 degC
+U_MAX = 4.0e6        # [J/kg], superheated far beyond any engine
 
 
 def quad_index(end: int, what: str) -> int:
@@ -113,10 +116,23 @@ class CrankResolved:
         return (self._Vch + self._Ah * s, self._Ah * ds,
                 self._Vcc + self._Ac * (self._S - s), -self._Ac * ds)
 
+    def _admissible(self, m: float, U: float, V: float) -> tuple[float, float]:
+        """Density and internal energy clamped to where steam properties exist.
+
+        Implicit and adaptive integrators probe trial states (a negative mass in a
+        stiff blow-down); clamping keeps the right-hand side defined there, and its
+        flows then push the state back, instead of the property call failing.
+        """
+        rho = m / V
+        if not rho > RHO_MIN:
+            return RHO_MIN, self.chest.u
+        u = U / m
+        return rho, min(max(u, U_MIN), U_MAX)
+
     def end_flows(self, area_s: float, area_e: float, cd_s: float, cd_e: float, m: float,
                   U: float, V: float):
         """Port flows of one end: (mdot_s, hflow_s, mdot_e, hflow_e, p) [kg/s, W, Pa]."""
-        st = self.steam.du(m / V, U / m)
+        st = self.steam.du(*self._admissible(m, U, V))
         k = kappa_of(st.x, st.superheated)
         ch, ex = self.chest, self.exhaust
         ms = port_flow(area_s, cd_s, ch.p, ch.rho, self.k_chest, st.p, st.rho, k, self.band)

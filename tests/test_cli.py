@@ -1,0 +1,71 @@
+"""The CLI and the JSON contract that scripts outside the project read."""
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from corliss import cli
+
+SUMMARY_KEYS = ("indicated_power_W", "indicated_power_hp", "mep_head_Pa", "mep_crank_Pa",
+                "mep_mean_Pa", "steam_rate_kg_per_h", "water_rate_kg_per_kWh",
+                "water_rate_lb_per_ihp_h", "speed_rpm", "cycles_to_converge", "events")
+EVENT_KEYS = ("admission_deg", "cutoff_deg", "cutoff_frac", "release_deg", "release_frac",
+              "compression_deg", "compression_frac", "lead_m", "max_port_opening_m")
+SCENES = Path(__file__).resolve().parent.parent / "scenes"
+
+
+def test_run_default_writes_card_csv_meta_and_prints_json(tmp_path, capsys):
+    assert cli.main(["run", "--out", str(tmp_path), "--json"]) == 0
+    s = json.loads(capsys.readouterr().out)
+    for k in SUMMARY_KEYS:
+        assert k in s, k
+    for end in ("head", "crank"):
+        for k in EVENT_KEYS:
+            assert k in s["events"][end]
+        for k in ("admission_deg", "cutoff_deg", "release_deg", "compression_deg"):
+            assert 0.0 <= s["events"][end][k] < 360.0
+    # consistency of the contract's units: W = hp * 745.7; kg/kWh = kg/h / kW
+    assert s["indicated_power_W"] == pytest.approx(s["indicated_power_hp"] * 745.69987, rel=1e-6)
+    assert s["water_rate_kg_per_kWh"] == pytest.approx(
+        s["steam_rate_kg_per_h"] / (s["indicated_power_W"] / 1e3), rel=1e-9)
+    assert s["speed_rpm"] == pytest.approx(120.0)
+    files = sorted(p.name for p in tmp_path.iterdir())
+    assert files == ["default.card.png", "default.cycles.csv", "default.cycles.meta.json",
+                     "default.summary.json", "default.timeseries.csv",
+                     "default.timeseries.meta.json"]
+    meta = json.loads((tmp_path / "default.timeseries.meta.json").read_text())
+    for k in ("corliss_version", "coolprop_version", "property_backend", "scene", "columns",
+              "created_utc"):
+        assert k in meta
+    header = (tmp_path / "default.timeseries.csv").read_text().splitlines()[0].split(",")
+    assert "p_head_psia" in header and "crank_angle_deg" in header
+    assert meta["columns"]["p_head_psia"] == "psia absolute"
+    assert (tmp_path / "default.card.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_events_json_matches_the_summary_events(tmp_path, capsys):
+    scene = SCENES / "default.toml"
+    assert cli.main(["events", str(scene), "--json"]) == 0
+    ev = json.loads(capsys.readouterr().out)
+    assert set(ev) == {"head", "crank"}
+    for end in ev:
+        for k in EVENT_KEYS:
+            assert k in ev[end]
+
+
+def test_every_bundled_scene_runs(tmp_path, capsys):
+    for scene in sorted(SCENES.glob("*.toml")):
+        assert cli.main(["run", str(scene), "--out", str(tmp_path), "--cycles", "2",
+                         "--fidelity", "fast", "--json"]) == 0, scene
+        s = json.loads(capsys.readouterr().out)
+        assert s["indicated_power_W"] > 0, scene
+        assert s["cycles_to_converge"] is None  # fixed cycle count
+
+
+def test_console_script_is_installed():
+    p = subprocess.run([sys.executable, "-m", "corliss.cli", "list", "gears"],
+                       capture_output=True, text=True)
+    assert p.returncode == 0 and "slide_valve" in p.stdout

@@ -1,0 +1,54 @@
+"""Quantity strings: conversions checked against the definitions of the units."""
+
+import math
+
+import pytest
+
+from corliss import units
+from corliss.errors import InputError
+
+
+def test_gauge_pressure_needs_the_barometer():
+    # 100 psig on a standard barometer is 114.696 psia; 1 psi = 6894.757 Pa (NIST SP 811).
+    assert units.parse("100 psig", "pressure") == pytest.approx(114.696 * 6894.757, rel=1e-6)
+    # the same gauge reading on a mountain barometer of 12 psia
+    assert units.parse("100 psig", "pressure", barometer_Pa=12 * units.PSI_Pa) == pytest.approx(
+        112 * units.PSI_Pa, rel=1e-12)
+
+
+def test_vacuum_is_read_down_from_the_barometer():
+    # 26 inHg vacuum with a 29.92 inHg barometer leaves 3.92 inHg absolute = 13.27 kPa
+    baro = 29.92 * 3386.389
+    assert units.parse("26 inHg vacuum", "pressure", barometer_Pa=baro) == pytest.approx(
+        3.92 * 3386.389, rel=1e-9)
+
+
+def test_temperatures_and_mixed_fractions():
+    assert units.parse("212 degF", "temperature") == pytest.approx(373.15, abs=1e-9)
+    assert units.parse("100 degC", "temperature") == pytest.approx(373.15)
+    assert units.parse("2 3/4 in", "length") == pytest.approx(2.75 * 0.0254)
+    assert units.parse("3/16 in", "length") == pytest.approx(0.1875 * 0.0254)
+    assert units.parse("-0.125 in", "length") == pytest.approx(-0.125 * 0.0254)
+
+
+def test_other_kinds():
+    assert units.parse("200 rpm", "speed") == pytest.approx(200 * 2 * math.pi / 60)
+    assert units.parse("1 hp", "power") == pytest.approx(550 * 0.3048 * 4.4482216152605)
+    assert units.parse("1 lbf ft", "torque") == pytest.approx(1.3558179483, rel=1e-9)
+    assert units.parse("1.5 min", "time") == 90.0
+    assert units.parse("25 deg", "angle") == pytest.approx(math.radians(25))
+    assert units.parse("1 lb ft2", "inertia") == pytest.approx(0.0421401101, rel=1e-8)
+
+
+@pytest.mark.parametrize("text,kind", [("12", "length"), (12, "length"), ("100 psi", "pressure"),
+                                       ("3 furlongs", "length"), ("100 rpm", "length")])
+def test_bad_quantities_are_refused_with_the_key(text, kind):
+    with pytest.raises(InputError) as e:
+        units.parse(text, kind, "engine.bore")
+    assert "engine.bore" in str(e.value)
+
+
+def test_round_trip():
+    for unit in ("psia", "psig", "bar", "kPa"):
+        v = units.from_unit(123.4, unit)
+        assert units.to_unit(v, unit) == pytest.approx(123.4)
