@@ -35,8 +35,8 @@ TWO_PI = 2.0 * math.pi
 N_DYN = 4        # m_head, U_head, m_crank, U_crank
 N_QUAD = 5       # per end: m_chest, H_chest, m_exhaust, H_exhaust, work
 N_STATE = N_DYN + 2 * N_QUAD
-RHO_MIN = 1e-4       # [kg/m3], steam at about 15 Pa and 100 degC
-U_MIN = 2.0e5        # [J/kg], wet steam of low dryness near 50 degC
+RHO_MIN = 0.02       # [kg/m3], saturated vapour near 25 degC (far below any condenser)
+U_MIN = 1.0e6        # [J/kg], wet steam of dryness about 0.35
 U_MAX = 4.0e6        # [J/kg], superheated far beyond any engine
 
 
@@ -132,7 +132,10 @@ class CrankResolved:
     def end_flows(self, area_s: float, area_e: float, cd_s: float, cd_e: float, m: float,
                   U: float, V: float):
         """Port flows of one end: (mdot_s, hflow_s, mdot_e, hflow_e, p) [kg/s, W, Pa]."""
-        st = self.steam.du(*self._admissible(m, U, V))
+        try:
+            st = self.steam.du(*self._admissible(m, U, V))
+        except ValueError:   # a trial state with no steam state: treat as exhaust steam
+            st = self.exhaust
         k = kappa_of(st.x, st.superheated)
         ch, ex = self.chest, self.exhaust
         ms = port_flow(area_s, cd_s, ch.p, ch.rho, self.k_chest, st.p, st.rho, k, self.band)

@@ -116,20 +116,3 @@ class CylinderGeometry:
         """Derivatives of the end volumes with crank angle [m3/rad]."""
         ds = self.dpiston_m_per_rad(theta)
         return (self.area_head_m2 * ds, -self.area_crank_m2 * ds)
-
-    def theta_at_fraction(self, frac: float, end: str) -> float:
-        """Crank angle [rad] where that end's own stroke has run ``frac`` [-].
-
-        The head end's stroke runs from theta = 0 to pi, the crank end's from pi to
-        2 pi; the inverse is found by bisection (the motion is monotonic there).
-        """
-        target = frac if end == "head" else 1.0 - frac
-        lo, hi = (0.0, math.pi) if end == "head" else (math.pi, 2.0 * math.pi)
-        rising = end == "head"
-        for _ in range(80):
-            mid = 0.5 * (lo + hi)
-            if (self.fraction(mid) < target) == rising:
-                lo = mid
-            else:
-                hi = mid
-        return 0.5 * (lo + hi)

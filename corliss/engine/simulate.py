@@ -221,7 +221,9 @@ def _ideal_hyperbolic(scene, geo, ev, chest, exhaust):
     p_s, p_b = chest.p, exhaust.p
     row = {"cycle": 1}
     cols = {}
-    th_all = []
+    # the head end's stroke 0..pi inverted by interpolation (s is monotonic there)
+    head_theta = np.linspace(0.0, math.pi, 20001)
+    head_frac = geo.fraction(head_theta)
     for e, end in enumerate(("head", "crank")):
         x = ev[end]
         f_c = x["cutoff_frac"] if x["cutoff_frac"] is not None else 0.0
@@ -236,8 +238,8 @@ def _ideal_hyperbolic(scene, geo, ev, chest, exhaust):
         row[f"m_exhaust_{end}_kg"] = -m
         row[f"H_exhaust_{end}_J"] = float("nan")
         # crank angles of the card points: forward stroke then return stroke
-        half = np.array([geo.theta_at_fraction(min(max(f, 0.0), 1.0), "head") for f in
-                         (frac if end == "head" else 1.0 - frac)])
+        half = np.interp(np.clip(frac if end == "head" else 1.0 - frac, 0.0, 1.0),
+                         head_frac, head_theta)
         n = frac.size
         fwd = np.zeros(n, dtype=bool)
         fwd[: 3 * (n // 5)] = True     # admission, expansion, release to end of stroke
@@ -246,7 +248,6 @@ def _ideal_hyperbolic(scene, geo, ev, chest, exhaust):
         else:
             th = np.where(fwd, TWO_PI - half, half)
         cols[end] = (th, V, p)
-        th_all.append(th)
     grid = np.radians(np.arange(0.0, 360.0 + 1e-9, scene.run.fidelity.output_step_deg))
     data = {"cycle": np.ones(grid.size, dtype=int), "crank_angle_deg": np.degrees(grid),
             "time_s": grid / scene.run.speed_rad_s}
