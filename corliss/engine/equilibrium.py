@@ -108,7 +108,8 @@ def step_end(steam: Steam, theta: np.ndarray, V: np.ndarray, conn: np.ndarray,
     T = np.empty(n + 1)
     x = np.empty(n + 1)
     mm = np.empty(n + 1)
-    work = m_ch = H_ch = m_ex = H_ex = 0.0
+    work = 0.0
+    flows = np.zeros((3, 2))   # [connection] -> (mass in, enthalpy in) over the cycle
     prev = CLOSED
     for i in range(n):
         c = int(conn[i])
@@ -123,12 +124,7 @@ def step_end(steam: Steam, theta: np.ndarray, V: np.ndarray, conn: np.ndarray,
                 dm, dH = m2 - m, m2 * st2.u - m * st.u   # energy left = enthalpy carried out
             else:
                 st2, m2, dm, dH = st, m, 0.0, 0.0
-            if c == STEAM:
-                m_ch += dm
-                H_ch += dH
-            else:
-                m_ex += dm
-                H_ex += dH
+            flows[c] += (dm, dH)
             st, m = st2, m2
         prev = c
         p[i], T[i], x[i], mm[i] = st.p, st.T, st.x, m
@@ -141,14 +137,10 @@ def step_end(steam: Steam, theta: np.ndarray, V: np.ndarray, conn: np.ndarray,
             st, m1, dm, dH = _open_step(steam, st, m, V[i + 1], res)
             work += res.p * (V[i + 1] - V[i])
             m = m1
-            if c == STEAM:
-                m_ch += dm
-                H_ch += dH
-            else:
-                m_ex += dm
-                H_ex += dH
+            flows[c] += (dm, dH)
     p[n], T[n], x[n], mm[n] = st.p, st.T, st.x, m
-    trace = EndTrace(theta, V, p, T, x, mm, work, m_ch, H_ch, m_ex, H_ex)
+    trace = EndTrace(theta, V, p, T, x, mm, work, flows[STEAM, 0], flows[STEAM, 1],
+                     flows[EXHAUST, 0], flows[EXHAUST, 1])
     return trace, st, m
 
 
