@@ -84,7 +84,7 @@ def plot_card(result, ax=None, units_system: str | None = None) -> dict:
                  f"{units.to_unit(s['mep_mean_Pa'], 'psia' if system == 'US' else 'bar'):.1f} "
                  f"{'psi' if system == 'US' else 'bar'}", fontsize=10)
     ax.grid(True, color="0.9", lw=0.5)
-    ax.legend(loc="upper right", fontsize=8, frameon=False)
+    ax.legend(loc="center", fontsize=8, frameon=False)
     for side in ("top", "right"):
         ax.spines[side].set_visible(False)
     return {"ax": ax, "lines": lines, "markers": markers}
