@@ -69,3 +69,21 @@ def test_console_script_is_installed():
     p = subprocess.run([sys.executable, "-m", "corliss.cli", "list", "gears"],
                        capture_output=True, text=True)
     assert p.returncode == 0 and "slide_valve" in p.stdout
+
+
+def test_fidelity_and_cycles_change_time_not_meaning(tmp_path, capsys):
+    """``--fidelity`` and ``--cycles`` from the CLI: the same events and summary keys at
+    every tier, indicated power within the 2 % the fast tier promises, and exactly N
+    cycles when N is given."""
+    out = {}
+    for fid in ("fast", "standard"):
+        assert cli.main(["run", "--out", str(tmp_path), "--json", "--fidelity", fid]) == 0
+        out[fid] = json.loads(capsys.readouterr().out)
+    assert out["fast"]["fidelity"] == "fast" and out["standard"]["fidelity"] == "standard"
+    assert set(out["fast"]) == set(out["standard"])
+    assert out["fast"]["events"] == out["standard"]["events"]
+    assert out["fast"]["indicated_power_W"] == pytest.approx(out["standard"]["indicated_power_W"],
+                                                             rel=0.02)
+    assert cli.main(["run", "--out", str(tmp_path), "--json", "--cycles", "2"]) == 0
+    s = json.loads(capsys.readouterr().out)
+    assert s["cycles_simulated"] == 2 and s["cycles_to_converge"] is None
