@@ -49,7 +49,7 @@ def plot_card(result, ax=None, units_system: str | None = None) -> dict:
         (lines[end],) = ax.plot(x, y, label=f"{end} end", **style[end])
     xs = units.to_unit(stroke, x_unit)
     ax.axhline(0.0, color="0.35", lw=0.8)
-    ax.text(xs * 0.995, 0.0, "atmosphere", ha="right", va="bottom", fontsize=8, color="0.35")
+    ax.text(xs * 0.5, 0.0, "atmosphere", ha="center", va="bottom", fontsize=8, color="0.35")
     vac = units.to_unit(0.0, p_unit, barometer_Pa=baro)
     ax.axhline(vac, color="0.6", lw=0.6, ls=":")
     ax.text(xs * 0.995, vac, "zero pressure", ha="right", va="bottom", fontsize=7, color="0.5")
