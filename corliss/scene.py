@@ -134,9 +134,7 @@ class Scene:
 
     def resolved(self) -> dict:
         """The scene as resolved SI values (for result metadata)."""
-        d = dataclasses.asdict(self)
-        d["gear"] = dataclasses.asdict(self.gear)
-        return d
+        return dataclasses.asdict(self)
 
     def replace_run(self, **changes) -> "Scene":
         """A copy with fields of ``run`` changed (e.g. ``cycles=3``)."""
