@@ -96,6 +96,17 @@ def simulate(scene: Scene, *, portmap_scale: float = 1.0,
                   property_tier=steam.name, **data)
 
 
+def _cycle_frame(k: int, theta: np.ndarray, omega: float, ends: dict) -> pd.DataFrame:
+    """Time-series rows of cycle ``k`` (from 0): ``ends[end] = (p, T, x, V, m)`` arrays."""
+    cols = {"cycle": np.full(theta.size, k + 1),
+            "crank_angle_deg": np.degrees(theta + TWO_PI * k),
+            "time_s": (theta + TWO_PI * k) / omega}
+    for end, (p, T, x, V, m) in ends.items():
+        cols[f"p_{end}_Pa"], cols[f"T_{end}_K"], cols[f"x_{end}"] = p, T, x
+        cols[f"V_{end}_m3"], cols[f"m_{end}_kg"] = V, m
+    return pd.DataFrame(cols)
+
+
 # --- crank-resolved with port flow -------------------------------------------------
 
 def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
@@ -129,19 +140,13 @@ def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
     # post-process states to pressures etc.
     ts = []
     for k, s in enumerate(samples_all):
-        cols = {"cycle": np.full(out_theta.size, k + 1),
-                "crank_angle_deg": np.degrees(out_theta + TWO_PI * k),
-                "time_s": (out_theta + TWO_PI * k) / omega}
-        Vh, Vc = geo.volumes_m3(out_theta)
-        for e, (end, V) in enumerate((("head", Vh), ("crank", Vc))):
+        ends = {}
+        for e, (end, V) in enumerate(zip(("head", "crank"), geo.volumes_m3(out_theta))):
             m, U = s[2 * e], s[2 * e + 1]
             st = [steam.du(mi / vi, ui / mi) for mi, ui, vi in zip(m, U, V)]
-            cols[f"p_{end}_Pa"] = np.array([x.p for x in st])
-            cols[f"T_{end}_K"] = np.array([x.T for x in st])
-            cols[f"x_{end}"] = np.array([x.x for x in st])
-            cols[f"V_{end}_m3"] = V
-            cols[f"m_{end}_kg"] = m
-        ts.append(pd.DataFrame(cols))
+            ends[end] = (np.array([x.p for x in st]), np.array([x.T for x in st]),
+                         np.array([x.x for x in st]), V, m)
+        ts.append(_cycle_frame(k, out_theta, omega, ends))
     timeseries = pd.concat(ts, ignore_index=True)
     return {"timeseries": timeseries, "cycles": pd.DataFrame(rows),
             "cycles_to_converge": converged, "portmap": pm, "nfev": model.nfev}
@@ -201,16 +206,9 @@ def _equilibrium(scene, geo, steam, chest, exhaust, sched, pm=None):
             row[f"H_exhaust_{end}_J"] = tr.H_exhaust_J
             row[f"work_{end}_J"] = tr.work_J
         rows.append(row)
-        cols = {"cycle": np.full(theta.size, k + 1),
-                "crank_angle_deg": np.degrees(theta + TWO_PI * k),
-                "time_s": (theta + TWO_PI * k) / omega}
-        for end, tr in (("head", th_), ("crank", tc_)):
-            cols[f"p_{end}_Pa"] = tr.p_Pa
-            cols[f"T_{end}_K"] = tr.T_K
-            cols[f"x_{end}"] = tr.x
-            cols[f"V_{end}_m3"] = tr.V_m3
-            cols[f"m_{end}_kg"] = tr.m_kg
-        ts.append(pd.DataFrame(cols))
+        ts.append(_cycle_frame(k, theta, omega, {
+            end: (tr.p_Pa, tr.T_K, tr.x, tr.V_m3, tr.m_kg)
+            for end, tr in (("head", th_), ("crank", tc_))}))
     return {"timeseries": pd.concat(ts, ignore_index=True), "cycles": pd.DataFrame(rows),
             "cycles_to_converge": converged, "portmap": pm, "nfev": 0}
 
