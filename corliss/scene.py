@@ -16,8 +16,8 @@ from pathlib import Path
 
 from corliss import units
 from corliss.engine.geometry import EngineSpec
-from corliss.engine.options import (EFFECTS, EXPANSION_LAWS, METHODS, MODELS,
-                                    PLANNED_EFFECTS, PRESETS, Fidelity)
+from corliss.engine.options import (COMPILED_METHODS, EFFECTS, EXPANSION_LAWS, METHODS,
+                                    MODELS, PLANNED_EFFECTS, PRESETS, SCIPY_METHODS, Fidelity)
 from corliss.errors import InputError
 from corliss.tables import Table
 from corliss.thermo.steam import BACKENDS, HEOSSteam
@@ -241,12 +241,21 @@ def _run(t: Table) -> RunSpec:
         changes["max_cycles"] = t.integer("max_cycles")
         if changes["max_cycles"] < 2:
             raise InputError(t.key("max_cycles"), changes["max_cycles"], "an integer >= 2")
+    if t.has("step"):
+        changes["step_deg"] = math.degrees(t.angle("step"))
+        if not 0.01 <= changes["step_deg"] <= 10.0:
+            raise InputError(t.key("step"), t.raw("step"), "a crank-angle step from 0.01 to 10 deg")
     if t.has("portmap_points"):
         changes["portmap_points"] = t.integer("portmap_points")
         if changes["portmap_points"] < 90:
             raise InputError(t.key("portmap_points"), changes["portmap_points"], "an integer >= 90")
     if changes:
         fid = dataclasses.replace(fid, name="custom", **changes)
+    if fid.method in COMPILED_METHODS and BACKENDS[fid.properties].kernel_tier is None:
+        raise InputError(t.key("method"), fid.method,
+                         f"a scipy method ({', '.join(SCIPY_METHODS)}) with properties = "
+                         f"{fid.properties!r}, or properties = \"table\" or \"perfect\" for the "
+                         "compiled integrators")
     cycles = None
     if t.has("cycles"):
         cycles = t.integer("cycles")

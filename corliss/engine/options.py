@@ -23,7 +23,11 @@ PLANNED_EFFECTS = ("steam_chest", "wall_heat", "leakage", "inertia", "friction")
 
 MODELS = ("crank_resolved", "ideal")
 EXPANSION_LAWS = ("hyperbolic", "isentropic")
-METHODS = ("LSODA", "BDF", "Radau", "RK45", "DOP853")
+#: Integrators: scipy's (any property tier, Python right-hand side) and the compiled
+#: kernel's (``dopri5`` adaptive, ``rk4`` fixed step; tiers with a compiled form only).
+SCIPY_METHODS = ("LSODA", "BDF", "Radau", "RK45", "DOP853")
+COMPILED_METHODS = ("dopri5", "rk4")
+METHODS = SCIPY_METHODS + COMPILED_METHODS
 
 
 @dataclass(frozen=True)
@@ -37,9 +41,10 @@ class Fidelity:
     properties : str
         Steam-property tier.
     method : str
-        ``scipy.integrate.solve_ivp`` method.
+        Integrator: a ``scipy.integrate.solve_ivp`` method, or the compiled
+        ``"dopri5"`` (adaptive) or ``"rk4"`` (fixed step).
     rtol : float
-        Relative tolerance of the integrator [-].
+        Relative tolerance of the adaptive integrators [-].
     portmap_points : int
         Uniform crank-angle intervals of the PortMap (kinks are added) [-].
     convergence_tolerance : float
@@ -49,6 +54,8 @@ class Fidelity:
         Give up (with a warning in the summary) after this many cycles.
     output_step_deg : float
         Crank-angle step of the time series and cards [deg].
+    step_deg : float
+        Crank-angle step of the fixed-step ``rk4`` integrator [deg].
     """
 
     name: str
@@ -59,10 +66,16 @@ class Fidelity:
     convergence_tolerance: float
     max_cycles: int
     output_step_deg: float
+    step_deg: float = 1.0
 
 
+#: The presets.  ``reference``: IAPWS-95 through HEOS at every call, LSODA at 1e-9;
+#: ``standard``: the steam table and the compiled adaptive integrator;
+#: ``fast``: the same at rtol 1e-4 (fixed-step RK4 was measured slower at equal error:
+#: the blow-down at release wants small steps only there).  Their measured price is
+#: in the README (benchmarks/accuracy_vs_time.py).
 PRESETS: dict[str, Fidelity] = {
     "reference": Fidelity("reference", "heos", "LSODA", 1e-9, 5760, 1e-6, 60, 0.25),
-    "standard": Fidelity("standard", "heos", "LSODA", 1e-6, 1440, 1e-4, 40, 1.0),
-    "fast": Fidelity("fast", "heos", "LSODA", 1e-4, 720, 1e-3, 20, 2.0),
+    "standard": Fidelity("standard", "table", "dopri5", 1e-6, 1440, 1e-4, 40, 1.0),
+    "fast": Fidelity("fast", "table", "dopri5", 1e-4, 720, 1e-3, 20, 2.0),
 }

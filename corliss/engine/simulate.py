@@ -22,7 +22,10 @@ from corliss.engine.geometry import CylinderGeometry
 from corliss.engine.ideal_card import card_area, hyperbolic_card, indicated_steam_kg
 from corliss.results import CYCLE_QUANTITIES, Result
 from corliss.scene import Scene
-from corliss.thermo.steam import State, Steam, make_steam
+from corliss.engine.compiled import CompiledCrankResolved
+from corliss.engine.options import COMPILED_METHODS
+from corliss.thermo.steam import HEOSSteam, State, Steam, TableSteam, make_steam
+from corliss.thermo.steam_table import lookup_many
 from corliss.valves import events as valve_events
 from corliss.valves import gear_type, tabulate
 
@@ -78,11 +81,13 @@ def simulate(scene: Scene, *, portmap_scale: float = 1.0,
     geo = geometry_of(scene)
     gear = build_gear(scene)
     ev = valve_events(gear, lambda t: float(geo.fraction(t)))
+    # the textbook models need entropy: a tier without it lends them HEOS
+    steam_eq = steam if steam.complete else HEOSSteam()
     if scene.run.model == "ideal":
         if scene.run.expansion == "hyperbolic":
             data = _ideal_hyperbolic(scene, geo, ev, chest, exhaust)
         else:
-            data = _equilibrium(scene, geo, steam, chest, exhaust, _ideal_schedule(ev, geo))
+            data = _equilibrium(scene, geo, steam_eq, chest, exhaust, _ideal_schedule(ev, geo))
     elif scene.run.has("port_flow"):
         pm = tabulate(gear, fid.portmap_points)
         if portmap_scale != 1.0:
@@ -90,10 +95,19 @@ def simulate(scene: Scene, *, portmap_scale: float = 1.0,
         data = _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress)
     else:
         pm = tabulate(gear, fid.portmap_points)
-        data = _equilibrium(scene, geo, steam, chest, exhaust, _portmap_schedule(pm), pm)
+        data = _equilibrium(scene, geo, steam_eq, chest, exhaust, _portmap_schedule(pm), pm)
     data["wall_time_s"] = time.perf_counter() - t0
     return Result(scene=scene, events=ev, geometry=geo, chest=chest, exhaust=exhaust,
                   property_tier=steam.name, **data)
+
+
+def _states(steam: Steam, rho: np.ndarray, u: np.ndarray):
+    """Pressure, temperature and dryness arrays for output, compiled where the tier can."""
+    if isinstance(steam, TableSteam):
+        return lookup_many(steam.table.arrays(), rho, u)
+    st = [steam.du(r, e) for r, e in zip(rho, u)]
+    return (np.array([x.p for x in st]), np.array([x.T for x in st]),
+            np.array([x.x for x in st]))
 
 
 def _cycle_frame(k: int, theta: np.ndarray, omega: float, ends: dict) -> pd.DataFrame:
@@ -112,7 +126,11 @@ def _cycle_frame(k: int, theta: np.ndarray, omega: float, ends: dict) -> pd.Data
 def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
     fid = scene.run.fidelity
     omega = scene.run.speed_rad_s
-    model = CrankResolved(geo, pm, steam, chest, exhaust, omega, fid.method, fid.rtol)
+    if fid.method in COMPILED_METHODS:
+        model = CompiledCrankResolved(geo, pm, steam, chest, exhaust, omega, fid.method,
+                                      fid.rtol, step_deg=fid.step_deg)
+    else:
+        model = CrankResolved(geo, pm, steam, chest, exhaust, omega, fid.method, fid.rtol)
     step = math.radians(fid.output_step_deg)
     out_theta = np.linspace(0.0, TWO_PI, int(round(TWO_PI / step)) + 1)
     y = model.initial_state()
@@ -143,9 +161,7 @@ def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
         ends = {}
         for e, (end, V) in enumerate(zip(("head", "crank"), geo.volumes_m3(out_theta))):
             m, U = s[2 * e], s[2 * e + 1]
-            st = [steam.du(mi / vi, ui / mi) for mi, ui, vi in zip(m, U, V)]
-            ends[end] = (np.array([x.p for x in st]), np.array([x.T for x in st]),
-                         np.array([x.x for x in st]), V, m)
+            ends[end] = (*_states(steam, m / V, U / m), V, m)
         ts.append(_cycle_frame(k, out_theta, omega, ends))
     timeseries = pd.concat(ts, ignore_index=True)
     return {"timeseries": timeseries, "cycles": pd.DataFrame(rows),

@@ -13,6 +13,8 @@ from __future__ import annotations
 
 from typing import NamedTuple
 
+import math
+
 import CoolProp
 import CoolProp.CoolProp as CP
 
@@ -62,6 +64,10 @@ class Steam:
 
     name = "abstract"
     description = ""
+    #: True when every method is answered by this tier itself (entropy included).
+    complete = True
+    #: Code of the tier in the compiled kernel, or None if it has none.
+    kernel_tier: int | None = None
 
     def du(self, rho: float, u: float) -> State:  # pragma: no cover - interface
         """State from density [kg/m3] and specific internal energy [J/kg]."""
@@ -153,8 +159,93 @@ class HEOSSteam(Steam):
         return self._update(CP.PQ_INPUTS, p, 1.0, "pressure, dryness").T
 
 
+class TableSteam(HEOSSteam):
+    """The project's own (density, internal energy) table (:mod:`corliss.thermo.steam_table`).
+
+    ``du`` comes from the table (entropy is not tabulated: ``s`` is NaN); every other
+    method, used only to set up reservoirs and the ideal-port models, is HEOS.  The
+    table's measured error against HEOS is in ``self.error``.
+    """
+
+    name = "table"
+    description = "corliss (density, internal energy) table built from HEOS"
+    complete = False
+    kernel_tier = 0
+
+    def __init__(self) -> None:
+        super().__init__()
+        from corliss.thermo.steam_table import load_table
+        self.table = load_table()
+        self.error = self.table.error
+        self._arrays = self.table.arrays()
+
+    def du(self, rho, u):
+        from corliss.thermo.steam_table import lookup
+        p, T, x, sup = lookup(self._arrays, rho, u)
+        return State(p, T, rho, u, u + p / rho, float("nan"), x, bool(sup))
+
+
+class PerfectSteam(Steam):
+    """Perfect steam: an ideal gas with R = 461.52 J/(kg K) and kappa = 1.3, never wet.
+
+    A fast sanity model: with it, a card has no condensation and no real-gas
+    departure (about 5 % in density at 7 bar).  Energy is referred so that u matches
+    dry saturated steam at 100 degC; only differences of energy matter.  ``px`` and
+    ``t_sat`` take the saturation temperature from HEOS, so reservoirs sit where the
+    real ones do.
+    """
+
+    name = "perfect"
+    description = "perfect steam, ideal gas R = 461.52 J/(kg K), kappa = 1.3"
+    kernel_tier = 1
+    R = 461.52
+    KAPPA = 1.3
+    CV = R / (KAPPA - 1.0)
+    CP_ = CV + R
+    T0, P0 = 373.15, 101_325.0
+    U_REF = 2.5066e6 - CV * 373.15
+
+    def __init__(self) -> None:
+        self._heos = HEOSSteam()
+
+    def _state(self, p, T):
+        rho = p / (self.R * T)
+        u = self.U_REF + self.CV * T
+        s = self.CP_ * math.log(T / self.T0) - self.R * math.log(p / self.P0)
+        return State(p, T, rho, u, u + self.R * T, s, 1.0, True)
+
+    def du(self, rho, u):
+        T = (u - self.U_REF) / self.CV
+        return self._state(rho * self.R * T, T)
+
+    def ph(self, p, h):
+        return self._state(p, (h - self.U_REF) / self.CP_)
+
+    def ps(self, p, s):
+        return self._state(p, self.T0 * math.exp((s + self.R * math.log(p / self.P0)) / self.CP_))
+
+    def ds(self, rho, s):
+        # s = cv ln(T/T0) - R ln(rho R T0 / P0)
+        T = self.T0 * math.exp((s + self.R * math.log(rho * self.R * self.T0 / self.P0)) / self.CV)
+        return self._state(rho * self.R * T, T)
+
+    def pt(self, p, T):
+        return self._state(p, T)
+
+    def px(self, p, x):
+        return self._state(p, self._heos.t_sat(p))
+
+    def t_sat(self, p):
+        return self._heos.t_sat(p)
+
+    def perfect_params(self):
+        """(R, cv, u_ref) for the compiled kernel."""
+        return (self.R, self.CV, self.U_REF)
+
+
 #: Registry of property tiers by name.
-BACKENDS: dict[str, type[Steam]] = {"heos": HEOSSteam}
+BACKENDS: dict[str, type[Steam]] = {"heos": HEOSSteam, "table": TableSteam,
+                                    "perfect": PerfectSteam}
 
 
 def make_steam(name: str = "heos") -> Steam:

@@ -3,7 +3,7 @@
 An event is a crank angle where a port edge is crossed: admission and cut-off where
 the end's steam port opens and closes, release and compression where its exhaust
 port opens and closes (Spangler Art. 17: admission, cut-off, release, compression).
-Each is found by bisection on the gear's own signed opening to 1e-9 rad, so it holds
+Each is found by bisection on the gear's own signed opening to 1e-13 rad, so it holds
 for any gear, any lap (negative included) and any rod length; an event that never
 happens is ``None``.
 
@@ -26,38 +26,64 @@ TWO_PI = 2.0 * math.pi
 _SAMPLES = 7200
 
 
-def _refine(f: Callable[[float], float], a: float, b: float) -> float:
-    """Bisect for the sign change of ``f`` between ``a`` and ``b``."""
-    fa = f(a) > 0.0
-    for _ in range(60):
+def crossing_table(gear: ValveGear, levels: np.ndarray) -> list[list[list[tuple[float, bool]]]]:
+    """Where each port's signed opening crosses each of its levels, all found at once.
+
+    Parameters
+    ----------
+    gear : ValveGear
+    levels : ndarray, shape (4, L)
+        Levels [m] to cross for each port.
+
+    Returns
+    -------
+    list
+        ``out[port][level]`` = sorted list of ``(angle [rad] in [0, 2 pi), rising)``;
+        ``rising`` is True where the opening passes the level upwards.  Brackets come
+        from 7200 samples a turn; all of them are bisected together to 1e-13 rad.
+    """
+    levels = np.atleast_2d(np.asarray(levels, dtype=float))
+    th = np.linspace(0.0, TWO_PI, _SAMPLES + 1)
+    s = gear.signed_openings(th)
+    ports, levs, idx, rising = [], [], [], []
+    for port in range(4):
+        for li, level in enumerate(levels[port]):
+            above = s[port] - level > 0.0
+            i = np.nonzero(above[1:] != above[:-1])[0]
+            ports += [port] * i.size
+            levs += [li] * i.size
+            idx.append(i)
+            rising.append(above[i + 1])
+    out = [[[] for _ in range(levels.shape[1])] for _ in range(4)]
+    if not ports:
+        return out
+    ports = np.array(ports)
+    idx = np.concatenate(idx)
+    rising = np.concatenate(rising)
+    lev = levels[ports, np.array(levs)]
+    a, b = th[idx].copy(), th[idx + 1].copy()
+    cols = np.arange(idx.size)
+    for _ in range(42):
         m = 0.5 * (a + b)
-        if (f(m) > 0.0) == fa:
-            a = m
-        else:
-            b = m
-        if b - a < 1e-10:
-            break
-    return 0.5 * (a + b)
+        above_m = gear.signed_openings(m)[ports, cols] - lev > 0.0
+        # the left end is below when the crossing rises: move it while m is still below
+        move_a = above_m != rising
+        a = np.where(move_a, m, a)
+        b = np.where(move_a, b, m)
+    t = (0.5 * (a + b)) % TWO_PI
+    for k in range(idx.size):
+        out[ports[k]][levs[k]].append((float(t[k]), bool(rising[k])))
+    for row in out:
+        for lst in row:
+            lst.sort()
+    return out
 
 
 def crossings(gear: ValveGear, port: int, level: float = 0.0) -> list[tuple[float, bool]]:
-    """Crank angles [rad] in [0, 2 pi) where a port's signed opening crosses ``level``.
-
-    Returns a list of ``(angle, rising)`` sorted by angle; ``rising`` is True where
-    the opening passes ``level`` upwards (the port opens).
-    """
-    th = np.linspace(0.0, TWO_PI, _SAMPLES + 1)
-    s = gear.signed_openings(th)[port] - level
-    above = s > 0.0
-    out = []
-
-    def f(t):
-        return float(gear.signed_openings(np.array([t]))[port, 0] - level)
-
-    for i in np.nonzero(above[1:] != above[:-1])[0]:
-        t = _refine(f, th[i], th[i + 1]) % TWO_PI
-        out.append((t, bool(above[i + 1])))
-    return sorted(out)
+    """Crank angles [rad] in [0, 2 pi) where one port's signed opening crosses ``level``."""
+    levels = np.zeros((4, 1))
+    levels[port, 0] = level
+    return crossing_table(gear, levels)[port][0]
 
 
 def _circ_dist(a: float, b: float) -> float:
@@ -76,7 +102,8 @@ def _interval_near(cross: list[tuple[float, bool]], anchor: float):
     return start, end
 
 
-def end_events(gear: ValveGear, end: str, piston_fraction: Callable[[float], float]) -> dict:
+def end_events(gear: ValveGear, end: str, piston_fraction: Callable[[float], float],
+               table: list | None = None) -> dict:
     """Events of one end (``"head"`` or ``"crank"``) as the JSON contract names them.
 
     Parameters
@@ -97,8 +124,10 @@ def end_events(gear: ValveGear, end: str, piston_fraction: Callable[[float], flo
         f = piston_fraction(t)
         return float(f if end == "head" else 1.0 - f)
 
-    adm, cut = _interval_near(crossings(gear, steam), dead)
-    rel, comp = _interval_near(crossings(gear, exhaust), dead + math.pi)
+    if table is None:
+        table = crossing_table(gear, np.zeros((4, 1)))
+    adm, cut = _interval_near(table[steam][0], dead)
+    rel, comp = _interval_near(table[exhaust][0], dead + math.pi)
     th = np.linspace(0.0, TWO_PI, _SAMPLES, endpoint=False)
     opening = gear.openings(th)[steam]
     width = gear.port_widths()[steam]
@@ -123,4 +152,5 @@ def end_events(gear: ValveGear, end: str, piston_fraction: Callable[[float], flo
 
 def events(gear: ValveGear, piston_fraction: Callable[[float], float]) -> dict:
     """Events of both ends: ``{"head": {...}, "crank": {...}}``."""
-    return {end: end_events(gear, end, piston_fraction) for end in ("head", "crank")}
+    table = crossing_table(gear, np.zeros((4, 1)))
+    return {end: end_events(gear, end, piston_fraction, table) for end in ("head", "crank")}

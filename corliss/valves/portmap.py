@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from corliss.valves.events import crossings
+from corliss.valves.events import crossing_table
 from corliss.valves.gear import PORTS, ValveGear
 
 TWO_PI = 2.0 * math.pi
@@ -63,10 +63,8 @@ class PortMap:
 def tabulate(gear: ValveGear, n: int = 1440) -> PortMap:
     """Tabulate a gear to a :class:`PortMap` on ``n`` uniform intervals plus its kinks."""
     widths = gear.port_widths()
-    kinks = []
-    for port in range(4):
-        kinks += [t for t, _ in crossings(gear, port, 0.0)]
-        kinks += [t for t, _ in crossings(gear, port, float(widths[port]))]
+    table = crossing_table(gear, np.column_stack([np.zeros(4), widths]))
+    kinks = [t for row in table for lst in row for t, _ in lst]
     kinks = np.unique(np.round(np.asarray(kinks, dtype=float) % TWO_PI, 12))
     grid = np.union1d(np.linspace(0.0, TWO_PI, n + 1), kinks)
     # drop uniform points closer than 1e-9 rad to a kink (keep the kink itself)
