@@ -6,6 +6,8 @@
     summary as JSON with ``--json``.
 ``corliss events SCENE [--json]``
     The valve events of each end, without simulating.
+``corliss bench [--repeats N] [--out DIR]``
+    The accuracy-versus-time study of ``benchmarks/`` (from a source checkout).
 ``corliss list gears|effects``
     What the registries hold.
 
@@ -113,6 +115,23 @@ def cmd_list(args) -> int:
     return 0
 
 
+def cmd_bench(args) -> int:
+    import importlib.util
+    here = Path(__file__).resolve().parent.parent
+    for root in (Path.cwd(), here):
+        script = root / "benchmarks" / "accuracy_vs_time.py"
+        if script.is_file():
+            break
+    else:
+        raise InputError("bench", str(Path.cwd()), "a source checkout of corliss: the study and "
+                         "its baseline live in benchmarks/ beside the package")
+    spec = importlib.util.spec_from_file_location("corliss_accuracy_vs_time", script)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    argv = ["--repeats", str(args.repeats)] + (["--out", args.out] if args.out else [])
+    return module.main(argv)
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="corliss", description="Steam-engine cycle and governing "
                                 "simulator: indicator cards, valve events, governing.")
@@ -130,6 +149,10 @@ def build_parser() -> argparse.ArgumentParser:
     e.add_argument("scene", help="scene TOML")
     e.add_argument("--json", action="store_true", help="print JSON")
     e.set_defaults(func=cmd_events)
+    b = sub.add_parser("bench", help="run the accuracy-versus-time study (source checkout)")
+    b.add_argument("--repeats", type=int, default=3, help="repeats per setting (median)")
+    b.add_argument("--out", help="directory for the CSV and plot (default benchmarks/results)")
+    b.set_defaults(func=cmd_bench)
     ls = sub.add_parser("list", help="list registries")
     ls.add_argument("what", choices=("gears", "effects"))
     ls.set_defaults(func=cmd_list)

@@ -14,7 +14,7 @@ from corliss.engine import kernel
 from corliss.engine.crank_resolved import CrankResolved
 from corliss.thermo.orifice import kappa_of
 
-METHODS = {"dopri5": 0, "rk4": 1}
+METHODS = {"dopri5": 0, "rk4": 1, "rosenbrock": 2}
 
 
 class CompiledCrankResolved(CrankResolved):
