@@ -80,22 +80,23 @@ def simulate(scene: Scene, *, portmap_scale: float = 1.0,
     chest, exhaust = reservoir_states(scene, steam)
     geo = geometry_of(scene)
     gear = build_gear(scene)
-    ev = valve_events(gear, lambda t: float(geo.fraction(t)))
-    # the textbook models need entropy: a tier without it lends them HEOS
-    steam_eq = steam if steam.complete else HEOSSteam()
+    pm = tabulate(gear, fid.portmap_points) if scene.run.model == "crank_resolved" else None
+    ev = valve_events(gear, lambda t: float(geo.fraction(t)), pm.crossings if pm else None)
+    # the ideal-port models need entropy: a tier without it lends them HEOS
+    def steam_eq():
+        return steam if steam.complete else HEOSSteam()
+
     if scene.run.model == "ideal":
         if scene.run.expansion == "hyperbolic":
             data = _ideal_hyperbolic(scene, geo, ev, chest, exhaust)
         else:
-            data = _equilibrium(scene, geo, steam_eq, chest, exhaust, _ideal_schedule(ev, geo))
+            data = _equilibrium(scene, geo, steam_eq(), chest, exhaust, _ideal_schedule(ev, geo))
     elif scene.run.has("port_flow"):
-        pm = tabulate(gear, fid.portmap_points)
         if portmap_scale != 1.0:
             pm = pm.scaled(portmap_scale)
         data = _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress)
     else:
-        pm = tabulate(gear, fid.portmap_points)
-        data = _equilibrium(scene, geo, steam_eq, chest, exhaust, _portmap_schedule(pm), pm)
+        data = _equilibrium(scene, geo, steam_eq(), chest, exhaust, _portmap_schedule(pm), pm)
     data["wall_time_s"] = time.perf_counter() - t0
     return Result(scene=scene, events=ev, geometry=geo, chest=chest, exhaust=exhaust,
                   property_tier=steam.name, **data)

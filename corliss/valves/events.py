@@ -150,7 +150,13 @@ def end_events(gear: ValveGear, end: str, piston_fraction: Callable[[float], flo
     }
 
 
-def events(gear: ValveGear, piston_fraction: Callable[[float], float]) -> dict:
-    """Events of both ends: ``{"head": {...}, "crank": {...}}``."""
-    table = crossing_table(gear, np.zeros((4, 1)))
+def events(gear: ValveGear, piston_fraction: Callable[[float], float],
+           table: list | None = None) -> dict:
+    """Events of both ends: ``{"head": {...}, "crank": {...}}``.
+
+    ``table`` may be a crossing table already found (a PortMap's ``crossings``),
+    whose first level is zero.
+    """
+    if table is None:
+        table = crossing_table(gear, np.zeros((4, 1)))
     return {end: end_events(gear, end, piston_fraction, table) for end in ("head", "crank")}

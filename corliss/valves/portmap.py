@@ -34,12 +34,17 @@ class PortMap:
         Discharge coefficient of each port [-], shape ``(4,)``.
     breakpoints_rad : ndarray
         Angles in [0, 2 pi) where any port opens, closes or reaches full opening.
+    crossings : list
+        ``crossings[port][0]`` where the port opens or closes, ``[port][1]`` where it
+        reaches full opening, as :func:`corliss.valves.events.crossing_table` gives
+        them (the events are read from the first).
     """
 
     theta_rad: np.ndarray
     area_m2: np.ndarray
     cd: np.ndarray
     breakpoints_rad: np.ndarray
+    crossings: list | None = None
 
     def areas(self, theta: float) -> np.ndarray:
         """Open areas [m2] of the four ports at crank angle ``theta`` [rad] (any turn)."""
@@ -53,7 +58,8 @@ class PortMap:
 
     def scaled(self, factor: float) -> "PortMap":
         """The same map with every area multiplied by ``factor`` (a study device)."""
-        return PortMap(self.theta_rad, self.area_m2 * factor, self.cd, self.breakpoints_rad)
+        return PortMap(self.theta_rad, self.area_m2 * factor, self.cd, self.breakpoints_rad,
+                       self.crossings)
 
     @property
     def ports(self) -> tuple[str, ...]:
@@ -75,4 +81,4 @@ def tabulate(gear: ValveGear, n: int = 1440) -> PortMap:
         keep &= ~near
     grid = grid[keep]
     return PortMap(theta_rad=grid, area_m2=gear.areas(grid), cd=gear.discharge_coefficients(),
-                   breakpoints_rad=kinks)
+                   breakpoints_rad=kinks, crossings=table)
