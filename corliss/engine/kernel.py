@@ -32,40 +32,11 @@ import math
 import numpy as np
 from numba import njit
 
+from corliss.engine.crank_resolved import N_DYN, N_QUAD, RHO_MIN, TWO_PI, U_MAX, U_MIN
+from corliss.thermo.orifice import kappa_of, port_flow
 from corliss.thermo.steam_table import lookup
 
 TIER_TABLE, TIER_PERFECT = 0, 1
-N_DYN, N_QUAD = 4, 5
-N_STATE = N_DYN + 2 * N_QUAD
-RHO_MIN, U_MIN, U_MAX = 0.02, 1.0e6, 4.0e6
-TWO_PI = 2.0 * math.pi
-
-
-@njit(cache=True)
-def _flux(p0, rho0, p1, kappa, band):
-    r = p1 / p0
-    if r >= 1.0:
-        return 0.0
-    lin = 1.0
-    if r > 1.0 - band:
-        lin = (1.0 - r) / band
-        r = 1.0 - band
-    r_crit = (2.0 / (kappa + 1.0)) ** (kappa / (kappa - 1.0))
-    if r < r_crit:
-        r = r_crit
-    term = r ** (2.0 / kappa) - r ** ((kappa + 1.0) / kappa)
-    if term <= 0.0:
-        return 0.0
-    return lin * math.sqrt(2.0 * kappa / (kappa - 1.0) * p0 * rho0 * term)
-
-
-@njit(cache=True)
-def _port(area, cd, p1, rho1, k1, p2, rho2, k2, band):
-    if area <= 0.0:
-        return 0.0
-    if p1 >= p2:
-        return cd * area * _flux(p1, rho1, p2, k1, band)
-    return -cd * area * _flux(p2, rho2, p1, k2, band)
 
 
 @njit(cache=True)
@@ -127,12 +98,12 @@ def rhs(th, y, dy, geo, grid, areas, cd, res, omega, band, tier, tab, perf):
         p, T, x, sup = props(tier, tab, perf, rho, u)
         if rho < RHO_MIN:
             rho = RHO_MIN
-        k = 1.3 if sup else 1.035 + 0.1 * x
+        k = kappa_of(x, sup)
         h = u + p / rho
         a_s = areas[2 * end, kc_] * (1.0 - wc_) + areas[2 * end, kc_ + 1] * wc_
         a_e = areas[2 * end + 1, kc_] * (1.0 - wc_) + areas[2 * end + 1, kc_ + 1] * wc_
-        ms = _port(a_s, cd[2 * end], pc, rc, kc, p, rho, k, band)
-        me = _port(a_e, cd[2 * end + 1], pe, re, ke, p, rho, k, band)
+        ms = port_flow(a_s, cd[2 * end], pc, rc, kc, p, rho, k, band)
+        me = port_flow(a_e, cd[2 * end + 1], pe, re, ke, p, rho, k, band)
         hs = ms * (hc if ms > 0.0 else h)
         he_ = me * (he if me > 0.0 else h)
         dy[2 * end] = (ms + me) / omega

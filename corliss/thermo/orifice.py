@@ -16,7 +16,8 @@ Mass flux per unit throat area (Saint-Venant and Wantzel)::
 with ``r = max(p_down/p0, r_crit)`` and ``r_crit = (2/(kappa+1))^(kappa/(kappa-1))``
 (choked flow below it).  The flux has an infinite slope as ``r -> 1``; in a band
 ``1 - band < r <= 1`` it is replaced by the straight line through the band edge and
-zero, which keeps the right-hand side Lipschitz.  A 1 % band changed the indicated
+zero, which keeps the right-hand side Lipschitz.  The functions are compiled: the
+Python model and the compiled kernel call the same code.  A 1 % band changed the indicated
 work by less than 0.1 % in a test during development.  Reverse flow swaps the roles
 of the two sides and carries the other side's enthalpy.
 """
@@ -25,9 +26,12 @@ from __future__ import annotations
 
 import math
 
+from numba import njit
+
 KAPPA_SUPERHEATED = 1.3
 
 
+@njit(cache=True)
 def kappa_of(x: float, superheated: bool) -> float:
     """Isentropic exponent [-] of steam of dryness ``x`` (Zeuner's rule when wet)."""
     if superheated:
@@ -35,6 +39,7 @@ def kappa_of(x: float, superheated: bool) -> float:
     return 1.035 + 0.1 * x
 
 
+@njit(cache=True)
 def _flux_unregularised(r: float, p0: float, rho0: float, kappa: float) -> float:
     r_crit = (2.0 / (kappa + 1.0)) ** (kappa / (kappa - 1.0))
     if r < r_crit:
@@ -45,6 +50,7 @@ def _flux_unregularised(r: float, p0: float, rho0: float, kappa: float) -> float
     return math.sqrt(2.0 * kappa / (kappa - 1.0) * p0 * rho0 * term)
 
 
+@njit(cache=True)
 def mass_flux(p0: float, rho0: float, p_down: float, kappa: float,
               band: float = 0.01) -> float:
     """Mass flux through a port from upstream to downstream [kg/(s m2)], >= 0.
@@ -69,6 +75,7 @@ def mass_flux(p0: float, rho0: float, p_down: float, kappa: float,
     return _flux_unregularised(r, p0, rho0, kappa)
 
 
+@njit(cache=True)
 def port_flow(area: float, cd: float, p1: float, rho1: float, kappa1: float,
               p2: float, rho2: float, kappa2: float, band: float = 0.01) -> float:
     """Signed mass flow [kg/s] through a port, positive from side 1 to side 2.
