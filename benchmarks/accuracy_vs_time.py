@@ -65,6 +65,16 @@ def settings(scene):
     return out
 
 
+def reference_halving(scene) -> float:
+    """Relative change of indicated power when the reference preset's rtol is halved:
+    the evidence that the reference is converged."""
+    ref = PRESETS["reference"]
+    a = corliss.simulate(scene.replace_run(fidelity=ref)).summary["indicated_power_W"]
+    half = dataclasses.replace(ref, name="custom", rtol=ref.rtol / 2)
+    b = corliss.simulate(scene.replace_run(fidelity=half)).summary["indicated_power_W"]
+    return abs(b / a - 1)
+
+
 def marginal_ms_per_cycle(scene, repeats):
     """Cost of one more cycle [ms]: (time of 6 cycles - time of 2) / 4, median of repeats.
 
@@ -141,17 +151,22 @@ def main(argv=None) -> int:
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     rows = []
+    halving = {}
     for sname, path in SCENES.items():
         scene = corliss.load_scene(path)
         ref = reference(scene)
         print(f"{sname}: reference {ref.summary['indicated_power_hp']:.4f} ihp after "
               f"{ref.summary['cycles_to_converge']} cycles", file=sys.stderr)
+        halving[sname] = reference_halving(scene)
+        print(f"  reference preset, rtol halved: power changes by "
+              f"{100 * halving[sname]:.2e} %", file=sys.stderr)
         for label, sc in settings(scene):
             times = []
             for _ in range(args.repeats):
                 r = corliss.simulate(sc)
                 times.append(r.summary["wall_time_s"] / r.summary["cycles_simulated"])
             row = {"scene": sname, "setting": label,
+                   "reference_halving_change_pct": 100 * halving[sname],
                    "ms_per_cycle": 1e3 * statistics.median(times),
                    "marginal_ms_per_cycle": marginal_ms_per_cycle(sc, args.repeats),
                    "cycles": r.summary["cycles_simulated"], **errors(r, ref)}
