@@ -88,3 +88,44 @@ def plot_card(result, ax=None, units_system: str | None = None) -> dict:
     for side in ("top", "right"):
         ax.spines[side].set_visible(False)
     return {"ax": ax, "lines": lines, "markers": markers}
+
+
+def plot_crank_effort(result, ax=None, units_system: str | None = None) -> dict:
+    """Crank-effort diagram: shaft torque against crank angle over the last cycle, with
+    the mean torque (the uniform resistance of Marks Arts. 56-59) and the excess and
+    deficit shaded; the friction torque and net torque where ``friction`` is named.
+
+    Returns ``{"ax": ax, "lines": {...}}``.
+    """
+    import matplotlib.pyplot as plt
+
+    system = units_system or result.scene.output.units
+    if ax is None:
+        _, ax = plt.subplots(figsize=(9, 4.5))
+    t_unit = "lbf ft" if system == "US" else "N m"
+    ce = result.crank_effort
+    ang = ce["crank_angle_deg"].to_numpy()
+    ang = ang - 360.0 * np.floor(ang[0] / 360.0)
+    tq = units.to_unit(ce["torque_N_m"].to_numpy(), t_unit)
+    mean = units.to_unit(result.summary["mean_torque_N_m"], t_unit)
+    lines = {"torque": ax.plot(ang, tq, color="k", lw=1.3, label="crank effort")[0],
+             "mean": ax.axhline(mean, color="0.4", lw=0.9, ls="--", label="mean (uniform load)")}
+    ax.fill_between(ang, tq, mean, where=tq >= mean, color="0.8", lw=0, label="excess")
+    ax.fill_between(ang, tq, mean, where=tq < mean, color="0.93", hatch="///", lw=0,
+                    edgecolor="0.6", label="deficit")
+    if "friction_torque_N_m" in ce:
+        lines["net"] = ax.plot(ang, units.to_unit(ce["net_torque_N_m"].to_numpy(), t_unit),
+                               color="0.3", lw=0.9, ls=":", label="less friction")[0]
+    s = result.summary
+    ax.set_xlim(0, 360)
+    ax.set_xticks(range(0, 361, 45))
+    ax.set_xlabel("crank angle from head-end dead centre [deg]")
+    ax.set_ylabel(f"torque [{t_unit}]")
+    ax.set_title(f"Crank effort: fluctuation c = {s['fluctuation_coefficient_c']:.3f} of one "
+                 "stroke's work", fontsize=10)
+    ax.grid(True, color="0.9", lw=0.5)
+    ax.legend(fontsize=8, frameon=False, loc="upper center", bbox_to_anchor=(0.5, -0.14),
+              ncol=5)
+    for side in ("top", "right"):
+        ax.spines[side].set_visible(False)
+    return {"ax": ax, "lines": lines}

@@ -139,6 +139,57 @@ class Result:
                 for end in ("head", "crank")}
 
     @property
+    def crank_effort(self) -> pd.DataFrame:
+        """Torque on the shaft over the last cycle (SI).
+
+        Columns: crank angle, steam force on the piston, the inertia force of the
+        reciprocating masses (``inertia`` effect), the indicated torque they make, the
+        friction torque (``friction`` effect) and the net torque left for the load.
+        """
+        from corliss.engine import crank_effort as ce
+        ts = self.timeseries[self.timeseries["cycle"] == self.timeseries["cycle"].max()]
+        th = np.radians(ts["crank_angle_deg"].to_numpy())
+        geo, run, spec = self.geometry, self.scene.run, self.geometry.spec
+        force = ce.piston_force_N(geo, ts["p_head_Pa"].to_numpy(), ts["p_crank_Pa"].to_numpy(),
+                                  self.scene.supply.barometer_Pa)
+        cols = {"crank_angle_deg": ts["crank_angle_deg"].to_numpy(), "steam_force_N": force}
+        if run.has("inertia"):
+            cols["inertia_force_N"] = ce.inertia_force_N(geo, th, run.speed_rad_s,
+                                                         spec.reciprocating_mass_kg)
+            force = force + cols["inertia_force_N"]
+        cols["torque_N_m"] = ce.torque_N_m(geo, th, force)
+        net = cols["torque_N_m"]
+        if run.has("friction"):
+            tf = spec.friction_torque_N_m + spec.friction_N_m_s * run.speed_rad_s
+            cols["friction_torque_N_m"] = np.full(th.size, tf)
+            net = net - tf
+        cols["net_torque_N_m"] = net
+        return pd.DataFrame(cols)
+
+    def _effort_summary(self, work_J: float) -> dict:
+        from corliss.engine.crank_effort import energy_fluctuation_J
+        ce = self.crank_effort
+        th = np.radians(ce["crank_angle_deg"].to_numpy())
+        dE = energy_fluctuation_J(th, ce["torque_N_m"].to_numpy())
+        out = {"max_torque_N_m": float(ce["torque_N_m"].max()),
+               "min_torque_N_m": float(ce["torque_N_m"].min()),
+               "mean_torque_N_m": work_J / (2 * math.pi),
+               "energy_fluctuation_J": dE,
+               # Marks Art. 57, Table IV: spread over the work of one stroke of one cylinder
+               "fluctuation_coefficient_c": dE / (0.5 * work_J) if work_J > 0 else None}
+        run = self.scene.run
+        if run.has("friction"):
+            spec = self.geometry.spec
+            tf = spec.friction_torque_N_m + spec.friction_N_m_s * run.speed_rad_s
+            indicated = work_J * run.speed_rad_s / (2 * math.pi)
+            brake = indicated - tf * run.speed_rad_s
+            out.update({"friction_torque_N_m": tf, "friction_power_W": tf * run.speed_rad_s,
+                        "friction_work_J_per_cycle": tf * 2 * math.pi,
+                        "brake_power_W": brake, "brake_power_hp": brake / units.HP_W,
+                        "mechanical_efficiency": brake / indicated if indicated > 0 else None})
+        return out
+
+    @property
     def summary(self) -> dict:
         """The run's summary: the JSON contract keys and more (all SI unless named)."""
         if self._summary is None:
@@ -193,6 +244,7 @@ class Result:
             "energy_balance_error": energy_err,
             "rhs_evaluations": self.nfev,
             "wall_time_s": self.wall_time_s,
+            **self._effort_summary(w),
             "events": self.events,
         }
 
@@ -245,12 +297,17 @@ class Result:
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
-        fig, ax = plt.subplots(figsize=(9, 5.5))
-        self.plot_card(ax=ax)
-        png = out_dir / f"{stem}.card.png"
-        _write_atomic(png, lambda p: fig.savefig(p, dpi=130, bbox_inches="tight", format="png"))
-        plt.close(fig)
-        files["card"] = png
+
+        from corliss.plot import plot_card, plot_crank_effort
+        for kind, draw, size in (("card", plot_card, (9, 5.5)),
+                                 ("effort", plot_crank_effort, (9, 4.5))):
+            fig, ax = plt.subplots(figsize=size)
+            draw(self, ax=ax)
+            png = out_dir / f"{stem}.{kind}.png"
+            _write_atomic(png, lambda p: fig.savefig(p, dpi=130, bbox_inches="tight",
+                                                     format="png"))
+            plt.close(fig)
+            files[kind] = png
         sj = out_dir / f"{stem}.summary.json"
         _write_atomic(sj, lambda p: Path(p).write_text(json.dumps(_jsonable(self.summary), indent=2)))
         files["summary"] = sj

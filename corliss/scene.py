@@ -16,8 +16,8 @@ from pathlib import Path
 
 from corliss import units
 from corliss.engine.geometry import EngineSpec
-from corliss.engine.options import (COMPILED_METHODS, EFFECTS, EXPANSION_LAWS, METHODS,
-                                    MODELS, PLANNED_EFFECTS, PRESETS, SCIPY_METHODS, Fidelity)
+from corliss.engine.options import (COMPILED_METHODS, EFFECT_KEYS, EFFECTS, EXPANSION_LAWS,
+                                    METHODS, MODELS, PLANNED_EFFECTS, PRESETS, SCIPY_METHODS, Fidelity)
 from corliss.errors import InputError
 from corliss.tables import Table
 from corliss.thermo.steam import BACKENDS, HEOSSteam
@@ -171,7 +171,16 @@ def _engine(t: Table) -> EngineSpec:
     if not 0.0 <= prd < bore:
         raise InputError(t.key("piston_rod_diameter"), t.raw("piston_rod_diameter"),
                          "a piston rod diameter from zero up to less than the bore")
-    spec = EngineSpec(bore, stroke, rod, prd, _pair_fraction(t, "clearance"))
+    mass = t.quantity("reciprocating_mass", "mass") if t.has("reciprocating_mass") else None
+    if mass is not None and not mass > 0.0:
+        raise InputError(t.key("reciprocating_mass"), t.raw("reciprocating_mass"),
+                         "a mass greater than zero")
+    f0 = t.quantity("friction_torque", "torque", "0 N m")
+    f1 = t.quantity("friction_torque_per_speed", "torque_per_speed", "0 N m s")
+    if f0 < 0.0 or f1 < 0.0:
+        raise InputError(t.key("friction_torque"), t.raw("friction_torque", None),
+                         "friction torques of zero or more (they oppose the motion)")
+    spec = EngineSpec(bore, stroke, rod, prd, _pair_fraction(t, "clearance"), mass, f0, f1)
     t.finish()
     return spec
 
@@ -301,6 +310,11 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
     gear = gt.parse(vg)
     vg.finish()
     run = _run(Table(data["run"], "run", barometer))
+    for effect, keys in EFFECT_KEYS.items():
+        for k in keys:
+            if run.has(effect) and k not in data["engine"]:
+                raise InputError(f"engine.{k}", None, f"a value: the {effect!r} effect named in "
+                                 "run.effects needs it")
     out = Table(data.get("output", {}), "output", barometer)
     output = OutputSpec(out.choice("units", ("US", "SI"), "US"), out.string("dir", "out"))
     out.finish()

@@ -42,6 +42,8 @@ _LINEAR: dict[str, dict[str, float]] = {
     "time": {"s": 1.0, "ms": 1e-3, "min": 60.0, "h": 3600.0},
     "torque": {"N m": 1.0, "kN m": 1e3, "lbf ft": LBF_N * FOOT_m,
                "ft lbf": LBF_N * FOOT_m, "lbf in": LBF_N * INCH_m},
+    "torque_per_speed": {"N m s": 1.0, "N m/rpm": 1.0 / RPM_RAD_S,
+                         "lbf ft/rpm": LBF_N * FOOT_m / RPM_RAD_S},
     "power": {"W": 1.0, "kW": 1e3, "MW": 1e6, "hp": HP_W, "ihp": HP_W},
     "mass": {"kg": 1.0, "g": 1e-3, "t": 1e3, "lb": POUND_kg, "lbm": POUND_kg},
     "inertia": {"kg m2": 1.0, "lb ft2": POUND_kg * FOOT_m**2,

@@ -34,7 +34,7 @@ def test_run_default_writes_card_csv_meta_and_prints_json(tmp_path, capsys):
     assert s["speed_rpm"] == pytest.approx(120.0)
     files = sorted(p.name for p in tmp_path.iterdir())
     assert files == ["default.card.png", "default.cycles.csv", "default.cycles.meta.json",
-                     "default.summary.json", "default.timeseries.csv",
+                     "default.effort.png", "default.summary.json", "default.timeseries.csv",
                      "default.timeseries.meta.json"]
     meta = json.loads((tmp_path / "default.timeseries.meta.json").read_text())
     for k in ("corliss_version", "coolprop_version", "property_backend", "scene", "columns",

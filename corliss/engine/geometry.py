@@ -32,6 +32,13 @@ class EngineSpec:
     clearance : tuple of float
         Clearance volume of the (head, crank) end as a fraction of that end's swept
         volume [-].
+    reciprocating_mass_kg : float or None
+        Piston, rod, crosshead and the reciprocating share of the connecting rod [kg]
+        (for the ``inertia`` effect).
+    friction_torque_N_m : float
+        Constant part of the engine's friction torque [N m] (``friction`` effect).
+    friction_N_m_s : float
+        Speed-proportional part of the friction torque [N m s/rad].
     """
 
     bore_m: float
@@ -39,6 +46,9 @@ class EngineSpec:
     connecting_rod_m: float
     piston_rod_diameter_m: float
     clearance: tuple[float, float]
+    reciprocating_mass_kg: float | None = None
+    friction_torque_N_m: float = 0.0
+    friction_N_m_s: float = 0.0
 
 
 @dataclass(frozen=True)

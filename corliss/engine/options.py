@@ -16,10 +16,17 @@ EFFECTS: dict[str, str] = {
                  "without it, admission and exhaust are at chest and back pressure",
     "rod_angularity": "exact slider crank with the finite connecting rod; without it, an "
                       "infinite rod",
+    "inertia": "reciprocating masses ([engine] reciprocating_mass) in the crank effort "
+               "(Marks Art. 35)",
+    "friction": "engine friction torque ([engine] friction_torque, friction_torque_per_speed): "
+                "brake power and mechanical efficiency",
 }
 
 #: Effects of the design that this version does not have yet.
-PLANNED_EFFECTS = ("steam_chest", "wall_heat", "leakage", "inertia", "friction")
+PLANNED_EFFECTS = ("steam_chest", "wall_heat", "leakage")
+
+#: Keys of [engine] that an effect needs.
+EFFECT_KEYS = {"inertia": ("reciprocating_mass",), "friction": ("friction_torque",)}
 
 MODELS = ("crank_resolved", "ideal")
 EXPANSION_LAWS = ("hyperbolic", "isentropic")
