@@ -1,9 +1,11 @@
 """The compiled hot loop: right-hand side and integrators of the crank-resolved model.
 
-The same equations as :class:`corliss.engine.crank_resolved.CrankResolved` (see there),
-compiled with numba: geometry and PortMap arrays, reservoir states and the property
-table go in as plain numbers and arrays, one call integrates a whole cycle.  Two
-integrators:
+The equations are those of :mod:`corliss.engine.network`: control volumes (cylinder
+ends, chest) joined by ports, each with a mass and energy balance.  The network is a
+tuple of plain arrays (:meth:`corliss.engine.network.Network.arrays`); one call
+integrates a whole cycle.  :func:`derivatives` takes the properties of every node as
+given, so the reference path (HEOS, called from Python) and the compiled tiers share
+one implementation of the physics.  Three integrators:
 
 * ``"dopri5"``: Dormand-Prince 5(4), adaptive, with the usual error norm
   ``max |err_i| / (atol_i + rtol |y_i|)``, step-size control with safety 0.9 and
@@ -12,8 +14,9 @@ integrators:
 * ``"rk4"``: classical fourth-order Runge-Kutta at a fixed crank-angle step, each
   segment between kinks divided into equal steps no longer than the step asked for;
 * ``"rosenbrock"``: the L-stable Rosenbrock 2(3) pair of Shampine and Reichelt
-  (MATLAB's ode23s), with a finite-difference Jacobian that uses the model's
-  structure (each end's 2 x 2 block; the quadratures do not feed back).  Pressure
+  (MATLAB's ode23s; SIAM J. Sci. Comput. 18, 1997), with a finite-difference
+  Jacobian over the dynamic states, columns grouped by the network's structure
+  (:meth:`Network.column_colors`; the quadratures do not feed back).  Pressure
   equalisation through an open port is stiff (an eigenvalue near -300 per radian on
   the default engine), which holds the explicit methods to steps of about 0.6 deg
   whatever their tolerance; the Rosenbrock method steps over it.
@@ -22,7 +25,7 @@ Output samples between steps come from cubic Hermite interpolation on the states
 derivatives at the step ends (third-order, well inside the step error).
 
 Compiled code is cached on disk by numba (``cache=True``): a run pays compilation
-once per machine (measured in the accuracy study and the issue notes).
+once per machine (measured in the accuracy study).
 """
 
 from __future__ import annotations
@@ -32,22 +35,35 @@ import math
 import numpy as np
 from numba import njit
 
-from corliss.engine.crank_resolved import N_DYN, N_QUAD, RHO_MIN, TWO_PI, U_MAX, U_MIN
 from corliss.thermo.orifice import kappa_of, port_flow
 from corliss.thermo.steam_table import lookup
 
 TIER_TABLE, TIER_PERFECT = 0, 1
+TWO_PI = 2.0 * math.pi
+#: Clamps on trial states: integrators probe states with no steam (a negative mass in
+#: a stiff blow-down); clamping keeps the right-hand side defined and its flows push
+#: the state back.
+RHO_MIN = 0.02       # [kg/m3], saturated vapour near 25 degC (far below any condenser)
+U_MIN = 1.0e6        # [J/kg], wet steam of dryness about 0.35
+U_MAX = 4.0e6        # [J/kg], superheated far beyond any engine
 
 
-@njit(cache=True)
-def props(tier, tab, perf, rho, u):
-    """(p, T, dryness, superheated) from the compiled tier, inputs clamped."""
+@njit(cache=True, inline="always")
+def admissible(rho, u):
+    """Density and internal energy clamped to where steam properties exist."""
     if not rho > RHO_MIN:
         rho = RHO_MIN
     if not u > U_MIN:
         u = U_MIN
     if u > U_MAX:
         u = U_MAX
+    return rho, u
+
+
+@njit(cache=True, inline="always")
+def props(tier, tab, perf, rho, u):
+    """(p, T, dryness, superheated) from the compiled tier, inputs clamped."""
+    rho, u = admissible(rho, u)
     if tier == TIER_PERFECT:
         R, cv, u_ref = perf[0], perf[1], perf[2]
         T = (u - u_ref) / cv
@@ -57,63 +73,120 @@ def props(tier, tab, perf, rho, u):
     return lookup(tab, rho, u)
 
 
-@njit(cache=True)
-def _cell(grid, t):
-    """Index and weight of ``t`` in the PortMap grid (one search serves all ports)."""
-    n = grid.shape[0]
-    k = np.searchsorted(grid, t) - 1
-    if k < 0:
-        k = 0
-    if k > n - 2:
-        k = n - 2
-    g0 = grid[k]
-    return k, (t - g0) / (grid[k + 1] - g0)
-
-
-@njit(cache=True)
-def rhs(th, y, dy, geo, grid, areas, cd, res, omega, band, tier, tab, perf):
-    """Derivatives with respect to crank angle, written into ``dy``."""
-    R, L, S, Ah, Ac, Vch, Vcc, ang = geo[0], geo[1], geo[2], geo[3], geo[4], geo[5], geo[6], geo[7]
-    sn = math.sin(th)
-    cs = math.cos(th)
+@njit(cache=True, inline="always")
+def node_volume(th, net, i):
+    """(V, dV/dtheta) of node ``i`` at shaft angle ``th`` [m3, m3/rad]."""
+    geo, phase, kind, cyl, end, fixedV = net[2], net[3], net[4], net[5], net[6], net[7]
+    if kind[i] == 1:
+        return fixedV[i], 0.0
+    c = cyl[i]
+    R, L, S, Ah, Ac, Vch, Vcc, ang = (geo[c, 0], geo[c, 1], geo[c, 2], geo[c, 3], geo[c, 4],
+                                      geo[c, 5], geo[c, 6], geo[c, 7])
+    a = th + phase[c]
+    sn = math.sin(a)
+    cs = math.cos(a)
     s = R * (1.0 - cs)
     ds = R * sn
     if ang > 0.0:
         root = math.sqrt(L * L - R * R * sn * sn)
         s += L - root
         ds += R * R * sn * cs / root
-    kc_, wc_ = _cell(grid, th % TWO_PI)
-    pc, rc, hc, kc, pe, re, he, ke = res[0], res[1], res[2], res[3], res[4], res[5], res[6], res[7]
-    for end in range(2):
-        if end == 0:
-            V = Vch + Ah * s
-            dV = Ah * ds
+    if end[i] == 0:
+        return Vch + Ah * s, Ah * ds
+    return Vcc + Ac * (S - s), -Ac * ds
+
+
+@njit(cache=True, inline="always")
+def locate(th, net, cell):
+    """For each cylinder, the PortMap interval and weight at its own crank angle,
+    written into ``cell`` (index row 0, weight row 1): one search serves all ports."""
+    phase, grid, npts = net[3], net[16], net[17]
+    for c in range(npts.shape[0]):
+        n = npts[c]
+        t = (th + phase[c]) % TWO_PI
+        k = np.searchsorted(grid[c, :n], t) - 1
+        if k < 0:
+            k = 0
+        if k > n - 2:
+            k = n - 2
+        g0 = grid[c, k]
+        cell[0, c] = k
+        cell[1, c] = (t - g0) / (grid[c, k + 1] - g0)
+
+
+@njit(cache=True, inline="always")
+def edge_area(net, e, cell):
+    """Open area of edge ``e`` [m2], with ``cell`` from :func:`locate`."""
+    ekind, ecyl, eport, earea, area = net[11], net[12], net[13], net[14], net[18]
+    if ekind[e] == 1:
+        return earea[e]
+    c = ecyl[e]
+    k = int(cell[0, c])
+    w = cell[1, c]
+    return area[c, eport[e], k] * (1.0 - w) + area[c, eport[e], k + 1] * w
+
+
+@njit(cache=True, inline="always")
+def derivatives(th, y, pr, dy, net, cell):
+    """Derivatives with respect to crank angle, written into ``dy``, given each node's
+    pressure, density, enthalpy, isentropic exponent and dV/dtheta in the rows of
+    ``pr``; ``cell`` is scratch of shape (2, cylinders)."""
+    omega, band, res = net[0], net[1], net[8]
+    P, RHO, H, K = pr[0], pr[1], pr[2], pr[3]
+    locate(th, net, cell)
+    ea, eb, ecd = net[9], net[10], net[15]
+    nv = P.shape[0]
+    ne = ea.shape[0]
+    ndyn = 2 * nv
+    for i in range(dy.shape[0]):
+        dy[i] = 0.0
+    for i in range(nv):
+        dV = pr[4, i]
+        dy[2 * i + 1] -= P[i] * dV
+        dy[ndyn + 2 * ne + i] = P[i] * dV
+    for e in range(ne):
+        a = ea[e]
+        b = eb[e]
+        if a >= 0:
+            pa, ra, ha, ka = P[a], RHO[a], H[a], K[a]
         else:
-            V = Vcc + Ac * (S - s)
-            dV = -Ac * ds
-        m = y[2 * end]
-        U = y[2 * end + 1]
-        rho = m / V
-        u = U / m if m > 0.0 else hc
+            r = -1 - a
+            pa, ra, ha, ka = res[r, 0], res[r, 1], res[r, 2], res[r, 3]
+        if b >= 0:
+            pb, rb, hb, kb = P[b], RHO[b], H[b], K[b]
+        else:
+            r = -1 - b
+            pb, rb, hb, kb = res[r, 0], res[r, 1], res[r, 2], res[r, 3]
+        md = port_flow(edge_area(net, e, cell), ecd[e], pa, ra, ka, pb, rb, kb, band)
+        hd = md * (ha if md > 0.0 else hb)
+        md /= omega
+        hd /= omega
+        if a >= 0:
+            dy[2 * a] -= md
+            dy[2 * a + 1] -= hd
+        if b >= 0:
+            dy[2 * b] += md
+            dy[2 * b + 1] += hd
+        dy[ndyn + 2 * e] = md
+        dy[ndyn + 2 * e + 1] = hd
+
+
+@njit(cache=True, inline="always")
+def rhs(th, y, dy, net, tier, tab, perf, pr, cell):
+    """Derivatives on a compiled property tier (``pr``, ``cell``: scratch arrays)."""
+    nv = net[4].shape[0]
+    for i in range(nv):
+        V, dV = node_volume(th, net, i)
+        pr[4, i] = dV
+        m = y[2 * i]
+        u = y[2 * i + 1] / m if m > 0.0 else 2.6e6
+        rho, u = admissible(m / V, u)
         p, T, x, sup = props(tier, tab, perf, rho, u)
-        if rho < RHO_MIN:
-            rho = RHO_MIN
-        k = kappa_of(x, sup)
-        h = u + p / rho
-        a_s = areas[2 * end, kc_] * (1.0 - wc_) + areas[2 * end, kc_ + 1] * wc_
-        a_e = areas[2 * end + 1, kc_] * (1.0 - wc_) + areas[2 * end + 1, kc_ + 1] * wc_
-        ms = port_flow(a_s, cd[2 * end], pc, rc, kc, p, rho, k, band)
-        me = port_flow(a_e, cd[2 * end + 1], pe, re, ke, p, rho, k, band)
-        hs = ms * (hc if ms > 0.0 else h)
-        he_ = me * (he if me > 0.0 else h)
-        dy[2 * end] = (ms + me) / omega
-        dy[2 * end + 1] = (hs + he_) / omega - p * dV
-        q = N_DYN + end * N_QUAD
-        dy[q] = ms / omega
-        dy[q + 1] = hs / omega
-        dy[q + 2] = me / omega
-        dy[q + 3] = he_ / omega
-        dy[q + 4] = p * dV
+        pr[0, i] = p
+        pr[1, i] = rho
+        pr[2, i] = u + p / rho
+        pr[3, i] = kappa_of(x, sup)
+    derivatives(th, y, pr, dy, net, cell)
 
 
 # Dormand-Prince 5(4) tableau
@@ -144,73 +217,83 @@ def _hermite(t0, y0, f0, t1, y1, f1, t, out):
 
 
 @njit(cache=True)
-def _w_solve(J, hd, x, out):
-    """Solve (I - hd J) out = x for the model's Jacobian structure.
+def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, cell):
+    """Finite-difference Jacobian of the dynamic columns, and the time derivative.
 
-    Only the four dynamic states (m, U of each end) feed back; each end's 2 x 2 block
-    is solved directly, and the quadratures follow by substitution:
-    out_q = x_q + hd J_q,dyn out_dyn.
+    Columns of one colour are perturbed together (their rows do not overlap), so a
+    single cylinder costs two evaluations, plus one for the time derivative.
     """
-    for e in range(2):
-        i = 2 * e
-        a = 1.0 - hd * J[i, i]
-        b = -hd * J[i, i + 1]
-        c = -hd * J[i + 1, i]
-        d = 1.0 - hd * J[i + 1, i + 1]
-        det = a * d - b * c
-        out[i] = (d * x[i] - b * x[i + 1]) / det
-        out[i + 1] = (a * x[i + 1] - c * x[i]) / det
-    for q in range(N_DYN, x.shape[0]):
+    n = y.shape[0]
+    ndyn = J.shape[1]
+    ncol = owner.shape[0]
+    yp = y.copy()
+    fp = np.empty(n)
+    dl = np.empty(ndyn)
+    for j in range(ndyn):
+        dl[j] = 1e-7 * max(abs(y[j]), yscale[j])
+    for c in range(ncol):
+        yp[:] = y
+        for j in range(ndyn):
+            if color[j] == c:
+                yp[j] += dl[j]
+        rhs(t, yp, fp, net, tier, tab, perf, pr, cell)
+        for j in range(ndyn):
+            if color[j] == c:
+                for i in range(n):
+                    J[i, j] = 0.0
+        for i in range(n):
+            j = owner[c, i]
+            if j >= 0:
+                J[i, j] = (fp[i] - f0[i]) / dl[j]
+    dt = 1e-7 * max(abs(t), 1.0)
+    rhs(t + dt, y, fp, net, tier, tab, perf, pr, cell)
+    for i in range(n):
+        T[i] = (fp[i] - f0[i]) / dt
+    return ncol + 1
+
+
+@njit(cache=True)
+def _w_inverse(J, hd, Winv):
+    """Inverse of the dynamic block of W = I - hd J."""
+    ndyn = J.shape[1]
+    A = np.empty((ndyn, ndyn))
+    for i in range(ndyn):
+        for j in range(ndyn):
+            A[i, j] = (1.0 if i == j else 0.0) - hd * J[i, j]
+    Winv[:, :] = np.linalg.inv(A)
+
+
+@njit(cache=True)
+def _w_solve(J, Winv, hd, x, out):
+    """Solve W out = x: the dynamic block by its inverse, the quadratures (which do
+    not feed back) by substitution, out_q = x_q + hd J_q,dyn out_dyn."""
+    ndyn = J.shape[1]
+    for i in range(ndyn):
+        acc = 0.0
+        for j in range(ndyn):
+            acc += Winv[i, j] * x[j]
+        out[i] = acc
+    for q in range(ndyn, x.shape[0]):
         acc = x[q]
-        for j in range(N_DYN):
+        for j in range(ndyn):
             acc += hd * J[q, j] * out[j]
         out[q] = acc
 
 
-@njit(cache=True)
-def _jacobian(t, y, f0, J, T, yscale, geo, grid, areas, cd, res, omega, band, tier, tab, perf):
-    """Finite-difference Jacobian of the dynamic columns and the time derivative.
-
-    The two ends do not interact (constant chest and exhaust), so one evaluation
-    perturbs the mass of both ends and one their energy: 3 evaluations in all.
-    """
-    n = y.shape[0]
-    yp = y.copy()
-    fp = np.empty(n)
-    for col in range(2):
-        dlt0 = 1e-7 * max(abs(y[col]), yscale[col])
-        dlt1 = 1e-7 * max(abs(y[col + 2]), yscale[col + 2])
-        yp[:] = y
-        yp[col] += dlt0
-        yp[col + 2] += dlt1
-        rhs(t, yp, fp, geo, grid, areas, cd, res, omega, band, tier, tab, perf)
-        for i in range(n):
-            J[i, col] = 0.0
-            J[i, col + 2] = 0.0
-        # head-end rows and head quadratures see the head perturbation only
-        for i in (0, 1):
-            J[i, col] = (fp[i] - f0[i]) / dlt0
-        for i in (2, 3):
-            J[i, col + 2] = (fp[i] - f0[i]) / dlt1
-        for i in range(N_DYN, N_DYN + N_QUAD):
-            J[i, col] = (fp[i] - f0[i]) / dlt0
-        for i in range(N_DYN + N_QUAD, n):
-            J[i, col + 2] = (fp[i] - f0[i]) / dlt1
-    dt = 1e-7 * max(abs(t), 1.0)
-    rhs(t + dt, y, fp, geo, grid, areas, cd, res, omega, band, tier, tab, perf)
-    for i in range(n):
-        T[i] = (fp[i] - f0[i]) / dt
+_D = 1.0 / (2.0 + math.sqrt(2.0))
+_E32 = 6.0 + math.sqrt(2.0)
 
 
 @njit(cache=True)
-def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, geo, grid, areas, cd,
-                    res, omega, band, tier, tab, perf):
+def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, tab, perf,
+                    color, owner):
     """Integrate from ``stops[0]`` to ``stops[-1]``, restarting at every stop.
 
     ``method``: 0 dopri5, 1 rk4, 2 Rosenbrock ode23s.  Returns
     ``(y_end, samples, nfev, ok)``; ``samples[:, k]`` is the state at ``out_theta[k]``.
     """
     n = y0.shape[0]
+    ndyn = color.shape[0]
     y = y0.copy()
     samples = np.full((n, out_theta.shape[0]), np.nan)
     f0 = np.empty(n)
@@ -219,10 +302,15 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, geo, grid, a
     ytmp = np.empty(n)
     ynew = np.empty(n)
     tmp = np.empty(n)
+    J = np.zeros((n, ndyn))
+    Winv = np.empty((ndyn, ndyn))
+    T = np.empty(n)
+    x = np.empty(n)
+    yscale = atol / rtol
+    pr = np.empty((5, net[4].shape[0]))
+    cell = np.empty((2, net[17].shape[0]))
     nfev = 0
     io = 0
-    hp = np.zeros(3)   # (next step, next output index, failed) from the Rosenbrock segment
-    # samples at or before the start
     while io < out_theta.shape[0] and out_theta[io] <= stops[0]:
         samples[:, io] = y
         io += 1
@@ -233,24 +321,21 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, geo, grid, a
         if b - a <= 0.0:
             continue
         t = a
-        rhs(t, y, f0, geo, grid, areas, cd, res, omega, band, tier, tab, perf)
+        rhs(t, y, f0, net, tier, tab, perf, pr, cell)
         nfev += 1
         if method == 1:   # rk4, fixed step
             nstep = int(math.ceil((b - a) / step - 1e-9))
             if nstep < 1:
                 nstep = 1
             h = (b - a) / nstep
-            for _ in range(nstep):
-                rhs(t + 0.5 * h, y + 0.5 * h * f0, K[1], geo, grid, areas, cd, res, omega,
-                    band, tier, tab, perf)
-                rhs(t + 0.5 * h, y + 0.5 * h * K[1], K[2], geo, grid, areas, cd, res, omega,
-                    band, tier, tab, perf)
-                rhs(t + h, y + h * K[2], K[3], geo, grid, areas, cd, res, omega, band, tier,
-                    tab, perf)
+            for k_ in range(nstep):
+                rhs(t + 0.5 * h, y + 0.5 * h * f0, K[1], net, tier, tab, perf, pr, cell)
+                rhs(t + 0.5 * h, y + 0.5 * h * K[1], K[2], net, tier, tab, perf, pr, cell)
+                rhs(t + h, y + h * K[2], K[3], net, tier, tab, perf, pr, cell)
                 for i in range(n):
                     ynew[i] = y[i] + h / 6.0 * (f0[i] + 2 * K[1, i] + 2 * K[2, i] + K[3, i])
-                t1 = b if _ == nstep - 1 else t + h
-                rhs(t1, ynew, f1, geo, grid, areas, cd, res, omega, band, tier, tab, perf)
+                t1 = b if k_ == nstep - 1 else t + h
+                rhs(t1, ynew, f1, net, tier, tab, perf, pr, cell)
                 nfev += 4
                 while io < out_theta.shape[0] and out_theta[io] <= t1:
                     _hermite(t, y, f0, t1, ynew, f1, out_theta[io], tmp)
@@ -260,15 +345,6 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, geo, grid, a
                 y[:] = ynew
                 f0[:] = f1
             continue
-        if method == 2:   # Rosenbrock ode23s, adaptive, L-stable
-            nfev += _ros23_segment(t, b, y, f0, samples, out_theta, io, rtol, atol, h_prev,
-                                   geo, grid, areas, cd, res, omega, band, tier, tab, perf, hp)
-            io = int(hp[1])
-            h_prev = hp[0]
-            if not math.isfinite(y[0]) or hp[2] > 0.0:
-                return y, samples, nfev, False
-            continue
-        # dopri5, adaptive
         if h_prev > 0.0:
             h = min(h_prev, b - a)
         else:
@@ -282,25 +358,57 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, geo, grid, a
         while t < b:
             if t + h > b or b - (t + h) < 1e-12:
                 h = b - t
-            K[0, :] = f0
-            for s_ in range(1, 7):
+            if method == 2:   # Rosenbrock ode23s
+                nfev += _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, cell)
+                hd = h * _D
+                _w_inverse(J, hd, Winv)
                 for i in range(n):
-                    acc = 0.0
-                    for j in range(s_):
-                        acc += _A[s_, j] * K[j, i]
-                    ytmp[i] = y[i] + h * acc
-                rhs(t + _C[s_] * h, ytmp, K[s_], geo, grid, areas, cd, res, omega, band, tier,
-                    tab, perf)
-            nfev += 6
-            # ytmp now holds the 5th-order solution (stage 7 evaluated there: FSAL)
-            err = 0.0
-            for i in range(n):
-                e = 0.0
-                for j in range(7):
-                    e += _E[j] * K[j, i]
-                e = abs(h * e) / (atol[i] + rtol * max(abs(y[i]), abs(ytmp[i])))
-                if e > err:
-                    err = e
+                    x[i] = f0[i] + hd * T[i]
+                _w_solve(J, Winv, hd, x, K[0])
+                for i in range(n):
+                    ytmp[i] = y[i] + 0.5 * h * K[0, i]
+                rhs(t + 0.5 * h, ytmp, K[1], net, tier, tab, perf, pr, cell)
+                for i in range(n):
+                    x[i] = K[1, i] - K[0, i]
+                _w_solve(J, Winv, hd, x, K[2])
+                for i in range(n):
+                    K[2, i] += K[0, i]
+                    ytmp[i] = y[i] + h * K[2, i]
+                rhs(t + h, ytmp, K[6], net, tier, tab, perf, pr, cell)
+                nfev += 2
+                for i in range(n):
+                    x[i] = (K[6, i] - _E32 * (K[2, i] - K[1, i]) - 2.0 * (K[0, i] - f0[i])
+                            + hd * T[i])
+                _w_solve(J, Winv, hd, x, K[3])
+                err = 0.0
+                for i in range(n):
+                    e = abs(h / 6.0 * (K[0, i] - 2.0 * K[2, i] + K[3, i]))
+                    e /= atol[i] + rtol * max(abs(y[i]), abs(ytmp[i]))
+                    if e > err:
+                        err = e
+                expo = -1.0 / 3.0
+                safety = 0.8
+            else:             # dopri5
+                K[0, :] = f0
+                for s_ in range(1, 7):
+                    for i in range(n):
+                        acc = 0.0
+                        for j in range(s_):
+                            acc += _A[s_, j] * K[j, i]
+                        ytmp[i] = y[i] + h * acc
+                    rhs(t + _C[s_] * h, ytmp, K[s_], net, tier, tab, perf, pr, cell)
+                nfev += 6
+                err = 0.0
+                for i in range(n):
+                    e = 0.0
+                    for j in range(7):
+                        e += _E[j] * K[j, i]
+                    e = abs(h * e) / (atol[i] + rtol * max(abs(y[i]), abs(ytmp[i])))
+                    if e > err:
+                        err = e
+                expo = -0.2
+                safety = 0.9
+            # ytmp: the new state; K[6]: the derivative there (FSAL)
             if err <= 1.0 or h < 1e-12:
                 t1 = t + h
                 while io < out_theta.shape[0] and out_theta[io] <= t1:
@@ -310,98 +418,14 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, geo, grid, a
                 t = t1
                 y[:] = ytmp
                 f0[:] = K[6]
-                fac = 5.0 if err == 0.0 else min(5.0, max(0.2, 0.9 * err ** -0.2))
+                fac = 5.0 if err == 0.0 else min(5.0, max(0.2, safety * err ** expo))
                 h_prev = h * fac
                 h = h_prev
             else:
-                h = h * max(0.2, 0.9 * err ** -0.2)
+                h = h * max(0.2, safety * err ** expo)
             if not (h > 0.0) or not math.isfinite(y[0]):
                 return y, samples, nfev, False
     while io < out_theta.shape[0]:
         samples[:, io] = y
         io += 1
     return y, samples, nfev, True
-
-
-_D = 1.0 / (2.0 + math.sqrt(2.0))
-_E32 = 6.0 + math.sqrt(2.0)
-
-
-@njit(cache=True)
-def _ros23_segment(t, b, y, f0, samples, out_theta, io, rtol, atol, h_prev, geo, grid, areas,
-                   cd, res, omega, band, tier, tab, perf, hp):
-    """One segment of the Rosenbrock 2(3) method of Shampine and Reichelt (MATLAB's
-    ode23s; SIAM J. Sci. Comput. 18, 1997), L-stable, with its third-order error
-    estimate.  Updates ``y`` and ``f0`` in place; returns the evaluations spent and
-    leaves (next step, next output index, failed) in ``hp``."""
-    n = y.shape[0]
-    J = np.zeros((n, N_DYN))
-    Jfull = np.zeros((n, n))
-    T = np.empty(n)
-    k1 = np.empty(n)
-    k2 = np.empty(n)
-    k3 = np.empty(n)
-    F1 = np.empty(n)
-    F2 = np.empty(n)
-    x = np.empty(n)
-    ytmp = np.empty(n)
-    tmp = np.empty(n)
-    yscale = atol / rtol
-    nfev = 0
-    if h_prev > 0.0:
-        h = min(h_prev, b - t)
-    else:
-        h = min(1e-3, b - t)
-    hp[2] = 0.0
-    while t < b:
-        if t + h > b or b - (t + h) < 1e-12:
-            h = b - t
-        _jacobian(t, y, f0, Jfull, T, yscale, geo, grid, areas, cd, res, omega, band, tier,
-                  tab, perf)
-        nfev += 3
-        for i in range(n):
-            for j in range(N_DYN):
-                J[i, j] = Jfull[i, j]
-        hd = h * _D
-        for i in range(n):
-            x[i] = f0[i] + hd * T[i]
-        _w_solve(J, hd, x, k1)
-        for i in range(n):
-            ytmp[i] = y[i] + 0.5 * h * k1[i]
-        rhs(t + 0.5 * h, ytmp, F1, geo, grid, areas, cd, res, omega, band, tier, tab, perf)
-        for i in range(n):
-            x[i] = F1[i] - k1[i]
-        _w_solve(J, hd, x, k2)
-        for i in range(n):
-            k2[i] += k1[i]
-            ytmp[i] = y[i] + h * k2[i]
-        rhs(t + h, ytmp, F2, geo, grid, areas, cd, res, omega, band, tier, tab, perf)
-        nfev += 2
-        for i in range(n):
-            x[i] = F2[i] - _E32 * (k2[i] - F1[i]) - 2.0 * (k1[i] - f0[i]) + hd * T[i]
-        _w_solve(J, hd, x, k3)
-        err = 0.0
-        for i in range(n):
-            e = abs(h / 6.0 * (k1[i] - 2.0 * k2[i] + k3[i]))
-            e /= atol[i] + rtol * max(abs(y[i]), abs(ytmp[i]))
-            if e > err:
-                err = e
-        if err <= 1.0 or h < 1e-12:
-            t1 = t + h
-            while io < out_theta.shape[0] and out_theta[io] <= t1:
-                _hermite(t, y, f0, t1, ytmp, F2, out_theta[io], tmp)
-                samples[:, io] = tmp
-                io += 1
-            t = t1
-            y[:] = ytmp
-            f0[:] = F2
-            fac = 5.0 if err == 0.0 else min(5.0, max(0.2, 0.8 * err ** (-1.0 / 3.0)))
-            h = h * fac
-        else:
-            h = h * max(0.2, 0.8 * err ** (-1.0 / 3.0))
-        if not (h > 0.0) or not math.isfinite(y[0]):
-            hp[2] = 1.0
-            break
-    hp[0] = h
-    hp[1] = io
-    return nfev

@@ -17,13 +17,12 @@ import numpy as np
 import pandas as pd
 
 from corliss.engine import equilibrium as eq
-from corliss.engine.crank_resolved import CrankResolved, quad_index
+from corliss.engine.crank_resolved import CrankResolved
 from corliss.engine.geometry import CylinderGeometry
 from corliss.engine.ideal_card import card_area, hyperbolic_card, indicated_steam_kg
-from corliss.results import CYCLE_QUANTITIES, Result
+from corliss.results import Result
 from corliss.scene import Scene
-from corliss.engine.compiled import CompiledCrankResolved
-from corliss.engine.options import COMPILED_METHODS
+from corliss.engine.network import single_cylinder
 from corliss.thermo.steam import HEOSSteam, State, Steam, TableSteam, make_steam
 from corliss.thermo.steam_table import lookup_many
 from corliss.valves import events as valve_events
@@ -127,11 +126,8 @@ def _cycle_frame(k: int, theta: np.ndarray, omega: float, ends: dict) -> pd.Data
 def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
     fid = scene.run.fidelity
     omega = scene.run.speed_rad_s
-    if fid.method in COMPILED_METHODS:
-        model = CompiledCrankResolved(geo, pm, steam, chest, exhaust, omega, fid.method,
-                                      fid.rtol, step_deg=fid.step_deg)
-    else:
-        model = CrankResolved(geo, pm, steam, chest, exhaust, omega, fid.method, fid.rtol)
+    net = single_cylinder(geo, pm, chest, exhaust, omega)
+    model = CrankResolved(net, steam, fid.method, fid.rtol, step_deg=fid.step_deg)
     step = math.radians(fid.output_step_deg)
     out_theta = np.linspace(0.0, TWO_PI, int(round(TWO_PI / step)) + 1)
     y = model.initial_state()
@@ -142,9 +138,12 @@ def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
     for k in range(1, n_max + 1):
         y, samples = model.cycle(y, 0.0, out_theta)
         row = {"cycle": k}
-        for e, end in enumerate(("head", "crank")):
-            for q, unit in CYCLE_QUANTITIES:
-                row[f"{q}_{end}_{unit}"] = y[quad_index(e, q)]
+        for end in ("head", "crank"):
+            for what, edge in (("chest", f"{end}_steam"), ("exhaust", f"{end}_exhaust")):
+                e = net.edge(edge)
+                row[f"m_{what}_{end}_kg"] = y[net.i_edge_mass(e)]
+                row[f"H_{what}_{end}_J"] = y[net.i_edge_enthalpy(e)]
+            row[f"work_{end}_J"] = y[net.i_work(net.node(end))]
         rows.append(row)
         samples_all.append(samples)
         w = row["work_head_J"] + row["work_crank_J"]
@@ -160,8 +159,10 @@ def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
     ts = []
     for k, s in enumerate(samples_all):
         ends = {}
-        for e, (end, V) in enumerate(zip(("head", "crank"), geo.volumes_m3(out_theta))):
-            m, U = s[2 * e], s[2 * e + 1]
+        for end in ("head", "crank"):
+            i = net.node(end)
+            V = net.volume(i, out_theta)
+            m, U = s[2 * i], s[2 * i + 1]
             ends[end] = (*_states(steam, m / V, U / m), V, m)
         ts.append(_cycle_frame(k, out_theta, omega, ends))
     timeseries = pd.concat(ts, ignore_index=True)

@@ -1,0 +1,231 @@
+"""The crank-resolved model as a network: control volumes joined by ports.
+
+Nodes are control volumes with a state (mass m, internal energy U): the two ends of
+each cylinder (volume set by the crank) and, when the scene asks, vessels of fixed
+volume (the steam chest).  Reservoirs hold a fixed state (the boiler, the exhaust).
+Edges are orifices between two of them: a port of a cylinder, whose area comes from
+that cylinder's PortMap at its own crank angle, or an opening of fixed area (the
+steam pipe and throttle).  The equations for every node (first law for an open
+system, constant crank speed omega, crank angle theta)::
+
+    dm/dtheta = sum of mdot in / omega
+    dU/dtheta = sum of mdot h in / omega - p dV/dtheta
+
+with each edge's flow from :func:`corliss.thermo.orifice.port_flow`, carrying the
+enthalpy of the side it leaves.  Quadratures ride along: mass and enthalpy through
+every edge, and the work p dV of every node.
+
+:class:`Network` holds the arrays the compiled kernel reads (:meth:`Network.arrays`)
+and the bookkeeping that names them.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+PISTON, FIXED = 0, 1
+PORTMAP_EDGE, FIXED_EDGE = 0, 1
+
+
+def reservoir(r: int) -> int:
+    """Edge end code of reservoir ``r``."""
+    return -1 - r
+
+
+@dataclass
+class Network:
+    """Nodes, reservoirs and edges of one engine (all SI)."""
+
+    omega: float
+    band: float
+    geometries: list                      # CylinderGeometry per cylinder
+    phases: list[float]                   # crank lead of each cylinder [rad]
+    portmaps: list                        # PortMap per cylinder
+    reservoirs: list                      # State per reservoir
+    node_names: list[str] = field(default_factory=list)
+    node_kind: list[int] = field(default_factory=list)
+    node_cyl: list[int] = field(default_factory=list)
+    node_end: list[int] = field(default_factory=list)
+    node_V: list[float] = field(default_factory=list)
+    node_init: list = field(default_factory=list)    # State each node starts from
+    edge_names: list[str] = field(default_factory=list)
+    e_a: list[int] = field(default_factory=list)
+    e_b: list[int] = field(default_factory=list)
+    e_kind: list[int] = field(default_factory=list)
+    e_cyl: list[int] = field(default_factory=list)
+    e_port: list[int] = field(default_factory=list)
+    e_area: list[float] = field(default_factory=list)
+    e_cd: list[float] = field(default_factory=list)
+
+    # --- building -----------------------------------------------------------------
+    def add_node(self, name, kind, init, cyl=-1, end=-1, volume=0.0) -> int:
+        self.node_names.append(name)
+        self.node_kind.append(kind)
+        self.node_cyl.append(cyl)
+        self.node_end.append(end)
+        self.node_V.append(volume)
+        self.node_init.append(init)
+        return len(self.node_names) - 1
+
+    def add_edge(self, name, a, b, cd, kind=FIXED_EDGE, cyl=-1, port=-1, area=0.0) -> int:
+        self.edge_names.append(name)
+        self.e_a.append(a)
+        self.e_b.append(b)
+        self.e_kind.append(kind)
+        self.e_cyl.append(cyl)
+        self.e_port.append(port)
+        self.e_area.append(area)
+        self.e_cd.append(cd)
+        return len(self.edge_names) - 1
+
+    # --- layout of the state vector -------------------------------------------------
+    @property
+    def n_nodes(self) -> int:
+        return len(self.node_names)
+
+    @property
+    def n_edges(self) -> int:
+        return len(self.edge_names)
+
+    @property
+    def n_dyn(self) -> int:
+        return 2 * self.n_nodes
+
+    @property
+    def n_state(self) -> int:
+        return 2 * self.n_nodes + 2 * self.n_edges + self.n_nodes
+
+    def i_edge_mass(self, e: int) -> int:
+        return self.n_dyn + 2 * e
+
+    def i_edge_enthalpy(self, e: int) -> int:
+        return self.n_dyn + 2 * e + 1
+
+    def i_work(self, node: int) -> int:
+        return self.n_dyn + 2 * self.n_edges + node
+
+    def node(self, name: str) -> int:
+        return self.node_names.index(name)
+
+    def edge(self, name: str) -> int:
+        return self.edge_names.index(name)
+
+    # --- volumes --------------------------------------------------------------------
+    def volume(self, node: int, theta: np.ndarray) -> np.ndarray:
+        """Volume of a node [m3] at shaft crank angles ``theta`` [rad]."""
+        if self.node_kind[node] == FIXED:
+            return np.full(np.shape(theta), self.node_V[node])
+        c = self.node_cyl[node]
+        return self.geometries[c].volumes_m3(np.asarray(theta) + self.phases[c])[self.node_end[node]]
+
+    def initial_state(self) -> np.ndarray:
+        y = np.zeros(self.n_state)
+        for i, st in enumerate(self.node_init):
+            V = float(self.volume(i, np.array(0.0)))
+            y[2 * i] = V * st.rho
+            y[2 * i + 1] = V * st.rho * st.u
+        return y
+
+    def stops(self, theta0: float) -> list[float]:
+        """Crank angles over one turn from ``theta0`` where any port area has a kink."""
+        two_pi = 2.0 * math.pi
+        pts = []
+        for pm, ph in zip(self.portmaps, self.phases):
+            pts += [(b - ph) % two_pi for b in pm.breakpoints_rad]
+        stops = sorted({theta0 + ((p - theta0) % two_pi) for p in pts})
+        stops = [s for s in stops if 1e-9 < s - theta0 < two_pi - 1e-9]
+        return [theta0] + stops + [theta0 + two_pi]
+
+    def scales(self) -> np.ndarray:
+        """Magnitude of every state component, for absolute tolerances."""
+        ref = max(self.reservoirs, key=lambda s: s.p)
+        vmax = sum(float(np.max(self.volume(i, np.linspace(0, 2 * math.pi, 73))))
+                   for i in range(self.n_nodes))
+        m = vmax * ref.rho
+        sc = np.empty(self.n_state)
+        sc[0:self.n_dyn:2] = m
+        sc[1:self.n_dyn:2] = m * ref.u
+        sc[self.n_dyn:self.n_dyn + 2 * self.n_edges:2] = m
+        sc[self.n_dyn + 1:self.n_dyn + 2 * self.n_edges:2] = m * ref.h
+        sc[self.n_dyn + 2 * self.n_edges:] = ref.p * vmax
+        return sc
+
+    def column_colors(self) -> tuple[np.ndarray, np.ndarray]:
+        """Groups of state columns a finite-difference Jacobian may perturb together.
+
+        Perturbing node i moves the derivatives of i, of its neighbours through an
+        edge, and of the quadratures of those edges; nodes whose such rows do not
+        overlap share a colour.  Returns ``(color of each dynamic column, owner)``,
+        ``owner[c, row]`` = the column of colour c that moves ``row``, or -1.
+        """
+        nv = self.n_nodes
+        nbr = [set() for _ in range(nv)]
+        for a, b in zip(self.e_a, self.e_b):
+            if a >= 0 and b >= 0:
+                nbr[a].add(b)
+                nbr[b].add(a)
+        reach = [nbr[i] | {i} for i in range(nv)]
+        node_color = [-1] * nv
+        for i in range(nv):
+            used = {node_color[j] for j in range(nv) if node_color[j] >= 0 and reach[i] & reach[j]}
+            c = 0
+            while c in used:
+                c += 1
+            node_color[i] = c
+        ncol = 2 * (max(node_color) + 1)
+        color = np.array([2 * node_color[i] + v for i in range(nv) for v in (0, 1)], dtype=np.int64)
+        owner = np.full((ncol, self.n_state), -1, dtype=np.int64)
+        for i in range(nv):
+            for v in (0, 1):
+                col = 2 * i + v
+                c = color[col]
+                for j in reach[i]:
+                    owner[c, 2 * j] = col
+                    owner[c, 2 * j + 1] = col
+                for e, (a, b) in enumerate(zip(self.e_a, self.e_b)):
+                    if a == i or b == i:
+                        owner[c, self.i_edge_mass(e)] = col
+                        owner[c, self.i_edge_enthalpy(e)] = col
+                owner[c, self.i_work(i)] = col
+        return color, owner
+
+    # --- arrays for the kernel ------------------------------------------------------
+    def arrays(self) -> tuple:
+        """The tuple the compiled right-hand side reads (see kernel.derivatives)."""
+        from corliss.thermo.orifice import kappa_of
+        ncyl = len(self.geometries)
+        geo = np.array([[g.crank_m, g.spec.connecting_rod_m, g.spec.stroke_m, g.area_head_m2,
+                         g.area_crank_m2, *g.clearance_m3, 1.0 if g.rod_angularity else 0.0]
+                        for g in self.geometries])
+        nmax = max(pm.theta_rad.size for pm in self.portmaps)
+        grid = np.zeros((ncyl, nmax))
+        area = np.zeros((ncyl, 4, nmax))
+        npts = np.zeros(ncyl, dtype=np.int64)
+        for c, pm in enumerate(self.portmaps):
+            n = pm.theta_rad.size
+            grid[c, :n] = pm.theta_rad
+            grid[c, n:] = pm.theta_rad[-1]
+            area[c, :, :n] = pm.area_m2
+            npts[c] = n
+        res = np.array([[s.p, s.rho, s.h, kappa_of(s.x, s.superheated)] for s in self.reservoirs])
+        i64 = lambda v: np.asarray(v, dtype=np.int64)  # noqa: E731
+        f64 = lambda v: np.asarray(v, dtype=np.float64)  # noqa: E731
+        return (float(self.omega), float(self.band), geo, f64(self.phases), i64(self.node_kind),
+                i64(self.node_cyl), i64(self.node_end), f64(self.node_V), res, i64(self.e_a),
+                i64(self.e_b), i64(self.e_kind), i64(self.e_cyl), i64(self.e_port),
+                f64(self.e_area), f64(self.e_cd), grid, npts, area)
+
+
+def single_cylinder(geometry, portmap, chest, exhaust, omega: float, band: float = 0.01) -> Network:
+    """One double-acting cylinder fed straight from the chest at supply state."""
+    net = Network(omega, band, [geometry], [0.0], [portmap], [chest, exhaust])
+    cd = portmap.cd
+    for e, end in enumerate(("head", "crank")):
+        node = net.add_node(end, PISTON, chest if e == 0 else exhaust, cyl=0, end=e)
+        net.add_edge(f"{end}_steam", reservoir(0), node, float(cd[2 * e]), PORTMAP_EDGE, 0, 2 * e)
+        net.add_edge(f"{end}_exhaust", reservoir(1), node, float(cd[2 * e + 1]), PORTMAP_EDGE, 0,
+                     2 * e + 1)
+    return net
