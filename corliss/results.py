@@ -178,6 +178,10 @@ class Result:
                # Marks Art. 57, Table IV: spread over the work of one stroke of one cylinder
                "fluctuation_coefficient_c": dE / (0.5 * work_J) if work_J > 0 else None}
         run = self.scene.run
+        if "p_chest_Pa" in self.timeseries:
+            last = self.timeseries[self.timeseries["cycle"] == self.timeseries["cycle"].max()]
+            out["chest_pressure_mean_Pa"] = float(last["p_chest_Pa"].mean())
+            out["chest_pressure_min_Pa"] = float(last["p_chest_Pa"].min())
         if run.has("friction"):
             spec = self.geometry.spec
             tf = spec.friction_torque_N_m + spec.friction_N_m_s * run.speed_rad_s

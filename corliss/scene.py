@@ -41,12 +41,29 @@ class SupplySpec:
         Dryness fraction [-] when not superheated (1 = dry saturated).
     barometer_Pa : float
         Atmospheric pressure [Pa] that gauge readings were taken against.
+    chest_volume_m3 : float or None
+        Volume of the steam chest [m3] (``steam_chest`` effect); the supply state is
+        then the boiler's, behind the steam pipe and throttle.
+    pipe_diameter_m : float or None
+        Bore of the steam pipe [m].
+    pipe_discharge_coefficient : float
+        Of the pipe taken as one orifice (its entry, bends and valve body) [-].
+    throttle : float
+        Opening of the throttle valve in the pipe, 0 (shut) to 1 (wide open) [-].
+    throttle_law : str
+        Open area against opening: ``"linear"`` (a gate or slide), or
+        ``"butterfly"`` (a disc turned through 90 deg: A = A_pipe (1 - cos(90 deg x opening))).
     """
 
     pressure_Pa: float
     temperature_K: float | None
     dryness: float
     barometer_Pa: float
+    chest_volume_m3: float | None = None
+    pipe_diameter_m: float | None = None
+    pipe_discharge_coefficient: float = 0.8
+    throttle: float = 1.0
+    throttle_law: str = "linear"
 
 
 @dataclass(frozen=True)
@@ -208,8 +225,20 @@ def _supply(t: Table) -> SupplySpec:
                              f"({t_sat - 273.15:.1f} degC at this pressure)")
         if temperature - t_sat < 1e-3:
             temperature = None
+    chest = t.quantity("chest_volume", "volume") if t.has("chest_volume") else None
+    pipe = t.length("pipe_diameter", positive=True) if t.has("pipe_diameter") else None
+    if chest is not None and not chest > 0.0:
+        raise InputError(t.key("chest_volume"), t.raw("chest_volume"), "a volume above zero")
+    cd = t.number("pipe_discharge_coefficient", 0.8)
+    if not 0.0 < cd <= 1.0:
+        raise InputError(t.key("pipe_discharge_coefficient"), cd, "a number in (0, 1]")
+    throttle = t.number("throttle", 1.0)
+    if not 0.0 < throttle <= 1.0:
+        raise InputError(t.key("throttle"), throttle,
+                         "an opening above 0 (shut) and up to 1 (wide open)")
+    law = t.choice("throttle_law", ("linear", "butterfly"), "linear")
     t.finish()
-    return SupplySpec(p, temperature, dryness, t.barometer_Pa)
+    return SupplySpec(p, temperature, dryness, t.barometer_Pa, chest, pipe, cd, throttle, law)
 
 
 def _run(t: Table) -> RunSpec:
@@ -312,9 +341,13 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
     run = _run(Table(data["run"], "run", barometer))
     for effect, keys in EFFECT_KEYS.items():
         for k in keys:
-            if run.has(effect) and k not in data["engine"]:
-                raise InputError(f"engine.{k}", None, f"a value: the {effect!r} effect named in "
-                                 "run.effects needs it")
+            sec, _, name = k.rpartition(".")
+            if run.has(effect) and name not in data[sec or "engine"]:
+                raise InputError(f"{sec or 'engine'}.{name}", None, f"a value: the {effect!r} "
+                                 "effect named in run.effects needs it")
+    if run.has("steam_chest") and not run.has("port_flow"):
+        raise InputError("run.effects", list(run.effects), "\"port_flow\" beside "
+                         "\"steam_chest\": a chest of finite volume empties through finite ports")
     out = Table(data.get("output", {}), "output", barometer)
     output = OutputSpec(out.choice("units", ("US", "SI"), "US"), out.string("dir", "out"))
     out.finish()

@@ -229,3 +229,31 @@ def single_cylinder(geometry, portmap, chest, exhaust, omega: float, band: float
         net.add_edge(f"{end}_exhaust", reservoir(1), node, float(cd[2 * e + 1]), PORTMAP_EDGE, 0,
                      2 * e + 1)
     return net
+
+
+def throttle_area_m2(supply) -> float:
+    """Effective area [m2] of the steam pipe and its throttle, in series.
+
+    The pipe (bore d) and the throttle valve are two orifices in series; for the same
+    flow their areas combine as 1/A^2 = 1/A_pipe^2 + 1/A_throttle^2 (the pressure
+    drops add, each ~ (mdot/A)^2).  A_throttle = A_pipe x opening (``linear``) or
+    A_pipe (1 - cos(90 deg x opening)) (``butterfly``); wide open, the valve's own
+    loss remains (A = A_pipe / sqrt 2).
+    """
+    a_pipe = math.pi / 4.0 * supply.pipe_diameter_m ** 2
+    x = supply.throttle
+    frac = x if supply.throttle_law == "linear" else 1.0 - math.cos(0.5 * math.pi * x)
+    a_thr = a_pipe * frac
+    return 1.0 / math.sqrt(1.0 / a_pipe ** 2 + 1.0 / a_thr ** 2)
+
+
+def with_steam_chest(net: Network, supply) -> Network:
+    """Put a chest of finite volume between the boiler (reservoir 0) and the ports."""
+    boiler = net.reservoirs[0]
+    chest = net.add_node("chest", FIXED, boiler, volume=supply.chest_volume_m3)
+    for e, a in enumerate(net.e_a):
+        if a == reservoir(0):
+            net.e_a[e] = chest
+    net.add_edge("steam_pipe", reservoir(0), chest, supply.pipe_discharge_coefficient,
+                 FIXED_EDGE, area=throttle_area_m2(supply))
+    return net

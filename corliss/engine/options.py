@@ -18,15 +18,19 @@ EFFECTS: dict[str, str] = {
                       "infinite rod",
     "inertia": "reciprocating masses ([engine] reciprocating_mass) in the crank effort "
                "(Marks Art. 35)",
+    "steam_chest": "a steam chest of finite volume ([supply] chest_volume) fed from the boiler "
+                   "through a steam pipe ([supply] pipe_diameter) and its throttle valve "
+                   "([supply] throttle, throttle_law)",
     "friction": "engine friction torque ([engine] friction_torque, friction_torque_per_speed): "
                 "brake power and mechanical efficiency",
 }
 
 #: Effects of the design that this version does not have yet.
-PLANNED_EFFECTS = ("steam_chest", "wall_heat", "leakage")
+PLANNED_EFFECTS = ("wall_heat", "leakage")
 
 #: Keys of [engine] that an effect needs.
-EFFECT_KEYS = {"inertia": ("reciprocating_mass",), "friction": ("friction_torque",)}
+EFFECT_KEYS = {"inertia": ("reciprocating_mass",), "friction": ("friction_torque",),
+               "steam_chest": ("supply.chest_volume", "supply.pipe_diameter")}
 
 MODELS = ("crank_resolved", "ideal")
 EXPANSION_LAWS = ("hyperbolic", "isentropic")

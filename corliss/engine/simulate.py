@@ -22,7 +22,7 @@ from corliss.engine.geometry import CylinderGeometry
 from corliss.engine.ideal_card import card_area, hyperbolic_card, indicated_steam_kg
 from corliss.results import Result
 from corliss.scene import Scene
-from corliss.engine.network import single_cylinder
+from corliss.engine.network import single_cylinder, with_steam_chest
 from corliss.thermo.steam import HEOSSteam, State, Steam, TableSteam, make_steam
 from corliss.thermo.steam_table import lookup_many
 from corliss.valves import events as valve_events
@@ -127,6 +127,8 @@ def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
     fid = scene.run.fidelity
     omega = scene.run.speed_rad_s
     net = single_cylinder(geo, pm, chest, exhaust, omega)
+    if scene.run.has("steam_chest"):
+        net = with_steam_chest(net, scene.supply)
     model = CrankResolved(net, steam, fid.method, fid.rtol, step_deg=fid.step_deg)
     step = math.radians(fid.output_step_deg)
     out_theta = np.linspace(0.0, TWO_PI, int(round(TWO_PI / step)) + 1)
@@ -144,6 +146,8 @@ def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
                 row[f"m_{what}_{end}_kg"] = y[net.i_edge_mass(e)]
                 row[f"H_{what}_{end}_J"] = y[net.i_edge_enthalpy(e)]
             row[f"work_{end}_J"] = y[net.i_work(net.node(end))]
+        if "steam_pipe" in net.edge_names:
+            row["m_pipe_kg"] = y[net.i_edge_mass(net.edge("steam_pipe"))]
         rows.append(row)
         samples_all.append(samples)
         w = row["work_head_J"] + row["work_crank_J"]
@@ -164,7 +168,12 @@ def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
             V = net.volume(i, out_theta)
             m, U = s[2 * i], s[2 * i + 1]
             ends[end] = (*_states(steam, m / V, U / m), V, m)
-        ts.append(_cycle_frame(k, out_theta, omega, ends))
+        frame = _cycle_frame(k, out_theta, omega, ends)
+        if "chest" in net.node_names:
+            i = net.node("chest")
+            V = net.volume(i, out_theta)
+            frame["p_chest_Pa"] = _states(steam, s[2 * i] / V, s[2 * i + 1] / s[2 * i])[0]
+        ts.append(frame)
     timeseries = pd.concat(ts, ignore_index=True)
     return {"timeseries": timeseries, "cycles": pd.DataFrame(rows),
             "cycles_to_converge": converged, "portmap": pm, "nfev": model.nfev}
