@@ -341,9 +341,9 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
     run = _run(Table(data["run"], "run", barometer))
     for effect, keys in EFFECT_KEYS.items():
         for k in keys:
-            sec, _, name = k.rpartition(".")
-            if run.has(effect) and name not in data[sec or "engine"]:
-                raise InputError(f"{sec or 'engine'}.{name}", None, f"a value: the {effect!r} "
+            sec, _, key = k.rpartition(".")
+            if run.has(effect) and key not in data[sec or "engine"]:
+                raise InputError(f"{sec or 'engine'}.{key}", None, f"a value: the {effect!r} "
                                  "effect named in run.effects needs it")
     if run.has("steam_chest") and not run.has("port_flow"):
         raise InputError("run.effects", list(run.effects), "\"port_flow\" beside "
