@@ -22,10 +22,6 @@ import pandas as pd
 
 from corliss import units
 
-#: Per-cycle quadratures of each end and their SI units.
-CYCLE_QUANTITIES = (("m_chest", "kg"), ("H_chest", "J"), ("m_exhaust", "kg"),
-                    ("H_exhaust", "J"), ("work", "J"))
-
 #: SI suffix -> (US suffix, US unit, SI suffix, SI unit) for output frames.
 _OUTPUT_UNITS = {
     "Pa": ("psia", "psia", "kPa_abs", "kPa"),
@@ -178,6 +174,13 @@ class Result:
                # Marks Art. 57, Table IV: spread over the work of one stroke of one cylinder
                "fluctuation_coefficient_c": dE / (0.5 * work_J) if work_J > 0 else None}
         run = self.scene.run
+        row = self.last_cycle
+        rev_per_h = run.speed_rad_s / (2 * math.pi) * 3600.0
+        if "m_valve_leak_head_kg" in row:
+            out["valve_leakage_kg_per_h"] = float(row["m_valve_leak_head_kg"]
+                                                  + row["m_valve_leak_crank_kg"]) * rev_per_h
+        if "m_piston_leak_kg" in row:
+            out["piston_leakage_net_kg_per_cycle"] = float(row["m_piston_leak_kg"])
         if "p_chest_Pa" in self.timeseries:
             last = self.timeseries[self.timeseries["cycle"] == self.timeseries["cycle"].max()]
             out["chest_pressure_mean_Pa"] = float(last["p_chest_Pa"].mean())
@@ -208,11 +211,12 @@ class Result:
         rev_per_s = run.speed_rad_s / (2 * math.pi)
         power = w * rev_per_s
         sw_h, sw_c = self.geometry.swept_m3
-        steam_cycle = float(row["m_chest_head_kg"] + row["m_chest_crank_kg"])
+        # what crossed the engine's boundary: from the supply, from (minus: to) the exhaust
+        steam_cycle = float(row["m_supply_kg"])
         steam_rate = steam_cycle * rev_per_s * 3600.0
-        m_exh = float(row["m_exhaust_head_kg"] + row["m_exhaust_crank_kg"])
-        H_in = float(row["H_chest_head_J"] + row["H_chest_crank_J"])
-        H_ex = float(row["H_exhaust_head_J"] + row["H_exhaust_crank_J"])
+        m_exh = float(row["m_exhaust_kg"])
+        H_in = float(row["H_supply_J"])
+        H_ex = float(row["H_exhaust_J"])
         p_peak = float(np.nanmax(np.concatenate([c["p_Pa"].to_numpy() for c in self.cards.values()])))
         mass_err = abs(steam_cycle + m_exh) / abs(steam_cycle) if steam_cycle else None
         energy_err = (abs(H_in + H_ex - w) / abs(H_in) if math.isfinite(H_ex) and H_in else None)

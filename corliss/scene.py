@@ -197,7 +197,15 @@ def _engine(t: Table) -> EngineSpec:
     if f0 < 0.0 or f1 < 0.0:
         raise InputError(t.key("friction_torque"), t.raw("friction_torque", None),
                          "friction torques of zero or more (they oppose the motion)")
-    spec = EngineSpec(bore, stroke, rod, prd, _pair_fraction(t, "clearance"), mass, f0, f1)
+    leaks = []
+    for k in ("valve_leakage_area", "piston_leakage_area"):
+        a = t.quantity(k, "area", "0 in2")
+        if a < 0.0 or a > 0.05 * math.pi / 4 * bore ** 2:
+            raise InputError(t.key(k), t.raw(k), "an equivalent leak area from zero to 5 % of "
+                             "the piston area")
+        leaks.append(a)
+    spec = EngineSpec(bore, stroke, rod, prd, _pair_fraction(t, "clearance"), mass, f0, f1,
+                      *leaks)
     t.finish()
     return spec
 
@@ -345,6 +353,11 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
             if run.has(effect) and key not in data[sec or "engine"]:
                 raise InputError(f"{sec or 'engine'}.{key}", None, f"a value: the {effect!r} "
                                  "effect named in run.effects needs it")
+    if run.has("leakage") and not (engine.valve_leakage_area_m2 or engine.piston_leakage_area_m2):
+        raise InputError("engine.valve_leakage_area", None, "a leak area (or "
+                         "engine.piston_leakage_area): the 'leakage' effect needs one")
+    if run.has("leakage") and not run.has("port_flow"):
+        raise InputError("run.effects", list(run.effects), "\"port_flow\" beside \"leakage\"")
     if run.has("steam_chest") and not run.has("port_flow"):
         raise InputError("run.effects", list(run.effects), "\"port_flow\" beside "
                          "\"steam_chest\": a chest of finite volume empties through finite ports")

@@ -39,6 +39,9 @@ class EngineSpec:
         Constant part of the engine's friction torque [N m] (``friction`` effect).
     friction_N_m_s : float
         Speed-proportional part of the friction torque [N m s/rad].
+    valve_leakage_area_m2, piston_leakage_area_m2 : float
+        Equivalent orifice areas of the leaks past the valve (into each end) and past
+        the piston (between the ends) [m2] (``leakage`` effect).
     """
 
     bore_m: float
@@ -49,6 +52,8 @@ class EngineSpec:
     reciprocating_mass_kg: float | None = None
     friction_torque_N_m: float = 0.0
     friction_N_m_s: float = 0.0
+    valve_leakage_area_m2: float = 0.0
+    piston_leakage_area_m2: float = 0.0
 
 
 @dataclass(frozen=True)

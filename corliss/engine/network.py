@@ -113,6 +113,22 @@ class Network:
     def edge(self, name: str) -> int:
         return self.edge_names.index(name)
 
+    def boundary_totals(self, y: np.ndarray) -> dict:
+        """Mass and enthalpy into the engine over a cycle from the supply (reservoir 0)
+        and from the exhaust (reservoir 1; negative when, as usual, it goes out)."""
+        out = {"m_supply_kg": 0.0, "H_supply_J": 0.0, "m_exhaust_kg": 0.0, "H_exhaust_J": 0.0}
+        for e, (a, b) in enumerate(zip(self.e_a, self.e_b)):
+            for end, sign in ((a, 1.0), (b, -1.0)):
+                if end < 0:
+                    what = "supply" if end == reservoir(0) else "exhaust"
+                    out[f"m_{what}_kg"] += sign * y[self.i_edge_mass(e)]
+                    out[f"H_{what}_J"] += sign * y[self.i_edge_enthalpy(e)]
+        return out
+
+    def leak_edges(self) -> list[tuple[str, int]]:
+        """(name, index) of the leakage paths."""
+        return [(n, e) for e, n in enumerate(self.edge_names) if "leak" in n]
+
     # --- volumes --------------------------------------------------------------------
     def volume(self, node: int, theta: np.ndarray) -> np.ndarray:
         """Volume of a node [m3] at shaft crank angles ``theta`` [rad]."""
@@ -256,4 +272,18 @@ def with_steam_chest(net: Network, supply) -> Network:
             net.e_a[e] = chest
     net.add_edge("steam_pipe", reservoir(0), chest, supply.pipe_discharge_coefficient,
                  FIXED_EDGE, area=throttle_area_m2(supply))
+    return net
+
+
+def with_leakage(net: Network, valve_area_m2: float, piston_area_m2: float,
+                 cd: float = 0.7) -> Network:
+    """Leakage as orifices of equivalent area: past the valve, from the steam side
+    (chest, or the supply) into each end; past the piston, between the two ends."""
+    src = net.node("chest") if "chest" in net.node_names else reservoir(0)
+    head, crank = net.node("head"), net.node("crank")
+    if valve_area_m2 > 0.0:
+        for name, node in (("head", head), ("crank", crank)):
+            net.add_edge(f"valve_leak_{name}", src, node, cd, FIXED_EDGE, area=valve_area_m2)
+    if piston_area_m2 > 0.0:
+        net.add_edge("piston_leak", head, crank, cd, FIXED_EDGE, area=piston_area_m2)
     return net

@@ -21,12 +21,14 @@ EFFECTS: dict[str, str] = {
     "steam_chest": "a steam chest of finite volume ([supply] chest_volume) fed from the boiler "
                    "through a steam pipe ([supply] pipe_diameter) and its throttle valve "
                    "([supply] throttle, throttle_law)",
+    "leakage": "leaks past the valve into each end ([engine] valve_leakage_area) and past the "
+               "piston ([engine] piston_leakage_area), as orifices of equivalent area",
     "friction": "engine friction torque ([engine] friction_torque, friction_torque_per_speed): "
                 "brake power and mechanical efficiency",
 }
 
 #: Effects of the design that this version does not have yet.
-PLANNED_EFFECTS = ("wall_heat", "leakage")
+PLANNED_EFFECTS = ("wall_heat",)
 
 #: Keys of [engine] that an effect needs.
 EFFECT_KEYS = {"inertia": ("reciprocating_mass",), "friction": ("friction_torque",),

@@ -22,7 +22,7 @@ from corliss.engine.geometry import CylinderGeometry
 from corliss.engine.ideal_card import card_area, hyperbolic_card, indicated_steam_kg
 from corliss.results import Result
 from corliss.scene import Scene
-from corliss.engine.network import single_cylinder, with_steam_chest
+from corliss.engine.network import single_cylinder, with_leakage, with_steam_chest
 from corliss.thermo.steam import HEOSSteam, State, Steam, TableSteam, make_steam
 from corliss.thermo.steam_table import lookup_many
 from corliss.valves import events as valve_events
@@ -101,6 +101,14 @@ def simulate(scene: Scene, *, portmap_scale: float = 1.0,
                   property_tier=steam.name, **data)
 
 
+def _with_totals(row: dict) -> dict:
+    """Add the boundary totals (supply, exhaust) to a row of the ideal-port models."""
+    for what, key in (("supply", "chest"), ("exhaust", "exhaust")):
+        row[f"m_{what}_kg"] = row[f"m_{key}_head_kg"] + row[f"m_{key}_crank_kg"]
+        row[f"H_{what}_J"] = row[f"H_{key}_head_J"] + row[f"H_{key}_crank_J"]
+    return row
+
+
 def _states(steam: Steam, rho: np.ndarray, u: np.ndarray):
     """Pressure, temperature and dryness arrays for output, compiled where the tier can."""
     if isinstance(steam, TableSteam):
@@ -129,6 +137,9 @@ def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
     net = single_cylinder(geo, pm, chest, exhaust, omega)
     if scene.run.has("steam_chest"):
         net = with_steam_chest(net, scene.supply)
+    if scene.run.has("leakage"):
+        net = with_leakage(net, scene.engine.valve_leakage_area_m2,
+                           scene.engine.piston_leakage_area_m2)
     model = CrankResolved(net, steam, fid.method, fid.rtol, step_deg=fid.step_deg)
     step = math.radians(fid.output_step_deg)
     out_theta = np.linspace(0.0, TWO_PI, int(round(TWO_PI / step)) + 1)
@@ -148,6 +159,9 @@ def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
             row[f"work_{end}_J"] = y[net.i_work(net.node(end))]
         if "steam_pipe" in net.edge_names:
             row["m_pipe_kg"] = y[net.i_edge_mass(net.edge("steam_pipe"))]
+        for name, e in net.leak_edges():
+            row[f"m_{name}_kg"] = y[net.i_edge_mass(e)]
+        row.update(net.boundary_totals(y))
         rows.append(row)
         samples_all.append(samples)
         w = row["work_head_J"] + row["work_crank_J"]
@@ -232,7 +246,7 @@ def _equilibrium(scene, geo, steam, chest, exhaust, sched, pm=None):
             row[f"m_exhaust_{end}_kg"] = tr.m_exhaust_kg
             row[f"H_exhaust_{end}_J"] = tr.H_exhaust_J
             row[f"work_{end}_J"] = tr.work_J
-        rows.append(row)
+        rows.append(_with_totals(row))
         ts.append(_cycle_frame(k, theta, omega, {
             end: (tr.p_Pa, tr.T_K, tr.x, tr.V_m3, tr.m_kg)
             for end, tr in (("head", th_), ("crank", tc_))}))
@@ -283,5 +297,5 @@ def _ideal_hyperbolic(scene, geo, ev, chest, exhaust):
     cards = {end: pd.DataFrame({"frac": (V - geo.clearance_m3[e]) / geo.swept_m3[e],
                                 "V_m3": V, "p_Pa": p})
              for e, (end, (th, V, p)) in enumerate(cols.items())}
-    return {"timeseries": pd.DataFrame(data), "cycles": pd.DataFrame([row]),
+    return {"timeseries": pd.DataFrame(data), "cycles": pd.DataFrame([_with_totals(row)]),
             "cycles_to_converge": 1, "portmap": None, "nfev": 0, "ideal_cards": cards}
