@@ -181,6 +181,8 @@ class Result:
                                                   + row["m_valve_leak_crank_kg"]) * rev_per_h
         if "m_piston_leak_kg" in row:
             out["piston_leakage_net_kg_per_cycle"] = float(row["m_piston_leak_kg"])
+        if "Q_head_J" in row:
+            out.update(self._condensation_summary())
         if "p_chest_Pa" in self.timeseries:
             last = self.timeseries[self.timeseries["cycle"] == self.timeseries["cycle"].max()]
             out["chest_pressure_mean_Pa"] = float(last["p_chest_Pa"].mean())
@@ -194,6 +196,40 @@ class Result:
                         "friction_work_J_per_cycle": tf * 2 * math.pi,
                         "brake_power_W": brake, "brake_power_hp": brake / units.HP_W,
                         "mechanical_efficiency": brake / indicated if indicated > 0 else None})
+        return out
+
+    def _condensation_summary(self) -> dict:
+        """Initial condensation as the engineers of the time measured it (Marks Art. 74).
+
+        Per end: the heat the steam gave the walls over the cycle; the wet fraction of
+        the cylinder's contents at cut-off; and the "missing water": the steam supplied
+        less the steam the card shows at cut-off (volume at cut-off times the density
+        of dry saturated steam at the card's pressure there, less the cushion steam shut
+        in at compression, Marks eq. 219a), as a fraction of the steam supplied.
+        """
+        from corliss.thermo.steam import HEOSSteam
+        sat = HEOSSteam()
+        row = self.last_cycle
+        ts = self.timeseries[self.timeseries["cycle"] == self.timeseries["cycle"].max()]
+        ang = np.mod(ts["crank_angle_deg"].to_numpy(), 360.0)
+        ang, idx = np.unique(ang, return_index=True)
+        out = {}
+        for end in ("head", "crank"):
+            out[f"heat_to_walls_{end}_J_per_cycle"] = float(row[f"Q_to_wall_{end}_J"])
+            out[f"wall_temperature_{end}_K"] = float(row[f"T_wall_{end}_K"])
+            ev = self.events[end]
+            if ev["cutoff_deg"] is None or ev["compression_deg"] is None:
+                continue
+
+            def at(col, deg):
+                return float(np.interp(deg, ang, ts[col].to_numpy()[idx], period=360.0))
+
+            c, k = ev["cutoff_deg"], ev["compression_deg"]
+            out[f"wet_fraction_at_cutoff_{end}"] = 1.0 - at(f"x_{end}", c)
+            shown = (at(f"V_{end}_m3", c) * sat.px(at(f"p_{end}_Pa", c), 1.0).rho
+                     - at(f"V_{end}_m3", k) * sat.px(at(f"p_{end}_Pa", k), 1.0).rho)
+            supplied = float(row[f"m_chest_{end}_kg"])
+            out[f"missing_water_fraction_{end}"] = (supplied - shown) / supplied
         return out
 
     @property
@@ -219,7 +255,9 @@ class Result:
         H_ex = float(row["H_exhaust_J"])
         p_peak = float(np.nanmax(np.concatenate([c["p_Pa"].to_numpy() for c in self.cards.values()])))
         mass_err = abs(steam_cycle + m_exh) / abs(steam_cycle) if steam_cycle else None
-        energy_err = (abs(H_in + H_ex - w) / abs(H_in) if math.isfinite(H_ex) and H_in else None)
+        Q = sum(float(row[c]) for c in row.index if c.startswith("Q_") and "to_wall" not in c)
+        energy_err = (abs(H_in + H_ex + Q - w) / abs(H_in) if math.isfinite(H_ex) and H_in
+                      else None)
         power_kW = power / 1000.0
         ihp = power / units.HP_W
 

@@ -204,8 +204,12 @@ def _engine(t: Table) -> EngineSpec:
             raise InputError(t.key(k), t.raw(k), "an equivalent leak area from zero to 5 % of "
                              "the piston area")
         leaks.append(a)
+    model = t.choice("wall_heat_model", ("marks", "adair"), "marks")
+    marks = t.quantity("marks_constant", "heat_transfer", "18.13 Btu/ft2 degF min")
+    if not marks > 0.0:
+        raise InputError(t.key("marks_constant"), t.raw("marks_constant"), "a conductance above 0")
     spec = EngineSpec(bore, stroke, rod, prd, _pair_fraction(t, "clearance"), mass, f0, f1,
-                      *leaks)
+                      *leaks, model, marks)
     t.finish()
     return spec
 
@@ -356,6 +360,8 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
     if run.has("leakage") and not (engine.valve_leakage_area_m2 or engine.piston_leakage_area_m2):
         raise InputError("engine.valve_leakage_area", None, "a leak area (or "
                          "engine.piston_leakage_area): the 'leakage' effect needs one")
+    if run.has("wall_heat") and not run.has("port_flow"):
+        raise InputError("run.effects", list(run.effects), "\"port_flow\" beside \"wall_heat\"")
     if run.has("leakage") and not run.has("port_flow"):
         raise InputError("run.effects", list(run.effects), "\"port_flow\" beside \"leakage\"")
     if run.has("steam_chest") and not run.has("port_flow"):

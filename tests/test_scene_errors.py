@@ -24,7 +24,7 @@ from conftest import make_scene
     ({"valve_gear": {"port_width": None}}, "valve_gear.port_width", "required"),
     ({"supply": {"pressure": "100 psi"}}, "supply.pressure", "psig"),
     ({"supply": {"temperature": "250 degF"}}, "supply.temperature", "saturation"),
-    ({"run": {"effects": ["wall_heat"]}}, "run.effects", "not built yet"),
+    ({"run": {"effects": ["wall_heat"]}}, "run.effects", "port_flow"),
     ({"run": {"effects": ["port_flo"]}}, "run.effects", "port_flow"),
     ({"run": {"model": "exact"}}, "run.model", "crank_resolved"),
     ({"engine": {"clearance": 0}}, "engine.clearance", "between 0 and 1"),

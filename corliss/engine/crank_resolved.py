@@ -62,7 +62,7 @@ class CrankResolved:
         self._tab = steam.table.arrays() if hasattr(steam, "table") else load_table().arrays()
         self._perf = (np.array(steam.perfect_params()) if hasattr(steam, "perfect_params")
                       else np.zeros(3))
-        self._pr = np.empty((5, network.n_nodes))
+        self._pr = np.empty((7, network.n_nodes))
         self._cell = np.empty((2, len(network.geometries)))
 
     def rhs(self, th: float, y: np.ndarray) -> np.ndarray:
@@ -81,9 +81,19 @@ class CrankResolved:
                 st = self.steam.du(rho, u)
             except ValueError:   # a trial state with no steam state: take the exhaust's
                 st = self.network.reservoirs[-1]
-            self._pr[:, i] = (st.p, rho, u + st.p / rho, kappa_of(st.x, st.superheated), dV)
+            self._pr[:, i] = (st.p, rho, u + st.p / rho, kappa_of(st.x, st.superheated), dV, V,
+                              st.T)
         kernel.derivatives(th, y, self._pr, dy, self.net, self._cell)
         return dy
+
+    def update_wall(self, y_end: np.ndarray) -> None:
+        """Set each wall to the h A-weighted mean steam temperature of the cycle just run,
+        the temperature at which it neither gains nor loses heat over a cycle."""
+        net = self.network
+        for i in range(net.n_nodes):
+            ha = y_end[net.i_node_quad(i, "hA")]
+            if ha > 0.0:
+                net.wall_T[i] = y_end[net.i_node_quad(i, "hAT")] / ha
 
     def initial_state(self) -> np.ndarray:
         return self.network.initial_state()

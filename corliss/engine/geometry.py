@@ -42,6 +42,11 @@ class EngineSpec:
     valve_leakage_area_m2, piston_leakage_area_m2 : float
         Equivalent orifice areas of the leaks past the valve (into each end) and past
         the piston (between the ends) [m2] (``leakage`` effect).
+    wall_heat_model : str
+        ``"marks"`` or ``"adair"`` (``wall_heat`` effect).
+    marks_constant_W_m2K : float
+        Marks's constant of condensation as a surface conductance [W/(m2 K)]
+        (Art. 82: 18.13 Btu per ft2, degF and minute).
     """
 
     bore_m: float
@@ -54,6 +59,8 @@ class EngineSpec:
     friction_N_m_s: float = 0.0
     valve_leakage_area_m2: float = 0.0
     piston_leakage_area_m2: float = 0.0
+    wall_heat_model: str = "marks"
+    marks_constant_W_m2K: float = 6176.8
 
 
 @dataclass(frozen=True)

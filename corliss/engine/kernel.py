@@ -129,10 +129,11 @@ def edge_area(net, e, cell):
 @njit(cache=True, inline="always")
 def derivatives(th, y, pr, dy, net, cell):
     """Derivatives with respect to crank angle, written into ``dy``, given each node's
-    pressure, density, enthalpy, isentropic exponent and dV/dtheta in the rows of
-    ``pr``; ``cell`` is scratch of shape (2, cylinders)."""
+    pressure, density, enthalpy, isentropic exponent, dV/dtheta, volume and
+    temperature in the rows of ``pr``; ``cell`` is scratch of shape (2, cylinders)."""
     omega, band, res = net[0], net[1], net[8]
     P, RHO, H, K = pr[0], pr[1], pr[2], pr[3]
+    geo, ncyl_, end_, heat, wallT = net[2], net[5], net[6], net[19], net[20]
     locate(th, net, cell)
     ea, eb, ecd = net[9], net[10], net[15]
     nv = P.shape[0]
@@ -142,8 +143,30 @@ def derivatives(th, y, pr, dy, net, cell):
         dy[i] = 0.0
     for i in range(nv):
         dV = pr[4, i]
+        q0 = ndyn + 2 * ne + 5 * i
         dy[2 * i + 1] -= P[i] * dV
-        dy[ndyn + 2 * ne + i] = P[i] * dV
+        dy[q0] = P[i] * dV
+        model = heat[i, 0]
+        if model > 0.0:
+            # wall area: piston face and cover, and the barrel uncovered (with the
+            # clearance as its equivalent length): 2 A_p + pi D V / A_p
+            c = ncyl_[i]
+            ap = geo[c, 3] if end_[i] == 0 else geo[c, 4]
+            bore = math.sqrt(4.0 * geo[c, 3] / math.pi)
+            V = pr[5, i]
+            A = 2.0 * ap + math.pi * bore * V / ap
+            if model == 1.0:
+                h = heat[i, 1]
+            else:
+                de = 6.0 * V / A
+                re_ = RHO[i] * (0.5 * omega * de) * de / heat[i, 3]
+                h = 0.053 * heat[i, 2] / de * re_ ** 0.8 * heat[i, 4] ** 0.6
+            q = h * A * (wallT[i] - pr[6, i]) / omega
+            dy[2 * i + 1] += q
+            dy[q0 + 1] = q
+            dy[q0 + 2] = -q if q < 0.0 else 0.0
+            dy[q0 + 3] = h * A / omega
+            dy[q0 + 4] = h * A * pr[6, i] / omega
     for e in range(ne):
         a = ea[e]
         b = eb[e]
@@ -178,6 +201,7 @@ def rhs(th, y, dy, net, tier, tab, perf, pr, cell):
     for i in range(nv):
         V, dV = node_volume(th, net, i)
         pr[4, i] = dV
+        pr[5, i] = V
         m = y[2 * i]
         u = y[2 * i + 1] / m if m > 0.0 else 2.6e6
         rho, u = admissible(m / V, u)
@@ -186,6 +210,7 @@ def rhs(th, y, dy, net, tier, tab, perf, pr, cell):
         pr[1, i] = rho
         pr[2, i] = u + p / rho
         pr[3, i] = kappa_of(x, sup)
+        pr[6, i] = T
     derivatives(th, y, pr, dy, net, cell)
 
 
@@ -307,7 +332,7 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
     T = np.empty(n)
     x = np.empty(n)
     yscale = atol / rtol
-    pr = np.empty((5, net[4].shape[0]))
+    pr = np.empty((7, net[4].shape[0]))
     cell = np.empty((2, net[17].shape[0]))
     nfev = 0
     io = 0

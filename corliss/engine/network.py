@@ -59,6 +59,10 @@ class Network:
     e_port: list[int] = field(default_factory=list)
     e_area: list[float] = field(default_factory=list)
     e_cd: list[float] = field(default_factory=list)
+    #: Wall heat of each node: (model 0 none, 1 constant h, 2 Adair; h [W/(m2 K)];
+    #: conductivity [W/(m K)]; viscosity [Pa s]; Prandtl [-]), and the wall temperature [K].
+    node_heat: list = field(default_factory=list)
+    wall_T: np.ndarray | None = None
 
     # --- building -----------------------------------------------------------------
     def add_node(self, name, kind, init, cyl=-1, end=-1, volume=0.0) -> int:
@@ -68,6 +72,7 @@ class Network:
         self.node_end.append(end)
         self.node_V.append(volume)
         self.node_init.append(init)
+        self.node_heat.append((0.0, 0.0, 0.0, 0.0, 0.0))
         return len(self.node_names) - 1
 
     def add_edge(self, name, a, b, cd, kind=FIXED_EDGE, cyl=-1, port=-1, area=0.0) -> int:
@@ -94,9 +99,13 @@ class Network:
     def n_dyn(self) -> int:
         return 2 * self.n_nodes
 
+    #: Quadratures of each node: work p dV, net heat into the steam, heat from the steam
+    #: to the wall, and the integrals of h A and h A T (for the wall's mean temperature).
+    NODE_QUADS = ("work", "heat", "heat_to_wall", "hA", "hAT")
+
     @property
     def n_state(self) -> int:
-        return 2 * self.n_nodes + 2 * self.n_edges + self.n_nodes
+        return 2 * self.n_nodes + 2 * self.n_edges + len(self.NODE_QUADS) * self.n_nodes
 
     def i_edge_mass(self, e: int) -> int:
         return self.n_dyn + 2 * e
@@ -104,8 +113,12 @@ class Network:
     def i_edge_enthalpy(self, e: int) -> int:
         return self.n_dyn + 2 * e + 1
 
+    def i_node_quad(self, node: int, what: str) -> int:
+        return (self.n_dyn + 2 * self.n_edges + len(self.NODE_QUADS) * node
+                + self.NODE_QUADS.index(what))
+
     def i_work(self, node: int) -> int:
-        return self.n_dyn + 2 * self.n_edges + node
+        return self.i_node_quad(node, "work")
 
     def node(self, name: str) -> int:
         return self.node_names.index(name)
@@ -167,6 +180,10 @@ class Network:
         sc[self.n_dyn:self.n_dyn + 2 * self.n_edges:2] = m
         sc[self.n_dyn + 1:self.n_dyn + 2 * self.n_edges:2] = m * ref.h
         sc[self.n_dyn + 2 * self.n_edges:] = ref.p * vmax
+        for i in range(self.n_nodes):
+            # diagnostics for the wall temperature: kept out of the step-size control
+            sc[self.i_node_quad(i, "hA")] = 1e12
+            sc[self.i_node_quad(i, "hAT")] = 1e15
         return sc
 
     def column_colors(self) -> tuple[np.ndarray, np.ndarray]:
@@ -205,7 +222,8 @@ class Network:
                     if a == i or b == i:
                         owner[c, self.i_edge_mass(e)] = col
                         owner[c, self.i_edge_enthalpy(e)] = col
-                owner[c, self.i_work(i)] = col
+                for what in self.NODE_QUADS:
+                    owner[c, self.i_node_quad(i, what)] = col
         return color, owner
 
     # --- arrays for the kernel ------------------------------------------------------
@@ -229,10 +247,14 @@ class Network:
         res = np.array([[s.p, s.rho, s.h, kappa_of(s.x, s.superheated)] for s in self.reservoirs])
         i64 = lambda v: np.asarray(v, dtype=np.int64)  # noqa: E731
         f64 = lambda v: np.asarray(v, dtype=np.float64)  # noqa: E731
+        if self.wall_T is None or self.wall_T.size != self.n_nodes:
+            t0 = 0.5 * (self.reservoirs[0].T + self.reservoirs[-1].T)
+            self.wall_T = np.full(self.n_nodes, t0)
         return (float(self.omega), float(self.band), geo, f64(self.phases), i64(self.node_kind),
                 i64(self.node_cyl), i64(self.node_end), f64(self.node_V), res, i64(self.e_a),
                 i64(self.e_b), i64(self.e_kind), i64(self.e_cyl), i64(self.e_port),
-                f64(self.e_area), f64(self.e_cd), grid, npts, area)
+                f64(self.e_area), f64(self.e_cd), grid, npts, area, f64(self.node_heat),
+                self.wall_T)
 
 
 def single_cylinder(geometry, portmap, chest, exhaust, omega: float, band: float = 0.01) -> Network:
@@ -286,4 +308,25 @@ def with_leakage(net: Network, valve_area_m2: float, piston_area_m2: float,
             net.add_edge(f"valve_leak_{name}", src, node, cd, FIXED_EDGE, area=valve_area_m2)
     if piston_area_m2 > 0.0:
         net.add_edge("piston_leak", head, crank, cd, FIXED_EDGE, area=piston_area_m2)
+    return net
+
+
+def with_wall_heat(net: Network, model: str, h_marks: float, steam_props) -> Network:
+    """Heat exchange between the steam of each cylinder end and its walls.
+
+    ``model``: ``"marks"``, a surface conductance from Marks's constant of
+    condensation (Art. 82: C = 18.13 Btu per ft2, degF and minute, about
+    6180 W/(m2 K)); ``"adair"``, the correlation for reciprocating machines of Adair,
+    Qvale and Pearson (Purdue Compressor Conference, 1972),
+    h = 0.053 (k/D_e) Re^0.8 Pr^0.6 with D_e = 6 V / A and the gas velocity taken as
+    omega D_e / 2, with transport properties of the supply steam (``steam_props``:
+    conductivity, viscosity, Prandtl).  The wall is at one temperature per end, its
+    periodic mean, found cycle by cycle so that the wall neither gains nor loses heat
+    over a cycle.
+    """
+    k, mu, pr = steam_props
+    code = 1.0 if model == "marks" else 2.0
+    for i, kind in enumerate(net.node_kind):
+        if kind == PISTON:
+            net.node_heat[i] = (code, h_marks, k, mu, pr)
     return net

@@ -23,12 +23,15 @@ EFFECTS: dict[str, str] = {
                    "([supply] throttle, throttle_law)",
     "leakage": "leaks past the valve into each end ([engine] valve_leakage_area) and past the "
                "piston ([engine] piston_leakage_area), as orifices of equivalent area",
+    "wall_heat": "heat between the steam and the cylinder walls, held at their periodic mean "
+                 "temperature: initial condensation and re-evaporation ([engine] "
+                 "wall_heat_model = \"marks\" (Marks Arts. 75-82) or \"adair\" (Adair et al. 1972))",
     "friction": "engine friction torque ([engine] friction_torque, friction_torque_per_speed): "
                 "brake power and mechanical efficiency",
 }
 
 #: Effects of the design that this version does not have yet.
-PLANNED_EFFECTS = ("wall_heat",)
+PLANNED_EFFECTS: tuple[str, ...] = ()
 
 #: Keys of [engine] that an effect needs.
 EFFECT_KEYS = {"inertia": ("reciprocating_mass",), "friction": ("friction_torque",),

@@ -22,7 +22,8 @@ from corliss.engine.geometry import CylinderGeometry
 from corliss.engine.ideal_card import card_area, hyperbolic_card, indicated_steam_kg
 from corliss.results import Result
 from corliss.scene import Scene
-from corliss.engine.network import single_cylinder, with_leakage, with_steam_chest
+from corliss.engine.network import (single_cylinder, with_leakage, with_steam_chest,
+                                    with_wall_heat)
 from corliss.thermo.steam import HEOSSteam, State, Steam, TableSteam, make_steam
 from corliss.thermo.steam_table import lookup_many
 from corliss.valves import events as valve_events
@@ -47,6 +48,17 @@ def scene_events(scene: Scene) -> dict:
     """Valve events of both ends, without simulating."""
     geo = geometry_of(scene)
     return valve_events(build_gear(scene), lambda t: float(geo.fraction(t)))
+
+
+def transport_of(state: State) -> tuple[float, float, float]:
+    """(conductivity [W/(m K)], viscosity [Pa s], Prandtl [-]) of steam as vapour at the
+    state's pressure (HEOS, IAPWS formulations), for the wall-heat correlation."""
+    import CoolProp
+    import CoolProp.CoolProp as CP
+    a = CoolProp.AbstractState("HEOS", "Water")
+    a.update(CP.PQ_INPUTS, state.p, 1.0)
+    a.update(CP.PT_INPUTS, state.p, max(state.T, a.T()) + 0.5)
+    return a.conductivity(), a.viscosity(), a.Prandtl()
 
 
 def reservoir_states(scene: Scene, steam: Steam) -> tuple[State, State]:
@@ -140,6 +152,10 @@ def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
     if scene.run.has("leakage"):
         net = with_leakage(net, scene.engine.valve_leakage_area_m2,
                            scene.engine.piston_leakage_area_m2)
+    heat = scene.run.has("wall_heat")
+    if heat:
+        net = with_wall_heat(net, scene.engine.wall_heat_model,
+                             scene.engine.marks_constant_W_m2K, transport_of(chest))
     model = CrankResolved(net, steam, fid.method, fid.rtol, step_deg=fid.step_deg)
     step = math.radians(fid.output_step_deg)
     out_theta = np.linspace(0.0, TWO_PI, int(round(TWO_PI / step)) + 1)
@@ -150,6 +166,8 @@ def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
     n_max = scene.run.cycles or fid.max_cycles
     for k in range(1, n_max + 1):
         y, samples = model.cycle(y, 0.0, out_theta)
+        if heat:
+            model.update_wall(y)
         row = {"cycle": k}
         for end in ("head", "crank"):
             for what, edge in (("chest", f"{end}_steam"), ("exhaust", f"{end}_exhaust")):
@@ -157,6 +175,11 @@ def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
                 row[f"m_{what}_{end}_kg"] = y[net.i_edge_mass(e)]
                 row[f"H_{what}_{end}_J"] = y[net.i_edge_enthalpy(e)]
             row[f"work_{end}_J"] = y[net.i_work(net.node(end))]
+            if heat:
+                i = net.node(end)
+                row[f"Q_{end}_J"] = y[net.i_node_quad(i, "heat")]
+                row[f"Q_to_wall_{end}_J"] = y[net.i_node_quad(i, "heat_to_wall")]
+                row[f"T_wall_{end}_K"] = net.wall_T[i]
         if "steam_pipe" in net.edge_names:
             row["m_pipe_kg"] = y[net.i_edge_mass(net.edge("steam_pipe"))]
         for name, e in net.leak_edges():
