@@ -205,8 +205,10 @@ class Result:
         the cylinder's contents at cut-off; and the "missing water": the steam supplied
         less the steam the card shows at cut-off (volume at cut-off times the density
         of dry saturated steam at the card's pressure there, less the cushion steam shut
-        in at compression, Marks eq. 219a), as a fraction of the steam supplied.
+        in at compression, Marks eq. 219a), as a fraction of the steam supplied; and
+        beside it the fraction Marks's law of condensation predicts (eq. 221).
         """
+        from corliss.engine.condensation import marks_condensation_kg
         from corliss.thermo.steam import HEOSSteam
         sat = HEOSSteam()
         row = self.last_cycle
@@ -230,6 +232,15 @@ class Result:
                      - at(f"V_{end}_m3", k) * sat.px(at(f"p_{end}_Pa", k), 1.0).rho)
             supplied = float(row[f"m_chest_{end}_kg"])
             out[f"missing_water_fraction_{end}"] = (supplied - shown) / supplied
+            # the period's prediction beside the model's (Marks eq. 221)
+            e_idx = 0 if end == "head" else 1
+            vc, vs = self.geometry.clearance_m3[e_idx], self.geometry.swept_m3[e_idx]
+            e_true = (vc + vs * ev["cutoff_frac"]) / (vc + vs)
+            cond = marks_condensation_kg(
+                self.geometry.spec.bore_m, self.geometry.spec.stroke_m,
+                2.0 * self.scene.run.speed_rad_s / (2 * math.pi), e_true,
+                sat.t_sat(at(f"p_{end}_Pa", c)), self.exhaust.T)
+            out[f"marks_missing_water_fraction_{end}"] = cond / (cond + shown)
         return out
 
     @property

@@ -57,3 +57,23 @@ def test_the_convective_correlation_is_far_weaker_than_marks():
     marks = corliss.simulate(wall_scene()).summary
     adair = corliss.simulate(wall_scene(model="adair")).summary
     assert adair["heat_to_walls_head_J_per_cycle"] < 0.1 * marks["heat_to_walls_head_J_per_cycle"]
+
+
+def test_marks_curve_of_condensation():
+    """Marks Art. 75: the values printed on his graph of Y(e), .171 at e = 0.1, .775 at
+    0.6 and .975 at 0.9 (tolerance 0.003: read off a graph, OCR'd), Y(1) = 1, and his
+    linear fit 1.27 e + 0.055 within 0.02 over 0.15-0.5, where he says it holds."""
+    from corliss.engine.condensation import curve_of_condensation as Y
+    for e, want in ((0.1, 0.171), (0.6, 0.775), (0.9, 0.975)):
+        assert Y(e) == pytest.approx(want, abs=3e-3)
+    assert Y(1.0) == pytest.approx(1.0)
+    for e in (0.15, 0.25, 0.35, 0.5):
+        assert Y(e) == pytest.approx(1.27 * e + 0.055, abs=0.02)
+
+
+def test_marks_constant_in_si():
+    """Marks Art. 82: C = 0.02047 lb per ft2, degF and minute; in SI 2.998e-3 kg/(m2 K s)
+    (1 lb = 0.45359237 kg, 1 ft2 = 0.09290304 m2, 1 degF = 5/9 K)."""
+    from corliss.engine.condensation import MARKS_C
+    assert MARKS_C == pytest.approx(0.02047 * 0.45359237 / (0.09290304 * 5 / 9 * 60), rel=1e-12)
+    assert MARKS_C == pytest.approx(2.998e-3, rel=1e-3)
