@@ -16,7 +16,7 @@ _EVENT_MARK = {"cutoff": ("c/o", "v"), "release": ("rel", "s"), "compression": (
                "admission": ("adm", "o")}
 
 
-def plot_card(result, ax=None, units_system: str | None = None) -> dict:
+def plot_card(result, ax=None, units_system: str | None = None, prefix: str = "") -> dict:
     """Indicator card of both ends of the last cycle.
 
     Parameters
@@ -26,6 +26,9 @@ def plot_card(result, ax=None, units_system: str | None = None) -> dict:
     units_system : str, optional
         ``"US"`` (psig, inches of stroke) or ``"SI"`` (bar gauge, mm); default from
         the scene.
+    prefix : str
+        ``""`` for the (first or high-pressure) cylinder, ``"lp_"`` for the
+        low-pressure cylinder of a compound.
 
     Returns
     -------
@@ -39,8 +42,9 @@ def plot_card(result, ax=None, units_system: str | None = None) -> dict:
         _, ax = plt.subplots(figsize=(9, 5.5))
     baro = result.scene.supply.barometer_Pa
     p_unit, x_unit = ("psig", "in") if system == "US" else ("barg", "mm")
-    stroke = result.geometry.spec.stroke_m
-    cards = result.cards
+    geo = {p: g for p, g, _ in result.cylinder_list}[prefix]
+    stroke = geo.spec.stroke_m
+    cards = {end: result.cards[prefix + end] for end in ("head", "crank")}
     lines = {}
     style = {"head": dict(color="k", lw=1.4, ls="-"), "crank": dict(color="0.25", lw=1.4, ls="--")}
     for end, card in cards.items():
@@ -54,8 +58,8 @@ def plot_card(result, ax=None, units_system: str | None = None) -> dict:
     ax.axhline(vac, color="0.6", lw=0.6, ls=":")
     ax.text(xs * 0.995, vac, "zero pressure", ha="right", va="bottom", fontsize=7, color="0.5")
     markers = []
-    geo = result.geometry
-    for end, ev in result.events.items():
+    events = result.events if prefix == "" else {}
+    for end, ev in events.items():
         card = cards[end]
         for name, (label, m) in _EVENT_MARK.items():
             deg = ev.get(f"{name}_deg")
@@ -79,7 +83,8 @@ def plot_card(result, ax=None, units_system: str | None = None) -> dict:
     ax.set_xlim(-0.02 * xs, 1.02 * xs)
     ax.set_xlabel(f"piston position from head-end dead centre [{x_unit}]")
     ax.set_ylabel(f"pressure [{p_unit}]")
-    ax.set_title(f"{result.scene.title}\n{s['speed_rpm']:.0f} rpm, "
+    which = "" if prefix == "" else "low-pressure cylinder, "
+    ax.set_title(f"{result.scene.title}\n{which}{s['speed_rpm']:.0f} rpm, "
                  f"{s['indicated_power_hp']:.1f} ihp, m.e.p. "
                  f"{units.to_unit(s['mep_mean_Pa'], 'psia' if system == 'US' else 'bar'):.1f} "
                  f"{'psi' if system == 'US' else 'bar'}", fontsize=10)

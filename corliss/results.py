@@ -103,7 +103,13 @@ class Result:
     nfev: int
     wall_time_s: float
     ideal_cards: dict | None = None
+    cylinders: list | None = None     # (column prefix, geometry, crank lead [rad])
     _summary: dict | None = field(default=None, repr=False)
+
+    @property
+    def cylinder_list(self) -> list:
+        """(prefix, geometry, crank lead [rad]) of every cylinder; "" is the (HP) first."""
+        return self.cylinders or [("", self.geometry, 0.0)]
 
     # --- derived quantities -------------------------------------------------------
     @property
@@ -127,12 +133,15 @@ class Result:
             return out
         ts = self.timeseries[self.timeseries["cycle"] == self.timeseries["cycle"].max()]
         th = np.radians(ts["crank_angle_deg"].to_numpy()) % (2 * math.pi)
-        frac = self.geometry.fraction(th)
-        return {end: pd.DataFrame({"crank_angle_deg": ts["crank_angle_deg"].to_numpy(),
-                                   "piston_frac": frac,
-                                   "V_m3": ts[f"V_{end}_m3"].to_numpy(),
-                                   "p_Pa": ts[f"p_{end}_Pa"].to_numpy()})
-                for end in ("head", "crank")}
+        out = {}
+        for prefix, geo, phase in self.cylinder_list:
+            frac = geo.fraction(th + phase)
+            for end in ("head", "crank"):
+                out[prefix + end] = pd.DataFrame({
+                    "crank_angle_deg": ts["crank_angle_deg"].to_numpy(), "piston_frac": frac,
+                    "V_m3": ts[f"V_{prefix}{end}_m3"].to_numpy(),
+                    "p_Pa": ts[f"p_{prefix}{end}_Pa"].to_numpy()})
+        return out
 
     @property
     def crank_effort(self) -> pd.DataFrame:
@@ -145,15 +154,21 @@ class Result:
         from corliss.engine import crank_effort as ce
         ts = self.timeseries[self.timeseries["cycle"] == self.timeseries["cycle"].max()]
         th = np.radians(ts["crank_angle_deg"].to_numpy())
-        geo, run, spec = self.geometry, self.scene.run, self.geometry.spec
-        force = ce.piston_force_N(geo, ts["p_head_Pa"].to_numpy(), ts["p_crank_Pa"].to_numpy(),
-                                  self.scene.supply.barometer_Pa)
-        cols = {"crank_angle_deg": ts["crank_angle_deg"].to_numpy(), "steam_force_N": force}
-        if run.has("inertia"):
-            cols["inertia_force_N"] = ce.inertia_force_N(geo, th, run.speed_rad_s,
-                                                         spec.reciprocating_mass_kg)
-            force = force + cols["inertia_force_N"]
-        cols["torque_N_m"] = ce.torque_N_m(geo, th, force)
+        run, spec = self.scene.run, self.geometry.spec
+        cols = {"crank_angle_deg": ts["crank_angle_deg"].to_numpy()}
+        total = np.zeros(th.size)
+        for prefix, g, phase in self.cylinder_list:
+            force = ce.piston_force_N(g, ts[f"p_{prefix}head_Pa"].to_numpy(),
+                                      ts[f"p_{prefix}crank_Pa"].to_numpy(),
+                                      self.scene.supply.barometer_Pa)
+            cols[f"{prefix}steam_force_N"] = force
+            if run.has("inertia"):
+                f_in = ce.inertia_force_N(g, th + phase, run.speed_rad_s,
+                                          spec.reciprocating_mass_kg)
+                cols[f"{prefix}inertia_force_N"] = f_in
+                force = force + f_in
+            total = total + ce.torque_N_m(g, th + phase, force)
+        cols["torque_N_m"] = total
         net = cols["torque_N_m"]
         if run.has("friction"):
             tf = spec.friction_torque_N_m + spec.friction_N_m_s * run.speed_rad_s
@@ -197,6 +212,23 @@ class Result:
                         "brake_power_W": brake, "brake_power_hp": brake / units.HP_W,
                         "mechanical_efficiency": brake / indicated if indicated > 0 else None})
         return out
+
+    def _compound_summary(self) -> dict:
+        """Power of each cylinder, LP mean effective pressures, receiver pressure."""
+        if len(self.cylinder_list) < 2:
+            return {}
+        row = self.last_cycle
+        rev_per_s = self.scene.run.speed_rad_s / (2 * math.pi)
+        _, lp, _ = self.cylinder_list[1]
+        w_lp = float(row["work_lp_head_J"] + row["work_lp_crank_J"])
+        w_hp = float(row["work_head_J"] + row["work_crank_J"])
+        last = self.timeseries[self.timeseries["cycle"] == self.timeseries["cycle"].max()]
+        return {"hp_power_W": w_hp * rev_per_s, "lp_power_W": w_lp * rev_per_s,
+                "lp_mep_head_Pa": float(row["work_lp_head_J"]) / lp.swept_m3[0],
+                "lp_mep_crank_Pa": float(row["work_lp_crank_J"]) / lp.swept_m3[1],
+                "receiver_pressure_mean_Pa": float(last["p_receiver_Pa"].mean()),
+                "receiver_pressure_min_Pa": float(last["p_receiver_Pa"].min()),
+                "receiver_pressure_max_Pa": float(last["p_receiver_Pa"].max())}
 
     def _condensation_summary(self) -> dict:
         """Initial condensation as the engineers of the time measured it (Marks Art. 74).
@@ -254,7 +286,7 @@ class Result:
         run = self.scene.run
         row = self.last_cycle
         w_h, w_c = float(row["work_head_J"]), float(row["work_crank_J"])
-        w = w_h + w_c
+        w = float(row["work_J"]) if "work_J" in row else w_h + w_c
         rev_per_s = run.speed_rad_s / (2 * math.pi)
         power = w * rev_per_s
         sw_h, sw_c = self.geometry.swept_m3
@@ -302,6 +334,7 @@ class Result:
             "rhs_evaluations": self.nfev,
             "wall_time_s": self.wall_time_s,
             **self._effort_summary(w),
+            **self._compound_summary(),
             "events": self.events,
         }
 
@@ -356,8 +389,10 @@ class Result:
         import matplotlib.pyplot as plt
 
         from corliss.plot import plot_card, plot_crank_effort
-        for kind, draw, size in (("card", plot_card, (9, 5.5)),
-                                 ("effort", plot_crank_effort, (9, 4.5))):
+        figures = [("card", plot_card, (9, 5.5)), ("effort", plot_crank_effort, (9, 4.5))]
+        if len(self.cylinder_list) > 1:
+            figures.append(("lp_card", lambda r, ax: plot_card(r, ax=ax, prefix="lp_"), (9, 5.5)))
+        for kind, draw, size in figures:
             fig, ax = plt.subplots(figsize=size)
             draw(self, ax=ax)
             png = out_dir / f"{stem}.{kind}.png"

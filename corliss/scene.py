@@ -23,7 +23,8 @@ from corliss.tables import Table
 from corliss.thermo.steam import BACKENDS, HEOSSteam
 from corliss.valves import gear_type
 
-SECTIONS = ("title", "engine", "supply", "exhaust", "valve_gear", "run", "output")
+SECTIONS = ("title", "engine", "supply", "exhaust", "valve_gear", "run", "output", "compound",
+            "lp_valve_gear")
 LATER_SECTIONS = ("governor", "flywheel", "load")
 
 
@@ -135,6 +136,32 @@ class OutputSpec:
 
 
 @dataclass(frozen=True)
+class CompoundSpec:
+    """The low-pressure cylinder of a compound engine and its receiver (all SI).
+
+    Attributes
+    ----------
+    lp_engine : EngineSpec
+        The LP cylinder (bore, stroke, rod, clearance); other [engine] data as the HP's.
+    lp_gear_type : str
+        Its valve gear's registry name.
+    lp_gear : object
+        Its valve gear's spec.
+    lp_phase_rad : float
+        The LP crank's angle ahead of the HP crank [rad] (a crank that follows by
+        90 deg is -pi/2).
+    receiver_volume_m3 : float
+        Receiver and passages between the cylinders [m3].
+    """
+
+    lp_engine: EngineSpec
+    lp_gear_type: str
+    lp_gear: object
+    lp_phase_rad: float
+    receiver_volume_m3: float
+
+
+@dataclass(frozen=True)
 class Scene:
     """A validated scene, all SI.  Build it with :func:`load_scene`."""
 
@@ -148,6 +175,7 @@ class Scene:
     output: OutputSpec
     name: str = "scene"
     source: str | None = None
+    compound: CompoundSpec | None = None
 
     def resolved(self) -> dict:
         """The scene as resolved SI values (for result metadata)."""
@@ -212,6 +240,38 @@ def _engine(t: Table) -> EngineSpec:
                       *leaks, model, marks)
     t.finish()
     return spec
+
+
+def _compound(t: Table, hp: EngineSpec, lp_gear_data, hp_gear_type, hp_gear,
+              barometer: float) -> CompoundSpec:
+    """The [compound] section: LP cylinder, its crank, the receiver; [lp_valve_gear] or,
+    without it, the HP's gear with its port lengths scaled to the LP bore."""
+    bore = t.length("lp_bore", positive=True)
+    stroke = t.length("lp_stroke", f"{hp.stroke_m} m", positive=True)
+    rod = t.length("lp_connecting_rod", f"{hp.connecting_rod_m} m", positive=True)
+    if rod <= stroke / 2.0:
+        raise InputError(t.key("lp_connecting_rod"), t.raw("lp_connecting_rod", None),
+                         "a connecting rod longer than the LP crank")
+    prd = t.length("lp_piston_rod_diameter", f"{hp.piston_rod_diameter_m} m")
+    clearance = _pair_fraction(t, "lp_clearance") if t.has("lp_clearance") else hp.clearance
+    lp = dataclasses.replace(hp, bore_m=bore, stroke_m=stroke, connecting_rod_m=rod,
+                             piston_rod_diameter_m=prd, clearance=clearance,
+                             valve_leakage_area_m2=0.0, piston_leakage_area_m2=0.0)
+    follows = t.angle("lp_crank_angle", "90 deg")
+    receiver = t.quantity("receiver_volume", "volume")
+    if not receiver > 0.0:
+        raise InputError(t.key("receiver_volume"), t.raw("receiver_volume"), "a volume above zero")
+    t.finish()
+    if lp_gear_data is not None:
+        vg = Table(lp_gear_data, "lp_valve_gear", barometer)
+        gt = gear_type(vg.raw("type"))
+        lp_gear = gt.parse(vg)
+        vg.finish()
+        name = gt.name
+    else:
+        name = hp_gear_type.name
+        lp_gear = dataclasses.replace(hp_gear, port_length_m=hp_gear.port_length_m * bore / hp.bore_m)
+    return CompoundSpec(lp, name, lp_gear, -follows, receiver)
 
 
 def _supply(t: Table) -> SupplySpec:
@@ -360,20 +420,26 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
     if run.has("leakage") and not (engine.valve_leakage_area_m2 or engine.piston_leakage_area_m2):
         raise InputError("engine.valve_leakage_area", None, "a leak area (or "
                          "engine.piston_leakage_area): the 'leakage' effect needs one")
-    if run.has("wall_heat") and not run.has("port_flow"):
-        raise InputError("run.effects", list(run.effects), "\"port_flow\" beside \"wall_heat\"")
-    if run.has("leakage") and not run.has("port_flow"):
-        raise InputError("run.effects", list(run.effects), "\"port_flow\" beside \"leakage\"")
-    if run.has("steam_chest") and not run.has("port_flow"):
-        raise InputError("run.effects", list(run.effects), "\"port_flow\" beside "
-                         "\"steam_chest\": a chest of finite volume empties through finite ports")
+    for effect in ("wall_heat", "leakage", "steam_chest"):
+        if run.has(effect) and not run.has("port_flow"):
+            raise InputError("run.effects", list(run.effects), f"\"port_flow\" beside "
+                             f"\"{effect}\": it acts through finite ports")
+    compound = None
+    if "compound" in data:
+        compound = _compound(Table(data["compound"], "compound", barometer), engine,
+                             data.get("lp_valve_gear"), gt, gear, barometer)
+        if run.model != "crank_resolved" or not run.has("port_flow"):
+            raise InputError("compound", "[...]", "run.model = \"crank_resolved\" with "
+                             "\"port_flow\": the receiver fills and empties through ports")
+    elif "lp_valve_gear" in data:
+        raise InputError("lp_valve_gear", "[...]", "a [compound] section beside it")
     out = Table(data.get("output", {}), "output", barometer)
     output = OutputSpec(out.choice("units", ("US", "SI"), "US"), out.string("dir", "out"))
     out.finish()
     title = data.get("title", name)
     if not isinstance(title, str):
         raise InputError("title", title, "a string")
-    return Scene(title, engine, supply, exhaust, gt.name, gear, run, output, name, source)
+    return Scene(title, engine, supply, exhaust, gt.name, gear, run, output, name, source, compound)
 
 
 def load_scene(path: str | Path) -> Scene:

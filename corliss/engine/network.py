@@ -330,3 +330,33 @@ def with_wall_heat(net: Network, model: str, h_marks: float, steam_props) -> Net
         if kind == PISTON:
             net.node_heat[i] = (code, h_marks, k, mu, pr)
     return net
+
+
+def compound(hp_geometry, hp_portmap, lp_geometry, lp_portmap, lp_phase: float, receiver_m3: float,
+             chest, exhaust, receiver_init, omega: float, band: float = 0.01) -> Network:
+    """A compound engine (Marks Arts. 87-92): the high-pressure cylinder exhausts into a
+    receiver of fixed volume, from which the low-pressure cylinder takes its steam.
+
+    Nodes: ``head``, ``crank`` (HP), ``receiver``, ``lp_head``, ``lp_crank``; edges
+    named ``<end>_steam`` and ``<end>_exhaust`` as for one cylinder.
+    """
+    net = Network(omega, band, [hp_geometry, lp_geometry], [0.0, lp_phase],
+                  [hp_portmap, lp_portmap], [chest, exhaust])
+    hp = [net.add_node(end, PISTON, chest if e == 0 else receiver_init, cyl=0, end=e)
+          for e, end in enumerate(("head", "crank"))]
+    rec = net.add_node("receiver", FIXED, receiver_init, volume=receiver_m3)
+    lp = [net.add_node(f"lp_{end}", PISTON, receiver_init if e == 0 else exhaust, cyl=1, end=e)
+          for e, end in enumerate(("head", "crank"))]
+    for cyl, (nodes, src, dst, pm, prefix) in enumerate(
+            ((hp, reservoir(0), rec, hp_portmap, ""), (lp, rec, reservoir(1), lp_portmap, "lp_"))):
+        for e, (node, end) in enumerate(zip(nodes, ("head", "crank"))):
+            net.add_edge(f"{prefix}{end}_steam", src, node, float(pm.cd[2 * e]), PORTMAP_EDGE,
+                         cyl, 2 * e)
+            net.add_edge(f"{prefix}{end}_exhaust", dst, node, float(pm.cd[2 * e + 1]),
+                         PORTMAP_EDGE, cyl, 2 * e + 1)
+    return net
+
+
+def piston_ends(net: Network) -> list[str]:
+    """Names of the nodes that are cylinder ends, in order."""
+    return [n for n, k in zip(net.node_names, net.node_kind) if k == PISTON]

@@ -20,10 +20,10 @@ from corliss.engine import equilibrium as eq
 from corliss.engine.crank_resolved import CrankResolved
 from corliss.engine.geometry import CylinderGeometry
 from corliss.engine.ideal_card import card_area, hyperbolic_card, indicated_steam_kg
+from corliss.engine.network import (compound, piston_ends, single_cylinder, with_leakage,
+                                    with_steam_chest, with_wall_heat)
 from corliss.results import Result
 from corliss.scene import Scene
-from corliss.engine.network import (single_cylinder, with_leakage, with_steam_chest,
-                                    with_wall_heat)
 from corliss.thermo.steam import HEOSSteam, State, Steam, TableSteam, make_steam
 from corliss.thermo.steam_table import lookup_many
 from corliss.valves import events as valve_events
@@ -146,7 +146,16 @@ def _cycle_frame(k: int, theta: np.ndarray, omega: float, ends: dict) -> pd.Data
 def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
     fid = scene.run.fidelity
     omega = scene.run.speed_rad_s
-    net = single_cylinder(geo, pm, chest, exhaust, omega)
+    if scene.compound is None:
+        net = single_cylinder(geo, pm, chest, exhaust, omega)
+    else:
+        cp = scene.compound
+        lp_geo = CylinderGeometry(cp.lp_engine, rod_angularity=scene.run.has("rod_angularity"))
+        lp_pm = tabulate(gear_type(cp.lp_gear_type).build(cp.lp_gear), fid.portmap_points)
+        # the receiver starts at the geometric mean of supply and back pressure
+        rec = steam.px(math.sqrt(chest.p * exhaust.p), 1.0)
+        net = compound(geo, pm, lp_geo, lp_pm, cp.lp_phase_rad, cp.receiver_volume_m3, chest,
+                       exhaust, rec, omega)
     if scene.run.has("steam_chest"):
         net = with_steam_chest(net, scene.supply)
     if scene.run.has("leakage"):
@@ -157,6 +166,7 @@ def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
         net = with_wall_heat(net, scene.engine.wall_heat_model,
                              scene.engine.marks_constant_W_m2K, transport_of(chest))
     model = CrankResolved(net, steam, fid.method, fid.rtol, step_deg=fid.step_deg)
+    ends_all = piston_ends(net)
     step = math.radians(fid.output_step_deg)
     out_theta = np.linspace(0.0, TWO_PI, int(round(TWO_PI / step)) + 1)
     y = model.initial_state()
@@ -169,13 +179,13 @@ def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
         if heat:
             model.update_wall(y)
         row = {"cycle": k}
-        for end in ("head", "crank"):
+        for end in ends_all:
             for what, edge in (("chest", f"{end}_steam"), ("exhaust", f"{end}_exhaust")):
                 e = net.edge(edge)
                 row[f"m_{what}_{end}_kg"] = y[net.i_edge_mass(e)]
                 row[f"H_{what}_{end}_J"] = y[net.i_edge_enthalpy(e)]
             row[f"work_{end}_J"] = y[net.i_work(net.node(end))]
-            if heat:
+            if heat and end in ("head", "crank"):
                 i = net.node(end)
                 row[f"Q_{end}_J"] = y[net.i_node_quad(i, "heat")]
                 row[f"Q_to_wall_{end}_J"] = y[net.i_node_quad(i, "heat_to_wall")]
@@ -185,9 +195,10 @@ def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
         for name, e in net.leak_edges():
             row[f"m_{name}_kg"] = y[net.i_edge_mass(e)]
         row.update(net.boundary_totals(y))
+        row["work_J"] = sum(row[f"work_{end}_J"] for end in ends_all)
         rows.append(row)
         samples_all.append(samples)
-        w = row["work_head_J"] + row["work_crank_J"]
+        w = row["work_J"]
         change = abs(w - w_prev) / max(abs(w), 1e-300) if w_prev is not None else math.inf
         if progress:
             progress(k, change)
@@ -200,20 +211,23 @@ def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
     ts = []
     for k, s in enumerate(samples_all):
         ends = {}
-        for end in ("head", "crank"):
+        for end in ends_all:
             i = net.node(end)
             V = net.volume(i, out_theta)
             m, U = s[2 * i], s[2 * i + 1]
             ends[end] = (*_states(steam, m / V, U / m), V, m)
         frame = _cycle_frame(k, out_theta, omega, ends)
-        if "chest" in net.node_names:
-            i = net.node("chest")
-            V = net.volume(i, out_theta)
-            frame["p_chest_Pa"] = _states(steam, s[2 * i] / V, s[2 * i + 1] / s[2 * i])[0]
+        for vessel in ("chest", "receiver"):
+            if vessel in net.node_names:
+                i = net.node(vessel)
+                V = net.volume(i, out_theta)
+                frame[f"p_{vessel}_Pa"] = _states(steam, s[2 * i] / V, s[2 * i + 1] / s[2 * i])[0]
         ts.append(frame)
     timeseries = pd.concat(ts, ignore_index=True)
     return {"timeseries": timeseries, "cycles": pd.DataFrame(rows),
-            "cycles_to_converge": converged, "portmap": pm, "nfev": model.nfev}
+            "cycles_to_converge": converged, "portmap": pm, "nfev": model.nfev,
+            "cylinders": [(prefix, g, ph) for prefix, g, ph in
+                          zip(("", "lp_"), net.geometries, net.phases)]}
 
 
 # --- ideal ports (no port_flow) and the isentropic ideal card -----------------------
