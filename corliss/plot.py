@@ -83,10 +83,16 @@ def plot_card(result, ax=None, units_system: str | None = None, prefix: str = ""
     ax.set_xlim(-0.02 * xs, 1.02 * xs)
     ax.set_xlabel(f"piston position from head-end dead centre [{x_unit}]")
     ax.set_ylabel(f"pressure [{p_unit}]")
-    which = "" if prefix == "" else "low-pressure cylinder, "
+    if prefix == "":
+        which, power, mep = "", s["indicated_power_W"], s["mep_mean_Pa"]
+        if "hp_power_W" in s:
+            which, power = "high-pressure cylinder, ", s["hp_power_W"]
+    else:
+        which, power = "low-pressure cylinder, ", s["lp_power_W"]
+        mep = power * 2 * np.pi / result.scene.run.speed_rad_s / sum(geo.swept_m3)
     ax.set_title(f"{result.scene.title}\n{which}{s['speed_rpm']:.0f} rpm, "
-                 f"{s['indicated_power_hp']:.1f} ihp, m.e.p. "
-                 f"{units.to_unit(s['mep_mean_Pa'], 'psia' if system == 'US' else 'bar'):.1f} "
+                 f"{units.to_unit(power, 'hp'):.1f} ihp, m.e.p. "
+                 f"{units.to_unit(mep, 'psia' if system == 'US' else 'bar'):.1f} "
                  f"{'psi' if system == 'US' else 'bar'}", fontsize=10)
     ax.grid(True, color="0.9", lw=0.5)
     ax.legend(loc="center", fontsize=8, frameon=False)

@@ -319,7 +319,8 @@ class Result:
             "indicated_work_J_per_cycle": w,
             "mep_head_Pa": w_h / sw_h,
             "mep_crank_Pa": w_c / sw_c,
-            "mep_mean_Pa": w / (sw_h + sw_c),
+            # a compound's mean pressure is referred to the LP cylinder (Marks Art. 90)
+            "mep_mean_Pa": w / sum(self.cylinder_list[-1][1].swept_m3),
             "steam_per_cycle_kg": steam_cycle,
             "steam_rate_kg_per_h": steam_rate,
             "water_rate_kg_per_kWh": ratio(steam_rate, power_kW),
