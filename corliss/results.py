@@ -187,7 +187,8 @@ class Result:
                "mean_torque_N_m": work_J / (2 * math.pi),
                "energy_fluctuation_J": dE,
                # Marks Art. 57, Table IV: spread over the work of one stroke of one cylinder
-               "fluctuation_coefficient_c": dE / (0.5 * work_J) if work_J > 0 else None}
+               "fluctuation_coefficient_c": (dE / (0.5 * work_J / len(self.cylinder_list))
+                                             if work_J > 0 else None)}
         run = self.scene.run
         row = self.last_cycle
         rev_per_h = run.speed_rad_s / (2 * math.pi) * 3600.0
@@ -214,9 +215,14 @@ class Result:
         return out
 
     def _compound_summary(self) -> dict:
-        """Power of each cylinder, LP mean effective pressures, receiver pressure."""
+        """Power of each cylinder; for a compound, LP mean pressures and the receiver's."""
         if len(self.cylinder_list) < 2:
             return {}
+        if self.scene.compound is None:
+            row = self.last_cycle
+            rev_per_s = self.scene.run.speed_rad_s / (2 * math.pi)
+            return {"cylinder_powers_W": [float(row[f"work_{p}head_J"] + row[f"work_{p}crank_J"])
+                                          * rev_per_s for p, _, _ in self.cylinder_list]}
         row = self.last_cycle
         rev_per_s = self.scene.run.speed_rad_s / (2 * math.pi)
         _, lp, _ = self.cylinder_list[1]
@@ -319,8 +325,10 @@ class Result:
             "indicated_work_J_per_cycle": w,
             "mep_head_Pa": w_h / sw_h,
             "mep_crank_Pa": w_c / sw_c,
-            # a compound's mean pressure is referred to the LP cylinder (Marks Art. 90)
-            "mep_mean_Pa": w / sum(self.cylinder_list[-1][1].swept_m3),
+            # over all cylinders; a compound's is referred to its LP cylinder (Marks Art. 90)
+            "mep_mean_Pa": w / (sum(self.cylinder_list[-1][1].swept_m3)
+                                if self.scene.compound is not None else
+                                sum(sum(g.swept_m3) for _, g, _ in self.cylinder_list)),
             "steam_per_cycle_kg": steam_cycle,
             "steam_rate_kg_per_h": steam_rate,
             "water_rate_kg_per_kWh": ratio(steam_rate, power_kW),
@@ -391,7 +399,7 @@ class Result:
 
         from corliss.plot import plot_card, plot_crank_effort
         figures = [("card", plot_card, (9, 5.5)), ("effort", plot_crank_effort, (9, 4.5))]
-        if len(self.cylinder_list) > 1:
+        if self.scene.compound is not None:
             figures.append(("lp_card", lambda r, ax: plot_card(r, ax=ax, prefix="lp_"), (9, 5.5)))
         for kind, draw, size in figures:
             fig, ax = plt.subplots(figsize=size)

@@ -232,12 +232,23 @@ def _engine(t: Table) -> EngineSpec:
             raise InputError(t.key(k), t.raw(k), "an equivalent leak area from zero to 5 % of "
                              "the piston area")
         leaks.append(a)
+    n_cyl = t.integer("cylinders", 1)
+    if not 1 <= n_cyl <= 6:
+        raise InputError(t.key("cylinders"), n_cyl, "a number of identical cylinders, 1 to 6")
+    angles = t.raw("crank_angles", [f"{360.0 * k / n_cyl} deg" for k in range(n_cyl)]
+                   if n_cyl != 2 else ["0 deg", "90 deg"])
+    if not isinstance(angles, list) or len(angles) != n_cyl:
+        raise InputError(t.key("crank_angles"), angles, f"a list of {n_cyl} crank angles, the "
+                         "first \"0 deg\" (how far each crank follows the first)")
+    crank_angles = tuple(units.parse(a, "angle", t.key("crank_angles")) for a in angles)
+    if abs(crank_angles[0]) > 1e-12:
+        raise InputError(t.key("crank_angles"), angles, "a list whose first angle is \"0 deg\"")
     model = t.choice("wall_heat_model", ("marks", "adair"), "marks")
     marks = t.quantity("marks_constant", "heat_transfer", "18.13 Btu/ft2 degF min")
     if not marks > 0.0:
         raise InputError(t.key("marks_constant"), t.raw("marks_constant"), "a conductance above 0")
     spec = EngineSpec(bore, stroke, rod, prd, _pair_fraction(t, "clearance"), mass, f0, f1,
-                      *leaks, model, marks)
+                      *leaks, model, marks, crank_angles)
     t.finish()
     return spec
 
@@ -256,7 +267,8 @@ def _compound(t: Table, hp: EngineSpec, lp_gear_data, hp_gear_type, hp_gear,
     clearance = _pair_fraction(t, "lp_clearance") if t.has("lp_clearance") else hp.clearance
     lp = dataclasses.replace(hp, bore_m=bore, stroke_m=stroke, connecting_rod_m=rod,
                              piston_rod_diameter_m=prd, clearance=clearance,
-                             valve_leakage_area_m2=0.0, piston_leakage_area_m2=0.0)
+                             valve_leakage_area_m2=0.0, piston_leakage_area_m2=0.0,
+                             crank_angles_rad=(0.0,))
     follows = t.angle("lp_crank_angle", "90 deg")
     receiver = t.quantity("receiver_volume", "volume")
     if not receiver > 0.0:
@@ -425,7 +437,14 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
             raise InputError("run.effects", list(run.effects), f"\"port_flow\" beside "
                              f"\"{effect}\": it acts through finite ports")
     compound = None
+    if len(engine.crank_angles_rad) > 1 and (run.model != "crank_resolved"
+                                             or not run.has("port_flow")):
+        raise InputError("engine.cylinders", len(engine.crank_angles_rad),
+                         "1, or run.model = \"crank_resolved\" with \"port_flow\" for several")
     if "compound" in data:
+        if len(engine.crank_angles_rad) > 1:
+            raise InputError("engine.cylinders", len(engine.crank_angles_rad),
+                             "1 in a compound: its second cylinder is the [compound] LP")
         compound = _compound(Table(data["compound"], "compound", barometer), engine,
                              data.get("lp_valve_gear"), gt, gear, barometer)
         if run.model != "crank_resolved" or not run.has("port_flow"):

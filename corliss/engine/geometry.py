@@ -47,6 +47,9 @@ class EngineSpec:
     marks_constant_W_m2K : float
         Marks's constant of condensation as a surface conductance [W/(m2 K)]
         (Art. 82: 18.13 Btu per ft2, degF and minute).
+    crank_angles_rad : tuple of float
+        One entry per identical cylinder on the shaft: the angle each crank follows
+        the first [rad] (Marks Arts. 54-59: 90 deg for two, 120 deg for three).
     """
 
     bore_m: float
@@ -61,6 +64,7 @@ class EngineSpec:
     piston_leakage_area_m2: float = 0.0
     wall_heat_model: str = "marks"
     marks_constant_W_m2K: float = 6176.8
+    crank_angles_rad: tuple[float, ...] = (0.0,)
 
 
 @dataclass(frozen=True)

@@ -257,15 +257,30 @@ class Network:
                 self.wall_T)
 
 
-def single_cylinder(geometry, portmap, chest, exhaust, omega: float, band: float = 0.01) -> Network:
-    """One double-acting cylinder fed straight from the chest at supply state."""
-    net = Network(omega, band, [geometry], [0.0], [portmap], [chest, exhaust])
+def cylinder_prefix(c: int) -> str:
+    """Column prefix of cylinder ``c``: "" for the first, "c2_", "c3_" ... after it."""
+    return "" if c == 0 else f"c{c + 1}_"
+
+
+def single_cylinder(geometry, portmap, chest, exhaust, omega: float, band: float = 0.01,
+                    crank_angles: tuple[float, ...] = (0.0,)) -> Network:
+    """Identical double-acting cylinders fed straight from the chest at supply state.
+
+    One cylinder by default; with ``crank_angles``, one cylinder per entry, its crank
+    following the first by that angle [rad] (Marks Arts. 54-59).
+    """
+    n = len(crank_angles)
+    net = Network(omega, band, [geometry] * n, [-a for a in crank_angles], [portmap] * n,
+                  [chest, exhaust])
     cd = portmap.cd
-    for e, end in enumerate(("head", "crank")):
-        node = net.add_node(end, PISTON, chest if e == 0 else exhaust, cyl=0, end=e)
-        net.add_edge(f"{end}_steam", reservoir(0), node, float(cd[2 * e]), PORTMAP_EDGE, 0, 2 * e)
-        net.add_edge(f"{end}_exhaust", reservoir(1), node, float(cd[2 * e + 1]), PORTMAP_EDGE, 0,
-                     2 * e + 1)
+    for c in range(n):
+        pre = cylinder_prefix(c)
+        for e, end in enumerate(("head", "crank")):
+            node = net.add_node(pre + end, PISTON, chest if e == 0 else exhaust, cyl=c, end=e)
+            net.add_edge(f"{pre}{end}_steam", reservoir(0), node, float(cd[2 * e]),
+                         PORTMAP_EDGE, c, 2 * e)
+            net.add_edge(f"{pre}{end}_exhaust", reservoir(1), node, float(cd[2 * e + 1]),
+                         PORTMAP_EDGE, c, 2 * e + 1)
     return net
 
 

@@ -20,8 +20,8 @@ from corliss.engine import equilibrium as eq
 from corliss.engine.crank_resolved import CrankResolved
 from corliss.engine.geometry import CylinderGeometry
 from corliss.engine.ideal_card import card_area, hyperbolic_card, indicated_steam_kg
-from corliss.engine.network import (compound, piston_ends, single_cylinder, with_leakage,
-                                    with_steam_chest, with_wall_heat)
+from corliss.engine.network import (compound, cylinder_prefix, piston_ends, single_cylinder,
+                                    with_leakage, with_steam_chest, with_wall_heat)
 from corliss.results import Result
 from corliss.scene import Scene
 from corliss.thermo.steam import HEOSSteam, State, Steam, TableSteam, make_steam
@@ -147,7 +147,8 @@ def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
     fid = scene.run.fidelity
     omega = scene.run.speed_rad_s
     if scene.compound is None:
-        net = single_cylinder(geo, pm, chest, exhaust, omega)
+        net = single_cylinder(geo, pm, chest, exhaust, omega,
+                              crank_angles=scene.engine.crank_angles_rad)
     else:
         cp = scene.compound
         lp_geo = CylinderGeometry(cp.lp_engine, rod_angularity=scene.run.has("rod_angularity"))
@@ -226,8 +227,8 @@ def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
     timeseries = pd.concat(ts, ignore_index=True)
     return {"timeseries": timeseries, "cycles": pd.DataFrame(rows),
             "cycles_to_converge": converged, "portmap": pm, "nfev": model.nfev,
-            "cylinders": [(prefix, g, ph) for prefix, g, ph in
-                          zip(("", "lp_"), net.geometries, net.phases)]}
+            "cylinders": [(("lp_" if scene.compound and c else cylinder_prefix(c)), g, ph)
+                          for c, (g, ph) in enumerate(zip(net.geometries, net.phases))]}
 
 
 # --- ideal ports (no port_flow) and the isentropic ideal card -----------------------
