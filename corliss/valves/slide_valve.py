@@ -97,7 +97,33 @@ class SlideValveSpec:
         return (rs - self.lap_m[0], rs - self.lap_m[1])
 
 
-class SlideValve(ValveGear):
+class LappedValve(ValveGear):
+    """A valve whose displacement ``x`` (in the sense that opens the head steam port)
+    uncovers the ports past its laps: head steam ``x - l_h``, head exhaust ``-x - e_h``,
+    crank steam ``-x - l_c``, crank exhaust ``x - e_c`` (Spangler Art. 15).  Subclasses
+    give :meth:`travel`; the spec carries ``lap_m``, ``exhaust_lap_m``, ``port_width_m``,
+    ``port_length_m``, ``ports_per_end`` and ``discharge_coefficient``."""
+
+    def travel(self, theta: np.ndarray) -> np.ndarray:  # pragma: no cover - interface
+        raise NotImplementedError
+
+    def signed_openings(self, theta):
+        x = self.travel(theta)
+        lh, lc = self.spec.lap_m
+        eh, ec = self.spec.exhaust_lap_m
+        return np.vstack([x - lh, -x - eh, -x - lc, x - ec])
+
+    def port_widths(self):
+        return np.full(4, self.spec.port_width_m)
+
+    def port_lengths(self):
+        return np.full(4, self.spec.port_length_m * self.spec.ports_per_end)
+
+    def discharge_coefficients(self):
+        return np.full(4, self.spec.discharge_coefficient)
+
+
+class SlideValve(LappedValve):
     """Plain D slide valve or piston valve on a single eccentric."""
 
     name = "slide_valve"
@@ -125,23 +151,8 @@ class SlideValve(ValveGear):
         s = self.spec
         return s.eccentricity_m * np.sin(np.asarray(theta) + s.angular_advance_rad)
 
-    def signed_openings(self, theta):
-        x = self.travel(theta)
-        lh, lc = self.spec.lap_m
-        eh, ec = self.spec.exhaust_lap_m
-        return np.vstack([x - lh, -x - eh, -x - lc, x - ec])
 
-    def port_widths(self):
-        return np.full(4, self.spec.port_width_m)
-
-    def port_lengths(self):
-        return np.full(4, self.spec.port_length_m * self.spec.ports_per_end)
-
-    def discharge_coefficients(self):
-        return np.full(4, self.spec.discharge_coefficient)
-
-
-def _pair(t: Table, key: str, kind: str, default=None) -> tuple[float, float]:
+def pair(t: Table, key: str, kind: str, default=None) -> tuple[float, float]:
     """A value given once for both ends, or as [head, crank]."""
     raw = t.raw(key, default)
     if isinstance(raw, list):
@@ -155,8 +166,8 @@ def _pair(t: Table, key: str, kind: str, default=None) -> tuple[float, float]:
 def parse_slide_valve(t: Table) -> SlideValveSpec:
     """Read a ``[valve_gear] type = "slide_valve"`` table (see the scene example)."""
     r = t.length("eccentricity", positive=True)
-    lap = _pair(t, "lap", "length")
-    exhaust_lap = _pair(t, "exhaust_lap", "length", "0 in")
+    lap = pair(t, "lap", "length")
+    exhaust_lap = pair(t, "exhaust_lap", "length", "0 in")
     for end, l in zip(("head", "crank"), lap):
         if l >= r:
             raise InputError(t.key("lap"), t.raw("lap"),
@@ -188,22 +199,27 @@ def parse_slide_valve(t: Table) -> SlideValveSpec:
     if g is not None and g <= r:
         raise InputError(t.key("eccentric_rod"), t.raw("eccentric_rod"),
                          "an eccentric rod longer than the eccentricity")
+    return SlideValveSpec(
+        eccentricity_m=r, lap_m=lap, exhaust_lap_m=exhaust_lap, angular_advance_rad=delta,
+        eccentric_rod_m=g,
+        connection=t.choice("connection", ("direct", "reverse_lever"), "direct"),
+        steam=t.choice("steam", ("outside", "inside"), "outside"),
+        setting=t.choice("setting", ("equal_lead", "mid_travel"), "equal_lead"),
+        **parse_ports(t),
+    )
+
+
+def parse_ports(t: Table) -> dict:
+    """The port keys every lapped valve shares: widths, lengths, openings, discharge."""
     cd = t.number("discharge_coefficient", 0.7)
     if not 0.0 < cd <= 1.0:
         raise InputError(t.key("discharge_coefficient"), cd, "a number in (0, 1]")
     ports = t.integer("ports_per_end", 1)
     if ports < 1:
         raise InputError(t.key("ports_per_end"), ports, "an integer >= 1")
-    return SlideValveSpec(
-        eccentricity_m=r, lap_m=lap, exhaust_lap_m=exhaust_lap, angular_advance_rad=delta,
-        port_width_m=t.length("port_width", positive=True),
-        port_length_m=t.length("port_length", positive=True),
-        discharge_coefficient=cd, eccentric_rod_m=g,
-        connection=t.choice("connection", ("direct", "reverse_lever"), "direct"),
-        steam=t.choice("steam", ("outside", "inside"), "outside"),
-        setting=t.choice("setting", ("equal_lead", "mid_travel"), "equal_lead"),
-        ports_per_end=ports,
-    )
+    return {"port_width_m": t.length("port_width", positive=True),
+            "port_length_m": t.length("port_length", positive=True),
+            "discharge_coefficient": cd, "ports_per_end": ports}
 
 
 register(GearType("slide_valve", SlideValve.summary, parse_slide_valve, SlideValve))

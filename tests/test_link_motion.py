@@ -1,0 +1,114 @@
+"""Link motions in Zeuner's form, against the identities Spangler proves for them."""
+
+import math
+
+import numpy as np
+import pytest
+
+from corliss.errors import InputError
+from corliss.valves.link_motion import LinkMotionSpec
+
+from conftest import make_scene
+
+IN = 0.0254
+R, D, G, C = 2.5 * IN, math.radians(20), 50 * IN, 5 * IN
+
+
+def spec(kind, u, k=0.5):
+    return LinkMotionSpec(kind, R, D, G, C, u, (IN, IN), (0.0, 0.0), 1.0 * IN, 10 * IN,
+                          allen_ratio=k)
+
+
+U = np.linspace(-C, C, 11)
+
+
+def test_stephenson_at_full_gear_is_a_single_eccentric():
+    """Spangler Art. 46: at u = c the open-rod link gives A_c = r cos d, B_c = r sin d,
+    the motion of the forward eccentric alone; crossed rods at u = -c (raised link,
+    Art. 55) give the same."""
+    for kind, u in (("stephenson_open", C), ("stephenson_crossed", -C)):
+        Cc, S = spec(kind, u).coefficients()
+        assert Cc == pytest.approx(R * math.sin(D), rel=1e-12)
+        assert S == pytest.approx(R * math.cos(D), rel=1e-12)
+
+
+def test_allen_link_spans_stephenson_and_gooch():
+    """Spangler Art. 73 (as printed, with u the block's whole offset and u1 the link's
+    share): u1 = u gives Stephenson's open rods, u1 = 0 Gooch's fixed link."""
+    for u in U:
+        assert spec("allen", u, 1.0).coefficients() == pytest.approx(
+            spec("stephenson_open", u).coefficients(), rel=1e-12, abs=1e-15)
+        assert spec("allen", u, 0.0).coefficients() == pytest.approx(
+            spec("gooch", u).coefficients(), rel=1e-12, abs=1e-15)
+
+
+def test_lead_constant_for_gooch_rising_for_open_falling_for_crossed():
+    """Art. 66: the Gooch lead is the same at every notch.  Art. 55: from full gear to
+    mid gear the lead grows with open rods and shrinks with crossed rods (by
+    r (c^2 - u^2) cos d / (c g) either way)."""
+    lap = IN
+    lead = {k: np.array([spec(k, u).coefficients()[0] - lap for u in U[5:]])  # u from 0 to c
+            for k in ("gooch", "stephenson_open", "stephenson_crossed")}
+    assert np.ptp(lead["gooch"]) < 1e-15
+    assert np.all(np.diff(lead["stephenson_open"]) < 0)        # falls from mid to full gear
+    assert np.all(np.diff(lead["stephenson_crossed"]) > 0)
+    rise = lead["stephenson_open"][0] - lead["stephenson_open"][-1]
+    assert rise == pytest.approx(R * C * math.cos(D) / G, rel=1e-12)
+
+
+def test_mid_gear_is_symmetric_about_the_dead_point():
+    """Art. 46: at u = 0 the valve moves as B_0 cos(theta), so admission and cut-off lie
+    symmetrically about the dead centre and the engine does no net work."""
+    from corliss.valves.events import end_events
+    from corliss.valves.link_motion import LinkMotion
+    ev = end_events(LinkMotion(spec("stephenson_open", 0.0)), "head", lambda t: t / math.pi)
+    assert (ev["admission_deg"] - 360.0) == pytest.approx(-ev["cutoff_deg"], abs=1e-6)
+
+
+def test_link_motion_scene_runs_and_checks_its_block():
+    sc = make_scene(valve_gear={"type": "link_motion", "link": "stephenson_open",
+                                "eccentricity": "3 in", "angular_advance": "25 deg",
+                                "eccentric_rod": "60 in", "half_link": "6 in", "block": "4 in",
+                                "lead": None, "connection": None, "steam": None})
+    import corliss
+    s = corliss.simulate(sc.with_fidelity("fast")).summary
+    assert s["indicated_power_W"] > 0
+    with pytest.raises(InputError, match="valve_gear.block"):
+        make_scene(valve_gear={"type": "link_motion", "link": "gooch", "eccentricity": "3 in",
+                               "angular_advance": "25 deg", "eccentric_rod": "60 in",
+                               "half_link": "6 in", "block": "7 in", "lead": None,
+                               "connection": None, "steam": None})
+
+
+# Peabody, Link Motion (thesis, 1877), Table of Results (L348-395), Zeuner's solution for a
+# Hinkley Locomotive Works link: r = 2 3/4 in, eccentric rods 54 in, half link 6 in, lap
+# 7/8 in, full-gear lead 1/16 in, no inside lap.  Per grade w = (grade/10) c: outside lead
+# [in] (col. 3), crank angle at cut-off (col. 8), piston at cut-off as a harmonic fraction
+# of stroke (col. 9).  The thesis's grade-2 cut-off (72 deg 11') and its fraction (.347)
+# are wrong (its own formulas give 71 deg 31' and .3415); so is grade 4's cut-off
+# (97 deg 27' for 97 deg 20', following its slip in col. 5), and grade 9's (136 deg 38'
+# for 136 deg 40'); those rows carry the corrected values.
+PEABODY = {  # grade: (lead, cut-off [deg, min], fraction)
+    0: (0.350, (44, 24), 0.143), 1: (0.347, (57, 28), 0.231), 2: (0.338, (71, 31), 0.3415),
+    3: (0.324, (85, 7), 0.457), 4: (0.304, (97, 20), 0.564), 5: (0.278, (107, 55), 0.654),
+    6: (0.246, (116, 56), 0.726), 7: (0.209, (124, 34), 0.784), 8: (0.166, (131, 5), 0.829),
+    9: (0.117, (136, 40), 0.863), 10: (0.063, (141, 31), 0.891),
+}
+
+
+@pytest.mark.parametrize("grade", sorted(PEABODY))
+def test_peabody_table_of_results(grade):
+    """Tolerance: the thesis's precision, 0.001 in and 0.001 of stroke (2 in the last
+    place where it rounds a recomputed .0005), and 1.5 arc-minutes."""
+    from corliss.valves.events import end_events
+    from corliss.valves.link_motion import LinkMotion
+    r, c, lap = 2.75 * IN, 6 * IN, 0.875 * IN
+    delta = math.asin((0.875 + 0.0625) / 2.75)
+    sp = LinkMotionSpec("stephenson_open", r, delta, 54 * IN, c, grade / 10 * c, (lap, lap),
+                        (0.0, 0.0), 1.25 * IN, 10 * IN)
+    harmonic = lambda t: (1 - math.cos(t)) / 2  # noqa: E731
+    ev = end_events(LinkMotion(sp), "head", harmonic)
+    lead, (deg, minutes), frac = PEABODY[grade]
+    assert ev["lead_m"] / IN == pytest.approx(lead, abs=1.5e-3)
+    assert ev["cutoff_deg"] == pytest.approx(deg + minutes / 60, abs=1.5 / 60)
+    assert ev["cutoff_frac"] == pytest.approx(frac, abs=1.5e-3)
