@@ -4,8 +4,10 @@
     Simulate a scene (the bundled default without SCENE); write the card PNG, the
     CSVs with their meta files and the summary JSON; print a short summary, or the
     summary as JSON with ``--json``.
-``corliss events SCENE [--json]``
-    The valve events of each end, without simulating.
+``corliss events SCENE [--json] [--settings 0,0.5,1]``
+    The valve events of each end, without simulating; at several gear settings.
+``corliss gear SCENE [--out DIR]``
+    Valve travel, port openings and the Zeuner diagram, as PNG.
 ``corliss bench [--repeats N] [--out DIR]``
     The accuracy-versus-time study of ``benchmarks/`` (from a source checkout).
 ``corliss list gears|effects``
@@ -90,14 +92,44 @@ def cmd_run(args) -> int:
 def cmd_events(args) -> int:
     from corliss.engine.simulate import scene_events
     scene = _load(args.scene)
-    ev = scene_events(scene)
-    if args.json:
+    settings = None
+    if args.settings is not None:
+        try:
+            settings = [float(v) for v in args.settings.split(",") if v.strip()]
+        except ValueError:
+            raise InputError("--settings", args.settings, "numbers separated by commas, "
+                             "e.g. 0,0.5,1") from None
+    ev = scene_events(scene, settings)
+    if args.json or settings is not None:
         print(json.dumps(ev, indent=2))
         return 0
     for end, e in ev.items():
         print(f"{end} end")
         for k, v in e.items():
             print(f"  {k:20s} {v if v is None else round(v, 6)}")
+    return 0
+
+
+def cmd_gear(args) -> int:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from corliss.engine.simulate import build_gear
+    from corliss.plot import plot_valve_travel, plot_zeuner_diagram
+    from corliss.results import _write_atomic
+    scene = _load(args.scene)
+    gear = build_gear(scene)
+    system = scene.output.units
+    fig = plt.figure(figsize=(13, 5.5))
+    plot_valve_travel(gear, fig.add_subplot(1, 2, 1), system)
+    plot_zeuner_diagram(gear, fig.add_subplot(1, 2, 2), system)
+    fig.suptitle(f"{scene.title}: {scene.gear_type}", fontsize=11)
+    out = Path(args.out if args.out is not None else scene.output.dir) / f"{scene.name}.gear.png"
+    out.parent.mkdir(parents=True, exist_ok=True)
+    _write_atomic(out, lambda p: fig.savefig(p, dpi=120, bbox_inches="tight", format="png"))
+    plt.close(fig)
+    print(f"wrote {out}")
     return 0
 
 
@@ -148,7 +180,12 @@ def build_parser() -> argparse.ArgumentParser:
     e = sub.add_parser("events", help="valve events of each end, without simulating")
     e.add_argument("scene", help="scene TOML")
     e.add_argument("--json", action="store_true", help="print JSON")
+    e.add_argument("--settings", help="gear settings to list, e.g. 0,0.5,1 (link block u/c)")
     e.set_defaults(func=cmd_events)
+    gp = sub.add_parser("gear", help="valve travel and Zeuner diagram of a scene's gear")
+    gp.add_argument("scene", help="scene TOML")
+    gp.add_argument("--out", help="output directory (default: the scene's [output] dir)")
+    gp.set_defaults(func=cmd_gear)
     b = sub.add_parser("bench", help="run the accuracy-versus-time study (source checkout)")
     b.add_argument("--repeats", type=int, default=3, help="repeats per setting (median)")
     b.add_argument("--out", help="directory for the CSV and plot (default benchmarks/results)")

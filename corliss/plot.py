@@ -140,3 +140,75 @@ def plot_crank_effort(result, ax=None, units_system: str | None = None) -> dict:
     for side in ("top", "right"):
         ax.spines[side].set_visible(False)
     return {"ax": ax, "lines": lines}
+
+
+def plot_valve_travel(gear, ax=None, units_system: str = "US") -> dict:
+    """Valve travel against crank angle, the exact motion over Zeuner's where the gear
+    has both, with the steam and exhaust laps of each end as horizontal lines."""
+    import matplotlib.pyplot as plt
+
+    if ax is None:
+        _, ax = plt.subplots(figsize=(9, 4))
+    u = "in" if units_system == "US" else "mm"
+    th = np.linspace(0.0, 2 * np.pi, 721)
+    deg = np.degrees(th)
+    lines = {"travel": ax.plot(deg, units.to_unit(gear.travel(th), u), color="k", lw=1.4,
+                               label="valve travel")[0]}
+    if hasattr(gear, "zeuner_travel") and getattr(gear.spec, "eccentric_rod_m", None):
+        lines["zeuner"] = ax.plot(deg, units.to_unit(gear.zeuner_travel(th), u), color="0.5",
+                                  lw=1.0, ls="--", label="Zeuner (infinite rod)")[0]
+    lh, lc = gear.spec.lap_m
+    eh, ec = gear.spec.exhaust_lap_m
+    for y, label, ls in ((lh, "head steam lap", "-"), (-lc, "crank steam lap", "-"),
+                         (-eh, "head exhaust lap", ":"), (ec, "crank exhaust lap", ":")):
+        if y == 0.0:
+            continue
+        ax.axhline(units.to_unit(y, u), color="0.6", lw=0.7, ls=ls)
+        ax.text(362, units.to_unit(y, u), label, fontsize=7, va="center", color="0.4")
+    ax.axhline(0, color="0.8", lw=0.5)
+    ax.set_xlim(0, 360)
+    ax.set_xticks(range(0, 361, 45))
+    ax.set_xlabel("crank angle from head-end dead centre [deg]")
+    ax.set_ylabel(f"valve displacement, + opens head steam [{u}]")
+    ax.legend(fontsize=8, frameon=False, loc="lower left")
+    for side in ("top", "right"):
+        ax.spines[side].set_visible(False)
+    return {"ax": ax, "lines": lines}
+
+
+def plot_zeuner_diagram(gear, ax=None, units_system: str = "US") -> dict:
+    """Zeuner's valve diagram (Spangler Arts. 10-18): the valve's displacement laid off
+    along each crank position traces the valve circles, one for each end; the lap
+    circles cut them at admission and cut-off, the exhaust-lap circles at release and
+    compression.  Drawn with the crank rotating counter-clockwise from head-end dead
+    centre on the right."""
+    import matplotlib.pyplot as plt
+
+    if ax is None:
+        _, ax = plt.subplots(figsize=(6, 6))
+    u = "in" if units_system == "US" else "mm"
+    th = np.linspace(0.0, 2 * np.pi, 1441)
+    x = units.to_unit(gear.travel(th), u)
+    pos = x > 0
+    lines = {}
+    for end, mask, rad, ls in (("head", pos, x, "-"), ("crank", ~pos, -x, "--")):
+        xs = np.where(mask, rad * np.cos(th), np.nan)
+        ys = np.where(mask, rad * np.sin(th), np.nan)
+        lines[end] = ax.plot(xs, ys, color="k", lw=1.3, ls=ls, label=f"{end}-end valve circle")[0]
+    lh, lc = (units.to_unit(v, u) for v in gear.spec.lap_m)
+    eh, ec = (units.to_unit(v, u) for v in gear.spec.exhaust_lap_m)
+    t = np.linspace(0, 2 * np.pi, 361)
+    for r_, label in ((lh, "lap"), (abs(eh), "exhaust lap")):
+        if r_ > 0:
+            ax.plot(r_ * np.cos(t), r_ * np.sin(t), color="0.55", lw=0.8,
+                    ls="-" if label == "lap" else ":", label=f"{label} circle")
+    rmax = float(np.nanmax(np.abs(x)))
+    ax.axhline(0, color="0.8", lw=0.6)
+    ax.axvline(0, color="0.8", lw=0.6)
+    ax.set_aspect("equal")
+    ax.set_xlim(-1.1 * rmax, 1.1 * rmax)
+    ax.set_ylim(-1.1 * rmax, 1.1 * rmax)
+    ax.set_title("Zeuner diagram", fontsize=10)
+    ax.set_xlabel(f"[{u}]")
+    ax.legend(fontsize=7, frameon=False, loc="lower right")
+    return {"ax": ax, "lines": lines}

@@ -87,3 +87,19 @@ def test_fidelity_and_cycles_change_time_not_meaning(tmp_path, capsys):
     assert cli.main(["run", "--out", str(tmp_path), "--json", "--cycles", "2"]) == 0
     s = json.loads(capsys.readouterr().out)
     assert s["cycles_simulated"] == 2 and s["cycles_to_converge"] is None
+
+
+def test_events_at_settings_and_the_gear_drawing(tmp_path, capsys):
+    """``corliss events --settings`` lists a link's events notch by notch (the leads of
+    Peabody's grades 0, 5 and 10: .350, .278, .063 in), refuses settings for a gear
+    without any, and ``corliss gear`` draws the travel and the Zeuner diagram."""
+    scene = SCENES / "hinkley-stephenson-link.toml"
+    assert cli.main(["events", str(scene), "--settings", "0,0.5,1"]) == 0
+    rows = json.loads(capsys.readouterr().out)
+    assert [r["setting"] for r in rows] == [0.0, 0.5, 1.0]
+    leads = [r["head"]["lead_m"] / 0.0254 for r in rows]
+    assert leads == pytest.approx([0.350, 0.278, 0.0625], abs=1.5e-3)
+    assert cli.main(["events", str(SCENES / "default.toml"), "--settings", "1"]) == 2
+    assert "--settings" in capsys.readouterr().err
+    assert cli.main(["gear", str(scene), "--out", str(tmp_path)]) == 0
+    assert (tmp_path / "hinkley-stephenson-link.gear.png").read_bytes()[:4] == b"\x89PNG"

@@ -22,6 +22,7 @@ from corliss.engine.geometry import CylinderGeometry
 from corliss.engine.ideal_card import card_area, hyperbolic_card, indicated_steam_kg
 from corliss.engine.network import (compound, cylinder_prefix, piston_ends, single_cylinder,
                                     with_leakage, with_steam_chest, with_wall_heat)
+from corliss.errors import InputError
 from corliss.results import Result
 from corliss.scene import Scene
 from corliss.thermo.steam import HEOSSteam, State, Steam, TableSteam, make_steam
@@ -44,10 +45,29 @@ def build_gear(scene: Scene):
     return gear_type(scene.gear_type).build(scene.gear)
 
 
-def scene_events(scene: Scene) -> dict:
-    """Valve events of both ends, without simulating."""
+def scene_events(scene: Scene, settings: list[float] | None = None):
+    """Valve events of both ends, without simulating.
+
+    With ``settings`` (values of the gear's setting, e.g. the block offset of a link
+    motion), a list of ``{"setting": s, "head": {...}, "crank": {...}}``.
+    """
     geo = geometry_of(scene)
-    return valve_events(build_gear(scene), lambda t: float(geo.fraction(t)))
+    gear = build_gear(scene)
+
+    def frac(t):
+        return float(geo.fraction(t))
+
+    if settings is None:
+        return valve_events(gear, frac)
+    if gear.setting_range is None:
+        raise InputError("--settings", settings, f"no settings: the {gear.name} gear has none")
+    lo, hi = gear.setting_range
+    out = []
+    for v in settings:
+        if not lo <= v <= hi:
+            raise InputError("--settings", v, f"settings from {lo} to {hi} ({gear.setting_name})")
+        out.append({"setting": v, **valve_events(gear.with_setting(v), frac)})
+    return out
 
 
 def transport_of(state: State) -> tuple[float, float, float]:

@@ -32,6 +32,13 @@ class ValveGear:
 
     name: ClassVar[str] = "abstract"
     summary: ClassVar[str] = ""
+    #: What a reverse lever or governor moves, in its natural normalised form, or None.
+    setting_name: ClassVar[str | None] = None
+    setting_range: ClassVar[tuple[float, float] | None] = None
+
+    def with_setting(self, value: float) -> "ValveGear":
+        """The same gear at another setting (see ``setting_name``)."""
+        raise ValueError(f"the {self.name} gear has no setting")
 
     def signed_openings(self, theta: np.ndarray) -> np.ndarray:  # pragma: no cover
         """Signed opening of each port [m], shape ``(4, len(theta))``."""

@@ -99,8 +99,18 @@ class LinkMotion(LappedValve):
     summary = ("link motions in Zeuner's form: Stephenson open or crossed rods, Gooch, Allen "
                "(Spangler Chs. VII-XI); setting = block offset")
 
+    setting_name = "block offset u / c (1 full gear ahead, 0 mid gear, -1 full gear astern)"
+    setting_range = (-1.0, 1.0)
+
     def __init__(self, spec: LinkMotionSpec):
         self.spec = spec
+
+    def with_setting(self, value: float) -> "LinkMotion":
+        import dataclasses
+        lo, hi = self.setting_range
+        if not lo <= value <= hi:
+            raise ValueError(f"setting {value} outside {self.setting_range}")
+        return LinkMotion(dataclasses.replace(self.spec, block_m=value * self.spec.half_link_m))
 
     def travel(self, theta):
         C, S = self.spec.coefficients()
