@@ -112,3 +112,49 @@ def test_peabody_table_of_results(grade):
     assert ev["lead_m"] / IN == pytest.approx(lead, abs=1.5e-3)
     assert ev["cutoff_deg"] == pytest.approx(deg + minutes / 60, abs=1.5 / 60)
     assert ev["cutoff_frac"] == pytest.approx(frac, abs=1.5e-3)
+
+
+def exact(kind, u_in, k=1.0, hanger=True):
+    return LinkMotion(LinkMotionSpec(kind, 2.75 * IN, math.asin(0.9375 / 2.75), 54 * IN * k,
+                                     6 * IN * k, u_in * IN * k, (0.875 * IN,) * 2, (0.0, 0.0),
+                                     1.25 * IN, 10 * IN, motion="exact",
+                                     hanger_m=24 * IN * k if hanger else None))
+
+
+from corliss.valves.link_motion import LinkMotion  # noqa: E402
+
+
+@pytest.mark.parametrize("kind,u", [("stephenson_open", 3.0), ("stephenson_crossed", -3.0)])
+def test_exact_linkage_converges_to_zeuner_as_the_gear_grows(kind, u):
+    """Zeuner's form neglects the rods' obliquity beyond first order, the hanger's arc
+    and the slip of the block (Spangler Art. 45), errors of order r^2/g and r^2/c
+    (Marks Art. 96, eqs. 232 and 249).  Growing the rods, link and hanger together by k
+    (r fixed), the exact linkage's departure from Zeuner's form must fall about as
+    1/k: by at least a third per doubling, to under a quarter of the k = 1 departure at
+    k = 4 (about 0.2 in at k = 1 for this locomotive link).  The leads agree
+    closely at every size: the departures vanish at the dead points."""
+    th = np.linspace(0, 2 * math.pi, 361)
+    errs = []
+    for k in (1.0, 2.0, 4.0):
+        g = exact(kind, u, k)
+        errs.append(np.max(np.abs(g.travel(th) - g.zeuner_travel(th))) / IN)
+        lead = g.travel(np.array([0.0]))[0] - g.zeuner_travel(np.array([0.0]))[0]
+        assert abs(lead) / IN < 0.003
+    assert errs[1] < 0.67 * errs[0] and errs[2] < 0.67 * errs[1]
+    assert errs[2] < 0.25 * errs[0]
+
+
+def test_exact_link_cuts_off_unequally_at_the_two_ends():
+    """Spangler Art. 63: with a real link the crank positions at cut-off are not 180 deg
+    apart, as they are in Zeuner's form."""
+    from corliss.valves.events import end_events
+    g = exact("stephenson_open", 3.0)
+    frac = lambda t: (1 - math.cos(t)) / 2  # noqa: E731
+    head, crank = (end_events(g, e, frac) for e in ("head", "crank"))
+    gap = (crank["cutoff_deg"] - head["cutoff_deg"]) % 360
+    assert abs(gap - 180.0) > 0.5
+    z = LinkMotion(LinkMotionSpec("stephenson_open", 2.75 * IN, math.asin(0.9375 / 2.75),
+                                  54 * IN, 6 * IN, 3 * IN, (0.875 * IN,) * 2, (0.0, 0.0),
+                                  1.25 * IN, 10 * IN))
+    zh, zc = (end_events(z, e, frac) for e in ("head", "crank"))
+    assert (zc["cutoff_deg"] - zh["cutoff_deg"]) % 360 == pytest.approx(180.0, abs=1e-6)
