@@ -1,0 +1,136 @@
+"""Shaft-governor eccentrics: the governor moves the eccentric's centre, changing throw
+and advance together (Spangler Ch. XII, Arts. 84-91).
+
+In Zeuner's form the valve moves as x = C cos(theta) + S sin(theta), where (C, S) is
+the eccentric centre's position in the plane of the valve diagram: C = r sin(delta)
+(lap + lead) and S = r cos(delta).  The governor's setting s runs from 0 (at rest,
+greatest throw, latest cut-off) to 1 (full speed, least throw, earliest cut-off):
+
+* ``path = "straight"``: the centre moves in a straight slot at right angles to the
+  crank, as in the Erie governor (Art. 88) and the Armington & Sims double eccentric
+  set for constant lead (Art. 89): C = lap + lead stays fixed and
+  S(s) = r0 cos(delta0) - s d, with d the centre's travel across the shaft.
+  The lead is the same at every load.
+* ``path = "arc"``: the eccentric's pin swings on an arc about a point fixed to the
+  flywheel, as in the Ball governor (Arts. 90-91): with the arc's centre at (C_v, S_v)
+  and radius a, the pin is at (C_v + a cos(phi), S_v + a sin(phi)), phi running from
+  phi0 at rest through a swing of dphi.  Its distribution is "practically the same as in
+  a Stephenson's link with open rods": placed as the book places it, the lead grows as
+  the cut-off shortens.
+
+Piston valves taking steam inside (Armington & Sims, Ball) move the same x in the
+sense that opens the head steam port, with the eccentric set accordingly (Art. 29).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from corliss.errors import InputError
+from corliss.tables import Table
+from corliss.valves.gear import GearType, register
+from corliss.valves.slide_valve import LappedValve, pair, parse_ports
+
+
+@dataclass(frozen=True)
+class ShaftGovernorSpec:
+    """A governor-moved eccentric and its valve (all SI).
+
+    Attributes
+    ----------
+    path : str
+        ``"straight"`` (Erie, Armington & Sims) or ``"arc"`` (Ball).
+    eccentricity_m, angular_advance_rad : float
+        Throw and advance at rest (s = 0) [m, rad]; for the arc they fix the pin's
+        position at rest.
+    centre_travel_m : float
+        Straight path: how far the centre moves across the shaft at s = 1 [m].
+    arc_radius_m, arc_swing_rad, arc_start_rad : float
+        Arc path: radius of the pin's arc [m], its swing from rest to full speed
+        [rad], and the direction of the pin from the arc's centre at rest, in the
+        valve-diagram plane [rad].
+    setting : float
+        The governor's position s in [0, 1].
+    """
+
+    path: str
+    eccentricity_m: float
+    angular_advance_rad: float
+    lap_m: tuple[float, float]
+    exhaust_lap_m: tuple[float, float]
+    port_width_m: float
+    port_length_m: float
+    discharge_coefficient: float = 0.7
+    ports_per_end: int = 1
+    centre_travel_m: float = 0.0
+    arc_radius_m: float = 0.0
+    arc_swing_rad: float = 0.0
+    arc_start_rad: float = 0.0
+    setting: float = 0.0
+
+    def coefficients(self, s: float | None = None) -> tuple[float, float]:
+        """(C, S) of the eccentric centre at governor setting ``s`` [m]."""
+        s = self.setting if s is None else s
+        c0 = self.eccentricity_m * math.sin(self.angular_advance_rad)
+        s0 = self.eccentricity_m * math.cos(self.angular_advance_rad)
+        if self.path == "straight":
+            return c0, s0 - s * self.centre_travel_m
+        a, p0 = self.arc_radius_m, self.arc_start_rad
+        cv, sv = c0 - a * math.cos(p0), s0 - a * math.sin(p0)
+        p = p0 + s * self.arc_swing_rad
+        return cv + a * math.cos(p), sv + a * math.sin(p)
+
+
+class ShaftGovernorGear(LappedValve):
+    """A slide or piston valve on a governor-moved eccentric."""
+
+    name = "shaft_governor"
+    summary = ("shaft-governor eccentric: Erie and Armington & Sims (straight path, constant "
+               "lead), Ball (arc) (Spangler Ch. XII); setting = governor position 0..1")
+    setting_name = "governor position s (0 at rest, full throw; 1 at full speed)"
+    setting_range = (0.0, 1.0)
+
+    def __init__(self, spec: ShaftGovernorSpec):
+        self.spec = spec
+
+    def with_setting(self, value: float) -> "ShaftGovernorGear":
+        if not 0.0 <= value <= 1.0:
+            raise ValueError(f"setting {value} outside [0, 1]")
+        return ShaftGovernorGear(dataclasses.replace(self.spec, setting=value))
+
+    def travel(self, theta):
+        C, S = self.spec.coefficients()
+        th = np.asarray(theta, dtype=float)
+        return C * np.cos(th) + S * np.sin(th)
+
+
+def parse_shaft_governor(t: Table) -> ShaftGovernorSpec:
+    """Read a ``[valve_gear] type = "shaft_governor"`` table."""
+    path = t.choice("path", ("straight", "arc"))
+    kw = {}
+    if path == "straight":
+        kw["centre_travel_m"] = t.length("centre_travel", positive=True)
+    else:
+        kw["arc_radius_m"] = t.length("arc_radius", positive=True)
+        kw["arc_swing_rad"] = t.angle("arc_swing")
+        kw["arc_start_rad"] = t.angle("arc_start")
+    setting = t.number("setting", 0.0)
+    if not 0.0 <= setting <= 1.0:
+        raise InputError(t.key("setting"), setting, "a governor position from 0 to 1")
+    spec = ShaftGovernorSpec(path, t.length("eccentricity", positive=True),
+                             t.angle("angular_advance"), pair(t, "lap", "length"),
+                             pair(t, "exhaust_lap", "length", "0 in"), setting=setting,
+                             **parse_ports(t), **kw)
+    C, S = spec.coefficients()
+    if max(spec.lap_m) >= math.hypot(C, S):
+        raise InputError(t.key("setting"), setting, "a setting at which the eccentric's throw "
+                         "exceeds the lap (otherwise the port never opens)")
+    return spec
+
+
+register(GearType("shaft_governor", ShaftGovernorGear.summary, parse_shaft_governor,
+                  ShaftGovernorGear))
