@@ -121,9 +121,15 @@ def cmd_gear(args) -> int:
     scene = _load(args.scene)
     gear = build_gear(scene)
     system = scene.output.units
-    fig = plt.figure(figsize=(13, 5.5))
-    plot_valve_travel(gear, fig.add_subplot(1, 2, 1), system)
-    plot_zeuner_diagram(gear, fig.add_subplot(1, 2, 2), system)
+    if hasattr(gear, "draw"):
+        # a gear whose motion is not one lapped valve (double valves, Corliss, four
+        # valves) draws its own travel and diagrams on the figure
+        fig = plt.figure(figsize=(13, 5.5))
+        gear.draw(fig, system)
+    else:
+        fig = plt.figure(figsize=(13, 5.5))
+        plot_valve_travel(gear, fig.add_subplot(1, 2, 1), system)
+        plot_zeuner_diagram(gear, fig.add_subplot(1, 2, 2), system)
     fig.suptitle(f"{scene.title}: {scene.gear_type}", fontsize=11)
     out = Path(args.out if args.out is not None else scene.output.dir) / f"{scene.name}.gear.png"
     out.parent.mkdir(parents=True, exist_ok=True)
