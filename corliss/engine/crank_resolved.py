@@ -63,7 +63,7 @@ class CrankResolved:
         self._perf = (np.array(steam.perfect_params()) if hasattr(steam, "perfect_params")
                       else np.zeros(3))
         self._pr = np.empty((7, network.n_nodes))
-        self._cell = np.empty((2, len(network.geometries)))
+        self._cell = np.empty((len(network.geometries), 4))
 
     def rhs(self, th: float, y: np.ndarray) -> np.ndarray:
         """Derivatives with respect to crank angle [per rad] (Python entry)."""

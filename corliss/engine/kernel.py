@@ -97,10 +97,10 @@ def node_volume(th, net, i):
 
 
 @njit(cache=True, inline="always")
-def locate(th, net, cell):
-    """For each cylinder, the PortMap interval and weight at its own crank angle,
-    written into ``cell`` (index row 0, weight row 1): one search serves all ports."""
-    phase, grid, npts = net[3], net[16], net[17]
+def port_areas(th, net, pa):
+    """Open area of every port of every cylinder at shaft angle ``th`` [m2], written into
+    ``pa`` (shape (cylinders, 4)) from the PortMap tables: one search per cylinder."""
+    phase, grid, npts, area = net[3], net[16], net[17], net[18]
     for c in range(npts.shape[0]):
         n = npts[c]
         t = (th + phase[c]) % TWO_PI
@@ -110,31 +110,36 @@ def locate(th, net, cell):
         if k > n - 2:
             k = n - 2
         g0 = grid[c, k]
-        cell[0, c] = k
-        cell[1, c] = (t - g0) / (grid[c, k + 1] - g0)
+        w = (t - g0) / (grid[c, k + 1] - g0)
+        for p in range(4):
+            pa[c, p] = area[c, p, k] * (1.0 - w) + area[c, p, k + 1] * w
 
 
 @njit(cache=True, inline="always")
-def edge_area(net, e, cell):
-    """Open area of edge ``e`` [m2], with ``cell`` from :func:`locate`."""
-    ekind, ecyl, eport, earea, area = net[11], net[12], net[13], net[14], net[18]
+def edge_area(net, e, pa):
+    """Open area of edge ``e`` [m2]: a fixed orifice's, or its port's from ``pa``."""
+    ekind, ecyl, eport, earea = net[11], net[12], net[13], net[14]
     if ekind[e] == 1:
         return earea[e]
-    c = ecyl[e]
-    k = int(cell[0, c])
-    w = cell[1, c]
-    return area[c, eport[e], k] * (1.0 - w) + area[c, eport[e], k + 1] * w
+    return pa[ecyl[e], eport[e]]
 
 
 @njit(cache=True, inline="always")
-def derivatives(th, y, pr, dy, net, cell):
+def derivatives(th, y, pr, dy, net, pa):
     """Derivatives with respect to crank angle, written into ``dy``, given each node's
     pressure, density, enthalpy, isentropic exponent, dV/dtheta, volume and
-    temperature in the rows of ``pr``; ``cell`` is scratch of shape (2, cylinders)."""
-    omega, band, res = net[0], net[1], net[8]
+    temperature in the rows of ``pr``; ``pa`` is scratch of shape (cylinders, 4)."""
+    port_areas(th, net, pa)
+    balances(y, pr, dy, net, pa)
+
+
+@njit(cache=True, inline="always")
+def balances(y, pr, dy, net, areas):
+    """Mass and energy balances of every node per radian of crank angle, with the
+    port areas given in ``areas`` [m2] and the shaft speed in ``net[0][0]`` [rad/s]."""
+    omega, band, res = net[0][0], net[1], net[8]
     P, RHO, H, K = pr[0], pr[1], pr[2], pr[3]
     geo, ncyl_, end_, heat, wallT = net[2], net[5], net[6], net[19], net[20]
-    locate(th, net, cell)
     ea, eb, ecd = net[9], net[10], net[15]
     nv = P.shape[0]
     ne = ea.shape[0]
@@ -180,7 +185,7 @@ def derivatives(th, y, pr, dy, net, cell):
         else:
             r = -1 - b
             pb, rb, hb, kb = res[r, 0], res[r, 1], res[r, 2], res[r, 3]
-        md = port_flow(edge_area(net, e, cell), ecd[e], pa, ra, ka, pb, rb, kb, band)
+        md = port_flow(edge_area(net, e, areas), ecd[e], pa, ra, ka, pb, rb, kb, band)
         hd = md * (ha if md > 0.0 else hb)
         md /= omega
         hd /= omega
@@ -195,8 +200,9 @@ def derivatives(th, y, pr, dy, net, cell):
 
 
 @njit(cache=True, inline="always")
-def rhs(th, y, dy, net, tier, tab, perf, pr, cell):
-    """Derivatives on a compiled property tier (``pr``, ``cell``: scratch arrays)."""
+def node_states(th, y, net, tier, tab, perf, pr):
+    """Each node's pressure, density, enthalpy, isentropic exponent, dV/dtheta, volume
+    and temperature into the rows of ``pr``, on a compiled property tier."""
     nv = net[4].shape[0]
     for i in range(nv):
         V, dV = node_volume(th, net, i)
@@ -211,6 +217,12 @@ def rhs(th, y, dy, net, tier, tab, perf, pr, cell):
         pr[2, i] = u + p / rho
         pr[3, i] = kappa_of(x, sup)
         pr[6, i] = T
+
+
+@njit(cache=True, inline="always")
+def rhs(th, y, dy, net, tier, tab, perf, pr, cell):
+    """Derivatives on a compiled property tier (``pr``, ``cell``: scratch arrays)."""
+    node_states(th, y, net, tier, tab, perf, pr)
     derivatives(th, y, pr, dy, net, cell)
 
 
@@ -333,7 +345,7 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
     x = np.empty(n)
     yscale = atol / rtol
     pr = np.empty((7, net[4].shape[0]))
-    cell = np.empty((2, net[17].shape[0]))
+    cell = np.empty((net[17].shape[0], 4))
     nfev = 0
     io = 0
     while io < out_theta.shape[0] and out_theta[io] <= stops[0]:

@@ -250,7 +250,7 @@ class Network:
         if self.wall_T is None or self.wall_T.size != self.n_nodes:
             t0 = 0.5 * (self.reservoirs[0].T + self.reservoirs[-1].T)
             self.wall_T = np.full(self.n_nodes, t0)
-        return (float(self.omega), float(self.band), geo, f64(self.phases), i64(self.node_kind),
+        return (np.array([float(self.omega)]), float(self.band), geo, f64(self.phases), i64(self.node_kind),
                 i64(self.node_cyl), i64(self.node_end), f64(self.node_V), res, i64(self.e_a),
                 i64(self.e_b), i64(self.e_kind), i64(self.e_cyl), i64(self.e_port),
                 f64(self.e_area), f64(self.e_cd), grid, npts, area, f64(self.node_heat),
