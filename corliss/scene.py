@@ -24,8 +24,8 @@ from corliss.thermo.steam import BACKENDS, HEOSSteam
 from corliss.valves import gear_type
 
 SECTIONS = ("title", "engine", "supply", "exhaust", "valve_gear", "run", "output", "compound",
-            "lp_valve_gear")
-LATER_SECTIONS = ("governor", "flywheel", "load")
+            "lp_valve_gear", "governor", "flywheel", "load")
+RECORD_CHOICES = ("step", "degree", "cycle")
 
 
 @dataclass(frozen=True)
@@ -87,7 +87,8 @@ class RunSpec:
     Attributes
     ----------
     mode : str
-        ``"steady"`` (constant speed).
+        ``"steady"`` (constant speed) or ``"transient"`` (speed a state, with the
+        flywheel, load and governor of the scene).
     model : str
         ``"crank_resolved"`` or ``"ideal"``.
     speed_rad_s : float
@@ -100,6 +101,17 @@ class RunSpec:
         Simulate exactly this many cycles; None: run until periodic.
     expansion : str
         Expansion law of the ideal card: ``"hyperbolic"`` or ``"isentropic"``.
+    duration_s : float or None
+        Transient: simulated time [s] (rounded up to whole turns).
+    record : str
+        Transient time series: ``"step"`` (every integrator step), ``"degree"`` (every
+        ``output_step`` of crank angle) or ``"cycle"`` (once per turn).
+    settling_band : float
+        Transient: the speed band, as a fraction of the final mean speed, that the
+        settling time is measured to [-].
+    warmup_cycles : int
+        Transient: turns run at the initial speed with the governor held, before t = 0,
+        so the cylinders start from a periodic state.
     """
 
     mode: str
@@ -109,6 +121,10 @@ class RunSpec:
     fidelity: Fidelity
     cycles: int | None
     expansion: str
+    duration_s: float | None = None
+    record: str = "degree"
+    settling_band: float = 0.01
+    warmup_cycles: int = 3
 
     @property
     def speed_rpm(self) -> float:
@@ -176,6 +192,10 @@ class Scene:
     name: str = "scene"
     source: str | None = None
     compound: CompoundSpec | None = None
+    governor_type: str | None = None
+    governor: object | None = None
+    flywheel: object | None = None
+    load: object | None = None
 
     def resolved(self) -> dict:
         """The scene as resolved SI values (for result metadata)."""
@@ -327,9 +347,6 @@ def _supply(t: Table) -> SupplySpec:
 
 def _run(t: Table) -> RunSpec:
     mode = t.choice("mode", ("steady", "transient"), "steady")
-    if mode == "transient":
-        raise InputError(t.key("mode"), mode, "\"steady\": transient runs (speed as a state, "
-                         "flywheel and governor) are not in this version yet")
     model = t.choice("model", MODELS, "crank_resolved")
     speed = t.quantity("speed", "speed")
     if not speed > 0.0:
@@ -384,8 +401,27 @@ def _run(t: Table) -> RunSpec:
         if cycles < 1:
             raise InputError(t.key("cycles"), cycles, "a whole number of cycles >= 1")
     expansion = t.choice("expansion", EXPANSION_LAWS, "hyperbolic")
+    duration = None
+    if mode == "transient":
+        duration = t.quantity("duration", "time")
+        if not 0.0 < duration <= 3600.0:
+            raise InputError(t.key("duration"), t.raw("duration"), "a time above 0, up to 1 h")
+        if cycles is not None:
+            raise InputError(t.key("cycles"), cycles, "no cycles in a transient run: give "
+                             "run.duration")
+    elif t.has("duration"):
+        raise InputError(t.key("duration"), t.raw("duration"), "no duration in a steady run "
+                         "(it runs until periodic, or run.cycles); or mode = \"transient\"")
+    record = t.choice("record", RECORD_CHOICES, "degree")
+    band = t.number("settling_band", 0.01)
+    if not 0.0 < band < 0.5:
+        raise InputError(t.key("settling_band"), band, "a fraction of the speed between 0 and 0.5")
+    warm = t.integer("warmup_cycles", 3)
+    if not 0 <= warm <= 100:
+        raise InputError(t.key("warmup_cycles"), warm, "a number of turns from 0 to 100")
     t.finish()
-    return RunSpec(mode, model, speed, tuple(dict.fromkeys(effects)), fid, cycles, expansion)
+    return RunSpec(mode, model, speed, tuple(dict.fromkeys(effects)), fid, cycles, expansion,
+                   duration, record, band, warm)
 
 
 def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) -> Scene:
@@ -397,9 +433,6 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
         Naming the first offending key.
     """
     for key in data:
-        if key in LATER_SECTIONS:
-            raise InputError(key, "[...]", "no [governor], [flywheel] or [load] section: "
-                             "governed and transient runs are not in this version yet")
         if key not in SECTIONS:
             raise InputError(key, data[key], "a known section: " + ", ".join(SECTIONS))
     for key in SECTIONS[1:6]:
@@ -458,7 +491,62 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
     title = data.get("title", name)
     if not isinstance(title, str):
         raise InputError("title", title, "a string")
-    return Scene(title, engine, supply, exhaust, gt.name, gear, run, output, name, source, compound)
+    loop = _speed_loop(data, run, supply, gt, gear, barometer,
+                       Path(source).parent if source else None)
+    return Scene(title, engine, supply, exhaust, gt.name, gear, run, output, name, source, compound,
+                 **loop)
+
+
+def _speed_loop(data: dict, run: RunSpec, supply: SupplySpec, gt, gear, barometer: float,
+                scene_dir: Path | None) -> dict:
+    """The [flywheel], [load] and [governor] sections of a transient run, checked against
+    the rest of the scene (what the governor moves must exist)."""
+    from corliss.engine.flywheel import parse_flywheel
+    from corliss.engine.load import parse_load
+    present = [k for k in ("governor", "flywheel", "load") if k in data]
+    if run.mode != "transient":
+        if present:
+            raise InputError(present[0], "[...]", "run.mode = \"transient\" beside it: a steady "
+                             "run holds the speed, so it has no flywheel, load or governor")
+        return {}
+    for key in ("flywheel", "load"):
+        if key not in data:
+            raise InputError(key, None, f"a [{key}] section: a transient run needs one")
+    if run.model != "crank_resolved" or not run.has("port_flow"):
+        raise InputError("run.model", run.model, "\"crank_resolved\" with \"port_flow\" in a "
+                         "transient run")
+    flywheel = parse_flywheel(Table(data["flywheel"], "flywheel", barometer))
+    load = parse_load(Table(data["load"], "load", barometer), run.speed_rad_s, scene_dir)
+    out = {"flywheel": flywheel, "load": load}
+    if "governor" in data:
+        from corliss.governors import governor_type
+        g = Table(data["governor"], "governor", barometer)
+        gov_t = governor_type(g.raw("type"))
+        spec = gov_t.parse(g)
+        g.finish()
+        mech = gov_t.build(spec).mechanism(11)
+        lo_hi = sorted((mech.actuator_at_rest, mech.actuator_at_top))
+        if mech.acts_on == "throttle":
+            if not run.has("steam_chest") or supply.pipe_diameter_m is None:
+                raise InputError("governor.type", gov_t.name, "a throttling governor needs the "
+                                 "\"steam_chest\" effect and supply.pipe_diameter: it moves the "
+                                 "throttle in the steam pipe")
+            if not (0.0 <= lo_hi[0] and lo_hi[1] <= 1.0):
+                raise InputError("governor", [mech.actuator_at_rest, mech.actuator_at_top],
+                                 "throttle openings from 0 to 1 at rest and at the top stop")
+        else:
+            g_obj = gt.build(gear)
+            if g_obj.setting_range is None:
+                raise InputError("governor.type", gov_t.name, f"a valve gear with a setting for "
+                                 f"the governor to move; the {gt.name} gear has none")
+            lo, hi = g_obj.setting_range
+            if lo_hi[0] < lo - 1e-12 or lo_hi[1] > hi + 1e-12:
+                raise InputError("governor", [mech.actuator_at_rest, mech.actuator_at_top],
+                                 f"gear settings within the {gt.name} gear's range {lo} to {hi} "
+                                 f"({g_obj.setting_name})")
+        out["governor_type"] = gov_t.name
+        out["governor"] = spec
+    return out
 
 
 def load_scene(path: str | Path) -> Scene:

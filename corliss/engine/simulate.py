@@ -163,7 +163,8 @@ def _cycle_frame(k: int, theta: np.ndarray, omega: float, ends: dict) -> pd.Data
 
 # --- crank-resolved with port flow -------------------------------------------------
 
-def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
+def build_network(scene, geo, pm, steam, chest, exhaust):
+    """The network of control volumes the scene's effects call for."""
     fid = scene.run.fidelity
     omega = scene.run.speed_rad_s
     if scene.compound is None:
@@ -182,10 +183,17 @@ def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
     if scene.run.has("leakage"):
         net = with_leakage(net, scene.engine.valve_leakage_area_m2,
                            scene.engine.piston_leakage_area_m2)
-    heat = scene.run.has("wall_heat")
-    if heat:
+    if scene.run.has("wall_heat"):
         net = with_wall_heat(net, scene.engine.wall_heat_model,
                              scene.engine.marks_constant_W_m2K, transport_of(chest))
+    return net
+
+
+def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
+    fid = scene.run.fidelity
+    omega = scene.run.speed_rad_s
+    net = build_network(scene, geo, pm, steam, chest, exhaust)
+    heat = scene.run.has("wall_heat")
     model = CrankResolved(net, steam, fid.method, fid.rtol, step_deg=fid.step_deg)
     ends_all = piston_ends(net)
     step = math.radians(fid.output_step_deg)

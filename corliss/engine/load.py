@@ -1,0 +1,140 @@
+"""The load on the shaft: a torque that follows a schedule in time and may vary with speed.
+
+    T_load(t, omega) = T_ref f(t) (omega / omega_ref)^k
+
+``T_ref`` is the reference torque (given as a torque, or as a power at the run's
+speed, T = P / omega_ref); ``f(t)`` a schedule of load fractions, piecewise linear in
+time; ``k`` = 0 (constant torque: a hoist, a mill shafting at fixed resistance),
+1 (torque proportional to speed: a generator on a fixed resistance at constant field,
+viscous drag) or 2 (torque as the square of speed: a fan or centrifugal pump).
+
+The schedule (``kind``):
+
+* ``"constant"``: f = 1;
+* ``"step"``: f = 1 until ``step_time``, then ``step_fraction``;
+* ``"ramp"``: f = 1 until ``ramp_start``, linear to ``ramp_fraction`` at ``ramp_end``;
+* ``"schedule"``: a CSV file (``schedule``, relative to the scene) with columns
+  ``time_s`` and ``load_fraction``, read piecewise linearly and held beyond its ends.
+"""
+
+from __future__ import annotations
+
+import csv
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from corliss.errors import InputError
+from corliss.tables import Table
+
+SPEED_LAWS = {"constant": 0, "proportional": 1, "square": 2}
+
+
+@dataclass(frozen=True)
+class LoadSpec:
+    """The shaft load (all SI).
+
+    Attributes
+    ----------
+    torque_N_m : float
+        Reference torque T_ref [N m].
+    speed_law : str
+        ``"constant"``, ``"proportional"`` or ``"square"`` (k = 0, 1, 2).
+    times_s : tuple of float
+        Schedule times [s], non-decreasing (a repeated time is a step).
+    fractions : tuple of float
+        Load fractions f at those times [-].
+    kind : str
+        How the schedule was given.
+    """
+
+    torque_N_m: float
+    speed_law: str
+    times_s: tuple[float, ...]
+    fractions: tuple[float, ...]
+    kind: str
+
+    @property
+    def speed_exponent(self) -> int:
+        return SPEED_LAWS[self.speed_law]
+
+    def fraction(self, t_s):
+        """f(t) [-] (vectorised)."""
+        t = np.asarray(t_s, dtype=float)
+        return np.interp(t, self.times_s, self.fractions)
+
+    def change_times_s(self) -> list[float]:
+        """Times where the schedule changes slope or steps [s]."""
+        return sorted(set(self.times_s[1:-1])) if len(self.times_s) > 2 else []
+
+
+def _fraction(t: Table, key: str) -> float:
+    v = t.number(key)
+    if not 0.0 <= v <= 5.0:
+        raise InputError(t.key(key), v, "a load fraction from 0 to 5 (of the reference load)")
+    return v
+
+
+def parse_load(t: Table, speed_rad_s: float, scene_dir: Path | None) -> LoadSpec:
+    """Read a ``[load]`` table; ``speed_rad_s`` turns a power into the reference torque."""
+    if t.has("torque") == t.has("power"):
+        raise InputError(t.key("torque"), t.raw("torque", None),
+                         "either torque or power (at the run's speed), not both")
+    if t.has("torque"):
+        torque = t.quantity("torque", "torque")
+    else:
+        torque = t.quantity("power", "power") / speed_rad_s
+    if torque < 0.0:
+        raise InputError(t.key("torque" if t.has("torque") else "power"),
+                         t.raw("torque", t.raw("power", None)), "a load of zero or more")
+    law = t.choice("speed_law", tuple(SPEED_LAWS), "constant")
+    kind = t.choice("kind", ("constant", "step", "ramp", "schedule"), "constant")
+    if kind == "constant":
+        times, fracs = (0.0, 1.0), (1.0, 1.0)
+    elif kind == "step":
+        ts = t.quantity("step_time", "time")
+        if ts < 0.0:
+            raise InputError(t.key("step_time"), t.raw("step_time"), "a time of zero or more")
+        f = _fraction(t, "step_fraction")
+        times, fracs = (0.0, ts, ts, ts + 1.0), (1.0, 1.0, f, f)
+    elif kind == "ramp":
+        a = t.quantity("ramp_start", "time")
+        b = t.quantity("ramp_end", "time")
+        if not 0.0 <= a < b:
+            raise InputError(t.key("ramp_end"), t.raw("ramp_end"),
+                             "a ramp end after its start (both zero or more)")
+        f = _fraction(t, "ramp_fraction")
+        times, fracs = (0.0, a, b, b + 1.0), (1.0, 1.0, f, f)
+    else:
+        times, fracs = _read_schedule(t, scene_dir)
+    t.finish()
+    return LoadSpec(torque, law, tuple(times), tuple(fracs), kind)
+
+
+def _read_schedule(t: Table, scene_dir: Path | None):
+    name = t.string("schedule")
+    path = Path(name)
+    if not path.is_absolute() and scene_dir is not None:
+        path = scene_dir / path
+    if not path.is_file():
+        raise InputError(t.key("schedule"), name, "the path of a CSV file (relative to the "
+                         "scene) with columns time_s and load_fraction")
+    with path.open(newline="", encoding="utf-8") as fh:
+        rows = list(csv.DictReader(fh))
+    if not rows or not {"time_s", "load_fraction"} <= set(rows[0]):
+        raise InputError(t.key("schedule"), name, "a CSV with a header row naming the "
+                         "columns time_s and load_fraction")
+    try:
+        times = [float(r["time_s"]) for r in rows]
+        fracs = [float(r["load_fraction"]) for r in rows]
+    except ValueError as exc:
+        raise InputError(t.key("schedule"), name, f"numbers in every row ({exc})") from None
+    if any(b < a for a, b in zip(times, times[1:])) or times[0] < 0.0:
+        raise InputError(t.key("schedule"), name, "times from zero up, never decreasing")
+    if any(not 0.0 <= f <= 5.0 for f in fracs):
+        raise InputError(t.key("schedule"), name, "load fractions from 0 to 5")
+    if len(times) == 1:
+        times, fracs = times * 2, fracs * 2
+        times[1] += 1.0
+    return times, fracs

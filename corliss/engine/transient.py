@@ -1,0 +1,367 @@
+"""Transient runs: the engine, its flywheel, its load and its governor, turn by turn.
+
+The scene's network (the same control volumes and effects as a steady run) is handed
+to the compiled loop of :mod:`corliss.engine.transient_kernel` with speed, governor
+coordinate and time as states.  Before t = 0 the engine runs ``warmup_cycles`` turns
+at the scene's speed with the governor held at its equilibrium for that speed, so the
+cylinders start from a periodic state; then the shaft is released.
+
+What the governor moves is tabulated once: the throttle's effective area against its
+opening, or the valve gear's port areas over a uniform grid of (setting, crank angle),
+with the gear's events at each setting for the per-cycle cut-off.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import time
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+import pandas as pd
+
+from corliss.engine import transient_kernel as tk
+from corliss.engine.network import throttle_area_m2
+from corliss.errors import InputError
+
+log = logging.getLogger(__name__)
+TWO_PI = 2.0 * math.pi
+#: Settings tabulated across a governed gear's actuator range (bilinear in between).
+SETTING_POINTS = 21
+#: Creep speed of the regularised governor friction, as a fraction of full travel per
+#: second: a governor held by friction creeps by less than 0.2 % of its travel a second.
+CREEP_PER_S = 2e-3
+#: The loop stops as stalled when the speed falls below this fraction of the start.
+STALL_FRACTION = 0.05
+
+
+@dataclass
+class LoopTables:
+    """Everything the compiled loop reads besides the network (see transient_kernel)."""
+
+    tr: tuple
+    governed_gear: object | None
+    setting_grid: np.ndarray | None
+    cutoff_table: np.ndarray | None      # (2, settings): head, crank cut-off fraction
+    z0: float
+    mechanism: object | None
+
+
+def equilibrium_z(mech, omega_shaft: float) -> float:
+    """The governor coordinate at which it balances at shaft speed ``omega_shaft``:
+    G(z) (ratio omega)^2 = R(z), found on the tabulated grid; a stop if none."""
+    wg2 = (mech.ratio * omega_shaft) ** 2
+    f = mech.G * wg2 - mech.R
+    if f[0] <= 0.0:
+        return 0.0
+    if f[-1] >= 0.0:
+        return 1.0
+    k = int(np.nonzero(f < 0.0)[0][0])
+    z0, z1 = mech.z[k - 1], mech.z[k]
+    return float(z0 + (z1 - z0) * f[k - 1] / (f[k - 1] - f[k]))
+
+
+def _governor_arrays(mech):
+    z = np.asarray(mech.z, dtype=float)
+    if not (abs(z[0]) < 1e-12 and abs(z[-1] - 1.0) < 1e-12 and np.allclose(np.diff(z), z[1] - z[0])):
+        raise ValueError("the governor's mechanism must be tabulated on a uniform grid of z "
+                         "from 0 to 1")
+    return np.vstack([mech.M, mech.dM_dz, mech.G, mech.R, mech.J]).astype(float)
+
+
+def _gear_tables(gear, lo: float, hi: float, ncyl: int, governed: np.ndarray, nth: int,
+                 frac: Callable):
+    """Port areas over (setting, crank angle) and cut-off per setting."""
+    from corliss.valves.events import events as gear_events
+    grid = np.linspace(lo, hi, SETTING_POINTS) if hi > lo else np.array([lo])
+    theta = np.linspace(0.0, TWO_PI, nth + 1)
+    area = np.zeros((ncyl, 4, grid.size, nth + 1))
+    cut = np.full((2, grid.size), np.nan)
+    for j, s in enumerate(grid):
+        g = gear.with_setting(float(s))
+        a = g.areas(theta)
+        for c in range(ncyl):
+            if governed[c]:
+                area[c, :, j, :] = a
+        ev = gear_events(g, frac)
+        for e, end in enumerate(("head", "crank")):
+            v = ev[end]["cutoff_frac"]
+            cut[e, j] = np.nan if v is None else v
+    return grid, area, cut
+
+
+def _trip_tables(gear, grid: np.ndarray, nth: int):
+    """The trip arrays of a gear that releases its steam valves (see trip_areas)."""
+    theta = np.linspace(0.0, TWO_PI, nth + 1)
+    latched = gear.latched_signed_openings(theta)
+    widths = gear.port_widths()
+    lengths = gear.port_lengths()
+    t_close = float(gear.closing_time_s)
+    nf = 101
+    rows = np.full((7, max(grid.size, nf)), np.nan)
+    rows[0, :grid.size] = grid
+    rows[5, :nf] = gear.closing_fraction(np.linspace(0.0, t_close, nf))
+    rows[6, :] = 0.0
+    rows[6, 0] = t_close
+    rows[6, 5] = grid.size
+    rows[6, 6] = nf
+    for e, port in enumerate((0, 2)):
+        op = latched[port]
+        opened = op > 0.0
+        # the latched window: from where the opening rises through zero to where it falls
+        rise = np.nonzero(~opened[:-1] & opened[1:])[0]
+        fall = np.nonzero(opened[:-1] & ~opened[1:])[0]
+        if rise.size == 0 or fall.size == 0:
+            raise ValueError("a trip gear's latched steam valve must open and close once a turn")
+        rows[6, 3 + e] = theta[rise[0]]
+        rows[6, 1 + e] = theta[fall[0] + 1]
+        for j, s in enumerate(grid):
+            rel = gear.release_angle_rad(float(s))[e]
+            rows[1 + e, j] = np.nan if rel is None else rel
+            if rel is not None:
+                x = float(np.interp(rel % TWO_PI, theta, op))
+                rows[3 + e, j] = min(max(x, 0.0), widths[port]) * lengths[port]
+    return rows, latched
+
+
+def build_tables(scene, net, build_gear) -> LoopTables:
+    """The loop's parameter tuple from the scene and its network."""
+    from corliss.engine.geometry import CylinderGeometry
+
+    fid = scene.run.fidelity
+    omega0 = scene.run.speed_rad_s
+    ncyl = len(net.geometries)
+    sc = np.zeros(tk.N_SCALARS)
+    sc[tk.S_INERTIA] = scene.flywheel.inertia_kg_m2
+    if scene.run.has("inertia") and scene.engine.reciprocating_mass_kg:
+        sc[tk.S_MREC] = scene.engine.reciprocating_mass_kg
+    sc[tk.S_FRICTION_ON] = 1.0 if scene.run.has("friction") else 0.0
+    sc[tk.S_TF0] = scene.engine.friction_torque_N_m
+    sc[tk.S_TF1] = scene.engine.friction_N_m_s
+    load = scene.load
+    sc[tk.S_KLAW] = load.speed_exponent
+    sc[tk.S_TREF] = load.torque_N_m
+    sc[tk.S_WREF] = omega0
+    sc[tk.S_WMIN] = STALL_FRACTION * omega0
+    lt = np.asarray(load.times_s, dtype=float)
+    lf = np.asarray(load.fractions, dtype=float)
+    gov = np.zeros((5, 2))
+    gov[0, :] = 1.0
+    sgrid = np.zeros(1)
+    area_s = np.zeros((ncyl, 4, 1, 2))
+    governed = np.zeros(ncyl, dtype=np.int64)
+    thr = np.zeros(2)
+    trip = np.zeros((7, 2))
+    mech = None
+    gear = None
+    cut = None
+    z0 = 0.0
+    if scene.governor is not None:
+        from corliss.governors import governor_type
+        g = governor_type(scene.governor_type).build(scene.governor)
+        mech = g.mechanism(201)
+        gov = _governor_arrays(mech)
+        sc[tk.S_HAS_GOV] = 1.0
+        sc[tk.S_RATIO] = mech.ratio
+        sc[tk.S_DAMP] = mech.c
+        sc[tk.S_FRIC] = mech.F_f
+        sc[tk.S_VEPS] = CREEP_PER_S
+        sc[tk.S_A0] = mech.actuator_at_rest
+        sc[tk.S_A1] = mech.actuator_at_top
+        z0 = equilibrium_z(mech, omega0)
+        if mech.acts_on == "throttle":
+            sc[tk.S_ACT_GEAR] = 0.0
+            sc[tk.S_THR_EDGE] = net.edge("steam_pipe")
+            import dataclasses
+            openings = np.linspace(0.0, 1.0, 201)
+            thr = np.array([0.0] + [throttle_area_m2(dataclasses.replace(scene.supply, throttle=x))
+                                    for x in openings[1:]])
+        else:
+            sc[tk.S_ACT_GEAR] = 1.0
+            gear = build_gear(scene)
+            lo, hi = sorted((mech.actuator_at_rest, mech.actuator_at_top))
+            governed[:] = 1
+            if scene.compound is not None:
+                governed[1:] = 0     # the governor moves the HP gear; the LP's is fixed
+            geo = CylinderGeometry(scene.engine, rod_angularity=scene.run.has("rod_angularity"))
+            sgrid, area_s, cut = _gear_tables(gear, lo, hi, ncyl, governed, fid.portmap_points,
+                                              lambda t: float(geo.fraction(t)))
+            if hasattr(gear, "release_angle_rad"):
+                # the table holds the latched steam valves; the loop trips them itself,
+                # at its own speed
+                trip, latched = _trip_tables(gear, sgrid, fid.portmap_points)
+                sc[tk.S_TRIP] = 1.0
+                w, ln = gear.port_widths(), gear.port_lengths()
+                for c in range(ncyl):
+                    if governed[c]:
+                        for port in (0, 2):
+                            area_s[c, port, :, :] = (np.clip(latched[port], 0.0, w[port])
+                                                     * ln[port])[None, :]
+    tr = (sc, lt, lf, sgrid, area_s, governed, gov, trip, thr)
+    return LoopTables(tr, gear, sgrid if gear is not None else None, cut, z0, mech)
+
+
+def run_transient(scene, *, progress: Callable[[float, float], None] | None = None) -> dict:
+    """Run a transient scene.
+
+    Parameters
+    ----------
+    scene : Scene
+        ``run.mode = "transient"`` with [flywheel], [load] and optionally [governor].
+    progress : callable, optional
+        Called after each turn with (simulated time [s], duration [s]).
+
+    Returns
+    -------
+    dict
+        ``timeseries``, ``cycles`` (per-turn table), ``tables`` (LoopTables), ``network``,
+        ``nfev``, ``status``, and the warm-up turns' count.
+    """
+    from corliss.engine.simulate import (build_gear, build_network, geometry_of,
+                                         reservoir_states)
+    from corliss.thermo.steam import make_steam
+    from corliss.valves import tabulate
+
+    t_wall = time.perf_counter()
+    run = scene.run
+    fid = run.fidelity
+    steam = make_steam(fid.properties)
+    if steam.kernel_tier is None:
+        raise InputError("run.fidelity", fid.name, "a fidelity on a compiled property tier "
+                         "(\"standard\" or \"fast\", or properties = \"table\"): the transient "
+                         "loop is compiled")
+    chest, exhaust = reservoir_states(scene, steam)
+    geo = geometry_of(scene)
+    gear = build_gear(scene)
+    pm = tabulate(gear, fid.portmap_points)
+    network = build_network(scene, geo, pm, steam, chest, exhaust)
+    tables = build_tables(scene, network, build_gear)
+    net = network.arrays()
+    tab = steam.table.arrays() if hasattr(steam, "table") else _any_table()
+    perf = (np.array(steam.perfect_params()) if hasattr(steam, "perfect_params") else np.zeros(3))
+    nn = network.n_state
+    omega0 = run.speed_rad_s
+    y = np.concatenate([network.initial_state(), np.zeros(tk.N_EXTRA)])
+    y[nn + tk.X_OMEGA] = omega0
+    y[nn + tk.X_Z] = tables.z0
+    atol = np.concatenate([fid.rtol * network.scales(),
+                           fid.rtol * np.array([omega0, 1.0, 1.0, 1.0, 1e3, 1e3, 1e3, 1.0, 1.0])])
+    sc = tables.tr[0]
+    rtol = fid.rtol
+    nfev = 0
+    # warm-up: speed and governor held, time held at zero
+    sc[tk.S_FREEZE] = 1.0
+    for _ in range(run.warmup_cycles):
+        y[network.n_dyn:nn] = 0.0
+        y[nn + tk.X_TIME] = 0.0
+        y, _, _, _, nf_, status = tk.integrate_turn(y, 0.0, np.zeros(0), rtol, atol, net,
+                                                    steam.kernel_tier, tab, perf, tables.tr,
+                                                    False, math.inf)
+        nfev += nf_
+        if status == 1:
+            raise RuntimeError("the integrator failed during the warm-up turns")
+    sc[tk.S_FREEZE] = 0.0
+    y[nn + tk.X_TIME] = 0.0
+    y[nn + tk.X_OMEGA] = omega0
+    y[nn + tk.X_ZDOT] = 0.0
+    duration = run.duration_s
+    record = run.record
+    step = math.radians(fid.output_step_deg)
+    n_out = max(1, int(round(TWO_PI / step)))
+    rows, frames = [], []
+    k = 0
+    status = 0
+    while y[nn + tk.X_TIME] < duration:
+        th0 = TWO_PI * k
+        y[network.n_dyn:nn] = 0.0
+        for q in (tk.X_WLOAD, tk.X_WFRIC, tk.X_WGAS, tk.X_ZDT, tk.X_ADT):
+            y[nn + q] = 0.0
+        y_start = y.copy()
+        if record == "degree":
+            out_theta = th0 + np.arange(n_out) * (TWO_PI / n_out)
+        elif record == "cycle":
+            out_theta = np.array([th0])
+        else:
+            out_theta = np.zeros(0)
+        y, samples, rec, n_rec, nf_, status = tk.integrate_turn(
+            y, th0, out_theta, rtol, atol, net, steam.kernel_tier, tab, perf, tables.tr,
+            record == "step", duration)
+        nfev += nf_
+        if status == 1:
+            raise RuntimeError(f"the integrator failed in turn {k + 1} (step size collapsed)")
+        rows.append(_cycle_row(k, y_start, y, network, tables, nn))
+        frames.append(_frame(network, steam, net, tables, out_theta, samples, rec, n_rec, record,
+                             nn))
+        k += 1
+        if progress:
+            progress(float(y[nn + tk.X_TIME]), duration)
+        if status == 2:
+            log.warning("the engine stalled at t = %.3f s", y[nn + tk.X_TIME])
+            break
+    timeseries = pd.concat(frames, ignore_index=True)
+    return {"timeseries": timeseries, "cycles": pd.DataFrame(rows), "tables": tables,
+            "network": network, "nfev": nfev, "stalled": status == 2, "chest": chest,
+            "exhaust": exhaust, "geometry": geo, "portmap": pm, "property_tier": steam.name,
+            "wall_time_s": time.perf_counter() - t_wall}
+
+
+def _any_table():
+    from corliss.thermo.steam_table import load_table
+    return load_table().arrays()
+
+
+def _cycle_row(k: int, y0: np.ndarray, y: np.ndarray, network, tables: LoopTables, nn: int):
+    """One turn's totals: speed, powers, steam, governor and what it set."""
+    t0, t1 = y0[nn + tk.X_TIME], y[nn + tk.X_TIME]
+    dt = t1 - t0
+    w_gas = y[nn + tk.X_WGAS]
+    row = {"cycle": k + 1, "t_start_s": t0, "t_end_s": t1,
+           "mean_speed_rpm": TWO_PI / dt * 60.0 / TWO_PI,
+           "speed_start_rpm": y0[nn + tk.X_OMEGA] * 60.0 / TWO_PI,
+           "speed_end_rpm": y[nn + tk.X_OMEGA] * 60.0 / TWO_PI,
+           "indicated_work_J": w_gas, "indicated_power_W": w_gas / dt,
+           "load_work_J": y[nn + tk.X_WLOAD], "load_power_W": y[nn + tk.X_WLOAD] / dt,
+           "friction_work_J": y[nn + tk.X_WFRIC],
+           "governor_z": y[nn + tk.X_ZDT] / dt, "governor_z_end": y[nn + tk.X_Z]}
+    totals = network.boundary_totals(y)
+    row["steam_kg"] = totals["m_supply_kg"]
+    row["steam_rate_kg_per_h"] = totals["m_supply_kg"] / dt * 3600.0
+    act = y[nn + tk.X_ADT] / dt
+    mech = tables.mechanism
+    if mech is not None:
+        if mech.acts_on == "throttle":
+            row["throttle_opening"] = act
+        else:
+            row["gear_setting"] = act
+            grid, cut = tables.setting_grid, tables.cutoff_table
+            if grid.size > 1:
+                row["cutoff_head_frac"] = float(np.interp(act, grid, cut[0]))
+                row["cutoff_crank_frac"] = float(np.interp(act, grid, cut[1]))
+            else:
+                row["cutoff_head_frac"], row["cutoff_crank_frac"] = cut[0, 0], cut[1, 0]
+    return row
+
+
+def _frame(network, steam, net, tables, out_theta, samples, rec, n_rec, record, nn):
+    """The time-series rows of one turn."""
+    from corliss.engine.simulate import _states
+    if record == "step":
+        r = rec[:, :n_rec]
+        return pd.DataFrame({"time_s": r[4], "crank_angle_deg": np.degrees(r[0]),
+                             "speed_rpm": r[1] * 60.0 / TWO_PI, "governor_z": r[2],
+                             "actuator": r[3], "indicated_torque_N_m": r[5],
+                             "load_torque_N_m": r[6]})
+    s = samples
+    omega = s[nn + tk.X_OMEGA]
+    z = np.clip(s[nn + tk.X_Z], 0.0, 1.0)
+    sc = tables.tr[0]
+    cols = {"time_s": s[nn + tk.X_TIME], "crank_angle_deg": np.degrees(out_theta),
+            "speed_rpm": omega * 60.0 / TWO_PI, "governor_z": z,
+            "actuator": sc[tk.S_A0] + (sc[tk.S_A1] - sc[tk.S_A0]) * z}
+    for end in ("head", "crank"):
+        i = network.node(end)
+        V = network.volume(i, out_theta)
+        cols[f"p_{end}_Pa"] = _states(steam, s[2 * i] / V, s[2 * i + 1] / s[2 * i])[0]
+    return pd.DataFrame(cols)

@@ -1,0 +1,409 @@
+"""The compiled speed loop: cylinders, shaft, flywheel, load and governor integrated together.
+
+The engine's control volumes are those of :mod:`corliss.engine.network`, with their
+balances from :func:`corliss.engine.kernel.balances`; here the crank speed omega is a
+state instead of a constant, and three more states join it: the governor's coordinate
+z in [0, 1], its rate dz/dt, and the time t.  Crank angle stays the independent
+variable (a cycle is a fixed span of it, so per-cycle quantities are integrals over
+one turn), and every rate is divided by omega.
+
+Shaft (the crank train as one degree of freedom, Lagrange's equation for theta)::
+
+    I_e(theta) domega/dt + 1/2 I_e'(theta) omega^2 = T_gas - T_friction - T_load
+    I_e = I_flywheel + sum_c m_rec (ds_c/dtheta)^2          (``inertia`` effect)
+    T_gas = sum_i p_i dV_i/dtheta                             (indicated torque)
+
+so that d/dt (1/2 I_e omega^2) = (T_gas - T_friction - T_load) omega: the flywheel's
+energy balances the torque integral (a test checks this).  Friction, when the scene
+names it, is T_f0 + T_f1 omega; the load is T_ref f(t) (omega/omega_ref)^k with f
+piecewise linear in time (steps are two points at one time) and k = 0, 1 or 2.
+
+Governor (the common form of :mod:`corliss.governors`; spindle speed w_g = ratio
+omega)::
+
+    M(z) z'' + 1/2 M'(z) z'^2 = G(z) w_g^2 - R(z) - c z' - F_f sat(z'/v_e) - J(z) dw_g/dt
+
+with M, M', G, R, J tabulated on a uniform grid of z and read linearly.  Coulomb
+friction is regularised over a creep speed v_e (a governor held by friction creeps at
+less than v_e, small against its travel in a cycle).  Stops at z = 0 and z = 1 are
+inelastic: the right-hand side does not push past a stop, and after every step z is
+clipped to [0, 1] with the velocity into the stop removed.
+
+The governor's actuator value a = a0 + (a1 - a0) z either opens the throttle (the
+steam pipe's effective area read from a table of opening) or sets the valve gear,
+whose port areas come from a table over (setting, crank angle), both uniform grids,
+read bilinearly.  Integration: Dormand-Prince 5(4) as in :mod:`corliss.engine.kernel`,
+with no stops inside a cycle (port kinks move with the setting).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from corliss.engine.kernel import _A, _C, _E, _hermite, balances, node_states, port_areas
+
+TWO_PI = 2.0 * math.pi
+
+# layout of the scalar parameters ``sc``
+S_INERTIA, S_MREC, S_TF0, S_TF1, S_RATIO, S_DAMP, S_FRIC, S_VEPS = 0, 1, 2, 3, 4, 5, 6, 7
+S_KLAW, S_TREF, S_WREF, S_ACT_GEAR, S_A0, S_A1, S_HAS_GOV, S_THR_EDGE = 8, 9, 10, 11, 12, 13, 14, 15
+S_FREEZE, S_FRICTION_ON, S_WMIN, S_TRIP = 16, 17, 18, 19
+N_SCALARS = 20
+
+# the extra states after the network's, relative to its length
+X_OMEGA, X_Z, X_ZDOT, X_TIME, X_WLOAD, X_WFRIC, X_WGAS, X_ZDT, X_ADT = 0, 1, 2, 3, 4, 5, 6, 7, 8
+N_EXTRA = 9
+#: what a recorded step keeps: theta, omega, z, actuator, t, T_gas, T_load, then
+#: p of every node
+N_REC = 7
+
+
+@njit(cache=True, inline="always")
+def piston_kinematics(th, net, c):
+    """(ds/dtheta, d2s/dtheta2) of cylinder ``c``'s piston [m/rad, m/rad2]."""
+    geo, phase = net[2], net[3]
+    R, L, ang = geo[c, 0], geo[c, 1], geo[c, 7]
+    a = th + phase[c]
+    sn = math.sin(a)
+    cs = math.cos(a)
+    ds = R * sn
+    d2s = R * cs
+    if ang > 0.0:
+        root = math.sqrt(L * L - R * R * sn * sn)
+        ds += R * R * sn * cs / root
+        d2s += R * R * (cs * cs - sn * sn) / root + R ** 4 * sn * sn * cs * cs / root ** 3
+    return ds, d2s
+
+
+@njit(cache=True, inline="always")
+def _lin(grid0, dgrid, table, x):
+    """Linear interpolation in a table on a uniform grid, clamped at its ends."""
+    n = table.shape[0]
+    f = (x - grid0) / dgrid
+    if f <= 0.0:
+        return table[0]
+    if f >= n - 1:
+        return table[n - 1]
+    k = int(f)
+    w = f - k
+    return table[k] * (1.0 - w) + table[k + 1] * w
+
+
+@njit(cache=True, inline="always")
+def load_factor(t, lt, lf):
+    """The load schedule f(t): piecewise linear, constant beyond its ends."""
+    n = lt.shape[0]
+    if t <= lt[0]:
+        return lf[0]
+    if t >= lt[n - 1]:
+        return lf[n - 1]
+    k = np.searchsorted(lt, t, side="right") - 1
+    dt = lt[k + 1] - lt[k]
+    if dt <= 0.0:
+        return lf[k + 1]
+    return lf[k] + (lf[k + 1] - lf[k]) * (t - lt[k]) / dt
+
+
+@njit(cache=True, inline="always")
+def governed_areas(th, s, omega, net, tr, pa):
+    """Port areas of the governed cylinders at gear setting ``s``, bilinear in the
+    (setting, crank angle) table; with a trip gear, the steam valves released at the
+    setting's cam and closed by the dash-pot in its own time."""
+    sc, sgrid, area_s, governed = tr[0], tr[3], tr[4], tr[5]
+    phase = net[3]
+    ns = sgrid.shape[0]
+    nth = area_s.shape[3] - 1
+    fs = (s - sgrid[0]) / (sgrid[ns - 1] - sgrid[0]) * (ns - 1) if ns > 1 else 0.0
+    if fs < 0.0:
+        fs = 0.0
+    if fs > ns - 1:
+        fs = ns - 1.0
+    j = int(fs)
+    if j > ns - 2:
+        j = max(ns - 2, 0)
+    ws = fs - j
+    j1 = j + 1 if ns > 1 else j
+    for c in range(governed.shape[0]):
+        if governed[c] == 0:
+            continue
+        t = (th + phase[c]) % TWO_PI
+        ft = t / TWO_PI * nth
+        k = int(ft)
+        if k > nth - 1:
+            k = nth - 1
+        wt = ft - k
+        for p in range(4):
+            a0 = area_s[c, p, j, k] * (1.0 - wt) + area_s[c, p, j, k + 1] * wt
+            a1 = area_s[c, p, j1, k] * (1.0 - wt) + area_s[c, p, j1, k + 1] * wt
+            pa[c, p] = a0 * (1.0 - ws) + a1 * ws
+        if sc[S_TRIP] > 0.0:
+            trip_areas(t, s, omega, tr, c, pa)
+
+
+@njit(cache=True, inline="always")
+def trip_areas(t, s, omega, tr, c, pa):
+    """A trip gear's steam ports (0: head, 2: crank): the latched opening (as tabulated)
+    until the cam releases the valve at its release angle, then at most the opening at
+    release times the dash-pot's closing fraction of the time since release, until the
+    latched valve would have closed anyway."""
+    trip = tr[7]
+    # trip rows: 0 setting grid, 1/2 head/crank release angle per setting (nan: none),
+    # 3/4 head/crank latched opening area at release, 5 closing-fraction table over
+    # time (uniform from 0 to the closing time), scalars in row 6: closing time,
+    # head/crank latched closing angle, head/crank latched opening angle, the number
+    # of settings, the number of points of the closing table
+    sg = trip[0]
+    n = int(trip[6, 5])
+    nf = int(trip[6, 6])
+    tclose = trip[6, 0]
+    for e in range(2):
+        port = 2 * e
+        f = (s - sg[0]) / (sg[n - 1] - sg[0]) * (n - 1) if n > 1 else 0.0
+        if f < 0.0:
+            f = 0.0
+        if f > n - 1:
+            f = n - 1.0
+        k = int(f)
+        if k > n - 2:
+            k = max(n - 2, 0)
+        w = f - k
+        if n == 1:
+            w = 0.0
+        r0 = trip[1 + e, k]
+        r1 = trip[1 + e, k + 1]
+        if math.isnan(r0) or math.isnan(r1):
+            continue
+        rel = r0 * (1.0 - w) + r1 * w
+        open_ang = trip[6, 3 + e]
+        close_ang = trip[6, 1 + e]
+        # angles measured from the latched opening, so the window does not wrap
+        since_open = (t - open_ang) % TWO_PI
+        rel_from_open = (rel - open_ang) % TWO_PI
+        window = (close_ang - open_ang) % TWO_PI
+        if rel_from_open >= window:
+            continue
+        if since_open < rel_from_open or since_open > window:
+            continue
+        a_rel = trip[3 + e, k] * (1.0 - w) + trip[3 + e, k + 1] * w
+        tau = (since_open - rel_from_open) / omega
+        frac = _lin(0.0, tclose / (nf - 1), trip[5, :nf], tau) if tau < tclose else 0.0
+        lim = a_rel * frac
+        if pa[c, port] > lim:
+            pa[c, port] = lim
+
+
+@njit(cache=True)
+def transient_rhs(th, y, dy, net, tier, tab, perf, pr, pa, tr, out):
+    """Derivatives with respect to crank angle of the whole loop, into ``dy``;
+    ``out`` receives (T_gas, T_load, actuator, domega/dt) for recording."""
+    sc, lt, lf, gov = tr[0], tr[1], tr[2], tr[6]
+    nv = net[4].shape[0]
+    nn = y.shape[0] - N_EXTRA
+    omega = y[nn + X_OMEGA]
+    if omega < sc[S_WMIN]:
+        omega = sc[S_WMIN]
+    z = y[nn + X_Z]
+    zd = y[nn + X_ZDOT]
+    zc = min(max(z, 0.0), 1.0)
+    act = sc[S_A0] + (sc[S_A1] - sc[S_A0]) * zc
+    net[0][0] = omega
+    node_states(th, y, net, tier, tab, perf, pr)
+    port_areas(th, net, pa)
+    if sc[S_HAS_GOV] > 0.0:
+        if sc[S_ACT_GEAR] > 0.0:
+            governed_areas(th, act, omega, net, tr, pa)
+        else:
+            e = int(sc[S_THR_EDGE])
+            net[14][e] = _lin(0.0, 1.0 / (tr[8].shape[0] - 1), tr[8], act)
+    balances(y, pr, dy, net, pa)
+    # shaft
+    tgas = 0.0
+    for i in range(nv):
+        tgas += pr[0, i] * pr[4, i]
+    ie = sc[S_INERTIA]
+    die = 0.0
+    mrec = sc[S_MREC]
+    if mrec > 0.0:
+        for c in range(net[2].shape[0]):
+            ds, d2s = piston_kinematics(th, net, c)
+            ie += mrec * ds * ds
+            die += 2.0 * mrec * ds * d2s
+    t = y[nn + X_TIME]
+    tload = sc[S_TREF] * load_factor(t, lt, lf)
+    k = sc[S_KLAW]
+    if k > 0.0:
+        tload *= (omega / sc[S_WREF]) ** k
+    tf = 0.0
+    if sc[S_FRICTION_ON] > 0.0:
+        tf = sc[S_TF0] + sc[S_TF1] * omega
+    wdot = (tgas - tf - tload - 0.5 * die * omega * omega) / ie
+    if sc[S_FREEZE] > 0.0:
+        wdot = 0.0
+    dy[nn + X_OMEGA] = wdot / omega
+    dy[nn + X_TIME] = 1.0 / omega
+    dy[nn + X_WLOAD] = tload
+    dy[nn + X_WFRIC] = tf
+    dy[nn + X_WGAS] = tgas
+    dy[nn + X_ZDT] = zc / omega
+    dy[nn + X_ADT] = act / omega
+    # governor
+    zdd = 0.0
+    if sc[S_HAS_GOV] > 0.0 and sc[S_FREEZE] == 0.0:
+        ng = gov.shape[1]
+        dz = 1.0 / (ng - 1)
+        M = _lin(0.0, dz, gov[0], zc)
+        dM = _lin(0.0, dz, gov[1], zc)
+        G = _lin(0.0, dz, gov[2], zc)
+        R = _lin(0.0, dz, gov[3], zc)
+        J = _lin(0.0, dz, gov[4], zc)
+        wg = sc[S_RATIO] * omega
+        v = zd / sc[S_VEPS]
+        if v > 1.0:
+            v = 1.0
+        if v < -1.0:
+            v = -1.0
+        force = (G * wg * wg - R - sc[S_DAMP] * zd - sc[S_FRIC] * v
+                 - J * sc[S_RATIO] * wdot - 0.5 * dM * zd * zd)
+        zdd = force / M
+        if (z <= 0.0 and zdd < 0.0 and zd <= 0.0) or (z >= 1.0 and zdd > 0.0 and zd >= 0.0):
+            zdd = 0.0
+            zd = 0.0
+        dy[nn + X_Z] = zd / omega
+        dy[nn + X_ZDOT] = zdd / omega
+    else:
+        dy[nn + X_Z] = 0.0
+        dy[nn + X_ZDOT] = 0.0
+    out[0] = tgas
+    out[1] = tload
+    out[2] = act
+    out[3] = wdot
+
+
+@njit(cache=True)
+def _project(y, nn):
+    """Inelastic stops of the governor: z in [0, 1], no velocity into a stop."""
+    z = y[nn + X_Z]
+    if z < 0.0:
+        y[nn + X_Z] = 0.0
+        if y[nn + X_ZDOT] < 0.0:
+            y[nn + X_ZDOT] = 0.0
+    elif z > 1.0:
+        y[nn + X_Z] = 1.0
+        if y[nn + X_ZDOT] > 0.0:
+            y[nn + X_ZDOT] = 0.0
+
+
+@njit(cache=True)
+def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, record, t_end):
+    """Integrate one turn, from ``th0`` to ``th0 + 2 pi`` (dopri5, dense Hermite output).
+
+    Returns ``(y_end, samples, rec, n_rec, nfev, status)``: ``samples[:, k]`` the state at
+    ``out_theta[k]``; ``rec`` rows (theta, omega, z, actuator, t, T_gas, T_load) of
+    every accepted step when ``record``; ``status`` 0 ok, 1 step size collapsed,
+    2 the engine stalled (omega below the floor), 3 time ``t_end`` passed (the turn was
+    finished anyway).
+    """
+    n = y0.shape[0]
+    nn = n - N_EXTRA
+    y = y0.copy()
+    samples = np.full((n, out_theta.shape[0]), np.nan)
+    nrec_max = 40000 if record else 1
+    rec = np.empty((N_REC, nrec_max))
+    n_rec = 0
+    f0 = np.empty(n)
+    K = np.empty((7, n))
+    ytmp = np.empty(n)
+    tmp = np.empty(n)
+    pr = np.empty((7, net[4].shape[0]))
+    pa = np.empty((net[17].shape[0], 4))
+    out = np.empty(4)
+    sc = tr[0]
+    a = th0
+    b = th0 + TWO_PI
+    t = a
+    transient_rhs(t, y, f0, net, tier, tab, perf, pr, pa, tr, out)
+    nfev = 1
+    io = 0
+    while io < out_theta.shape[0] and out_theta[io] <= a:
+        samples[:, io] = y
+        io += 1
+    if record:
+        rec[0, 0] = t
+        rec[1, 0] = y[nn + X_OMEGA]
+        rec[2, 0] = y[nn + X_Z]
+        rec[3, 0] = out[2]
+        rec[4, 0] = y[nn + X_TIME]
+        rec[5, 0] = out[0]
+        rec[6, 0] = out[1]
+        n_rec = 1
+    scale = 0.0
+    for i in range(n):
+        v = abs(f0[i]) / (atol[i] + rtol * abs(y[i]))
+        if v > scale:
+            scale = v
+    h = 0.01 * (rtol ** 0.2) / scale if scale > 0.0 else 0.01
+    h = min(max(h, 1e-7), 0.05)
+    status = 0
+    while t < b:
+        if t + h > b or b - (t + h) < 1e-12:
+            h = b - t
+        K[0, :] = f0
+        for s_ in range(1, 7):
+            for i in range(n):
+                acc = 0.0
+                for j in range(s_):
+                    acc += _A[s_, j] * K[j, i]
+                ytmp[i] = y[i] + h * acc
+            transient_rhs(t + _C[s_] * h, ytmp, K[s_], net, tier, tab, perf, pr, pa, tr, out)
+        nfev += 6
+        err = 0.0
+        for i in range(n):
+            e = 0.0
+            for j in range(7):
+                e += _E[j] * K[j, i]
+            e = abs(h * e) / (atol[i] + rtol * max(abs(y[i]), abs(ytmp[i])))
+            if e > err:
+                err = e
+        if err <= 1.0 or h < 1e-10:
+            t1 = t + h
+            while io < out_theta.shape[0] and out_theta[io] <= t1:
+                _hermite(t, y, f0, t1, ytmp, K[6], out_theta[io], tmp)
+                samples[:, io] = tmp
+                io += 1
+            t = t1
+            y[:] = ytmp
+            before = y[nn + X_Z]
+            _project(y, nn)
+            if y[nn + X_Z] != before:   # a stop was struck: restart the derivative
+                transient_rhs(t, y, K[6], net, tier, tab, perf, pr, pa, tr, out)
+                nfev += 1
+            f0[:] = K[6]
+            if record and n_rec < nrec_max:
+                # out[] holds the values at the last stage, which is the step's end (FSAL)
+                rec[0, n_rec] = t
+                rec[1, n_rec] = y[nn + X_OMEGA]
+                rec[2, n_rec] = y[nn + X_Z]
+                rec[3, n_rec] = out[2]
+                rec[4, n_rec] = y[nn + X_TIME]
+                rec[5, n_rec] = out[0]
+                rec[6, n_rec] = out[1]
+                n_rec += 1
+            fac = 5.0 if err == 0.0 else min(5.0, max(0.2, 0.9 * err ** -0.2))
+            h = h * fac
+            if y[nn + X_OMEGA] < sc[S_WMIN]:
+                status = 2
+                break
+        else:
+            h = h * max(0.2, 0.9 * err ** -0.2)
+        if not (h > 0.0) or not math.isfinite(y[0]):
+            status = 1
+            break
+    while io < out_theta.shape[0]:
+        samples[:, io] = y
+        io += 1
+    if status == 0 and y[nn + X_TIME] >= t_end:
+        status = 3
+    return y, samples, rec, n_rec, nfev, status
