@@ -3,14 +3,16 @@
 ``corliss run [SCENE] [--out DIR] [--json]``
     Simulate a scene (the bundled default without SCENE); write the card PNG, the
     CSVs with their meta files and the summary JSON; print a short summary, or the
-    summary as JSON with ``--json``.
+    summary as JSON with ``--json``.  A transient scene writes the speed and governor
+    histories, the per-turn table, the load-step figure and its metrics, with a
+    progress bar on stderr when the run takes more than a few seconds.
 ``corliss events SCENE [--json] [--settings 0,0.5,1]``
     The valve events of each end, without simulating; at several gear settings.
 ``corliss gear SCENE [--out DIR]``
     Valve travel, port openings and the Zeuner diagram, as PNG.
 ``corliss bench [--repeats N] [--out DIR]``
     The accuracy-versus-time study of ``benchmarks/`` (from a source checkout).
-``corliss list gears|effects``
+``corliss list gears|effects|governors``
     What the registries hold.
 
 A user's mistake exits with code 2 and a one-paragraph message, no traceback.
@@ -80,13 +82,49 @@ def cmd_run(args) -> int:
             raise InputError("--cycles", args.cycles, "a whole number of cycles >= 1")
         scene = scene.replace_run(cycles=args.cycles)
     out = Path(args.out if args.out is not None else scene.output.dir)
-    result = simulate(scene)
+    bar = ProgressBar() if scene.run.mode == "transient" and not args.json else None
+    result = simulate(scene, progress=bar)
+    if bar:
+        bar.close()
     files = result.write(out)
     if args.json:
         print(summary_json(result.summary))
+    elif scene.run.mode == "transient":
+        from corliss.load_step import print_summary
+        print_summary(result, files)
     else:
         _print_summary(result, files)
     return 0
+
+
+class ProgressBar:
+    """A progress bar on stderr for transient runs, shown once a run has taken more than
+    a couple of seconds (short runs print nothing)."""
+
+    def __init__(self, delay_s: float = 2.0, width: int = 40):
+        import time
+        self._clock = time.perf_counter
+        self.t0 = self._clock()
+        self.delay = delay_s
+        self.width = width
+        self.shown = False
+
+    def __call__(self, done: float, total: float) -> None:
+        elapsed = self._clock() - self.t0
+        if elapsed < self.delay:
+            return
+        frac = min(max(done / total, 0.0), 1.0) if total > 0 else 1.0
+        n = int(round(frac * self.width))
+        eta = elapsed * (1.0 - frac) / frac if frac > 0 else float("nan")
+        sys.stderr.write(f"\r  [{'#' * n}{'.' * (self.width - n)}] {done:7.2f} of {total:g} s "
+                         f"simulated, {elapsed:5.1f} s elapsed, ~{eta:4.0f} s to go ")
+        sys.stderr.flush()
+        self.shown = True
+
+    def close(self) -> None:
+        if self.shown:
+            sys.stderr.write("\n")
+            sys.stderr.flush()
 
 
 def cmd_events(args) -> int:
@@ -144,6 +182,10 @@ def cmd_list(args) -> int:
         from corliss.valves import GEARS
         for name, g in sorted(GEARS.items()):
             print(f"{name:20s} {g.summary}")
+    elif args.what == "governors":
+        from corliss.governors import GOVERNORS
+        for name, g in sorted(GOVERNORS.items()):
+            print(f"{name:20s} {g.summary}")
     else:
         from corliss.engine.options import EFFECTS, PLANNED_EFFECTS
         for name, text in EFFECTS.items():
@@ -197,7 +239,7 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--out", help="directory for the CSV and plot (default benchmarks/results)")
     b.set_defaults(func=cmd_bench)
     ls = sub.add_parser("list", help="list registries")
-    ls.add_argument("what", choices=("gears", "effects"))
+    ls.add_argument("what", choices=("gears", "effects", "governors"))
     ls.set_defaults(func=cmd_list)
     return p
 

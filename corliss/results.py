@@ -32,22 +32,41 @@ _OUTPUT_UNITS = {
 }
 
 
+#: Multi-part SI suffixes: suffix -> (US suffix, US unit, SI suffix, SI unit).
+_OUTPUT_UNITS_LONG = {
+    "N_m": ("lbf_ft", "lbf ft", "N_m", "N m"),
+    "kg_per_h": ("lb_per_h", "lb/h", "kg_per_h", "kg/h"),
+}
+#: Suffixes that stay as they are, with their unit for the meta file.
+_PLAIN_UNITS = {"deg": "deg", "s": "s", "rpm": "rev/min", "frac": "- (fraction)",
+                "W": "W"}
+
+
 def convert_frame(df: pd.DataFrame, system: str, barometer_Pa: float) -> tuple[pd.DataFrame, dict]:
     """A copy of an SI frame in ``system`` ("US" or "SI") and the unit of each column."""
     out = {}
     col_units = {}
     for col in df.columns:
         base, _, suffix = col.rpartition("_")
-        if base and suffix in _OUTPUT_UNITS:
+        long = next((k for k in _OUTPUT_UNITS_LONG if col.endswith("_" + k)), None)
+        if long is not None:
+            base = col[: -len(long) - 1]
+            us_sfx, us_unit, si_sfx, si_unit = _OUTPUT_UNITS_LONG[long]
+        elif base and suffix in _OUTPUT_UNITS:
             us_sfx, us_unit, si_sfx, si_unit = _OUTPUT_UNITS[suffix]
-            sfx, unit = (us_sfx, us_unit) if system == "US" else (si_sfx, si_unit)
-            name = f"{base}_{sfx}"
-            out[name] = units.to_unit(df[col].to_numpy(dtype=float), unit,
-                                      barometer_Pa=barometer_Pa)
-            col_units[name] = unit + (" absolute" if suffix == "Pa" else "")
         else:
             out[col] = df[col].to_numpy()
-            col_units[col] = {"crank_angle_deg": "deg", "time_s": "s"}.get(col, "-")
+            col_units[col] = _PLAIN_UNITS.get(suffix, "-") if base else "-"
+            if suffix == "W" and system == "US":     # powers in horse-power
+                name = f"{base}_hp"
+                out.pop(col)
+                out[name] = units.to_unit(df[col].to_numpy(dtype=float), "hp")
+                col_units[name] = "hp"
+            continue
+        sfx, unit = (us_sfx, us_unit) if system == "US" else (si_sfx, si_unit)
+        name = f"{base}_{sfx}"
+        out[name] = units.to_unit(df[col].to_numpy(dtype=float), unit, barometer_Pa=barometer_Pa)
+        col_units[name] = unit + (" absolute" if suffix == "Pa" else "")
     return pd.DataFrame(out), col_units
 
 
@@ -350,35 +369,15 @@ class Result:
     # --- output -------------------------------------------------------------------
     def meta(self, columns: dict | None = None, file: str | None = None) -> dict:
         """Metadata for a CSV: versions, property tier, resolved scene, units, time."""
-        from corliss.thermo.steam import coolprop_version
-        return {
-            "file": file,
-            "corliss_version": package_version(),
-            "coolprop_version": coolprop_version(),
-            "property_backend": self.property_tier,
-            "created_utc": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
-            "units_system": self.scene.output.units,
-            "pressure": "absolute",
-            "columns": columns,
-            "scene_file": self.scene.source,
-            "scene": _jsonable(self.scene.resolved()),
-            "summary": _jsonable(self.summary),
-        }
+        return csv_meta(self, columns, file)
 
     def to_csv(self, path: str | Path, table: str = "timeseries", units_system: str | None = None) -> Path:
         """Write the time series (or ``table="cycles"``) as CSV with a ``.meta.json`` beside it.
 
         Returns the CSV path.  Both files are written atomically.
         """
-        path = Path(path)
-        system = units_system or self.scene.output.units
         df = self.timeseries if table == "timeseries" else self.cycles
-        out, col_units = convert_frame(df, system, self.scene.supply.barometer_Pa)
-        _write_atomic(path, lambda p: out.to_csv(p, index=False, float_format="%.9g"))
-        meta_path = path.with_suffix(".meta.json")
-        meta = self.meta(col_units, path.name)
-        _write_atomic(meta_path, lambda p: Path(p).write_text(json.dumps(meta, indent=2)))
-        return path
+        return write_csv(self, df, path, units_system)
 
     def plot_card(self, ax=None, units_system: str | None = None):
         """Period-style indicator card of both ends; see :func:`corliss.plot.plot_card`."""
@@ -413,6 +412,38 @@ class Result:
         _write_atomic(sj, lambda p: Path(p).write_text(json.dumps(_jsonable(self.summary), indent=2)))
         files["summary"] = sj
         return files
+
+
+def csv_meta(result, columns: dict | None = None, file: str | None = None) -> dict:
+    """Metadata for a CSV of any result with ``scene``, ``property_tier`` and ``summary``:
+    versions, property tier, resolved scene, units of every column, time written."""
+    from corliss.thermo.steam import coolprop_version
+    return {
+        "file": file,
+        "corliss_version": package_version(),
+        "coolprop_version": coolprop_version(),
+        "property_backend": result.property_tier,
+        "created_utc": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+        "units_system": result.scene.output.units,
+        "pressure": "absolute",
+        "columns": columns,
+        "scene_file": result.scene.source,
+        "scene": _jsonable(result.scene.resolved()),
+        "summary": _jsonable(result.summary),
+    }
+
+
+def write_csv(result, df: pd.DataFrame, path: str | Path, units_system: str | None = None) -> Path:
+    """Write an SI frame of ``result`` as CSV in the output units, with its ``.meta.json``;
+    both atomically.  Returns the CSV path."""
+    path = Path(path)
+    system = units_system or result.scene.output.units
+    out, col_units = convert_frame(df, system, result.scene.supply.barometer_Pa)
+    _write_atomic(path, lambda p: out.to_csv(p, index=False, float_format="%.9g"))
+    meta = csv_meta(result, col_units, path.name)
+    _write_atomic(path.with_suffix(".meta.json"),
+                  lambda p: Path(p).write_text(json.dumps(meta, indent=2)))
+    return path
 
 
 def _jsonable(obj):

@@ -37,9 +37,9 @@ def make_scene(**sections):
             continue
         for k, v in changes.items():
             if v is None:
-                data[sec].pop(k, None)
+                data.setdefault(sec, {}).pop(k, None)
             else:
-                data[sec][k] = v
+                data.setdefault(sec, {})[k] = v
     return corliss.scene_from_dict(data, name="test")
 
 

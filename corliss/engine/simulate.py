@@ -99,12 +99,15 @@ def simulate(scene: Scene, *, portmap_scale: float = 1.0,
     portmap_scale : float
         Multiply every port area by this factor (for studies of the port-flow limit).
     progress : callable, optional
-        Called after each cycle with (cycle number, relative change of work).
+        Called after each cycle with (cycle number, relative change of work); in a
+        transient run, with (simulated time [s], duration [s]).
 
     Returns
     -------
-    Result
+    Result or LoadStepResult
     """
+    if scene.run.mode == "transient":
+        return _transient(scene, progress)
     t0 = time.perf_counter()
     fid = scene.run.fidelity
     steam = make_steam(fid.properties)
@@ -131,6 +134,16 @@ def simulate(scene: Scene, *, portmap_scale: float = 1.0,
     data["wall_time_s"] = time.perf_counter() - t0
     return Result(scene=scene, events=ev, geometry=geo, chest=chest, exhaust=exhaust,
                   property_tier=steam.name, **data)
+
+
+def _transient(scene: Scene, progress):
+    from corliss.engine.transient import run_transient
+    from corliss.load_step import LoadStepResult
+    d = run_transient(scene, progress=progress)
+    return LoadStepResult(scene=scene, timeseries=d["timeseries"], cycles=d["cycles"],
+                          geometry=d["geometry"], property_tier=d["property_tier"],
+                          wall_time_s=d["wall_time_s"], nfev=d["nfev"], stalled=d["stalled"],
+                          tables=d["tables"], chest=d["chest"], exhaust=d["exhaust"])
 
 
 def _with_totals(row: dict) -> dict:
