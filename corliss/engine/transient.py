@@ -73,23 +73,22 @@ def _governor_arrays(mech):
 
 def _gear_tables(gear, lo: float, hi: float, ncyl: int, governed: np.ndarray, nth: int,
                  frac: Callable):
-    """Port areas over (setting, crank angle) and cut-off per setting."""
+    """Port areas over (setting, crank angle) for the governed cylinders, and the cut-off
+    of each end at each setting."""
     from corliss.valves.events import events as gear_events
-    grid = np.linspace(lo, hi, SETTING_POINTS) if hi > lo else np.array([lo])
-    theta = np.linspace(0.0, TWO_PI, nth + 1)
-    area = np.zeros((ncyl, 4, grid.size, nth + 1))
-    cut = np.full((2, grid.size), np.nan)
-    for j, s in enumerate(grid):
-        g = gear.with_setting(float(s))
-        a = g.areas(theta)
-        for c in range(ncyl):
-            if governed[c]:
-                area[c, :, j, :] = a
-        ev = gear_events(g, frac)
+    from corliss.valves.portmap import tabulate_settings
+    spm = tabulate_settings(gear, lo, hi, SETTING_POINTS, nth)
+    area = np.zeros((ncyl, 4, spm.settings.size, nth + 1))
+    for c in range(ncyl):
+        if governed[c]:
+            area[c] = np.transpose(spm.area_m2, (1, 0, 2))
+    cut = np.full((2, spm.settings.size), np.nan)
+    for j, s in enumerate(spm.settings):
+        ev = gear_events(gear.with_setting(float(s)), frac)
         for e, end in enumerate(("head", "crank")):
             v = ev[end]["cutoff_frac"]
             cut[e, j] = np.nan if v is None else v
-    return grid, area, cut
+    return spm.settings, area, cut
 
 
 def _trip_tables(gear, grid: np.ndarray, nth: int):
@@ -262,6 +261,7 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
         nfev += nf_
         if status == 1:
             raise RuntimeError("the integrator failed during the warm-up turns")
+        _update_wall(network, y)
     sc[tk.S_FREEZE] = 0.0
     y[nn + tk.X_TIME] = 0.0
     y[nn + tk.X_OMEGA] = omega0
@@ -292,8 +292,10 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
         if status == 1:
             raise RuntimeError(f"the integrator failed in turn {k + 1} (step size collapsed)")
         rows.append(_cycle_row(k, y_start, y, network, tables, nn))
-        frames.append(_frame(network, steam, net, tables, out_theta, samples, rec, n_rec, record,
-                             nn))
+        _update_wall(network, y)
+        frame = _frame(network, steam, tables, out_theta, samples, rec, n_rec, record, nn)
+        frame.insert(0, "cycle", k + 1)
+        frames.append(frame)
         k += 1
         if progress:
             progress(float(y[nn + tk.X_TIME]), duration)
@@ -305,6 +307,18 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
             "network": network, "nfev": nfev, "stalled": status == 2, "chest": chest,
             "exhaust": exhaust, "geometry": geo, "portmap": pm, "property_tier": steam.name,
             "wall_time_s": time.perf_counter() - t_wall}
+
+
+def _update_wall(network, y: np.ndarray) -> None:
+    """With ``wall_heat``, each wall to the h A-weighted mean steam temperature of the
+    turn just run (as the steady model does, see CrankResolved.update_wall); the array
+    is the one the compiled loop reads."""
+    if not any(row[0] > 0.0 for row in network.node_heat):
+        return
+    for i in range(network.n_nodes):
+        ha = y[network.i_node_quad(i, "hA")]
+        if ha > 0.0:
+            network.wall_T[i] = y[network.i_node_quad(i, "hAT")] / ha
 
 
 def _any_table():
@@ -344,7 +358,7 @@ def _cycle_row(k: int, y0: np.ndarray, y: np.ndarray, network, tables: LoopTable
     return row
 
 
-def _frame(network, steam, net, tables, out_theta, samples, rec, n_rec, record, nn):
+def _frame(network, steam, tables, out_theta, samples, rec, n_rec, record, nn):
     """The time-series rows of one turn."""
     from corliss.engine.simulate import _states
     if record == "step":

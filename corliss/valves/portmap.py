@@ -82,3 +82,48 @@ def tabulate(gear: ValveGear, n: int = 1440) -> PortMap:
     grid = grid[keep]
     return PortMap(theta_rad=grid, area_m2=gear.areas(grid), cd=gear.discharge_coefficients(),
                    breakpoints_rad=kinks, crossings=table)
+
+
+@dataclass(frozen=True)
+class SettingPortMap:
+    """Open area of the four ports over (gear setting, crank angle), for a gear that a
+    governor or reverse lever resets while the engine runs.
+
+    Both grids are uniform, so the hot loop finds its cell without a search and reads
+    the area bilinearly; the port kinks, which move with the setting, fall between grid
+    points (at the default 1440 intervals a kink is smoothed over 1/4 deg).
+
+    Attributes
+    ----------
+    settings : ndarray
+        Gear settings, uniform, increasing (the gear's own setting units).
+    theta_rad : ndarray
+        Crank angles [rad], uniform from 0 to 2 pi inclusive.
+    area_m2 : ndarray
+        Open area [m2], shape ``(len(settings), 4, len(theta_rad))``.
+    cd : ndarray
+        Discharge coefficient of each port [-].
+    """
+
+    settings: np.ndarray
+    theta_rad: np.ndarray
+    area_m2: np.ndarray
+    cd: np.ndarray
+
+    def areas(self, setting: float, theta: float) -> np.ndarray:
+        """Open areas [m2] of the four ports, bilinear in (setting, angle)."""
+        s = np.clip(setting, self.settings[0], self.settings[-1])
+        t = theta % TWO_PI
+        per_setting = np.array([[np.interp(t, self.theta_rad, a) for a in row]
+                                for row in self.area_m2])
+        return np.array([np.interp(s, self.settings, per_setting[:, p]) for p in range(4)])
+
+
+def tabulate_settings(gear: ValveGear, lo: float, hi: float, n_settings: int = 21,
+                      n: int = 1440) -> SettingPortMap:
+    """Tabulate a gear over ``n_settings`` settings from ``lo`` to ``hi`` and ``n`` uniform
+    crank-angle intervals."""
+    settings = np.linspace(lo, hi, n_settings) if hi > lo else np.array([lo])
+    theta = np.linspace(0.0, TWO_PI, n + 1)
+    area = np.stack([gear.with_setting(float(s)).areas(theta) for s in settings])
+    return SettingPortMap(settings, theta, area, gear.discharge_coefficients())
