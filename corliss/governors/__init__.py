@@ -1,7 +1,12 @@
-"""Governors: static characteristics, dynamics, and the actuators that reset a gear.
+"""Governors: every named governor reduced to one common form the speed loop integrates.
 
-The registry is empty until the governors issue lands; a scene with a
-``[governor]`` section is refused with a clear message meanwhile.
+See :mod:`corliss.governors.mechanism` for the form (Lagrange's equation for the
+governor's coordinate z in [0, 1]) and the registry; :mod:`corliss.governors.flyball`
+for Watt's, Porter's, the spring-loaded, the Porter-Allen and the Corliss governors;
+:mod:`corliss.governors.shaft` for the shaft governors (Erie, Armington & Sims, Ball,
+Buckeye, Thompson).
 """
 
-GOVERNORS: dict = {}
+from corliss.governors.mechanism import (GOVERNORS, Governor, GovernorMechanism,  # noqa: F401
+                                         GovernorType, governor_type, register)
+from corliss.governors import flyball, shaft  # noqa: F401,E402  (they register themselves)

@@ -1,0 +1,346 @@
+"""The common form every governor is reduced to, and the registry of governors by name.
+
+A governor is a mechanism of one degree of freedom, its coordinate z running from 0
+(at rest, on the lowest-speed stop) to 1 (the highest-speed stop).  Its parts turn with
+the spindle at omega_g = ratio x omega_shaft; in the frame turning with the spindle they
+move with z only.  Writing the kinetic energy of the parts in that frame,
+
+    T = 1/2 M(z) z'^2 + J(z) omega_g z' + 1/2 I_axis(z) omega_g^2,
+
+with the potential V(z) of gravity and springs, Lagrange's equation for z is
+
+    M(z) z'' + 1/2 M'(z) z'^2 = G(z) omega_g^2 - R(z) - c z' - F_f sign(z') - J(z) d(omega_g)/dt
+
+where G = 1/2 dI_axis/dz (the generalised centrifugal coefficient) and R = dV/dz (the
+generalised restoring force).  For point masses m_i at (x_i, y_i, h_i) in the turning
+frame (x, y across the spin axis, h along it, upward for a vertical spindle):
+
+    M = sum m_i |dp_i/dz|^2 + sum I_i (dpsi_i/dz)^2
+    G = sum m_i (x_i x_i' + y_i y_i')
+    J = sum m_i (x_i y_i' - y_i x_i') + sum I_i dpsi_i/dz
+
+the last terms for a body of moment of inertia I_i about its own centre of mass turning
+by psi_i(z) about an axis parallel to the spin axis (the inertia bar of a shaft
+governor).  J is the inertia action (the Coriolis term of the moving weights): it is
+zero for fly-balls, whose parts move in a plane through the spindle.
+
+In equilibrium without friction omega_g^2 = R/G (Marks Ch. XVIII Art. 97 for the
+conical pendulum, eq. 251); with Coulomb friction F_f the governor stays put for
+omega_g^2 in [(R - F_f)/G, (R + F_f)/G].
+
+Each governor here describes its geometry (:meth:`Governor.bodies`, analytic first and
+second derivatives in z) and its potential (:meth:`Governor.potential` and its analytic
+derivative :meth:`Governor.restoring`); the base class assembles the common form.
+"""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass
+from typing import Callable, ClassVar
+
+import numpy as np
+
+from corliss.errors import InputError
+
+log = logging.getLogger(__name__)
+
+#: standard gravity [m/s2]
+GRAVITY_M_S2 = 9.80665
+
+ACTS_ON = ("throttle", "gear")
+
+
+@dataclass(frozen=True)
+class PointMass:
+    """A part of the governor as a point mass, positions as functions of z.
+
+    Attributes
+    ----------
+    mass_kg : float
+        Its mass [kg] (times the number of identical parts it stands for, ``count``).
+    x, y, h : ndarray
+        Position in the frame turning with the spindle [m]: x and y across the spin
+        axis, h along it (upward when the spindle is vertical).
+    x_z, y_z, h_z, x_zz, y_zz, h_zz : ndarray
+        First and second derivatives of the position with respect to z [m].
+    inertia_kg_m2 : float
+        Moment of inertia of the part about its own centre of mass, about an axis
+        parallel to the spin axis [kg m2] (0 for a ball).
+    psi_z, psi_zz : ndarray
+        Rate of turn of the part about that axis per unit z [rad], and its derivative.
+    count : int
+        Number of identical parts, placed symmetrically about the spin axis.
+    """
+
+    mass_kg: float
+    x: np.ndarray
+    y: np.ndarray
+    h: np.ndarray
+    x_z: np.ndarray
+    y_z: np.ndarray
+    h_z: np.ndarray
+    x_zz: np.ndarray
+    y_zz: np.ndarray
+    h_zz: np.ndarray
+    inertia_kg_m2: float = 0.0
+    psi_z: np.ndarray | float = 0.0
+    psi_zz: np.ndarray | float = 0.0
+    count: int = 1
+
+
+@dataclass(frozen=True)
+class GovernorMechanism:
+    """A governor in the common form, tabulated on a uniform grid of z.
+
+    Attributes
+    ----------
+    z : ndarray
+        The grid, uniform from 0 to 1.
+    M : ndarray
+        Generalised mass [kg m2 per unit z squared].
+    dM_dz : ndarray
+        Its derivative in z.
+    G : ndarray
+        Generalised centrifugal coefficient [kg m2 per unit z]; G omega_g^2 is the
+        generalised centrifugal force [J per unit z].
+    R : ndarray
+        Generalised restoring force (gravity and springs) [J per unit z].
+    J : ndarray
+        Inertia-action coefficient [kg m2 per unit z] (zero for fly-balls).
+    I_axis : ndarray
+        Moment of inertia of the governor's moving parts about the spin axis [kg m2]
+        (G = 1/2 dI_axis/dz); what the governor adds to the spindle's inertia.
+    c : float
+        Dash-pot damping, generalised [J s per unit z squared].
+    F_f : float
+        Coulomb friction, generalised [J per unit z].
+    ratio : float
+        Spindle speed over shaft speed [-].
+    acts_on : str
+        ``"throttle"`` (opening of the throttle in the steam pipe, 0..1) or ``"gear"``
+        (the valve gear's setting).
+    actuator_at_rest, actuator_at_top : float
+        The actuator's value at z = 0 and z = 1; it is linear in z between them.
+    safety_z : float
+        Below this z the actuator is held at ``actuator_safety`` instead (the Corliss
+        governor's safety cams, Spangler Art. 155); 0 when the governor has none.
+    actuator_safety : float
+        The actuator's value in the safety range (NaN when there is none).
+    name : str
+        The governor type.
+    """
+
+    z: np.ndarray
+    M: np.ndarray
+    dM_dz: np.ndarray
+    G: np.ndarray
+    R: np.ndarray
+    J: np.ndarray
+    I_axis: np.ndarray
+    c: float
+    F_f: float
+    ratio: float
+    acts_on: str
+    actuator_at_rest: float
+    actuator_at_top: float
+    safety_z: float = 0.0
+    actuator_safety: float = float("nan")
+    name: str = ""
+
+    def actuator(self, z):
+        """The actuator's value at z (linear, with the safety range below ``safety_z``)."""
+        z = np.asarray(z, dtype=float)
+        a = self.actuator_at_rest + (self.actuator_at_top - self.actuator_at_rest) * z
+        if self.safety_z > 0.0:
+            a = np.where(z < self.safety_z, self.actuator_safety, a)
+        return a
+
+
+@dataclass(frozen=True)
+class Actuator:
+    """What a governor moves, linear in z (see :class:`GovernorMechanism`)."""
+
+    acts_on: str
+    at_rest: float
+    at_top: float
+    safety_z: float = 0.0
+    safety_value: float = float("nan")
+
+
+class Governor:
+    """Base class of a governor: geometry and potential in, common form out.
+
+    Subclasses set ``name``, ``summary`` and ``spec`` and implement :meth:`bodies`,
+    :meth:`potential` and :meth:`restoring`; ``spec`` must carry ``ratio``,
+    ``damping`` (generalised c), ``friction`` (generalised F_f) and ``actuator``.
+    """
+
+    name: ClassVar[str] = "abstract"
+    summary: ClassVar[str] = ""
+    #: True when the spin axis is vertical and gravity acts along h.
+    vertical_spindle: ClassVar[bool] = True
+
+    spec: object
+
+    # --- what a governor describes --------------------------------------------------
+    def bodies(self, z: np.ndarray) -> list[PointMass]:  # pragma: no cover
+        """The moving parts at ``z``, with analytic derivatives."""
+        raise NotImplementedError
+
+    def potential(self, z: np.ndarray) -> np.ndarray:  # pragma: no cover
+        """Potential energy of gravity and springs [J], zero at z = 0."""
+        raise NotImplementedError
+
+    def restoring(self, z: np.ndarray) -> np.ndarray:  # pragma: no cover
+        """R = dV/dz [J per unit z], analytic."""
+        raise NotImplementedError
+
+    # --- scalars ----------------------------------------------------------------------
+    @property
+    def ratio(self) -> float:
+        return self.spec.ratio
+
+    @property
+    def damping(self) -> float:
+        return self.spec.damping
+
+    @property
+    def friction(self) -> float:
+        return self.spec.friction
+
+    @property
+    def actuator(self) -> Actuator:
+        return self.spec.actuator
+
+    # --- the common form --------------------------------------------------------------
+    def centrifugal_energy_coefficient(self, z) -> np.ndarray:
+        """1/2 sum m r^2 [kg m2]: the centrifugal potential per omega_g^2, from positions."""
+        z = np.atleast_1d(np.asarray(z, dtype=float))
+        return sum(0.5 * b.count * b.mass_kg * (b.x ** 2 + b.y ** 2) for b in self.bodies(z))
+
+    def terms(self, z) -> dict[str, np.ndarray]:
+        """M, dM_dz, G, R, J and I_axis at ``z`` (see the module docstring)."""
+        z = np.atleast_1d(np.asarray(z, dtype=float))
+        zero = np.zeros_like(z)
+        M, dM, G, J, I = zero.copy(), zero.copy(), zero.copy(), zero.copy(), zero.copy()
+        for b in self.bodies(z):
+            m = b.count * b.mass_kg
+            inertia = b.count * b.inertia_kg_m2
+            M = M + m * (b.x_z ** 2 + b.y_z ** 2 + b.h_z ** 2) + inertia * np.square(b.psi_z)
+            dM = dM + 2.0 * m * (b.x_z * b.x_zz + b.y_z * b.y_zz + b.h_z * b.h_zz) \
+                + 2.0 * inertia * np.multiply(b.psi_z, b.psi_zz)
+            G = G + m * (b.x * b.x_z + b.y * b.y_z)
+            J = J + m * (b.x * b.y_z - b.y * b.x_z) + inertia * np.asarray(b.psi_z)
+            I = I + m * (b.x ** 2 + b.y ** 2)
+        return {"M": M, "dM_dz": dM, "G": G, "R": self.restoring(z) + zero, "J": J + zero,
+                "I_axis": I}
+
+    def mechanism(self, n: int = 201) -> GovernorMechanism:
+        """The common form on a uniform grid of ``n`` points from z = 0 to 1."""
+        if n < 2:
+            raise ValueError("a governor's mechanism needs at least 2 grid points")
+        z = np.linspace(0.0, 1.0, n)
+        t = self.terms(z)
+        a = self.actuator
+        return GovernorMechanism(z=z, c=float(self.damping), F_f=float(self.friction),
+                                 ratio=float(self.ratio), acts_on=a.acts_on,
+                                 actuator_at_rest=float(a.at_rest),
+                                 actuator_at_top=float(a.at_top), safety_z=float(a.safety_z),
+                                 actuator_safety=float(a.safety_value), name=self.name, **t)
+
+    def equilibrium_speed_rad_s(self, z) -> np.ndarray:
+        """Shaft speed [rad/s] at which the governor balances at ``z`` (no friction)."""
+        t = self.terms(z)
+        return np.sqrt(t["R"] / t["G"]) / self.ratio
+
+    def friction_band(self, z) -> tuple[np.ndarray, np.ndarray]:
+        """Lowest and highest shaft speeds [rad/s] at which friction holds z still."""
+        t = self.terms(z)
+        lo = np.sqrt(np.maximum(t["R"] - self.friction, 0.0) / t["G"]) / self.ratio
+        hi = np.sqrt((t["R"] + self.friction) / t["G"]) / self.ratio
+        return lo, hi
+
+    def static_characteristic(self, n: int = 101) -> tuple[np.ndarray, np.ndarray]:
+        """(z, shaft speed [rad/s]) along the governor's travel."""
+        z = np.linspace(0.0, 1.0, n)
+        return z, self.equilibrium_speed_rad_s(z)
+
+    def droop(self) -> float:
+        """Fractional speed change between the stops, (w1 - w0) / ((w1 + w0) / 2)."""
+        w0, w1 = self.equilibrium_speed_rad_s(np.array([0.0, 1.0]))
+        return float((w1 - w0) / (0.5 * (w1 + w0)))
+
+    def check(self, key: str, value: object, n: int = 201) -> None:
+        """Refuse a governor that cannot balance (G or R not positive somewhere), and
+        warn when its characteristic falls (an unstable governor)."""
+        z = np.linspace(0.0, 1.0, n)
+        t = self.terms(z)
+        if not np.all(t["G"] > 0.0):
+            raise InputError(key, value, "stops between which the weights move outward as the "
+                             "governor rises (the centrifugal coefficient vanishes or changes "
+                             "sign inside this range)")
+        if not np.all(t["R"] > 0.0):
+            k = int(np.argmax(t["R"] <= 0.0))
+            raise InputError(key, value, "springs and weights that hold the governor down at "
+                             f"every position (at z = {z[k]:.3g} nothing resists the weights: "
+                             "the governor would fly to its top stop at any speed)")
+        w = np.sqrt(t["R"] / t["G"])
+        if np.any(np.diff(w) <= 0.0):
+            log.warning("governor %s: its static characteristic falls somewhere between the "
+                        "stops; it is unstable there (it hunts)", self.name)
+
+
+@dataclass(frozen=True)
+class GovernorType:
+    """A registry entry: how to read a ``[governor]`` table and build the governor."""
+
+    name: str
+    summary: str
+    parse: Callable[[object], object]        # corliss.tables.Table -> spec
+    build: Callable[[object], Governor]      # spec -> governor
+
+
+GOVERNORS: dict[str, GovernorType] = {}
+
+
+def register(governor_type: GovernorType) -> GovernorType:
+    """Add a governor type to the registry."""
+    GOVERNORS[governor_type.name] = governor_type
+    return governor_type
+
+
+def governor_type(name: object) -> GovernorType:
+    """Look a governor type up by name; an unknown name is an :class:`InputError`."""
+    if name not in GOVERNORS:
+        raise InputError("governor.type", name, "a governor from the registry: "
+                         + ", ".join(sorted(GOVERNORS)))
+    return GOVERNORS[name]
+
+
+# --- scene keys every governor shares ---------------------------------------------------
+def parse_ratio(t) -> float:
+    """``ratio``: governor spindle speed over shaft speed (belt or gearing), default 1."""
+    ratio = t.number("ratio", 1.0)
+    if not ratio > 0.0:
+        raise InputError(t.key("ratio"), ratio, "a positive speed ratio (governor rpm / "
+                         "engine rpm)")
+    return ratio
+
+
+def parse_actuator(t, acts_on: str) -> Actuator:
+    """What the governor moves, linear in z.
+
+    Throttle: ``opening_at_rest`` (default 1, wide open) and ``opening_at_top``
+    (default 0, shut), each from 0 to 1.  Gear: ``setting_at_rest`` (default 0) and
+    ``setting_at_top`` (default 1), plain numbers in the gear's own setting (the
+    shaft-governor gear's runs from 0 at rest to 1 at full speed).
+    """
+    if acts_on == "throttle":
+        a0 = t.number("opening_at_rest", 1.0)
+        a1 = t.number("opening_at_top", 0.0)
+        for k, v in (("opening_at_rest", a0), ("opening_at_top", a1)):
+            if not 0.0 <= v <= 1.0:
+                raise InputError(t.key(k), v, "a throttle opening from 0 (shut) to 1 (open)")
+        return Actuator("throttle", a0, a1)
+    return Actuator("gear", t.number("setting_at_rest", 0.0), t.number("setting_at_top", 1.0))
