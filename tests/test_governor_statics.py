@@ -132,6 +132,23 @@ def test_watt_droop_derived():
     assert rpm(geared, 0.5) * 3.0 == pytest.approx(rpm(build(WATT), 0.5), rel=1e-12)
 
 
+def test_watt_small_oscillation_frequency():
+    """The generalised mass against a classical result: a conical pendulum (arms on the
+    axis, no sleeve load) turning at a steady w, disturbed from its cone angle theta*,
+    swings about it at Omega = w sin(theta*) (linearise l theta'' = w^2 l sin cos - g sin
+    at cos theta* = g/(w^2 l)).  In the common form Omega^2 = -(G' w^2 - R')/M at the
+    equilibrium z*.  Derivatives by central differences, step 1e-6: tolerance 1e-6."""
+    gov = build(WATT)
+    for zs in (0.1, 0.5, 0.9):
+        w = float(gov.equilibrium_speed_rad_s(zs))
+        t = gov.terms([zs - 1e-6, zs, zs + 1e-6])
+        dG = (t["G"][2] - t["G"][0]) / 2e-6
+        dR = (t["R"][2] - t["R"][0]) / 2e-6
+        omega2 = -(dG * w * w - dR) / t["M"][1]
+        theta = math.acos(float(gov.height_m(zs)) / (L_FT * FT))
+        assert omega2 == pytest.approx((w * math.sin(theta)) ** 2, rel=1e-6)
+
+
 # --- Porter ----------------------------------------------------------------------------
 def test_porter_identity_with_its_load():
     """Porter's loaded governor, equal arms and links, arms hung on the axis: moments about

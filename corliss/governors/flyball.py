@@ -219,7 +219,8 @@ def _flyball_parse(loaded: str, acts_on: str, corliss: bool = False):
                                  f"a lift below the sleeve's travel "
                                  f"({spec.sleeve_travel_m / units.INCH_m:.4g} in)")
             spec = _with_safety(spec, frac, t)
-        FlyBallGovernor(spec).check(t.key("arm_angle_at_top"), t.raw("arm_angle_at_top", None))
+        top = "arm_angle_at_top" if t.has("arm_angle_at_top") else "sleeve_lift"
+        FlyBallGovernor(spec).check(t.key(top), t.raw(top))
         return spec
 
     return parse

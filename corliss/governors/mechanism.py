@@ -250,16 +250,17 @@ class Governor:
                                  actuator_safety=float(a.safety_value), name=self.name, **t)
 
     def equilibrium_speed_rad_s(self, z) -> np.ndarray:
-        """Shaft speed [rad/s] at which the governor balances at ``z`` (no friction)."""
+        """Shaft speed [rad/s] at which the governor balances at ``z`` (no friction),
+        shaped as ``z``."""
         t = self.terms(z)
-        return np.sqrt(t["R"] / t["G"]) / self.ratio
+        return (np.sqrt(t["R"] / t["G"]) / self.ratio).reshape(np.shape(z))
 
     def friction_band(self, z) -> tuple[np.ndarray, np.ndarray]:
         """Lowest and highest shaft speeds [rad/s] at which friction holds z still."""
         t = self.terms(z)
         lo = np.sqrt(np.maximum(t["R"] - self.friction, 0.0) / t["G"]) / self.ratio
         hi = np.sqrt((t["R"] + self.friction) / t["G"]) / self.ratio
-        return lo, hi
+        return lo.reshape(np.shape(z)), hi.reshape(np.shape(z))
 
     def static_characteristic(self, n: int = 101) -> tuple[np.ndarray, np.ndarray]:
         """(z, shaft speed [rad/s]) along the governor's travel."""
