@@ -62,7 +62,7 @@ class CrankResolved:
         self._tab = steam.table.arrays() if hasattr(steam, "table") else load_table().arrays()
         self._perf = (np.array(steam.perfect_params()) if hasattr(steam, "perfect_params")
                       else np.zeros(3))
-        self._pr = np.empty((7, network.n_nodes))
+        self._pr = np.empty((8, network.n_nodes))
         self._cell = np.empty((len(network.geometries), 4))
 
     def rhs(self, th: float, y: np.ndarray) -> np.ndarray:
@@ -81,8 +81,11 @@ class CrankResolved:
                 st = self.steam.du(rho, u)
             except ValueError:   # a trial state with no steam state: take the exhaust's
                 st = self.network.reservoirs[-1]
+            t_wet = st.T
+            if st.superheated and self.network.node_heat[i][0] > 0.0:
+                t_wet = self.steam.t_sat(st.p)
             self._pr[:, i] = (st.p, rho, u + st.p / rho, kappa_of(st.x, st.superheated), dV, V,
-                              st.T)
+                              st.T, t_wet)
         kernel.derivatives(th, y, self._pr, dy, self.net, self._cell)
         return dy
 

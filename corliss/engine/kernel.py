@@ -36,7 +36,7 @@ import numpy as np
 from numba import njit
 
 from corliss.thermo.orifice import kappa_of, port_flow
-from corliss.thermo.steam_table import lookup
+from corliss.thermo.steam_table import lookup, t_sat
 
 TIER_TABLE, TIER_PERFECT = 0, 1
 TWO_PI = 2.0 * math.pi
@@ -127,8 +127,8 @@ def edge_area(net, e, pa):
 @njit(cache=True, inline="always")
 def derivatives(th, y, pr, dy, net, pa):
     """Derivatives with respect to crank angle, written into ``dy``, given each node's
-    pressure, density, enthalpy, isentropic exponent, dV/dtheta, volume and
-    temperature in the rows of ``pr``; ``pa`` is scratch of shape (cylinders, 4)."""
+    pressure, density, enthalpy, isentropic exponent, dV/dtheta, volume, temperature
+    and wetted-wall temperature (saturation at its pressure) in the rows of ``pr``; ``pa`` is scratch of shape (cylinders, 4)."""
     port_areas(th, net, pa)
     balances(y, pr, dy, net, pa)
 
@@ -160,18 +160,25 @@ def balances(y, pr, dy, net, areas):
             bore = math.sqrt(4.0 * geo[c, 3] / math.pi)
             V = pr[5, i]
             A = 2.0 * ap + math.pi * bore * V / ap
+            Ts = pr[6, i]
             if model == 1.0:
                 h = heat[i, 1]
+                # a wall hotter than the steam gives its heat to the water film that
+                # the admission condensed on it, which boils at the saturation
+                # temperature of the cylinder's pressure (pr[7]), however superheated
+                # the thin exhaust steam around it (Marks Art. 74, 3-4)
+                if wallT[i] > Ts:
+                    Ts = pr[7, i]
             else:
                 de = 6.0 * V / A
                 re_ = RHO[i] * (0.5 * omega * de) * de / heat[i, 3]
                 h = 0.053 * heat[i, 2] / de * re_ ** 0.8 * heat[i, 4] ** 0.6
-            q = h * A * (wallT[i] - pr[6, i]) / omega
+            q = h * A * (wallT[i] - Ts) / omega
             dy[2 * i + 1] += q
             dy[q0 + 1] = q
             dy[q0 + 2] = -q if q < 0.0 else 0.0
             dy[q0 + 3] = h * A / omega
-            dy[q0 + 4] = h * A * pr[6, i] / omega
+            dy[q0 + 4] = h * A * Ts / omega
     for e in range(ne):
         a = ea[e]
         b = eb[e]
@@ -201,8 +208,9 @@ def balances(y, pr, dy, net, areas):
 
 @njit(cache=True, inline="always")
 def node_states(th, y, net, tier, tab, perf, pr):
-    """Each node's pressure, density, enthalpy, isentropic exponent, dV/dtheta, volume
-    and temperature into the rows of ``pr``, on a compiled property tier."""
+    """Each node's pressure, density, enthalpy, isentropic exponent, dV/dtheta, volume,
+    temperature and (with wall heat) wetted-wall temperature into the rows of ``pr``,
+    on a compiled property tier."""
     nv = net[4].shape[0]
     for i in range(nv):
         V, dV = node_volume(th, net, i)
@@ -217,6 +225,9 @@ def node_states(th, y, net, tier, tab, perf, pr):
         pr[2, i] = u + p / rho
         pr[3, i] = kappa_of(x, sup)
         pr[6, i] = T
+        # the temperature of a wetted wall at this pressure, for the wall-heat effect only
+        if net[19][i, 0] > 0.0:
+            pr[7, i] = t_sat(tab, p) if (sup and tier != TIER_PERFECT) else T
 
 
 @njit(cache=True, inline="always")
@@ -344,7 +355,7 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
     T = np.empty(n)
     x = np.empty(n)
     yscale = atol / rtol
-    pr = np.empty((7, net[4].shape[0]))
+    pr = np.empty((8, net[4].shape[0]))
     cell = np.empty((net[17].shape[0], 4))
     nfev = 0
     io = 0

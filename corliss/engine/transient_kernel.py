@@ -317,7 +317,7 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
     K = np.empty((7, n))
     ytmp = np.empty(n)
     tmp = np.empty(n)
-    pr = np.empty((7, net[4].shape[0]))
+    pr = np.empty((8, net[4].shape[0]))
     pa = np.empty((net[17].shape[0], 4))
     out = np.empty(4)
     sc = tr[0]

@@ -343,3 +343,25 @@ def load_table() -> SteamTable:
     tab = SteamTable(error=meta, **kw)
     _LOADED[key] = tab
     return tab
+
+
+@njit(cache=True)
+def t_sat(tab, p):
+    """Saturation temperature [K] at pressure ``p`` [Pa]: bisection on the table's
+    ln p_sat over its uniform temperature grid, linear within the cell."""
+    sT0, sdT, s_lnp = tab[8], tab[9], tab[10]
+    lp = math.log(p)
+    n = s_lnp.shape[0]
+    if lp <= s_lnp[0]:
+        return sT0
+    if lp >= s_lnp[n - 1]:
+        return sT0 + sdT * (n - 1)
+    lo, hi = 0, n - 1
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if s_lnp[mid] <= lp:
+            lo = mid
+        else:
+            hi = mid
+    w = (lp - s_lnp[lo]) / (s_lnp[hi] - s_lnp[lo])
+    return sT0 + sdT * (lo + w)
