@@ -158,3 +158,99 @@ def test_exact_link_cuts_off_unequally_at_the_two_ends():
                                   1.25 * IN, 10 * IN))
     zh, zc = (end_events(z, e, frac) for e in ("head", "crank"))
     assert (zc["cutoff_deg"] - zh["cutoff_deg"]) % 360 == pytest.approx(180.0, abs=1e-6)
+
+
+# ------------------------------------------------- exact Gooch and Allen linkages
+
+def exact_ga(kind, u_in, k=1.0, ratio=None, g1_in=40.0):
+    """The Hinkley link's eccentrics, rods, link and valve as a Gooch or Allen gear with
+    a 40 in radius rod, the linkage grown by k (eccentricity fixed)."""
+    from corliss.valves.link_motion import allen_book_ratio
+    if ratio is None:
+        ratio = allen_book_ratio(54.0, g1_in)
+    return LinkMotion(LinkMotionSpec(kind, 2.75 * IN, math.asin(0.9375 / 2.75), 54 * IN * k,
+                                     6 * IN * k, u_in * IN * k, (0.875 * IN,) * 2, (0.0, 0.0),
+                                     1.25 * IN, 10 * IN, allen_ratio=ratio, motion="exact",
+                                     radius_rod_m=g1_in * IN * k))
+
+
+@pytest.mark.parametrize("kind,u", [("gooch", 3.0), ("gooch", -4.5), ("allen", 3.0),
+                                    ("allen", 0.0)])
+def test_exact_gooch_and_allen_converge_to_zeuner_as_the_gear_grows(kind, u):
+    """As for the Stephenson: Zeuner's forms (Arts. 65, 73) drop terms of order r^2/g
+    and r^2/c; growing rods, link and radius rod by k, the departure must fall by at
+    least a third per doubling and under 0.3 of its k = 1 size at k = 4 (it is
+    0.1-0.35 in at k = 1).  The Allen link has the rocker proportions of Art. 73."""
+    th = np.linspace(0, 2 * math.pi, 361)
+    errs = []
+    for k in (1.0, 2.0, 4.0):
+        g = exact_ga(kind, u, k)
+        errs.append(np.max(np.abs(g.travel(th) - g.zeuner_travel(th))) / IN)
+    assert errs[1] < 0.67 * errs[0] and errs[2] < 0.67 * errs[1]
+    assert errs[2] < 0.3 * errs[0]
+
+
+def test_exact_gooch_lead_is_constant():
+    """Art. 66-67: the Gooch lead is the same at every setting because the link is an
+    arc about the valve-stem end with the crank on a dead point (link radius = radius
+    rod).  In the exact linkage, hung at its middle on the line of stroke, both dead
+    points put the link square and centred, so the lead does not change with the
+    block at all: the same to rounding (1e-12 in) from full gear ahead to full gear
+    astern, at every size.  Its value differs from Zeuner's r(sin d + (c/g) cos d) - l
+    by the rods' obliquity: the exact first-order term is c/sqrt(g^2 - c^2) for the
+    book's sin(gamma) = c/g (cos gamma = 1), which accounts for all but 0.0004 in of the
+    0.0021 in difference at k = 1 (the rest, of order r^2/g, falls with k)."""
+    d = math.asin(0.9375 / 2.75)
+    for k in (1.0, 4.0):
+        leads = []
+        for u in np.linspace(-6.0, 6.0, 9):
+            x = exact_ga("gooch", u, k).travel(np.array([0.0, math.pi])) / IN
+            leads += [x[0] - 0.875, -x[1] - 0.875]
+        assert np.ptp(leads) < 1e-12
+        c, g = 6.0 * k, 54.0 * k
+        tan_form = 2.75 * (math.sin(d) + c / math.sqrt(g * g - c * c) * math.cos(d)) - 0.875
+        zeuner = 2.75 * (math.sin(d) + c / g * math.cos(d)) - 0.875
+        assert abs(leads[0] - zeuner) > 0.0015
+        assert abs(leads[0] - tan_form) < (0.0005 if k == 1.0 else 0.0001)
+
+
+def test_allen_rocker_ratio_of_art_73_keeps_the_valve_centred():
+    """Derived here: lifting the straight link u1 = k u pulls the block towards the
+    shaft, over a turn, by (u1^2 + c^2 - 2 u u1)/(2 g) and dropping the radius rod's end
+    u - u1 pulls the stem by (u - u1)^2/(2 g1); against full gear (u = c) the valve's
+    central position moves by D = D(u) - D(c), so the leads of the two ends split by
+    2 |D|.  At k = 0.5 and mid gear that is 0.275 in for the Hinkley link with a 40 in
+    radius rod, which the exact linkage reproduces within 5 % (terms of order c^4/g^3).
+    With Art. 73's proportions, u1 = u/(1 + (g1/g)(1 + sqrt(1 + g/g1))) (0.293 u for
+    equal rods), D vanishes for every u: the split falls to under 2 % of it."""
+    from corliss.valves.link_motion import allen_book_ratio
+    assert allen_book_ratio(1.0, 1.0) == pytest.approx(1 / (2 + math.sqrt(2)), rel=1e-15)
+    g, g1, c = 54.0, 40.0, 6.0
+
+    def D(u, k):
+        u1 = k * u
+        return -(u1 * u1 + c * c - 2 * u * u1) / (2 * g) - (u - u1) ** 2 / (2 * g1)
+
+    def split(ratio):
+        x = exact_ga("allen", 0.0, ratio=ratio).travel(np.array([0.0, math.pi])) / IN
+        return abs((x[0] - 0.875) - (-x[1] - 0.875))
+
+    predicted = 2 * abs(D(0.0, 0.5) - D(c, 0.5))
+    assert predicted == pytest.approx(0.275, abs=0.001)
+    assert split(0.5) == pytest.approx(predicted, rel=0.05)
+    assert split(allen_book_ratio(g, g1)) < 0.02 * predicted
+
+
+def test_exact_gooch_and_allen_from_a_scene():
+    from corliss.engine.simulate import build_gear
+    vg = {"type": "link_motion", "link": "gooch", "eccentricity": "2.75 in",
+          "angular_advance": "20 deg", "eccentric_rod": "54 in", "half_link": "6 in",
+          "block": "3 in", "radius_rod": "40 in", "motion": "exact", "lead": None,
+          "connection": None, "steam": None, "lap": "7/8 in"}
+    g = build_gear(make_scene(valve_gear=vg))
+    assert g._exact is not None and g.spec.radius_rod_m == pytest.approx(40 * IN)
+    a = build_gear(make_scene(valve_gear={**vg, "link": "allen"}))
+    from corliss.valves.link_motion import allen_book_ratio
+    assert a.spec.allen_ratio == pytest.approx(allen_book_ratio(54.0, 40.0))
+    with pytest.raises(InputError, match="valve_gear.link_radius"):
+        make_scene(valve_gear={**vg, "link": "allen", "link_radius": "40 in"})

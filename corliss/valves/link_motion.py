@@ -1,4 +1,5 @@
-"""Link motions in Zeuner's form: Stephenson (open and crossed rods), Gooch, Allen.
+"""Link motions: Stephenson (open and crossed rods), Gooch, Allen, in Zeuner's form or
+solved exactly.
 
 Two eccentrics of throw r and equal angular advance delta drive the ends of a link of
 half-chord c through rods of length g; the valve takes its motion from the block at
@@ -15,16 +16,32 @@ valve as a single "virtual" eccentric, x = C cos(theta) + S sin(theta)::
 
 with C = lap + lead, the valve's displacement at the dead point.  For the Allen link
 ``u1`` is the link's own share of the block's offset, u1 = k u with k from the rocker
-arms (k = 1 is Stephenson's open rods, k = 0 Gooch's fixed link).
+arms (k = 1 is Stephenson's open rods, k = 0 Gooch's fixed link); a scene that does
+not give ``allen_ratio`` gets the ratio of Art. 73's rocker proportions
+(:func:`allen_book_ratio`).
 
-``motion = "exact"`` (Stephenson only, for now) solves the linkage itself at every
-crank angle: the eccentric centres on their circles, rods of length g pinned to the
-ends of a link curved to radius rho (concave to the shaft, pins on the arc, Peabody's
+``motion = "exact"`` solves the linkage itself at every crank angle.  For Stephenson:
+the eccentric centres on their circles, rods of length g pinned to the ends of a link curved to radius rho (concave to the shaft, pins on the arc, Peabody's
 condition 1), the link hung at its middle from a hanger of length h whose top the
 reversing lever holds at height h - u, and the block riding on the link where it
 crosses the valve spindle's line through the shaft (so the block slips).  The valve
 is set for equal lead in full forward gear.  The solution is tabulated once at 1/2 deg
 and read back through a periodic cubic spline.
+
+For Gooch (Spangler Arts. 64-69, Fig. 45): the link, curved the other way (concave to
+the valve) to a radius equal to the radius rod g1 (Art. 67, ``link_radius`` to change
+it), hangs at its middle on the line of stroke (an infinitely long suspension rod,
+Art. 68's rod swinging "equally above and below"); the rods' ends are pinned to its
+ends; the block is held at the height -u (an infinitely long radius-rod hanger, the
+block slipping in the link) and the radius rod g1 (``radius_rod``, by default the
+eccentric rods' length) carries the motion to the valve stem on the line of stroke.
+With the crank on a dead point the link is then an arc about the stem's end, so moving
+the block moves the valve only through the finite rods' obliquity: the lead is
+constant to that order (Art. 66).  For Allen (Arts. 72-73, Fig. 50): the same with a
+straight link lifted u1 = k u while the radius rod's end drops u - u1 (the rocker mlk
+with infinitely long hangers), so the block stands u from the link's centre.  Both
+keep the valve set for equal lead in full forward gear and are tabulated like the
+Stephenson.
 """
 
 from __future__ import annotations
@@ -37,7 +54,7 @@ import numpy as np
 from corliss.errors import InputError
 from corliss.tables import Table
 from corliss.valves.gear import GearType, register
-from corliss.valves.slide_valve import LappedValve, pair, parse_ports
+from corliss.valves.slide_valve import LappedValve, pair, parse_allen_passage, parse_ports
 
 KINDS = ("stephenson_open", "stephenson_crossed", "gooch", "allen")
 
@@ -60,8 +77,16 @@ class LinkMotionSpec:
         Offset u of the block from the link's centre [m], the setting, in [-c, c].
     allen_ratio : float
         u1 / u for the Allen link [-].
+    motion : str
+        ``"zeuner"`` or ``"exact"`` (the linkage solved; see the module doc).
+    link_radius_m : float or None
+        Radius of the link's arc [m]: Stephenson's defaults to g, Gooch's to g1.
+    hanger_m : float or None
+        Length of the Stephenson link's hanger [m]; None for an infinitely long one.
+    radius_rod_m : float or None
+        g1, the Gooch or Allen radius rod [m]; None for g.
     lap_m, exhaust_lap_m, port_width_m, port_length_m, discharge_coefficient,
-    ports_per_end : as for the slide valve.
+    ports_per_end, allen_passage_m : as for the slide valve.
     """
 
     kind: str
@@ -80,6 +105,8 @@ class LinkMotionSpec:
     motion: str = "zeuner"
     link_radius_m: float | None = None
     hanger_m: float | None = None
+    radius_rod_m: float | None = None
+    allen_passage_m: float | None = None
 
     def coefficients(self, u: float | None = None) -> tuple[float, float]:
         """(C, S) of x = C cos(theta) + S sin(theta) [m] at block offset ``u`` [m]."""
@@ -107,7 +134,7 @@ class LinkMotion(LappedValve):
     """A link motion (Zeuner form) driving a lapped slide valve."""
 
     name = "link_motion"
-    summary = ("link motions in Zeuner's form: Stephenson open or crossed rods, Gooch, Allen "
+    summary = ("link motions, Zeuner's form or exact: Stephenson open or crossed rods, Gooch, Allen "
                "(Spangler Chs. VII-XI); setting = block offset")
 
     setting_name = "block offset u / c (1 full gear ahead, 0 mid gear, -1 full gear astern)"
@@ -117,7 +144,8 @@ class LinkMotion(LappedValve):
         self.spec = spec
         self._exact = None
         if spec.motion == "exact":
-            self._exact = _ExactStephenson(spec)
+            self._exact = (_ExactStephenson(spec) if spec.kind.startswith("stephenson")
+                           else _ExactGoochAllen(spec))
 
     def with_setting(self, value: float) -> "LinkMotion":
         import dataclasses
@@ -156,6 +184,73 @@ class _ExactStephenson:
 
     def __call__(self, theta):
         return self._spline(np.asarray(theta, dtype=float) % (2 * math.pi))
+
+
+class _ExactGoochAllen:
+    """The Gooch or Allen link solved as a linkage (see module doc): a vectorised Newton
+    solve of the link's pose at the crank angles asked for, then the block and stem in
+    closed form (cheap enough not to need a table)."""
+
+    def __init__(self, spec: LinkMotionSpec):
+        self.spec = spec
+        ref = _stem_x(spec, spec.half_link_m, np.array([0.0, math.pi]))
+        self._x_ref = 0.5 * (ref[0] + ref[1])           # equal lead in full forward gear
+
+    def __call__(self, theta):
+        t = np.asarray(theta, dtype=float)
+        return -(_stem_x(self.spec, self.spec.block_m, t).reshape(np.shape(t)) - self._x_ref)
+
+
+def _stem_x(spec: LinkMotionSpec, u: float, theta: np.ndarray) -> np.ndarray:
+    """X of the valve stem's end of the radius rod (from the shaft, along the line of
+    stroke) of the exact Gooch or Allen gear at crank angles ``theta``, block offset u."""
+    r, d, g, c = spec.eccentricity_m, spec.angular_advance_rad, spec.eccentric_rod_m, spec.half_link_m
+    g1 = spec.radius_rod_m or g
+    gooch = spec.kind == "gooch"
+    k = 0.0 if gooch else spec.allen_ratio
+    ym = k * u                      # the link's middle, lifted u1 = k u
+    yb = -(1.0 - k) * u             # the radius rod's end, dropped u - u1
+    rho = (spec.link_radius_m or g1) if gooch else None
+    th = np.atleast_1d(np.asarray(theta, dtype=float))
+    # forward eccentric on the lower end, as for the open-rod Stephenson above
+    fx, fy = r * np.cos(th + math.pi / 2 + d), r * np.sin(th + math.pi / 2 + d)
+    bx, by = r * np.cos(th - math.pi / 2 - d), r * np.sin(th - math.pi / 2 - d)
+
+    def ends(xm, a):
+        """(top, bottom) pin positions of the link with middle (xm, ym), normal angle a."""
+        nx, ny, tx, ty = np.cos(a), np.sin(a), -np.sin(a), np.cos(a)
+        if gooch:                   # arc concave to the valve, pins on the arc
+            cpsi = math.sqrt(1.0 - (c / rho) ** 2)
+            # point at arc angle psi: K - rho cos(psi) n + rho sin(psi) t, K = M + rho n
+            ox, oy = xm + rho * (1.0 - cpsi) * nx, ym + rho * (1.0 - cpsi) * ny
+        else:
+            ox, oy = xm, ym
+        return (ox + c * tx, oy + c * ty), (ox - c * tx, oy - c * ty)
+
+    def residual(xm, a):
+        (ux, uy), (lx, ly) = ends(xm, a)
+        return (np.hypot(ux - bx, uy - by) - g, np.hypot(lx - fx, ly - fy) - g)
+
+    xm = np.full(th.shape, math.sqrt(g * g - c * c))
+    a = np.zeros(th.shape)
+    for _ in range(40):
+        r1, r2 = residual(xm, a)
+        h1, h2 = 1e-7 * g, 1e-7
+        p1, p2 = residual(xm + h1, a)
+        q1, q2 = residual(xm, a + h2)
+        j11, j21, j12, j22 = (p1 - r1) / h1, (p2 - r2) / h1, (q1 - r1) / h2, (q2 - r2) / h2
+        det = j11 * j22 - j12 * j21
+        dx = (-r1 * j22 + r2 * j12) / det
+        da = (-j11 * r2 + j21 * r1) / det
+        xm, a = xm + dx, a + da
+        if np.max(np.abs(dx)) < 1e-14 * g and np.max(np.abs(da)) < 1e-14:
+            break
+    if gooch:                       # the block: where the arc (shaft side) meets y = yb
+        kx, ky = xm + rho * np.cos(a), ym + rho * np.sin(a)
+        px = kx - np.sqrt(rho * rho - (yb - ky) ** 2)
+    else:                           # where the straight link meets y = yb
+        px = xm - (yb - ym) / np.cos(a) * np.sin(a)
+    return px + math.sqrt(g1 * g1 - yb * yb)
 
 
 def _block_x(spec: LinkMotionSpec, u: float, theta: np.ndarray) -> np.ndarray:
@@ -239,6 +334,22 @@ def _block_x(spec: LinkMotionSpec, u: float, theta: np.ndarray) -> np.ndarray:
     return np.array([block(p) for p in poses])
 
 
+def allen_book_ratio(g: float, g1: float) -> float:
+    """u1 / u of the Allen link from Spangler Art. 73's rocker proportions [-].
+
+    The book gives u1 = u / (1 + (hj lk)/(ji lm)) and lk/lm = (ij/de)(1 + sqrt(1 +
+    de/hj)), with de the eccentric rod g and hj the radius rod g1, so
+    u1/u = 1 / (1 + (g1/g)(1 + sqrt(1 + g/g1))): 1/(2 + sqrt 2) = 0.293 for equal rods.
+    That is exactly the ratio at which the valve's central position does not move with
+    the setting: lifting a straight link u1 pulls the block towards the shaft by
+    (u1^2 - 2 u u1)/(2 g) on average over a turn, dropping the radius rod's end u - u1
+    pulls the stem by (u - u1)^2/(2 g1), and the two cancel when
+    (1 - k)^2 g = k (2 - k) g1 (derived here; see tests/test_link_motion.py).
+    """
+    q = g1 / g
+    return 1.0 / (1.0 + q * (1.0 + math.sqrt(1.0 + 1.0 / q)))
+
+
 def parse_link_motion(t: Table) -> LinkMotionSpec:
     """Read a ``[valve_gear] type = "link_motion"`` table."""
     kind = t.choice("link", KINDS)
@@ -251,20 +362,30 @@ def parse_link_motion(t: Table) -> LinkMotionSpec:
         raise InputError(t.key("block"), t.raw("block"),
                          f"a block offset within the link, -{c / 0.0254:.4g} in to "
                          f"{c / 0.0254:.4g} in (the half chord)")
-    k = t.number("allen_ratio", 0.5) if kind == "allen" else 0.5
+    g1 = None
+    if kind in ("gooch", "allen") and t.has("radius_rod"):
+        g1 = t.length("radius_rod", positive=True)
+        if g1 <= c:
+            raise InputError(t.key("radius_rod"), t.raw("radius_rod"),
+                             "a radius rod longer than the half link")
+    k = t.number("allen_ratio", allen_book_ratio(g, g1 or g)) if kind == "allen" else 0.5
     if not 0.0 <= k <= 1.0:
         raise InputError(t.key("allen_ratio"), k, "a ratio from 0 (Gooch) to 1 (Stephenson)")
     motion = t.choice("motion", ("zeuner", "exact"), "zeuner")
-    if motion == "exact" and not kind.startswith("stephenson"):
-        raise InputError(t.key("motion"), motion, "\"zeuner\": the exact linkage is built for "
-                         "the Stephenson link only, so far")
     rho = t.length("link_radius", positive=True) if t.has("link_radius") else None
     hanger = t.length("hanger", positive=True) if t.has("hanger") else None
     if rho is not None and rho <= c:
         raise InputError(t.key("link_radius"), t.raw("link_radius"), "a radius above the half link")
+    if kind == "allen" and rho is not None:
+        raise InputError(t.key("link_radius"), t.raw("link_radius"),
+                         "no link_radius: the Allen link is straight (Spangler Art. 72)")
+    if not kind.startswith("stephenson") and hanger is not None:
+        raise InputError(t.key("hanger"), t.raw("hanger"), "no hanger: the exact Gooch and "
+                         "Allen links are hung from infinitely long rods")
     spec = LinkMotionSpec(kind, r, delta, g, c, u, pair(t, "lap", "length"),
                           pair(t, "exhaust_lap", "length", "0 in"), allen_ratio=k,
-                          motion=motion, link_radius_m=rho, hanger_m=hanger, **parse_ports(t))
+                          motion=motion, link_radius_m=rho, hanger_m=hanger, radius_rod_m=g1,
+                          allen_passage_m=parse_allen_passage(t), **parse_ports(t))
     C, S = spec.coefficients()
     reach = math.hypot(C, S)
     for end, lap in zip(("head", "crank"), spec.lap_m):
