@@ -77,10 +77,22 @@ def cmd_run(args) -> int:
     scene = _load(args.scene)
     if args.fidelity:
         scene = scene.with_fidelity(args.fidelity)
+    transient = scene.run.mode == "transient"
     if args.cycles is not None:
+        if transient:
+            raise InputError("--cycles", args.cycles, "no cycle count for a transient scene: "
+                             "give --duration (e.g. \"5 s\")")
         if args.cycles < 1:
             raise InputError("--cycles", args.cycles, "a whole number of cycles >= 1")
         scene = scene.replace_run(cycles=args.cycles)
+    if args.duration is not None:
+        if not transient:
+            raise InputError("--duration", args.duration, "a steady scene has no duration: "
+                             "give --cycles, or run a transient scene")
+        d = units.parse(args.duration, "time", "--duration")
+        if not 0.0 < d <= 3600.0:
+            raise InputError("--duration", args.duration, "a time above 0, up to 1 h")
+        scene = scene.replace_run(duration_s=d)
     out = Path(args.out if args.out is not None else scene.output.dir)
     bar = ProgressBar() if scene.run.mode == "transient" and not args.json else None
     result = simulate(scene, progress=bar)
@@ -98,8 +110,8 @@ def cmd_run(args) -> int:
 
 
 class ProgressBar:
-    """A progress bar on stderr for transient runs, shown once a run has taken more than
-    a couple of seconds (short runs print nothing)."""
+    """A progress bar on stderr for transient runs, shown on a terminal once a run has
+    taken more than a couple of seconds (short runs and logs get nothing)."""
 
     def __init__(self, delay_s: float = 2.0, width: int = 40):
         import time
@@ -111,7 +123,7 @@ class ProgressBar:
 
     def __call__(self, done: float, total: float) -> None:
         elapsed = self._clock() - self.t0
-        if elapsed < self.delay:
+        if elapsed < self.delay or not sys.stderr.isatty():
             return
         frac = min(max(done / total, 0.0), 1.0) if total > 0 else 1.0
         n = int(round(frac * self.width))
@@ -223,7 +235,8 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--json", action="store_true", help="print the summary as JSON")
     r.add_argument("--fidelity", choices=("reference", "standard", "fast"),
                    help="override the scene's fidelity preset")
-    r.add_argument("--cycles", type=int, help="simulate exactly N cycles")
+    r.add_argument("--cycles", type=int, help="simulate exactly N cycles (steady scenes)")
+    r.add_argument("--duration", help="simulated time of a transient scene, e.g. \"5 s\"")
     r.set_defaults(func=cmd_run)
     e = sub.add_parser("events", help="valve events of each end, without simulating")
     e.add_argument("scene", help="scene TOML")

@@ -524,16 +524,18 @@ def _speed_loop(data: dict, run: RunSpec, supply: SupplySpec, gt, gear, baromete
         gov_t = governor_type(g.raw("type"))
         spec = gov_t.parse(g)
         g.finish()
+        from corliss.engine.transient import actuator_range
         mech = gov_t.build(spec).mechanism(11)
-        lo_hi = sorted((mech.actuator_at_rest, mech.actuator_at_top))
+        lo_hi = actuator_range(mech)
         if mech.acts_on == "throttle":
             if not run.has("steam_chest") or supply.pipe_diameter_m is None:
                 raise InputError("governor.type", gov_t.name, "a throttling governor needs the "
                                  "\"steam_chest\" effect and supply.pipe_diameter: it moves the "
                                  "throttle in the steam pipe")
             if not (0.0 <= lo_hi[0] and lo_hi[1] <= 1.0):
-                raise InputError("governor", [mech.actuator_at_rest, mech.actuator_at_top],
-                                 "throttle openings from 0 to 1 at rest and at the top stop")
+                raise InputError("governor.opening_at_rest", [mech.actuator_at_rest,
+                                 mech.actuator_at_top], "throttle openings from 0 to 1 at rest "
+                                 "and at the top stop")
         else:
             g_obj = gt.build(gear)
             if g_obj.setting_range is None:
@@ -541,9 +543,10 @@ def _speed_loop(data: dict, run: RunSpec, supply: SupplySpec, gt, gear, baromete
                                  f"the governor to move; the {gt.name} gear has none")
             lo, hi = g_obj.setting_range
             if lo_hi[0] < lo - 1e-12 or lo_hi[1] > hi + 1e-12:
-                raise InputError("governor", [mech.actuator_at_rest, mech.actuator_at_top],
-                                 f"gear settings within the {gt.name} gear's range {lo} to {hi} "
-                                 f"({g_obj.setting_name})")
+                raise InputError("governor.setting_at_rest", [mech.actuator_at_rest,
+                                 mech.actuator_at_top, mech.actuator_safety],
+                                 f"gear settings (at rest, at the top stop, safety) within the "
+                                 f"{gt.name} gear's range {lo} to {hi} ({g_obj.setting_name})")
         out["governor_type"] = gov_t.name
         out["governor"] = spec
     return out

@@ -57,12 +57,19 @@ def test_events_json_matches_the_summary_events(tmp_path, capsys):
 
 
 def test_every_bundled_scene_runs(tmp_path, capsys):
+    import tomllib
     for scene in sorted(SCENES.glob("*.toml")):
-        assert cli.main(["run", str(scene), "--out", str(tmp_path), "--cycles", "2",
+        transient = tomllib.loads(scene.read_text())["run"].get("mode") == "transient"
+        length = ["--duration", "0.5 s"] if transient else ["--cycles", "2"]
+        assert cli.main(["run", str(scene), "--out", str(tmp_path), *length,
                          "--fidelity", "fast", "--json"]) == 0, scene
         s = json.loads(capsys.readouterr().out)
-        assert s["indicated_power_W"] > 0, scene
-        assert s["cycles_to_converge"] is None  # fixed cycle count
+        if transient:
+            assert s["simulated_s"] >= 0.5 and s["final_speed_rpm"] > 0, scene
+            assert (tmp_path / f"{scene.stem}.cycles.csv").is_file()
+        else:
+            assert s["indicated_power_W"] > 0, scene
+            assert s["cycles_to_converge"] is None  # fixed cycle count
 
 
 def test_console_script_is_installed():

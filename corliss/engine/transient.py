@@ -63,6 +63,15 @@ def equilibrium_z(mech, omega_shaft: float) -> float:
     return float(z0 + (z1 - z0) * f[k - 1] / (f[k - 1] - f[k]))
 
 
+def actuator_range(mech) -> tuple[float, float]:
+    """The least and greatest actuator values a governor can set, its safety setting
+    included."""
+    vals = [mech.actuator_at_rest, mech.actuator_at_top]
+    if mech.safety_z > 0.0 and np.isfinite(mech.actuator_safety):
+        vals.append(mech.actuator_safety)
+    return min(vals), max(vals)
+
+
 def _governor_arrays(mech):
     z = np.asarray(mech.z, dtype=float)
     if not (abs(z[0]) < 1e-12 and abs(z[-1] - 1.0) < 1e-12 and np.allclose(np.diff(z), z[1] - z[0])):
@@ -169,6 +178,9 @@ def build_tables(scene, net, build_gear) -> LoopTables:
         sc[tk.S_VEPS] = CREEP_PER_S
         sc[tk.S_A0] = mech.actuator_at_rest
         sc[tk.S_A1] = mech.actuator_at_top
+        if mech.safety_z > 0.0 and np.isfinite(mech.actuator_safety):
+            sc[tk.S_SAFE_Z] = mech.safety_z
+            sc[tk.S_SAFE_A] = mech.actuator_safety
         z0 = equilibrium_z(mech, omega0)
         if mech.acts_on == "throttle":
             sc[tk.S_ACT_GEAR] = 0.0
@@ -180,7 +192,7 @@ def build_tables(scene, net, build_gear) -> LoopTables:
         else:
             sc[tk.S_ACT_GEAR] = 1.0
             gear = build_gear(scene)
-            lo, hi = sorted((mech.actuator_at_rest, mech.actuator_at_top))
+            lo, hi = actuator_range(mech)
             governed[:] = 1
             if scene.compound is not None:
                 governed[1:] = 0     # the governor moves the HP gear; the LP's is fixed

@@ -50,8 +50,8 @@ TWO_PI = 2.0 * math.pi
 # layout of the scalar parameters ``sc``
 S_INERTIA, S_MREC, S_TF0, S_TF1, S_RATIO, S_DAMP, S_FRIC, S_VEPS = 0, 1, 2, 3, 4, 5, 6, 7
 S_KLAW, S_TREF, S_WREF, S_ACT_GEAR, S_A0, S_A1, S_HAS_GOV, S_THR_EDGE = 8, 9, 10, 11, 12, 13, 14, 15
-S_FREEZE, S_FRICTION_ON, S_WMIN, S_TRIP = 16, 17, 18, 19
-N_SCALARS = 20
+S_FREEZE, S_FRICTION_ON, S_WMIN, S_TRIP, S_SAFE_Z, S_SAFE_A = 16, 17, 18, 19, 20, 21
+N_SCALARS = 22
 
 # the extra states after the network's, relative to its length
 X_OMEGA, X_Z, X_ZDOT, X_TIME, X_WLOAD, X_WFRIC, X_WGAS, X_ZDT, X_ADT = 0, 1, 2, 3, 4, 5, 6, 7, 8
@@ -209,6 +209,8 @@ def transient_rhs(th, y, dy, net, tier, tab, perf, pr, pa, tr, out):
     zd = y[nn + X_ZDOT]
     zc = min(max(z, 0.0), 1.0)
     act = sc[S_A0] + (sc[S_A1] - sc[S_A0]) * zc
+    if zc < sc[S_SAFE_Z]:      # the safety cams (a Corliss governor fallen below its range)
+        act = sc[S_SAFE_A]
     net[0][0] = omega
     node_states(th, y, net, tier, tab, perf, pr)
     port_areas(th, net, pa)
