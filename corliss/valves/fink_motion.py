@@ -1,0 +1,503 @@
+"""The Fink link motion and the Porter-Allen gear built on it (Spangler Arts. 74-83, 30).
+
+Fink motion (Spangler Art. 74, Fig. 51).  One eccentric of throw r, set 90 deg from
+the valve's middle position (Art. 81), drives a rod rigid with the link: a point p' of
+the rod, a distance a from the eccentric's centre, is held on the line of stroke
+(by a suspension rod, "or very nearly so"), and the link's middle j is a further b
+along the rod; the link is an arc of radius rho, concave towards the valve, square to
+the rod at j.  The radius rod (length g1) runs from the block, which a hanger holds at
+the height u above the line of stroke, to the valve stem on that line.  The governor
+or reversing lever sets u.  Spangler's equation (A) of Art. 77, the valve's
+displacement from its central position, with omega the crank angle from the dead
+point::
+
+    x = r cos w + (u r / a)(1 + b/g1) sin w
+        + (r^2 / 2a^2)(b + b^2/g1 + 3u^2/(2 g1) - a) sin^2 w             (A)
+
+("The last term in this equation is generally small, and may be omitted"): Zeuner's
+form is the first line, C = r, S = (u r / a)(1 + b/g1).  Since C = r for every u, "the
+lap plus the lead equals the throw of the eccentric" (Art. 78): the lead is the same at
+every setting when rho = g1 (Art. 75: with the crank on a dead point the link is an arc
+about the valve-stem end, so moving the block does not move the valve).
+
+``motion`` selects ``"zeuner"`` (the first line of (A)), ``"second_order"`` (all of
+(A), the Art. 77 derivation to order r^2/a^2) or ``"exact"``: the linkage solved at
+each crank angle in closed form (p' exactly on the line of stroke, the block exactly at
+height u, the link a true arc of radius rho and the radius rod of length g1 reaching the
+stem on the line of stroke), its zero the mean of the stem's two dead-point positions at
+the end of the link (u = c), which is the book's a + b + g1 (+ g2) when rho = g1
+(Art. 75).  The crank angle here is theta from head-end dead centre, x positive in the
+sense that opens the head steam port.
+
+A point fixed on the link at a distance y from the rod (Art. 79, the Porter-Allen
+exhaust rod) moves in the same way with y for u, but without the factor (1 + b/g1),
+which comes from the block sliding along the curved link at constant height: for the
+fixed point the linkage gives x = r cos w + (y r / a) sin w (the book's statement is
+exact for b = 0, "generally" its case, Art. 78).
+
+Porter-Allen gear (Art. 83, Fig. 53; valves Art. 30, Fig. 22).  A Fink motion whose
+radius rod, moved in the link by the governor, drives the rock shaft j; two arms on
+that shaft drive the head and crank steam valves, each a flat plate with its own lap,
+the arms set so that "each valve is moving its fastest when opening and closing its
+port".  The exhaust rod hangs from one fixed point g' of the link and works the two
+exhaust valves, on one stem, through a bell crank; so "the exhaust events do not change
+with the cut-off".  Modelled: the radius rod's end i' swings the driving arm (length
+R_d) through phi = asin(x_s / R_d); a valve arm of length R_v set at the angle beta
+from square to its stem moves its valve R_v [sin(phi - beta) + sin beta] from mid
+position, and with lap lambda the port opens by R_v sin(phi - beta) - (lambda - R_v sin
+beta).  Setting beta = asin(lambda / R_v), the arm is square to the stem (the valve at
+its fastest) just as the edge crosses the port: the signed opening is R_v sin(phi -
+beta).  The crank-end valve is worked by its arm the other way (-phi).  The exhaust
+stem moves k_e times the exhaust point's travel, reversed by the bell crank (the
+exhaust valves are "indirectly connected", Art. 30): the head exhaust opens by
+-k_e x_e - e_h, the crank exhaust by k_e x_e - e_c.  The governor's setting s runs from
+0 at rest (block at ``block_at_rest``, longest cut-off) to 1 at the top of its lift
+(block at ``block_at_top``, towards the link's centre: shortest cut-off).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from corliss import units
+from corliss.errors import InputError
+from corliss.tables import Table
+from corliss.valves.gear import GearType, ValveGear, register
+from corliss.valves.slide_valve import LappedValve, pair, parse_ports
+
+MOTIONS = ("zeuner", "second_order", "exact")
+
+
+@dataclass(frozen=True)
+class FinkLink:
+    """Dimensions of a Fink link motion (Spangler Art. 74, Fig. 51), all SI.
+
+    Attributes
+    ----------
+    eccentricity_m : float
+        Throw r of the eccentric [m].
+    rod_a_m : float
+        a: eccentric centre to the point p' held on the line of stroke [m].
+    rod_b_m : float
+        b: from p' to the link's middle j [m] (often 0, Art. 78).
+    radius_rod_m : float
+        g1: radius rod, block to valve stem [m].
+    half_link_m : float
+        c: the most the block may stand off the line of stroke [m].
+    link_radius_m : float
+        rho: radius of the link's arc [m]; g1 for constant lead (Art. 75), "slightly
+        more" in the Porter-Allen (Art. 83).
+    motion : str
+        One of :data:`MOTIONS`.
+    """
+
+    eccentricity_m: float
+    rod_a_m: float
+    rod_b_m: float
+    radius_rod_m: float
+    half_link_m: float
+    link_radius_m: float
+    motion: str = "zeuner"
+
+    def coefficients(self, u: float) -> tuple[float, float]:
+        """(C, S) of Zeuner's form x = C cos(theta) + S sin(theta) for the block at
+        height u [m] (Spangler Arts. 77-78)."""
+        r, a, b, g1 = self.eccentricity_m, self.rod_a_m, self.rod_b_m, self.radius_rod_m
+        return r, u * r / a * (1.0 + b / g1)
+
+    def sin2_coefficient(self, u: float) -> float:
+        """Coefficient of sin^2(theta) in Spangler's eq. (A), Art. 77 [m]."""
+        r, a, b, g1 = self.eccentricity_m, self.rod_a_m, self.rod_b_m, self.radius_rod_m
+        return r * r / (2 * a * a) * (b + b * b / g1 + 1.5 * u * u / g1 - a)
+
+    def block_travel(self, u: float, theta) -> np.ndarray:
+        """Displacement of the valve-stem end of the radius rod [m], block at height u."""
+        th = np.asarray(theta, dtype=float)
+        if self.motion == "exact":
+            return _stem_x(self, u, th) - self.stem_zero()
+        C, S = self.coefficients(u)
+        x = C * np.cos(th) + S * np.sin(th)
+        if self.motion == "second_order":
+            x = x + self.sin2_coefficient(u) * np.sin(th) ** 2
+        return x
+
+    def stem_zero(self) -> float:
+        """The valve stem's central position [m from the shaft]: the mean of its two
+        dead-point positions with the block at the end of the link (u = c)."""
+        dead = _stem_x(self, self.half_link_m, np.array([0.0, math.pi]))
+        return float(0.5 * (dead[0] + dead[1]))
+
+    def point_travel(self, y: float, theta) -> np.ndarray:
+        """Displacement [m] of the point fixed on the link a distance y from the rod
+        (Art. 79), from the mean of its dead-point positions."""
+        th = np.asarray(theta, dtype=float)
+        r, a = self.eccentricity_m, self.rod_a_m
+        if self.motion != "exact":
+            return r * np.cos(th) + y * r / a * np.sin(th)
+        dead = _link_point_x(self, y, np.array([0.0, math.pi]))
+        return _link_point_x(self, y, th) - 0.5 * (dead[0] + dead[1])
+
+
+def _frame(link: FinkLink, theta: np.ndarray):
+    """Unit vector t along the eccentric rod (towards the valve), its normal n, and the
+    link's centre of curvature K, at crank angles theta (Fig. 51 laid out with the shaft
+    at the origin and the line of stroke the x axis)."""
+    r, a, b, rho = link.eccentricity_m, link.rod_a_m, link.rod_b_m, link.link_radius_m
+    ex, ey = r * np.cos(theta), r * np.sin(theta)
+    px = ex + np.sqrt(a * a - ey * ey)                  # p' on the line of stroke
+    tx, ty = (px - ex) / a, -ey / a
+    kx = ex + (a + b + rho) * tx                        # j = E + (a + b) t, K = j + rho t
+    ky = ey + (a + b + rho) * ty
+    return (tx, ty), (-ty, tx), (kx, ky)
+
+
+def _stem_x(link: FinkLink, u: float, theta: np.ndarray) -> np.ndarray:
+    """Distance from the shaft of the radius rod's stem end [m]: the block where the
+    link's arc (the side towards the shaft) meets the height u, then the rod g1 down
+    to the line of stroke."""
+    _, _, (kx, ky) = _frame(link, theta)
+    rho, g1 = link.link_radius_m, link.radius_rod_m
+    bx = kx - np.sqrt(rho * rho - (u - ky) ** 2)
+    return bx + math.sqrt(g1 * g1 - u * u)
+
+
+def _link_point_x(link: FinkLink, y: float, theta: np.ndarray) -> np.ndarray:
+    """Distance from the shaft [m] of the point of the link's arc a chord-distance y
+    from the rod's line."""
+    (tx, _), (nx, _), (kx, _) = _frame(link, theta)
+    rho = link.link_radius_m
+    return kx - math.sqrt(rho * rho - y * y) * tx + y * nx
+
+
+# ---------------------------------------------------------------------------- Fink gear
+
+@dataclass(frozen=True)
+class FinkMotionSpec:
+    """A Fink link motion driving a lapped slide valve (all SI).
+
+    ``link`` holds the linkage, ``block_m`` the block's height u (the setting, within
+    the half link); the rest are the valve's, as for the slide valve.
+    """
+
+    link: FinkLink
+    block_m: float
+    lap_m: tuple[float, float]
+    exhaust_lap_m: tuple[float, float]
+    port_width_m: float
+    port_length_m: float
+    discharge_coefficient: float = 0.7
+    ports_per_end: int = 1
+
+
+class FinkMotion(LappedValve):
+    """A slide valve on the Fink link motion (Spangler Arts. 74-82)."""
+
+    name = "fink_motion"
+    summary = ("Fink link motion: one eccentric, the link on its rod, the block's height the "
+               "setting (Spangler Arts. 74-82); Zeuner's form, eq. (A) or the exact linkage")
+    setting_name = "block height u / c (1 full gear ahead, 0 mid gear, -1 full gear astern)"
+    setting_range = (-1.0, 1.0)
+
+    def __init__(self, spec: FinkMotionSpec):
+        self.spec = spec
+
+    def with_setting(self, value: float) -> "FinkMotion":
+        lo, hi = self.setting_range
+        if not lo <= value <= hi:
+            raise ValueError(f"setting {value} outside {self.setting_range}")
+        return FinkMotion(dataclasses.replace(self.spec,
+                                              block_m=value * self.spec.link.half_link_m))
+
+    def travel(self, theta):
+        return self.spec.link.block_travel(self.spec.block_m, theta)
+
+    def zeuner_travel(self, theta):
+        """Zeuner's form of the same setting [m] (Art. 77, eq. (A) less its last term)."""
+        C, S = self.spec.link.coefficients(self.spec.block_m)
+        th = np.asarray(theta, dtype=float)
+        return C * np.cos(th) + S * np.sin(th)
+
+
+def parse_fink_link(t: Table) -> FinkLink:
+    """The linkage keys shared by the Fink and Porter-Allen gears."""
+    r = t.length("eccentricity", positive=True)
+    a = t.length("rod_a", positive=True)
+    b = t.length("rod_b", "0 in")
+    if b < 0.0:
+        raise InputError(t.key("rod_b"), t.raw("rod_b"), "a length of zero or more")
+    g1 = t.length("radius_rod", positive=True)
+    c = t.length("half_link", positive=True)
+    rho = t.length("link_radius", positive=True) if t.has("link_radius") else g1
+    if a <= r:
+        raise InputError(t.key("rod_a"), t.raw("rod_a"),
+                         f"a rod longer than the eccentricity ({r / units.INCH_m:.4g} in)")
+    if c >= min(g1, rho):
+        raise InputError(t.key("half_link"), t.raw("half_link"),
+                         "a half link shorter than the radius rod and the link's radius")
+    motion = t.choice("motion", MOTIONS, "zeuner")
+    return FinkLink(r, a, b, g1, c, rho, motion)
+
+
+def parse_fink_motion(t: Table) -> FinkMotionSpec:
+    """Read a ``[valve_gear] type = "fink_motion"`` table."""
+    link = parse_fink_link(t)
+    u = t.length("block")
+    c = link.half_link_m
+    if abs(u) > c:
+        raise InputError(t.key("block"), t.raw("block"),
+                         f"a block height within the link, -{c / units.INCH_m:.4g} in to "
+                         f"{c / units.INCH_m:.4g} in (the half link)")
+    spec = FinkMotionSpec(link, u, pair(t, "lap", "length"),
+                          pair(t, "exhaust_lap", "length", "0 in"), **parse_ports(t))
+    reach = float(np.max(np.abs(link.block_travel(u, np.linspace(0, 2 * math.pi, 721)))))
+    if max(spec.lap_m) >= reach:
+        raise InputError(t.key("lap"), t.raw("lap"),
+                         f"a lap below the valve's greatest travel at this block "
+                         f"({reach / units.INCH_m:.4g} in): the port never opens")
+    return spec
+
+
+register(GearType("fink_motion", FinkMotion.summary, parse_fink_motion, FinkMotion))
+
+
+# ---------------------------------------------------------------------- Porter-Allen gear
+
+@dataclass(frozen=True)
+class PorterAllenSpec:
+    """A Porter-Allen gear (Spangler Art. 83, Art. 30), all SI.
+
+    Attributes
+    ----------
+    link : FinkLink
+    block_at_rest_m, block_at_top_m : float
+        Block height u with the governor at rest (s = 0) and at the top of its lift
+        (s = 1) [m].
+    setting : float
+        Governor position s in [0, 1].
+    drive_arm_m : float
+        R_d, the rock-shaft arm ji' the radius rod works [m].
+    valve_arm_m : float
+        R_v, the arms jl', jk' to the steam-valve stems [m].
+    steam_lap_m : tuple of float
+        Lap of the (head, crank) steam valve [m].
+    exhaust_point_m : float
+        y of the link point g' carrying the exhaust rod [m].
+    exhaust_ratio : float
+        k_e, exhaust-stem travel over the point g''s travel (the bell crank q'rs') [-].
+    exhaust_lap_m : tuple of float
+        Lap of the (head, crank) exhaust valve [m]; negative = clearance.
+    steam_port_width_m, steam_port_length_m, exhaust_port_width_m,
+    exhaust_port_length_m : float
+        Ports' widths along the valve's travel and lengths across it [m].
+    """
+
+    link: FinkLink
+    block_at_rest_m: float
+    block_at_top_m: float
+    drive_arm_m: float
+    valve_arm_m: float
+    steam_lap_m: tuple[float, float]
+    exhaust_point_m: float
+    exhaust_ratio: float
+    exhaust_lap_m: tuple[float, float]
+    steam_port_width_m: float
+    steam_port_length_m: float
+    exhaust_port_width_m: float
+    exhaust_port_length_m: float
+    discharge_coefficient: float = 0.7
+    setting: float = 0.0
+
+    @property
+    def block_m(self) -> float:
+        """Block height u at the present governor position [m]."""
+        s = self.setting
+        return (1.0 - s) * self.block_at_rest_m + s * self.block_at_top_m
+
+    @property
+    def arm_angles_rad(self) -> tuple[float, float]:
+        """beta of the (head, crank) valve arm: square to its stem as the edge crosses
+        the port [rad]."""
+        return tuple(math.asin(lam / self.valve_arm_m) for lam in self.steam_lap_m)
+
+    @property
+    def equivalent_lap_m(self) -> tuple[float, float]:
+        """The laps as seen at the radius rod's end, R_d sin(beta) [m]: where the Zeuner
+        diagram of the steam motion is cut."""
+        return tuple(self.drive_arm_m * math.sin(b) for b in self.arm_angles_rad)
+
+
+class PorterAllenGear(ValveGear):
+    """Four valves on a Porter-Allen (Fink) gear with the governor moving the block."""
+
+    name = "porter_allen"
+    summary = ("Porter-Allen: Fink link, governor moves the steam radius rod; rock shaft with "
+               "two arms to separate steam valves, exhaust valves from a fixed point of the "
+               "link (Spangler Arts. 30, 83); setting = governor position 0..1")
+    setting_name = "governor position s (0 at rest, longest cut-off; 1 at the top of its lift)"
+    setting_range = (0.0, 1.0)
+
+    def __init__(self, spec: PorterAllenSpec):
+        self.spec = spec
+
+    def with_setting(self, value: float) -> "PorterAllenGear":
+        if not 0.0 <= value <= 1.0:
+            raise ValueError(f"setting {value} outside [0, 1]")
+        return PorterAllenGear(dataclasses.replace(self.spec, setting=value))
+
+    # -- the motions
+    def steam_drive(self, theta) -> np.ndarray:
+        """x_s: travel of the steam radius rod's end i' [m] (Fink motion at the block)."""
+        return self.spec.link.block_travel(self.spec.block_m, theta)
+
+    def exhaust_drive(self, theta) -> np.ndarray:
+        """x_e: travel of the link point g' carrying the exhaust rod [m] (Art. 79)."""
+        return self.spec.link.point_travel(self.spec.exhaust_point_m, theta)
+
+    def rock_angle(self, theta) -> np.ndarray:
+        """phi of the rock shaft [rad], 0 with the radius rod at mid travel."""
+        return np.arcsin(np.clip(self.steam_drive(theta) / self.spec.drive_arm_m, -1.0, 1.0))
+
+    def valve_travels(self, theta) -> np.ndarray:
+        """Displacement from mid position [m] of the head steam, crank steam and
+        exhaust stems, each in the sense that opens its (head steam, crank steam,
+        head exhaust) port; shape (3, n)."""
+        s = self.spec
+        phi = self.rock_angle(theta)
+        bh, bc = s.arm_angles_rad
+        rv = s.valve_arm_m
+        return np.vstack([rv * (np.sin(phi - bh) + math.sin(bh)),
+                          rv * (np.sin(-phi - bc) + math.sin(bc)),
+                          -s.exhaust_ratio * self.exhaust_drive(theta)])
+
+    # -- the ValveGear interface
+    def signed_openings(self, theta):
+        s = self.spec
+        v = self.valve_travels(np.atleast_1d(theta))
+        lh, lc = s.steam_lap_m
+        eh, ec = s.exhaust_lap_m
+        return np.vstack([v[0] - lh, v[2] - eh, v[1] - lc, -v[2] - ec])
+
+    def port_widths(self):
+        s = self.spec
+        return np.array([s.steam_port_width_m, s.exhaust_port_width_m] * 2)
+
+    def port_lengths(self):
+        s = self.spec
+        return np.array([s.steam_port_length_m, s.exhaust_port_length_m] * 2)
+
+    def discharge_coefficients(self):
+        return np.full(4, self.spec.discharge_coefficient)
+
+    # -- the drawing
+    def draw(self, fig, units_system: str = "US") -> dict:
+        """Three panels in the style of :mod:`corliss.plot`: the stems' travels, the
+        four port openings against crank angle, and the Zeuner diagram of the steam
+        motion at the radius rod with the laps referred to it."""
+        u = "in" if units_system == "US" else "mm"
+        th = np.linspace(0.0, 2 * math.pi, 721)
+        deg = np.degrees(th)
+        ax1, ax2, ax3 = (fig.add_subplot(1, 3, k) for k in (1, 2, 3))
+        v = units.to_unit(self.valve_travels(th), u)
+        for row, label, style in ((0, "head steam valve", dict(color="k", lw=1.3)),
+                                  (1, "crank steam valve", dict(color="0.35", lw=1.3, ls="--")),
+                                  (2, "exhaust valves' stem", dict(color="0.55", lw=1.0, ls=":"))):
+            ax1.plot(deg, v[row], label=label, **style)
+        lh, lc = self.spec.steam_lap_m
+        laps = ([(lh, "steam laps", "-")] if lh == lc else
+                [(lh, "head steam lap", "-"), (lc, "crank steam lap", "--")])
+        for lam, label, ls in laps + [(self.spec.exhaust_lap_m[0], "head exhaust lap", ":")]:
+            if lam != 0.0:
+                ax1.axhline(units.to_unit(lam, u), color="0.6", lw=0.7, ls=ls)
+                ax1.text(362, units.to_unit(lam, u), label, fontsize=7, va="center", color="0.4")
+        ax1.set_ylabel(f"stem displacement, + opens its port [{u}]")
+        ax1.set_title("Valve travels", fontsize=10)
+        op = units.to_unit(self.openings(th), u)
+        for port, label, style in ((0, "head steam", dict(color="k", lw=1.3)),
+                                   (2, "crank steam", dict(color="0.35", lw=1.3, ls="--")),
+                                   (1, "head exhaust", dict(color="0.55", lw=1.0)),
+                                   (3, "crank exhaust", dict(color="0.55", lw=1.0, ls="--"))):
+            ax2.plot(deg, op[port], label=label, **style)
+        ax2.set_ylabel(f"port opening [{u}]")
+        ax2.set_title("Port openings", fontsize=10)
+        for ax in (ax1, ax2):
+            ax.axhline(0, color="0.8", lw=0.5)
+            ax.set_xlim(0, 360)
+            ax.set_xticks(range(0, 361, 90))
+            ax.set_xlabel("crank angle from head-end dead centre [deg]")
+            ax.legend(fontsize=7, frameon=False, loc="upper center")
+            for side in ("top", "right"):
+                ax.spines[side].set_visible(False)
+        x = units.to_unit(self.steam_drive(np.linspace(0, 2 * math.pi, 1441)), u)
+        t = np.linspace(0, 2 * math.pi, 1441)
+        pos = x > 0
+        for end, mask, rad, ls in (("head", pos, x, "-"), ("crank", ~pos, -x, "--")):
+            ax3.plot(np.where(mask, rad * np.cos(t), np.nan), np.where(mask, rad * np.sin(t), np.nan),
+                     color="k", lw=1.3, ls=ls, label=f"{end}-end valve circle")
+        c = np.linspace(0, 2 * math.pi, 361)
+        for lam, ls, label in zip(units.to_unit(np.array(self.spec.equivalent_lap_m), u),
+                                  ("-", "--"), ("head lap at the rod", "crank lap at the rod")):
+            ax3.plot(lam * np.cos(c), lam * np.sin(c), color="0.55", lw=0.8, ls=ls, label=label)
+        rmax = float(np.nanmax(np.abs(x)))
+        ax3.axhline(0, color="0.8", lw=0.6)
+        ax3.axvline(0, color="0.8", lw=0.6)
+        ax3.set_aspect("equal")
+        ax3.set_xlim(-1.1 * rmax, 1.1 * rmax)
+        ax3.set_ylim(-1.1 * rmax, 1.1 * rmax)
+        ax3.set_title(f"Zeuner diagram of the steam motion (s = {self.spec.setting:g})",
+                      fontsize=10)
+        ax3.set_xlabel(f"[{u}]")
+        ax3.legend(fontsize=7, frameon=False, loc="lower right")
+        return {"axes": (ax1, ax2, ax3)}
+
+
+def parse_porter_allen(t: Table) -> PorterAllenSpec:
+    """Read a ``[valve_gear] type = "porter_allen"`` table."""
+    link = parse_fink_link(t)
+    c = link.half_link_m
+    blocks = []
+    for key in ("block_at_rest", "block_at_top", "exhaust_point"):
+        v = t.length(key)
+        if abs(v) > c:
+            raise InputError(t.key(key), t.raw(key), f"a height within the link, -{c / units.INCH_m:.4g}"
+                             f" in to {c / units.INCH_m:.4g} in (the half link)")
+        blocks.append(v)
+    setting = t.number("setting", 0.0)
+    if not 0.0 <= setting <= 1.0:
+        raise InputError(t.key("setting"), setting, "a governor position from 0 to 1")
+    rd = t.length("drive_arm", positive=True)
+    rv = t.length("valve_arm", positive=True)
+    lap = pair(t, "steam_lap", "length")
+    if not all(0.0 <= lam < rv for lam in lap):
+        raise InputError(t.key("steam_lap"), t.raw("steam_lap"),
+                         "laps of zero or more, shorter than the valve arm")
+    ratio = t.number("exhaust_ratio", 1.0)
+    if not ratio > 0.0:
+        raise InputError(t.key("exhaust_ratio"), ratio, "a ratio greater than zero")
+    cd = t.number("discharge_coefficient", 0.7)
+    if not 0.0 < cd <= 1.0:
+        raise InputError(t.key("discharge_coefficient"), cd, "a number in (0, 1]")
+    spec = PorterAllenSpec(
+        link, blocks[0], blocks[1], rd, rv, lap, blocks[2], ratio,
+        pair(t, "exhaust_lap", "length", "0 in"),
+        t.length("steam_port_width", positive=True), t.length("steam_port_length", positive=True),
+        t.length("exhaust_port_width", positive=True),
+        t.length("exhaust_port_length", positive=True), cd, setting)
+    th = np.linspace(0, 2 * math.pi, 721)
+    reach = max(float(np.max(np.abs(link.block_travel(u, th)))) for u in blocks[:2])
+    beta = max(spec.arm_angles_rad)
+    if reach >= rd or math.asin(reach / rd) + beta >= math.pi / 2:
+        raise InputError(t.key("drive_arm"), t.raw("drive_arm"),
+                         f"a driving arm long enough for the radius rod's travel "
+                         f"(+-{reach / units.INCH_m:.4g} in) to swing the valve arms less "
+                         "than square to their stems")
+    if max(spec.equivalent_lap_m) >= float(np.max(np.abs(link.block_travel(blocks[0], th)))):
+        raise InputError(t.key("steam_lap"), t.raw("steam_lap"),
+                         "laps at which the steam valves open with the governor at rest")
+    return spec
+
+
+register(GearType("porter_allen", PorterAllenGear.summary, parse_porter_allen, PorterAllenGear))
