@@ -1,0 +1,428 @@
+"""Double valves: a main valve and a cut-off valve on their own eccentrics (Spangler,
+*Valve-Gears*, Chs. XV-XVIII, Arts. 115-148).
+
+The main valve is a lapped D valve (or, in the Buckeye, a valve taking steam inside):
+it alone admits to and exhausts from each end, and its displacement ``x`` is taken in
+the sense that opens the head-end steam port.  Steam reaches its steam edge only
+through the cut-off valve, which is of one of two classes (Art. 115):
+
+* **on its own seat** (class 1, the gridiron or Gonzenbach valve, Arts. 116-126): it
+  controls the admission to the main valve's chest, common to both ends.  Its ports
+  (width ``e`` in the seat, ``f`` in the valve, centred over each other in its middle
+  position) are open by ``s - |x1|`` with ``s = (e + f)/2``, wide open (``e``) while
+  ``|x1| <= (f - e)/2`` (Art. 121), ``x1`` being the cut-off valve's own displacement;
+* **riding on the back of the main valve** (class 2: Polonceau, Buckeye, Meyer,
+  Guinotte, Arts. 117, 127-148): a block covers the passage through the main valve to
+  each end when the relative displacement of the two valves reaches the block's lap
+  ``s`` on that end (Art. 130).  With the relative displacement ``x_r`` taken in the
+  sense that closes the head-end passage, the top of the passage (width ``e``) is
+  open by ``s_h - x_r`` at the head end and ``s_c + x_r`` at the crank end; a block
+  of finite length ``d`` uncovers the passage again from its other side once
+  ``x_r > s + d - e`` (Art. 134: "the length of d > r_x - (s - e)", Art. 144).
+
+The steam port of each end is open only as far as both valves leave it open: the
+passages are in series, so the open area is the smaller of the two (the cut-off
+valve's opening converted to the main port's length), each bounded by its own width
+(notes on the book: "evaluate the effective area as the series combination of the
+main-valve and cut-off-valve openings at every angle").  The exhaust is under the
+main valve alone (Art. 115).  The steam held between the valves after the cut-off
+valve closes (the gridiron's chest, Art. 116; the passages of a riding valve) is not
+modelled: its small expansion with the cylinder's is neglected.
+
+**Double admission** (Arts. 118, 130, 133, 139, 142): if the cut-off valve opens its
+passage again while the main valve's port is still open, steam enters twice in one
+stroke.  :meth:`DoubleValve.double_admissions` finds every such second admission from
+the openings themselves; a scene whose setting gives one logs a warning.
+
+Both motions: the Zeuner form (each eccentric a harmonic, so the relative motion is
+itself one, the "relative valve circle" of Art. 128) and ``motion = "exact"`` with
+finite eccentric rods (and, for the Buckeye, its levers) solved per crank angle.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from corliss import units
+from corliss.errors import InputError
+from corliss.tables import Table
+from corliss.valves.gear import ValveGear
+from corliss.valves.slide_valve import pair, parse_ports
+
+log = logging.getLogger(__name__)
+TWO_PI = 2.0 * math.pi
+_SAMPLES = 7200
+
+
+@dataclass(frozen=True)
+class MainValveSpec:
+    """The main valve's laps and steam ports (all SI).
+
+    Attributes
+    ----------
+    lap_m, exhaust_lap_m : tuple of float
+        Steam and exhaust lap of the (head, crank) end [m].
+    port_width_m, port_length_m : float
+        Width of each cylinder port in the direction of travel, and its length [m].
+    discharge_coefficient : float
+        Of the steam and exhaust openings [-].
+    ports_per_end : int
+        Number of openings each edge uncovers.
+    """
+
+    lap_m: tuple[float, float]
+    exhaust_lap_m: tuple[float, float]
+    port_width_m: float
+    port_length_m: float
+    discharge_coefficient: float = 0.7
+    ports_per_end: int = 1
+
+
+@dataclass(frozen=True)
+class CutoffSpec:
+    """The cut-off valve's passages (all SI).
+
+    Attributes
+    ----------
+    kind : str
+        ``"seat"`` (class 1, gridiron) or ``"riding"`` (class 2, on the main valve).
+    lap_m : tuple of float
+        ``s`` of the (head, crank) end [m]: how far the cut-off valve moves (relative
+        to the main valve, for a riding valve) from its middle position to close.
+    passage_width_m : float
+        ``e``: width of the port it covers [m] (Arts. 121, 134, 144).
+    passage_length_m : float
+        Length of that port times the number of openings [m].
+    block_length_m : float or None
+        ``d``: length of a riding block [m]; None for a block long enough never to
+        uncover the passage from its far side.
+    """
+
+    kind: str
+    lap_m: tuple[float, float]
+    passage_width_m: float
+    passage_length_m: float
+    block_length_m: float | None = None
+
+
+def eccentric_travel(theta, r: float, delta: float, rod: float | None = None,
+                     sign: int = 1) -> np.ndarray:
+    """Displacement [m] of a valve driven by an eccentric of throw ``r`` and advance
+    ``delta``: ``r sin(theta + delta)`` (Spangler Art. 13, eq. 4), plus, with a rod of
+    finite length ``g``, the rod end's shortfall ``g - sqrt(g^2 - r^2 cos^2(theta +
+    delta))`` taken with ``sign`` (+1 directly connected, -1 through a reverse lever),
+    measured from the valve's mean dead-point position (set for equal lead, as the
+    plain slide valve is; Marks Art. 96)."""
+    phase = np.asarray(theta, dtype=float) + delta
+    x = r * np.sin(phase)
+    if rod is not None:
+        x = x + sign * (math.sqrt(rod * rod - (r * math.cos(delta)) ** 2)
+                        - np.sqrt(rod * rod - (r * np.cos(phase)) ** 2))
+    return x
+
+
+class DoubleValve(ValveGear):
+    """A main valve and a cut-off valve (see the module doc).
+
+    Subclasses set ``spec`` (with ``main``: :class:`MainValveSpec` and ``cutoff``:
+    :class:`CutoffSpec`) and give :meth:`main_travel` and either
+    :meth:`cutoff_travel` (a valve on its own seat) or :meth:`closing_travel` (a
+    riding valve), with their Zeuner forms for the drawing.
+    """
+
+    #: What the book calls the relative motion, for the drawing's legend.
+    relative_label = "relative (main - cut-off)"
+
+    # -- motions ---------------------------------------------------------------
+    def main_travel(self, theta) -> np.ndarray:  # pragma: no cover - interface
+        """Main valve displacement [m], + opens the head steam port."""
+        raise NotImplementedError
+
+    def cutoff_travel(self, theta) -> np.ndarray:  # pragma: no cover - interface
+        """Cut-off valve displacement [m] in the same sense."""
+        raise NotImplementedError
+
+    def closing_travel(self, theta) -> np.ndarray:
+        """Relative displacement of a riding cut-off valve [m], + closing the head-end
+        passage: main minus cut-off (the distance ``ef`` of Art. 127)."""
+        return self.main_travel(theta) - self.cutoff_travel(theta)
+
+    def zeuner_closing_coefficients(self) -> tuple[float, float] | None:
+        """(C, S) of the Zeuner relative motion C cos + S sin [m], or None."""
+        return None
+
+    # -- openings --------------------------------------------------------------
+    def main_signed(self, theta) -> np.ndarray:
+        """Signed openings of the main valve alone [m], shape (4, n)."""
+        x = self.main_travel(theta)
+        m = self.spec.main
+        (lh, lc), (eh, ec) = m.lap_m, m.exhaust_lap_m
+        return np.vstack([x - lh, -x - eh, -x - lc, x - ec])
+
+    def cutoff_signed(self, theta) -> np.ndarray:
+        """Signed opening [m] of the cut-off valve's passage to the (head, crank) end,
+        shape (2, n), in the cut-off valve's own widths (see the module doc)."""
+        c = self.spec.cutoff
+        sh, sc = c.lap_m
+        if c.kind == "seat":
+            x1 = np.abs(self.cutoff_travel(theta))
+            return np.vstack([sh - x1, sc - x1])
+        xr = self.closing_travel(theta)
+        head, crank = sh - xr, sc + xr
+        if c.block_length_m is not None:
+            d, e = c.block_length_m, c.passage_width_m
+            head = np.maximum(head, xr - (sh + d - e))
+            crank = np.maximum(crank, -xr - (sc + d - e))
+        return np.vstack([head, crank])
+
+    def _passage_scale(self) -> float:
+        m = self.spec.main
+        return self.spec.cutoff.passage_length_m / (m.port_length_m * m.ports_per_end)
+
+    def signed_openings(self, theta):
+        s = self.main_signed(theta)
+        cut = self.cutoff_signed(theta) * self._passage_scale()
+        s[0] = np.minimum(s[0], cut[0])
+        s[2] = np.minimum(s[2], cut[1])
+        return s
+
+    def port_widths(self):
+        m = self.spec.main
+        w = np.full(4, m.port_width_m)
+        w[[0, 2]] = min(m.port_width_m, self.spec.cutoff.passage_width_m * self._passage_scale())
+        return w
+
+    def port_lengths(self):
+        m = self.spec.main
+        return np.full(4, m.port_length_m * m.ports_per_end)
+
+    def discharge_coefficients(self):
+        return np.full(4, self.spec.main.discharge_coefficient)
+
+    # -- double admission ------------------------------------------------------
+    def double_admissions(self) -> dict[str, list[tuple[float, float]]]:
+        """Crank-angle intervals [deg] of any second admission, per end.
+
+        Within each interval in which the main valve's steam port is open, the combined
+        opening may open more than once: every opening after the first is steam
+        admitted again after the cut-off valve had closed (Art. 118: the cut-off valve
+        "must not open again until the crank passes B, otherwise steam would be
+        admitted twice during one stroke"; Arts. 130, 139, 142).  Edges are bisected
+        on the combined opening to 1e-10 rad.
+
+        Returns
+        -------
+        dict
+            ``{"head": [(start_deg, end_deg), ...], "crank": [...]}``, angles in [0, 360).
+        """
+        dt = TWO_PI / _SAMPLES
+        th = np.arange(_SAMPLES) * dt
+        main = self.main_signed(th)
+        comb = self.signed_openings(th)
+        out = {}
+        for end, p in (("head", 0), ("crank", 2)):
+            found = []
+            co = comb[p] > 0.0
+            for a0, a1 in _circular_runs(main[p] > 0.0):
+                sub = co[np.arange(a0, a1) % _SAMPLES]
+                d = np.diff(np.concatenate([[0], sub.astype(int), [0]]))
+                starts, ends = np.nonzero(d == 1)[0], np.nonzero(d == -1)[0]
+                for s, e in list(zip(starts, ends))[1:]:
+                    t0 = self._edge(p, (a0 + s - 1) * dt, (a0 + s) * dt)
+                    t1 = self._edge(p, (a0 + e - 1) * dt, (a0 + e) * dt)
+                    found.append((math.degrees(t0) % 360.0, math.degrees(t1) % 360.0))
+            out[end] = found
+        return out
+
+    def _edge(self, port: int, a: float, b: float) -> float:
+        fa = self.signed_openings(np.array([a]))[port, 0] > 0.0
+        for _ in range(40):
+            m = 0.5 * (a + b)
+            if (self.signed_openings(np.array([m]))[port, 0] > 0.0) == fa:
+                a = m
+            else:
+                b = m
+        return 0.5 * (a + b)
+
+    def warn_double_admission(self) -> None:
+        """Log a warning naming the second admissions of this setting, if any."""
+        for end, spans in self.double_admissions().items():
+            if spans:
+                txt = ", ".join(f"{a:.1f}-{b:.1f} deg" for a, b in spans)
+                log.warning("%s gear: steam is admitted twice in the %s-end stroke (second "
+                            "admission at crank angles %s): the cut-off valve re-opens "
+                            "before the main valve cuts off (Spangler Arts. 118, 130)",
+                            self.name, end, txt)
+
+    # -- drawing ---------------------------------------------------------------
+    def draw(self, fig, units_system: str = "US") -> dict:
+        """Valve travels, steam-port openings and the book's diagram on ``fig``.
+
+        Left above: main, cut-off and relative valve travel against crank angle, with
+        the laps; left below: the head-end steam opening of each valve and the
+        combined one (the crank end's combined dashed), any double admission shaded;
+        right: the valve diagram of :meth:`draw_diagram`.
+        """
+        u = "in" if units_system == "US" else "mm"
+        gs = fig.add_gridspec(2, 2, width_ratios=(1.7, 1.0), hspace=0.35, wspace=0.25)
+        ax_t, ax_o, ax_d = fig.add_subplot(gs[0, 0]), fig.add_subplot(gs[1, 0]), \
+            fig.add_subplot(gs[:, 1])
+        th = np.linspace(0.0, TWO_PI, 1441)
+        deg = np.degrees(th)
+        U = lambda v: units.to_unit(np.asarray(v), u)  # noqa: E731
+        lines = {"main": ax_t.plot(deg, U(self.main_travel(th)), color="k", lw=1.4,
+                                   label="main valve")[0]}
+        lines["cutoff"] = ax_t.plot(deg, U(self.cutoff_travel(th)), color="0.35", lw=1.1,
+                                    ls="--", label="cut-off valve")[0]
+        sh, sc = self.spec.cutoff.lap_m
+        lh, lc = self.spec.main.lap_m
+        if self.spec.cutoff.kind == "seat":
+            marks = [(sh, "cut-off valve closes, +s", ":"), (-sc, "cut-off valve closes, -s", ":")]
+        else:
+            lines["relative"] = ax_t.plot(deg, U(self.closing_travel(th)), color="0.45", lw=1.0,
+                                          ls=":", label=self.relative_label)[0]
+            marks = [(sh, "head block lap s", ":"), (-sc, "crank block lap s", ":")]
+        marks += [(lh, "head steam lap", "-"), (-lc, "crank steam lap", "-")]
+        span = float(np.ptp(U(self.cutoff_travel(th)))) or 1.0
+        placed: list[float] = []
+        for y, lab, ls in sorted(marks, key=lambda m: -abs(m[0])):
+            ax_t.axhline(U(y), color="0.6", lw=0.7, ls=ls)
+            yt = float(U(y))
+            for other in placed:           # keep the labels of near laps apart
+                if abs(yt - other) < 0.07 * span:
+                    yt = other + math.copysign(0.07 * span, yt - other if yt != other else -yt)
+            placed.append(yt)
+            ax_t.text(362, yt, lab, fontsize=7, va="center", color="0.4")
+        ax_t.axhline(0, color="0.8", lw=0.5)
+        ax_t.set_ylabel(f"displacement [{u}]")
+        ax_t.legend(fontsize=7, frameon=False, loc="lower left", ncol=3)
+
+        w = self.port_widths()
+        main = np.clip(self.main_signed(th)[0], 0.0, self.spec.main.port_width_m)
+        cut = np.clip(self.cutoff_signed(th)[0], 0.0, self.spec.cutoff.passage_width_m)
+        comb = np.clip(self.signed_openings(th), 0.0, w[:, None])
+        ax_o.plot(deg, U(main), color="0.55", lw=1.0, label="main valve, head port")
+        ax_o.plot(deg, U(cut), color="0.55", lw=1.0, ls="--", label="cut-off valve, head passage")
+        lines["combined"] = ax_o.plot(deg, U(comb[0]), color="k", lw=1.5,
+                                      label="both together, head")[0]
+        ax_o.plot(deg, U(comb[2]), color="k", lw=1.0, ls="--", label="both together, crank")
+        for end, spans in self.double_admissions().items():
+            for a, b in spans:
+                ax_o.axvspan(a, b if b > a else b + 360.0, color="0.85", lw=0)
+                ax_o.text(a, U(w[0]) * 1.02, f"2nd admission ({end})", fontsize=7, color="0.3")
+        ax_o.set_ylabel(f"steam opening [{u}]")
+        ax_o.legend(fontsize=7, frameon=False, loc="upper right", ncol=2)
+        for ax in (ax_t, ax_o):
+            ax.set_xlim(0, 360)
+            ax.set_xticks(range(0, 361, 45))
+            for side in ("top", "right"):
+                ax.spines[side].set_visible(False)
+        ax_o.set_xlabel("crank angle from head-end dead centre [deg]")
+        self.draw_diagram(ax_d, u)
+        return {"axes": (ax_t, ax_o, ax_d), "lines": lines}
+
+    def draw_diagram(self, ax, u: str) -> None:
+        """The relative valve circle (Art. 128) of the Zeuner motion, with the block
+        lap circles of radius ``s`` (Art. 130: cut-off and re-opening where they cut
+        the relative circle) and the main valve's circle and lap circle in grey."""
+        th = np.linspace(0.0, TWO_PI, 1441)
+        C, S = self.zeuner_closing_coefficients()
+        xr = units.to_unit(C * np.cos(th) + S * np.sin(th), u)
+        _polar(ax, th, xr, "k", "relative valve circle")
+        _polar(ax, th, units.to_unit(self.main_travel(th), u), "0.6", "main valve circle", lw=0.9)
+        sh = units.to_unit(self.spec.cutoff.lap_m[0], u)
+        _circle(ax, abs(sh), "0.3", ":" if sh >= 0 else "-.", "block lap s")
+        _circle(ax, units.to_unit(self.spec.main.lap_m[0], u), "0.6", "-", "main lap")
+        _finish_diagram(ax, u, "Relative valve circle (Art. 128)")
+
+
+def _circular_runs(mask: np.ndarray) -> list[tuple[int, int]]:
+    """Runs of True in a periodic boolean array, as (start, end) indices, end exclusive,
+    unwrapped (an end may exceed the length)."""
+    n = mask.size
+    if mask.all():
+        return [(0, n)]
+    if not mask.any():
+        return []
+    k = int(np.argmin(mask))
+    m = np.roll(mask, -k).astype(int)
+    d = np.diff(np.concatenate([[0], m, [0]]))
+    return [(int(a) + k, int(b) + k) for a, b in zip(np.nonzero(d == 1)[0], np.nonzero(d == -1)[0])]
+
+
+def _polar(ax, th, x, color, label, lw=1.3):
+    """The Zeuner polar of a displacement: x laid off along each crank line, the
+    positive loop (head end) solid and the negative one (crank end) dashed."""
+    pos = x > 0
+    for mask, rad, ls, lab in ((pos, x, "-", label), (~pos, -x, "--", None)):
+        ax.plot(np.where(mask, rad * np.cos(th), np.nan), np.where(mask, rad * np.sin(th), np.nan),
+                color=color, lw=lw, ls=ls, label=lab)
+
+
+def _circle(ax, radius, color, ls, label):
+    t = np.linspace(0.0, TWO_PI, 361)
+    if radius > 0:
+        ax.plot(radius * np.cos(t), radius * np.sin(t), color=color, lw=0.8, ls=ls, label=label)
+
+
+def _finish_diagram(ax, u, title):
+    ax.axhline(0, color="0.8", lw=0.6)
+    ax.axvline(0, color="0.8", lw=0.6)
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_title(title, fontsize=10)
+    ax.set_xlabel(f"[{u}]  (crank turning counter-clockwise from head dead centre, right)")
+    ax.xaxis.label.set_fontsize(7)
+    ax.legend(fontsize=7, frameon=False, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=2)
+    for side in ("top", "right"):
+        ax.spines[side].set_visible(False)
+
+
+# -- reading scenes -------------------------------------------------------------
+
+def parse_main(t: Table) -> MainValveSpec:
+    """The main valve's keys: ``lap``, ``exhaust_lap`` and the port keys."""
+    return MainValveSpec(pair(t, "lap", "length"), pair(t, "exhaust_lap", "length", "0 in"),
+                         **parse_ports(t))
+
+
+def parse_riding(t: Table, main: MainValveSpec, lap: tuple[float, float] | None = None) -> CutoffSpec:
+    """A riding cut-off valve's keys: ``cutoff_lap`` (s, once or [head, crank]; unless
+    the gear finds it), ``passage_width`` (e), optional ``passage_length`` and
+    ``block_length`` (d)."""
+    if lap is None:
+        lap = pair(t, "cutoff_lap", "length")
+    e = t.length("passage_width", positive=True)
+    length = (t.length("passage_length", positive=True) if t.has("passage_length")
+              else main.port_length_m * main.ports_per_end)
+    d = t.length("block_length", positive=True) if t.has("block_length") else None
+    if d is not None and d < e:
+        raise InputError(t.key("block_length"), t.raw("block_length"),
+                         "a block at least as long as the passage is wide (it must cover it)")
+    return CutoffSpec("riding", lap, e, length, d)
+
+
+def rod(t: Table, key: str, throw: float, motion: str) -> float | None:
+    """An eccentric rod's length for the exact motion (None for Zeuner's)."""
+    if motion != "exact":
+        return None
+    g = t.length(key, positive=True)
+    if g <= throw:
+        raise InputError(t.key(key), t.raw(key), "a rod longer than its eccentric's throw")
+    return g
+
+
+def check_setting(t: Table, key: str, lo: float, hi: float, what: str) -> float:
+    v = t.number(key, lo)
+    if not lo <= v <= hi:
+        raise InputError(t.key(key), v, f"a setting from {lo} to {hi} ({what})")
+    return v
+
+
+def built(gear: DoubleValve) -> DoubleValve:
+    """A gear as a scene builds it: warn if its setting admits steam twice."""
+    gear.warn_double_admission()
+    return gear

@@ -1,0 +1,166 @@
+"""The gridiron (Gonzenbach) valve: a cut-off valve on its own seat controls the
+admission to the main valve's chest (Spangler Chap. XV, Arts. 115-126).
+
+The main valve is a plain D slide on its eccentric (r, delta); the cut-off valve on
+another (r1, delta1), "generally" of negative advance (Art. 118)::
+
+    x = r sin(theta + delta),        x1 = r1 sin(theta + delta1)          (Art. 13, eq. 4)
+
+With ``e`` the width of the port in the cut-off valve's seat and ``f`` that in the
+valve, centred over each other in its middle position, the cut-off valve closes when
+displaced ``s = (e + f)/2`` either way, begins to close at ``(f - e)/2`` and is wide
+open again at ``x1 = (f - e)/2`` (Arts. 118, 121): it is open by ``s - |x1|`` to the
+chest, which feeds both ends.  On the book's combined diagram (Arts. 118-119) the
+cut-off valve must close (E) between the main valve's admission A and cut-off B, and
+open again (F) between B and the other end's admission C, "otherwise steam would be
+admitted twice during one stroke".
+
+Varying the cut-off (Arts. 123-124): with the advance fixed, a greater throw r1 cuts
+off earlier, down to the throw at which the cut-off valve's circle passes through the
+other end's admission; a smaller throw cuts off later, until the re-opening comes
+before the main valve's cut-off.  The arrangement of Art. 124 drives the cut-off valve
+through a reverse lever hij whose end h is moved along an arc, changing the travel "in
+the proportion of ih to ij".  That ratio is the setting here: ``lever_ratio = [lo,
+hi]`` is ih/ij at the two ends of h's arc and the setting 0..1 runs between them; the
+cut-off valve's throw is r1 times the ratio, its advance (as drawn in the diagram, the
+reverse lever already accounted for) ``cutoff_angular_advance``.
+
+``motion = "exact"``: both eccentric rods of finite length (the cut-off valve's taken
+through the reverse lever, so its rod shortfall enters reversed and scaled by the
+lever's ratio), each valve set for equal lead.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from corliss import units
+from corliss.errors import InputError
+from corliss.tables import Table
+from corliss.valves import double_valve as dv
+from corliss.valves.gear import GearType, register
+
+
+@dataclass(frozen=True)
+class GridironSpec:
+    """A gridiron valve (all SI).
+
+    Attributes
+    ----------
+    main, cutoff : MainValveSpec, CutoffSpec
+        ``cutoff.lap_m`` is s = (e + f)/2 for both ends, ``cutoff.passage_width_m`` is e.
+    eccentricity_m, angular_advance_rad : float
+        Main eccentric r, delta [m, rad].
+    cutoff_eccentricity_m, cutoff_angular_advance_rad : float
+        The cut-off eccentric's throw r1 [m] (before the reverse lever) and the cut-off
+        valve's advance delta1 [rad] as drawn in the diagram.
+    valve_port_width_m : float
+        f [m].
+    lever_ratio : tuple of float
+        ih/ij at setting 0 and at setting 1 [-].
+    setting : float
+        Position of h along its arc, 0..1.
+    """
+
+    main: dv.MainValveSpec
+    cutoff: dv.CutoffSpec
+    eccentricity_m: float
+    angular_advance_rad: float
+    cutoff_eccentricity_m: float
+    cutoff_angular_advance_rad: float
+    valve_port_width_m: float
+    lever_ratio: tuple[float, float] = (1.0, 1.0)
+    setting: float = 0.0
+    motion: str = "zeuner"
+    eccentric_rod_m: float | None = None
+    cutoff_eccentric_rod_m: float | None = None
+
+    @property
+    def ratio(self) -> float:
+        lo, hi = self.lever_ratio
+        return lo + self.setting * (hi - lo)
+
+    @property
+    def cutoff_throw_m(self) -> float:
+        """The cut-off valve's half travel at this setting, r1 ih/ij [m] (Art. 124)."""
+        return self.cutoff_eccentricity_m * self.ratio
+
+
+class GridironValve(dv.DoubleValve):
+    """Gridiron (Gonzenbach) valve: cut-off valve on its own seat over the main chest."""
+
+    name = "gridiron"
+    summary = ("gridiron (Gonzenbach) valve: cut-off valve on its own seat over the main "
+               "valve's chest, travel varied through a reverse lever (Spangler Arts. 115-126); "
+               "setting = lever position 0..1")
+    setting_name = "position of h on the reverse lever (0: ratio lo, 1: ratio hi; Art. 124)"
+    setting_range = (0.0, 1.0)
+
+    def __init__(self, spec: GridironSpec):
+        self.spec = spec
+
+    def with_setting(self, value: float) -> "GridironValve":
+        if not 0.0 <= value <= 1.0:
+            raise ValueError(f"setting {value} outside [0, 1]")
+        return GridironValve(dataclasses.replace(self.spec, setting=value))
+
+    def main_travel(self, theta):
+        s = self.spec
+        return dv.eccentric_travel(theta, s.eccentricity_m, s.angular_advance_rad,
+                                   s.eccentric_rod_m)
+
+    def cutoff_travel(self, theta):
+        s = self.spec
+        x = dv.eccentric_travel(theta, s.cutoff_eccentricity_m, s.cutoff_angular_advance_rad,
+                                s.cutoff_eccentric_rod_m, sign=-1)
+        return s.ratio * x
+
+    def draw_diagram(self, ax, u):
+        """The combined diagram of Art. 119 (Fig. 80): the main valve circle and lap
+        circle, the cut-off valve's circle and the circle of radius s, which cuts it
+        where the cut-off valve closes (E) and opens again (F)."""
+        th = np.linspace(0.0, dv.TWO_PI, 1441)
+        dv._polar(ax, th, units.to_unit(self.main_travel(th), u), "k", "main valve circle")
+        dv._polar(ax, th, units.to_unit(self.cutoff_travel(th), u), "0.4", "cut-off valve circle",
+                  lw=1.0)
+        dv._circle(ax, units.to_unit(self.spec.main.lap_m[0], u), "0.6", "-", "main lap")
+        dv._circle(ax, units.to_unit(self.spec.cutoff.lap_m[0], u), "0.3", ":",
+                   "s = (e + f)/2")
+        dv._finish_diagram(ax, u, "Combined diagram (Arts. 118-119)")
+
+
+def parse_gridiron(t: Table) -> GridironSpec:
+    """Read a ``[valve_gear] type = "gridiron"`` table."""
+    main = dv.parse_main(t)
+    r = t.length("eccentricity", positive=True)
+    r1 = t.length("cutoff_eccentricity", positive=True)
+    e = t.length("seat_port_width", positive=True)
+    f = t.length("valve_port_width", positive=True)
+    if f < e:
+        raise InputError(t.key("valve_port_width"), t.raw("valve_port_width"),
+                         "a valve port at least as wide as the seat port e (Art. 121: "
+                         "the opening in the cut-off valve is usually greater)")
+    length = (t.length("passage_length", positive=True) if t.has("passage_length")
+              else main.port_length_m * main.ports_per_end)
+    raw = t.raw("lever_ratio", [1.0, 1.0])
+    if (not isinstance(raw, list) or len(raw) != 2
+            or not all(isinstance(v, (int, float)) and not isinstance(v, bool) and v > 0
+                       for v in raw)):
+        raise InputError(t.key("lever_ratio"), raw, "[lo, hi]: the reverse lever's ratio ih/ij "
+                         "at the two ends of h's arc, positive numbers")
+    motion = t.choice("motion", ("zeuner", "exact"), "zeuner")
+    s = 0.5 * (e + f)
+    return GridironSpec(main, dv.CutoffSpec("seat", (s, s), e, length), r,
+                        t.angle("angular_advance"), r1, t.angle("cutoff_angular_advance"), f,
+                        (float(raw[0]), float(raw[1])),
+                        dv.check_setting(t, "setting", 0.0, 1.0, "lever position"), motion,
+                        dv.rod(t, "eccentric_rod", r, motion),
+                        dv.rod(t, "cutoff_eccentric_rod", r1, motion))
+
+
+register(GearType("gridiron", GridironValve.summary, parse_gridiron,
+                  lambda spec: dv.built(GridironValve(spec))))

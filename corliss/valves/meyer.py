@@ -1,0 +1,186 @@
+"""The Meyer valve: two cut-off blocks on the back of a Polonceau-type main valve,
+their distance apart set by a right-and-left screw (Spangler Arts. 141-145).
+
+Both valves have their own eccentrics, directly connected (Art. 141).  The main
+valve moves ``x = r sin(theta + delta)`` and the blocks ``x1 = r1 sin(theta + delta1)``
+(Art. 13, eq. 4), so the relative displacement, + closing the head-end passage, is
+the relative valve circle of Art. 128::
+
+    x_r = x - x1 = (r sin d - r1 sin d1) cos(theta) + (r cos d - r1 cos d1) sin(theta)
+
+With ``L`` the distance from outside to outside of the ports in the top of the main
+valve, ``d`` the length of a block and ``2y`` the distance between the blocks, each
+block laps its passage by (Art. 142)::
+
+    2 s = L - 2 d - 2 y,        i.e.   s = L/2 - d - y
+
+so the hand wheel, drawing the blocks apart (``y`` up), shortens ``s`` and the
+cut-off: cut-off where x_r = s, re-opening where the circle of radius s cuts the
+relative circle again, which must not come before the main valve cuts off (Art.
+142).  ``s`` may go to zero and negative, so "almost any point of cut-off desired can
+be obtained".
+
+The setting is ``y / y_max`` from 0 (blocks together, latest cut-off) to 1 (blocks
+at the screw's widest, earliest cut-off).  The right-and-left screw moves both blocks
+equally; ``block_offset`` (once, or [head, crank]) adds a fixed offset to a block's y,
+as a block set on its rod (Q. 178: one block farther from the centre than the other
+gives unequal cut-offs, which may correct the connecting rod's angularity at one
+setting only).
+
+``motion = "exact"``: both eccentric rods of finite length (the rod shortfall, as for
+the plain slide valve), each valve set for equal lead.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from corliss.errors import InputError
+from corliss.tables import Table
+from corliss.valves import double_valve as dv
+from corliss.valves.gear import GearType, register
+from corliss.valves.slide_valve import pair
+
+
+@dataclass(frozen=True)
+class MeyerSpec:
+    """A Meyer valve (all SI).
+
+    Attributes
+    ----------
+    main : MainValveSpec
+    cutoff : CutoffSpec
+        Its ``lap_m`` is s of each end at the current setting.
+    eccentricity_m, angular_advance_rad : float
+        Main eccentric r, delta [m, rad].
+    cutoff_eccentricity_m, cutoff_angular_advance_rad : float
+        Cut-off eccentric r1, delta1 [m, rad].
+    port_span_m : float
+        L, outside to outside of the ports in the valve top [m].
+    block_length_m : float
+        d [m].
+    max_half_spacing_m : float
+        y at setting 1 [m].
+    block_offset_m : tuple of float
+        Fixed addition to y of the (head, crank) block [m].
+    setting : float
+        y / y_max [-].
+    eccentric_rod_m, cutoff_eccentric_rod_m : float or None
+        Rod lengths for ``motion = "exact"`` [m].
+    """
+
+    main: dv.MainValveSpec
+    cutoff: dv.CutoffSpec
+    eccentricity_m: float
+    angular_advance_rad: float
+    cutoff_eccentricity_m: float
+    cutoff_angular_advance_rad: float
+    port_span_m: float
+    block_length_m: float
+    max_half_spacing_m: float
+    block_offset_m: tuple[float, float] = (0.0, 0.0)
+    setting: float = 0.0
+    motion: str = "zeuner"
+    eccentric_rod_m: float | None = None
+    cutoff_eccentric_rod_m: float | None = None
+
+    def half_spacing(self, setting: float | None = None) -> tuple[float, float]:
+        """y of the (head, crank) block [m] at ``setting``."""
+        y = (self.setting if setting is None else setting) * self.max_half_spacing_m
+        return (y + self.block_offset_m[0], y + self.block_offset_m[1])
+
+    def block_lap(self, setting: float | None = None) -> tuple[float, float]:
+        """s = L/2 - d - y of each end [m] (Art. 142)."""
+        return tuple(self.port_span_m / 2 - self.block_length_m - y
+                     for y in self.half_spacing(setting))
+
+    def relative_coefficients(self) -> tuple[float, float]:
+        """(C, S) of the relative valve circle, x_r = C cos + S sin [m] (Art. 128)."""
+        r, d = self.eccentricity_m, self.angular_advance_rad
+        r1, d1 = self.cutoff_eccentricity_m, self.cutoff_angular_advance_rad
+        return r * math.sin(d) - r1 * math.sin(d1), r * math.cos(d) - r1 * math.cos(d1)
+
+
+class MeyerValve(dv.DoubleValve):
+    """Meyer valve: adjustable cut-off blocks on a right-and-left screw."""
+
+    name = "meyer"
+    summary = ("Meyer valve: cut-off blocks on a right-and-left screw riding on the main "
+               "valve, own eccentrics (Spangler Arts. 141-145); setting = block spacing y/y_max")
+    setting_name = "block half-spacing y / y_max (0 blocks together, latest cut-off; 1 widest)"
+    setting_range = (0.0, 1.0)
+
+    def __init__(self, spec: MeyerSpec):
+        self.spec = spec
+
+    def with_setting(self, value: float) -> "MeyerValve":
+        if not 0.0 <= value <= 1.0:
+            raise ValueError(f"setting {value} outside [0, 1]")
+        s = self.spec
+        cut = dataclasses.replace(s.cutoff, lap_m=s.block_lap(value))
+        return MeyerValve(dataclasses.replace(s, setting=value, cutoff=cut))
+
+    def main_travel(self, theta):
+        s = self.spec
+        return dv.eccentric_travel(theta, s.eccentricity_m, s.angular_advance_rad,
+                                   s.eccentric_rod_m)
+
+    def cutoff_travel(self, theta):
+        s = self.spec
+        return dv.eccentric_travel(theta, s.cutoff_eccentricity_m, s.cutoff_angular_advance_rad,
+                                   s.cutoff_eccentric_rod_m)
+
+    def zeuner_closing_coefficients(self):
+        return self.spec.relative_coefficients()
+
+    def draw_diagram(self, ax, u):
+        """The Meyer diagram (Art. 142, Fig. 92): the relative valve circle, the circle
+        of radius L/2 - d about the origin, on which any cut-off line cuts off
+        ``be = L/2 - d = y + s``, and the block lap circle s of this setting."""
+        from corliss import units
+        super().draw_diagram(ax, u)
+        s = self.spec
+        dv._circle(ax, units.to_unit(s.port_span_m / 2 - s.block_length_m, u), "0.45", "--",
+                   "L/2 - d (Art. 142)")
+        dv._finish_diagram(ax, u, "Meyer diagram (Arts. 128, 142)")
+
+
+def parse_meyer(t: Table) -> MeyerSpec:
+    """Read a ``[valve_gear] type = "meyer"`` table."""
+    main = dv.parse_main(t)
+    r = t.length("eccentricity", positive=True)
+    r1 = t.length("cutoff_eccentricity", positive=True)
+    span = t.length("port_span", positive=True)
+    d = t.length("block_length", positive=True)
+    ymax = t.length("max_half_spacing")
+    if ymax < 0.0:
+        raise InputError(t.key("max_half_spacing"), t.raw("max_half_spacing"),
+                         "a length >= 0 (the screw's greatest half spacing of the blocks)")
+    setting = dv.check_setting(t, "setting", 0.0, 1.0, "y / y_max")
+    motion = t.choice("motion", ("zeuner", "exact"), "zeuner")
+    e = t.length("passage_width", positive=True)
+    length = (t.length("passage_length", positive=True) if t.has("passage_length")
+              else main.port_length_m * main.ports_per_end)
+    offset = pair(t, "block_offset", "length", "0 in")
+    spec = MeyerSpec(main, dv.CutoffSpec("riding", (0.0, 0.0), e, length, d), r,
+                     t.angle("angular_advance"), r1, t.angle("cutoff_angular_advance"), span, d,
+                     ymax, offset, setting, motion, dv.rod(t, "eccentric_rod", r, motion),
+                     dv.rod(t, "cutoff_eccentric_rod", r1, motion))
+    spec = dataclasses.replace(spec, cutoff=dataclasses.replace(spec.cutoff,
+                                                                lap_m=spec.block_lap()))
+    if min(spec.half_spacing(0.0)) < 0.0:
+        raise InputError(t.key("block_offset"), t.raw("block_offset"),
+                         "offsets that leave the blocks apart when the screw brings them "
+                         "together (y >= 0)")
+    if span / 2 - d <= 0.0:
+        raise InputError(t.key("port_span"), t.raw("port_span"),
+                         "a span L with L/2 greater than the block length d (Art. 142)")
+    return spec
+
+
+register(GearType("meyer", MeyerValve.summary, parse_meyer,
+                  lambda spec: dv.built(MeyerValve(spec))))

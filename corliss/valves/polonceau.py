@@ -1,0 +1,214 @@
+"""Riding cut-off valves driven through links: the Polonceau gear (Spangler Arts. 117,
+127-134) and the Guinotte gear (Arts. 146-148).
+
+A cut-off block rides on the back of the main valve over the passages through it, and
+cuts off when the distance between the valves' centres reaches its lap ``s`` (Art.
+130).  With both valves moving harmonically, x = C cos + S sin, the distance between
+them, + closing the head passage, is the relative valve circle (Art. 128)::
+
+    x_r = x_main - x_cutoff = (C - C1) cos(theta) + (S - S1) sin(theta)
+
+**Polonceau gear** (Arts. 131-133): a Gooch link with two radius rods, the main valve's
+at u and the cut-off valve's at u1, so each valve moves as Gooch's (Art. 65)::
+
+    C = r (sin d + (c/g) cos d),     S = (u r / c)(cos d - (c/g) sin d)
+
+C is the same for both: the relative circle's centre lies on the line at right angles
+to the dead points, x_r = ((u - u1) r / c)(cos d - (c/g) sin d) sin(theta), and the
+cut-off and re-opening fall symmetrically about mid stroke (in crank angle).  "If the
+radius-rods are at the same point on the link, the valves move together and the
+cut-off is that due to the main valve" (Art. 131); lowering the cut-off rod cuts off
+earlier, the earliest at u1 = -c; the latest is where "the distance from the point of
+cut-off to mid-stroke is the same as the distance from mid-stroke to the point of
+cut-off by the main valve" (Art. 133).  The setting is u1 / c.
+
+**Guinotte gear** (Arts. 146-148): the main valve on its own eccentric (r, delta); the
+cut-off valve on a Gooch link with unequal eccentrics (r1, d1 to the upper end, r2, d2
+to the lower), rods g1, g2 and link parts c1, c2 above and below the suspension::
+
+    C1 = (c2 + u)/(c1 + c2) r1 (sin d1 + (c1/g1) cos d1) + (c1 - u)/(c1 + c2) r2 (sin d2 + (c2/g2) cos d2)
+    S1 = (c2 + u)/(c1 + c2) r1 (cos d1 - (c1/g1) sin d1) - (c1 - u)/(c1 + c2) r2 (cos d2 - (c2/g2) sin d2)
+
+(Art. 147, the book's A and B), both linear in u, "therefore the centre of the
+valve-circles moves in a straight line inclined to os": a wider range of cut-off than
+the Gooch link's.  The setting runs from -1 (u = -c2) through 0 to 1 (u = c1).
+
+Both gears are given in Zeuner's form only (the exact Gooch linkage is not built).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from corliss.errors import InputError
+from corliss.tables import Table
+from corliss.valves import double_valve as dv
+from corliss.valves.gear import GearType, register
+
+
+def gooch(r: float, delta: float, g: float, c: float, u: float) -> tuple[float, float]:
+    """(C, S) of a Gooch link's valve at block offset u [m] (Spangler Art. 65)."""
+    sd, cd = math.sin(delta), math.cos(delta)
+    return r * (sd + c / g * cd), u * r / c * (cd - c / g * sd)
+
+
+def guinotte(r1, d1, g1, c1, r2, d2, g2, c2, u) -> tuple[float, float]:
+    """(C, S) of the Guinotte cut-off valve at block offset u [m] (Spangler Art. 147:
+    C is the book's A, the coefficient of cos, S its B)."""
+    k1, k2 = (c2 + u) / (c1 + c2), (c1 - u) / (c1 + c2)
+    A = (k1 * r1 * (math.sin(d1) + c1 / g1 * math.cos(d1))
+         + k2 * r2 * (math.sin(d2) + c2 / g2 * math.cos(d2)))
+    B = (k1 * r1 * (math.cos(d1) - c1 / g1 * math.sin(d1))
+         - k2 * r2 * (math.cos(d2) - c2 / g2 * math.sin(d2)))
+    return A, B
+
+
+class _HarmonicRiding(dv.DoubleValve):
+    """A riding cut-off valve where both valves move harmonically (Zeuner's form)."""
+
+    def main_coefficients(self) -> tuple[float, float]:  # pragma: no cover - interface
+        raise NotImplementedError
+
+    def cutoff_coefficients(self) -> tuple[float, float]:  # pragma: no cover - interface
+        raise NotImplementedError
+
+    def main_travel(self, theta):
+        C, S = self.main_coefficients()
+        th = np.asarray(theta, dtype=float)
+        return C * np.cos(th) + S * np.sin(th)
+
+    def cutoff_travel(self, theta):
+        C, S = self.cutoff_coefficients()
+        th = np.asarray(theta, dtype=float)
+        return C * np.cos(th) + S * np.sin(th)
+
+    def zeuner_closing_coefficients(self):
+        (C, S), (C1, S1) = self.main_coefficients(), self.cutoff_coefficients()
+        return C - C1, S - S1
+
+
+@dataclass(frozen=True)
+class PolonceauSpec:
+    """A Polonceau gear (all SI): Gooch link (r, delta, g, c), main valve's radius rod
+    at ``main_block_m`` (u), cut-off valve's at ``setting`` u1 / c."""
+
+    main: dv.MainValveSpec
+    cutoff: dv.CutoffSpec
+    eccentricity_m: float
+    angular_advance_rad: float
+    eccentric_rod_m: float
+    half_link_m: float
+    main_block_m: float
+    setting: float = 1.0
+
+
+class PolonceauGear(_HarmonicRiding):
+    """Polonceau valve on a Gooch link with two radius rods."""
+
+    name = "polonceau"
+    summary = ("Polonceau valve: cut-off block on the main valve's back, both valves on one "
+               "Gooch link by two radius rods (Spangler Arts. 127-134); setting = u1/c")
+    setting_name = "cut-off valve's radius rod on the link, u1 / c (1 top, -1 bottom)"
+    setting_range = (-1.0, 1.0)
+
+    def __init__(self, spec: PolonceauSpec):
+        self.spec = spec
+
+    def with_setting(self, value: float) -> "PolonceauGear":
+        if not -1.0 <= value <= 1.0:
+            raise ValueError(f"setting {value} outside [-1, 1]")
+        return PolonceauGear(dataclasses.replace(self.spec, setting=value))
+
+    def _gooch(self, u):
+        s = self.spec
+        return gooch(s.eccentricity_m, s.angular_advance_rad, s.eccentric_rod_m, s.half_link_m, u)
+
+    def main_coefficients(self):
+        return self._gooch(self.spec.main_block_m)
+
+    def cutoff_coefficients(self):
+        return self._gooch(self.spec.setting * self.spec.half_link_m)
+
+
+@dataclass(frozen=True)
+class GuinotteSpec:
+    """A Guinotte gear (all SI): main eccentric (r, delta); the cut-off valve's link
+    with upper (r1, d1, g1, c1) and lower (r2, d2, g2, c2) eccentrics, rods and link
+    parts; ``setting`` in [-1, 1] (u = setting c1 above the centre, setting c2 below)."""
+
+    main: dv.MainValveSpec
+    cutoff: dv.CutoffSpec
+    eccentricity_m: float
+    angular_advance_rad: float
+    upper: tuple[float, float, float, float]
+    lower: tuple[float, float, float, float]
+    setting: float = 1.0
+
+    @property
+    def block_m(self) -> float:
+        return self.setting * (self.upper[3] if self.setting >= 0 else self.lower[3])
+
+
+class GuinotteGear(_HarmonicRiding):
+    """Guinotte gear: main eccentric, cut-off valve on a Gooch link with unequal eccentrics."""
+
+    name = "guinotte"
+    summary = ("Guinotte gear: Polonceau-type valve, cut-off valve on a Gooch link with unequal "
+               "eccentrics, rods and link parts (Spangler Arts. 146-148); setting = u/c1 or u/c2")
+    setting_name = "cut-off radius rod on the link (1: u = c1, 0: centre, -1: u = -c2)"
+    setting_range = (-1.0, 1.0)
+
+    def __init__(self, spec: GuinotteSpec):
+        self.spec = spec
+
+    def with_setting(self, value: float) -> "GuinotteGear":
+        if not -1.0 <= value <= 1.0:
+            raise ValueError(f"setting {value} outside [-1, 1]")
+        return GuinotteGear(dataclasses.replace(self.spec, setting=value))
+
+    def main_coefficients(self):
+        s = self.spec
+        return (s.eccentricity_m * math.sin(s.angular_advance_rad),
+                s.eccentricity_m * math.cos(s.angular_advance_rad))
+
+    def cutoff_coefficients(self, u: float | None = None):
+        s = self.spec
+        r1, d1, g1, c1 = s.upper
+        r2, d2, g2, c2 = s.lower
+        return guinotte(r1, d1, g1, c1, r2, d2, g2, c2, s.block_m if u is None else u)
+
+
+def parse_polonceau(t: Table) -> PolonceauSpec:
+    """Read a ``[valve_gear] type = "polonceau"`` table."""
+    main = dv.parse_main(t)
+    c = t.length("half_link", positive=True)
+    u = t.length("main_block", t.raw("half_link"))
+    if abs(u) > c:
+        raise InputError(t.key("main_block"), t.raw("main_block"), "an offset within the half link")
+    return PolonceauSpec(main, dv.parse_riding(t, main), t.length("eccentricity", positive=True),
+                         t.angle("angular_advance"), t.length("eccentric_rod", positive=True), c,
+                         u, dv.check_setting(t, "setting", -1.0, 1.0, "u1 / c"))
+
+
+def parse_guinotte(t: Table) -> GuinotteSpec:
+    """Read a ``[valve_gear] type = "guinotte"`` table."""
+    main = dv.parse_main(t)
+    ends = []
+    for k in ("1", "2"):
+        ends.append((t.length(f"cutoff_eccentricity_{k}", positive=True),
+                     t.angle(f"cutoff_angular_advance_{k}"),
+                     t.length(f"cutoff_eccentric_rod_{k}", positive=True),
+                     t.length(f"link_part_{k}", positive=True)))
+    return GuinotteSpec(main, dv.parse_riding(t, main), t.length("eccentricity", positive=True),
+                        t.angle("angular_advance"), ends[0], ends[1],
+                        dv.check_setting(t, "setting", -1.0, 1.0, "u / c1 or u / c2"))
+
+
+register(GearType("polonceau", PolonceauGear.summary, parse_polonceau,
+                  lambda spec: dv.built(PolonceauGear(spec))))
+register(GearType("guinotte", GuinotteGear.summary, parse_guinotte,
+                  lambda spec: dv.built(GuinotteGear(spec))))
