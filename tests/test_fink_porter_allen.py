@@ -170,7 +170,8 @@ def test_steam_valves_move_fastest_as_they_open_and_close():
         t = math.radians(ev[key])
         h = 1e-6
         dphi = (g.rock_angle(np.array([t + h])) - g.rock_angle(np.array([t - h])))[0] / (2 * h)
-        dopen = (g.signed_openings(np.array([t + h]))[0] - g.signed_openings(np.array([t - h]))[0])[0] / (2 * h)
+        s_plus, s_minus = g.signed_openings(np.array([t + h, t - h]))[0]
+        dopen = (s_plus - s_minus) / (2 * h)
         assert abs(dopen) == pytest.approx(6 * IN * abs(dphi), rel=1e-6)
         assert g.steam_drive(np.array([t]))[0] == pytest.approx(LAP, abs=1e-9 * IN)
 

@@ -435,8 +435,9 @@ class PorterAllenGear(ValveGear):
         t = np.linspace(0, 2 * math.pi, 1441)
         pos = x > 0
         for end, mask, rad, ls in (("head", pos, x, "-"), ("crank", ~pos, -x, "--")):
-            ax3.plot(np.where(mask, rad * np.cos(t), np.nan), np.where(mask, rad * np.sin(t), np.nan),
-                     color="k", lw=1.3, ls=ls, label=f"{end}-end valve circle")
+            ax3.plot(np.where(mask, rad * np.cos(t), np.nan),
+                     np.where(mask, rad * np.sin(t), np.nan), color="k", lw=1.3, ls=ls,
+                     label=f"{end}-end valve circle")
         c = np.linspace(0, 2 * math.pi, 361)
         for lam, ls, label in zip(units.to_unit(np.array(self.spec.equivalent_lap_m), u),
                                   ("-", "--"), ("head lap at the rod", "crank lap at the rod")):
@@ -462,8 +463,9 @@ def parse_porter_allen(t: Table) -> PorterAllenSpec:
     for key in ("block_at_rest", "block_at_top", "exhaust_point"):
         v = t.length(key)
         if abs(v) > c:
-            raise InputError(t.key(key), t.raw(key), f"a height within the link, -{c / units.INCH_m:.4g}"
-                             f" in to {c / units.INCH_m:.4g} in (the half link)")
+            raise InputError(t.key(key), t.raw(key), "a height within the link, "
+                             f"-{c / units.INCH_m:.4g} in to {c / units.INCH_m:.4g} in "
+                             "(the half link)")
         blocks.append(v)
     setting = t.number("setting", 0.0)
     if not 0.0 <= setting <= 1.0:

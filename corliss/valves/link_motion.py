@@ -21,10 +21,11 @@ not give ``allen_ratio`` gets the ratio of Art. 73's rocker proportions
 (:func:`allen_book_ratio`).
 
 ``motion = "exact"`` solves the linkage itself at every crank angle.  For Stephenson:
-the eccentric centres on their circles, rods of length g pinned to the ends of a link curved to radius rho (concave to the shaft, pins on the arc, Peabody's
-condition 1), the link hung at its middle from a hanger of length h whose top the
-reversing lever holds at height h - u, and the block riding on the link where it
-crosses the valve spindle's line through the shaft (so the block slips).  The valve
+the eccentric centres on their circles, rods of length g pinned to the ends of a link
+curved to radius rho (concave to the shaft, pins on the arc, Peabody's condition 1),
+the link hung at its middle from a hanger of length h whose top the reversing lever
+holds at height h - u, and the block riding on the link where it crosses the valve
+spindle's line through the shaft (so the block slips).  The valve
 is set for equal lead in full forward gear.  The solution is tabulated once at 1/2 deg
 and read back through a periodic cubic spline.
 
@@ -134,7 +135,8 @@ class LinkMotion(LappedValve):
     """A link motion (Zeuner form) driving a lapped slide valve."""
 
     name = "link_motion"
-    summary = ("link motions, Zeuner's form or exact: Stephenson open or crossed rods, Gooch, Allen "
+    summary = ("link motions, Zeuner's form or exact: Stephenson open or crossed rods, Gooch, "
+               "Allen "
                "(Spangler Chs. VII-XI); setting = block offset")
 
     setting_name = "block offset u / c (1 full gear ahead, 0 mid gear, -1 full gear astern)"
@@ -204,7 +206,8 @@ class _ExactGoochAllen:
 def _stem_x(spec: LinkMotionSpec, u: float, theta: np.ndarray) -> np.ndarray:
     """X of the valve stem's end of the radius rod (from the shaft, along the line of
     stroke) of the exact Gooch or Allen gear at crank angles ``theta``, block offset u."""
-    r, d, g, c = spec.eccentricity_m, spec.angular_advance_rad, spec.eccentric_rod_m, spec.half_link_m
+    r, d, g, c = (spec.eccentricity_m, spec.angular_advance_rad, spec.eccentric_rod_m,
+                  spec.half_link_m)
     g1 = spec.radius_rod_m or g
     gooch = spec.kind == "gooch"
     k = 0.0 if gooch else spec.allen_ratio
