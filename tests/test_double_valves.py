@@ -222,6 +222,22 @@ def test_polonceau_same_point_gives_main_cut_off():
     assert head(g)["cutoff_deg"] == pytest.approx(deg(w), abs=1e-7)
 
 
+def test_polonceau_exact_link_tends_to_zeuner():
+    """The exact Gooch link (finite rods, curved link, the block slipping as the link
+    swings) differs from Art. 65's form by terms of order (r/c)^2 and (c/g)^2: with the
+    link's half chord and the block offsets scaled by k and the rods by k^2, the
+    difference in both the main and the relative motion falls as 1/k^2 (ratio 4 within
+    15 %)."""
+    errs = []
+    for k in (1, 2, 4):
+        sp = dataclasses.replace(polonceau(0.0).spec, eccentric_rod_m=57 * k * k * IN,
+                                 half_link_m=6 * k * IN, main_block_m=6 * k * IN)
+        z, ex = PolonceauGear(sp), PolonceauGear(dataclasses.replace(sp, motion="exact"))
+        errs.append(max(np.abs(ex.closing_travel(TH) - z.closing_travel(TH)).max(),
+                        np.abs(ex.main_travel(TH) - z.main_travel(TH)).max()))
+    assert all(3.4 < a / b < 4.6 for a, b in zip(errs, errs[1:])), errs
+
+
 # ---------------------------------------------------------------------------------------
 # Buckeye (Chap. XVII)
 
@@ -293,6 +309,25 @@ def test_buckeye_earliest_cut_off_and_too_large_s():
     assert twice, "s = 1.75 in > lap: some advance should admit twice"
     limit = 180 - math.degrees(math.asin(1.75 / 2.875)) - 109.4712
     assert min(twice) > limit
+
+
+def test_buckeye_beyond_the_limit_the_cut_off_valve_holds_the_admission_back(caplog):
+    """Art. 118: "the cut-off valve must open between D and A in order that the steam may be
+    admitted as soon as the main valve opens".  Past the limit of Art. 139 (d1* = 50.18 deg
+    for Problem 67) the blocks close before the main valve opens (at arcsin(l/r) - delta =
+    -18.99 deg) and re-open at 180 - arcsin(s/r1) - d1, before the main cut-off: at d1 = 55
+    deg steam enters only from 104.65 deg; at d1 = 40 deg the blocks re-open only after the
+    main valve has closed and no steam enters that stroke."""
+    A = math.degrees(math.asin(1.25 / 2.875)) - math.degrees(math.pi - math.asin(1.25 / 2.875)
+                                                              - math.acos(1 - 4 / 3))
+    (a, b), = p67(55.0).late_admissions()["head"]
+    assert a == pytest.approx(A % 360, abs=0.05)          # the main valve's edge, to a sample
+    assert b == pytest.approx(180 - math.degrees(math.asin(1 / 2.875)) - 55, abs=1e-6)
+    assert p67(40.0).late_admissions()["head"] == [(pytest.approx(A % 360, abs=0.05), None)]
+    assert p67(-60.0).late_admissions() == {"head": [], "crank": []}
+    with caplog.at_level(logging.WARNING):
+        dv.built(p67(40.0))
+    assert "no steam is admitted at all" in caplog.text
 
 
 def test_buckeye_relative_motion_independent_of_main_eccentric_art_137():

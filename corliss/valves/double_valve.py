@@ -32,7 +32,10 @@ modelled: its small expansion with the cylinder's is neglected.
 **Double admission** (Arts. 118, 130, 133, 139, 142): if the cut-off valve opens its
 passage again while the main valve's port is still open, steam enters twice in one
 stroke.  :meth:`DoubleValve.double_admissions` finds every such second admission from
-the openings themselves; a scene whose setting gives one logs a warning.
+the openings themselves.  The cut-off valve must also be open when the main valve opens
+(Art. 118: it "must open between D and A"); :meth:`DoubleValve.late_admissions` finds
+the strokes where it is not (steam entering late, or not at all).  A scene whose
+setting gives either logs a warning.
 
 Both motions: the Zeuner form (each eccentric a harmonic, so the relative motion is
 itself one, the "relative valve circle" of Art. 128) and ``motion = "exact"`` with
@@ -204,6 +207,31 @@ class DoubleValve(ValveGear):
         return np.full(4, self.spec.main.discharge_coefficient)
 
     # -- double admission ------------------------------------------------------
+    def admission_runs(self) -> dict[str, list[tuple[float, float, list[tuple[float, float]]]]]:
+        """Per end, each interval in which the main valve's steam port is open, as
+        ``(open_rad, close_rad, [(start_rad, end_rad), ...])`` with the intervals inside
+        it in which both valves are open.  Angles unwrapped (an end may pass 2 pi); the
+        main valve's edges to a sample (1/20 deg), the combined opening's bisected to
+        1e-10 rad."""
+        dt = TWO_PI / _SAMPLES
+        th = np.arange(_SAMPLES) * dt
+        main = self.main_signed(th)
+        comb = self.signed_openings(th)
+        out = {}
+        for end, p in (("head", 0), ("crank", 2)):
+            runs = []
+            co = comb[p] > 0.0
+            for a0, a1 in _circular_runs(main[p] > 0.0):
+                sub = co[np.arange(a0, a1) % _SAMPLES]
+                d = np.diff(np.concatenate([[0], sub.astype(int), [0]]))
+                inner = []
+                for s, e in zip(np.nonzero(d == 1)[0], np.nonzero(d == -1)[0]):
+                    inner.append((self._edge(p, (a0 + s - 1) * dt, (a0 + s) * dt),
+                                  self._edge(p, (a0 + e - 1) * dt, (a0 + e) * dt)))
+                runs.append((a0 * dt, a1 * dt, inner))
+            out[end] = runs
+        return out
+
     def double_admissions(self) -> dict[str, list[tuple[float, float]]]:
         """Crank-angle intervals [deg] of any second admission, per end.
 
@@ -211,31 +239,28 @@ class DoubleValve(ValveGear):
         opening may open more than once: every opening after the first is steam
         admitted again after the cut-off valve had closed (Art. 118: the cut-off valve
         "must not open again until the crank passes B, otherwise steam would be
-        admitted twice during one stroke"; Arts. 130, 139, 142).  Edges are bisected
-        on the combined opening to 1e-10 rad.
+        admitted twice during one stroke"; Arts. 130, 139, 142).
 
         Returns
         -------
         dict
             ``{"head": [(start_deg, end_deg), ...], "crank": [...]}``, angles in [0, 360).
         """
-        dt = TWO_PI / _SAMPLES
-        th = np.arange(_SAMPLES) * dt
-        main = self.main_signed(th)
-        comb = self.signed_openings(th)
+        return {end: [(math.degrees(a) % 360.0, math.degrees(b) % 360.0)
+                      for _, _, inner in runs for a, b in inner[1:]]
+                for end, runs in self.admission_runs().items()}
+
+    def late_admissions(self) -> dict[str, list[tuple[float, float | None]]]:
+        """Per end, ``(main valve opens [deg], steam first admitted [deg] or None)`` for
+        each opening of the main valve that finds the cut-off valve closed: Art. 118,
+        "the cut-off valve must open between D and A in order that the steam may be
+        admitted as soon as the main valve opens".  None: no steam at all that stroke."""
+        tol = 2.0 * TWO_PI / _SAMPLES
         out = {}
-        for end, p in (("head", 0), ("crank", 2)):
-            found = []
-            co = comb[p] > 0.0
-            for a0, a1 in _circular_runs(main[p] > 0.0):
-                sub = co[np.arange(a0, a1) % _SAMPLES]
-                d = np.diff(np.concatenate([[0], sub.astype(int), [0]]))
-                starts, ends = np.nonzero(d == 1)[0], np.nonzero(d == -1)[0]
-                for s, e in list(zip(starts, ends))[1:]:
-                    t0 = self._edge(p, (a0 + s - 1) * dt, (a0 + s) * dt)
-                    t1 = self._edge(p, (a0 + e - 1) * dt, (a0 + e) * dt)
-                    found.append((math.degrees(t0) % 360.0, math.degrees(t1) % 360.0))
-            out[end] = found
+        for end, runs in self.admission_runs().items():
+            out[end] = [(math.degrees(a0) % 360.0,
+                         None if not inner else math.degrees(inner[0][0]) % 360.0)
+                        for a0, _, inner in runs if not inner or inner[0][0] > a0 + tol]
         return out
 
     def _edge(self, port: int, a: float, b: float) -> float:
@@ -249,7 +274,7 @@ class DoubleValve(ValveGear):
         return 0.5 * (a + b)
 
     def warn_double_admission(self) -> None:
-        """Log a warning naming the second admissions of this setting, if any."""
+        """Log a warning naming the second (and the late) admissions of this setting."""
         for end, spans in self.double_admissions().items():
             if spans:
                 txt = ", ".join(f"{a:.1f}-{b:.1f} deg" for a, b in spans)
@@ -257,6 +282,14 @@ class DoubleValve(ValveGear):
                             "admission at crank angles %s): the cut-off valve re-opens "
                             "before the main valve cuts off (Spangler Arts. 118, 130)",
                             self.name, end, txt)
+        for end, late in self.late_admissions().items():
+            for a, b in late:
+                what = ("no steam is admitted at all" if b is None
+                        else f"steam enters only at {b:.1f} deg")
+                log.warning("%s gear: the main valve opens the %s-end port at %.1f deg with "
+                            "the cut-off valve closed, and %s (Spangler Art. 118: the cut-off "
+                            "valve must open before the main valve does)", self.name, end, a,
+                            what)
 
     # -- drawing ---------------------------------------------------------------
     def draw(self, fig, units_system: str = "US") -> dict:

@@ -33,7 +33,11 @@ to the lower), rods g1, g2 and link parts c1, c2 above and below the suspension:
 valve-circles moves in a straight line inclined to os": a wider range of cut-off than
 the Gooch link's.  The setting runs from -1 (u = -c2) through 0 to 1 (u = c1).
 
-Both gears are given in Zeuner's form only (the exact Gooch linkage is not built).
+``motion = "exact"`` (Polonceau): the Gooch link solved as a linkage (the link motion
+module's exact Gooch: finite eccentric rods, link curved to the radius rod, block held
+at its height, radius rod g1 to the stem), once for each radius rod, both valves set for
+equal lead in full forward gear as one link sets them.  The Guinotte gear, whose link
+has unequal halves, is given in Zeuner's form only.
 """
 
 from __future__ import annotations
@@ -104,6 +108,8 @@ class PolonceauSpec:
     half_link_m: float
     main_block_m: float
     setting: float = 1.0
+    motion: str = "zeuner"
+    radius_rod_m: float | None = None
 
 
 class PolonceauGear(_HarmonicRiding):
@@ -117,6 +123,29 @@ class PolonceauGear(_HarmonicRiding):
 
     def __init__(self, spec: PolonceauSpec):
         self.spec = spec
+        self._exact = None
+        if spec.motion == "exact":
+            self._exact = (self._link(spec.main_block_m),
+                           self._link(spec.setting * spec.half_link_m))
+
+    def _link(self, u: float):
+        from corliss.valves.link_motion import LinkMotion, LinkMotionSpec
+        s, m = self.spec, self.spec.main
+        return LinkMotion(LinkMotionSpec(
+            kind="gooch", eccentricity_m=s.eccentricity_m, angular_advance_rad=s.angular_advance_rad,
+            eccentric_rod_m=s.eccentric_rod_m, half_link_m=s.half_link_m, block_m=u,
+            lap_m=m.lap_m, exhaust_lap_m=m.exhaust_lap_m, port_width_m=m.port_width_m,
+            port_length_m=m.port_length_m, motion="exact", radius_rod_m=s.radius_rod_m))
+
+    def main_travel(self, theta):
+        if self._exact is not None:
+            return self._exact[0].travel(theta)
+        return super().main_travel(theta)
+
+    def cutoff_travel(self, theta):
+        if self._exact is not None:
+            return self._exact[1].travel(theta)
+        return super().cutoff_travel(theta)
 
     def with_setting(self, value: float) -> "PolonceauGear":
         if not -1.0 <= value <= 1.0:
@@ -189,9 +218,13 @@ def parse_polonceau(t: Table) -> PolonceauSpec:
     u = t.length("main_block", t.raw("half_link"))
     if abs(u) > c:
         raise InputError(t.key("main_block"), t.raw("main_block"), "an offset within the half link")
-    return PolonceauSpec(main, dv.parse_riding(t, main), t.length("eccentricity", positive=True),
-                         t.angle("angular_advance"), t.length("eccentric_rod", positive=True), c,
-                         u, dv.check_setting(t, "setting", -1.0, 1.0, "u1 / c"))
+    r = t.length("eccentricity", positive=True)
+    motion = t.choice("motion", ("zeuner", "exact"), "zeuner")
+    g1 = (t.length("radius_rod", positive=True) if motion == "exact" and t.has("radius_rod")
+          else None)
+    return PolonceauSpec(main, dv.parse_riding(t, main), r, t.angle("angular_advance"),
+                         t.length("eccentric_rod", positive=True), c, u,
+                         dv.check_setting(t, "setting", -1.0, 1.0, "u1 / c"), motion, g1)
 
 
 def parse_guinotte(t: Table) -> GuinotteSpec:
