@@ -33,7 +33,6 @@ lever's ratio), each valve set for equal lead.
 from __future__ import annotations
 
 import dataclasses
-import math
 from dataclasses import dataclass
 
 import numpy as np

@@ -37,7 +37,6 @@ import dataclasses
 import math
 from dataclasses import dataclass
 
-import numpy as np
 
 from corliss.errors import InputError
 from corliss.tables import Table
