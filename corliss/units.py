@@ -53,6 +53,11 @@ _LINEAR: dict[str, dict[str, float]] = {
                 "lbm ft2": POUND_kg * FOOT_m**2, "slug ft2": 14.5939029 * FOOT_m**2},
     "angle": {"rad": 1.0, "deg": math.pi / 180.0},
     "mass_flow": {"kg/s": 1.0, "kg/h": 1.0 / 3600.0, "lb/h": POUND_kg / 3600.0},
+    "force": {"N": 1.0, "kN": 1e3, "lbf": LBF_N},
+    "stiffness": {"N/m": 1.0, "N/mm": 1e3, "kN/m": 1e3, "lbf/in": LBF_N / INCH_m,
+                  "lbf/ft": LBF_N / FOOT_m},
+    "damping": {"N s/m": 1.0, "kN s/m": 1e3, "lbf s/in": LBF_N / INCH_m,
+                "lbf s/ft": LBF_N / FOOT_m},
     "specific_energy": {"J/kg": 1.0, "kJ/kg": 1e3, "Btu/lb": 2326.0},
 }
 
