@@ -42,7 +42,8 @@ def geometry_of(scene: Scene) -> CylinderGeometry:
 
 def build_gear(scene: Scene):
     """The scene's valve gear object."""
-    return gear_type(scene.gear_type).build(scene.gear)
+    gear = gear_type(scene.gear_type).build(scene.gear)
+    return gear.with_speed(scene.run.speed_rad_s) if hasattr(gear, "with_speed") else gear
 
 
 def scene_events(scene: Scene, settings: list[float] | None = None):

@@ -1,0 +1,605 @@
+"""The Hamilton-Corliss valve gear: wrist plate, four rotary valves, trip and dash-pot
+(Spangler, *Valve-Gears*, Ch. XX, Arts. 155-157).
+
+The linkage (Art. 155, Fig. 107)
+--------------------------------
+One eccentric of throw r and angular advance delta drives, through the hook rod, a pin
+f at radius ``wrist_plate_radius`` (of) on the wrist plate, a disc rocking about its
+fixed centre o.  The book's eccentric rod, rocker de and hook rod are replaced by one
+rod of length g from the eccentric to f: Art. 157 notes that "it would be possible to
+design a gear in which the connection from b to f should be made by one rod only and
+give exactly the same distribution of steam"; a rocker's ratio de/dc is taken into
+``eccentricity``, which is the throw as felt at the hook.  The wrist plate carries
+four studs; each drives a valve rod to an arm on the spindle of a rotary valve: two
+steam valves on top, two exhaust valves below (Art. 155).  The steam and exhaust
+chains of the crank end are the mirror images of the head end's, so one geometry per
+kind of valve serves both ends.
+
+Exact motion (``motion = "exact"``, the default).  Shaft at the origin, X along the
+line of stroke, the eccentric centre at r (sin, cos)(theta + delta).  The hook pin is
+at o + of (sin psi, -cos psi) with the plate's centre o at (X_o, of), so the rod is
+along X with the plate at mid position (psi = 0).  The rod's length fixes psi per crank
+angle in closed form: with d = o - E, d_x sin psi - d_y cos psi = (g^2 - |d|^2 - of^2)
+/ (2 of).  X_o is set so the plate swings equally either side of its mid position
+(Art. 157: "e swings equally above and below the line Oo").
+
+Each valve chain is a four-bar linkage: frame o-q (o the plate's centre, q the valve
+spindle at ``*_spindle_distance`` D), crank oj (the stud, radius rho, at angle alpha0
+from oq at the plate's mid position), coupler jl (the valve rod, its length taken from
+the mid position) and rocker ql (the spindle arm, length a, at angle gamma0 from qo at
+mid position).  With the plate turned by u in the sense that opens that valve, the
+stud is at rho (cos, sin)(alpha0 + u) and the arm's angle gamma follows in closed form
+from the rod's length (same equation as above).  The valve face, of radius R_v, moves
+the arc X = R_v (gamma - gamma0) (signed so that it opens the port as u grows).  The
+head steam valve opens with u = psi, the crank steam valve with u = -psi, the head
+exhaust with u = -psi and the crank exhaust with u = psi.
+
+The toggle action (Art. 156): "the steam-valves should therefore open on that portion
+of their motion where j is moving away from oq and ql is approaching it".  With the
+stud near the line of the rod (near its own dead point) the rod, and so the valve,
+hardly moves while the plate swings: the valve dwells while it is closed; as the stud
+turns away from the rod's line and the arm turns towards it, the valve moves fast past
+the port edge.  The exact solution shows this; Art. 156's linear formula cannot.
+
+Zeuner form (``motion = "harmonic"``).  Art. 156 (de/dc = 1)::
+
+    x = (rad. valve / ql) (oj / of) r sin(theta + delta)
+
+which holds "as long as oj is to the left of the line og", i.e. away from the toggle
+positions, and assumes the stud and the arm square to the rod.  This module's harmonic
+motion is x = k r sin(theta + delta) with k = (1 / of) dX/du at mid position, the gear
+ratio of the exact chain linearised there: Art. 156's k when the stud and the arm are
+square to the rod, as the book assumes.  The book gives the actual motion only by
+drawing (Fig. 109, "the marks show the actual movements ... for each 30 degrees"; the
+figure is missing from the scan), so the exact chain is this module's own.
+
+Port openings (Art. 156: "As in the case of a plain slide-valve, the steam-port opens
+when the valve has moved from its central position a distance equal to the lap, and
+... closes again at the same point").  The signed opening of a rotary valve is the arc
+its edge has moved past the port's edge, X - lap; the lap and the port's width are arcs
+on the valve face (a lap may be given as an angle of the spindle: arc = R_v x angle).
+The exhaust valves are usually open at mid position (Art. 157: "the exhaust-port is
+open from 1/16 to 1/8 inch"), a negative exhaust lap.
+
+The trip (Art. 155, Fig. 108)
+-----------------------------
+The steam valve's arm is hooked to the rod's arm and follows the wrist plate until the
+hook meets the knock-off cam, which the governor places; the valve is then "closed by
+means of the rod H, the lower end of which is attached to a dash-pot".  Here:
+
+* The SETTING s is the cam's position, normalised for each end on the latched valve's
+  own swing: s = 0 at the arm's position where the port begins to open, s = 1 at the
+  end of the arm's travel (the wrist plate's extreme).  The valve is released where its
+  latched signed opening, rising, reaches s times its greatest latched signed opening.
+* s > 1: the cam stands beyond the hook's reach, there is no release, and the valve
+  closes with the wrist plate at its lap: the longest cut-off of the gear (about half
+  stroke: with x = k r sin(theta + delta) it closes at theta = 180 deg - delta -
+  asin(lap / k r)).  The cut-off jumps there from the longest trip cut-off (release at
+  the plate's extreme plus the dash-pot's closing angle) to the latched one.
+* s <= 0: the safety range (the governor fallen to its lowest position, belt broken:
+  the safety cam holds the hook off).  The hook is released before the valve opens and
+  no steam is admitted; ``release_angle_rad`` gives the latched opening angle, where the
+  opening at release is zero.  A Corliss governor's ``safety_setting`` should be < 0.
+* The dash-pot closes the valve in ``dashpot_closing_time`` T (from release to the port
+  closed), whatever the speed: the crank turns omega T meanwhile, so cut-off comes later
+  at higher speed for the same cam.  The closing law taken: the valve, let go, moves
+  back like a weight falling from rest (the dash-pot's vacuum or weight pulling it),
+  travel proportional to the square of the time, so the fraction still open is
+  ``closing_fraction(t) = 1 - (t / T)^2`` for t < T, 0 from T on.
+* While tripped, the port is open min(latched opening, opening at release x
+  closing_fraction(time since release)), from the release until the latched valve
+  would have closed anyway (where the hook catches again on the return).
+
+Exhaust valves follow the wrist plate (no trip).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import logging
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq, minimize_scalar
+
+from corliss import units
+from corliss.errors import InputError
+from corliss.tables import Table
+from corliss.valves.gear import GearType, ValveGear, register
+from corliss.valves.slide_valve import pair
+
+log = logging.getLogger(__name__)
+
+TWO_PI = 2.0 * math.pi
+#: Setting range: below 0 the safety cam (no admission), above 1 no release.
+SETTING_RANGE = (-0.25, 1.25)
+
+
+@dataclass(frozen=True)
+class ValveChain:
+    """One wrist-plate stud, valve rod and spindle arm (a four-bar chain), all SI.
+
+    Attributes
+    ----------
+    stud_radius_m : float
+        Radius of the stud on the wrist plate, oj or ok [m].
+    stud_angle_rad : float
+        Angle of the stud from the line of centres o -> q at the plate's mid position,
+        positive in the sense the plate turns to open this valve [rad].
+    arm_m : float
+        Spindle arm, ql or pt [m].
+    arm_angle_rad : float
+        Angle of the arm from the line q -> o at mid position, positive on the same
+        side as a positive stud angle [rad].
+    spindle_distance_m : float
+        Distance from the plate's centre to the valve spindle, oq [m].
+    valve_radius_m : float
+        Radius of the valve's face [m].
+    """
+
+    stud_radius_m: float
+    stud_angle_rad: float
+    arm_m: float
+    arm_angle_rad: float
+    spindle_distance_m: float
+    valve_radius_m: float
+
+    def _points(self, u, gamma):
+        rho, a, D = self.stud_radius_m, self.arm_m, self.spindle_distance_m
+        a0 = self.stud_angle_rad + u
+        j = (rho * np.cos(a0), rho * np.sin(a0))
+        l_ = (D - a * np.cos(gamma), a * np.sin(gamma))
+        return j, l_
+
+    @property
+    def rod_m(self) -> float:
+        """Valve rod length, jl, from the mid position [m]."""
+        j, l_ = self._points(0.0, self.arm_angle_rad)
+        return math.hypot(l_[0] - j[0], l_[1] - j[1])
+
+    def _branch(self, u, sign):
+        rho, a, D, L = self.stud_radius_m, self.arm_m, self.spindle_distance_m, self.rod_m
+        a0 = self.stud_angle_rad + np.asarray(u, dtype=float)
+        dx = D - rho * np.cos(a0)
+        dy = -rho * np.sin(a0)
+        # |d + a(-cos g, sin g)| = L  ->  dy sin g - dx cos g = K
+        K = (L * L - dx * dx - dy * dy - a * a) / (2.0 * a)
+        M = np.hypot(dx, dy)
+        mu = np.arctan2(dx, dy)
+        arg = K / M
+        if np.any(np.abs(arg) > 1.0):
+            raise ValueError("the valve rod cannot reach the spindle arm (the chain locks)")
+        return mu + (np.arcsin(arg) if sign > 0 else math.pi - np.arcsin(arg))
+
+    @functools.cached_property
+    def _sign(self) -> int:
+        """The branch of the chain's solution through the mid position."""
+        g0 = self.arm_angle_rad
+        for sign in (1, -1):
+            g = float(self._branch(0.0, sign))
+            if abs(math.remainder(g - g0, TWO_PI)) < 1e-9:
+                return sign
+        raise AssertionError("mid position not on either branch")  # pragma: no cover
+
+    def arm_angle(self, u) -> np.ndarray:
+        """Spindle arm angle gamma [rad] with the plate turned ``u`` [rad] in the sense
+        that opens the valve (the branch through the mid position)."""
+        g0 = self.arm_angle_rad
+        return g0 + np.remainder(self._branch(u, self._sign) - g0 + math.pi, TWO_PI) - math.pi
+
+    @functools.cached_property
+    def opening_sense(self) -> float:
+        """+1 or -1: the sign of d gamma / du at mid position."""
+        h = 1e-6
+        return 1.0 if float(self.arm_angle(h) - self.arm_angle(-h)) > 0.0 else -1.0
+
+    def valve_arc(self, u) -> np.ndarray:
+        """Arc the valve's face has moved from its mid position [m], positive towards
+        opening, with the plate turned ``u`` [rad] in the sense that opens it."""
+        return self.opening_sense * self.valve_radius_m * (self.arm_angle(u) - self.arm_angle_rad)
+
+    def spindle_angle(self, u) -> np.ndarray:
+        """Spindle angle from its mid position [rad], positive towards opening."""
+        return self.opening_sense * (self.arm_angle(u) - self.arm_angle_rad)
+
+    def ratio_at_mid(self) -> float:
+        """dX/du at mid position [m/rad]: valve arc per radian of the plate."""
+        h = 1e-5
+        return float(self.valve_arc(h) - self.valve_arc(-h)) / (2.0 * h)
+
+
+@dataclass(frozen=True)
+class CorlissSpec:
+    """A Corliss gear (all SI).
+
+    Attributes
+    ----------
+    eccentricity_m, angular_advance_rad : float
+        Throw at the hook [m] and angular advance [rad].
+    hook_rod_m : float
+        Length of the rod from the eccentric to the wrist-plate pin [m].
+    wrist_plate_radius_m : float
+        Radius of the hook pin on the wrist plate, of [m].
+    steam, exhaust : ValveChain
+        The chains of the steam and exhaust valves (head end; the crank end mirrors).
+    steam_lap_m, exhaust_lap_m : tuple of float
+        Laps (head, crank) as arcs on the valve face at the plate's mid position [m];
+        a negative exhaust lap is an exhaust open at mid position.
+    steam_port_width_m, exhaust_port_width_m, port_length_m : float
+        Port widths (arcs on the valve face) and the ports' length [m].
+    dashpot_closing_time_s : float
+        Time from release to the steam port closed [s].
+    setting : float
+        Cam position s (see the module doc).
+    motion : str
+        ``"exact"`` or ``"harmonic"``.
+    speed_rad_s : float or None
+        Shaft speed [rad/s], set by :meth:`CorlissGear.with_speed`.
+    """
+
+    eccentricity_m: float
+    angular_advance_rad: float
+    hook_rod_m: float
+    wrist_plate_radius_m: float
+    steam: ValveChain
+    exhaust: ValveChain
+    steam_lap_m: tuple[float, float]
+    exhaust_lap_m: tuple[float, float]
+    steam_port_width_m: float
+    exhaust_port_width_m: float
+    port_length_m: float
+    dashpot_closing_time_s: float
+    discharge_coefficient: float = 0.7
+    ports_per_end: int = 1
+    setting: float = 0.5
+    motion: str = "exact"
+    speed_rad_s: float | None = None
+
+
+class CorlissGear(ValveGear):
+    """Corliss wrist plate, four rotary valves, trip and dash-pot (Spangler Ch. XX)."""
+
+    name = "corliss"
+    summary = ("Corliss gear: wrist plate, four rotary valves, steam valves released by the "
+               "governor's cams and closed by dash-pots (Spangler Arts. 155-157); setting = "
+               "cam position (0 trips at admission, 1 at the end of the hook's travel, > 1 "
+               "no trip, < 0 safety cam: no admission)")
+    setting_name = ("cam position s (0: release at admission, 1: at the end of the hook's "
+                    "travel; > 1 no release, < 0 safety cam)")
+    setting_range = SETTING_RANGE
+
+    def __init__(self, spec: CorlissSpec, _geom: dict | None = None):
+        self.spec = spec
+        # geometry-only quantities, shared by the same gear at other settings and speeds
+        self._geom = _geom if _geom is not None else self._prepare()
+
+    # ------------------------------------------------------------------ settings
+    def with_setting(self, value: float) -> "CorlissGear":
+        lo, hi = self.setting_range
+        if not lo <= value <= hi:
+            raise ValueError(f"setting {value} outside [{lo}, {hi}]")
+        return CorlissGear(dataclasses.replace(self.spec, setting=float(value)), self._geom)
+
+    def with_speed(self, speed_rad_s: float) -> "CorlissGear":
+        """The same gear at shaft speed ``speed_rad_s`` [rad/s] (the dash-pot's closing
+        angle is speed x closing time)."""
+        if not speed_rad_s > 0.0:
+            raise ValueError(f"speed {speed_rad_s} rad/s must be positive")
+        return CorlissGear(dataclasses.replace(self.spec, speed_rad_s=float(speed_rad_s)),
+                           self._geom)
+
+    @property
+    def closing_time_s(self) -> float:
+        """Dash-pot closing time, release to port closed [s]."""
+        return self.spec.dashpot_closing_time_s
+
+    # ------------------------------------------------------------------ motion
+    def _hook_setup(self) -> float:
+        """X_o of the plate's centre that makes the plate swing equally both ways."""
+        s = self.spec
+        th = np.linspace(0.0, TWO_PI, 721)
+
+        def asym(xo):
+            p = self._psi_exact(th, xo)
+            return float(p.max() + p.min())
+
+        g, r = s.hook_rod_m, s.eccentricity_m
+        return brentq(asym, g - 0.9 * r, g + 0.9 * r, xtol=1e-14)
+
+    def _psi_exact(self, theta, xo):
+        s = self.spec
+        R, g, r = s.wrist_plate_radius_m, s.hook_rod_m, s.eccentricity_m
+        ph = np.asarray(theta, dtype=float) + s.angular_advance_rad
+        dx = xo - r * np.sin(ph)
+        dy = R - r * np.cos(ph)
+        K = (g * g - dx * dx - dy * dy - R * R) / (2.0 * R)
+        M = np.hypot(dx, dy)
+        mu = np.arctan2(dy, dx)
+        arg = K / M
+        if np.any(np.abs(arg) > 1.0):
+            raise ValueError("the hook rod cannot reach the wrist-plate pin")
+        return mu + np.arcsin(arg)
+
+    def plate_angle(self, theta) -> np.ndarray:
+        """Wrist plate angle psi from its mid position [rad], positive in the sense that
+        opens the head steam valve, at crank angles ``theta`` [rad]."""
+        s = self.spec
+        th = np.asarray(theta, dtype=float)
+        if s.motion == "harmonic":
+            return s.eccentricity_m * np.sin(th + s.angular_advance_rad) / s.wrist_plate_radius_m
+        return self._psi_exact(th, self._geom["xo"])
+
+    def zeuner_travels(self, theta) -> np.ndarray:
+        """Art. 156's valve motion x = k r sin(theta + delta) [m] of (steam, exhaust),
+        k = (1 / of) dX/du at mid position (Art. 156's (rad. valve / ql)(oj / of) when the
+        stud and the arm are square to the rod), shape (2, n)."""
+        s = self.spec
+        base = s.eccentricity_m * np.sin(np.asarray(theta, dtype=float) + s.angular_advance_rad)
+        base = base / s.wrist_plate_radius_m
+        return np.vstack([self._geom["k_steam"] * base, self._geom["k_exhaust"] * base])
+
+    def valve_arcs(self, theta) -> np.ndarray:
+        """Arc each valve's face has moved from mid position towards opening [m], in port
+        order (head steam, head exhaust, crank steam, crank exhaust), latched."""
+        th = np.atleast_1d(np.asarray(theta, dtype=float))
+        s = self.spec
+        if s.motion == "harmonic":
+            zs, ze = self.zeuner_travels(th)
+            return np.vstack([zs, -ze, -zs, ze])
+        psi = self.plate_angle(th)
+        return np.vstack([s.steam.valve_arc(psi), s.exhaust.valve_arc(-psi),
+                          s.steam.valve_arc(-psi), s.exhaust.valve_arc(psi)])
+
+    def spindle_angles(self, theta) -> np.ndarray:
+        """Spindle angle of each valve from mid position towards opening [rad], latched."""
+        radii = np.array([self.spec.steam.valve_radius_m, self.spec.exhaust.valve_radius_m] * 2)
+        return self.valve_arcs(theta) / radii[:, None]
+
+    def latched_signed_openings(self, theta) -> np.ndarray:
+        """Signed openings [m] as if the steam valves never tripped, shape (4, n)."""
+        s = self.spec
+        laps = np.array([s.steam_lap_m[0], s.exhaust_lap_m[0], s.steam_lap_m[1],
+                         s.exhaust_lap_m[1]])
+        return self.valve_arcs(theta) - laps[:, None]
+
+    # ------------------------------------------------------------------ trip
+    def _prepare(self) -> dict:
+        s = self.spec
+        sh = {"xo": None, "k_steam": s.steam.ratio_at_mid(), "k_exhaust": s.exhaust.ratio_at_mid()}
+        self._geom = sh
+        if s.motion == "exact":
+            sh["xo"] = self._hook_setup()
+        th = np.linspace(0.0, TWO_PI, 7201)
+        op = self.latched_signed_openings(th)
+        windows = []
+        for e, port in enumerate((0, 2)):
+            p = op[port]
+            up = np.nonzero((p[:-1] <= 0.0) & (p[1:] > 0.0))[0]
+            dn = np.nonzero((p[:-1] > 0.0) & (p[1:] <= 0.0))[0]
+            if up.size != 1 or dn.size != 1:
+                raise ValueError(f"the {('head', 'crank')[e]}-end steam valve must open and "
+                                 "close once a turn with the wrist plate")
+            def f(t, port=port):
+                return float(self.latched_signed_openings(np.array([t]))[port, 0])
+            t_open = brentq(f, th[up[0]], th[up[0] + 1], xtol=1e-14)
+            t_close = brentq(f, th[dn[0]], th[dn[0] + 1], xtol=1e-14)
+            span = (t_close - t_open) % TWO_PI
+            u = (th - t_open) % TWO_PI
+            inside = u < span
+            k = int(np.argmax(np.where(inside, p, -np.inf)))
+            res = minimize_scalar(lambda t: -f(t), bracket=None,
+                                  bounds=(th[k] - 2 * TWO_PI / 7200, th[k] + 2 * TWO_PI / 7200),
+                                  method="bounded", options={"xatol": 1e-12})
+            t_peak = float(res.x) % TWO_PI
+            windows.append({"open": t_open % TWO_PI, "close": t_close % TWO_PI,
+                            "peak": t_peak, "p_max": -float(res.fun), "f": f})
+        sh["windows"] = windows
+        return sh
+
+    def release_angle_rad(self, setting: float | None = None):
+        """Crank angles of release (head, crank) [rad] in [0, 2 pi) at cam position
+        ``setting`` (default the gear's): None for an end whose cam cannot trip it
+        (setting > 1); the latched opening angle for setting <= 0 (safety: released
+        before the valve opens)."""
+        if setting is None:
+            if not hasattr(self, "_release"):
+                self._release = self._release_at(self.spec.setting)
+            return self._release
+        return self._release_at(float(setting))
+
+    def _release_at(self, s: float):
+        out = []
+        for w in self._geom["windows"]:
+            if s > 1.0:
+                out.append(None)
+            elif s <= 0.0:
+                out.append(w["open"])
+            elif s == 1.0:
+                out.append(w["peak"])
+            else:
+                level = s * w["p_max"]
+                a = w["open"]
+                b = a + (w["peak"] - a) % TWO_PI
+                t = brentq(lambda t: w["f"](t) - level, a, b, xtol=1e-14)
+                out.append(t % TWO_PI)
+        return tuple(out)
+
+    def closing_fraction(self, t_s) -> np.ndarray:
+        """Fraction of the opening at release still open ``t_s`` [s] after release:
+        1 - (t/T)^2 (a valve let go from rest moving back like a falling weight), 0 from
+        the closing time T on; 1 before release."""
+        T = self.spec.dashpot_closing_time_s
+        x = np.clip(np.asarray(t_s, dtype=float) / T, 0.0, 1.0)
+        return 1.0 - x * x
+
+    def closing_angle_rad(self) -> float:
+        """Crank angle swept while the dash-pot closes the valve, omega T [rad]."""
+        return self._speed() * self.spec.dashpot_closing_time_s
+
+    def _speed(self) -> float:
+        if self.spec.speed_rad_s is None:
+            raise ValueError("the Corliss gear needs the shaft speed for its dash-pots: "
+                             "call with_speed(speed_rad_s) first")
+        return self.spec.speed_rad_s
+
+    def signed_openings(self, theta):
+        th = np.atleast_1d(np.asarray(theta, dtype=float))
+        out = self.latched_signed_openings(th)
+        rel = self.release_angle_rad()
+        if all(r is None for r in rel):
+            return out
+        omega = self._speed()
+        for e, port in enumerate((0, 2)):
+            if rel[e] is None:
+                continue
+            w = self._geom["windows"][e]
+            window = (w["close"] - w["open"]) % TWO_PI
+            rel_from_open = (rel[e] - w["open"]) % TWO_PI
+            if self.spec.setting <= 0.0:
+                rel_from_open, p_rel = 0.0, 0.0
+            else:
+                p_rel = max(w["f"](rel[e]), 0.0)
+            since_open = (th - w["open"]) % TWO_PI
+            m = (since_open >= rel_from_open) & (since_open <= window)
+            if np.any(m):
+                tau = (since_open[m] - rel_from_open) / omega
+                out[port, m] = np.minimum(out[port, m], p_rel * self.closing_fraction(tau))
+        return out
+
+    # ------------------------------------------------------------------ ports
+    def port_widths(self):
+        s = self.spec
+        return np.array([s.steam_port_width_m, s.exhaust_port_width_m] * 2)
+
+    def port_lengths(self):
+        return np.full(4, self.spec.port_length_m * self.spec.ports_per_end)
+
+    def discharge_coefficients(self):
+        return np.full(4, self.spec.discharge_coefficient)
+
+    # ------------------------------------------------------------------ drawing
+    def draw(self, fig, units_system: str = "US") -> dict:
+        """Wrist plate and spindle angles, and the four port openings (latched dotted,
+        tripped solid), against crank angle."""
+        u = "in" if units_system == "US" else "mm"
+        ax_a, ax_o = fig.add_subplot(1, 2, 1), fig.add_subplot(1, 2, 2)
+        th = np.linspace(0.0, TWO_PI, 1441)
+        deg = np.degrees(th)
+        lines = {"plate": ax_a.plot(deg, np.degrees(self.plate_angle(th)), color="k", lw=1.6,
+                                    label="wrist plate")[0]}
+        ang = np.degrees(self.spindle_angles(th))
+        styles = [("head steam", "0.2", "-"), ("head exhaust", "0.45", "-"),
+                  ("crank steam", "0.2", "--"), ("crank exhaust", "0.45", "--")]
+        for p, (lab, c, ls) in enumerate(styles):
+            lines[lab + " spindle"] = ax_a.plot(deg, ang[p], color=c, lw=1.0, ls=ls,
+                                                label=f"{lab} spindle (latched)")[0]
+        ax_a.set_ylabel("angle from mid position [deg]")
+        ax_a.set_title("Wrist plate and valve spindles (Art. 156)", fontsize=10)
+        U = lambda v: units.to_unit(np.asarray(v), u)  # noqa: E731
+        w = self.port_widths()[:, None]
+        lat = np.clip(self.latched_signed_openings(th), 0.0, w)
+        act = np.clip(self.signed_openings(th), 0.0, w) if self.spec.speed_rad_s else lat
+        for p, (lab, c, ls) in enumerate(styles):
+            if p in (0, 2):
+                lines[lab + " latched"] = ax_o.plot(deg, U(lat[p]), color=c, lw=0.9, ls=":",
+                                                    label=f"{lab}, latched")[0]
+            lines[lab] = ax_o.plot(deg, U(act[p]), color=c, lw=1.4, ls=ls,
+                                   label=lab + (", tripped" if p in (0, 2) else ""))[0]
+        ax_o.set_ylabel(f"port opening [{u}]")
+        spd = (f", {self.spec.speed_rad_s / units.RPM_RAD_S:.0f} rpm"
+               if self.spec.speed_rad_s else "")
+        ax_o.set_title(f"Port openings, cam s = {self.spec.setting:g}{spd} (Art. 155)",
+                       fontsize=10)
+        for ax in (ax_a, ax_o):
+            ax.set_xlabel("crank angle from head-end dead centre [deg]")
+            ax.set_xlim(0, 360)
+            ax.set_xticks(range(0, 361, 60))
+            ax.axhline(0, color="0.8", lw=0.5)
+            ax.grid(True, color="0.9", lw=0.5)
+            ax.legend(fontsize=7, frameon=False)
+            for side in ("top", "right"):
+                ax.spines[side].set_visible(False)
+        return lines
+
+
+# ---------------------------------------------------------------------- parsing
+def _arc(t: Table, key: str, radius: float, default=None) -> tuple[float, float]:
+    """A lap given as an arc (length) or as a spindle angle, once or as [head, crank]."""
+    raw = t.raw(key, default)
+    vals = raw if isinstance(raw, list) else [raw, raw]
+    if len(vals) != 2:
+        raise InputError(t.key(key), raw, "one value, or a list [head, crank] of two")
+    out = []
+    for v in vals:
+        try:
+            out.append(units.parse(v, "length", t.key(key)))
+        except InputError:
+            try:
+                out.append(radius * units.parse(v, "angle", t.key(key)))
+            except InputError:
+                raise InputError(t.key(key), raw, "an arc on the valve face (\"0.375 in\") or "
+                                 "a spindle angle (\"8 deg\")") from None
+    return out[0], out[1]
+
+
+def _chain(t: Table, kind: str) -> ValveChain:
+    ch = ValveChain(t.length(f"{kind}_stud_radius", positive=True),
+                    t.angle(f"{kind}_stud_angle"),
+                    t.length(f"{kind}_arm", positive=True),
+                    t.angle(f"{kind}_arm_angle"),
+                    t.length(f"{kind}_spindle_distance", positive=True),
+                    t.length(f"{kind}_valve_radius", positive=True))
+    if ch.rod_m <= 0.0:
+        raise InputError(t.key(f"{kind}_arm_angle"), t.raw(f"{kind}_arm_angle"),
+                         "an arm placed apart from the stud")
+    return ch
+
+
+def parse_corliss(t: Table) -> CorlissSpec:
+    """Read a ``[valve_gear] type = "corliss"`` table."""
+    steam, exhaust = _chain(t, "steam"), _chain(t, "exhaust")
+    r = t.length("eccentricity", positive=True)
+    R = t.length("wrist_plate_radius", positive=True)
+    if r >= R:
+        raise InputError(t.key("eccentricity"), t.raw("eccentricity"),
+                         f"a throw less than the wrist-plate radius ({R / units.INCH_m:.4g} in)")
+    g = t.length("hook_rod", positive=True)
+    if g <= 2.0 * (r + R):
+        raise InputError(t.key("hook_rod"), t.raw("hook_rod"),
+                         "a hook rod longer than twice the throw plus the wrist-plate radius")
+    closing = t.quantity("dashpot_closing_time", "time")
+    if not closing > 0.0:
+        raise InputError(t.key("dashpot_closing_time"), t.raw("dashpot_closing_time"),
+                         "a time greater than zero")
+    setting = t.number("setting", 0.5)
+    lo, hi = SETTING_RANGE
+    if not lo <= setting <= hi:
+        raise InputError(t.key("setting"), setting, f"a cam position from {lo} to {hi}")
+    cd = t.number("discharge_coefficient", 0.7)
+    if not 0.0 < cd <= 1.0:
+        raise InputError(t.key("discharge_coefficient"), cd, "a number in (0, 1]")
+    ports = t.integer("ports_per_end", 1)
+    if ports < 1:
+        raise InputError(t.key("ports_per_end"), ports, "an integer >= 1")
+    spec = CorlissSpec(
+        eccentricity_m=r, angular_advance_rad=t.angle("angular_advance"), hook_rod_m=g,
+        wrist_plate_radius_m=R, steam=steam, exhaust=exhaust,
+        steam_lap_m=_arc(t, "steam_lap", steam.valve_radius_m),
+        exhaust_lap_m=_arc(t, "exhaust_lap", exhaust.valve_radius_m, "0 in"),
+        steam_port_width_m=t.length("steam_port_width", positive=True),
+        exhaust_port_width_m=t.length("exhaust_port_width", positive=True),
+        port_length_m=t.length("port_length", positive=True),
+        dashpot_closing_time_s=closing, discharge_coefficient=cd, ports_per_end=ports,
+        setting=setting, motion=t.choice("motion", ("exact", "harmonic"), "exact"))
+    try:
+        CorlissGear(spec)
+    except ValueError as exc:
+        raise InputError(t.key("steam_lap"), t.raw("steam_lap"),
+                         f"a gear whose linkage works and whose steam valves open and close "
+                         f"once a turn ({exc})") from None
+    return spec
+
+
+register(GearType("corliss", CorlissGear.summary, parse_corliss, CorlissGear))
