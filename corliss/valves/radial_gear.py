@@ -1,0 +1,743 @@
+"""Radial valve gears: Hackworth, Marshall, Angstrom, Joy (Spangler Chs. XIII-XIV) and
+Walschaerts, in Zeuner's form or solved exactly.
+
+A radial gear takes the valve's motion from a point of a vibrating link one point of
+which moves on a closed curve while another moves on a straight line or open curve
+(Spangler Art. 92).  Every one of them moves the valve, to first order, as a single
+virtual eccentric, x = C cos(theta) + S sin(theta), with C = lap + lead the valve's
+displacement at the dead centre, the same at both ends and at every setting: the
+constant lead of radial gears (Arts. 94, 111, 114).
+
+Hackworth (Arts. 93-97), Marshall (105-108), Angstrom (109-110)
+    An eccentric of throw r set opposite the crank (Art. 93) drives one end of the
+    vibrating link (length l1, the book's "eccentric-rod" ch, Art. 107); its other end
+    h slides along a guide through the point i it occupies at both dead centres; the
+    valve rod is pinned at distance l2 from h (Art. 95)::
+
+        C = (|l2| / l1) r          S = r ((l1 - l2) / l1) tan(alpha)        (Art. 95)
+
+    with alpha the guide's inclination to the line of centres, the setting the reverse
+    lever moves (alpha > 0 ahead, 0 mid gear, < 0 astern).  l2 is signed: positive
+    between h and the eccentric (Fig. 62), negative beyond h ("attached outside",
+    Art. 102: Problems 50-52 give l2 = -16 5/8 and -21 in; Bremme's lead arm
+    hd = -4.5 ac, Art. 107).  An outside attachment sends the valve the other way at the
+    dead centre, so the valve is connected (steam inside, or through a rocker, Art.
+    101) to put the lead on the right port; x is reckoned that way, and alpha is then
+    taken on the side that runs the engine ahead.  That is why C carries |l2|: with l2
+    the outside distance written positive, the result is the book's Art. 102 formula
+    x = (l2/l1) r cos + r ((l1 + l2)/l1) tan(alpha) sin, which is right for the
+    reversed connection (the book's text, "l2 changes sign", would give -(l2/l1) r cos
+    with a direct one).  Hackworth's guide is straight; Marshall's h swings on a link
+    gh = gi about the end g of the reversing arm, so it runs on a circular arc of radius
+    ``guide_radius`` tangent at i to Hackworth's guide (Art. 105); Angstrom's h is the
+    middle of the rod kl of a parallel motion (Watt's: two equal radius links of
+    length ``parallel_link`` on opposite sides, pivoted so that at i they stand square
+    to kl, of length ``parallel_rod``, which lies along the guide; Art. 109, Figs.
+    71-72 are not in the text we have).
+
+Joy (Arts. 112-114)
+    No eccentric: a point d of the connecting rod (length b), at distance c from the
+    crosshead, drives the jack link de (length l3), whose end e swings on the anchor
+    link ef about the fixed point f; the vibrating lever ig is pinned to de at g
+    (dg = l4); its point h (hg = l1) slides on the curved guide through k, which the
+    reverse lever inclines by alpha; its end i, l2 beyond h, drives the valve rod.
+    d moves across the line of stroke (c/b) R sin(theta), and g along it
+    ((l3 - l4)/l3) R cos(theta) (Art. 113), so::
+
+        C = ((l3 - l4)/l3) R (l2 / l1)       S = R ((l1 + l2)/l1) tan(alpha) (c/b)   (Art. 113)
+
+    The exact linkage here places e at the same point at both dead centres
+    (l3 sin(theta_d) = R, Art. 113's "d should travel symmetrically under k"), and k at
+    distance l1 from both dead-centre positions of g (l4 sin(theta_d) + l1 sin(phi) = R):
+    then h stands at k at both dead centres whatever alpha, and the lead is constant
+    and equal at both ends exactly, as Art. 114 says of the actual gear.  The book's
+    third condition, l4 vers(theta_d) = l1 vers(phi), only centres g's oval under k; a
+    gear that misses it (Problem 57 does) still assembles.
+
+Walschaerts (not in Spangler)
+    A return crank of throw e about 90 deg from the main crank swings the expansion link
+    about its trunnion through the eccentric rod pinned to the link's foot, a distance
+    k below the trunnion; the radius rod runs from the die (offset u along the link
+    from the trunnion: the setting) to the top of the combination lever, whose lower
+    end the union link ties to the crosshead and from which the valve stem is driven,
+    a from the radius rod's pin, the union link's pin being at l from it.
+
+    *Derived here* (not from a book): with infinitely long rods the crosshead moves
+    R cos(theta) and turns the lever about the radius-rod pin, moving the valve
+    (a/l) R cos(theta): a component in phase with the piston, independent of the die;
+    at the dead centres the link is square to the radius rod, so the die's position
+    does not move the valve and that component alone is lap + lead.  The link turns
+    (e/k) sin(theta) about its trunnion, so the die moves (u/k) e sin(theta); the lever,
+    now turning about its union-link pin, multiplies that by (l + a)/l for a valve
+    taking steam outside (valve pin beyond the radius-rod pin) or (l - a)/l for one
+    taking steam inside (valve pin between the two)::
+
+        C = (a/l) R                         S = (1 +- a/l)(u/k) e
+
+    The lead is therefore the same at every cut-off and in both gears, as Marks,
+    *Relative Proportions of the Steam-Engine*, Art. 72, says of Heusinger von
+    Waldegg's (Walschaerts's) gear ("has a constant lead"), and as the American
+    Locomotive Company's erecting rules quoted by L. V. Ludy, *Locomotive Boilers and
+    Engines* (1920), p. 88, put it: the difference between the valve's positions on
+    the two dead centres "is the lead and lap doubled and it cannot be changed except
+    by changing the leverage relations of the combination lever".
+
+``motion = "exact"`` solves each linkage with finite rods and links at every crank
+angle (closed-form circle intersections where there are, a vectorised Newton solve
+for the Angstrom parallel motion and the Walschaerts combination lever), tabulates it
+at 1/2 deg and reads it back through a periodic cubic spline.  The valve's zero is set
+for equal lead (the mean of its two dead-centre positions), and its travel is
+reckoned in the sense that opens the head steam port, as everywhere.  Conventions of
+the exact linkages (the book's figures are missing, so the unseen details are chosen
+and said):
+
+* Hackworth, Marshall, Angstrom: a vertical engine, cylinder above the shaft (head end
+  up), the link running across the line of stroke from the eccentric to the guide, the
+  valve above the link on a valve rod (``valve_rod``, default infinitely long) running
+  parallel to the stroke.  ``hand = "right"`` is clockwise seen with the eccentric end
+  on the left, the guide on the right and the valve above (Art. 98).  The Marshall
+  arc's centre g is on the valve's side of the guide for a positive ``guide_radius``.
+* Joy: a horizontal engine, cylinder on the right, the jack link hanging from d to e
+  below the line of stroke and the lever rising from g past it to h and i (so that the
+  vers terms of Art. 113 work against each other, and the valve stem stands about
+  l2 + l1 - l4 above the cylinder's axis, as the book says), anchor pivot f on the
+  shaft's side of e, valve rod (``valve_rod``) running from i towards
+  the cylinder.  ``hand = "right"`` by Art. 98's definition is then counter-clockwise
+  seen with the cylinder on the right (Fig. 73's arrow is the other way, left-hand).
+  ``guide_radius`` is the radius of the curved guide (Problem 57: the reversing arm
+  and radius rod, 12 in), its centre on the cylinder's side for a positive value;
+  none for a straight guide.
+* Walschaerts: a locomotive running ahead, seen from the side with the cylinder on the
+  right (so the wheels turn clockwise); the crosshead on the line of stroke, the
+  valve stem ``valve_height`` above it; the lever hanging from the valve stem, the
+  union link horizontal at the dead centres; the radius rod horizontal at the dead
+  centres, the link curved to the radius rod's length about the radius rod's pin there
+  (so the lead stays exactly constant); the return crank set square to the line from
+  the axle to the link's foot on the dead centres (the erecting rule: the link's foot
+  takes the same place on both dead centres), which fixes how far ahead of the axle
+  the link stands for the given eccentric rod; the die held at its place in the link
+  (its slip neglected).  Two first-order effects of the finite rods vanish only as the
+  rods grow: the die at arc length u along a link curved to the radius rod rho acts
+  as if at rho tan(u/rho), and an eccentric rod inclined by phi at the dead centres
+  swings the link 1/cos(phi) times more than the return crank's throw.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from corliss import units
+from corliss.errors import InputError
+from corliss.tables import Table
+from corliss.valves.gear import GearType, register
+from corliss.valves.slide_valve import LappedValve, pair, parse_allen_passage, parse_ports
+
+KINDS = ("hackworth", "marshall", "angstrom", "joy", "walschaerts")
+SIMPLE = ("hackworth", "marshall", "angstrom")
+
+
+@dataclass(frozen=True, kw_only=True)
+class _RadialBase:
+    """What every radial gear's spec carries (all SI).
+
+    Attributes
+    ----------
+    kind : str
+        One of :data:`KINDS`.
+    setting : float
+        The reverse lever's position, -1 (full gear astern) .. 0 (mid gear) .. 1 (full
+        gear ahead): the guide's inclination alpha / alpha_max, or the Walschaerts die's
+        offset u / u_max.
+    motion : str
+        ``"zeuner"`` or ``"exact"`` (see the module doc).
+    valve_rod_m : float or None
+        Length of the valve rod (the book's "valve connecting-rod") [m]; None for an
+        infinitely long one.  Not used by the Walschaerts gear (the valve stem is
+        guided straight).
+    lap_m, exhaust_lap_m, port_width_m, port_length_m, discharge_coefficient,
+    ports_per_end, allen_passage_m : as for the slide valve.
+    """
+
+    kind: str
+    lap_m: tuple[float, float]
+    exhaust_lap_m: tuple[float, float]
+    port_width_m: float
+    port_length_m: float
+    discharge_coefficient: float = 0.7
+    ports_per_end: int = 1
+    allen_passage_m: float | None = None
+    setting: float = 1.0
+    motion: str = "zeuner"
+    valve_rod_m: float | None = None
+
+
+@dataclass(frozen=True, kw_only=True)
+class SimpleRadialSpec(_RadialBase):
+    """Hackworth, Marshall or Angstrom gear.
+
+    Attributes
+    ----------
+    eccentricity_m : float
+        r, throw of the eccentric set opposite the crank [m].
+    link_m : float
+        l1, the vibrating link ch from the eccentric's centre to the guided end h [m].
+    valve_arm_m : float
+        l2, the valve rod's pin from h along the link [m]: positive towards the
+        eccentric, negative beyond h (attached outside).
+    max_inclination_rad : float
+        The guide's inclination alpha at full gear [rad] (Bremme: never above 25 deg,
+        Art. 107).
+    hand : str
+        ``"right"`` or ``"left"`` rotation (Art. 98).
+    guide_radius_m : float or None
+        Marshall: radius gh = gi of h's arc [m], signed (positive: centre on the valve's
+        side).  None for Hackworth's straight guide.
+    parallel_link_m, parallel_rod_m : float or None
+        Angstrom: the parallel motion's radius links and the rod kl carrying h [m].
+    """
+
+    eccentricity_m: float
+    link_m: float
+    valve_arm_m: float
+    max_inclination_rad: float
+    hand: str = "right"
+    guide_radius_m: float | None = None
+    parallel_link_m: float | None = None
+    parallel_rod_m: float | None = None
+
+    @property
+    def inclination_rad(self) -> float:
+        """The guide's inclination alpha at this setting [rad]."""
+        return self.setting * self.max_inclination_rad
+
+    def coefficients(self, setting: float | None = None) -> tuple[float, float]:
+        """(C, S) of x = C cos(theta) + S sin(theta) [m] (Spangler Art. 95)."""
+        s = self.setting if setting is None else setting
+        r, l1, l2 = self.eccentricity_m, self.link_m, self.valve_arm_m
+        return (abs(l2) / l1 * r,
+                r * (l1 - l2) / l1 * math.tan(s * self.max_inclination_rad))
+
+    @property
+    def eccentric_rod_m(self) -> float | None:
+        """The rod whose finite length the exact motion takes in (the book's eccentric
+        rod ch, Art. 107) [m]; None in Zeuner's form."""
+        return self.link_m if self.motion == "exact" else None
+
+
+@dataclass(frozen=True, kw_only=True)
+class JoySpec(_RadialBase):
+    """Joy gear (Spangler Arts. 112-114; the book's letters).
+
+    Attributes
+    ----------
+    crank_m, connecting_rod_m : float
+        R and b = cb [m].
+    rod_point_m : float
+        c, from the crosshead to the point d of the connecting rod [m].
+    jack_link_m, jack_point_m : float
+        l3 = de and l4 = dg [m].
+    lever_m, valve_arm_m : float
+        l1 = hg and l2 = hi [m] (i beyond h).
+    anchor_link_m : float
+        ef [m].
+    max_inclination_rad : float
+        alpha at full gear [rad].
+    hand : str
+        ``"right"`` or ``"left"`` rotation (Art. 98).
+    guide_radius_m : float or None
+        Radius of the curved guide lkm [m], signed (positive: centre on the
+        cylinder's side); None for a straight guide.
+    """
+
+    crank_m: float
+    connecting_rod_m: float
+    rod_point_m: float
+    jack_link_m: float
+    jack_point_m: float
+    lever_m: float
+    valve_arm_m: float
+    anchor_link_m: float
+    max_inclination_rad: float
+    hand: str = "right"
+    guide_radius_m: float | None = None
+
+    @property
+    def inclination_rad(self) -> float:
+        return self.setting * self.max_inclination_rad
+
+    def coefficients(self, setting: float | None = None) -> tuple[float, float]:
+        """(C, S) of x = C cos(theta) + S sin(theta) [m] (Spangler Art. 113)."""
+        s = self.setting if setting is None else setting
+        R, b, c = self.crank_m, self.connecting_rod_m, self.rod_point_m
+        l1, l2, l3, l4 = self.lever_m, self.valve_arm_m, self.jack_link_m, self.jack_point_m
+        return ((l3 - l4) / l3 * R * l2 / l1,
+                R * (l1 + l2) / l1 * math.tan(s * self.max_inclination_rad) * c / b)
+
+    @property
+    def eccentric_rod_m(self) -> float | None:
+        """The connecting rod, whose finite length the exact motion takes in [m]; None
+        in Zeuner's form."""
+        return self.connecting_rod_m if self.motion == "exact" else None
+
+
+@dataclass(frozen=True, kw_only=True)
+class WalschaertsSpec(_RadialBase):
+    """Walschaerts gear (see the module doc for the arrangement).
+
+    Attributes
+    ----------
+    crank_m, connecting_rod_m : float
+        Main crank R and connecting rod [m].
+    return_crank_m : float
+        e, throw of the return crank (or eccentric) [m].
+    eccentric_rod_m : float
+        From the return crank's pin to the link's foot [m].
+    link_foot_m : float
+        k, from the link's trunnion to the eccentric rod's pin [m].
+    max_die_m : float
+        The die's greatest offset from the trunnion, full gear [m].
+    radius_rod_m : float
+        From the die to the combination lever; also the link's radius [m].
+    lever_valve_m : float
+        a, along the combination lever from the radius rod's pin to the valve stem's [m].
+    lever_crosshead_m : float
+        l, along the lever from the radius rod's pin to the union link's [m].
+    union_link_m : float
+        [m].
+    valve_height_m : float
+        The valve stem's line above the line of stroke [m].
+    admission : str
+        ``"outside"`` (D valve; valve pin above the radius rod's) or ``"inside"``
+        (piston valve; valve pin between the radius rod's and the union link's).
+    """
+
+    crank_m: float
+    connecting_rod_m: float
+    return_crank_m: float
+    eccentric_rod_m: float
+    link_foot_m: float
+    max_die_m: float
+    radius_rod_m: float
+    lever_valve_m: float
+    lever_crosshead_m: float
+    union_link_m: float
+    valve_height_m: float
+    admission: str = "outside"
+
+    @property
+    def die_m(self) -> float:
+        """The die's offset u at this setting [m]."""
+        return self.setting * self.max_die_m
+
+    def coefficients(self, setting: float | None = None) -> tuple[float, float]:
+        """(C, S) of x = C cos(theta) + S sin(theta) [m] (derived: module doc)."""
+        s = self.setting if setting is None else setting
+        q = self.lever_valve_m / self.lever_crosshead_m
+        gain = 1.0 + q if self.admission == "outside" else 1.0 - q
+        return (q * self.crank_m,
+                gain * s * self.max_die_m / self.link_foot_m * self.return_crank_m)
+
+
+SETTING_NAMES = {
+    "hackworth": "guide inclination alpha / alpha_max (1 full gear ahead, 0 mid gear, -1 astern)",
+    "marshall": "reversing arm's inclination alpha / alpha_max (1 ahead, 0 mid gear, -1 astern)",
+    "angstrom": "parallel motion's inclination alpha / alpha_max (1 ahead, 0 mid gear, -1 astern)",
+    "joy": "curved guide's inclination alpha / alpha_max (1 full gear ahead, 0 mid gear, -1 astern)",
+    "walschaerts": "die offset u / u_max (1 full gear ahead, 0 mid gear, -1 full gear astern)",
+}
+
+
+class RadialGear(LappedValve):
+    """A radial valve gear (Zeuner's form or exact) driving a lapped slide valve."""
+
+    name = "radial_gear"
+    summary = ("radial gears, Zeuner's form or exact: Hackworth, Marshall, Angstrom, Joy "
+               "(Spangler Chs. XIII-XIV) and Walschaerts; setting = reverse lever")
+    setting_range = (-1.0, 1.0)
+
+    def __init__(self, spec):
+        self.spec = spec
+        self.setting_name = SETTING_NAMES[spec.kind]
+        self._spline = None
+        if spec.motion == "exact":
+            self._spline = _tabulate(spec)
+
+    def with_setting(self, value: float) -> "RadialGear":
+        lo, hi = self.setting_range
+        if not lo <= value <= hi:
+            raise ValueError(f"setting {value} outside {self.setting_range}")
+        return RadialGear(dataclasses.replace(self.spec, setting=float(value)))
+
+    def travel(self, theta):
+        if self._spline is not None:
+            return self._spline(np.asarray(theta, dtype=float) % (2 * math.pi))
+        return self.zeuner_travel(theta)
+
+    def zeuner_travel(self, theta):
+        """Valve displacement of Zeuner's form [m]."""
+        C, S = self.spec.coefficients()
+        th = np.asarray(theta, dtype=float)
+        return C * np.cos(th) + S * np.sin(th)
+
+
+# --------------------------------------------------------------------------- exact linkages
+
+N_TABLE = 720
+
+
+def _tabulate(spec):
+    """Valve travel of the exact linkage at 1/2 deg, zeroed for equal lead, as a
+    periodic cubic spline."""
+    from scipy.interpolate import CubicSpline
+
+    th = np.linspace(0.0, 2 * math.pi, N_TABLE + 1)
+    raw = exact_valve_position(spec, th)
+    if not np.all(np.isfinite(raw)):
+        raise InputError("valve_gear.motion", "exact",
+                         "a gear whose linkage can be assembled at every crank angle: with "
+                         "these dimensions a rod or link is too short to reach")
+    x = raw - 0.5 * (raw[0] + raw[N_TABLE // 2])
+    x[-1] = x[0]
+    return CubicSpline(th, x, bc_type="periodic")
+
+
+def exact_valve_position(spec, theta: np.ndarray) -> np.ndarray:
+    """The valve's position [m] in the sense that opens the head steam port, from an
+    arbitrary origin, of the exact linkage at crank angles ``theta`` [rad]."""
+    th = np.atleast_1d(np.asarray(theta, dtype=float))
+    if spec.kind in SIMPLE:
+        return _simple(spec, th)
+    if spec.kind == "joy":
+        return _joy(spec, th)
+    return _walschaerts(spec, th)
+
+
+def _circles(c1, r1, c2, r2, near):
+    """The intersection of circles (c1, r1) and (c2, r2) nearer the point ``near``
+    (arrays of points, shape (2, n); NaN where they do not meet)."""
+    dx, dy = c2[0] - c1[0], c2[1] - c1[1]
+    d = np.hypot(dx, dy)
+    a = (r1 * r1 - r2 * r2 + d * d) / (2 * d)
+    with np.errstate(invalid="ignore"):
+        h = np.sqrt(r1 * r1 - a * a)
+    px, py = c1[0] + a * dx / d, c1[1] + a * dy / d
+    ox, oy = -dy / d * h, dx / d * h
+    p1 = np.array([px + ox, py + oy])
+    p2 = np.array([px - ox, py - oy])
+    n = np.asarray(near, dtype=float).reshape(2, -1)
+    first = np.hypot(p1[0] - n[0], p1[1] - n[1]) <= np.hypot(p2[0] - n[0], p2[1] - n[1])
+    return np.where(first, p1, p2)
+
+
+def _on_guide(origin, t, nrm, radius, centre_of, reach, near):
+    """Point of a guide through ``origin`` (tangent t, normal nrm) at distance ``reach``
+    from ``centre_of`` (points, shape (2, n)): a straight guide for radius None, else an
+    arc of |radius| with its centre on the side sign(radius) of nrm."""
+    if radius is None:
+        wx, wy = origin[0] - centre_of[0], origin[1] - centre_of[1]
+        tw = t[0] * wx + t[1] * wy
+        with np.errstate(invalid="ignore"):
+            s = -tw + np.sqrt(tw * tw - (wx * wx + wy * wy) + reach * reach)
+        return np.array([origin[0] + s * t[0], origin[1] + s * t[1]])
+    rho = abs(radius)
+    k = math.copysign(1.0, radius)
+    cc = np.array([origin[0] + k * rho * nrm[0], origin[1] + k * rho * nrm[1]])
+    cc = np.repeat(cc[:, None], centre_of.shape[1], axis=1)
+    return _circles(cc, rho, centre_of, reach, near)
+
+
+def _simple(spec: SimpleRadialSpec, th):
+    r, l1, l2 = spec.eccentricity_m, spec.link_m, spec.valve_arm_m
+    eps = 1.0 if spec.hand == "right" else -1.0
+    sgn = 1.0 if l2 > 0 else -1.0
+    tau = -sgn                                        # the valve's head-opening sense
+    ap = sgn * eps * spec.inclination_rad             # the guide's physical inclination
+    # X along the stroke (up, towards the valve); Y across it, from the shaft to the guide
+    t = (math.sin(ap), math.cos(ap))
+    nrm = (math.cos(ap), -math.sin(ap))
+    D = math.sqrt(l1 * l1 - r * r)
+    E = np.array([-r * np.cos(th), -eps * r * np.sin(th)])     # eccentric opposite the crank
+    n = th.size
+    G = np.array([[0.0], [D]])
+    near = np.repeat(G, n, axis=1)
+    if spec.kind == "angstrom":
+        H = _watt(spec, G[:, 0], t, nrm, E, l1)
+    else:
+        H = _on_guide(G[:, 0], t, nrm, spec.guide_radius_m, E, l1, near)
+    K = H + (l2 / l1) * (E - H)
+    X = K[0]
+    if spec.valve_rod_m is not None:
+        g2 = spec.valve_rod_m
+        yf = D * (1.0 - l2 / l1)                      # the valve rod's line
+        with np.errstate(invalid="ignore"):
+            X = X + np.sqrt(g2 * g2 - (K[1] - yf) ** 2)
+    return tau * X
+
+
+def _watt(spec: SimpleRadialSpec, G, t, nrm, E, l1):
+    """h on the Angstrom gear's parallel motion (Watt's, rod along the guide at i):
+    a scalar Newton solve per crank angle for the first radius link's swing."""
+    a, b = spec.parallel_link_m, spec.parallel_rod_m
+    t, nrm = np.asarray(t), np.asarray(nrm)
+    p1 = G - 0.5 * b * t + a * nrm
+    p2 = G + 0.5 * b * t - a * nrm
+    far = (G + 0.5 * b * t)[:, None]
+
+    def h_of(beta):
+        e1 = p1[:, None] - a * (np.outer(nrm, np.cos(beta)) - np.outer(t, np.sin(beta)))
+        e2 = _circles(np.repeat(p2[:, None], beta.size, axis=1), a, e1, b,
+                      np.repeat(far, beta.size, axis=1))
+        return 0.5 * (e1 + e2)
+
+    def f(beta):
+        h = h_of(beta)
+        return np.hypot(h[0] - E[0], h[1] - E[1]) - l1
+
+    straight = _on_guide(G, tuple(t), tuple(nrm), None, E, l1, None)
+    s0 = (straight[0] - G[0]) * t[0] + (straight[1] - G[1]) * t[1]
+    beta = np.arcsin(np.clip(s0 / a, -0.99, 0.99))
+    for _ in range(40):
+        f0 = f(beta)
+        step = -f0 / ((f(beta + 1e-7) - f0) / 1e-7)
+        beta = beta + step
+        if np.max(np.abs(step)) < 1e-13:
+            break
+    return h_of(beta)
+
+
+def _joy(spec: JoySpec, th):
+    R, b, c = spec.crank_m, spec.connecting_rod_m, spec.rod_point_m
+    l1, l2, l3, l4 = spec.lever_m, spec.valve_arm_m, spec.jack_link_m, spec.jack_point_m
+    eps = 1.0 if spec.hand == "right" else -1.0
+    ap = math.atan(-eps * math.tan(spec.inclination_rad))
+    n = th.size
+    # X along the line of stroke towards the cylinder, Y up; shaft at the origin
+    B = np.array([R * np.cos(th), eps * R * np.sin(th)])
+    Cx = B[0] + np.sqrt(b * b - B[1] ** 2)
+    Dp = np.array([Cx + c / b * (B[0] - Cx), c / b * B[1]])
+    dmid = b - c
+    e0 = np.array([dmid, -math.sqrt(l3 * l3 - R * R)])     # e below the line of stroke
+    f = e0 - np.array([spec.anchor_link_m, 0.0])
+    E = _circles(np.repeat(f[:, None], n, axis=1), spec.anchor_link_m, Dp, l3,
+                 np.repeat(e0[:, None], n, axis=1))
+    Gp = Dp + (l4 / l3) * (E - Dp)
+    g0y = l4 / l3 * e0[1]
+    half = R * (1.0 - l4 / l3)
+    k = np.array([dmid, g0y + math.sqrt(l1 * l1 - half * half)])
+    t = (math.sin(ap), math.cos(ap))
+    nrm = (math.cos(ap), -math.sin(ap))
+    H = _on_guide(k, t, nrm, spec.guide_radius_m, Gp, l1, np.repeat(k[:, None], n, axis=1))
+    I = H + (l2 / l1) * (H - Gp)
+    X = I[0]
+    if spec.valve_rod_m is not None:
+        g2 = spec.valve_rod_m
+        iy0 = k[1] + l2 / l1 * (k[1] - g0y)
+        with np.errstate(invalid="ignore"):
+            X = X + np.sqrt(g2 * g2 - (I[1] - iy0) ** 2)
+    return -X                                   # head steam opens as the valve moves back
+
+
+def walschaerts_layout(spec: WalschaertsSpec) -> dict:
+    """The fixed points of the exact Walschaerts gear (see the module doc) [m]: the
+    radius rod's pin at the dead centres ``A0``, the trunnion ``T``, the link's foot at
+    the dead centres ``F0``, the return crank's pin at head dead centre ``Q0``, the
+    lever's swing at the dead centres ``gamma0`` [rad], the union link's height ``yL``
+    and the crosshead arm's offset ``arm`` from the crosshead."""
+    R, b, e, er = spec.crank_m, spec.connecting_rod_m, spec.return_crank_m, spec.eccentric_rod_m
+    k, rho, a, ell, ul = (spec.link_foot_m, spec.radius_rod_m, spec.lever_valve_m,
+                          spec.lever_crosshead_m, spec.union_link_m)
+    g0 = math.asin(R / ell)
+    ay = spec.valve_height_m + (-a if spec.admission == "outside" else a) * math.cos(g0)
+    fy = ay - k
+    reach2 = er * er - e * e - fy * fy
+    tx = math.sqrt(reach2) if reach2 > 0 else float("nan")
+    T = np.array([tx, ay])
+    A0 = T + np.array([rho, 0.0])
+    F0 = T + np.array([0.0, -k])
+    Q0 = e * np.array([-F0[1], F0[0]]) / math.hypot(*F0)
+    yL = ay - ell * math.cos(g0)
+    return {"A0": A0, "T": T, "F0": F0, "Q0": Q0, "gamma0": g0, "yL": yL,
+            "arm": A0[0] - ul - b}
+
+
+def _walschaerts(spec: WalschaertsSpec, th):
+    R, b, e, er = spec.crank_m, spec.connecting_rod_m, spec.return_crank_m, spec.eccentric_rod_m
+    k, rho, a, ell, ul = (spec.link_foot_m, spec.radius_rod_m, spec.lever_valve_m,
+                          spec.lever_crosshead_m, spec.union_link_m)
+    outside = spec.admission == "outside"
+    lay = walschaerts_layout(spec)
+    T, F0, A0 = lay["T"], lay["F0"], lay["A0"]
+    n = th.size
+    lam = math.atan2(lay["Q0"][1], lay["Q0"][0])
+    # running ahead, clockwise seen with the cylinder on the right
+    Q = np.array([e * np.cos(lam - th), e * np.sin(lam - th)])
+    Bx, By = R * np.cos(th), -R * np.sin(th)
+    Cx = Bx + np.sqrt(b * b - By * By)
+    XH = np.array([Cx + lay["arm"], np.full(n, lay["yL"])])
+    F = _circles(np.repeat(T[:, None], n, axis=1), k, Q, er, np.repeat(F0[:, None], n, axis=1))
+    beta = np.arctan2(F[0] - T[0], -(F[1] - T[1]))
+    s = (1.0 if outside else -1.0) * spec.die_m
+    px, py = rho * (1.0 - math.cos(s / rho)), rho * math.sin(s / rho)
+    Dd = np.array([T[0] + np.cos(beta) * px - np.sin(beta) * py,
+                   T[1] + np.sin(beta) * px + np.cos(beta) * py])
+    # the lever: unknowns the valve pin's x and the lever's angle gamma from the vertical
+    if outside:
+        da, dl = -a, -(a + ell)            # A = V + da w, L = V + dl w
+    else:
+        da, dl = a, -(ell - a)
+    yv = spec.valve_height_m
+
+    def residual(vx, g):
+        wx, wy = np.sin(g), np.cos(g)
+        ax_, ay_ = vx + da * wx, yv + da * wy
+        lx, ly = vx + dl * wx, yv + dl * wy
+        return (np.hypot(ax_ - Dd[0], ay_ - Dd[1]) - rho,
+                np.hypot(lx - XH[0], ly - XH[1]) - ul)
+
+    ax0 = Dd[0] + rho
+    lx0 = XH[0] + ul
+    g = np.arcsin(np.clip((ax0 - lx0) / ell, -0.99, 0.99))
+    vx = ax0 - da * np.sin(g)
+    for _ in range(40):
+        r1, r2 = residual(vx, g)
+        h1, h2 = 1e-7 * rho, 1e-8
+        p1, p2 = residual(vx + h1, g)
+        q1, q2 = residual(vx, g + h2)
+        j11, j21, j12, j22 = (p1 - r1) / h1, (p2 - r2) / h1, (q1 - r1) / h2, (q2 - r2) / h2
+        det = j11 * j22 - j12 * j21
+        dv = (-r1 * j22 + r2 * j12) / det
+        dg = (-j11 * r2 + j21 * r1) / det
+        vx, g = vx + dv, g + dg
+        if np.max(np.abs(dv)) < 1e-13 * rho and np.max(np.abs(dg)) < 1e-13:
+            break
+    return -vx if outside else vx
+
+
+# --------------------------------------------------------------------------- scene table
+
+def _hand(t: Table) -> str:
+    return t.choice("hand", ("right", "left"), "right")
+
+
+def _inclination(t: Table) -> float:
+    a = t.angle("max_inclination")
+    if not 0.0 < a < math.radians(60.0):
+        raise InputError(t.key("max_inclination"), t.raw("max_inclination"),
+                         "an angle above 0 and below 60 deg (Bremme: never above 25 deg, "
+                         "Spangler Art. 107)")
+    return a
+
+
+def _setting(t: Table) -> float:
+    s = t.number("setting", 1.0)
+    if not -1.0 <= s <= 1.0:
+        raise InputError(t.key("setting"), s, "a number from -1 (full gear astern) through 0 "
+                         "(mid gear) to 1 (full gear ahead)")
+    return s
+
+
+def _longer(t: Table, key: str, value: float, than: float, what: str) -> None:
+    if not value > than:
+        raise InputError(t.key(key), t.raw(key),
+                         f"a length above {than / units.INCH_m:.4g} in ({what})")
+
+
+def _signed_radius(t: Table) -> float | None:
+    if not t.has("guide_radius"):
+        return None
+    v = t.length("guide_radius")
+    if v == 0.0:
+        raise InputError(t.key("guide_radius"), t.raw("guide_radius"),
+                         "a nonzero radius (leave the key out for a straight guide)")
+    return v
+
+
+def parse_radial_gear(t: Table):
+    """Read a ``[valve_gear] type = "radial_gear"`` table (keys per ``kind``)."""
+    kind = t.choice("kind", KINDS)
+    common = dict(kind=kind, lap_m=pair(t, "lap", "length"),
+                  exhaust_lap_m=pair(t, "exhaust_lap", "length", "0 in"),
+                  setting=_setting(t), motion=t.choice("motion", ("zeuner", "exact"), "zeuner"),
+                  allen_passage_m=parse_allen_passage(t), **parse_ports(t))
+    if kind != "walschaerts" and t.has("valve_rod"):
+        common["valve_rod_m"] = t.length("valve_rod", positive=True)
+    if kind in SIMPLE:
+        r = t.length("eccentricity", positive=True)
+        l1 = t.length("link", positive=True)
+        _longer(t, "link", l1, r, "the vibrating link must reach past the eccentric's throw")
+        l2 = t.length("valve_arm")
+        if l2 == 0.0 or l2 >= l1:
+            raise InputError(t.key("valve_arm"), t.raw("valve_arm"),
+                             "a nonzero distance from the guided end, below the link's length "
+                             "(negative: attached outside, beyond the guided end)")
+        extra = {}
+        if kind == "marshall":
+            extra["guide_radius_m"] = _signed_radius(t)
+            if extra["guide_radius_m"] is None:
+                raise InputError(t.key("guide_radius"), None, "the radius gh = gi of the arc h "
+                                 "swings on (Spangler Art. 105; Bremme: 6 times the eccentricity)")
+        if kind == "angstrom":
+            extra["parallel_link_m"] = t.length("parallel_link", positive=True)
+            extra["parallel_rod_m"] = t.length("parallel_rod", positive=True)
+        spec = SimpleRadialSpec(eccentricity_m=r, link_m=l1, valve_arm_m=l2,
+                                max_inclination_rad=_inclination(t), hand=_hand(t),
+                                **extra, **common)
+    elif kind == "joy":
+        R = t.length("stroke", positive=True) / 2
+        b = t.length("connecting_rod", positive=True)
+        c = t.length("rod_point", positive=True)
+        _longer(t, "connecting_rod", b, c, "the rod point lies on the connecting rod")
+        l3 = t.length("jack_link", positive=True)
+        _longer(t, "jack_link", l3, R, "the jack link must reach past the crank radius")
+        l4 = t.length("jack_point", positive=True)
+        if not l4 < l3:
+            raise InputError(t.key("jack_point"), t.raw("jack_point"),
+                             "a point on the jack link, below its length")
+        l1 = t.length("lever", positive=True)
+        _longer(t, "lever", l1, R * (1 - l4 / l3), "the lever must reach the guide from g")
+        spec = JoySpec(crank_m=R, connecting_rod_m=b, rod_point_m=c, jack_link_m=l3,
+                       jack_point_m=l4, lever_m=l1, valve_arm_m=t.length("valve_arm", positive=True),
+                       anchor_link_m=t.length("anchor_link", positive=True),
+                       max_inclination_rad=_inclination(t), hand=_hand(t),
+                       guide_radius_m=_signed_radius(t), **common)
+    else:
+        R = t.length("stroke", positive=True) / 2
+        ell = t.length("lever_crosshead", positive=True)
+        _longer(t, "lever_crosshead", ell, R, "the lever must swing the crosshead's half stroke")
+        a = t.length("lever_valve", positive=True)
+        admission = t.choice("admission", ("outside", "inside"), "outside")
+        if admission == "inside" and not a < ell:
+            raise InputError(t.key("lever_valve"), t.raw("lever_valve"),
+                             "with inside admission, a valve pin between the radius rod's and "
+                             "the union link's (shorter than lever_crosshead)")
+        k = t.length("link_foot", positive=True)
+        rho = t.length("radius_rod", positive=True)
+        umax = t.length("max_die", positive=True)
+        _longer(t, "radius_rod", rho, umax, "the link is curved to the radius rod")
+        e = t.length("return_crank", positive=True)
+        _longer(t, "link_foot", k, e, "the link's foot must swing the return crank's throw")
+        spec = WalschaertsSpec(crank_m=R, connecting_rod_m=t.length("connecting_rod", positive=True),
+                               return_crank_m=e,
+                               eccentric_rod_m=t.length("eccentric_rod", positive=True),
+                               link_foot_m=k, max_die_m=umax, radius_rod_m=rho, lever_valve_m=a,
+                               lever_crosshead_m=ell, union_link_m=t.length("union_link", positive=True),
+                               valve_height_m=t.length("valve_height"), admission=admission,
+                               **common)
+        if not math.isfinite(walschaerts_layout(spec)["T"][0]):
+            raise InputError(t.key("eccentric_rod"), t.raw("eccentric_rod"),
+                             "an eccentric rod long enough to reach the link's foot")
+    C, S = spec.coefficients()
+    reach = math.hypot(C, S)
+    for end, lap in zip(("head", "crank"), spec.lap_m):
+        if lap >= reach:
+            raise InputError(t.key("lap"), t.raw("lap"),
+                             f"a lap below the virtual eccentric's throw at this setting "
+                             f"({reach / units.INCH_m:.4g} in): the {end}-end port never opens")
+    return spec
+
+
+register(GearType("radial_gear", RadialGear.summary, parse_radial_gear, RadialGear))
