@@ -96,7 +96,9 @@ and said):
   valve above the link on a valve rod (``valve_rod``, default infinitely long) running
   parallel to the stroke.  ``hand = "right"`` is clockwise seen with the eccentric end
   on the left, the guide on the right and the valve above (Art. 98).  The Marshall
-  arc's centre g is on the valve's side of the guide for a positive ``guide_radius``.
+  arc's centre g is on the valve's side of the guide for a positive ``guide_radius``
+  (that side gives Art. 106's statements on the two rotations; the other side
+  reverses every one of them, see tests/test_radial_gears.py).
 * Joy: a horizontal engine, cylinder on the right, the jack link hanging from d to e
   below the line of stroke and the lever rising from g past it to h and i (so that the
   vers terms of Art. 113 work against each other, and the valve stem stands about
