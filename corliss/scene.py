@@ -263,7 +263,7 @@ def _engine(t: Table) -> EngineSpec:
     crank_angles = tuple(units.parse(a, "angle", t.key("crank_angles")) for a in angles)
     if abs(crank_angles[0]) > 1e-12:
         raise InputError(t.key("crank_angles"), angles, "a list whose first angle is \"0 deg\"")
-    model = t.choice("wall_heat_model", ("marks", "adair"), "marks")
+    model = t.choice("wall_heat_model", ("marks", "conductance", "adair"), "marks")
     marks = t.quantity("marks_constant", "heat_transfer", "18.13 Btu/ft2 degF min")
     if not marks > 0.0:
         raise InputError(t.key("marks_constant"), t.raw("marks_constant"), "a conductance above 0")

@@ -34,3 +34,103 @@ def marks_condensation_kg(bore_m: float, stroke_m: float, strokes_per_s: float, 
     """Steam condensed per stroke [kg] by Marks's eq. 221 (SI throughout)."""
     return (C * max(t_cutoff_K - t_exhaust_K, 0.0) * math.pi * bore_m / (2.0 * strokes_per_s)
             * (bore_m + curve_of_condensation(e) * stroke_m))
+
+
+def exposed_wall_m2(geometry, end: int, theta) -> "np.ndarray":
+    """The wall the steam of one end touches [m2]: piston face and cover, and the barrel
+    uncovered with the clearance as its equivalent length, 2 A_p + pi D V / A_p (the
+    area the compiled kernel uses)."""
+    import numpy as np
+    ap = geometry.area_head_m2 if end == 0 else geometry.area_crank_m2
+    V = geometry.volumes_m3(np.asarray(theta, dtype=float))[end]
+    return 2.0 * ap + math.pi * geometry.spec.bore_m * V / ap
+
+
+def marks_law_row(geometry, end: int, events: dict, strokes_per_s: float, t_cutoff_K: float,
+                  t_exhaust_K: float, latent_J_kg: float, phase_rad: float = 0.0):
+    """Columns 5-10 of a node's wall-heat row for Marks's law (see
+    :func:`corliss.engine.network.with_wall_heat`): the heat of a cycle [J], the
+    admission, cut-off and compression angles [rad] of that end in its own crank angle,
+    and the exposed wall integrated over admission and over cut-off to compression
+    [m2 rad].  None when the end has no cut-off or compression (Marks's law needs both).
+
+    The heat is eq. 221's condensation times the latent heat at the cut-off pressure
+    (Art. 74: "multiply by the total heat less the heat of the liquid").
+    """
+    import numpy as np
+    ev = events
+    if ev["cutoff_deg"] is None or ev["compression_deg"] is None or ev["admission_deg"] is None:
+        return None
+    a0, a1, a2 = (math.radians(ev[k]) for k in ("admission_deg", "cutoff_deg", "compression_deg"))
+    vc, vs = geometry.clearance_m3[end], geometry.swept_m3[end]
+    e_true = (vc + vs * ev["cutoff_frac"]) / (vc + vs)
+    mass = marks_condensation_kg(geometry.spec.bore_m, geometry.spec.stroke_m, strokes_per_s,
+                                 e_true, t_cutoff_K, t_exhaust_K)
+
+    def integral(a, b):
+        span = (b - a) % (2 * math.pi)
+        th = a + np.linspace(0.0, span, 721)
+        return float(np.trapezoid(exposed_wall_m2(geometry, end, th), th))
+
+    return (mass * latent_J_kg, a0, a1, a2, integral(a0, a1), integral(a1, a2))
+
+
+class MarksLaw:
+    """Keeps the Marks's-law rows of a network's piston ends up to date, cycle by cycle.
+
+    Each cycle's heat uses the steam temperature at cut-off of the cycle before (at
+    first, the supply's saturation temperature) and the exhaust's saturation
+    temperature (Marks's T_b and T_e, Art. 75).
+    """
+
+    def __init__(self, network, geometry, events: dict, speed_rad_s: float, supply_T_K: float,
+                 exhaust_T_K: float):
+        from corliss.thermo.steam import HEOSSteam
+        self.network = network
+        self.geometry = geometry
+        self.events = events
+        self.strokes_per_s = 2.0 * speed_rad_s / (2.0 * math.pi)
+        self.t_exhaust = exhaust_T_K
+        self._heos = HEOSSteam()
+        self.ends = [(i, 0 if network.node_end[i] == 0 else 1)
+                     for i, row in enumerate(network.node_heat) if row[0] == 3.0]
+        self.t_cutoff = {i: supply_T_K for i, _ in self.ends}
+
+    @staticmethod
+    def latent(T: float) -> float:
+        """h_g - h_f at saturation temperature T [J/kg] (IAPWS-95)."""
+        import CoolProp.CoolProp as CP
+        return (CP.PropsSI("H", "T", T, "Q", 1.0, "Water")
+                - CP.PropsSI("H", "T", T, "Q", 0.0, "Water"))
+
+    def rows(self) -> dict:
+        """{node: columns 5-10} for the current cut-off temperatures."""
+        out = {}
+        for i, end in self.ends:
+            ev = self.events["head" if end == 0 else "crank"]
+            row = marks_law_row(self.geometry, end, ev, self.strokes_per_s, self.t_cutoff[i],
+                                self.t_exhaust, self.latent(self.t_cutoff[i]))
+            out[i] = row if row is not None else (0.0, 0.0, 0.0, 0.0, 1.0, 1.0)
+        return out
+
+    def apply(self, heat_array) -> None:
+        """Write the rows into the compiled network's wall-heat array (in place)."""
+        for i, row in self.rows().items():
+            heat_array[i, 5:11] = row
+
+    def update(self, steam, samples, out_theta) -> None:
+        """Take the cut-off temperatures from a cycle's samples (state at ``out_theta``)."""
+        import numpy as np
+        net = self.network
+        for i, end in self.ends:
+            ev = self.events["head" if end == 0 else "crank"]
+            if ev["cutoff_deg"] is None:
+                continue
+            th = math.radians(ev["cutoff_deg"])
+            k = int(np.argmin(np.abs(((out_theta - th) + math.pi) % (2 * math.pi) - math.pi)))
+            V = float(net.volume(i, np.array([out_theta[k]]))[0])
+            m, U = samples[2 * i, k], samples[2 * i + 1, k]
+            if not (m > 0.0 and np.isfinite(U)):
+                continue
+            st = steam.du(m / V, U / m)
+            self.t_cutoff[i] = self._heos.t_sat(min(st.p, 2.2e7))

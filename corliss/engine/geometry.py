@@ -43,7 +43,7 @@ class EngineSpec:
         Equivalent orifice areas of the leaks past the valve (into each end) and past
         the piston (between the ends) [m2] (``leakage`` effect).
     wall_heat_model : str
-        ``"marks"`` or ``"adair"`` (``wall_heat`` effect).
+        ``"marks"`` (his law), ``"conductance"`` or ``"adair"`` (``wall_heat`` effect).
     marks_constant_W_m2K : float
         Marks's constant of condensation as a surface conductance [W/(m2 K)]
         (Art. 82: 18.13 Btu per ft2, degF and minute).

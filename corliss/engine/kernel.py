@@ -130,11 +130,11 @@ def derivatives(th, y, pr, dy, net, pa):
     pressure, density, enthalpy, isentropic exponent, dV/dtheta, volume, temperature
     and wetted-wall temperature (saturation at its pressure) in the rows of ``pr``; ``pa`` is scratch of shape (cylinders, 4)."""
     port_areas(th, net, pa)
-    balances(y, pr, dy, net, pa)
+    balances(th, y, pr, dy, net, pa)
 
 
 @njit(cache=True, inline="always")
-def balances(y, pr, dy, net, areas):
+def balances(th, y, pr, dy, net, areas):
     """Mass and energy balances of every node per radian of crank angle, with the
     port areas given in ``areas`` [m2] and the shaft speed in ``net[0][0]`` [rad/s]."""
     omega, band, res = net[0][0], net[1], net[8]
@@ -161,6 +161,20 @@ def balances(y, pr, dy, net, areas):
             V = pr[5, i]
             A = 2.0 * ap + math.pi * bore * V / ap
             Ts = pr[6, i]
+            if model == 3.0:
+                # Marks's law (Art. 75): the heat of eq. 221 leaves the steam during
+                # admission and comes back from cut-off to compression, each spread
+                # over the crank angle in proportion to the wall exposed
+                t = (th + net[3][c]) % TWO_PI
+                q = 0.0
+                if (t - heat[i, 6]) % TWO_PI < (heat[i, 7] - heat[i, 6]) % TWO_PI:
+                    q = -heat[i, 5] * A / heat[i, 9]
+                elif (t - heat[i, 7]) % TWO_PI < (heat[i, 8] - heat[i, 7]) % TWO_PI:
+                    q = heat[i, 5] * A / heat[i, 10]
+                dy[2 * i + 1] += q
+                dy[q0 + 1] = q
+                dy[q0 + 2] = -q if q < 0.0 else 0.0
+                continue
             if model == 1.0:
                 h = heat[i, 1]
                 # a wall hotter than the steam gives its heat to the water film that

@@ -72,7 +72,7 @@ class Network:
         self.node_end.append(end)
         self.node_V.append(volume)
         self.node_init.append(init)
-        self.node_heat.append((0.0, 0.0, 0.0, 0.0, 0.0))
+        self.node_heat.append((0.0,) * HEAT_COLUMNS)
         return len(self.node_names) - 1
 
     def add_edge(self, name, a, b, cd, kind=FIXED_EDGE, cyl=-1, port=-1, area=0.0) -> int:
@@ -326,24 +326,40 @@ def with_leakage(net: Network, valve_area_m2: float, piston_area_m2: float,
     return net
 
 
+#: Columns of a node's wall-heat row: model code, conductance, conductivity, viscosity,
+#: Prandtl number (codes 1, 2); heat of a cycle, admission, cut-off and compression
+#: angles, and the wall exposed over admission and over cut-off to compression,
+#: integrated in crank angle (code 3, Marks's law).
+HEAT_COLUMNS = 11
+WALL_MODELS = {"conductance": 1.0, "adair": 2.0, "marks": 3.0}
+
+
 def with_wall_heat(net: Network, model: str, h_marks: float, steam_props) -> Network:
     """Heat exchange between the steam of each cylinder end and its walls.
 
-    ``model``: ``"marks"``, a surface conductance from Marks's constant of
-    condensation (Art. 82: C = 18.13 Btu per ft2, degF and minute, about
-    6180 W/(m2 K)); ``"adair"``, the correlation for reciprocating machines of Adair,
-    Qvale and Pearson (Purdue Compressor Conference, 1972),
-    h = 0.053 (k/D_e) Re^0.8 Pr^0.6 with D_e = 6 V / A and the gas velocity taken as
-    omega D_e / 2, with transport properties of the supply steam (``steam_props``:
-    conductivity, viscosity, Prandtl).  The wall is at one temperature per end, its
-    periodic mean, found cycle by cycle so that the wall neither gains nor loses heat
-    over a cycle.
+    ``model``:
+
+    * ``"marks"``: Marks's law of condensation (Arts. 74-75, eq. 221): the heat of
+      condensing the steam eq. 221 gives leaves the steam during admission and is
+      given back from cut-off to compression, each spread over the crank angle in
+      proportion to the wall exposed; the heat of each cycle and the windows are set
+      by :func:`corliss.engine.condensation.marks_law_rows` from the cycle before;
+    * ``"conductance"``: Marks's constant of condensation (Art. 82: C = 18.13 Btu per
+      ft2, degF and minute, about 6180 W/(m2 K)) as a surface conductance to a wall at
+      one temperature per end, its periodic mean, found cycle by cycle so that the
+      wall neither gains nor loses heat over a cycle; a wall hotter than the steam
+      boils its film at the saturation temperature of the cylinder's pressure;
+    * ``"adair"``: the correlation for reciprocating machines of Adair, Qvale and
+      Pearson (Purdue Compressor Conference, 1972), h = 0.053 (k/D_e) Re^0.8 Pr^0.6
+      with D_e = 6 V / A and the gas velocity taken as omega D_e / 2, with transport
+      properties of the supply steam (``steam_props``: conductivity, viscosity,
+      Prandtl), to a wall at its periodic mean temperature.
     """
     k, mu, pr = steam_props
-    code = 1.0 if model == "marks" else 2.0
+    code = WALL_MODELS[model]
     for i, kind in enumerate(net.node_kind):
         if kind == PISTON:
-            net.node_heat[i] = (code, h_marks, k, mu, pr)
+            net.node_heat[i] = (code, h_marks, k, mu, pr) + (0.0,) * (HEAT_COLUMNS - 5)
     return net
 
 

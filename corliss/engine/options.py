@@ -25,7 +25,9 @@ EFFECTS: dict[str, str] = {
                "piston ([engine] piston_leakage_area), as orifices of equivalent area",
     "wall_heat": "heat between the steam and the cylinder walls, held at their periodic mean "
                  "temperature: initial condensation and re-evaporation ([engine] "
-                 "wall_heat_model = \"marks\" (Marks Arts. 75-82) or \"adair\" (Adair et al. 1972))",
+                 "wall_heat_model = \"marks\" (Marks's law of condensation, Arts. 74-75), "
+                 "\"conductance\" (his constant as a surface conductance, Art. 82) or "
+                 "\"adair\" (Adair et al. 1972))",
     "friction": "engine friction torque ([engine] friction_torque, friction_torque_per_speed): "
                 "brake power and mechanical efficiency",
 }

@@ -208,6 +208,11 @@ def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
     omega = scene.run.speed_rad_s
     net = build_network(scene, geo, pm, steam, chest, exhaust)
     heat = scene.run.has("wall_heat")
+    marks = None
+    if heat and scene.engine.wall_heat_model == "marks":
+        from corliss.engine.condensation import MarksLaw
+        marks = MarksLaw(net, geo, valve_events(build_gear(scene), lambda t: float(geo.fraction(t)),
+                                                pm.crossings), omega, chest.T, exhaust.T)
     model = CrankResolved(net, steam, fid.method, fid.rtol, step_deg=fid.step_deg)
     ends_all = piston_ends(net)
     step = math.radians(fid.output_step_deg)
@@ -218,8 +223,12 @@ def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
     converged = None
     n_max = scene.run.cycles or fid.max_cycles
     for k in range(1, n_max + 1):
+        if marks is not None:
+            marks.apply(model.net[19])
         y, samples = model.cycle(y, 0.0, out_theta)
-        if heat:
+        if marks is not None:
+            marks.update(steam, samples, out_theta)
+        elif heat:
             model.update_wall(y)
         row = {"cycle": k}
         for end in ends_all:
@@ -232,7 +241,7 @@ def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
                 i = net.node(end)
                 row[f"Q_{end}_J"] = y[net.i_node_quad(i, "heat")]
                 row[f"Q_to_wall_{end}_J"] = y[net.i_node_quad(i, "heat_to_wall")]
-                row[f"T_wall_{end}_K"] = net.wall_T[i]
+                row[f"T_wall_{end}_K"] = net.wall_T[i] if marks is None else float("nan")
         if "steam_pipe" in net.edge_names:
             row["m_pipe_kg"] = y[net.i_edge_mass(net.edge("steam_pipe"))]
         for name, e in net.leak_edges():

@@ -250,6 +250,17 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
     network = build_network(scene, geo, pm, steam, chest, exhaust)
     tables = build_tables(scene, network, build_gear)
     net = network.arrays()
+    marks = None
+    if run.has("wall_heat") and scene.engine.wall_heat_model == "marks":
+        # Marks's law from the gear's events at the start, with the supply's saturation
+        # temperature as the cut-off temperature; the heat follows the speed turn by
+        # turn, but not a governor's moving cut-off (the windows stay the start's)
+        from corliss.engine.condensation import MarksLaw
+        from corliss.valves import events as gear_events
+        marks = MarksLaw(network, geo, gear_events(gear, lambda t: float(geo.fraction(t)),
+                                                   pm.crossings),
+                         run.speed_rad_s, chest.T, exhaust.T)
+        marks.apply(net[19])
     tab = steam.table.arrays() if hasattr(steam, "table") else _any_table()
     perf = (np.array(steam.perfect_params()) if hasattr(steam, "perfect_params") else np.zeros(3))
     nn = network.n_state
@@ -273,7 +284,8 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
         nfev += nf_
         if status == 1:
             raise RuntimeError("the integrator failed during the warm-up turns")
-        _update_wall(network, y)
+        if marks is None:
+            _update_wall(network, y)
     sc[tk.S_FREEZE] = 0.0
     y[nn + tk.X_TIME] = 0.0
     y[nn + tk.X_OMEGA] = omega0
@@ -304,7 +316,11 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
         if status == 1:
             raise RuntimeError(f"the integrator failed in turn {k + 1} (step size collapsed)")
         rows.append(_cycle_row(k, y_start, y, network, tables, nn))
-        _update_wall(network, y)
+        if marks is not None:
+            marks.strokes_per_s = 2.0 / (rows[-1]["t_end_s"] - rows[-1]["t_start_s"])
+            marks.apply(net[19])
+        else:
+            _update_wall(network, y)
         frame = _frame(network, steam, tables, out_theta, samples, rec, n_rec, record, nn)
         frame.insert(0, "cycle", k + 1)
         frames.append(frame)

@@ -220,7 +220,7 @@ def transient_rhs(th, y, dy, net, tier, tab, perf, pr, pa, tr, out):
         else:
             e = int(sc[S_THR_EDGE])
             net[14][e] = _lin(0.0, 1.0 / (tr[8].shape[0] - 1), tr[8], act)
-    balances(y, pr, dy, net, pa)
+    balances(th, y, pr, dy, net, pa)
     # shaft
     tgas = 0.0
     for i in range(nv):
