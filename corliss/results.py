@@ -32,10 +32,11 @@ _OUTPUT_UNITS = {
 }
 
 
-#: Multi-part SI suffixes: suffix -> (US suffix, US unit, SI suffix, SI unit).
+#: Multi-part suffixes: suffix -> (US suffix, US unit, SI suffix, SI unit, factor from the
+#: column's unit to SI proper before conversion).
 _OUTPUT_UNITS_LONG = {
-    "N_m": ("lbf_ft", "lbf ft", "N_m", "N m"),
-    "kg_per_h": ("lb_per_h", "lb/h", "kg_per_h", "kg/h"),
+    "N_m": ("lbf_ft", "lbf ft", "N_m", "N m", 1.0),
+    "kg_per_h": ("lb_per_h", "lb/h", "kg_per_h", "kg/h", 1.0 / 3600.0),
 }
 #: Suffixes that stay as they are, with their unit for the meta file.
 _PLAIN_UNITS = {"deg": "deg", "s": "s", "rpm": "rev/min", "frac": "- (fraction)",
@@ -49,9 +50,10 @@ def convert_frame(df: pd.DataFrame, system: str, barometer_Pa: float) -> tuple[p
     for col in df.columns:
         base, _, suffix = col.rpartition("_")
         long = next((k for k in _OUTPUT_UNITS_LONG if col.endswith("_" + k)), None)
+        factor = 1.0
         if long is not None:
             base = col[: -len(long) - 1]
-            us_sfx, us_unit, si_sfx, si_unit = _OUTPUT_UNITS_LONG[long]
+            us_sfx, us_unit, si_sfx, si_unit, factor = _OUTPUT_UNITS_LONG[long]
         elif base and suffix in _OUTPUT_UNITS:
             us_sfx, us_unit, si_sfx, si_unit = _OUTPUT_UNITS[suffix]
         else:
@@ -60,12 +62,14 @@ def convert_frame(df: pd.DataFrame, system: str, barometer_Pa: float) -> tuple[p
             if suffix == "W" and system == "US":     # powers in horse-power
                 name = f"{base}_hp"
                 out.pop(col)
+                col_units.pop(col)
                 out[name] = units.to_unit(df[col].to_numpy(dtype=float), "hp")
                 col_units[name] = "hp"
             continue
         sfx, unit = (us_sfx, us_unit) if system == "US" else (si_sfx, si_unit)
         name = f"{base}_{sfx}"
-        out[name] = units.to_unit(df[col].to_numpy(dtype=float), unit, barometer_Pa=barometer_Pa)
+        out[name] = units.to_unit(df[col].to_numpy(dtype=float) * factor, unit,
+                                  barometer_Pa=barometer_Pa)
         col_units[name] = unit + (" absolute" if suffix == "Pa" else "")
     return pd.DataFrame(out), col_units
 

@@ -52,3 +52,24 @@ def test_round_trip():
     for unit in ("psia", "psig", "bar", "kPa"):
         v = units.from_unit(123.4, unit)
         assert units.to_unit(v, unit) == pytest.approx(123.4)
+
+
+def test_output_frames_convert_rates_torques_and_powers():
+    """CSV columns leave in the scene's units with the unit in the name: 1 lb/h of steam
+    is 0.45359237 kg/h, 1 lbf ft is 1.3558179483 N m, 1 hp is 745.69987 W (550 ft lbf/s),
+    pressures absolute."""
+    import pandas as pd
+
+    from corliss.results import convert_frame
+    df = pd.DataFrame({"steam_rate_kg_per_h": [0.45359237], "torque_N_m": [1.3558179483314004],
+                       "power_W": [745.69987158227], "p_head_Pa": [101325.0]})
+    us, us_units = convert_frame(df, "US", 101325.0)
+    assert us["steam_rate_lb_per_h"][0] == pytest.approx(1.0)
+    assert us["torque_lbf_ft"][0] == pytest.approx(1.0)
+    assert us["power_hp"][0] == pytest.approx(1.0)
+    assert us["p_head_psia"][0] == pytest.approx(14.695949, rel=1e-6)
+    assert set(us_units) == set(us.columns)
+    si, si_units = convert_frame(df, "SI", 101325.0)
+    assert si["steam_rate_kg_per_h"][0] == pytest.approx(0.45359237)
+    assert si["p_head_kPa_abs"][0] == pytest.approx(101.325)
+    assert set(si_units) == set(si.columns)
