@@ -215,9 +215,9 @@ class Result:
         run = self.scene.run
         row = self.last_cycle
         rev_per_h = run.speed_rad_s / (2 * math.pi) * 3600.0
-        if "m_valve_leak_head_kg" in row:
-            out["valve_leakage_kg_per_h"] = float(row["m_valve_leak_head_kg"]
-                                                  + row["m_valve_leak_crank_kg"]) * rev_per_h
+        valve_leaks = [k for k in row.index if k.startswith("m_valve_leak_")]
+        if valve_leaks:
+            out["valve_leakage_kg_per_h"] = float(sum(row[k] for k in valve_leaks)) * rev_per_h
         if "m_piston_leak_kg" in row:
             out["piston_leakage_net_kg_per_cycle"] = float(row["m_piston_leak_kg"])
         if "Q_head_J" in row:

@@ -54,3 +54,18 @@ def test_crank_angles_must_match_the_cylinders():
         make_scene(engine={"cylinders": 2, "crank_angles": ["0 deg"]})
     with pytest.raises(InputError, match="engine.cylinders"):
         make_scene(engine={"cylinders": 2}, run={"model": "ideal"})
+
+
+def test_every_cylinder_leaks():
+    """With ``leakage``, each of two identical cylinders fed from a stiff chest leaks as
+    much as a single one does, so the valve leakage doubles (to 1e-4, the cycle-to-cycle
+    tolerance) and the energy balance closes."""
+    leaks = {"valve_leakage_area": "0.02 in2", "piston_leakage_area": "0.05 in2"}
+    effects = {"effects": ["port_flow", "rod_angularity", "leakage"]}
+    one = corliss.simulate(make_scene(engine=leaks, run=effects)).summary
+    two = corliss.simulate(make_scene(engine={**leaks, "cylinders": 2,
+                                              "crank_angles": ["0 deg", "90 deg"]},
+                                      run=effects)).summary
+    assert two["valve_leakage_kg_per_h"] == pytest.approx(2 * one["valve_leakage_kg_per_h"],
+                                                          rel=1e-4)
+    assert two["energy_balance_error"] < 1e-5

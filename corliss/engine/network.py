@@ -315,14 +315,21 @@ def with_steam_chest(net: Network, supply) -> Network:
 def with_leakage(net: Network, valve_area_m2: float, piston_area_m2: float,
                  cd: float = 0.7) -> Network:
     """Leakage as orifices of equivalent area: past the valve, from the steam side
-    (chest, or the supply) into each end; past the piston, between the two ends."""
+    (chest, or the supply) into each end; past the piston, between the two ends; for
+    every cylinder fed from the chest (a compound's LP, fed from the receiver, is left
+    tight: its leak areas are not given)."""
     src = net.node("chest") if "chest" in net.node_names else reservoir(0)
-    head, crank = net.node("head"), net.node("crank")
-    if valve_area_m2 > 0.0:
-        for name, node in (("head", head), ("crank", crank)):
-            net.add_edge(f"valve_leak_{name}", src, node, cd, FIXED_EDGE, area=valve_area_m2)
-    if piston_area_m2 > 0.0:
-        net.add_edge("piston_leak", head, crank, cd, FIXED_EDGE, area=piston_area_m2)
+    for c in range(len(net.geometries)):
+        pre = cylinder_prefix(c)
+        if f"{pre}head" not in net.node_names:
+            continue
+        head, crank = net.node(f"{pre}head"), net.node(f"{pre}crank")
+        if valve_area_m2 > 0.0:
+            for name, node in (("head", head), ("crank", crank)):
+                net.add_edge(f"valve_leak_{pre}{name}", src, node, cd, FIXED_EDGE,
+                             area=valve_area_m2)
+        if piston_area_m2 > 0.0:
+            net.add_edge(f"{pre}piston_leak", head, crank, cd, FIXED_EDGE, area=piston_area_m2)
     return net
 
 
