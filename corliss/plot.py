@@ -58,7 +58,7 @@ def plot_card(result, ax=None, units_system: str | None = None, prefix: str = ""
     ax.axhline(vac, color="0.6", lw=0.6, ls=":")
     ax.text(xs * 0.995, vac, "zero pressure", ha="right", va="bottom", fontsize=7, color="0.5")
     markers = []
-    events = result.events if prefix == "" else {}
+    events = result.events if prefix == "" else (getattr(result, "lp_events", None) or {})
     for end, ev in events.items():
         card = cards[end]
         for name, (label, m) in _EVENT_MARK.items():

@@ -127,6 +127,7 @@ class Result:
     wall_time_s: float
     ideal_cards: dict | None = None
     cylinders: list | None = None     # (column prefix, geometry, crank lead [rad])
+    lp_events: dict | None = None     # a compound's LP valve events
     _summary: dict | None = field(default=None, repr=False)
 
     @property
@@ -161,7 +162,9 @@ class Result:
             frac = geo.fraction(th + phase)
             for end in ("head", "crank"):
                 out[prefix + end] = pd.DataFrame({
-                    "crank_angle_deg": ts["crank_angle_deg"].to_numpy(), "piston_frac": frac,
+                    # the cylinder's own crank angle, in which its events are given
+                    "crank_angle_deg": ts["crank_angle_deg"].to_numpy() + math.degrees(phase),
+                    "piston_frac": frac,
                     "V_m3": ts[f"V_{prefix}{end}_m3"].to_numpy(),
                     "p_Pa": ts[f"p_{prefix}{end}_Pa"].to_numpy()})
         return out
@@ -368,6 +371,7 @@ class Result:
             **self._effort_summary(w),
             **self._compound_summary(),
             "events": self.events,
+            **({"lp_events": self.lp_events} if self.lp_events is not None else {}),
         }
 
     # --- output -------------------------------------------------------------------

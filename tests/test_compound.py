@@ -60,3 +60,17 @@ def test_compound_balances_and_power_split():
     assert s["hp_power_W"] > 0 and s["lp_power_W"] > 0
     assert s["indicated_power_W"] == pytest.approx(s["hp_power_W"] + s["lp_power_W"], rel=1e-12)
     assert set(r.cards) == {"head", "crank", "lp_head", "lp_crank"}
+
+
+def test_lp_events_are_reported_and_marked():
+    """The LP cylinder's own valve events appear in the summary beside the HP's (as
+    ``lp_events``), in the LP crank's own angle, and mark the LP card."""
+    import matplotlib
+    matplotlib.use("Agg")
+    from corliss.plot import plot_card
+    r = corliss.simulate(corliss.load_scene(SCENE))
+    ev = r.summary["lp_events"]
+    assert set(ev) == {"head", "crank"}
+    assert 0.0 < ev["head"]["cutoff_frac"] < 1.0
+    drawn = plot_card(r, prefix="lp_")
+    assert len(drawn["markers"]) >= 6

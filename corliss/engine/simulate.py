@@ -132,6 +132,11 @@ def simulate(scene: Scene, *, portmap_scale: float = 1.0,
         data = _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress)
     else:
         data = _equilibrium(scene, geo, steam_eq(), chest, exhaust, _portmap_schedule(pm), pm)
+    if scene.compound is not None:
+        cp = scene.compound
+        lp_geo = CylinderGeometry(cp.lp_engine, rod_angularity=scene.run.has("rod_angularity"))
+        data["lp_events"] = valve_events(gear_type(cp.lp_gear_type).build(cp.lp_gear),
+                                         lambda t: float(lp_geo.fraction(t)))
     data["wall_time_s"] = time.perf_counter() - t0
     return Result(scene=scene, events=ev, geometry=geo, chest=chest, exhaust=exhaust,
                   property_tier=steam.name, **data)
