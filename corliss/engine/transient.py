@@ -243,6 +243,9 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
         raise InputError("run.fidelity", fid.name, "a fidelity on a compiled property tier "
                          "(\"standard\" or \"fast\", or properties = \"table\"): the transient "
                          "loop is compiled")
+    if fid.method != "dopri5":
+        log.info("the transient loop integrates with dopri5 at rtol %g (the preset's %s is "
+                 "for steady cycles)", fid.rtol, fid.method)
     chest, exhaust = reservoir_states(scene, steam)
     geo = geometry_of(scene)
     gear = build_gear(scene)
