@@ -278,6 +278,30 @@ def _hermite(t0, y0, f0, t1, y1, f1, t, out):
         out[i] = h00 * y0[i] + h10 * h * f0[i] + h01 * y1[i] + h11 * h * f1[i]
 
 
+@njit(cache=True, inline="always")
+def dopri_stage(y, K, s_, h, ytmp):
+    """The state at Dormand-Prince stage ``s_``: y + h sum_j a_sj K_j, into ``ytmp``."""
+    for i in range(y.shape[0]):
+        acc = 0.0
+        for j in range(s_):
+            acc += _A[s_, j] * K[j, i]
+        ytmp[i] = y[i] + h * acc
+
+
+@njit(cache=True, inline="always")
+def dopri_error(y, ynew, K, h, atol, rtol):
+    """The 5(4) pair's error, max |err_i| / (atol_i + rtol max(|y_i|, |ynew_i|))."""
+    err = 0.0
+    for i in range(y.shape[0]):
+        e = 0.0
+        for j in range(7):
+            e += _E[j] * K[j, i]
+        e = abs(h * e) / (atol[i] + rtol * max(abs(y[i]), abs(ynew[i])))
+        if e > err:
+            err = e
+    return err
+
+
 @njit(cache=True)
 def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, cell):
     """Finite-difference Jacobian of the dynamic columns, and the time derivative.
@@ -453,21 +477,10 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
             else:             # dopri5
                 K[0, :] = f0
                 for s_ in range(1, 7):
-                    for i in range(n):
-                        acc = 0.0
-                        for j in range(s_):
-                            acc += _A[s_, j] * K[j, i]
-                        ytmp[i] = y[i] + h * acc
+                    dopri_stage(y, K, s_, h, ytmp)
                     rhs(t + _C[s_] * h, ytmp, K[s_], net, tier, tab, perf, pr, cell)
                 nfev += 6
-                err = 0.0
-                for i in range(n):
-                    e = 0.0
-                    for j in range(7):
-                        e += _E[j] * K[j, i]
-                    e = abs(h * e) / (atol[i] + rtol * max(abs(y[i]), abs(ytmp[i])))
-                    if e > err:
-                        err = e
+                err = dopri_error(y, ytmp, K, h, atol, rtol)
                 expo = -0.2
                 safety = 0.9
             # ytmp: the new state; K[6]: the derivative there (FSAL)

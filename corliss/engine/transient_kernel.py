@@ -43,7 +43,8 @@ import math
 import numpy as np
 from numba import njit
 
-from corliss.engine.kernel import _A, _C, _E, _hermite, balances, node_states, port_areas
+from corliss.engine.kernel import (_C, _hermite, balances, dopri_error, dopri_stage,
+                                   node_states, port_areas)
 
 TWO_PI = 2.0 * math.pi
 
@@ -93,6 +94,23 @@ def _lin(grid0, dgrid, table, x):
 
 
 @njit(cache=True, inline="always")
+def uniform_cell(x, x0, x1, n):
+    """(k, w): the cell of ``x`` on n uniform points from x0 to x1 and the weight of
+    point k + 1, clamped to the grid (a single point gives (0, 0))."""
+    if n < 2:
+        return 0, 0.0
+    f = (x - x0) / (x1 - x0) * (n - 1)
+    if f < 0.0:
+        f = 0.0
+    if f > n - 1:
+        f = n - 1.0
+    k = int(f)
+    if k > n - 2:
+        k = n - 2
+    return k, f - k
+
+
+@njit(cache=True, inline="always")
 def load_factor(t, lt, lf):
     """The load schedule f(t): piecewise linear, constant beyond its ends."""
     n = lt.shape[0]
@@ -116,15 +134,7 @@ def governed_areas(th, s, omega, net, tr, pa):
     phase = net[3]
     ns = sgrid.shape[0]
     nth = area_s.shape[3] - 1
-    fs = (s - sgrid[0]) / (sgrid[ns - 1] - sgrid[0]) * (ns - 1) if ns > 1 else 0.0
-    if fs < 0.0:
-        fs = 0.0
-    if fs > ns - 1:
-        fs = ns - 1.0
-    j = int(fs)
-    if j > ns - 2:
-        j = max(ns - 2, 0)
-    ws = fs - j
+    j, ws = uniform_cell(s, sgrid[0], sgrid[ns - 1], ns)
     j1 = j + 1 if ns > 1 else j
     for c in range(governed.shape[0]):
         if governed[c] == 0:
@@ -161,19 +171,10 @@ def trip_areas(t, s, omega, tr, c, pa):
     tclose = trip[6, 0]
     for e in range(2):
         port = 2 * e
-        f = (s - sg[0]) / (sg[n - 1] - sg[0]) * (n - 1) if n > 1 else 0.0
-        if f < 0.0:
-            f = 0.0
-        if f > n - 1:
-            f = n - 1.0
-        k = int(f)
-        if k > n - 2:
-            k = max(n - 2, 0)
-        w = f - k
-        if n == 1:
-            w = 0.0
+        k, w = uniform_cell(s, sg[0], sg[n - 1], n)
+        k1 = k + 1 if n > 1 else k
         r0 = trip[1 + e, k]
-        r1 = trip[1 + e, k + 1]
+        r1 = trip[1 + e, k1]
         if math.isnan(r0) or math.isnan(r1):
             continue
         rel = r0 * (1.0 - w) + r1 * w
@@ -187,7 +188,7 @@ def trip_areas(t, s, omega, tr, c, pa):
             continue
         if since_open < rel_from_open or since_open > window:
             continue
-        a_rel = trip[3 + e, k] * (1.0 - w) + trip[3 + e, k + 1] * w
+        a_rel = trip[3 + e, k] * (1.0 - w) + trip[3 + e, k1] * w
         tau = (since_open - rel_from_open) / omega
         frac = _lin(0.0, tclose / (nf - 1), trip[5, :nf], tau) if tau < tclose else 0.0
         lim = a_rel * frac
@@ -354,21 +355,10 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
             h = b - t
         K[0, :] = f0
         for s_ in range(1, 7):
-            for i in range(n):
-                acc = 0.0
-                for j in range(s_):
-                    acc += _A[s_, j] * K[j, i]
-                ytmp[i] = y[i] + h * acc
+            dopri_stage(y, K, s_, h, ytmp)
             transient_rhs(t + _C[s_] * h, ytmp, K[s_], net, tier, tab, perf, pr, pa, tr, out)
         nfev += 6
-        err = 0.0
-        for i in range(n):
-            e = 0.0
-            for j in range(7):
-                e += _E[j] * K[j, i]
-            e = abs(h * e) / (atol[i] + rtol * max(abs(y[i]), abs(ytmp[i])))
-            if e > err:
-                err = e
+        err = dopri_error(y, ytmp, K, h, atol, rtol)
         if err <= 1.0 or h < 1e-10:
             t1 = t + h
             while io < out_theta.shape[0] and out_theta[io] <= t1:
