@@ -226,7 +226,7 @@ def plot_load_step(result, units_system: str | None = None) -> dict:
     system = units_system or result.scene.output.units
     ts, cyc = result.timeseries, result.cycles
     fig = plt.figure(figsize=(13, 8.5))
-    gs = fig.add_gridspec(3, 2, width_ratios=(1.8, 1.0), hspace=0.35, wspace=0.25)
+    gs = fig.add_gridspec(3, 2, width_ratios=(1.8, 1.0), hspace=0.45, wspace=0.25)
     ax_n = fig.add_subplot(gs[0, 0])
     ax_g = fig.add_subplot(gs[1, 0], sharex=ax_n)
     ax_l = fig.add_subplot(gs[2, 0], sharex=ax_n)
@@ -297,6 +297,29 @@ def plot_load_step(result, units_system: str | None = None) -> dict:
             for side in ("top", "right"):
                 ax.spines[side].set_visible(False)
             axes[f"card_{label}"] = ax
+    mech = getattr(result.tables, "mechanism", None) if result.tables is not None else None
+    if mech is not None:
+        ax = fig.add_subplot(gs[2, 1])
+        z = np.asarray(mech.z)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            w = np.sqrt(np.asarray(mech.R) / np.asarray(mech.G)) / mech.ratio
+        ax.plot(w * 60.0 / (2 * np.pi), z, color="k", lw=1.3, label="static characteristic")
+        c = cyc
+        before = c[c["t_end_s"] <= t_step] if t_step is not None else c.iloc[:0]
+        for rows, mark, label in ((before, "o", "before the step"), (c, "s", "at the end")):
+            if len(rows):
+                last = rows.iloc[-5:]
+                ax.plot([last["mean_speed_rpm"].mean()], [last["governor_z"].mean()], mark,
+                        color="0.3", ms=6, mfc="white", label=label)
+        ax.set_xlabel("shaft speed [rev/min]")
+        ax.set_ylabel("governor position z [-]")
+        ax.set_ylim(-0.05, 1.05)
+        ax.set_title(f"governor: {result.scene.governor_type}", fontsize=9)
+        ax.legend(fontsize=7, frameon=False)
+        ax.grid(True, color="0.9", lw=0.5)
+        for side in ("top", "right"):
+            ax.spines[side].set_visible(False)
+        axes["static"] = ax
     return {"figure": fig, "axes": axes}
 
 
