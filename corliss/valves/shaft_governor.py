@@ -20,6 +20,28 @@ greatest throw, latest cut-off) to 1 (full speed, least throw, earliest cut-off)
 
 Piston valves taking steam inside (Armington & Sims, Ball) move the same x in the
 sense that opens the head steam port, with the eccentric set accordingly (Art. 29).
+
+**Finite eccentric rod** (optional ``eccentric_rod`` = g).  At each governor position the
+eccentric is one of throw r = hypot(C, S) and advance delta = atan2(C, S), so the rod's
+end falls short of its harmonic position by Zeuner's "missing quantity" g - sqrt(g^2 -
+r^2 cos^2(theta + delta)) exactly as for the plain slide valve (Marks Art. 96, eqs.
+229-232), where r cos(theta + delta) = S cos(theta) - C sin(theta) is the centre's
+offset across the line of stroke.  The valve stem is set once, for equal lead with the
+governor at rest (s = 0: the valve is set with the engine standing, the weights held in
+by the springs), and the governor then moves the eccentric under that fixed setting::
+
+    x = C cos(theta) + S sin(theta)
+        + sigma [ sqrt(g^2 - S0^2) - sqrt(g^2 - (S cos(theta) - C sin(theta))^2) ]
+
+with S0 the centre's S at rest and sigma the sign of the slide valve (+1 directly
+connected taking steam outside, -1 taking steam inside or through a reverse lever;
+Spangler Arts. 24, 29).  At a dead centre the correction is sigma [sqrt(g^2 - S0^2) -
+sqrt(g^2 - S^2)], the same at both: it shifts the valve bodily, so once the governor
+has moved (S != S0) one end gains the lead the other loses, by about (S0^2 - S^2)/(2g)
+each: the straight path's constant lead (Art. 87) holds in Zeuner's form only.  Over
+the revolution the correction is of order r^2/(2 g) and makes the crank positions at
+cut-off no longer 180 deg apart (Spangler Art. 63).  ``zeuner_travel`` gives Zeuner's
+form of the same setting, which ``travel`` is without a rod.
 """
 
 from __future__ import annotations
@@ -30,6 +52,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from corliss import units
 from corliss.errors import InputError
 from corliss.tables import Table
 from corliss.valves.gear import GearType, register
@@ -55,6 +78,12 @@ class ShaftGovernorSpec:
         valve-diagram plane [rad].
     setting : float
         The governor's position s in [0, 1].
+    eccentric_rod_m : float or None
+        Eccentric rod plus valve stem g [m]; None for Zeuner's form.  The valve is set
+        for equal lead at s = 0.
+    connection, steam : str
+        ``"direct"`` or ``"reverse_lever"``; ``"outside"`` or ``"inside"``: the sign of
+        the rod's correction, as for the slide valve.
     """
 
     path: str
@@ -71,6 +100,15 @@ class ShaftGovernorSpec:
     arc_swing_rad: float = 0.0
     arc_start_rad: float = 0.0
     setting: float = 0.0
+    eccentric_rod_m: float | None = None
+    connection: str = "direct"
+    steam: str = "outside"
+
+    @property
+    def sigma(self) -> int:
+        """Sign with which the rod end's shortfall moves the valve [-] (as the slide
+        valve's: +1 direct with steam outside, -1 for one reversal)."""
+        return (1 if self.steam == "outside" else -1) * (1 if self.connection == "direct" else -1)
 
     def coefficients(self, s: float | None = None) -> tuple[float, float]:
         """(C, S) of the eccentric centre at governor setting ``s`` [m]."""
@@ -102,10 +140,25 @@ class ShaftGovernorGear(LappedValve):
             raise ValueError(f"setting {value} outside [0, 1]")
         return ShaftGovernorGear(dataclasses.replace(self.spec, setting=value))
 
-    def travel(self, theta):
+    def zeuner_travel(self, theta):
+        """Zeuner's form x = C cos(theta) + S sin(theta) at this setting [m]."""
         C, S = self.spec.coefficients()
         th = np.asarray(theta, dtype=float)
         return C * np.cos(th) + S * np.sin(th)
+
+    def travel(self, theta):
+        """Valve displacement [m]: Zeuner's form, plus with a finite eccentric rod the
+        rod end's shortfall measured from the valve's setting at rest (module doc)."""
+        sp = self.spec
+        x = self.zeuner_travel(theta)
+        g = sp.eccentric_rod_m
+        if g is None:
+            return x
+        C, S = sp.coefficients()
+        S0 = sp.coefficients(0.0)[1]
+        th = np.asarray(theta, dtype=float)
+        across = S * np.cos(th) - C * np.sin(th)
+        return x + sp.sigma * (math.sqrt(g * g - S0 * S0) - np.sqrt(g * g - across * across))
 
 
 def parse_shaft_governor(t: Table) -> ShaftGovernorSpec:
@@ -124,7 +177,18 @@ def parse_shaft_governor(t: Table) -> ShaftGovernorSpec:
     spec = ShaftGovernorSpec(path, t.length("eccentricity", positive=True),
                              t.angle("angular_advance"), pair(t, "lap", "length"),
                              pair(t, "exhaust_lap", "length", "0 in"), setting=setting,
+                             connection=t.choice("connection", ("direct", "reverse_lever"),
+                                                 "direct"),
+                             steam=t.choice("steam", ("outside", "inside"), "outside"),
                              **parse_ports(t), **kw)
+    if t.has("eccentric_rod"):
+        g = t.length("eccentric_rod", positive=True)
+        reach = max(math.hypot(*spec.coefficients(v)) for v in np.linspace(0.0, 1.0, 101))
+        if g <= reach:
+            raise InputError(t.key("eccentric_rod"), t.raw("eccentric_rod"),
+                             f"an eccentric rod longer than the greatest throw over the "
+                             f"governor's range ({reach / units.INCH_m:.4g} in)")
+        spec = dataclasses.replace(spec, eccentric_rod_m=g)
     C, S = spec.coefficients()
     if max(spec.lap_m) >= math.hypot(C, S):
         raise InputError(t.key("setting"), setting, "a setting at which the eccentric's throw "
