@@ -177,9 +177,11 @@ def cmd_gear(args) -> int:
         fig = plt.figure(figsize=(13, 5.5))
         gear.draw(fig, system)
     else:
-        fig = plt.figure(figsize=(13, 5.5))
-        plot_valve_travel(gear, fig.add_subplot(1, 2, 1), system)
-        plot_zeuner_diagram(gear, fig.add_subplot(1, 2, 2), system)
+        from corliss.plot import plot_bilgram_diagram
+        fig = plt.figure(figsize=(19, 5.5))
+        plot_valve_travel(gear, fig.add_subplot(1, 3, 1), system)
+        plot_zeuner_diagram(gear, fig.add_subplot(1, 3, 2), system)
+        plot_bilgram_diagram(gear, fig.add_subplot(1, 3, 3), system)
     fig.suptitle(f"{scene.title}: {scene.gear_type}", fontsize=11)
     out = Path(args.out if args.out is not None else scene.output.dir) / f"{scene.name}.gear.png"
     out.parent.mkdir(parents=True, exist_ok=True)
