@@ -116,3 +116,41 @@ def test_schedule_from_csv(tmp_path):
                             "load"), 10.0, tmp_path)
     np.testing.assert_allclose(spec.fraction([1.0, 2.5, 3.0, 9.0]), [1.0, 0.4375, 0.375, 0.25])
     assert spec.change_times_s()[0] == 2.0
+
+
+WATT = {"type": "watt", "arm_length": "12 in", "ball_mass": "12 lb",
+        "arm_angle_at_rest": "30 deg", "arm_angle_at_top": "42 deg", "ratio": 0.5}
+TRANSIENT_SECTIONS = {"flywheel": {"moment_of_inertia": "100 kg m2"}, "load": {"torque": "1 N m"}}
+
+
+@pytest.mark.parametrize("sections, key", [
+    # a throttling governor needs the chest and pipe its throttle sits in
+    ({"run": {**TRANSIENT}, "governor": WATT}, "governor.type"),
+    # a governor on the gear needs a gear with a setting (the plain slide valve has none)
+    ({"run": {**TRANSIENT}, "governor": {"type": "erie", "weight_mass": "6 lb",
+                                          "pivot_radius": "3 in", "arm_length": "6 in",
+                                          "weight_radius_at_rest": "6.5 in",
+                                          "weight_radius_at_top": "7.5 in", "spring_arm": "2 in",
+                                          "spring_stiffness": "8 lbf/in",
+                                          "spring_preload": "111 lbf"}}, "governor.type"),
+    ({"run": {**TRANSIENT}, "governor": {**WATT, "type": "no-such-governor"}}, "governor.type"),
+    ({"run": {**TRANSIENT}, "governor": {**WATT, "ball_mass": "12 lbf"}}, "governor.ball_mass"),
+    ({"run": {"mode": "steady"}, "governor": WATT}, "governor"),
+])
+def test_governor_scene_errors_name_the_key(sections, key):
+    """A governor that cannot act on the scene's engine is refused before any work, with
+    the key named: the throttle needs ``steam_chest`` and a pipe; a gear governor needs a
+    gear with a setting; a steady run has no governor; units are checked."""
+    with pytest.raises(InputError) as exc:
+        make_scene(engine=ENGINE, **TRANSIENT_SECTIONS, **sections)
+    assert exc.value.key == key
+
+
+def test_cli_refuses_cycles_for_a_transient_scene(tmp_path, capsys):
+    from pathlib import Path
+
+    from corliss import cli
+    scene = Path(__file__).resolve().parent.parent / "scenes" / "watt-throttling-governor.toml"
+    assert cli.main(["run", str(scene), "--cycles", "3", "--out", str(tmp_path)]) == 2
+    assert "--duration" in capsys.readouterr().err
+    assert not any(tmp_path.iterdir())
