@@ -10,6 +10,9 @@
     The valve events of each end, without simulating; at several gear settings.
 ``corliss gear SCENE [--out DIR]``
     Valve travel, port openings and the Zeuner diagram, as PNG.
+``corliss sweep SCENE --settings 0,0.5,1 | --throttle 0.2,0.6,1 [--out DIR]``
+    Steady cards across the load range at each gear setting or throttle opening: a
+    CSV with its meta file and the Willans line as PNG.
 ``corliss bench [--repeats N] [--out DIR]``
     The accuracy-versus-time study of ``benchmarks/`` (from a source checkout).
 ``corliss list gears|effects|governors``
@@ -191,6 +194,53 @@ def cmd_gear(args) -> int:
     return 0
 
 
+def cmd_sweep(args) -> int:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from corliss.engine.load_range import at_knob, load_range
+    from corliss.plot import plot_willans
+    from corliss.results import _jsonable, _write_atomic, csv_meta, convert_frame
+    scene = _load(args.scene)
+    if (args.settings is None) == (args.throttle is None):
+        raise InputError("--settings", args.settings, "either --settings or --throttle, e.g. "
+                         "--settings 0,0.25,0.5,0.75,1 or --throttle 0.2,0.4,0.6,0.8,1")
+    knob, text = ("setting", args.settings) if args.settings is not None else ("throttle", args.throttle)
+    try:
+        values = [float(v) for v in text.split(",") if v.strip()]
+    except ValueError:
+        raise InputError(f"--{knob}s" if knob == "setting" else "--throttle", text,
+                         "numbers separated by commas") from None
+    if len(values) < 2:
+        raise InputError("--settings" if knob == "setting" else "--throttle", text,
+                         "two values or more")
+    for v in values:
+        at_knob(scene, knob, v)
+    frame = load_range(scene, knob, values)
+    out = Path(args.out if args.out is not None else scene.output.dir)
+    system = scene.output.units
+    table, col_units = convert_frame(frame, system, scene.supply.barometer_Pa)
+    csv_path = out / f"{scene.name}.sweep.csv"
+    _write_atomic(csv_path, lambda p: table.to_csv(p, index=False, float_format="%.9g"))
+
+    class _Meta:     # what csv_meta reads
+        pass
+    meta = _Meta()
+    meta.scene, meta.property_tier = scene, scene.run.fidelity.properties
+    meta.summary = {"knob": knob, "values": values}
+    _write_atomic(csv_path.with_suffix(".meta.json"), lambda p: Path(p).write_text(
+        json.dumps(_jsonable(csv_meta(meta, col_units, csv_path.name)), indent=2)))
+    fig, ax = plt.subplots(figsize=(8, 5.5))
+    plot_willans({f"{scene.title} ({knob})": frame}, ax, system)
+    png = out / f"{scene.name}.willans.png"
+    _write_atomic(png, lambda p: fig.savefig(p, dpi=120, bbox_inches="tight", format="png"))
+    plt.close(fig)
+    print(table.to_string(index=False))
+    print(f"wrote {csv_path}\nwrote {png}")
+    return 0
+
+
 def cmd_list(args) -> int:
     if args.what == "gears":
         from corliss.valves import GEARS
@@ -249,6 +299,12 @@ def build_parser() -> argparse.ArgumentParser:
     gp.add_argument("scene", help="scene TOML")
     gp.add_argument("--out", help="output directory (default: the scene's [output] dir)")
     gp.set_defaults(func=cmd_gear)
+    sw = sub.add_parser("sweep", help="steady cards across the load range: Willans line")
+    sw.add_argument("scene", help="scene TOML (a transient one runs steady at its speed)")
+    sw.add_argument("--settings", help="gear settings, e.g. 0,0.25,0.5,0.75,1")
+    sw.add_argument("--throttle", help="throttle openings, e.g. 0.2,0.4,0.6,0.8,1")
+    sw.add_argument("--out", help="output directory (default: the scene's [output] dir)")
+    sw.set_defaults(func=cmd_sweep)
     b = sub.add_parser("bench", help="run the accuracy-versus-time study (source checkout)")
     b.add_argument("--repeats", type=int, default=3, help="repeats per setting (median)")
     b.add_argument("--out", help="directory for the CSV and plot (default benchmarks/results)")
