@@ -401,6 +401,9 @@ def _run(t: Table) -> RunSpec:
         if cycles < 1:
             raise InputError(t.key("cycles"), cycles, "a whole number of cycles >= 1")
     expansion = t.choice("expansion", EXPANSION_LAWS, "hyperbolic")
+    if model == "mean_value" and mode != "transient":
+        raise InputError(t.key("model"), model, "\"crank_resolved\" or \"ideal\" in a steady "
+                         "run: the mean-value model steps a transient turn by turn")
     duration = None
     if mode == "transient":
         duration = t.quantity("duration", "time")
@@ -512,9 +515,9 @@ def _speed_loop(data: dict, run: RunSpec, supply: SupplySpec, gt, gear, baromete
     for key in ("flywheel", "load"):
         if key not in data:
             raise InputError(key, None, f"a [{key}] section: a transient run needs one")
-    if run.model != "crank_resolved" or not run.has("port_flow"):
-        raise InputError("run.model", run.model, "\"crank_resolved\" with \"port_flow\" in a "
-                         "transient run")
+    if run.model not in ("crank_resolved", "mean_value") or not run.has("port_flow"):
+        raise InputError("run.model", run.model, "\"crank_resolved\" or \"mean_value\" (maps "
+                         "from crank-resolved cards) with \"port_flow\" in a transient run")
     flywheel = parse_flywheel(Table(data["flywheel"], "flywheel", barometer))
     load = parse_load(Table(data["load"], "load", barometer), run.speed_rad_s, scene_dir)
     out = {"flywheel": flywheel, "load": load}

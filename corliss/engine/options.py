@@ -39,7 +39,7 @@ PLANNED_EFFECTS: tuple[str, ...] = ()
 EFFECT_KEYS = {"inertia": ("reciprocating_mass",), "friction": ("friction_torque",),
                "steam_chest": ("supply.chest_volume", "supply.pipe_diameter")}
 
-MODELS = ("crank_resolved", "ideal")
+MODELS = ("crank_resolved", "ideal", "mean_value")
 EXPANSION_LAWS = ("hyperbolic", "isentropic")
 #: Integrators: scipy's (any property tier, Python right-hand side) and the compiled
 #: kernel's (``dopri5`` adaptive explicit, ``rk4`` fixed step, ``rosenbrock`` adaptive

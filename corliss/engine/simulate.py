@@ -143,8 +143,17 @@ def simulate(scene: Scene, *, portmap_scale: float = 1.0,
 
 
 def _transient(scene: Scene, progress):
-    from corliss.engine.transient import run_transient
     from corliss.load_step import LoadStepResult
+    if scene.run.model == "mean_value":
+        from corliss.engine.mean_value import run_mean_value
+        from corliss.engine.transient import LoopTables
+        d = run_mean_value(scene, progress=progress)
+        tables = LoopTables((), None, None, None, d["z0"], d["mechanism"])
+        return LoadStepResult(scene=scene, timeseries=d["timeseries"], cycles=d["cycles"],
+                              geometry=d["geometry"], property_tier=scene.run.fidelity.properties,
+                              wall_time_s=d["wall_time_s"], nfev=d["nfev"], stalled=d["stalled"],
+                              tables=tables)
+    from corliss.engine.transient import run_transient
     d = run_transient(scene, progress=progress)
     return LoadStepResult(scene=scene, timeseries=d["timeseries"], cycles=d["cycles"],
                           geometry=d["geometry"], property_tier=d["property_tier"],
