@@ -55,8 +55,21 @@ from corliss.governors.mechanism import (GRAVITY_M_S2, Actuator, Governor, Gover
 from corliss.tables import Table
 
 
+class SleeveLosses:
+    """Friction and dash-pot given as they act on the sleeve, generalised to z: the
+    sleeve's lift is linear in z, so F_f = F x_travel and c = c_s x_travel^2 exactly."""
+
+    @property
+    def friction(self) -> float:
+        return self.sleeve_friction_N * self.sleeve_travel_m
+
+    @property
+    def damping(self) -> float:
+        return self.sleeve_damping_N_s_m * self.sleeve_travel_m ** 2
+
+
 @dataclass(frozen=True)
-class FlyBallSpec:
+class FlyBallSpec(SleeveLosses):
     """Watt or Porter governor (all SI).
 
     Attributes
@@ -98,14 +111,6 @@ class FlyBallSpec:
         """Sleeve lift between the stops, 2 l (cos theta0 - cos theta1) [m]."""
         return 2.0 * self.arm_length_m * (math.cos(self.arm_angle_at_rest_rad)
                                           - math.cos(self.arm_angle_at_top_rad))
-
-    @property
-    def friction(self) -> float:
-        return self.sleeve_friction_N * self.sleeve_travel_m
-
-    @property
-    def damping(self) -> float:
-        return self.sleeve_damping_N_s_m * self.sleeve_travel_m ** 2
 
 
 class FlyBallGovernor(Governor):
@@ -253,7 +258,7 @@ def _with_safety(spec: FlyBallSpec, frac: float, t: Table) -> FlyBallSpec:
 
 # --- spring-loaded ----------------------------------------------------------------------
 @dataclass(frozen=True)
-class SpringSpec:
+class SpringSpec(SleeveLosses):
     """Spring-loaded fly-ball governor of the Hartnell form (all SI).
 
     Attributes
@@ -292,14 +297,6 @@ class SpringSpec:
     def sleeve_travel_m(self) -> float:
         return self.sleeve_arm_m * (math.sin(self.arm_angle_at_top_rad)
                                     - math.sin(self.arm_angle_at_rest_rad))
-
-    @property
-    def friction(self) -> float:
-        return self.sleeve_friction_N * self.sleeve_travel_m
-
-    @property
-    def damping(self) -> float:
-        return self.sleeve_damping_N_s_m * self.sleeve_travel_m ** 2
 
 
 class SpringGovernor(Governor):
