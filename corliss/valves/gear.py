@@ -56,6 +56,13 @@ class ValveGear:
         """Discharge coefficient of each port [-], shape ``(4,)``."""
         raise NotImplementedError
 
+    def kink_levels(self) -> np.ndarray:
+        """Signed openings [m] at which each port's open area has a kink, shape (4, L):
+        column 0 where it opens (0), column 1 where it is full (the port width), and
+        any further columns a gear's own area law adds (the tabulated PortMap puts a
+        grid point at every crossing of every level)."""
+        return np.column_stack([np.zeros(4), self.port_widths()])
+
     def openings(self, theta: np.ndarray) -> np.ndarray:
         """Physical opening of each port [m], clipped to [0, port width]."""
         s = self.signed_openings(np.atleast_1d(theta))

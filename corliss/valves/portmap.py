@@ -68,8 +68,7 @@ class PortMap:
 
 def tabulate(gear: ValveGear, n: int = 1440) -> PortMap:
     """Tabulate a gear to a :class:`PortMap` on ``n`` uniform intervals plus its kinks."""
-    widths = gear.port_widths()
-    table = crossing_table(gear, np.column_stack([np.zeros(4), widths]))
+    table = crossing_table(gear, gear.kink_levels())
     kinks = [t for row in table for lst in row for t, _ in lst]
     kinks = np.unique(np.round(np.asarray(kinks, dtype=float) % TWO_PI, 12))
     grid = np.union1d(np.linspace(0.0, TWO_PI, n + 1), kinks)

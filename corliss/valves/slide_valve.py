@@ -153,6 +153,19 @@ class LappedValve(ValveGear):
                 out[port] = np.minimum(out[port] + np.clip(s[port], 0.0, a), w)
         return out
 
+    def kink_levels(self):
+        """With an Allen passage of width a, the steam ports' area also kinks where the
+        passage is full (plain opening a) and where the two together fill the port
+        (p + min(p, a) = w)."""
+        base = super().kink_levels()
+        a = getattr(self.spec, "allen_passage_m", None)
+        if not a:
+            return base
+        w = self.spec.port_width_m
+        full = w - a if w >= 2.0 * a else 0.5 * w
+        extra = np.array([[a, full], [0.0, 0.0], [a, full], [0.0, 0.0]])
+        return np.hstack([base, extra])
+
     def port_widths(self):
         return np.full(4, self.spec.port_width_m)
 
