@@ -147,7 +147,7 @@ def print_summary(result: LoadStepResult, files: dict) -> None:
               f"({100 * s['max_deviation_frac']:+.2f} %) at {s['time_of_max_deviation_s']:.2f} s "
               "after the step")
         st = s["settling_time_s"]
-        print(f"  settling         " + ("not settled by the end" if st is None else
+        print("  settling         " + ("not settled by the end" if st is None else
                                         f"{st:.2f} s to within "
                                         f"{100 * result.scene.run.settling_band:g} %"))
     if s["hunting"]:

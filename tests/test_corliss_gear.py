@@ -155,7 +155,6 @@ def test_cut_off_follows_the_cam_and_stops_at_the_limit_of_the_trip(harmonic):
     closes again at the same point"): at w = 180 deg - d - asin(lap / k r).  The
     trip's longest cut-off is release at the extreme plus the dash-pot's omega T."""
     g = harmonic
-    delta = math.radians(32)
     kr = g._geom["k_steam"] * 3.5 * IN / (11 * IN)
     cuts = [end_events(g.with_setting(s), "head", HARMONIC)["cutoff_deg"]
             for s in (0.2, 0.4, 0.6, 0.8, 1.0)]

@@ -36,7 +36,7 @@ def marks_condensation_kg(bore_m: float, stroke_m: float, strokes_per_s: float, 
             * (bore_m + curve_of_condensation(e) * stroke_m))
 
 
-def exposed_wall_m2(geometry, end: int, theta) -> "np.ndarray":
+def exposed_wall_m2(geometry, end: int, theta):
     """The wall the steam of one end touches [m2]: piston face and cover, and the barrel
     uncovered with the clearance as its equivalent length, 2 A_p + pi D V / A_p (the
     area the compiled kernel uses)."""

@@ -15,8 +15,6 @@ from typing import NamedTuple
 
 import math
 
-import CoolProp
-import CoolProp.CoolProp as CP
 
 from corliss.errors import InputError
 
@@ -111,6 +109,11 @@ class HEOSSteam(Steam):
     description = "CoolProp HEOS (IAPWS-95), AbstractState"
 
     def __init__(self) -> None:
+        # CoolProp is imported here, not with the module: it takes over a second, and
+        # commands that need no properties (list, events, gear) should not pay it
+        import CoolProp
+        import CoolProp.CoolProp as CP
+        self._CP = CP
         self._as = CoolProp.AbstractState("HEOS", "Water")
         self._twophase = CoolProp.iphase_twophase
         self._liquid = (CoolProp.iphase_liquid,)
@@ -138,25 +141,25 @@ class HEOSSteam(Steam):
         return self._state()
 
     def du(self, rho, u):
-        return self._update(CP.DmassUmass_INPUTS, rho, u, "density, internal energy")
+        return self._update(self._CP.DmassUmass_INPUTS, rho, u, "density, internal energy")
 
     def ph(self, p, h):
-        return self._update(CP.HmassP_INPUTS, h, p, "enthalpy, pressure")
+        return self._update(self._CP.HmassP_INPUTS, h, p, "enthalpy, pressure")
 
     def ps(self, p, s):
-        return self._update(CP.PSmass_INPUTS, p, s, "pressure, entropy")
+        return self._update(self._CP.PSmass_INPUTS, p, s, "pressure, entropy")
 
     def ds(self, rho, s):
-        return self._update(CP.DmassSmass_INPUTS, rho, s, "density, entropy")
+        return self._update(self._CP.DmassSmass_INPUTS, rho, s, "density, entropy")
 
     def pt(self, p, T):
-        return self._update(CP.PT_INPUTS, p, T, "pressure, temperature")
+        return self._update(self._CP.PT_INPUTS, p, T, "pressure, temperature")
 
     def px(self, p, x):
-        return self._update(CP.PQ_INPUTS, p, x, "pressure, dryness")
+        return self._update(self._CP.PQ_INPUTS, p, x, "pressure, dryness")
 
     def t_sat(self, p):
-        return self._update(CP.PQ_INPUTS, p, 1.0, "pressure, dryness").T
+        return self._update(self._CP.PQ_INPUTS, p, 1.0, "pressure, dryness").T
 
 
 class TableSteam(HEOSSteam):
@@ -259,4 +262,6 @@ def make_steam(name: str = "heos") -> Steam:
 
 def coolprop_version() -> str:
     """CoolProp version and git revision, for result metadata."""
+    import CoolProp
+    import CoolProp.CoolProp as CP
     return f"{CoolProp.__version__} ({CP.get_global_param_string('gitrevision')[:10]})"

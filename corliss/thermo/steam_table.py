@@ -37,8 +37,6 @@ from pathlib import Path
 import numpy as np
 from numba import njit
 
-import CoolProp
-import CoolProp.CoolProp as CP
 
 log = logging.getLogger(__name__)
 
@@ -206,6 +204,8 @@ def lookup_many(tab, rho, u):
 # --- build and cache ------------------------------------------------------------------
 
 def _build(params: dict) -> dict:
+    import CoolProp
+    import CoolProp.CoolProp as CP
     heos = CoolProp.AbstractState("HEOS", "Water")
     gas = CoolProp.AbstractState("HEOS", "Water")
     gas.specify_phase(CoolProp.iphase_gas)
@@ -214,7 +214,7 @@ def _build(params: dict) -> dict:
     sat = np.empty((5, sT.size))
     for k, T in enumerate(sT):
         heos.update(CP.QT_INPUTS, 0.0, T)
-        pf, vf, uf = heos.p(), 1 / heos.rhomass(), heos.umass()
+        vf, uf = 1 / heos.rhomass(), heos.umass()
         heos.update(CP.QT_INPUTS, 1.0, T)
         sat[:, k] = (math.log(heos.p()), vf, math.log(1 / heos.rhomass()), uf, heos.umass())
     lnrho = np.linspace(math.log(params["rho_min"]), math.log(params["rho_max"]), params["n_rho"])
@@ -265,6 +265,8 @@ def measure_error(table: SteamTable, n: int = 4000, seed: int = 0) -> dict:
     States: dryness 0.5 to 1 and superheat 0 to 300 K, 0.05 to 25 bar, plus a band
     within 2 K of saturation on both sides, where the two parts of the table meet.
     """
+    import CoolProp
+    import CoolProp.CoolProp as CP
     rng = np.random.default_rng(seed)
     heos = CoolProp.AbstractState("HEOS", "Water")
     rho, u, ref = [], [], []
@@ -304,9 +306,20 @@ def cache_dir() -> Path:
 _LOADED: dict[str, SteamTable] = {}
 
 
+def _coolprop_version() -> str:
+    """CoolProp's version from its distribution's metadata (without importing it, which
+    takes over a second)."""
+    from importlib.metadata import PackageNotFoundError, version
+    try:
+        return version("CoolProp")
+    except PackageNotFoundError:      # pragma: no cover - an unusual install
+        import CoolProp
+        return CoolProp.__version__
+
+
 def load_table() -> SteamTable:
     """The steam table: from memory, from the disk cache, or built from HEOS (and cached)."""
-    key = hashlib.sha1((json.dumps(PARAMS, sort_keys=True) + CoolProp.__version__)
+    key = hashlib.sha1((json.dumps(PARAMS, sort_keys=True) + _coolprop_version())
                        .encode()).hexdigest()[:12]
     if key in _LOADED:
         return _LOADED[key]
@@ -325,7 +338,7 @@ def load_table() -> SteamTable:
         err = measure_error(tab)
         err["build_seconds"] = time.perf_counter() - t0
         err["params"] = PARAMS
-        err["coolprop"] = CoolProp.__version__
+        err["coolprop"] = _coolprop_version()
         log.info("built steam table in %.1f s: %s", err["build_seconds"], err)
         data = {k: np.asarray(v) for k, v in built.items()}
         data["meta"] = np.array(json.dumps(err))

@@ -157,7 +157,6 @@ class _Linkage:
         self.s = spec
 
     def __call__(self, theta):
-        s = self.s
         th = np.atleast_1d(np.asarray(theta, dtype=float))
         main, rel = self._raw(np.concatenate([th, [0.0, math.pi]]))
         main = main[:-2] - 0.5 * (main[-2] + main[-1])   # equal lead

@@ -108,7 +108,6 @@ from corliss import units
 from corliss.errors import InputError
 from corliss.tables import Table
 from corliss.valves.gear import GearType, ValveGear, register
-from corliss.valves.slide_valve import pair
 
 log = logging.getLogger(__name__)
 

@@ -572,7 +572,7 @@ def _walschaerts(spec: WalschaertsSpec, th):
                           spec.lever_crosshead_m, spec.union_link_m)
     outside = spec.admission == "outside"
     lay = walschaerts_layout(spec)
-    T, F0, A0 = lay["T"], lay["F0"], lay["A0"]
+    T, F0 = lay["T"], lay["F0"]
     n = th.size
     lam = math.atan2(lay["Q0"][1], lay["Q0"][0])
     # running ahead, clockwise seen with the cylinder on the right
