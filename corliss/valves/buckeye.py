@@ -38,7 +38,6 @@ little on i, so the relative motion depends on the main eccentric to second orde
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -106,11 +105,6 @@ class BuckeyeGear(dv.DoubleValve):
     def __init__(self, spec: BuckeyeSpec):
         self.spec = spec
         self._exact = _Linkage(spec) if spec.motion == "exact" else None
-
-    def with_setting(self, value: float) -> "BuckeyeGear":
-        if not 0.0 <= value <= 1.0:
-            raise ValueError(f"setting {value} outside [0, 1]")
-        return BuckeyeGear(dataclasses.replace(self.spec, setting=value))
 
     def main_travel(self, theta):
         if self._exact is not None:

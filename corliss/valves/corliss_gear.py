@@ -275,11 +275,8 @@ class CorlissGear(ValveGear):
         self._geom = _geom if _geom is not None else self._prepare()
 
     # ------------------------------------------------------------------ settings
-    def with_setting(self, value: float) -> "CorlissGear":
-        lo, hi = self.setting_range
-        if not lo <= value <= hi:
-            raise ValueError(f"setting {value} outside [{lo}, {hi}]")
-        return CorlissGear(dataclasses.replace(self.spec, setting=float(value)), self._geom)
+    def _at_setting(self, value: float) -> "CorlissGear":
+        return CorlissGear(dataclasses.replace(self.spec, setting=value), self._geom)
 
     def with_speed(self, speed_rad_s: float) -> "CorlissGear":
         """The same gear at shaft speed ``speed_rad_s`` [rad/s] (the dash-pot's closing

@@ -205,10 +205,7 @@ class FinkMotion(LappedValve):
     def __init__(self, spec: FinkMotionSpec):
         self.spec = spec
 
-    def with_setting(self, value: float) -> "FinkMotion":
-        lo, hi = self.setting_range
-        if not lo <= value <= hi:
-            raise ValueError(f"setting {value} outside {self.setting_range}")
+    def _at_setting(self, value: float) -> "FinkMotion":
         return FinkMotion(dataclasses.replace(self.spec,
                                               block_m=value * self.spec.link.half_link_m))
 
@@ -342,11 +339,6 @@ class PorterAllenGear(ValveGear):
 
     def __init__(self, spec: PorterAllenSpec):
         self.spec = spec
-
-    def with_setting(self, value: float) -> "PorterAllenGear":
-        if not 0.0 <= value <= 1.0:
-            raise ValueError(f"setting {value} outside [0, 1]")
-        return PorterAllenGear(dataclasses.replace(self.spec, setting=value))
 
     # -- the motions
     def steam_drive(self, theta) -> np.ndarray:

@@ -13,6 +13,7 @@ Port order everywhere: head steam, head exhaust, crank steam, crank exhaust.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from typing import Callable, ClassVar
 
@@ -37,8 +38,19 @@ class ValveGear:
     setting_range: ClassVar[tuple[float, float] | None] = None
 
     def with_setting(self, value: float) -> "ValveGear":
-        """The same gear at another setting (see ``setting_name``)."""
-        raise ValueError(f"the {self.name} gear has no setting")
+        """The same gear at another setting (see ``setting_name``), which must lie in
+        ``setting_range``."""
+        if self.setting_range is None:
+            raise ValueError(f"the {self.name} gear has no setting")
+        lo, hi = self.setting_range
+        if not lo <= value <= hi:
+            raise ValueError(f"setting {value} outside [{lo}, {hi}]")
+        return self._at_setting(float(value))
+
+    def _at_setting(self, value: float) -> "ValveGear":
+        """The gear rebuilt at a setting already checked: by default its spec's
+        ``setting`` field replaced; a gear whose setting moves other fields overrides."""
+        return type(self)(dataclasses.replace(self.spec, setting=value))
 
     def signed_openings(self, theta: np.ndarray) -> np.ndarray:  # pragma: no cover
         """Signed opening of each port [m], shape ``(4, len(theta))``."""

@@ -32,7 +32,6 @@ lever's ratio), each valve set for equal lead.
 
 from __future__ import annotations
 
-import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -101,11 +100,6 @@ class GridironValve(dv.DoubleValve):
 
     def __init__(self, spec: GridironSpec):
         self.spec = spec
-
-    def with_setting(self, value: float) -> "GridironValve":
-        if not 0.0 <= value <= 1.0:
-            raise ValueError(f"setting {value} outside [0, 1]")
-        return GridironValve(dataclasses.replace(self.spec, setting=value))
 
     def main_travel(self, theta):
         s = self.spec

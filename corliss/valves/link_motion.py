@@ -149,11 +149,8 @@ class LinkMotion(LappedValve):
             self._exact = (_ExactStephenson(spec) if spec.kind.startswith("stephenson")
                            else _ExactGoochAllen(spec))
 
-    def with_setting(self, value: float) -> "LinkMotion":
+    def _at_setting(self, value: float) -> "LinkMotion":
         import dataclasses
-        lo, hi = self.setting_range
-        if not lo <= value <= hi:
-            raise ValueError(f"setting {value} outside {self.setting_range}")
         return LinkMotion(dataclasses.replace(self.spec, block_m=value * self.spec.half_link_m))
 
     def travel(self, theta):

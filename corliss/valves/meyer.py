@@ -116,9 +116,7 @@ class MeyerValve(dv.DoubleValve):
     def __init__(self, spec: MeyerSpec):
         self.spec = spec
 
-    def with_setting(self, value: float) -> "MeyerValve":
-        if not 0.0 <= value <= 1.0:
-            raise ValueError(f"setting {value} outside [0, 1]")
+    def _at_setting(self, value: float) -> "MeyerValve":
         s = self.spec
         cut = dataclasses.replace(s.cutoff, lap_m=s.block_lap(value))
         return MeyerValve(dataclasses.replace(s, setting=value, cutoff=cut))

@@ -42,7 +42,6 @@ has unequal halves, is given in Zeuner's form only.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -147,11 +146,6 @@ class PolonceauGear(_HarmonicRiding):
             return self._exact[1].travel(theta)
         return super().cutoff_travel(theta)
 
-    def with_setting(self, value: float) -> "PolonceauGear":
-        if not -1.0 <= value <= 1.0:
-            raise ValueError(f"setting {value} outside [-1, 1]")
-        return PolonceauGear(dataclasses.replace(self.spec, setting=value))
-
     def _gooch(self, u):
         s = self.spec
         return gooch(s.eccentricity_m, s.angular_advance_rad, s.eccentric_rod_m, s.half_link_m, u)
@@ -193,11 +187,6 @@ class GuinotteGear(_HarmonicRiding):
 
     def __init__(self, spec: GuinotteSpec):
         self.spec = spec
-
-    def with_setting(self, value: float) -> "GuinotteGear":
-        if not -1.0 <= value <= 1.0:
-            raise ValueError(f"setting {value} outside [-1, 1]")
-        return GuinotteGear(dataclasses.replace(self.spec, setting=value))
 
     def main_coefficients(self):
         s = self.spec

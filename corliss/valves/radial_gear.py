@@ -126,7 +126,6 @@ and said):
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -367,12 +366,6 @@ class RadialGear(LappedValve):
         self._spline = None
         if spec.motion == "exact":
             self._spline = _tabulate(spec)
-
-    def with_setting(self, value: float) -> "RadialGear":
-        lo, hi = self.setting_range
-        if not lo <= value <= hi:
-            raise ValueError(f"setting {value} outside {self.setting_range}")
-        return RadialGear(dataclasses.replace(self.spec, setting=float(value)))
 
     def travel(self, theta):
         if self._spline is not None:

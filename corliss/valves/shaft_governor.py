@@ -135,11 +135,6 @@ class ShaftGovernorGear(LappedValve):
     def __init__(self, spec: ShaftGovernorSpec):
         self.spec = spec
 
-    def with_setting(self, value: float) -> "ShaftGovernorGear":
-        if not 0.0 <= value <= 1.0:
-            raise ValueError(f"setting {value} outside [0, 1]")
-        return ShaftGovernorGear(dataclasses.replace(self.spec, setting=value))
-
     def zeuner_travel(self, theta):
         """Zeuner's form x = C cos(theta) + S sin(theta) at this setting [m]."""
         C, S = self.spec.coefficients()
