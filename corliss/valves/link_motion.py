@@ -55,6 +55,7 @@ import numpy as np
 from corliss.errors import InputError
 from corliss.tables import Table
 from corliss.valves.gear import GearType, register
+from corliss.valves.newton import newton2
 from corliss.valves.slide_valve import LappedValve, pair, parse_allen_passage, parse_ports
 
 KINDS = ("stephenson_open", "stephenson_crossed", "gooch", "allen")
@@ -233,18 +234,7 @@ def _stem_x(spec: LinkMotionSpec, u: float, theta: np.ndarray) -> np.ndarray:
 
     xm = np.full(th.shape, math.sqrt(g * g - c * c))
     a = np.zeros(th.shape)
-    for _ in range(40):
-        r1, r2 = residual(xm, a)
-        h1, h2 = 1e-7 * g, 1e-7
-        p1, p2 = residual(xm + h1, a)
-        q1, q2 = residual(xm, a + h2)
-        j11, j21, j12, j22 = (p1 - r1) / h1, (p2 - r2) / h1, (q1 - r1) / h2, (q2 - r2) / h2
-        det = j11 * j22 - j12 * j21
-        dx = (-r1 * j22 + r2 * j12) / det
-        da = (-j11 * r2 + j21 * r1) / det
-        xm, a = xm + dx, a + da
-        if np.max(np.abs(dx)) < 1e-14 * g and np.max(np.abs(da)) < 1e-14:
-            break
+    xm, a = newton2(residual, xm, a, 1e-7 * g, 1e-7, 1e-14 * g, 1e-14)
     if gooch:                       # the block: where the arc (shaft side) meets y = yb
         kx, ky = xm + rho * np.cos(a), ym + rho * np.sin(a)
         px = kx - np.sqrt(rho * rho - (yb - ky) ** 2)

@@ -135,6 +135,7 @@ from corliss import units
 from corliss.errors import InputError
 from corliss.tables import Table
 from corliss.valves.gear import GearType, register
+from corliss.valves.newton import newton2
 from corliss.valves.slide_valve import LappedValve, pair, parse_allen_passage, parse_ports
 
 KINDS = ("hackworth", "marshall", "angstrom", "joy", "walschaerts")
@@ -597,18 +598,7 @@ def _walschaerts(spec: WalschaertsSpec, th):
     lx0 = XH[0] + ul
     g = np.arcsin(np.clip((ax0 - lx0) / ell, -0.99, 0.99))
     vx = ax0 - da * np.sin(g)
-    for _ in range(40):
-        r1, r2 = residual(vx, g)
-        h1, h2 = 1e-7 * rho, 1e-8
-        p1, p2 = residual(vx + h1, g)
-        q1, q2 = residual(vx, g + h2)
-        j11, j21, j12, j22 = (p1 - r1) / h1, (p2 - r2) / h1, (q1 - r1) / h2, (q2 - r2) / h2
-        det = j11 * j22 - j12 * j21
-        dv = (-r1 * j22 + r2 * j12) / det
-        dg = (-j11 * r2 + j21 * r1) / det
-        vx, g = vx + dv, g + dg
-        if np.max(np.abs(dv)) < 1e-13 * rho and np.max(np.abs(dg)) < 1e-13:
-            break
+    vx, g = newton2(residual, vx, g, 1e-7 * rho, 1e-8, 1e-13 * rho, 1e-13)
     return -vx if outside else vx
 
 
