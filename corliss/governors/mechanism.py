@@ -37,11 +37,12 @@ from __future__ import annotations
 
 import logging
 from dataclasses import dataclass
-from typing import Callable, ClassVar
+from typing import ClassVar
 
 import numpy as np
 
 from corliss.errors import InputError
+from corliss.registry import Registry, RegistryEntry
 
 log = logging.getLogger(__name__)
 
@@ -292,31 +293,11 @@ class Governor:
                         "stops; it is unstable there (it hunts)", self.name)
 
 
-@dataclass(frozen=True)
-class GovernorType:
-    """A registry entry: how to read a ``[governor]`` table and build the governor."""
-
-    name: str
-    summary: str
-    parse: Callable[[object], object]        # corliss.tables.Table -> spec
-    build: Callable[[object], Governor]      # spec -> governor
-
-
-GOVERNORS: dict[str, GovernorType] = {}
-
-
-def register(governor_type: GovernorType) -> GovernorType:
-    """Add a governor type to the registry."""
-    GOVERNORS[governor_type.name] = governor_type
-    return governor_type
-
-
-def governor_type(name: object) -> GovernorType:
-    """Look a governor type up by name; an unknown name is an :class:`InputError`."""
-    if name not in GOVERNORS:
-        raise InputError("governor.type", name, "a governor from the registry: "
-                         + ", ".join(sorted(GOVERNORS)))
-    return GOVERNORS[name]
+#: A registry entry: how to read a ``[governor]`` table and build the governor.
+GovernorType = RegistryEntry
+GOVERNORS = Registry("governor.type", "governor")
+register = GOVERNORS.register
+governor_type = GOVERNORS.lookup
 
 
 # --- scene keys every governor shares ---------------------------------------------------

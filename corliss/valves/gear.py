@@ -14,12 +14,11 @@ Port order everywhere: head steam, head exhaust, crank steam, crank exhaust.
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
-from typing import Callable, ClassVar
+from typing import ClassVar
 
 import numpy as np
 
-from corliss.errors import InputError
+from corliss.registry import Registry, RegistryEntry
 
 PORTS = ("head_steam", "head_exhaust", "crank_steam", "crank_exhaust")
 
@@ -85,28 +84,8 @@ class ValveGear:
         return self.openings(theta) * self.port_lengths()[:, None]
 
 
-@dataclass(frozen=True)
-class GearType:
-    """A registry entry: how to read a gear's scene table and build it."""
-
-    name: str
-    summary: str
-    parse: Callable[[object], object]        # corliss.tables.Table -> spec
-    build: Callable[[object], ValveGear]     # spec -> gear
-
-
-GEARS: dict[str, GearType] = {}
-
-
-def register(gear_type: GearType) -> GearType:
-    """Add a gear type to the registry."""
-    GEARS[gear_type.name] = gear_type
-    return gear_type
-
-
-def gear_type(name: object) -> GearType:
-    """Look a gear type up by name; an unknown name is an :class:`InputError`."""
-    if name not in GEARS:
-        raise InputError("valve_gear.type", name, "a gear from the registry: "
-                         + ", ".join(sorted(GEARS)))
-    return GEARS[name]
+#: A registry entry: how to read a gear's scene table and build the gear.
+GearType = RegistryEntry
+GEARS = Registry("valve_gear.type", "gear")
+register = GEARS.register
+gear_type = GEARS.lookup
