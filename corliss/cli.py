@@ -199,9 +199,11 @@ def cmd_sweep(args) -> int:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from corliss.engine.load_range import at_knob, load_range
+    from types import SimpleNamespace
+
+    from corliss.engine.load_range import load_range
     from corliss.plot import plot_willans
-    from corliss.results import _jsonable, _write_atomic, csv_meta, convert_frame
+    from corliss.results import _write_atomic, convert_frame, write_csv
     scene = _load(args.scene)
     if (args.settings is None) == (args.throttle is None):
         raise InputError("--settings", args.settings, "either --settings or --throttle, e.g. "
@@ -215,28 +217,19 @@ def cmd_sweep(args) -> int:
     if len(values) < 2:
         raise InputError("--settings" if knob == "setting" else "--throttle", text,
                          "two values or more")
-    for v in values:
-        at_knob(scene, knob, v)
-    frame = load_range(scene, knob, values)
+    frame = load_range(scene, knob, values)      # every value is checked before any run
     out = Path(args.out if args.out is not None else scene.output.dir)
     system = scene.output.units
-    table, col_units = convert_frame(frame, system, scene.supply.barometer_Pa)
-    csv_path = out / f"{scene.name}.sweep.csv"
-    _write_atomic(csv_path, lambda p: table.to_csv(p, index=False, float_format="%.9g"))
-
-    class _Meta:     # what csv_meta reads
-        pass
-    meta = _Meta()
-    meta.scene, meta.property_tier = scene, scene.run.fidelity.properties
-    meta.summary = {"knob": knob, "values": values}
-    _write_atomic(csv_path.with_suffix(".meta.json"), lambda p: Path(p).write_text(
-        json.dumps(_jsonable(csv_meta(meta, col_units, csv_path.name)), indent=2)))
+    # the CSV and its meta file as for a run's tables (write_csv reads these three)
+    sweep = SimpleNamespace(scene=scene, property_tier=scene.run.fidelity.properties,
+                            summary={"knob": knob, "values": values})
+    csv_path = write_csv(sweep, frame, out / f"{scene.name}.sweep.csv")
     fig, ax = plt.subplots(figsize=(8, 5.5))
     plot_willans({f"{scene.title} ({knob})": frame}, ax, system)
     png = out / f"{scene.name}.willans.png"
     _write_atomic(png, lambda p: fig.savefig(p, dpi=120, bbox_inches="tight", format="png"))
     plt.close(fig)
-    print(table.to_string(index=False))
+    print(convert_frame(frame, system, scene.supply.barometer_Pa)[0].to_string(index=False))
     print(f"wrote {csv_path}\nwrote {png}")
     return 0
 

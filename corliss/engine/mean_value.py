@@ -8,7 +8,7 @@ transient then steps in time with the shaft and the governor only::
     M z'' + 1/2 M' z'^2 = G (ratio omega)^2 - R - c z' - F_f sat(z'/v_e) - J ratio domega/dt
 
 (the governor's common form, as in :mod:`corliss.engine.transient_kernel`; stops at 0
-and 1 are held by clipping).  The maps are bicubic-free: linear in the actuator and in
+and 1 are held by clipping).  The maps are read bilinearly in the actuator and in
 speed, the engine's torque being smooth in both away from the trip's limit.  What the
 mean-value model leaves out is everything inside a turn: the torque's fluctuation (and
 with it the flywheel's coefficient of steadiness), the chest's filling lag behind a
@@ -124,12 +124,7 @@ def run_mean_value(scene, *, progress=None) -> dict:
         tabs = [np.asarray(v) for v in (mech.M, mech.dM_dz, mech.G, mech.R, mech.J)]
 
     def actuator(z):
-        if mech is None:
-            return 0.0
-        zc = min(max(z, 0.0), 1.0)
-        if mech.safety_z > 0.0 and zc < mech.safety_z and np.isfinite(mech.actuator_safety):
-            return mech.actuator_safety
-        return mech.actuator_at_rest + (mech.actuator_at_top - mech.actuator_at_rest) * zc
+        return 0.0 if mech is None else float(mech.actuator(min(max(z, 0.0), 1.0)))
 
     def torques(t, w, z):
         tg, _ = emap.at(actuator(z), w)
@@ -199,7 +194,7 @@ def run_mean_value(scene, *, progress=None) -> dict:
     z = np.clip(yg[2], 0.0, 1.0)
     series = pd.DataFrame({"cycle": cycle, "time_s": tg, "crank_angle_deg": np.degrees(yg[0]),
                            "speed_rpm": yg[1] * 30 / math.pi, "governor_z": z,
-                           "actuator": [actuator(v) for v in z]})
+                           "actuator": mech.actuator(z) if mech is not None else 0.0 * z})
     log.info("mean-value model: maps %.2f s, integration %.2f s (%d evaluations)",
              emap.build_s, time.perf_counter() - t_int, sol.nfev)
     if progress:
