@@ -27,7 +27,7 @@ def loop():
     geo = geometry_of(scene)
     gear = build_gear(scene)
     network = build_network(scene, geo, tabulate(gear, 1440), steam, chest, exhaust)
-    tables = build_tables(scene, network, build_gear)
+    tables = build_tables(scene, network, gear, geo)
     return scene, gear, network.arrays(), tables
 
 

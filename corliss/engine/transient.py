@@ -134,10 +134,9 @@ def _trip_tables(gear, grid: np.ndarray, nth: int):
     return rows, latched
 
 
-def build_tables(scene, net, build_gear) -> LoopTables:
-    """The loop's parameter tuple from the scene and its network."""
-    from corliss.engine.geometry import CylinderGeometry
-
+def build_tables(scene, net, gear, geo) -> LoopTables:
+    """The loop's parameter tuple from the scene, its network, its valve gear (built
+    once, by the caller) and the cylinder geometry."""
     fid = scene.run.fidelity
     omega0 = scene.run.speed_rad_s
     ncyl = len(net.geometries)
@@ -163,7 +162,7 @@ def build_tables(scene, net, build_gear) -> LoopTables:
     thr = np.zeros(2)
     trip = np.zeros((7, 2))
     mech = None
-    gear = None
+    governed_gear = None
     cut = None
     z0 = 0.0
     if scene.governor is not None:
@@ -191,12 +190,11 @@ def build_tables(scene, net, build_gear) -> LoopTables:
                                     for x in openings[1:]])
         else:
             sc[tk.S_ACT_GEAR] = 1.0
-            gear = build_gear(scene)
+            governed_gear = gear
             lo, hi = actuator_range(mech)
             governed[:] = 1
             if scene.compound is not None:
                 governed[1:] = 0     # the governor moves the HP gear; the LP's is fixed
-            geo = CylinderGeometry(scene.engine, rod_angularity=scene.run.has("rod_angularity"))
             sgrid, area_s, cut = _gear_tables(gear, lo, hi, ncyl, governed, fid.portmap_points,
                                               lambda t: float(geo.fraction(t)))
             if hasattr(gear, "release_angle_rad"):
@@ -211,7 +209,8 @@ def build_tables(scene, net, build_gear) -> LoopTables:
                             area_s[c, port, :, :] = (np.clip(latched[port], 0.0, w[port])
                                                      * ln[port])[None, :]
     tr = (sc, lt, lf, sgrid, area_s, governed, gov, trip, thr)
-    return LoopTables(tr, gear, sgrid if gear is not None else None, cut, z0, mech)
+    return LoopTables(tr, governed_gear, sgrid if governed_gear is not None else None, cut,
+                      z0, mech)
 
 
 def run_transient(scene, *, progress: Callable[[float, float], None] | None = None) -> dict:
@@ -251,7 +250,7 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
     gear = build_gear(scene)
     pm = tabulate(gear, fid.portmap_points)
     network = build_network(scene, geo, pm, steam, chest, exhaust)
-    tables = build_tables(scene, network, build_gear)
+    tables = build_tables(scene, network, gear, geo)
     net = network.arrays()
     marks = None
     if run.has("wall_heat") and scene.engine.wall_heat_model == "marks":
