@@ -129,7 +129,7 @@ def simulate(scene: Scene, *, portmap_scale: float = 1.0,
     elif scene.run.has("port_flow"):
         if portmap_scale != 1.0:
             pm = pm.scaled(portmap_scale)
-        data = _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress)
+        data = _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress, ev)
     else:
         data = _equilibrium(scene, geo, steam_eq(), chest, exhaust, _portmap_schedule(pm), pm)
     if scene.compound is not None:
@@ -217,7 +217,7 @@ def build_network(scene, geo, pm, steam, chest, exhaust):
     return net
 
 
-def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
+def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress, ev):
     fid = scene.run.fidelity
     omega = scene.run.speed_rad_s
     net = build_network(scene, geo, pm, steam, chest, exhaust)
@@ -225,8 +225,7 @@ def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress):
     marks = None
     if heat and scene.engine.wall_heat_model == "marks":
         from corliss.engine.condensation import MarksLaw
-        marks = MarksLaw(net, geo, valve_events(build_gear(scene), lambda t: float(geo.fraction(t)),
-                                                pm.crossings), omega, chest.T, exhaust.T)
+        marks = MarksLaw(net, geo, ev, omega, chest.T, exhaust.T)
     model = CrankResolved(net, steam, fid.method, fid.rtol, step_deg=fid.step_deg)
     ends_all = piston_ends(net)
     step = math.radians(fid.output_step_deg)
