@@ -94,3 +94,27 @@ def test_cut_off_follows_the_governor(loop):
                                    lambda t: float(geo.fraction(t)))
         # the table's cut-off is read linearly between 21 settings: within 0.01 of stroke
         assert row["cutoff_head_frac"] == pytest.approx(ev["head"]["cutoff_frac"], abs=0.01)
+
+
+def test_the_safety_cams_shut_off_steam_when_the_governor_falls():
+    """Spangler Art. 155: when the governor falls below its working range (a broken belt,
+    or an engine dragged down by more load than it can carry), the safety cams trip the
+    steam valves before they open.  A load 1.6 times what the engine can give at its
+    latest release drags it down; once the governor sits below its safety lift, the
+    turns admit no steam: their indicated power is under 2 % of the power before."""
+    scene = corliss.load_scene(SCENE)
+    d = {"power": "250 hp"}
+    import dataclasses
+    from corliss.engine.load import parse_load
+    from corliss.tables import Table
+    load = parse_load(Table({**d, "kind": "step", "step_time": "2 s", "step_fraction": 1.6},
+                            "load"), scene.run.speed_rad_s, None)
+    scene = dataclasses.replace(scene, load=load).replace_run(duration_s=14.0, record="cycle")
+    r = corliss.simulate(scene)
+    c = r.cycles
+    mech = r.tables.mechanism
+    assert mech.safety_z > 0.0
+    before = c[c["t_end_s"] < 2.0]["indicated_power_W"].iloc[-1]
+    safe = c[(c["governor_z"] < mech.safety_z) & (c["governor_z_end"] < mech.safety_z)]
+    assert len(safe) >= 2
+    assert (safe["indicated_power_W"] < 0.02 * before).all()
