@@ -102,13 +102,13 @@ def test_the_safety_cams_shut_off_steam_when_the_governor_falls():
     steam valves before they open.  A load 1.6 times what the engine can give at its
     latest release drags it down; once the governor sits below its safety lift, the
     turns admit no steam: their indicated power is under 2 % of the power before."""
-    scene = corliss.load_scene(SCENE)
-    d = {"power": "250 hp"}
     import dataclasses
+
     from corliss.engine.load import parse_load
     from corliss.tables import Table
-    load = parse_load(Table({**d, "kind": "step", "step_time": "2 s", "step_fraction": 1.6},
-                            "load"), scene.run.speed_rad_s, None)
+    scene = corliss.load_scene(SCENE)
+    load = parse_load(Table({"power": "250 hp", "kind": "step", "step_time": "2 s",
+                             "step_fraction": 1.6}, "load"), scene.run.speed_rad_s, None)
     scene = dataclasses.replace(scene, load=load).replace_run(duration_s=14.0, record="cycle")
     r = corliss.simulate(scene)
     c = r.cycles
