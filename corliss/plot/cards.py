@@ -1,0 +1,141 @@
+"""Indicator cards and crank-effort diagrams in period style.
+
+The indicator card is drawn as the indicator drew it: pressure against piston
+position (the drum turned with the crosshead), both ends on one card, gauge pressure
+(psig, or bar gauge in SI) with the atmospheric line, and the events marked.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from corliss import units
+
+_EVENT_MARK = {"cutoff": ("c/o", "v"), "release": ("rel", "s"), "compression": ("comp", "^"),
+               "admission": ("adm", "o")}
+
+
+def plot_card(result, ax=None, units_system: str | None = None, prefix: str = "") -> dict:
+    """Indicator card of both ends of the last cycle.
+
+    Parameters
+    ----------
+    result : Result
+    ax : matplotlib Axes, optional
+    units_system : str, optional
+        ``"US"`` (psig, inches of stroke) or ``"SI"`` (bar gauge, mm); default from
+        the scene.
+    prefix : str
+        ``""`` for the (first or high-pressure) cylinder, ``"lp_"`` for the
+        low-pressure cylinder of a compound.
+
+    Returns
+    -------
+    dict
+        ``{"ax": ax, "lines": {...}, "markers": [...]}``.
+    """
+    import matplotlib.pyplot as plt
+
+    system = units_system or result.scene.output.units
+    if ax is None:
+        _, ax = plt.subplots(figsize=(9, 5.5))
+    baro = result.scene.supply.barometer_Pa
+    p_unit, x_unit = ("psig", "in") if system == "US" else ("barg", "mm")
+    geo = {p: g for p, g, _ in result.cylinder_list}[prefix]
+    stroke = geo.spec.stroke_m
+    cards = {end: result.cards[prefix + end] for end in ("head", "crank")}
+    lines = {}
+    style = {"head": dict(color="k", lw=1.4, ls="-"), "crank": dict(color="0.25", lw=1.4, ls="--")}
+    for end, card in cards.items():
+        x = units.to_unit(card["piston_frac"].to_numpy() * stroke, x_unit)
+        y = units.to_unit(card["p_Pa"].to_numpy(), p_unit, barometer_Pa=baro)
+        (lines[end],) = ax.plot(x, y, label=f"{end} end", **style[end])
+    xs = units.to_unit(stroke, x_unit)
+    ax.axhline(0.0, color="0.35", lw=0.8)
+    ax.text(xs * 0.5, 0.0, "atmosphere", ha="center", va="bottom", fontsize=8, color="0.35")
+    vac = units.to_unit(0.0, p_unit, barometer_Pa=baro)
+    ax.axhline(vac, color="0.6", lw=0.6, ls=":")
+    ax.text(xs * 0.995, vac, "zero pressure", ha="right", va="bottom", fontsize=7, color="0.5")
+    markers = []
+    events = result.events if prefix == "" else (getattr(result, "lp_events", None) or {})
+    for end, ev in events.items():
+        card = cards[end]
+        for name, (label, m) in _EVENT_MARK.items():
+            deg = ev.get(f"{name}_deg")
+            if deg is None:
+                continue
+            th = np.radians(deg)
+            frac = float(geo.fraction(th))
+            if "crank_angle_deg" in card:
+                ang = np.mod(card["crank_angle_deg"].to_numpy(), 360.0)
+                i = int(np.argmin(np.abs(((ang - deg) + 180.0) % 360.0 - 180.0)))
+                p = card["p_Pa"].iloc[i]
+            else:
+                i = int(np.argmin(np.abs(card["piston_frac"].to_numpy() - frac)))
+                p = card["p_Pa"].iloc[i]
+            xm = units.to_unit(frac * stroke, x_unit)
+            ym = units.to_unit(p, p_unit, barometer_Pa=baro)
+            markers.append(ax.plot([xm], [ym], m, ms=4, color=style[end]["color"])[0])
+            ax.annotate(label, (xm, ym), textcoords="offset points", xytext=(3, 4), fontsize=7,
+                        color=style[end]["color"])
+    s = result.summary
+    ax.set_xlim(-0.02 * xs, 1.02 * xs)
+    ax.set_xlabel(f"piston position from head-end dead centre [{x_unit}]")
+    ax.set_ylabel(f"pressure [{p_unit}]")
+    if prefix == "":
+        which, power, mep = "", s["indicated_power_W"], s["mep_mean_Pa"]
+        if "hp_power_W" in s:
+            which, power = "high-pressure cylinder, ", s["hp_power_W"]
+    else:
+        which, power = "low-pressure cylinder, ", s["lp_power_W"]
+        mep = power * 2 * np.pi / result.scene.run.speed_rad_s / sum(geo.swept_m3)
+    ax.set_title(f"{result.scene.title}\n{which}{s['speed_rpm']:.0f} rpm, "
+                 f"{units.to_unit(power, 'hp'):.1f} ihp, m.e.p. "
+                 f"{units.to_unit(mep, 'psia' if system == 'US' else 'bar'):.1f} "
+                 f"{'psi' if system == 'US' else 'bar'}", fontsize=10)
+    ax.grid(True, color="0.9", lw=0.5)
+    ax.legend(loc="center", fontsize=8, frameon=False)
+    for side in ("top", "right"):
+        ax.spines[side].set_visible(False)
+    return {"ax": ax, "lines": lines, "markers": markers}
+
+
+def plot_crank_effort(result, ax=None, units_system: str | None = None) -> dict:
+    """Crank-effort diagram: shaft torque against crank angle over the last cycle, with
+    the mean torque (the uniform resistance of Marks Arts. 56-59) and the excess and
+    deficit shaded; the friction torque and net torque where ``friction`` is named.
+
+    Returns ``{"ax": ax, "lines": {...}}``.
+    """
+    import matplotlib.pyplot as plt
+
+    system = units_system or result.scene.output.units
+    if ax is None:
+        _, ax = plt.subplots(figsize=(9, 4.5))
+    t_unit = "lbf ft" if system == "US" else "N m"
+    ce = result.crank_effort
+    ang = ce["crank_angle_deg"].to_numpy()
+    ang = ang - 360.0 * np.floor(ang[0] / 360.0)
+    tq = units.to_unit(ce["torque_N_m"].to_numpy(), t_unit)
+    mean = units.to_unit(result.summary["mean_torque_N_m"], t_unit)
+    lines = {"torque": ax.plot(ang, tq, color="k", lw=1.3, label="crank effort")[0],
+             "mean": ax.axhline(mean, color="0.4", lw=0.9, ls="--", label="mean (uniform load)")}
+    ax.fill_between(ang, tq, mean, where=tq >= mean, color="0.8", lw=0, label="excess")
+    ax.fill_between(ang, tq, mean, where=tq < mean, color="0.93", hatch="///", lw=0,
+                    edgecolor="0.6", label="deficit")
+    if "friction_torque_N_m" in ce:
+        lines["net"] = ax.plot(ang, units.to_unit(ce["net_torque_N_m"].to_numpy(), t_unit),
+                               color="0.3", lw=0.9, ls=":", label="less friction")[0]
+    s = result.summary
+    ax.set_xlim(0, 360)
+    ax.set_xticks(range(0, 361, 45))
+    ax.set_xlabel("crank angle from head-end dead centre [deg]")
+    ax.set_ylabel(f"torque [{t_unit}]")
+    ax.set_title(f"Crank effort: fluctuation c = {s['fluctuation_coefficient_c']:.3f} of one "
+                 "stroke's work", fontsize=10)
+    ax.grid(True, color="0.9", lw=0.5)
+    ax.legend(fontsize=8, frameon=False, loc="upper center", bbox_to_anchor=(0.5, -0.14),
+              ncol=5)
+    for side in ("top", "right"):
+        ax.spines[side].set_visible(False)
+    return {"ax": ax, "lines": lines}
