@@ -79,7 +79,7 @@ def main(argv=None) -> int:
         err = np.max(np.abs(np.interp(t_ref, t, n) - n_ref))
         s = r.summary
         rows.append({"setting": label, "wall_time_s": statistics.median(times),
-                     "turns": len(r.cycles), "rhs_evaluations": r.nfev,
+                     "turns": len(r.cycles), "rhs_evaluations": r.rhs_evaluations,
                      "max_speed_error_rpm": err,
                      "final_speed_error_rpm": s["final_speed_rpm"] - ref.summary["final_speed_rpm"],
                      "regulation_error": s["regulation"] - ref.summary["regulation"],

@@ -1,11 +1,10 @@
 """The ``corliss`` command.
 
-``corliss run [SCENE] [--out DIR] [--json]``
-    Simulate a scene (the bundled default without SCENE); write the card PNG, the
-    CSVs with their meta files and the summary JSON; print a short summary, or the
-    summary as JSON with ``--json``.  A transient scene writes the speed and governor
-    histories, the per-turn table, the load-step figure and its metrics, with a
-    progress bar on stderr when the run takes more than a few seconds.
+``corliss run [SCENE] [--out DIR] [--json] [--no-plots] [--units US|SI]``
+    Simulate a scene (a file, or a bundled scene by name; the default without SCENE);
+    write the CSVs with their meta files, the figures and the summary JSON, all or
+    nothing; print a short summary, or the summary as JSON with ``--json``.
+    ``--from-meta FILE`` reruns the run a meta file records.
 ``corliss events SCENE [--json] [--settings 0,0.5,1]``
     The valve events of each end, without simulating; at several gear settings.
 ``corliss gear SCENE [--out DIR]``
@@ -15,35 +14,55 @@
     CSV with its meta file and the Willans line as PNG.
 ``corliss bench [--repeats N] [--out DIR]``
     The accuracy-versus-time study of ``benchmarks/`` (from a source checkout).
-``corliss list gears|effects|governors``
-    What the registries hold.
+``corliss list scenes|gears|effects|governors``
+    What the package holds.
 
-A user's mistake exits with code 2 and a one-paragraph message, no traceback.
+A user's mistake exits with code 2 and a one-paragraph message, no traceback, and
+writes nothing.  Messages go through the ``corliss`` logger: once-per-machine notices
+(compiling the kernels, building the steam table) by default, everything with ``-v``;
+other libraries' logs stay quiet.  Runs that take more than a couple of seconds show
+a progress line on a terminal.
 """
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import logging
 import os
 import sys
+import time
+import tomllib
 from pathlib import Path
 
+import corliss
 from corliss import units
+from corliss.engine.load_range import load_range
+from corliss.engine.model import build_gear, scene_events
+from corliss.engine.simulate import simulate
 from corliss.errors import InputError
+from corliss.logs import NOTICE
+from corliss.results import OutputFiles, scene_from_meta, summary_json
+from corliss.scene import bundled_scenes, default_scene_path, find_scene, load_scene
+
+log = logging.getLogger("corliss")
 
 
-def _load(path: str | None):
-    from corliss.scene import default_scene_path, load_scene
-    return load_scene(path if path is not None else default_scene_path())
+def _load(path: str | None, units_system: str | None = None):
+    scene = load_scene(find_scene(path) if path is not None else default_scene_path())
+    if units_system is not None:
+        scene = dataclasses.replace(scene, output=dataclasses.replace(scene.output,
+                                                                      units=units_system))
+    return scene
 
 
 def _fmt(v, unit, digits=4):
     return "never" if v is None else f"{v:.{digits}g} {unit}"
 
 
-def _print_summary(result, files) -> None:
+def print_steady(result, files) -> None:
+    """The short account of a steady run."""
     s = result.summary
     us = result.scene.output.units == "US"
     P = units.to_unit
@@ -67,17 +86,107 @@ def _print_summary(result, files) -> None:
         print(f"  {end:5s} end        cut-off {_fmt(ev['cutoff_frac'], '', 3)}, release "
               f"{_fmt(ev['release_frac'], '', 3)}, compression {_fmt(ev['compression_frac'], '', 3)}"
               " (fractions of stroke)")
+    if s["fluctuation_coefficient_c"] is None:
+        print("  crank effort     fluctuation coefficient undefined: the card does no net work")
     conv = s["cycles_to_converge"]
     print(f"  cycles           {s['cycles_simulated']} simulated"
           + (f", periodic after {conv}" if conv else "") + f"; {s['wall_time_s']:.2f} s")
+    _print_files(files)
+
+
+def print_transient(result, files) -> None:
+    """The short account of a transient run."""
+    s = result.summary
+    us = result.scene.output.units == "US"
+    print(s["title"])
+    gov = s["governor"]
+    print(f"  transient, {s['simulated_s']:.2f} s in {s['turns']} turns, "
+          f"governor {gov['type'] + ' (' + gov['acts_on'] + ')' if gov else 'none'}, "
+          f"fidelity {s['fidelity']}")
+    pw = s["final_indicated_power_W"]
+    print(f"  final speed      {s['final_speed_rpm']:.2f} rpm, "
+          + (f"{pw / units.HP_W:.1f} ihp" if us else f"{pw / 1e3:.1f} kW"))
+    if s.get("speed_before_rpm") is not None:
+        print(f"  load step at     {s['step_time_s']:.3g} s: speed before "
+              f"{s['speed_before_rpm']:.2f} rpm, regulation {100 * s['regulation']:+.2f} %")
+        print(f"  largest change   {s['max_deviation_rpm']:+.2f} rpm "
+              f"({100 * s['max_deviation_frac']:+.2f} %) at {s['time_of_max_deviation_s']:.2f} s "
+              "after the step")
+        st = s["settling_time_s"]
+        print("  settling         " + ("not settled by the end" if st is None else
+                                        f"{st:.2f} s to within "
+                                        f"{100 * result.scene.run.settling_band:g} %"))
+    if s["hunting"]:
+        print(f"  HUNTING          period {s['hunting_period_s']:.2f} s, governor swing "
+              f"{100 * s['governor_swing']:.1f} % of travel")
+    if s["stalled"]:
+        print("  STALLED          the load stopped the engine")
+    print(f"  wall time        {s['wall_time_s']:.2f} s")
+    _print_files(files)
+
+
+def _print_files(files) -> None:
     for kind, path in files.items():
-        print(f"  wrote {kind:10s} {path}")
+        print(f"  wrote {kind:12s} {path}")
+
+
+class ProgressBar:
+    """A progress line on stderr, shown on a terminal once a run has taken more than
+    ``delay_s`` (short runs and logs get nothing).
+
+    ``kind`` says what the two numbers it is called with are: ``"time"`` (simulated
+    and total seconds), ``"runs"`` (runs done and in all) or ``"cycles"`` (the cycle
+    number and the relative change of work, the total unknown until the run is
+    periodic: no estimate is shown).  The time to go is shown only once a tenth of the
+    work is done, when the rate it is estimated from has settled.
+    """
+
+    def __init__(self, kind: str = "time", delay_s: float = 2.0, width: int = 30,
+                 stream=None, tolerance: float | None = None):
+        self.kind = kind
+        self.t0 = time.perf_counter()
+        self.delay = delay_s
+        self.width = width
+        self.stream = stream or sys.stderr
+        self.tolerance = tolerance
+        self.shown = False
+
+    def __call__(self, done: float, total: float) -> None:
+        elapsed = time.perf_counter() - self.t0
+        if elapsed < self.delay or not self.stream.isatty():
+            return
+        if self.kind == "cycles":
+            text = (f"  cycle {int(done)}: work changed {total:.2e} over the last cycle"
+                    + (f" (periodic at {self.tolerance:.0e})" if self.tolerance else "")
+                    + f", {elapsed:5.1f} s elapsed")
+        else:
+            frac = min(max(done / total, 0.0), 1.0) if total > 0 else 1.0
+            n = int(round(frac * self.width))
+            what = (f"{done:7.2f} of {total:g} s simulated" if self.kind == "time" else
+                    f"{int(done)} of {int(total)} runs")
+            eta = (f", ~{elapsed * (1.0 - frac) / frac:4.0f} s to go" if frac >= 0.1 else "")
+            text = f"  [{'#' * n}{'.' * (self.width - n)}] {what}, {elapsed:5.1f} s elapsed{eta}"
+        self.stream.write("\r" + text + " ")
+        self.stream.flush()
+        self.shown = True
+
+    def close(self) -> None:
+        if self.shown:
+            self.stream.write("\n")
+            self.stream.flush()
 
 
 def cmd_run(args) -> int:
-    from corliss.engine.simulate import simulate
-    from corliss.results import summary_json
-    scene = _load(args.scene)
+    if args.from_meta is not None:
+        if args.scene is not None:
+            raise InputError("--from-meta", args.from_meta, "either a scene or --from-meta, "
+                             "not both")
+        scene = scene_from_meta(args.from_meta)
+        if args.units:
+            scene = dataclasses.replace(scene, output=dataclasses.replace(scene.output,
+                                                                          units=args.units))
+    else:
+        scene = _load(args.scene, args.units)
     if args.fidelity:
         scene = scene.with_fidelity(args.fidelity)
     transient = scene.run.mode == "transient"
@@ -97,61 +206,37 @@ def cmd_run(args) -> int:
             raise InputError("--duration", args.duration, "a time above 0, up to 1 h")
         scene = scene.replace_run(duration_s=d)
     out = Path(args.out if args.out is not None else scene.output.dir)
-    bar = ProgressBar() if scene.run.mode == "transient" and not args.json else None
-    result = simulate(scene, progress=bar)
-    if bar:
-        bar.close()
-    files = result.write(out)
+    bar = None if args.json else (
+        ProgressBar("time") if transient else
+        ProgressBar("cycles", tolerance=scene.run.fidelity.convergence_tolerance))
+    try:
+        result = simulate(scene, progress=bar)
+    finally:
+        if bar:
+            bar.close()
+    files = result.write(out, plots=not args.no_plots)
     if args.json:
         print(summary_json(result.summary))
-    elif scene.run.mode == "transient":
-        from corliss.load_step import print_summary
-        print_summary(result, files)
+    elif transient:
+        print_transient(result, files)
     else:
-        _print_summary(result, files)
+        print_steady(result, files)
     return 0
 
 
-class ProgressBar:
-    """A progress bar on stderr for transient runs, shown on a terminal once a run has
-    taken more than a couple of seconds (short runs and logs get nothing)."""
-
-    def __init__(self, delay_s: float = 2.0, width: int = 40):
-        import time
-        self._clock = time.perf_counter
-        self.t0 = self._clock()
-        self.delay = delay_s
-        self.width = width
-        self.shown = False
-
-    def __call__(self, done: float, total: float) -> None:
-        elapsed = self._clock() - self.t0
-        if elapsed < self.delay or not sys.stderr.isatty():
-            return
-        frac = min(max(done / total, 0.0), 1.0) if total > 0 else 1.0
-        n = int(round(frac * self.width))
-        eta = elapsed * (1.0 - frac) / frac if frac > 0 else float("nan")
-        sys.stderr.write(f"\r  [{'#' * n}{'.' * (self.width - n)}] {done:7.2f} of {total:g} s "
-                         f"simulated, {elapsed:5.1f} s elapsed, ~{eta:4.0f} s to go ")
-        sys.stderr.flush()
-        self.shown = True
-
-    def close(self) -> None:
-        if self.shown:
-            sys.stderr.write("\n")
-            sys.stderr.flush()
+def _numbers(flag: str, text: str) -> list[float]:
+    try:
+        values = [float(v) for v in text.split(",") if v.strip()]
+    except ValueError:
+        raise InputError(flag, text, "numbers separated by commas, e.g. 0,0.5,1") from None
+    if not all(v == v and abs(v) != float("inf") for v in values):
+        raise InputError(flag, text, "finite numbers")
+    return values
 
 
 def cmd_events(args) -> int:
-    from corliss.engine.simulate import scene_events
     scene = _load(args.scene)
-    settings = None
-    if args.settings is not None:
-        try:
-            settings = [float(v) for v in args.settings.split(",") if v.strip()]
-        except ValueError:
-            raise InputError("--settings", args.settings, "numbers separated by commas, "
-                             "e.g. 0,0.5,1") from None
+    settings = None if args.settings is None else _numbers("--settings", args.settings)
     ev = scene_events(scene, settings)
     if args.json or settings is not None:
         print(json.dumps(ev, indent=2))
@@ -168,74 +253,70 @@ def cmd_gear(args) -> int:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from corliss.engine.simulate import build_gear
-    from corliss.plot import plot_valve_travel, plot_zeuner_diagram
-    from corliss.results import _write_atomic
-    scene = _load(args.scene)
+    from corliss.plot import plot_bilgram_diagram, plot_valve_travel, plot_zeuner_diagram
+    scene = _load(args.scene, args.units)
     gear = build_gear(scene)
     system = scene.output.units
-    if hasattr(gear, "draw"):
-        # a gear whose motion is not one lapped valve (double valves, Corliss, four
-        # valves) draws its own travel and diagrams on the figure
-        fig = plt.figure(figsize=(13, 5.5))
-        gear.draw(fig, system)
-    else:
-        from corliss.plot import plot_bilgram_diagram
-        fig = plt.figure(figsize=(19, 5.5))
-        plot_valve_travel(gear, fig.add_subplot(1, 3, 1), system)
-        plot_zeuner_diagram(gear, fig.add_subplot(1, 3, 2), system)
-        plot_bilgram_diagram(gear, fig.add_subplot(1, 3, 3), system)
-    fig.suptitle(f"{scene.title}: {scene.gear_type}", fontsize=11)
-    out = Path(args.out if args.out is not None else scene.output.dir) / f"{scene.name}.gear.png"
-    out.parent.mkdir(parents=True, exist_ok=True)
-    _write_atomic(out, lambda p: fig.savefig(p, dpi=120, bbox_inches="tight", format="png"))
-    plt.close(fig)
-    print(f"wrote {out}")
+    out_dir = Path(args.out if args.out is not None else scene.output.dir)
+    name = f"{scene.name}.gear.png"
+    with OutputFiles(out_dir) as out:
+        if hasattr(gear, "draw"):
+            # a gear whose motion is not one lapped valve (double valves, Corliss, four
+            # valves) draws its own travel and diagrams on the figure
+            fig = plt.figure(figsize=(13, 5.5))
+            gear.draw(fig, system)
+        else:
+            fig = plt.figure(figsize=(19, 5.5))
+            plot_valve_travel(gear, fig.add_subplot(1, 3, 1), system)
+            plot_zeuner_diagram(gear, fig.add_subplot(1, 3, 2), system)
+            plot_bilgram_diagram(gear, fig.add_subplot(1, 3, 3), system)
+        try:
+            fig.suptitle(f"{scene.title}: {scene.gear_type}", fontsize=11)
+            fig.savefig(out.stage(name), dpi=120, bbox_inches="tight", format="png")
+        finally:
+            plt.close(fig)
+    print(f"wrote {out_dir / name}")
     return 0
 
 
 def cmd_sweep(args) -> int:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from types import SimpleNamespace
-
-    from corliss.engine.load_range import load_range
-    from corliss.plot import plot_willans
-    from corliss.results import _write_atomic, convert_frame, write_csv
-    scene = _load(args.scene)
+    from corliss.columns import convert_frame
+    scene = _load(args.scene, args.units)
+    if args.fidelity:
+        scene = scene.with_fidelity(args.fidelity)
     if (args.settings is None) == (args.throttle is None):
         raise InputError("--settings", args.settings, "either --settings or --throttle, e.g. "
                          "--settings 0,0.25,0.5,0.75,1 or --throttle 0.2,0.4,0.6,0.8,1")
-    knob, text = ("setting", args.settings) if args.settings is not None else ("throttle", args.throttle)
-    try:
-        values = [float(v) for v in text.split(",") if v.strip()]
-    except ValueError:
-        raise InputError(f"--{knob}s" if knob == "setting" else "--throttle", text,
-                         "numbers separated by commas") from None
+    knob, flag, text = (("setting", "--settings", args.settings) if args.settings is not None
+                        else ("throttle", "--throttle", args.throttle))
+    values = _numbers(flag, text)
     if len(values) < 2:
-        raise InputError("--settings" if knob == "setting" else "--throttle", text,
-                         "two values or more")
-    frame = load_range(scene, knob, values)      # every value is checked before any run
-    out = Path(args.out if args.out is not None else scene.output.dir)
-    system = scene.output.units
-    # the CSV and its meta file as for a run's tables (write_csv reads these three)
-    sweep = SimpleNamespace(scene=scene, property_tier=scene.run.fidelity.properties,
-                            summary={"knob": knob, "values": values})
-    csv_path = write_csv(sweep, frame, out / f"{scene.name}.sweep.csv")
-    fig, ax = plt.subplots(figsize=(8, 5.5))
-    plot_willans({f"{scene.title} ({knob})": frame}, ax, system)
-    png = out / f"{scene.name}.willans.png"
-    _write_atomic(png, lambda p: fig.savefig(p, dpi=120, bbox_inches="tight", format="png"))
-    plt.close(fig)
-    print(convert_frame(frame, system, scene.supply.barometer_Pa)[0].to_string(index=False))
-    print(f"wrote {csv_path}\nwrote {png}")
+        raise InputError(flag, text, "two values or more")
+    bar = None if args.json else ProgressBar("runs")
+    try:
+        result = load_range(scene, knob, values, progress=bar)   # values checked before work
+    finally:
+        if bar:
+            bar.close()
+    files = result.write(Path(args.out if args.out is not None else scene.output.dir))
+    if args.json:
+        print(summary_json(result.summary))
+        return 0
+    frame = convert_frame(result.points, scene.output.units, scene.supply.barometer_Pa)[0]
+    print(frame.to_string(index=False))
+    _print_files(files)
     return 0
 
 
 def cmd_list(args) -> int:
-    if args.what == "gears":
+    if args.what == "scenes":
+        for name, path in bundled_scenes().items():
+            try:
+                title = tomllib.loads(path.read_text(encoding="utf-8")).get("title", "")
+            except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+                title = "(unreadable)"
+            print(f"{name:32s} {title}")
+    elif args.what == "gears":
         from corliss.valves import GEARS
         for name, g in sorted(GEARS.items()):
             print(f"{name:20s} {g.summary}")
@@ -272,46 +353,78 @@ def cmd_bench(args) -> int:
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="corliss", description="Steam-engine cycle and governing "
                                 "simulator: indicator cards, valve events, governing.")
-    p.add_argument("-v", "--verbose", action="store_true", help="log progress to stderr")
+    p.add_argument("--version", action="version", version=f"corliss {corliss.__version__}")
+    p.add_argument("-v", "--verbose", action="store_true",
+                   help="log corliss's progress messages to stderr")
     sub = p.add_subparsers(dest="command", required=True)
+    units_help = "units of the CSVs and figures (default: the scene's [output] units)"
     r = sub.add_parser("run", help="simulate a scene and write its card, CSV and meta")
-    r.add_argument("scene", nargs="?", help="scene TOML (default: the bundled default scene)")
+    r.add_argument("scene", nargs="?", help="scene TOML, or a bundled scene's name "
+                   "(default: the bundled default scene)")
     r.add_argument("--out", help="output directory (default: the scene's [output] dir)")
     r.add_argument("--json", action="store_true", help="print the summary as JSON")
+    r.add_argument("--no-plots", action="store_true", help="write the tables and summary only")
+    r.add_argument("--units", choices=("US", "SI"), help=units_help)
     r.add_argument("--fidelity", choices=("reference", "standard", "fast"),
                    help="override the scene's fidelity preset")
     r.add_argument("--cycles", type=int, help="simulate exactly N cycles (steady scenes)")
     r.add_argument("--duration", help="simulated time of a transient scene, e.g. \"5 s\"")
+    r.add_argument("--from-meta", metavar="FILE",
+                   help="rerun the run a .meta.json file records, exactly")
     r.set_defaults(func=cmd_run)
     e = sub.add_parser("events", help="valve events of each end, without simulating")
-    e.add_argument("scene", help="scene TOML")
+    e.add_argument("scene", help="scene TOML or a bundled scene's name")
     e.add_argument("--json", action="store_true", help="print JSON")
     e.add_argument("--settings", help="gear settings to list, e.g. 0,0.5,1 (link block u/c)")
     e.set_defaults(func=cmd_events)
     gp = sub.add_parser("gear", help="valve travel and Zeuner diagram of a scene's gear")
-    gp.add_argument("scene", help="scene TOML")
+    gp.add_argument("scene", help="scene TOML or a bundled scene's name")
     gp.add_argument("--out", help="output directory (default: the scene's [output] dir)")
+    gp.add_argument("--units", choices=("US", "SI"), help=units_help)
     gp.set_defaults(func=cmd_gear)
     sw = sub.add_parser("sweep", help="steady cards across the load range: Willans line")
-    sw.add_argument("scene", help="scene TOML (a transient one runs steady at its speed)")
+    sw.add_argument("scene", help="scene TOML or a bundled scene's name (a transient one "
+                    "runs steady at its speed)")
     sw.add_argument("--settings", help="gear settings, e.g. 0,0.25,0.5,0.75,1")
     sw.add_argument("--throttle", help="throttle openings, e.g. 0.2,0.4,0.6,0.8,1")
     sw.add_argument("--out", help="output directory (default: the scene's [output] dir)")
+    sw.add_argument("--units", choices=("US", "SI"), help=units_help)
+    sw.add_argument("--fidelity", choices=("reference", "standard", "fast"),
+                    help="override the scene's fidelity preset")
+    sw.add_argument("--json", action="store_true", help="print the summary as JSON")
     sw.set_defaults(func=cmd_sweep)
     b = sub.add_parser("bench", help="run the accuracy-versus-time study (source checkout)")
     b.add_argument("--repeats", type=int, default=3, help="repeats per setting (median)")
     b.add_argument("--out", help="directory for the CSV and plot (default benchmarks/results)")
     b.set_defaults(func=cmd_bench)
-    ls = sub.add_parser("list", help="list registries")
-    ls.add_argument("what", choices=("gears", "effects", "governors"))
+    ls = sub.add_parser("list", help="list bundled scenes and the registries")
+    ls.add_argument("what", choices=("scenes", "gears", "effects", "governors"))
     ls.set_defaults(func=cmd_list)
     return p
 
 
+class _Handler(logging.StreamHandler):
+    """Writes to whatever ``sys.stderr`` is at the time (tests capture it)."""
+
+    def emit(self, record):
+        self.stream = sys.stderr
+        super().emit(record)
+
+
+def configure_logging(verbose: bool) -> None:
+    """The ``corliss`` logger to stderr: notices by default, debug with ``-v``; the root
+    logger (and with it every other library) untouched."""
+    handler = _Handler()
+    handler.setFormatter(logging.Formatter("corliss: %(message)s" if not verbose else
+                                           "%(levelname)s %(name)s: %(message)s"))
+    log.handlers[:] = [handler]
+    log.setLevel(logging.DEBUG if verbose else NOTICE)
+    log.propagate = False
+
+
 def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
-    logging.basicConfig(level=logging.DEBUG if args.verbose else logging.WARNING,
-                        format="%(levelname)s %(name)s: %(message)s")
+    configure_logging(args.verbose)
     try:
         return args.func(args)
     except InputError as exc:

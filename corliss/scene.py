@@ -196,10 +196,17 @@ class Scene:
     governor: object | None = None
     flywheel: object | None = None
     load: object | None = None
+    #: The scene's tables as read (TOML or a dict), to rebuild it exactly.
+    data: dict | None = dataclasses.field(default=None, compare=False, repr=False)
+    #: The scene file's text, when it was read from a file.
+    text: str | None = dataclasses.field(default=None, compare=False, repr=False)
 
     def resolved(self) -> dict:
         """The scene as resolved SI values (for result metadata)."""
-        return dataclasses.asdict(self)
+        out = dataclasses.asdict(self)
+        for raw in ("data", "text"):
+            out.pop(raw)
+        return out
 
     def replace_run(self, **changes) -> "Scene":
         """A copy with fields of ``run`` changed (e.g. ``cycles=3``)."""
@@ -497,7 +504,7 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
     loop = _speed_loop(data, run, supply, gt, gear, barometer,
                        Path(source).parent if source else None)
     return Scene(title, engine, supply, exhaust, gt.name, gear, run, output, name, source, compound,
-                 **loop)
+                 **loop, data=data)
 
 
 def _speed_loop(data: dict, run: RunSpec, supply: SupplySpec, gt, gear, barometer: float,
@@ -527,9 +534,8 @@ def _speed_loop(data: dict, run: RunSpec, supply: SupplySpec, gt, gear, baromete
         gov_t = governor_type(g.raw("type"))
         spec = gov_t.parse(g)
         g.finish()
-        from corliss.engine.transient import actuator_range
         mech = gov_t.build(spec).mechanism(11)
-        lo_hi = actuator_range(mech)
+        lo_hi = mech.actuator_range()
         if mech.acts_on == "throttle":
             if not run.has("steam_chest") or supply.pipe_diameter_m is None:
                 raise InputError("governor.type", gov_t.name, "a throttling governor needs the "
@@ -572,13 +578,40 @@ def load_scene(path: str | Path) -> Scene:
     if not p.is_file():
         raise InputError("scene", str(path), "the path of an existing scene file (.toml)")
     try:
-        data = tomllib.loads(p.read_text(encoding="utf-8"))
+        text = p.read_text(encoding="utf-8")
+        data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise InputError("scene", str(path), f"a TOML file ({exc})") from None
-    return scene_from_dict(data, name=p.stem, source=str(p))
+    return dataclasses.replace(scene_from_dict(data, name=p.stem, source=str(p)), text=text)
 
 
 def default_scene_path() -> Path:
     """The bundled default scene (a 12 x 24 in slide-valve engine)."""
+    return bundled_scenes()["default"]
+
+
+def bundled_scenes() -> dict[str, Path]:
+    """The scenes that come with the package: ``{name: path}``, sorted by name."""
     from importlib.resources import files
-    return Path(str(files("corliss.scenes") / "default.toml"))
+    root = Path(str(files("corliss.scenes")))
+    return {p.stem: p for p in sorted(root.glob("*.toml"))}
+
+
+def find_scene(name_or_path: str | Path) -> Path:
+    """A scene file by path, or a bundled scene by name (``"default"``, ...).
+
+    Raises
+    ------
+    InputError
+        If it is neither an existing file nor the name of a bundled scene.
+    """
+    p = Path(name_or_path)
+    if p.is_file():
+        return p
+    scenes = bundled_scenes()
+    stem = p.name[:-5] if p.name.endswith(".toml") else p.name
+    if p.parent == Path(".") and stem in scenes:
+        return scenes[stem]
+    raise InputError("scene", str(name_or_path), "the path of an existing scene file (.toml) "
+                     "or the name of a bundled scene (corliss list scenes): "
+                     + ", ".join(scenes))

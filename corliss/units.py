@@ -59,6 +59,9 @@ _LINEAR: dict[str, dict[str, float]] = {
     "damping": {"N s/m": 1.0, "kN s/m": 1e3, "lbf s/in": LBF_N / INCH_m,
                 "lbf s/ft": LBF_N / FOOT_m},
     "specific_energy": {"J/kg": 1.0, "kJ/kg": 1e3, "Btu/lb": 2326.0},
+    "energy": {"J": 1.0, "kJ": 1e3, "MJ": 1e6, "Btu": 1055.05585},
+    "specific_steam_consumption": {"kg/J": 1.0, "kg/kWh": 1.0 / 3.6e6,
+                                   "lb/hp h": POUND_kg / (HP_W * 3600.0)},
 }
 
 _ABS_PRESSURE = {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "bar": 1e5, "bara": 1e5,

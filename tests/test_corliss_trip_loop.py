@@ -11,7 +11,7 @@ import pytest
 
 import corliss
 from corliss.engine import transient_kernel as tk
-from corliss.engine.simulate import build_gear, build_network, geometry_of, reservoir_states
+from corliss.engine.model import build_gear, build_network, geometry_of, reservoir_states
 from corliss.engine.transient import build_tables
 from corliss.thermo.steam import make_steam
 from corliss.valves import tabulate
@@ -86,11 +86,11 @@ def test_cut_off_follows_the_governor(loop):
     before = c[c["t_end_s"] < 8.0].iloc[-1]
     after = c.iloc[-1]
     assert after["cutoff_head_frac"] < before["cutoff_head_frac"] - 0.02
-    assert after["gear_setting"] < before["gear_setting"]
+    assert after["gear_setting_frac"] < before["gear_setting_frac"]
     geo = geometry_of(scene)
     gear = build_gear(scene)
     for row in (before, after):
-        ev = corliss.valves.events(gear.with_setting(float(row["gear_setting"])),
+        ev = corliss.valves.events(gear.with_setting(float(row["gear_setting_frac"])),
                                    lambda t: float(geo.fraction(t)))
         # the table's cut-off is read linearly between 21 settings: within 0.01 of stroke
         assert row["cutoff_head_frac"] == pytest.approx(ev["head"]["cutoff_frac"], abs=0.01)
@@ -112,9 +112,9 @@ def test_the_safety_cams_shut_off_steam_when_the_governor_falls():
     scene = dataclasses.replace(scene, load=load).replace_run(duration_s=14.0, record="cycle")
     r = corliss.simulate(scene)
     c = r.cycles
-    mech = r.tables.mechanism
+    mech = r.mechanism
     assert mech.safety_z > 0.0
     before = c[c["t_end_s"] < 2.0]["indicated_power_W"].iloc[-1]
-    safe = c[(c["governor_z"] < mech.safety_z) & (c["governor_z_end"] < mech.safety_z)]
+    safe = c[(c["governor_z_frac"] < mech.safety_z) & (c["governor_z_end_frac"] < mech.safety_z)]
     assert len(safe) >= 2
     assert (safe["indicated_power_W"] < 0.02 * before).all()

@@ -106,7 +106,7 @@ def test_friction_gives_brake_power_and_costs_nothing_when_not_named():
     assert s["friction_torque_N_m"] == pytest.approx(tf, rel=1e-9)
     assert s["brake_power_W"] == pytest.approx(s["indicated_power_W"] - tf * omega, rel=1e-12)
     assert 0.0 < s["mechanical_efficiency"] < 1.0
-    assert plain.nfev == fr.nfev
+    assert plain.rhs_evaluations == fr.rhs_evaluations
     assert np.array_equal(plain.timeseries["p_head_Pa"].to_numpy(),
                           fr.timeseries["p_head_Pa"].to_numpy())
     assert "brake_power_W" not in plain.summary and "inertia_force_N" not in plain.crank_effort

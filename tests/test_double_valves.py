@@ -628,7 +628,7 @@ def test_scene_tables_of_the_other_gears(kind):
     import tomllib
     from pathlib import Path
 
-    from corliss.engine.simulate import build_gear
+    from corliss.engine.model import build_gear
     from corliss.errors import InputError
     from corliss.scene import scene_from_dict
     path = Path(__file__).resolve().parent.parent / "scenes" / "meyer-cutoff.toml"
@@ -649,7 +649,7 @@ def test_a_scene_that_admits_twice_warns(caplog):
     import tomllib
     from pathlib import Path
 
-    from corliss.engine.simulate import build_gear
+    from corliss.engine.model import build_gear
     from corliss.scene import scene_from_dict
     path = Path(__file__).resolve().parent.parent / "scenes" / "meyer-cutoff.toml"
     data = tomllib.loads(path.read_text())

@@ -30,7 +30,7 @@ def test_scene_gear_draws_and_gives_events(path, tmp_path, capsys):
     assert cli.main(["gear", str(path), "--out", str(tmp_path)]) == 0
     assert (tmp_path / f"{path.stem}.gear.png").stat().st_size > 10_000
     capsys.readouterr()
-    from corliss.engine.simulate import build_gear
+    from corliss.engine.model import build_gear
     from corliss.scene import load_scene
     gear = build_gear(load_scene(path))
     args = ["events", str(path), "--json"]

@@ -242,7 +242,7 @@ def test_allen_rocker_ratio_of_art_73_keeps_the_valve_centred():
 
 
 def test_exact_gooch_and_allen_from_a_scene():
-    from corliss.engine.simulate import build_gear
+    from corliss.engine.model import build_gear
     vg = {"type": "link_motion", "link": "gooch", "eccentricity": "2.75 in",
           "angular_advance": "20 deg", "eccentric_rod": "54 in", "half_link": "6 in",
           "block": "3 in", "radius_rod": "40 in", "motion": "exact", "lead": None,

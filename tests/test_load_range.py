@@ -17,15 +17,15 @@ CORLISS = SCENES / "corliss-governor.toml"
 @pytest.fixture(scope="module")
 def sweeps():
     scene = corliss.load_scene(CORLISS)
-    cutoff = load_range(scene, "setting", [0.2, 0.4, 0.6, 0.8, 1.0])
+    cutoff = load_range(scene, "setting", [0.2, 0.4, 0.6, 0.8, 1.0]).points
     # the same engine throttled with its valves latched, near three-quarter cut-off
     import dataclasses
-    from corliss.engine.simulate import build_gear
+    from corliss.engine.model import build_gear
     latched = dataclasses.replace(
         scene, gear=build_gear(scene).with_setting(1.2).spec,
         supply=dataclasses.replace(scene.supply, chest_volume_m3=0.028, pipe_diameter_m=0.0762),
         run=dataclasses.replace(scene.run, effects=scene.run.effects + ("steam_chest",)))
-    throttle = load_range(latched, "throttle", [0.06, 0.1, 0.15, 0.25])
+    throttle = load_range(latched, "throttle", [0.06, 0.1, 0.15, 0.25]).points
     return cutoff, throttle
 
 

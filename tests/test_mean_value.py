@@ -44,7 +44,7 @@ def test_mean_value_flywheel_energy_balances(both):
     inertia = r.scene.flywheel.inertia_kg_m2
     w0, w1 = (c["speed_start_rpm"].iloc[0] * math.pi / 30, c["speed_end_rpm"].iloc[-1] * math.pi / 30)
     d_ke = 0.5 * inertia * (w1 ** 2 - w0 ** 2)
-    work = (c["indicated_work_J"] - c["friction_work_J"] - c["load_work_J"]).sum()
+    work = (c["work_J"] - c["friction_work_J"] - c["load_work_J"]).sum()
     assert abs(work - d_ke) < 1e-6 * c["load_work_J"].sum()
 
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from corliss import scene_events
-from corliss.engine.simulate import build_gear, geometry_of
+from corliss.engine.model import build_gear, geometry_of
 
 from conftest import make_scene
 

@@ -107,7 +107,7 @@ def test_portmap_puts_the_trick_valves_kinks_on_its_grid():
 
 def test_scene_key_and_its_checks():
     sc = make_scene(valve_gear={"allen_passage": "0.375 in"})
-    from corliss.engine.simulate import build_gear
+    from corliss.engine.model import build_gear
     assert build_gear(sc).spec.allen_passage_m == pytest.approx(A)
     with pytest.raises(InputError, match="valve_gear.allen_passage"):
         make_scene(valve_gear={"allen_passage": "1.5 in"})     # wider than the 1.25 in port

@@ -60,7 +60,7 @@ def test_output_frames_convert_rates_torques_and_powers():
     pressures absolute."""
     import pandas as pd
 
-    from corliss.results import convert_frame
+    from corliss.columns import convert_frame
     df = pd.DataFrame({"steam_rate_kg_per_h": [0.45359237], "torque_N_m": [1.3558179483314004],
                        "power_W": [745.69987158227], "p_head_Pa": [101325.0]})
     us, us_units = convert_frame(df, "US", 101325.0)

@@ -18,6 +18,7 @@ from __future__ import annotations
 import math
 
 from corliss import units
+from corliss.thermo.steam import HEOSSteam, latent_heat
 
 #: Marks's mean constant of condensation, Art. 82, in kg / (m2 K s).
 MARKS_C = 0.02047 * units.POUND_kg / (units.FOOT_m ** 2 * (5.0 / 9.0) * 60.0)
@@ -85,7 +86,6 @@ class MarksLaw:
 
     def __init__(self, network, geometry, events: dict, speed_rad_s: float, supply_T_K: float,
                  exhaust_T_K: float):
-        from corliss.thermo.steam import HEOSSteam
         self.network = network
         self.geometry = geometry
         self.events = events
@@ -99,9 +99,7 @@ class MarksLaw:
     @staticmethod
     def latent(T: float) -> float:
         """h_g - h_f at saturation temperature T [J/kg] (IAPWS-95)."""
-        import CoolProp.CoolProp as CP
-        return (CP.PropsSI("H", "T", T, "Q", 1.0, "Water")
-                - CP.PropsSI("H", "T", T, "Q", 0.0, "Water"))
+        return latent_heat(T)
 
     def rows(self) -> dict:
         """{node: columns 5-10} for the current cut-off temperatures."""

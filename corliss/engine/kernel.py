@@ -30,14 +30,18 @@ once per machine (measured in the accuracy study).
 
 from __future__ import annotations
 
+import logging
 import math
+import os
 
 import numpy as np
 from numba import njit
 
+from corliss.logs import NOTICE
 from corliss.thermo.orifice import kappa_of, port_flow
 from corliss.thermo.steam_table import lookup, t_sat
 
+log = logging.getLogger(__name__)
 TIER_TABLE, TIER_PERFECT = 0, 1
 TWO_PI = 2.0 * math.pi
 #: Clamps on trial states: integrators probe states with no steam (a negative mass in
@@ -252,7 +256,7 @@ def rhs(th, y, dy, net, tier, tab, perf, pr, cell):
 
 
 # Dormand-Prince 5(4) tableau
-_C = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0, 1.0])
+DOPRI_NODES = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0, 1.0])
 _A = np.array([
     [0, 0, 0, 0, 0, 0],
     [1 / 5, 0, 0, 0, 0, 0],
@@ -267,7 +271,7 @@ _E = np.array([71 / 57600, 0, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525,
 
 
 @njit(cache=True)
-def _hermite(t0, y0, f0, t1, y1, f1, t, out):
+def hermite(t0, y0, f0, t1, y1, f1, t, out):
     h = t1 - t0
     s = (t - t0) / h
     h00 = 2 * s ** 3 - 3 * s ** 2 + 1
@@ -424,7 +428,7 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
                 rhs(t1, ynew, f1, net, tier, tab, perf, pr, cell)
                 nfev += 4
                 while io < out_theta.shape[0] and out_theta[io] <= t1:
-                    _hermite(t, y, f0, t1, ynew, f1, out_theta[io], tmp)
+                    hermite(t, y, f0, t1, ynew, f1, out_theta[io], tmp)
                     samples[:, io] = tmp
                     io += 1
                 t = t1
@@ -478,7 +482,7 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
                 K[0, :] = f0
                 for s_ in range(1, 7):
                     dopri_stage(y, K, s_, h, ytmp)
-                    rhs(t + _C[s_] * h, ytmp, K[s_], net, tier, tab, perf, pr, cell)
+                    rhs(t + DOPRI_NODES[s_] * h, ytmp, K[s_], net, tier, tab, perf, pr, cell)
                 nfev += 6
                 err = dopri_error(y, ytmp, K, h, atol, rtol)
                 expo = -0.2
@@ -487,7 +491,7 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
             if err <= 1.0 or h < 1e-12:
                 t1 = t + h
                 while io < out_theta.shape[0] and out_theta[io] <= t1:
-                    _hermite(t, y, f0, t1, ytmp, K[6], out_theta[io], tmp)
+                    hermite(t, y, f0, t1, ytmp, K[6], out_theta[io], tmp)
                     samples[:, io] = tmp
                     io += 1
                 t = t1
@@ -504,3 +508,18 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
         samples[:, io] = y
         io += 1
     return y, samples, nfev, True
+
+
+def announce_compile(*dispatchers) -> None:
+    """Say so, once, before compiled functions that are not yet in numba's disk cache
+    are first called: the first run on a machine spends a minute compiling them."""
+    missing = []
+    for d in dispatchers:
+        try:
+            if not d.signatures and not os.path.exists(d._cache._cache_file._index_path):
+                missing.append(d.__name__)
+        except AttributeError:     # a numba without these internals: say nothing
+            return
+    if missing:
+        log.log(NOTICE, "compiling the kernels once for this machine (%s; a minute or so); "
+                "later runs load them from the cache", ", ".join(missing))

@@ -11,48 +11,20 @@ cut-off, Marks Art. 2).
 
 from __future__ import annotations
 
-import dataclasses
+import time
+from typing import Callable
 
-import numpy as np
 import pandas as pd
 
-from corliss.errors import InputError
+from corliss.engine.model import KNOBS, at_knob
+from corliss.engine.result import SweepResult, willans_fit
+from corliss.engine.steady import run_steady
 
-KNOBS = ("setting", "throttle")
-
-
-def steady_scene(scene):
-    """The scene as a steady run: no flywheel, load or governor, speed held."""
-    run = dataclasses.replace(scene.run, mode="steady", duration_s=None)
-    return dataclasses.replace(scene, run=run, governor=None, governor_type=None, flywheel=None,
-                               load=None)
+__all__ = ["KNOBS", "load_range", "willans_fit"]
 
 
-def at_knob(scene, knob: str, value: float):
-    """The steady scene with the gear's setting, or the throttle's opening, at ``value``."""
-    from corliss.engine.simulate import build_gear
-    sc = steady_scene(scene)
-    if knob == "setting":
-        gear = build_gear(sc)
-        if gear.setting_range is None:
-            raise InputError("--settings", value, f"a gear with a setting; the "
-                             f"{scene.gear_type} gear has none (sweep --throttle instead)")
-        lo, hi = gear.setting_range
-        if not lo <= value <= hi:
-            raise InputError("--settings", value, f"settings from {lo} to {hi} "
-                             f"({gear.setting_name})")
-        return dataclasses.replace(sc, gear=gear.with_setting(value).spec)
-    if knob == "throttle":
-        if not sc.run.has("steam_chest") or sc.supply.pipe_diameter_m is None:
-            raise InputError("--throttle", value, "a scene with the \"steam_chest\" effect and "
-                             "supply.pipe_diameter: the throttle is in the steam pipe")
-        if not 0.0 < value <= 1.0:
-            raise InputError("--throttle", value, "openings above 0, up to 1 (wide open)")
-        return dataclasses.replace(sc, supply=dataclasses.replace(sc.supply, throttle=value))
-    raise ValueError(f"knob {knob!r}: one of {KNOBS}")
-
-
-def load_range(scene, knob: str, values) -> pd.DataFrame:
+def load_range(scene, knob: str, values, *,
+               progress: Callable[[float, float], None] | None = None) -> SweepResult:
     """Steady runs at each value of ``knob``, one row each.
 
     Parameters
@@ -63,33 +35,36 @@ def load_range(scene, knob: str, values) -> pd.DataFrame:
         ``"setting"`` (the gear's setting, as its governor or reverse lever sets it) or
         ``"throttle"`` (opening of the throttle, 0..1).
     values : sequence of float
+        The settings [-] or openings [-]; every one is checked before any run.
+    progress : callable, optional
+        Called after each run with (runs done, runs in all).
 
     Returns
     -------
-    DataFrame
-        ``value``, ``indicated_power_W``, ``steam_rate_kg_per_h``,
-        ``water_rate_kg_per_kWh``, ``cutoff_head_frac``, and
+    SweepResult
+        Its ``points`` table: ``knob_frac``, ``indicated_power_W``,
+        ``steam_rate_kg_per_h``, ``water_rate_kg_per_kWh``, ``cutoff_head_frac``, and
         ``brake_power_W`` when ``friction`` is named.
     """
-    from corliss.engine.simulate import simulate
-    scenes = [at_knob(scene, knob, float(v)) for v in values]     # check all before work
+    t0 = time.perf_counter()
+    values = [float(v) for v in values]
+    scenes = [at_knob(scene, knob, v) for v in values]     # check all before work
     rows = []
-    for v, sc in zip(values, scenes):
-        s = simulate(sc).summary
-        rows.append({"value": float(v), "indicated_power_W": s["indicated_power_W"],
+    nfev = 0
+    tier = scene.run.fidelity.properties
+    for n, (v, sc) in enumerate(zip(values, scenes), start=1):
+        r = run_steady(sc)
+        s = r.summary
+        nfev += r.rhs_evaluations
+        tier = r.property_tier
+        rows.append({"knob_frac": v, "indicated_power_W": s["indicated_power_W"],
                      "steam_rate_kg_per_h": s["steam_rate_kg_per_h"],
                      "water_rate_kg_per_kWh": s["water_rate_kg_per_kWh"],
                      "cutoff_head_frac": s["events"]["head"]["cutoff_frac"],
                      **({"brake_power_W": s["brake_power_W"]} if "brake_power_W" in s else {})})
-    return pd.DataFrame(rows)
-
-
-def willans_fit(frame: pd.DataFrame) -> tuple[float, float, float]:
-    """Least-squares line steam = a + b power through a sweep: (a [kg/h], b [kg/h per W],
-    R^2)."""
-    x = frame["indicated_power_W"].to_numpy()
-    y = frame["steam_rate_kg_per_h"].to_numpy()
-    b, a = np.polyfit(x, y, 1)
-    resid = y - (a + b * x)
-    r2 = 1.0 - float(np.sum(resid ** 2)) / float(np.sum((y - y.mean()) ** 2))
-    return float(a), float(b), r2
+        if progress:
+            progress(n, len(values))
+    points = pd.DataFrame(rows)
+    return SweepResult(scene=scene, property_tier=tier, timeseries=points, cycles=points,
+                       rhs_evaluations=nfev, wall_time_s=time.perf_counter() - t0, knob=knob,
+                       values=values)

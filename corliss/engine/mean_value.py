@@ -28,6 +28,12 @@ import numpy as np
 import pandas as pd
 from scipy.integrate import solve_ivp
 
+from corliss.engine.model import at_knob, geometry_of, steady_scene
+from corliss.engine.result import TransientResult
+from corliss.engine.steady import run_steady
+from corliss.governors import governor_type
+from corliss.governors.mechanism import CREEP_PER_S
+
 log = logging.getLogger(__name__)
 TWO_PI = 2.0 * math.pi
 #: Grid of the maps: actuator values across the governor's range, and speeds as
@@ -66,15 +72,12 @@ def _cell(grid: np.ndarray, x: float):
 
 def build_map(scene, mech) -> EngineMap:
     """Steady crank-resolved runs on the grid (the scene's effects and fidelity)."""
-    from corliss.engine.load_range import at_knob
-    from corliss.engine.simulate import simulate
-    from corliss.engine.transient import actuator_range
     t0 = time.perf_counter()
     knob = "throttle" if mech is not None and mech.acts_on == "throttle" else "setting"
     if mech is None:
         acts = np.array([0.0, 1.0])
     else:
-        lo, hi = actuator_range(mech)
+        lo, hi = mech.actuator_range()
         acts = np.linspace(lo, hi, ACTUATOR_POINTS)
     speeds = np.array(SPEED_FRACTIONS) * scene.run.speed_rad_s
     torque = np.empty((acts.size, speeds.size))
@@ -83,14 +86,12 @@ def build_map(scene, mech) -> EngineMap:
     steady = dataclasses.replace(scene, run=dataclasses.replace(scene.run, model="crank_resolved"))
     for i, a in enumerate(acts):
         if mech is None:        # no governor: the scene's own gear and throttle
-            base = dataclasses.replace(
-                steady, run=dataclasses.replace(steady.run, mode="steady", duration_s=None),
-                governor=None, governor_type=None, flywheel=None, load=None)
+            base = steady_scene(steady)
         else:
             base = at_knob(steady, knob, float(max(a, 1e-3) if knob == "throttle" else a))
         for j, w in enumerate(speeds):
             sc = dataclasses.replace(base, run=dataclasses.replace(base.run, speed_rad_s=float(w)))
-            s = simulate(sc).summary
+            s = run_steady(sc).summary
             torque[i, j] = s["indicated_power_W"] / w
             steam[i, j] = s["steam_rate_kg_per_h"] / 3600.0 * TWO_PI / w
             if knob == "setting" and mech is not None and j == speeds.size // 2:
@@ -99,17 +100,26 @@ def build_map(scene, mech) -> EngineMap:
     return EngineMap(acts, speeds, torque, steam, cut, time.perf_counter() - t0)
 
 
-def run_mean_value(scene, *, progress=None) -> dict:
-    """Run a transient scene on the mean-value model; the same outputs as the
-    crank-resolved loop (per-turn table, time series of speed and governor), without
-    cylinder pressures."""
-    from corliss.engine.simulate import geometry_of
-    from corliss.engine.transient import CREEP_PER_S, equilibrium_z
+def run_mean_value(scene, *, progress=None) -> TransientResult:
+    """Run a transient scene on the mean-value model.
+
+    Parameters
+    ----------
+    scene : Scene
+        ``run.mode = "transient"``, ``run.model = "mean_value"``.
+    progress : callable, optional
+        Called with (simulated time [s], duration [s]).
+
+    Returns
+    -------
+    TransientResult
+        The same tables as the crank-resolved loop (per-turn table, time series of speed
+        and governor), without cylinder pressures.
+    """
     t_wall = time.perf_counter()
     gov = None
     mech = None
     if scene.governor is not None:
-        from corliss.governors import governor_type
         gov = governor_type(scene.governor_type).build(scene.governor)
         mech = gov.mechanism(201)
     emap = build_map(scene, mech)
@@ -149,7 +159,7 @@ def run_mean_value(scene, *, progress=None) -> dict:
             out[2], out[3] = zd, zdd
         return out
 
-    z0 = equilibrium_z(mech, w_ref) if mech is not None else 0.0
+    z0 = mech.equilibrium_z(w_ref) if mech is not None else 0.0
     y0 = np.array([0.0, w_ref, z0, 0.0, 0.0, 0.0, 0.0])
     t_int = time.perf_counter()
 
@@ -178,28 +188,31 @@ def run_mean_value(scene, *, progress=None) -> dict:
         row = {"cycle": k + 1, "t_start_s": t0, "t_end_s": t1,
                "mean_speed_rpm": w_mean * 30 / math.pi,
                "speed_start_rpm": ye[1, k] * 30 / math.pi, "speed_end_rpm": ye[1, k + 1] * 30 / math.pi,
-               "indicated_work_J": work[0], "indicated_power_W": work[0] / dt,
+               "work_J": work[0], "indicated_power_W": work[0] / dt,
                "load_work_J": work[1], "load_power_W": work[1] / dt, "friction_work_J": work[2],
-               "governor_z": 0.5 * (z_a + z_b), "governor_z_end": z_b,
-               "steam_kg": steam, "steam_rate_kg_per_h": steam / dt * 3600.0}
+               "governor_z_frac": 0.5 * (z_a + z_b), "governor_z_end_frac": z_b,
+               "m_supply_kg": steam, "steam_rate_kg_per_h": steam / dt * 3600.0}
         if mech is not None:
             if mech.acts_on == "throttle":
-                row["throttle_opening"] = a_mean
+                row["throttle_opening_frac"] = a_mean
             else:
-                row["gear_setting"] = a_mean
+                row["gear_setting_frac"] = a_mean
                 row["cutoff_head_frac"] = float(np.interp(a_mean, emap.actuator,
                                                           emap.cutoff_head_frac))
         rows.append(row)
     cycle = np.clip(np.searchsorted(edges, tg, side="right"), 1, max(n_turns, 1))
     z = np.clip(yg[2], 0.0, 1.0)
     series = pd.DataFrame({"cycle": cycle, "time_s": tg, "crank_angle_deg": np.degrees(yg[0]),
-                           "speed_rpm": yg[1] * 30 / math.pi, "governor_z": z,
-                           "actuator": mech.actuator(z) if mech is not None else 0.0 * z})
+                           "speed_rpm": yg[1] * 30 / math.pi, "governor_z_frac": z,
+                           "actuator_frac": mech.actuator(z) if mech is not None else 0.0 * z})
     log.info("mean-value model: maps %.2f s, integration %.2f s (%d evaluations)",
              emap.build_s, time.perf_counter() - t_int, sol.nfev)
     if progress:
         progress(t_end, run.duration_s)
-    return {"timeseries": series, "cycles": pd.DataFrame(rows), "map": emap,
-            "mechanism": mech, "z0": z0, "geometry": geometry_of(scene),
-            "stalled": sol.status == 1, "wall_time_s": time.perf_counter() - t_wall,
-            "integration_s": time.perf_counter() - t_int, "nfev": sol.nfev}
+    result = TransientResult(scene=scene, property_tier=scene.run.fidelity.properties,
+                             timeseries=series, cycles=pd.DataFrame(rows),
+                             rhs_evaluations=int(sol.nfev),
+                             wall_time_s=time.perf_counter() - t_wall,
+                             geometry=geometry_of(scene), stalled=sol.status == 1,
+                             mechanism=mech, z_start=z0, engine_map=emap)
+    return result

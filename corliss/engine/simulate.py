@@ -1,403 +1,46 @@
-"""Assemble the model a scene asks for, run it, and hand back a Result.
+"""``simulate``: run a scene by its mode and model level.
 
-Only the effects the scene names are assembled: without ``port_flow`` the ends take
-chest and back pressure through ideal ports (:mod:`corliss.engine.equilibrium`);
-without ``rod_angularity`` the connecting rod is infinite.  ``model = "ideal"`` is
-the algebraic card (:mod:`corliss.engine.ideal_card`).
+A dispatch only: the runners live in their own modules (:mod:`corliss.engine.steady`,
+:mod:`corliss.engine.transient`, :mod:`corliss.engine.mean_value`), each building its
+model in :mod:`corliss.engine.model` and returning a result of
+:mod:`corliss.engine.result`.
 """
 
 from __future__ import annotations
 
-import logging
-import math
-import time
 from typing import Callable
 
-import numpy as np
-import pandas as pd
+from corliss.engine.mean_value import run_mean_value
+from corliss.engine.model import scene_events
+from corliss.engine.result import Result
+from corliss.engine.steady import run_steady
+from corliss.engine.transient import run_transient
 
-from corliss.engine import equilibrium as eq
-from corliss.engine.crank_resolved import CrankResolved
-from corliss.engine.geometry import CylinderGeometry
-from corliss.engine.ideal_card import card_area, hyperbolic_card, indicated_steam_kg
-from corliss.engine.network import (compound, cylinder_prefix, piston_ends, single_cylinder,
-                                    with_leakage, with_steam_chest, with_wall_heat)
-from corliss.errors import InputError
-from corliss.results import Result
-from corliss.scene import Scene
-from corliss.thermo.steam import HEOSSteam, State, Steam, TableSteam, make_steam
-from corliss.thermo.steam_table import lookup_many
-from corliss.valves import events as valve_events
-from corliss.valves import gear_type, tabulate
-
-log = logging.getLogger(__name__)
-TWO_PI = 2.0 * math.pi
-EQUILIBRIUM_STEP_DEG = 0.25
+__all__ = ["scene_events", "simulate"]
 
 
-def geometry_of(scene: Scene) -> CylinderGeometry:
-    """The cylinder geometry, with the connecting rod only if ``rod_angularity`` is named."""
-    return CylinderGeometry(scene.engine, rod_angularity=scene.run.has("rod_angularity"))
-
-
-def build_gear(scene: Scene):
-    """The scene's valve gear object."""
-    gear = gear_type(scene.gear_type).build(scene.gear)
-    return gear.with_speed(scene.run.speed_rad_s) if hasattr(gear, "with_speed") else gear
-
-
-def scene_events(scene: Scene, settings: list[float] | None = None):
-    """Valve events of both ends, without simulating.
-
-    With ``settings`` (values of the gear's setting, e.g. the block offset of a link
-    motion), a list of ``{"setting": s, "head": {...}, "crank": {...}}``.
-    """
-    geo = geometry_of(scene)
-    gear = build_gear(scene)
-
-    def frac(t):
-        return float(geo.fraction(t))
-
-    if settings is None:
-        return valve_events(gear, frac)
-    if gear.setting_range is None:
-        raise InputError("--settings", settings, f"no settings: the {gear.name} gear has none")
-    lo, hi = gear.setting_range
-    out = []
-    for v in settings:
-        if not lo <= v <= hi:
-            raise InputError("--settings", v, f"settings from {lo} to {hi} ({gear.setting_name})")
-        out.append({"setting": v, **valve_events(gear.with_setting(v), frac)})
-    return out
-
-
-def transport_of(state: State) -> tuple[float, float, float]:
-    """(conductivity [W/(m K)], viscosity [Pa s], Prandtl [-]) of steam as vapour at the
-    state's pressure (HEOS, IAPWS formulations), for the wall-heat correlation."""
-    import CoolProp
-    import CoolProp.CoolProp as CP
-    a = CoolProp.AbstractState("HEOS", "Water")
-    a.update(CP.PQ_INPUTS, state.p, 1.0)
-    a.update(CP.PT_INPUTS, state.p, max(state.T, a.T()) + 0.5)
-    return a.conductivity(), a.viscosity(), a.Prandtl()
-
-
-def reservoir_states(scene: Scene, steam: Steam) -> tuple[State, State]:
-    """(chest, exhaust): supply steam at the chest; dry saturated steam at back pressure."""
-    s = scene.supply
-    chest = (steam.pt(s.pressure_Pa, s.temperature_K) if s.temperature_K is not None
-             else steam.px(s.pressure_Pa, s.dryness))
-    return chest, steam.px(scene.exhaust.pressure_Pa, 1.0)
-
-
-def simulate(scene: Scene, *, portmap_scale: float = 1.0,
-             progress: Callable[[int, float], None] | None = None) -> Result:
+def simulate(scene, *, portmap_scale: float = 1.0,
+             progress: Callable[[float, float], None] | None = None) -> Result:
     """Run a scene.
 
     Parameters
     ----------
     scene : Scene
+        A scene from :func:`corliss.load_scene`.
     portmap_scale : float
-        Multiply every port area by this factor (for studies of the port-flow limit).
+        Steady runs: multiply every port area by this factor [-].
     progress : callable, optional
-        Called after each cycle with (cycle number, relative change of work); in a
-        transient run, with (simulated time [s], duration [s]).
+        Steady runs: called after each cycle with (cycle number, relative change of work
+        [-]); transient runs: with (simulated time [s], duration [s]).
 
     Returns
     -------
-    Result or LoadStepResult
+    Result
+        A :class:`~corliss.engine.result.SteadyResult` for a steady scene, a
+        :class:`~corliss.engine.result.TransientResult` for a transient one.
     """
     if scene.run.mode == "transient":
-        return _transient(scene, progress)
-    t0 = time.perf_counter()
-    fid = scene.run.fidelity
-    steam = make_steam(fid.properties)
-    chest, exhaust = reservoir_states(scene, steam)
-    geo = geometry_of(scene)
-    gear = build_gear(scene)
-    pm = tabulate(gear, fid.portmap_points) if scene.run.model == "crank_resolved" else None
-    ev = valve_events(gear, lambda t: float(geo.fraction(t)), pm.crossings if pm else None)
-    # the ideal-port models need entropy: a tier without it lends them HEOS
-    def steam_eq():
-        return steam if steam.complete else HEOSSteam()
-
-    if scene.run.model == "ideal":
-        if scene.run.expansion == "hyperbolic":
-            data = _ideal_hyperbolic(scene, geo, ev, chest, exhaust)
-        else:
-            data = _equilibrium(scene, geo, steam_eq(), chest, exhaust, _ideal_schedule(ev, geo))
-    elif scene.run.has("port_flow"):
-        if portmap_scale != 1.0:
-            pm = pm.scaled(portmap_scale)
-        data = _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress, ev)
-    else:
-        data = _equilibrium(scene, geo, steam_eq(), chest, exhaust, _portmap_schedule(pm), pm)
-    if scene.compound is not None:
-        cp = scene.compound
-        lp_geo = CylinderGeometry(cp.lp_engine, rod_angularity=scene.run.has("rod_angularity"))
-        data["lp_events"] = valve_events(gear_type(cp.lp_gear_type).build(cp.lp_gear),
-                                         lambda t: float(lp_geo.fraction(t)))
-    data["wall_time_s"] = time.perf_counter() - t0
-    return Result(scene=scene, events=ev, geometry=geo, chest=chest, exhaust=exhaust,
-                  property_tier=steam.name, **data)
-
-
-def _transient(scene: Scene, progress):
-    from corliss.load_step import LoadStepResult
-    if scene.run.model == "mean_value":
-        from corliss.engine.mean_value import run_mean_value
-        from corliss.engine.transient import LoopTables
-        d = run_mean_value(scene, progress=progress)
-        tables = LoopTables((), None, None, None, d["z0"], d["mechanism"])
-        return LoadStepResult(scene=scene, timeseries=d["timeseries"], cycles=d["cycles"],
-                              geometry=d["geometry"], property_tier=scene.run.fidelity.properties,
-                              wall_time_s=d["wall_time_s"], nfev=d["nfev"], stalled=d["stalled"],
-                              tables=tables)
-    from corliss.engine.transient import run_transient
-    d = run_transient(scene, progress=progress)
-    return LoadStepResult(scene=scene, timeseries=d["timeseries"], cycles=d["cycles"],
-                          geometry=d["geometry"], property_tier=d["property_tier"],
-                          wall_time_s=d["wall_time_s"], nfev=d["nfev"], stalled=d["stalled"],
-                          tables=d["tables"], chest=d["chest"], exhaust=d["exhaust"])
-
-
-def _with_totals(row: dict) -> dict:
-    """Add the boundary totals (supply, exhaust) to a row of the ideal-port models."""
-    for what, key in (("supply", "chest"), ("exhaust", "exhaust")):
-        row[f"m_{what}_kg"] = row[f"m_{key}_head_kg"] + row[f"m_{key}_crank_kg"]
-        row[f"H_{what}_J"] = row[f"H_{key}_head_J"] + row[f"H_{key}_crank_J"]
-    return row
-
-
-def _states(steam: Steam, rho: np.ndarray, u: np.ndarray):
-    """Pressure, temperature and dryness arrays for output, compiled where the tier can."""
-    if isinstance(steam, TableSteam):
-        return lookup_many(steam.table.arrays(), rho, u)
-    st = [steam.du(r, e) for r, e in zip(rho, u)]
-    return (np.array([x.p for x in st]), np.array([x.T for x in st]),
-            np.array([x.x for x in st]))
-
-
-def _cycle_frame(k: int, theta: np.ndarray, omega: float, ends: dict) -> pd.DataFrame:
-    """Time-series rows of cycle ``k`` (from 0): ``ends[end] = (p, T, x, V, m)`` arrays."""
-    cols = {"cycle": np.full(theta.size, k + 1),
-            "crank_angle_deg": np.degrees(theta + TWO_PI * k),
-            "time_s": (theta + TWO_PI * k) / omega}
-    for end, (p, T, x, V, m) in ends.items():
-        cols[f"p_{end}_Pa"], cols[f"T_{end}_K"], cols[f"x_{end}"] = p, T, x
-        cols[f"V_{end}_m3"], cols[f"m_{end}_kg"] = V, m
-    return pd.DataFrame(cols)
-
-
-# --- crank-resolved with port flow -------------------------------------------------
-
-def build_network(scene, geo, pm, steam, chest, exhaust):
-    """The network of control volumes the scene's effects call for."""
-    fid = scene.run.fidelity
-    omega = scene.run.speed_rad_s
-    if scene.compound is None:
-        net = single_cylinder(geo, pm, chest, exhaust, omega,
-                              crank_angles=scene.engine.crank_angles_rad)
-    else:
-        cp = scene.compound
-        lp_geo = CylinderGeometry(cp.lp_engine, rod_angularity=scene.run.has("rod_angularity"))
-        lp_pm = tabulate(gear_type(cp.lp_gear_type).build(cp.lp_gear), fid.portmap_points)
-        # the receiver starts at the geometric mean of supply and back pressure
-        rec = steam.px(math.sqrt(chest.p * exhaust.p), 1.0)
-        net = compound(geo, pm, lp_geo, lp_pm, cp.lp_phase_rad, cp.receiver_volume_m3, chest,
-                       exhaust, rec, omega)
-    if scene.run.has("steam_chest"):
-        net = with_steam_chest(net, scene.supply)
-    if scene.run.has("leakage"):
-        net = with_leakage(net, scene.engine.valve_leakage_area_m2,
-                           scene.engine.piston_leakage_area_m2)
-    if scene.run.has("wall_heat"):
-        net = with_wall_heat(net, scene.engine.wall_heat_model,
-                             scene.engine.marks_constant_W_m2K, transport_of(chest))
-    return net
-
-
-def _crank_resolved(scene, geo, pm, steam, chest, exhaust, progress, ev):
-    fid = scene.run.fidelity
-    omega = scene.run.speed_rad_s
-    net = build_network(scene, geo, pm, steam, chest, exhaust)
-    heat = scene.run.has("wall_heat")
-    marks = None
-    if heat and scene.engine.wall_heat_model == "marks":
-        from corliss.engine.condensation import MarksLaw
-        marks = MarksLaw(net, geo, ev, omega, chest.T, exhaust.T)
-    model = CrankResolved(net, steam, fid.method, fid.rtol, step_deg=fid.step_deg)
-    ends_all = piston_ends(net)
-    step = math.radians(fid.output_step_deg)
-    out_theta = np.linspace(0.0, TWO_PI, int(round(TWO_PI / step)) + 1)
-    y = model.initial_state()
-    rows, samples_all = [], []
-    w_prev = None
-    converged = None
-    n_max = scene.run.cycles or fid.max_cycles
-    for k in range(1, n_max + 1):
-        if marks is not None:
-            marks.apply(model.net[19])
-        y, samples = model.cycle(y, 0.0, out_theta)
-        if marks is not None:
-            marks.update(steam, samples, out_theta)
-        elif heat:
-            model.update_wall(y)
-        row = {"cycle": k}
-        for end in ends_all:
-            for what, edge in (("chest", f"{end}_steam"), ("exhaust", f"{end}_exhaust")):
-                e = net.edge(edge)
-                row[f"m_{what}_{end}_kg"] = y[net.i_edge_mass(e)]
-                row[f"H_{what}_{end}_J"] = y[net.i_edge_enthalpy(e)]
-            row[f"work_{end}_J"] = y[net.i_work(net.node(end))]
-            if heat and end in ("head", "crank"):
-                i = net.node(end)
-                row[f"Q_{end}_J"] = y[net.i_node_quad(i, "heat")]
-                row[f"Q_to_wall_{end}_J"] = y[net.i_node_quad(i, "heat_to_wall")]
-                row[f"T_wall_{end}_K"] = net.wall_T[i] if marks is None else float("nan")
-        if "steam_pipe" in net.edge_names:
-            row["m_pipe_kg"] = y[net.i_edge_mass(net.edge("steam_pipe"))]
-        for name, e in net.leak_edges():
-            row[f"m_{name}_kg"] = y[net.i_edge_mass(e)]
-        row.update(net.boundary_totals(y))
-        row["work_J"] = sum(row[f"work_{end}_J"] for end in ends_all)
-        rows.append(row)
-        samples_all.append(samples)
-        w = row["work_J"]
-        change = abs(w - w_prev) / max(abs(w), 1e-300) if w_prev is not None else math.inf
-        if progress:
-            progress(k, change)
-        log.debug("cycle %d: work %.6g J, change %.3g", k, w, change)
-        if scene.run.cycles is None and change <= fid.convergence_tolerance:
-            converged = k
-            break
-        w_prev = w
-    # post-process states to pressures etc.
-    ts = []
-    for k, s in enumerate(samples_all):
-        ends = {}
-        for end in ends_all:
-            i = net.node(end)
-            V = net.volume(i, out_theta)
-            m, U = s[2 * i], s[2 * i + 1]
-            ends[end] = (*_states(steam, m / V, U / m), V, m)
-        frame = _cycle_frame(k, out_theta, omega, ends)
-        for vessel in ("chest", "receiver"):
-            if vessel in net.node_names:
-                i = net.node(vessel)
-                V = net.volume(i, out_theta)
-                frame[f"p_{vessel}_Pa"] = _states(steam, s[2 * i] / V, s[2 * i + 1] / s[2 * i])[0]
-        ts.append(frame)
-    timeseries = pd.concat(ts, ignore_index=True)
-    return {"timeseries": timeseries, "cycles": pd.DataFrame(rows),
-            "cycles_to_converge": converged, "portmap": pm, "nfev": model.nfev,
-            "cylinders": [(("lp_" if scene.compound and c else cylinder_prefix(c)), g, ph)
-                          for c, (g, ph) in enumerate(zip(net.geometries, net.phases))]}
-
-
-# --- ideal ports (no port_flow) and the isentropic ideal card -----------------------
-
-def _portmap_schedule(pm):
-    def schedule(theta):
-        mid = 0.5 * (theta[1:] + theta[:-1])
-        mask = pm.open_mask(mid)
-        return (eq.connection_from_areas(mask[0], mask[1]),
-                eq.connection_from_areas(mask[2], mask[3]))
-    return schedule, pm.breakpoints_rad
-
-
-def _ideal_schedule(ev, geo):
-    """Admission from dead centre to cut-off; exhaust from release to compression."""
-    def window(theta, a_deg, b_deg):
-        if a_deg is None or b_deg is None:
-            return np.zeros(theta.size, dtype=bool)
-        a, b = math.radians(a_deg), math.radians(b_deg)
-        t = theta % TWO_PI
-        return ((t - a) % TWO_PI) < ((b - a) % TWO_PI)
-
-    h, c = ev["head"], ev["crank"]
-    bps = [math.radians(v) for v in (0.0, 180.0, h["cutoff_deg"], h["release_deg"],
-                                     h["compression_deg"], c["cutoff_deg"], c["release_deg"],
-                                     c["compression_deg"]) if v is not None]
-
-    def schedule(theta):
-        mid = 0.5 * (theta[1:] + theta[:-1])
-        hs = window(mid, 0.0, h["cutoff_deg"])
-        he = window(mid, h["release_deg"], h["compression_deg"])
-        cs = window(mid, 180.0, c["cutoff_deg"])
-        ce = window(mid, c["release_deg"], c["compression_deg"])
-        return eq.connection_from_areas(hs, he), eq.connection_from_areas(cs, ce)
-    return schedule, np.asarray(bps)
-
-
-def _equilibrium(scene, geo, steam, chest, exhaust, sched, pm=None):
-    schedule, bps = sched
-    theta = eq.stepping_grid(bps, math.radians(EQUILIBRIUM_STEP_DEG))
-    conns = schedule(theta)
-    vols = geo.volumes_m3(theta)
-    fid = scene.run.fidelity
-    traces, converged = eq.run_cycles(steam, theta, vols, conns, chest, exhaust,
-                                      fid.convergence_tolerance, fid.max_cycles, scene.run.cycles)
-    rows, ts = [], []
-    omega = scene.run.speed_rad_s
-    for k, (th_, tc_) in enumerate(traces):
-        row = {"cycle": k + 1}
-        for end, tr in (("head", th_), ("crank", tc_)):
-            row[f"m_chest_{end}_kg"] = tr.m_chest_kg
-            row[f"H_chest_{end}_J"] = tr.H_chest_J
-            row[f"m_exhaust_{end}_kg"] = tr.m_exhaust_kg
-            row[f"H_exhaust_{end}_J"] = tr.H_exhaust_J
-            row[f"work_{end}_J"] = tr.work_J
-        rows.append(_with_totals(row))
-        ts.append(_cycle_frame(k, theta, omega, {
-            end: (tr.p_Pa, tr.T_K, tr.x, tr.V_m3, tr.m_kg)
-            for end, tr in (("head", th_), ("crank", tc_))}))
-    return {"timeseries": pd.concat(ts, ignore_index=True), "cycles": pd.DataFrame(rows),
-            "cycles_to_converge": converged, "portmap": pm, "nfev": 0}
-
-
-# --- hyperbolic ideal card ------------------------------------------------------------
-
-def _ideal_hyperbolic(scene, geo, ev, chest, exhaust):
-    p_s, p_b = chest.p, exhaust.p
-    row = {"cycle": 1}
-    cols = {}
-    # the head end's stroke 0..pi inverted by interpolation (s is monotonic there)
-    head_theta = np.linspace(0.0, math.pi, 20001)
-    head_frac = geo.fraction(head_theta)
-    for e, end in enumerate(("head", "crank")):
-        x = ev[end]
-        f_c = x["cutoff_frac"] if x["cutoff_frac"] is not None else 0.0
-        f_r = x["release_frac"] if x["release_frac"] is not None else 1.0
-        f_k = x["compression_frac"] if x["compression_frac"] is not None else 0.0
-        Vc, Vs = geo.clearance_m3[e], geo.swept_m3[e]
-        frac, V, p = hyperbolic_card(Vc, Vs, f_c, f_r, f_k, p_s, p_b)
-        row[f"work_{end}_J"] = card_area(V, p)
-        m = indicated_steam_kg(Vc, Vs, f_c, f_k, chest, exhaust)
-        row[f"m_chest_{end}_kg"] = m
-        row[f"H_chest_{end}_J"] = m * chest.h
-        row[f"m_exhaust_{end}_kg"] = -m
-        row[f"H_exhaust_{end}_J"] = float("nan")
-        # crank angles of the card points: forward stroke then return stroke
-        half = np.interp(np.clip(frac if end == "head" else 1.0 - frac, 0.0, 1.0),
-                         head_frac, head_theta)
-        n = frac.size
-        fwd = np.zeros(n, dtype=bool)
-        fwd[: 3 * (n // 5)] = True     # admission, expansion, release to end of stroke
-        if end == "head":
-            th = np.where(fwd, half, TWO_PI - half)
-        else:
-            th = np.where(fwd, TWO_PI - half, half)
-        cols[end] = (th, V, p)
-    grid = np.radians(np.arange(0.0, 360.0 + 1e-9, scene.run.fidelity.output_step_deg))
-    data = {"cycle": np.ones(grid.size, dtype=int), "crank_angle_deg": np.degrees(grid),
-            "time_s": grid / scene.run.speed_rad_s}
-    for end, (th, V, p) in cols.items():
-        order = np.argsort(th, kind="stable")
-        data[f"p_{end}_Pa"] = np.interp(grid, th[order], p[order])
-        data[f"V_{end}_m3"] = np.interp(grid, th[order], V[order])
-    cards = {end: pd.DataFrame({"frac": (V - geo.clearance_m3[e]) / geo.swept_m3[e],
-                                "V_m3": V, "p_Pa": p})
-             for e, (end, (th, V, p)) in enumerate(cols.items())}
-    return {"timeseries": pd.DataFrame(data), "cycles": pd.DataFrame([_with_totals(row)]),
-            "cycles_to_converge": 1, "portmap": None, "nfev": 0, "ideal_cards": cards}
+        if scene.run.model == "mean_value":
+            return run_mean_value(scene, progress=progress)
+        return run_transient(scene, progress=progress)
+    return run_steady(scene, portmap_scale=portmap_scale, progress=progress)

@@ -38,9 +38,9 @@ def _mid_times(cycles: pd.DataFrame) -> np.ndarray:
 def hunting(cycles: pd.DataFrame) -> dict:
     """Whether the governor hunts at the end of the run, its period and swing."""
     t = _mid_times(cycles)
-    if "governor_z" not in cycles or len(cycles) < 12:
+    if "governor_z_frac" not in cycles or len(cycles) < 12:
         return {"hunting": False, "hunting_period_s": None, "governor_swing": 0.0}
-    z = cycles["governor_z"].to_numpy()
+    z = cycles["governor_z_frac"].to_numpy()
     window = t >= t[0] + (t[-1] - t[0]) * 2.0 / 3.0
     tw, zw = t[window], z[window]
     d = zw - zw.mean()

@@ -16,6 +16,7 @@ from __future__ import annotations
 import logging
 import math
 import time
+import dataclasses
 from dataclasses import dataclass
 from typing import Callable
 
@@ -23,16 +24,24 @@ import numpy as np
 import pandas as pd
 
 from corliss.engine import transient_kernel as tk
+from corliss.engine.kernel import announce_compile
+from corliss.engine.condensation import MarksLaw
+from corliss.engine.model import build_gear, build_network, geometry_of, reservoir_states
 from corliss.engine.network import throttle_area_m2
+from corliss.engine.result import TransientResult
 from corliss.errors import InputError
+from corliss.governors import governor_type
+from corliss.governors.mechanism import CREEP_PER_S
+from corliss.thermo.steam import make_steam
+from corliss.thermo.steam_table import load_table
+from corliss.valves import events as gear_events
+from corliss.valves import tabulate
+from corliss.valves.portmap import tabulate_settings
 
 log = logging.getLogger(__name__)
 TWO_PI = 2.0 * math.pi
 #: Settings tabulated across a governed gear's actuator range (bilinear in between).
 SETTING_POINTS = 21
-#: Creep speed of the regularised governor friction, as a fraction of full travel per
-#: second: a governor held by friction creeps by less than 0.2 % of its travel a second.
-CREEP_PER_S = 2e-3
 #: The loop stops as stalled when the speed falls below this fraction of the start.
 STALL_FRACTION = 0.05
 
@@ -49,29 +58,6 @@ class LoopTables:
     mechanism: object | None
 
 
-def equilibrium_z(mech, omega_shaft: float) -> float:
-    """The governor coordinate at which it balances at shaft speed ``omega_shaft``:
-    G(z) (ratio omega)^2 = R(z), found on the tabulated grid; a stop if none."""
-    wg2 = (mech.ratio * omega_shaft) ** 2
-    f = mech.G * wg2 - mech.R
-    if f[0] <= 0.0:
-        return 0.0
-    if f[-1] >= 0.0:
-        return 1.0
-    k = int(np.nonzero(f < 0.0)[0][0])
-    z0, z1 = mech.z[k - 1], mech.z[k]
-    return float(z0 + (z1 - z0) * f[k - 1] / (f[k - 1] - f[k]))
-
-
-def actuator_range(mech) -> tuple[float, float]:
-    """The least and greatest actuator values a governor can set, its safety setting
-    included."""
-    vals = [mech.actuator_at_rest, mech.actuator_at_top]
-    if mech.safety_z > 0.0 and np.isfinite(mech.actuator_safety):
-        vals.append(mech.actuator_safety)
-    return min(vals), max(vals)
-
-
 def _governor_arrays(mech):
     z = np.asarray(mech.z, dtype=float)
     if not (abs(z[0]) < 1e-12 and abs(z[-1] - 1.0) < 1e-12 and np.allclose(np.diff(z), z[1] - z[0])):
@@ -84,8 +70,6 @@ def _gear_tables(gear, lo: float, hi: float, ncyl: int, governed: np.ndarray, nt
                  frac: Callable):
     """Port areas over (setting, crank angle) for the governed cylinders, and the cut-off
     of each end at each setting."""
-    from corliss.valves.events import events as gear_events
-    from corliss.valves.portmap import tabulate_settings
     spm = tabulate_settings(gear, lo, hi, SETTING_POINTS, nth)
     area = np.zeros((ncyl, 4, spm.settings.size, nth + 1))
     for c in range(ncyl):
@@ -166,7 +150,6 @@ def build_tables(scene, net, gear, geo) -> LoopTables:
     cut = None
     z0 = 0.0
     if scene.governor is not None:
-        from corliss.governors import governor_type
         g = governor_type(scene.governor_type).build(scene.governor)
         mech = g.mechanism(201)
         gov = _governor_arrays(mech)
@@ -180,18 +163,17 @@ def build_tables(scene, net, gear, geo) -> LoopTables:
         if mech.safety_z > 0.0 and np.isfinite(mech.actuator_safety):
             sc[tk.S_SAFE_Z] = mech.safety_z
             sc[tk.S_SAFE_A] = mech.actuator_safety
-        z0 = equilibrium_z(mech, omega0)
+        z0 = mech.equilibrium_z(omega0)
         if mech.acts_on == "throttle":
             sc[tk.S_ACT_GEAR] = 0.0
             sc[tk.S_THR_EDGE] = net.edge("steam_pipe")
-            import dataclasses
             openings = np.linspace(0.0, 1.0, 201)
             thr = np.array([0.0] + [throttle_area_m2(dataclasses.replace(scene.supply, throttle=x))
                                     for x in openings[1:]])
         else:
             sc[tk.S_ACT_GEAR] = 1.0
             governed_gear = gear
-            lo, hi = actuator_range(mech)
+            lo, hi = mech.actuator_range()
             governed[:] = 1
             if scene.compound is not None:
                 governed[1:] = 0     # the governor moves the HP gear; the LP's is fixed
@@ -213,7 +195,8 @@ def build_tables(scene, net, gear, geo) -> LoopTables:
                       z0, mech)
 
 
-def run_transient(scene, *, progress: Callable[[float, float], None] | None = None) -> dict:
+def run_transient(scene, *, progress: Callable[[float, float], None] | None = None
+                  ) -> TransientResult:
     """Run a transient scene.
 
     Parameters
@@ -225,15 +208,8 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
 
     Returns
     -------
-    dict
-        ``timeseries``, ``cycles`` (per-turn table), ``tables`` (LoopTables), ``network``,
-        ``nfev``, ``status``, and the warm-up turns' count.
+    TransientResult
     """
-    from corliss.engine.simulate import (build_gear, build_network, geometry_of,
-                                         reservoir_states)
-    from corliss.thermo.steam import make_steam
-    from corliss.valves import tabulate
-
     t_wall = time.perf_counter()
     run = scene.run
     fid = run.fidelity
@@ -257,8 +233,6 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
         # Marks's law from the gear's events at the start, with the supply's saturation
         # temperature as the cut-off temperature; the heat follows the speed turn by
         # turn, but not a governor's moving cut-off (the windows stay the start's)
-        from corliss.engine.condensation import MarksLaw
-        from corliss.valves import events as gear_events
         marks = MarksLaw(network, geo, gear_events(gear, lambda t: float(geo.fraction(t)),
                                                    pm.crossings),
                          run.speed_rad_s, chest.T, exhaust.T)
@@ -276,6 +250,7 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
     rtol = fid.rtol
     nfev = 0
     # warm-up: speed and governor held, time held at zero
+    announce_compile(tk.integrate_turn)
     sc[tk.S_FREEZE] = 1.0
     for _ in range(run.warmup_cycles):
         y[network.n_dyn:nn] = 0.0
@@ -333,10 +308,11 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
             log.warning("the engine stalled at t = %.3f s", y[nn + tk.X_TIME])
             break
     timeseries = pd.concat(frames, ignore_index=True)
-    return {"timeseries": timeseries, "cycles": pd.DataFrame(rows), "tables": tables,
-            "network": network, "nfev": nfev, "stalled": status == 2, "chest": chest,
-            "exhaust": exhaust, "geometry": geo, "portmap": pm, "property_tier": steam.name,
-            "wall_time_s": time.perf_counter() - t_wall}
+    return TransientResult(scene=scene, property_tier=steam.name, timeseries=timeseries,
+                           cycles=pd.DataFrame(rows), rhs_evaluations=nfev,
+                           wall_time_s=time.perf_counter() - t_wall, geometry=geo,
+                           stalled=status == 2, mechanism=tables.mechanism,
+                           z_start=tables.z0, chest=chest, exhaust=exhaust)
 
 
 def _update_wall(network, y: np.ndarray) -> None:
@@ -352,7 +328,6 @@ def _update_wall(network, y: np.ndarray) -> None:
 
 
 def _any_table():
-    from corliss.thermo.steam_table import load_table
     return load_table().arrays()
 
 
@@ -365,20 +340,20 @@ def _cycle_row(k: int, y0: np.ndarray, y: np.ndarray, network, tables: LoopTable
            "mean_speed_rpm": TWO_PI / dt * 60.0 / TWO_PI,
            "speed_start_rpm": y0[nn + tk.X_OMEGA] * 60.0 / TWO_PI,
            "speed_end_rpm": y[nn + tk.X_OMEGA] * 60.0 / TWO_PI,
-           "indicated_work_J": w_gas, "indicated_power_W": w_gas / dt,
+           "work_J": w_gas, "indicated_power_W": w_gas / dt,
            "load_work_J": y[nn + tk.X_WLOAD], "load_power_W": y[nn + tk.X_WLOAD] / dt,
            "friction_work_J": y[nn + tk.X_WFRIC],
-           "governor_z": y[nn + tk.X_ZDT] / dt, "governor_z_end": y[nn + tk.X_Z]}
+           "governor_z_frac": y[nn + tk.X_ZDT] / dt, "governor_z_end_frac": y[nn + tk.X_Z]}
     totals = network.boundary_totals(y)
-    row["steam_kg"] = totals["m_supply_kg"]
+    row["m_supply_kg"] = totals["m_supply_kg"]
     row["steam_rate_kg_per_h"] = totals["m_supply_kg"] / dt * 3600.0
     act = y[nn + tk.X_ADT] / dt
     mech = tables.mechanism
     if mech is not None:
         if mech.acts_on == "throttle":
-            row["throttle_opening"] = act
+            row["throttle_opening_frac"] = act
         else:
-            row["gear_setting"] = act
+            row["gear_setting_frac"] = act
             grid, cut = tables.setting_grid, tables.cutoff_table
             if grid.size > 1:
                 row["cutoff_head_frac"] = float(np.interp(act, grid, cut[0]))
@@ -390,22 +365,21 @@ def _cycle_row(k: int, y0: np.ndarray, y: np.ndarray, network, tables: LoopTable
 
 def _frame(network, steam, tables, out_theta, samples, rec, n_rec, record, nn):
     """The time-series rows of one turn."""
-    from corliss.engine.simulate import _states
     if record == "step":
         r = rec[:, :n_rec]
         return pd.DataFrame({"time_s": r[4], "crank_angle_deg": np.degrees(r[0]),
-                             "speed_rpm": r[1] * 60.0 / TWO_PI, "governor_z": r[2],
-                             "actuator": r[3], "indicated_torque_N_m": r[5],
+                             "speed_rpm": r[1] * 60.0 / TWO_PI, "governor_z_frac": r[2],
+                             "actuator_frac": r[3], "indicated_torque_N_m": r[5],
                              "load_torque_N_m": r[6]})
     s = samples
     omega = s[nn + tk.X_OMEGA]
     z = np.clip(s[nn + tk.X_Z], 0.0, 1.0)
     sc = tables.tr[0]
     cols = {"time_s": s[nn + tk.X_TIME], "crank_angle_deg": np.degrees(out_theta),
-            "speed_rpm": omega * 60.0 / TWO_PI, "governor_z": z,
-            "actuator": sc[tk.S_A0] + (sc[tk.S_A1] - sc[tk.S_A0]) * z}
+            "speed_rpm": omega * 60.0 / TWO_PI, "governor_z_frac": z,
+            "actuator_frac": sc[tk.S_A0] + (sc[tk.S_A1] - sc[tk.S_A0]) * z}
     for end in ("head", "crank"):
         i = network.node(end)
         V = network.volume(i, out_theta)
-        cols[f"p_{end}_Pa"] = _states(steam, s[2 * i] / V, s[2 * i + 1] / s[2 * i])[0]
+        cols[f"p_{end}_Pa"] = steam.states(s[2 * i] / V, s[2 * i + 1] / s[2 * i])[0]
     return pd.DataFrame(cols)

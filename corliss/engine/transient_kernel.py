@@ -43,7 +43,7 @@ import math
 import numpy as np
 from numba import njit
 
-from corliss.engine.kernel import (_C, _hermite, balances, dopri_error, dopri_stage,
+from corliss.engine.kernel import (DOPRI_NODES, hermite, balances, dopri_error, dopri_stage,
                                    node_states, port_areas)
 
 TWO_PI = 2.0 * math.pi
@@ -356,13 +356,13 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
         K[0, :] = f0
         for s_ in range(1, 7):
             dopri_stage(y, K, s_, h, ytmp)
-            transient_rhs(t + _C[s_] * h, ytmp, K[s_], net, tier, tab, perf, pr, pa, tr, out)
+            transient_rhs(t + DOPRI_NODES[s_] * h, ytmp, K[s_], net, tier, tab, perf, pr, pa, tr, out)
         nfev += 6
         err = dopri_error(y, ytmp, K, h, atol, rtol)
         if err <= 1.0 or h < 1e-10:
             t1 = t + h
             while io < out_theta.shape[0] and out_theta[io] <= t1:
-                _hermite(t, y, f0, t1, ytmp, K[6], out_theta[io], tmp)
+                hermite(t, y, f0, t1, ytmp, K[6], out_theta[io], tmp)
                 samples[:, io] = tmp
                 io += 1
             t = t1

@@ -52,6 +52,10 @@ GRAVITY_M_S2 = 9.80665
 ACTS_ON = ("throttle", "gear")
 
 
+#: Creep speed of the regularised governor friction, as a fraction of full travel per
+#: second: a governor held by friction creeps by less than 0.2 % of its travel a second.
+CREEP_PER_S = 2e-3
+
 @dataclass(frozen=True)
 class PointMass:
     """A part of the governor as a point mass, positions as functions of z.
@@ -156,6 +160,28 @@ class GovernorMechanism:
         if self.safety_z > 0.0:
             a = np.where(z < self.safety_z, self.actuator_safety, a)
         return a
+
+    def actuator_range(self) -> tuple[float, float]:
+        """The least and greatest actuator values the governor can set, its safety
+        setting included."""
+        vals = [self.actuator_at_rest, self.actuator_at_top]
+        if self.safety_z > 0.0 and np.isfinite(self.actuator_safety):
+            vals.append(self.actuator_safety)
+        return min(vals), max(vals)
+
+    def equilibrium_z(self, omega_shaft: float) -> float:
+        """The coordinate z [-] at which the governor balances at shaft speed
+        ``omega_shaft`` [rad/s]: G(z) (ratio omega)^2 = R(z), found on the tabulated
+        grid; a stop (0 or 1) if it balances nowhere between them."""
+        wg2 = (self.ratio * omega_shaft) ** 2
+        f = self.G * wg2 - self.R
+        if f[0] <= 0.0:
+            return 0.0
+        if f[-1] >= 0.0:
+            return 1.0
+        k = int(np.nonzero(f < 0.0)[0][0])
+        z0, z1 = self.z[k - 1], self.z[k]
+        return float(z0 + (z1 - z0) * f[k - 1] / (f[k - 1] - f[k]))
 
 
 @dataclass(frozen=True)

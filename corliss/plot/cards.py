@@ -90,8 +90,10 @@ def plot_card(result, ax=None, units_system: str | None = None, prefix: str = ""
         which, power = "low-pressure cylinder, ", s["lp_power_W"]
         mep = power * 2 * np.pi / result.scene.run.speed_rad_s / sum(geo.swept_m3)
     ax.set_title(f"{result.scene.title}\n{which}{s['speed_rpm']:.0f} rpm, "
-                 f"{units.to_unit(power, 'hp'):.1f} ihp, m.e.p. "
-                 f"{units.to_unit(mep, 'psia' if system == 'US' else 'bar'):.1f} "
+                 + (f"{units.to_unit(power, 'hp'):.1f} ihp" if system == "US"
+                    else f"{power / 1e3:.2f} kW indicated")
+                 + ", m.e.p. "
+                 f"{units.to_unit(mep, 'psia' if system == 'US' else 'bar'):.{1 if system == 'US' else 2}f} "
                  f"{'psi' if system == 'US' else 'bar'}", fontsize=10)
     ax.grid(True, color="0.9", lw=0.5)
     ax.legend(loc="center", fontsize=8, frameon=False)
@@ -131,8 +133,10 @@ def plot_crank_effort(result, ax=None, units_system: str | None = None) -> dict:
     ax.set_xticks(range(0, 361, 45))
     ax.set_xlabel("crank angle from head-end dead centre [deg]")
     ax.set_ylabel(f"torque [{t_unit}]")
-    ax.set_title(f"Crank effort: fluctuation c = {s['fluctuation_coefficient_c']:.3f} of one "
-                 "stroke's work", fontsize=10)
+    c = s["fluctuation_coefficient_c"]
+    ax.set_title("Crank effort: " + (f"fluctuation c = {c:.3f} of one stroke's work" if c is not None
+                                     else "fluctuation c " + s["fluctuation_coefficient_note"]
+                                     .replace(", so", ",\n so")), fontsize=10)
     ax.grid(True, color="0.9", lw=0.5)
     ax.legend(fontsize=8, frameon=False, loc="upper center", bbox_to_anchor=(0.5, -0.14),
               ncol=5)

@@ -44,13 +44,13 @@ def plot_load_step(result, units_system: str | None = None) -> dict:
         title += f"; HUNTING, period {m['hunting_period_s']:.2f} s"
     ax_n.set_title(title, fontsize=10)
     ax_n.legend(fontsize=7, frameon=False, loc="best")
-    ax_g.plot(tmid, cyc["governor_z_end"] if "governor_z_end" in cyc else tmid * 0, color="k",
+    ax_g.plot(tmid, cyc["governor_z_end_frac"] if "governor_z_end_frac" in cyc else tmid * 0, color="k",
               lw=1.2, label="governor position z (0 at rest, 1 at top stop)")
     if "cutoff_head_frac" in cyc:
         ax_g.plot(tmid, cyc["cutoff_head_frac"], color="0.35", lw=1.2, ls="--",
                   label="cut-off, head end (fraction of stroke)")
-    if "throttle_opening" in cyc:
-        ax_g.plot(tmid, cyc["throttle_opening"], color="0.35", lw=1.2, ls="--",
+    if "throttle_opening_frac" in cyc:
+        ax_g.plot(tmid, cyc["throttle_opening_frac"], color="0.35", lw=1.2, ls="--",
                   label="throttle opening")
     ax_g.set_ylim(-0.05, 1.05)
     ax_g.set_ylabel("[-]")
@@ -91,7 +91,7 @@ def plot_load_step(result, units_system: str | None = None) -> dict:
             for side in ("top", "right"):
                 ax.spines[side].set_visible(False)
             axes[f"card_{label}"] = ax
-    mech = getattr(result.tables, "mechanism", None) if result.tables is not None else None
+    mech = result.mechanism
     if mech is not None:
         ax = fig.add_subplot(gs[2, 1])
         z = np.asarray(mech.z)
@@ -103,7 +103,7 @@ def plot_load_step(result, units_system: str | None = None) -> dict:
         for rows, mark, label in ((before, "o", "before the step"), (c, "s", "at the end")):
             if len(rows):
                 last = rows.iloc[-5:]
-                ax.plot([last["mean_speed_rpm"].mean()], [last["governor_z"].mean()], mark,
+                ax.plot([last["mean_speed_rpm"].mean()], [last["governor_z_frac"].mean()], mark,
                         color="0.3", ms=6, mfc="white", label=label)
         ax.set_xlabel("shaft speed [rev/min]")
         ax.set_ylabel("governor position z [-]")

@@ -13,7 +13,7 @@ def plot_willans(sweeps: dict, ax=None, units_system: str = "US") -> dict:
     with the least-squares straight line of each drawn thin."""
     import matplotlib.pyplot as plt
 
-    from corliss.engine.load_range import willans_fit
+    from corliss.engine.result import willans_fit
 
     if ax is None:
         _, ax = plt.subplots(figsize=(8, 5.5))

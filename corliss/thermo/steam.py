@@ -15,6 +15,7 @@ from typing import NamedTuple
 
 import math
 
+import numpy as np
 
 from corliss.errors import InputError
 
@@ -90,6 +91,13 @@ class Steam:
     def px(self, p: float, x: float) -> State:  # pragma: no cover - interface
         """Saturated state from pressure [Pa] and dryness [-]."""
         raise NotImplementedError
+
+    def states(self, rho: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Pressure [Pa], temperature [K] and dryness [-] arrays from density [kg/m3] and
+        internal energy [J/kg] arrays (for output; a compiled tier answers in one call)."""
+        st = [self.du(r, e) for r, e in zip(np.asarray(rho, float), np.asarray(u, float))]
+        return (np.array([x.p for x in st]), np.array([x.T for x in st]),
+                np.array([x.x for x in st]))
 
     def t_sat(self, p: float) -> float:  # pragma: no cover - interface
         """Saturation temperature [K] at pressure ``p`` [Pa]."""
@@ -187,6 +195,10 @@ class TableSteam(HEOSSteam):
         p, T, x, sup = lookup(self._arrays, rho, u)
         return State(p, T, rho, u, u + p / rho, float("nan"), x, bool(sup))
 
+    def states(self, rho, u):
+        from corliss.thermo.steam_table import lookup_many
+        return lookup_many(self._arrays, np.asarray(rho, float), np.asarray(u, float))
+
 
 class PerfectSteam(Steam):
     """Perfect steam: an ideal gas with R = 461.52 J/(kg K) and kappa = 1.3, never wet.
@@ -258,6 +270,32 @@ def make_steam(name: str = "heos") -> Steam:
     except KeyError:
         raise InputError("run.properties", name,
                          "one of " + ", ".join(sorted(BACKENDS))) from None
+
+
+def transport_properties(p_Pa: float, T_K: float) -> tuple[float, float, float]:
+    """Transport properties of steam as vapour at pressure ``p_Pa`` [Pa] and the greater
+    of ``T_K`` [K] and the saturation temperature (0.5 K above it, on the vapour side).
+
+    Returns
+    -------
+    tuple of float
+        (thermal conductivity [W/(m K)], dynamic viscosity [Pa s], Prandtl number [-]),
+        from CoolProp's IAPWS formulations.
+    """
+    import CoolProp
+    import CoolProp.CoolProp as CP
+    a = CoolProp.AbstractState("HEOS", "Water")
+    a.update(CP.PQ_INPUTS, p_Pa, 1.0)
+    a.update(CP.PT_INPUTS, p_Pa, max(T_K, a.T()) + 0.5)
+    return a.conductivity(), a.viscosity(), a.Prandtl()
+
+
+def latent_heat(T_K: float) -> float:
+    """Latent heat of evaporation h_g - h_f [J/kg] at saturation temperature ``T_K`` [K]
+    (IAPWS-95 through CoolProp)."""
+    import CoolProp.CoolProp as CP
+    return (CP.PropsSI("H", "T", T_K, "Q", 1.0, "Water")
+            - CP.PropsSI("H", "T", T_K, "Q", 0.0, "Water"))
 
 
 def coolprop_version() -> str:

@@ -37,6 +37,7 @@ from pathlib import Path
 import numpy as np
 from numba import njit
 
+from corliss.logs import NOTICE
 
 log = logging.getLogger(__name__)
 
@@ -332,6 +333,8 @@ def load_table() -> SteamTable:
         except (OSError, ValueError):
             data = None
     if data is None:
+        log.log(NOTICE, "building the steam table once for this machine (about a minute); "
+                "it is cached in %s", path.parent)
         t0 = time.perf_counter()
         built = _build(PARAMS)
         tab = SteamTable(error={}, **built)

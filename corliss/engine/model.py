@@ -1,0 +1,214 @@
+"""The one place a scene becomes a model: geometry, valve gear, port map, reservoirs and
+the network of control volumes holding only the effects the scene names.
+
+Every runner (steady, transient, mean-value, sweep) builds what it needs here, so an
+effect is assembled the same way whichever runner asks; tests import these pieces to
+check one layer of the model at a time.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+
+from corliss.engine.geometry import CylinderGeometry
+from corliss.engine.network import (Network, compound, single_cylinder, with_leakage,
+                                    with_steam_chest, with_wall_heat)
+from corliss.errors import InputError
+from corliss.thermo.steam import State, Steam, make_steam, transport_properties
+from corliss.valves import events as valve_events
+from corliss.valves import gear_type, tabulate
+
+
+def geometry_of(scene) -> CylinderGeometry:
+    """The cylinder geometry, with the connecting rod only if ``rod_angularity`` is named."""
+    return CylinderGeometry(scene.engine, rod_angularity=scene.run.has("rod_angularity"))
+
+
+def lp_geometry_of(scene) -> CylinderGeometry | None:
+    """A compound's low-pressure cylinder geometry (None for a simple engine)."""
+    if scene.compound is None:
+        return None
+    return CylinderGeometry(scene.compound.lp_engine,
+                            rod_angularity=scene.run.has("rod_angularity"))
+
+
+def build_gear(scene):
+    """The scene's valve gear object (at the run's speed, for gears that need it)."""
+    gear = gear_type(scene.gear_type).build(scene.gear)
+    return gear.with_speed(scene.run.speed_rad_s) if hasattr(gear, "with_speed") else gear
+
+
+def build_lp_gear(scene):
+    """A compound's low-pressure valve gear (None for a simple engine)."""
+    if scene.compound is None:
+        return None
+    return gear_type(scene.compound.lp_gear_type).build(scene.compound.lp_gear)
+
+
+def scene_events(scene, settings: list[float] | None = None):
+    """Valve events of both ends, without simulating.
+
+    Parameters
+    ----------
+    scene : Scene
+    settings : list of float, optional
+        Values of the gear's setting (e.g. the block offset of a link motion).
+
+    Returns
+    -------
+    dict or list of dict
+        The events of each end (see :func:`corliss.valves.events.events`); with
+        ``settings``, a list of ``{"setting": s, "head": {...}, "crank": {...}}``.
+    """
+    geo = geometry_of(scene)
+    gear = build_gear(scene)
+
+    def frac(t):
+        return float(geo.fraction(t))
+
+    if settings is None:
+        return valve_events(gear, frac)
+    if gear.setting_range is None:
+        raise InputError("--settings", settings, f"no settings: the {gear.name} gear has none")
+    lo, hi = gear.setting_range
+    out = []
+    for v in settings:
+        if not lo <= v <= hi:
+            raise InputError("--settings", v, f"settings from {lo} to {hi} ({gear.setting_name})")
+        out.append({"setting": v, **valve_events(gear.with_setting(v), frac)})
+    return out
+
+
+def reservoir_states(scene, steam: Steam) -> tuple[State, State]:
+    """(chest, exhaust): supply steam at the chest; dry saturated steam at back pressure."""
+    s = scene.supply
+    chest = (steam.pt(s.pressure_Pa, s.temperature_K) if s.temperature_K is not None
+             else steam.px(s.pressure_Pa, s.dryness))
+    return chest, steam.px(scene.exhaust.pressure_Pa, 1.0)
+
+
+def build_network(scene, geo, pm, steam: Steam, chest: State, exhaust: State) -> Network:
+    """The network of control volumes the scene's effects call for."""
+    fid = scene.run.fidelity
+    omega = scene.run.speed_rad_s
+    if scene.compound is None:
+        net = single_cylinder(geo, pm, chest, exhaust, omega,
+                              crank_angles=scene.engine.crank_angles_rad)
+    else:
+        cp = scene.compound
+        lp_pm = tabulate(build_lp_gear(scene), fid.portmap_points)
+        # the receiver starts at the geometric mean of supply and back pressure
+        rec = steam.px(math.sqrt(chest.p * exhaust.p), 1.0)
+        net = compound(geo, pm, lp_geometry_of(scene), lp_pm, cp.lp_phase_rad,
+                       cp.receiver_volume_m3, chest, exhaust, rec, omega)
+    if scene.run.has("steam_chest"):
+        net = with_steam_chest(net, scene.supply)
+    if scene.run.has("leakage"):
+        net = with_leakage(net, scene.engine.valve_leakage_area_m2,
+                           scene.engine.piston_leakage_area_m2)
+    if scene.run.has("wall_heat"):
+        net = with_wall_heat(net, scene.engine.wall_heat_model,
+                             scene.engine.marks_constant_W_m2K,
+                             transport_properties(chest.p, chest.T))
+    return net
+
+
+@dataclass
+class Model:
+    """A scene assembled: what every runner starts from.
+
+    Attributes
+    ----------
+    scene : Scene
+    steam : Steam
+        The property tier of the scene's fidelity.
+    chest, exhaust : State
+        Supply steam at the chest; dry saturated steam at back pressure.
+    geometry : CylinderGeometry
+    gear : object
+        The valve gear (a registry entry built from the scene).
+    portmap : PortMap or None
+        Port areas against crank angle (None for the ideal card).
+    events : dict
+        Valve events of each end, found on the gear's own motion.
+    lp_events : dict or None
+        A compound's low-pressure valve events.
+    """
+
+    scene: object
+    steam: Steam
+    chest: State
+    exhaust: State
+    geometry: CylinderGeometry
+    gear: object
+    portmap: object
+    events: dict
+    lp_events: dict | None = None
+
+    def network(self, portmap=None) -> Network:
+        """A fresh network of the scene's control volumes (on ``portmap`` if given)."""
+        return build_network(self.scene, self.geometry, portmap or self.portmap, self.steam,
+                             self.chest, self.exhaust)
+
+
+def assemble(scene, *, tabulated: bool = True) -> Model:
+    """Build the model of ``scene``: property tier, reservoirs, geometry, gear, port map
+    (when ``tabulated``), and the valve events found on the gear's motion."""
+    fid = scene.run.fidelity
+    steam = make_steam(fid.properties)
+    chest, exhaust = reservoir_states(scene, steam)
+    geo = geometry_of(scene)
+    gear = build_gear(scene)
+    pm = tabulate(gear, fid.portmap_points) if tabulated else None
+    ev = valve_events(gear, lambda t: float(geo.fraction(t)), pm.crossings if pm else None)
+    lp_events = None
+    if scene.compound is not None:
+        lp_geo = lp_geometry_of(scene)
+        lp_events = valve_events(build_lp_gear(scene), lambda t: float(lp_geo.fraction(t)))
+    return Model(scene, steam, chest, exhaust, geo, gear, pm, ev, lp_events)
+
+
+# --- scenes derived for studies across the load range -----------------------------------
+
+KNOBS = ("setting", "throttle")
+
+
+def steady_scene(scene):
+    """The scene as a steady run: no flywheel, load or governor, speed held."""
+    run = dataclasses.replace(scene.run, mode="steady", duration_s=None)
+    return dataclasses.replace(scene, run=run, governor=None, governor_type=None, flywheel=None,
+                               load=None)
+
+
+def at_knob(scene, knob: str, value: float):
+    """The steady scene with the gear's setting, or the throttle's opening, at ``value``.
+
+    Parameters
+    ----------
+    scene : Scene
+    knob : str
+        ``"setting"`` (the gear's setting) or ``"throttle"`` (opening, 0..1).
+    value : float
+        The setting [-] or the opening [-].
+    """
+    sc = steady_scene(scene)
+    if knob == "setting":
+        gear = build_gear(sc)
+        if gear.setting_range is None:
+            raise InputError("--settings", value, f"a gear with a setting; the "
+                             f"{scene.gear_type} gear has none (sweep --throttle instead)")
+        lo, hi = gear.setting_range
+        if not lo <= value <= hi:
+            raise InputError("--settings", value, f"settings from {lo} to {hi} "
+                             f"({gear.setting_name})")
+        return dataclasses.replace(sc, gear=gear.with_setting(value).spec)
+    if knob == "throttle":
+        if not sc.run.has("steam_chest") or sc.supply.pipe_diameter_m is None:
+            raise InputError("--throttle", value, "a scene with the \"steam_chest\" effect and "
+                             "supply.pipe_diameter: the throttle is in the steam pipe")
+        if not 0.0 < value <= 1.0:
+            raise InputError("--throttle", value, "openings above 0, up to 1 (wide open)")
+        return dataclasses.replace(sc, supply=dataclasses.replace(sc.supply, throttle=value))
+    raise ValueError(f"knob {knob!r}: one of {KNOBS}")

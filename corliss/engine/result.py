@@ -1,0 +1,605 @@
+"""What a run hands back: one result type for every kind of run, computed by the engine.
+
+:class:`Result` is the base: the scene, the run's tables (SI, the unit in every column
+name, see :mod:`corliss.columns`), its summary, and the export methods every kind
+shares (``to_pandas``, ``to_csv``, ``plot``, ``write``).  Its kinds:
+
+- :class:`SteadyResult`: a steady run (crank-resolved or ideal card): the time series of
+  every cycle, the per-cycle balances, the cards, the crank effort, the valve events;
+- :class:`TransientResult`: a governed (or free) run through a change of load, crank-
+  resolved or on the mean-value maps: speed and governor histories, the per-turn table,
+  the load-step metrics, the cards before the step and at the end;
+- :class:`SweepResult`: steady runs across the load range (the Willans line).
+
+The physics of a result (cards, crank effort, balances, condensation, metrics) is
+computed here.  Writing files and drawing figures is the export layer's job
+(:mod:`corliss.results`, :mod:`corliss.plot`), which the engine does not import: the
+export layer registers itself with :func:`register_exporter` when it is imported (the
+``corliss`` package imports it), and the export methods hand the result to it.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import ClassVar
+
+import numpy as np
+import pandas as pd
+
+from corliss import columns, units
+from corliss.engine import crank_effort as ce
+from corliss.engine.condensation import marks_condensation_kg
+from corliss.engine.speed_metrics import load_step_metrics, step_time_of
+from corliss.thermo.steam import HEOSSteam
+
+TWO_PI = 2.0 * math.pi
+#: Why a card's fluctuation coefficient is undefined (the summary's value is null).
+NO_WORK_REASON = ("undefined: the card does no net work, so there is no stroke's work to "
+                  "refer the fluctuation to (Marks Art. 57)")
+
+_exporter = None
+
+
+def register_exporter(exporter) -> None:
+    """Register the export layer: an object with ``to_csv(result, path, table,
+    units_system)``, ``plot(result, kind, ax, units_system)`` and ``write(result, out_dir,
+    plots)``.  :mod:`corliss.results` registers itself on import."""
+    global _exporter
+    _exporter = exporter
+
+
+def _export():
+    if _exporter is None:     # only if the engine is used without the corliss package
+        raise RuntimeError("no export layer registered: import corliss (or corliss.results)")
+    return _exporter
+
+
+@dataclass
+class Result:
+    """A run's outcome (base of every kind).
+
+    Attributes
+    ----------
+    scene : Scene
+        The scene that was run (resolved, SI).
+    property_tier : str
+        The steam-property tier used (``heos``, ``table``, ``perfect``).
+    timeseries : DataFrame
+        The run's time series, SI (see the kind for its columns).
+    cycles : DataFrame
+        One row per cycle or turn, SI.
+    rhs_evaluations : int
+        Evaluations of the model's right-hand side over the run [-].
+    wall_time_s : float
+        Wall time of the run [s], set-up included.
+    """
+
+    kind: ClassVar[str] = "result"
+    #: Tables ``to_pandas`` and ``to_csv`` know, besides ``timeseries`` and ``cycles``.
+    TABLES: ClassVar[tuple[str, ...]] = ("timeseries", "cycles")
+    #: Figures ``plot`` draws; the first is the default.
+    FIGURES: ClassVar[tuple[str, ...]] = ()
+
+    scene: object
+    property_tier: str
+    timeseries: pd.DataFrame
+    cycles: pd.DataFrame
+    rhs_evaluations: int
+    wall_time_s: float
+    _summary: dict | None = field(default=None, init=False, repr=False)
+
+    @property
+    def summary(self) -> dict:
+        """The run's summary (SI unless a key names its unit); computed once."""
+        if self._summary is None:
+            self._summary = self._make_summary()
+        return self._summary
+
+    def _make_summary(self) -> dict:  # pragma: no cover - interface
+        raise NotImplementedError
+
+    def table(self, name: str | None = None) -> pd.DataFrame:
+        """One of the result's tables, SI (names in :attr:`TABLES`; the first by
+        default)."""
+        name = name or self.TABLES[0]
+        if name not in self.TABLES:
+            raise ValueError(f"table {name!r}: one of {', '.join(self.TABLES)}")
+        return getattr(self, f"_table_{name}")() if hasattr(self, f"_table_{name}") \
+            else getattr(self, name)
+
+    def to_pandas(self, table: str | None = None, units_system: str | None = None
+                  ) -> pd.DataFrame:
+        """A table as a DataFrame, SI or converted.
+
+        Parameters
+        ----------
+        table : str, optional
+            One of :attr:`TABLES` (the first by default).
+        units_system : str, optional
+            None for SI as computed (``p_head_Pa``); ``"US"`` or ``"SI"`` for the output
+            units of that system, named by them (``p_head_psia``, ``p_head_kPa_abs``).
+        """
+        df = self.table(table)
+        if units_system is None:
+            return df.copy()
+        return columns.convert_frame(df, units_system, self.scene.supply.barometer_Pa)[0]
+
+    def to_csv(self, path: str | Path, table: str | None = None,
+               units_system: str | None = None) -> Path:
+        """Write a table as CSV in the output units with its ``.meta.json`` beside it
+        (both whole or not at all).  ``table`` is one of :attr:`TABLES` (the first by
+        default); ``units_system`` "US" or "SI" (default: the scene's).  Returns the CSV
+        path."""
+        return _export().to_csv(self, path, table or self.TABLES[0], units_system)
+
+    def plot(self, kind: str | None = None, ax=None, units_system: str | None = None) -> dict:
+        """Draw one of :attr:`FIGURES` (the first by default) in period style.
+
+        Returns
+        -------
+        dict
+            The matplotlib objects drawn (``"ax"`` or ``"figure"`` and the lines).
+        """
+        return _export().plot(self, kind or self.FIGURES[0], ax, units_system)
+
+    def write(self, out_dir: str | Path, *, plots: bool = True) -> dict[str, Path]:
+        """Write every file of the run into ``out_dir``: tables as CSV with their meta
+        files, the summary as JSON and (``plots``) the figures as PNG.  All files appear
+        together or none does; an earlier run's files are never damaged."""
+        return _export().write(self, out_dir, plots)
+
+
+def _last(ts: pd.DataFrame) -> pd.DataFrame:
+    return ts[ts["cycle"] == ts["cycle"].max()]
+
+
+@dataclass
+class SteadyResult(Result):
+    """A steady run: the speed held, cycles until periodic.
+
+    Attributes
+    ----------
+    events : dict
+        Valve events of each end (the JSON contract of ``corliss events``).
+    geometry : CylinderGeometry
+        The (first or high-pressure) cylinder.
+    chest, exhaust : State
+        Supply steam at the chest and dry saturated steam at back pressure.
+    cycles_to_converge : int or None
+        Cycles until the run was periodic (None if ``cycles`` fixed the count).
+    portmap : PortMap or None
+        Port areas against crank angle (None for the ideal card).
+    ideal_cards : dict or None
+        The algebraic cards of the hyperbolic ideal model.
+    cylinders : list
+        ``(column prefix, geometry, crank lead [rad])`` of every cylinder; ``""`` first.
+    lp_events : dict or None
+        A compound's low-pressure valve events.
+
+    Tables: ``timeseries`` (``cycle``, ``crank_angle_deg``, ``time_s``, and per end
+    ``p_*_Pa``, ``T_*_K``, ``x_*_frac`` (dryness), ``V_*_m3``, ``m_*_kg``), ``cycles``
+    (per cycle: work, mass and enthalpy from the chest and to the exhaust, heat), ``cards``
+    (the last cycle's card of each end: ``end``, ``crank_angle_deg``, ``piston_frac``,
+    ``V_m3``, ``p_Pa``) and ``crank_effort`` (torque against crank angle).
+    """
+
+    kind: ClassVar[str] = "steady"
+    TABLES: ClassVar[tuple[str, ...]] = ("timeseries", "cycles", "cards", "crank_effort")
+    FIGURES: ClassVar[tuple[str, ...]] = ("card", "effort", "lp_card")
+
+    events: dict = field(default_factory=dict)
+    geometry: object = None
+    chest: object = None
+    exhaust: object = None
+    cycles_to_converge: int | None = None
+    portmap: object = None
+    ideal_cards: dict | None = None
+    cylinders: list | None = None
+    lp_events: dict | None = None
+
+    @property
+    def cylinder_list(self) -> list:
+        """(prefix, geometry, crank lead [rad]) of every cylinder; "" is the (HP) first."""
+        return self.cylinders or [("", self.geometry, 0.0)]
+
+    @property
+    def last_cycle(self) -> pd.Series:
+        """The per-cycle row of the last cycle."""
+        return self.cycles.iloc[-1]
+
+    @property
+    def cards(self) -> dict[str, pd.DataFrame]:
+        """Card of each end over the last cycle: ``piston_frac`` (the piston's position as
+        a fraction of the stroke from head-end dead centre, the card's abscissa),
+        ``V_m3``, ``p_Pa``, and the cylinder's own ``crank_angle_deg``; keyed by end
+        (``head``, ``crank``, ``lp_head``, ...)."""
+        if self.ideal_cards is not None:
+            out = {}
+            for end, df in self.ideal_cards.items():
+                frac = df["frac"] if end == "head" else 1.0 - df["frac"]
+                out[end] = pd.DataFrame({"piston_frac": frac.to_numpy(),
+                                         "V_m3": df["V_m3"].to_numpy(),
+                                         "p_Pa": df["p_Pa"].to_numpy()})
+            return out
+        ts = _last(self.timeseries)
+        th = np.radians(ts["crank_angle_deg"].to_numpy()) % TWO_PI
+        out = {}
+        for prefix, geo, phase in self.cylinder_list:
+            frac = geo.fraction(th + phase)
+            for end in ("head", "crank"):
+                out[prefix + end] = pd.DataFrame({
+                    # the cylinder's own crank angle, in which its events are given
+                    "crank_angle_deg": ts["crank_angle_deg"].to_numpy() + math.degrees(phase),
+                    "piston_frac": frac,
+                    "V_m3": ts[f"V_{prefix}{end}_m3"].to_numpy(),
+                    "p_Pa": ts[f"p_{prefix}{end}_Pa"].to_numpy()})
+        return out
+
+    def _table_cards(self) -> pd.DataFrame:
+        return pd.concat([df.assign(end=end)[["end", *df.columns]]
+                          for end, df in self.cards.items()], ignore_index=True)
+
+    @property
+    def crank_effort(self) -> pd.DataFrame:
+        """Torque on the shaft over the last cycle (SI): crank angle, steam force on the
+        piston, the inertia force of the reciprocating masses (``inertia`` effect), the
+        indicated torque they make, the friction torque (``friction`` effect) and the net
+        torque left for the load."""
+        ts = _last(self.timeseries)
+        th = np.radians(ts["crank_angle_deg"].to_numpy())
+        run, spec = self.scene.run, self.geometry.spec
+        cols = {"crank_angle_deg": ts["crank_angle_deg"].to_numpy()}
+        total = np.zeros(th.size)
+        for prefix, g, phase in self.cylinder_list:
+            force = ce.piston_force_N(g, ts[f"p_{prefix}head_Pa"].to_numpy(),
+                                      ts[f"p_{prefix}crank_Pa"].to_numpy(),
+                                      self.scene.supply.barometer_Pa)
+            cols[f"{prefix}steam_force_N"] = force
+            if run.has("inertia"):
+                f_in = ce.inertia_force_N(g, th + phase, run.speed_rad_s,
+                                          spec.reciprocating_mass_kg)
+                cols[f"{prefix}inertia_force_N"] = f_in
+                force = force + f_in
+            total = total + ce.torque_N_m(g, th + phase, force)
+        cols["torque_N_m"] = total
+        net = total
+        if run.has("friction"):
+            tf = spec.friction_torque_N_m + spec.friction_N_m_s * run.speed_rad_s
+            cols["friction_torque_N_m"] = np.full(th.size, tf)
+            net = net - tf
+        cols["net_torque_N_m"] = net
+        return pd.DataFrame(cols)
+
+    def _effort_summary(self, work_J: float) -> dict:
+        eff = self.crank_effort
+        th = np.radians(eff["crank_angle_deg"].to_numpy())
+        dE = ce.energy_fluctuation_J(th, eff["torque_N_m"].to_numpy())
+        out = {"max_torque_N_m": float(eff["torque_N_m"].max()),
+               "min_torque_N_m": float(eff["torque_N_m"].min()),
+               "mean_torque_N_m": work_J / TWO_PI,
+               "energy_fluctuation_J": dE,
+               # Marks Art. 57, Table IV: spread over the work of one stroke of one
+               # cylinder; undefined when the card does no net work
+               "fluctuation_coefficient_c": (dE / (0.5 * work_J / len(self.cylinder_list))
+                                             if work_J > 0 else None)}
+        if work_J <= 0:
+            out["fluctuation_coefficient_note"] = NO_WORK_REASON
+        run = self.scene.run
+        row = self.last_cycle
+        rev_per_h = run.speed_rad_s / TWO_PI * 3600.0
+        valve_leaks = [k for k in row.index if k.startswith("m_valve_leak_")]
+        if valve_leaks:
+            out["valve_leakage_kg_per_h"] = float(sum(row[k] for k in valve_leaks)) * rev_per_h
+        if "m_piston_leak_kg" in row:
+            out["piston_leakage_net_kg_per_cycle"] = float(row["m_piston_leak_kg"])
+        if "Q_head_J" in row:
+            out.update(self._condensation_summary())
+        if "p_chest_Pa" in self.timeseries:
+            last = _last(self.timeseries)
+            out["chest_pressure_mean_Pa"] = float(last["p_chest_Pa"].mean())
+            out["chest_pressure_min_Pa"] = float(last["p_chest_Pa"].min())
+        if run.has("friction"):
+            spec = self.geometry.spec
+            tf = spec.friction_torque_N_m + spec.friction_N_m_s * run.speed_rad_s
+            indicated = work_J * run.speed_rad_s / TWO_PI
+            brake = indicated - tf * run.speed_rad_s
+            out.update({"friction_torque_N_m": tf, "friction_power_W": tf * run.speed_rad_s,
+                        "friction_work_J_per_cycle": tf * TWO_PI,
+                        "brake_power_W": brake, "brake_power_hp": brake / units.HP_W,
+                        "mechanical_efficiency": brake / indicated if indicated > 0 else None})
+        return out
+
+    def _compound_summary(self) -> dict:
+        """Power of each cylinder; for a compound, LP mean pressures and the receiver's."""
+        if len(self.cylinder_list) < 2:
+            return {}
+        row = self.last_cycle
+        rev_per_s = self.scene.run.speed_rad_s / TWO_PI
+        if self.scene.compound is None:
+            return {"cylinder_powers_W": [float(row[f"work_{p}head_J"] + row[f"work_{p}crank_J"])
+                                          * rev_per_s for p, _, _ in self.cylinder_list]}
+        _, lp, _ = self.cylinder_list[1]
+        w_lp = float(row["work_lp_head_J"] + row["work_lp_crank_J"])
+        w_hp = float(row["work_head_J"] + row["work_crank_J"])
+        last = _last(self.timeseries)
+        return {"hp_power_W": w_hp * rev_per_s, "lp_power_W": w_lp * rev_per_s,
+                "lp_mep_head_Pa": float(row["work_lp_head_J"]) / lp.swept_m3[0],
+                "lp_mep_crank_Pa": float(row["work_lp_crank_J"]) / lp.swept_m3[1],
+                "receiver_pressure_mean_Pa": float(last["p_receiver_Pa"].mean()),
+                "receiver_pressure_min_Pa": float(last["p_receiver_Pa"].min()),
+                "receiver_pressure_max_Pa": float(last["p_receiver_Pa"].max())}
+
+    def _condensation_summary(self) -> dict:
+        """Initial condensation as the engineers of the time measured it (Marks Art. 74).
+
+        Per end: the heat the steam gave the walls over the cycle; the wet fraction of
+        the cylinder's contents at cut-off; and the "missing water": the steam supplied
+        less the steam the card shows at cut-off (volume at cut-off times the density
+        of dry saturated steam at the card's pressure there, less the cushion steam shut
+        in at compression, Marks eq. 219a), as a fraction of the steam supplied; and
+        beside it the fraction Marks's law of condensation predicts (eq. 221).
+        """
+        sat = HEOSSteam()
+        row = self.last_cycle
+        ts = _last(self.timeseries)
+        ang = np.mod(ts["crank_angle_deg"].to_numpy(), 360.0)
+        ang, idx = np.unique(ang, return_index=True)
+        out = {}
+        for end in ("head", "crank"):
+            out[f"heat_to_walls_{end}_J_per_cycle"] = float(row[f"Q_to_wall_{end}_J"])
+            out[f"wall_temperature_{end}_K"] = (float(row[f"T_wall_{end}_K"])
+                                                if f"T_wall_{end}_K" in row else None)
+            ev = self.events[end]
+            if ev["cutoff_deg"] is None or ev["compression_deg"] is None:
+                continue
+
+            def at(col, deg):
+                return float(np.interp(deg, ang, ts[col].to_numpy()[idx], period=360.0))
+
+            c, k = ev["cutoff_deg"], ev["compression_deg"]
+            out[f"wet_fraction_at_cutoff_{end}"] = 1.0 - at(f"x_{end}_frac", c)
+            shown = (at(f"V_{end}_m3", c) * sat.px(at(f"p_{end}_Pa", c), 1.0).rho
+                     - at(f"V_{end}_m3", k) * sat.px(at(f"p_{end}_Pa", k), 1.0).rho)
+            supplied = float(row[f"m_chest_{end}_kg"])
+            out[f"missing_water_fraction_{end}"] = (supplied - shown) / supplied
+            # the period's prediction beside the model's (Marks eq. 221)
+            e_idx = 0 if end == "head" else 1
+            vc, vs = self.geometry.clearance_m3[e_idx], self.geometry.swept_m3[e_idx]
+            e_true = (vc + vs * ev["cutoff_frac"]) / (vc + vs)
+            cond = marks_condensation_kg(
+                self.geometry.spec.bore_m, self.geometry.spec.stroke_m,
+                2.0 * self.scene.run.speed_rad_s / TWO_PI, e_true,
+                sat.t_sat(at(f"p_{end}_Pa", c)), self.exhaust.T)
+            out[f"marks_missing_water_fraction_{end}"] = cond / (cond + shown)
+        return out
+
+    def _make_summary(self) -> dict:
+        run = self.scene.run
+        row = self.last_cycle
+        w_h, w_c = float(row["work_head_J"]), float(row["work_crank_J"])
+        w = float(row["work_J"]) if "work_J" in row else w_h + w_c
+        rev_per_s = run.speed_rad_s / TWO_PI
+        power = w * rev_per_s
+        sw_h, sw_c = self.geometry.swept_m3
+        # what crossed the engine's boundary: from the supply, from (minus: to) the exhaust
+        steam_cycle = float(row["m_supply_kg"])
+        steam_rate = steam_cycle * rev_per_s * 3600.0
+        m_exh = float(row["m_exhaust_kg"])
+        H_in = float(row["H_supply_J"])
+        H_ex = float(row["H_exhaust_J"]) if "H_exhaust_J" in row else math.nan
+        p_peak = float(np.nanmax(np.concatenate([c["p_Pa"].to_numpy()
+                                                 for c in self.cards.values()])))
+        mass_err = abs(steam_cycle + m_exh) / abs(steam_cycle) if steam_cycle else None
+        Q = sum(float(row[c]) for c in row.index if c.startswith("Q_") and "to_wall" not in c)
+        energy_err = (abs(H_in + H_ex + Q - w) / abs(H_in) if math.isfinite(H_ex) and H_in
+                      else None)
+        power_kW = power / 1000.0
+        ihp = power / units.HP_W
+
+        def ratio(a, b):
+            return a / b if b > 0 else None
+
+        return {
+            "title": self.scene.title,
+            "kind": self.kind,
+            "model": run.model,
+            "effects": list(run.effects),
+            "fidelity": run.fidelity.name,
+            "property_tier": self.property_tier,
+            "speed_rpm": run.speed_rpm,
+            "indicated_power_W": power,
+            "indicated_power_hp": ihp,
+            "indicated_work_J_per_cycle": w,
+            "mep_head_Pa": w_h / sw_h,
+            "mep_crank_Pa": w_c / sw_c,
+            # over all cylinders; a compound's is referred to its LP cylinder (Marks Art. 90)
+            "mep_mean_Pa": w / (sum(self.cylinder_list[-1][1].swept_m3)
+                                if self.scene.compound is not None else
+                                sum(sum(g.swept_m3) for _, g, _ in self.cylinder_list)),
+            "steam_per_cycle_kg": steam_cycle,
+            "steam_rate_kg_per_h": steam_rate,
+            "water_rate_kg_per_kWh": ratio(steam_rate, power_kW),
+            "water_rate_lb_per_ihp_h": ratio(steam_rate / units.POUND_kg, ihp),
+            "peak_pressure_Pa": p_peak,
+            "supply_pressure_Pa": self.chest.p,
+            "exhaust_pressure_Pa": self.exhaust.p,
+            "cycles_simulated": int(len(self.cycles)),
+            "cycles_to_converge": self.cycles_to_converge,
+            "mass_balance_error": mass_err,
+            "energy_balance_error": energy_err,
+            "rhs_evaluations": self.rhs_evaluations,
+            "wall_time_s": self.wall_time_s,
+            **self._effort_summary(w),
+            **self._compound_summary(),
+            "events": self.events,
+            **({"lp_events": self.lp_events} if self.lp_events is not None else {}),
+        }
+
+
+@dataclass
+class TransientResult(Result):
+    """A transient run: the speed a state, the load changing, the governor acting.
+
+    Attributes
+    ----------
+    geometry : CylinderGeometry
+    stalled : bool
+        True when the load stopped the engine before the run's end.
+    mechanism : GovernorMechanism or None
+        The governor in its common form (None for a free engine).
+    z_start : float
+        The governor's coordinate at t = 0 [-].
+    chest, exhaust : State or None
+        Reservoir states (None on the mean-value maps).
+    engine_map : EngineMap or None
+        The mean-value model's maps of torque and steam (None crank-resolved).
+
+    Tables: ``timeseries`` (``cycle``, ``time_s``, ``crank_angle_deg``, ``speed_rpm``,
+    ``governor_z_frac``, ``actuator_frac`` (the throttle's opening or the gear's
+    setting), and with ``record`` = step or degree the cylinder pressures ``p_head_Pa``,
+    ``p_crank_Pa`` or the torques), ``cycles`` (per turn: ``t_start_s``, ``t_end_s``,
+    ``mean_speed_rpm``, ``work_J``, ``indicated_power_W``, ``load_work_J``,
+    ``load_power_W``, ``friction_work_J``, ``m_supply_kg``, ``steam_rate_kg_per_h``,
+    ``governor_z_frac``, and the throttle opening or gear setting and its cut-off) and
+    ``cards`` (the turn before the step and the last: ``phase``, ``end``, ``V_m3``,
+    ``p_Pa``).
+    """
+
+    kind: ClassVar[str] = "transient"
+    TABLES: ClassVar[tuple[str, ...]] = ("timeseries", "cycles", "cards")
+    FIGURES: ClassVar[tuple[str, ...]] = ("loadstep",)
+
+    geometry: object = None
+    stalled: bool = False
+    mechanism: object = None
+    z_start: float = 0.0
+    chest: object = None
+    exhaust: object = None
+    engine_map: object = None
+
+    @property
+    def step_time_s(self) -> float | None:
+        """The time of the load's step [s] (None for a load without one)."""
+        return step_time_of(self.scene.load)
+
+    @property
+    def metrics(self) -> dict:
+        """Regulation, largest deviation, settling and hunting (see speed_metrics)."""
+        return load_step_metrics(self.cycles, self.step_time_s, self.scene.run.settling_band)
+
+    def _make_summary(self) -> dict:
+        s = self.scene
+        c = self.cycles
+        gov = None
+        if s.governor is not None:
+            gov = {"type": s.governor_type, "acts_on": self.mechanism.acts_on,
+                   "z_at_start": self.z_start}
+        return {
+            "title": s.title, "kind": self.kind, "mode": "transient", "model": s.run.model,
+            "effects": list(s.run.effects), "fidelity": s.run.fidelity.name,
+            "property_tier": self.property_tier,
+            "initial_speed_rpm": s.run.speed_rpm, "duration_s": s.run.duration_s,
+            "simulated_s": float(c["t_end_s"].iloc[-1]), "turns": int(len(c)),
+            "flywheel_inertia_kg_m2": s.flywheel.inertia_kg_m2,
+            "load_torque_N_m": s.load.torque_N_m, "load_kind": s.load.kind,
+            "load_speed_law": s.load.speed_law, "step_time_s": self.step_time_s,
+            "governor": gov, "stalled": self.stalled,
+            **self.metrics,
+            "final_indicated_power_W": float(c["indicated_power_W"].iloc[-5:].mean()),
+            "final_steam_rate_kg_per_h": float(c["steam_rate_kg_per_h"].iloc[-5:].mean()),
+            "rhs_evaluations": self.rhs_evaluations, "wall_time_s": self.wall_time_s,
+        }
+
+    def cards(self) -> dict:
+        """Head and crank cards of the turn before the step and of the last turn:
+        ``{"before": {"head": frame, "crank": frame, "cycle": k}, "after": ...}`` with
+        ``V_m3``, ``p_Pa``; empty when the time series has no pressures (``record`` =
+        cycle, or the mean-value model)."""
+        ts = self.timeseries
+        if "p_head_Pa" not in ts:
+            return {}
+        c = self.cycles
+        t_step = self.step_time_s
+        k_last = int(c["cycle"].iloc[-1])
+        if t_step is not None and (c["t_end_s"] <= t_step).any():
+            k_before = int(c.loc[c["t_end_s"] <= t_step, "cycle"].iloc[-1])
+        else:
+            k_before = int(c["cycle"].iloc[0])
+        out = {}
+        for label, k in (("before", k_before), ("after", k_last)):
+            rows = ts[ts["cycle"] == k]
+            th = np.radians(rows["crank_angle_deg"].to_numpy())
+            vh, vc = self.geometry.volumes_m3(th)
+            out[label] = {"head": pd.DataFrame({"V_m3": vh,
+                                                "p_Pa": rows["p_head_Pa"].to_numpy()}),
+                          "crank": pd.DataFrame({"V_m3": vc,
+                                                 "p_Pa": rows["p_crank_Pa"].to_numpy()}),
+                          "cycle": k}
+        return out
+
+    def _table_cards(self) -> pd.DataFrame:
+        frames = [df.assign(phase=phase, end=end)[["phase", "end", "V_m3", "p_Pa"]]
+                  for phase, d in self.cards().items()
+                  for end, df in d.items() if end != "cycle"]
+        return (pd.concat(frames, ignore_index=True) if frames else
+                pd.DataFrame({"phase": [], "end": [], "V_m3": [], "p_Pa": []}))
+
+
+@dataclass
+class SweepResult(Result):
+    """Steady runs across the load range at a series of gear settings or throttle
+    openings.
+
+    Attributes
+    ----------
+    knob : str
+        ``"setting"`` or ``"throttle"``.
+    values : list of float
+        The settings [-] or openings [-] run.
+
+    Tables: ``points`` (one row per value: ``knob_frac`` (the setting or opening),
+    ``indicated_power_W``, ``steam_rate_kg_per_h``, ``water_rate_kg_per_kWh``,
+    ``cutoff_head_frac``, and ``brake_power_W`` with ``friction``), also as
+    ``timeseries``/``cycles`` (the same one row per run).
+    """
+
+    kind: ClassVar[str] = "sweep"
+    TABLES: ClassVar[tuple[str, ...]] = ("points",)
+    FIGURES: ClassVar[tuple[str, ...]] = ("willans",)
+
+    knob: str = "setting"
+    values: list = field(default_factory=list)
+
+    @property
+    def points(self) -> pd.DataFrame:
+        """One row per steady run (see the class's tables)."""
+        return self.cycles
+
+    def willans(self) -> tuple[float, float, float]:
+        """The least-squares Willans line steam = a + b power: (a [kg/h], b [kg/h per W],
+        R^2 [-])."""
+        return willans_fit(self.points)
+
+    def _make_summary(self) -> dict:
+        a, b, r2 = self.willans() if len(self.points) >= 2 else (None, None, None)
+        s = self.scene
+        return {"title": s.title, "kind": self.kind, "knob": self.knob,
+                "values": list(self.values), "fidelity": s.run.fidelity.name,
+                "property_tier": self.property_tier,
+                "willans_intercept_kg_per_h": a, "willans_slope_kg_per_h_per_W": b,
+                "willans_r2": r2, "rhs_evaluations": self.rhs_evaluations,
+                "wall_time_s": self.wall_time_s}
+
+
+def willans_fit(frame: pd.DataFrame) -> tuple[float, float, float]:
+    """Least-squares line steam = a + b power through a sweep: (a [kg/h], b [kg/h per W],
+    R^2 [-])."""
+    x = frame["indicated_power_W"].to_numpy()
+    y = frame["steam_rate_kg_per_h"].to_numpy()
+    b, a = np.polyfit(x, y, 1)
+    resid = y - (a + b * x)
+    ss = float(np.sum((y - y.mean()) ** 2))
+    r2 = 1.0 - float(np.sum(resid ** 2)) / ss if ss > 0 else 1.0
+    return float(a), float(b), r2
