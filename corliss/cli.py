@@ -169,22 +169,12 @@ def cmd_gear(args) -> int:
     import matplotlib.pyplot as plt
 
     from corliss.engine.simulate import build_gear
-    from corliss.plot import plot_valve_travel, plot_zeuner_diagram
+    from corliss.plot import plot_gear
     from corliss.results import _write_atomic
     scene = _load(args.scene)
     gear = build_gear(scene)
     system = scene.output.units
-    if hasattr(gear, "draw"):
-        # a gear whose motion is not one lapped valve (double valves, Corliss, four
-        # valves) draws its own travel and diagrams on the figure
-        fig = plt.figure(figsize=(13, 5.5))
-        gear.draw(fig, system)
-    else:
-        from corliss.plot import plot_bilgram_diagram
-        fig = plt.figure(figsize=(19, 5.5))
-        plot_valve_travel(gear, fig.add_subplot(1, 3, 1), system)
-        plot_zeuner_diagram(gear, fig.add_subplot(1, 3, 2), system)
-        plot_bilgram_diagram(gear, fig.add_subplot(1, 3, 3), system)
+    fig = plot_gear(gear, units_system=system)["figure"]
     fig.suptitle(f"{scene.title}: {scene.gear_type}", fontsize=11)
     out = Path(args.out if args.out is not None else scene.output.dir) / f"{scene.name}.gear.png"
     out.parent.mkdir(parents=True, exist_ok=True)
