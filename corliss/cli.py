@@ -253,23 +253,13 @@ def cmd_gear(args) -> int:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from corliss.plot import plot_bilgram_diagram, plot_valve_travel, plot_zeuner_diagram
+    from corliss.plot import plot_gear
     scene = _load(args.scene, args.units)
     gear = build_gear(scene)
-    system = scene.output.units
     out_dir = Path(args.out if args.out is not None else scene.output.dir)
     name = f"{scene.name}.gear.png"
     with OutputFiles(out_dir) as out:
-        if hasattr(gear, "draw"):
-            # a gear whose motion is not one lapped valve (double valves, Corliss, four
-            # valves) draws its own travel and diagrams on the figure
-            fig = plt.figure(figsize=(13, 5.5))
-            gear.draw(fig, system)
-        else:
-            fig = plt.figure(figsize=(19, 5.5))
-            plot_valve_travel(gear, fig.add_subplot(1, 3, 1), system)
-            plot_zeuner_diagram(gear, fig.add_subplot(1, 3, 2), system)
-            plot_bilgram_diagram(gear, fig.add_subplot(1, 3, 3), system)
+        fig = plot_gear(gear, units_system=scene.output.units)["figure"]
         try:
             fig.suptitle(f"{scene.title}: {scene.gear_type}", fontsize=11)
             fig.savefig(out.stage(name), dpi=120, bbox_inches="tight", format="png")

@@ -4,7 +4,6 @@ the ideal-port limit, its own area, and the mass and energy balances."""
 import dataclasses
 import math
 
-import numpy as np
 import pytest
 
 import corliss

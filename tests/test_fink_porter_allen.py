@@ -186,12 +186,14 @@ def test_four_ports_have_their_own_valves():
     assert not np.allclose(s0[1], s1[1]) and not np.allclose(s0[2], s1[2])
 
 
-def test_porter_allen_draws_its_own_figure_and_scene_checks():
+def test_porter_allen_is_drawn_in_its_own_panels_and_scene_checks():
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+
+    from corliss.plot import plot_gear
     fig = plt.figure(figsize=(13, 5))
-    out = porter_allen(0.5).draw(fig, "SI")
+    out = plot_gear(porter_allen(0.5), fig, "SI")
     assert len(out["axes"]) == 3 and len(fig.axes) == 3
     plt.close(fig)
     vg = {"type": "porter_allen", "eccentricity": "1 in", "rod_a": "6 in", "radius_rod": "40 in",

@@ -1,11 +1,19 @@
 """Valve gears drawn: valve travel, the Zeuner diagram and the Bilgram diagram
-(Spangler Arts. 149-150)."""
+(Spangler Arts. 149-150), and :func:`plot_gear`, the full set of panels of any gear
+(a gear whose motion is not one lapped valve has its own, in
+:mod:`corliss.plot.gear_panels`)."""
 
 from __future__ import annotations
 
 import numpy as np
 
 from corliss import units
+from corliss.plot.gear_panels import (find_by_class, plot_corliss_gear, plot_double_valve,
+                                      plot_porter_allen)
+from corliss.valves.corliss_gear import CorlissGear
+from corliss.valves.double_valve import DoubleValve
+from corliss.valves.fink_motion import PorterAllenGear
+from corliss.valves.slide_valve import LappedValve
 
 
 def plot_valve_travel(gear, ax=None, units_system: str = "US") -> dict:
@@ -216,3 +224,66 @@ def plot_bilgram_diagram(gear, ax=None, units_system: str = "US") -> dict:
     for side in ("top", "right"):
         ax.spines[side].set_visible(False)
     return {"ax": ax, "lines": lines, "events": ev}
+
+
+def plot_lapped_valve(gear, fig=None, units_system: str = "US") -> dict:
+    """The three standard panels of a lapped valve, side by side: valve travel
+    (:func:`plot_valve_travel`), the Zeuner diagram (:func:`plot_zeuner_diagram`) and the
+    Bilgram diagram (:func:`plot_bilgram_diagram`).
+
+    Returns
+    -------
+    dict
+        ``{"figure": fig, "axes": [travel, zeuner, bilgram], "travel": {...},
+        "zeuner": {...}, "bilgram": {...}}``, the last three what each panel returned.
+    """
+    if fig is None:
+        import matplotlib.pyplot as plt
+        fig = plt.figure(figsize=(19, 5.5))
+    travel = plot_valve_travel(gear, fig.add_subplot(1, 3, 1), units_system)
+    zeuner = plot_zeuner_diagram(gear, fig.add_subplot(1, 3, 2), units_system)
+    bilgram = plot_bilgram_diagram(gear, fig.add_subplot(1, 3, 3), units_system)
+    return {"figure": fig, "axes": [travel["ax"], zeuner["ax"], bilgram["ax"]],
+            "travel": travel, "zeuner": zeuner, "bilgram": bilgram}
+
+
+#: The panels of each kind of gear: gear class -> drawing ``f(gear, fig, units_system)
+#: -> dict``.  A gear takes the entry of its nearest class along its method resolution
+#: order (a subclass its parent's); a gear of no class here, the standard panels of
+#: :func:`plot_lapped_valve`.
+GEAR_PANELS = {
+    LappedValve: plot_lapped_valve,
+    DoubleValve: plot_double_valve,
+    CorlissGear: plot_corliss_gear,
+    PorterAllenGear: plot_porter_allen,
+}
+
+
+def plot_gear(gear, fig=None, units_system: str = "US") -> dict:
+    """All the panels of a valve gear, as ``corliss gear`` draws them.
+
+    A lapped valve (slide valve, link motions, radial gears, shaft governor, Fink
+    motion) gets valve travel, the Zeuner diagram and the Bilgram diagram; a double
+    valve its travels, openings and the book's diagram of its kind; the Corliss gear
+    its wrist plate, spindles and port openings with the trip; the Porter-Allen gear
+    its stems, openings and the Zeuner diagram at the radius rod.  The drawing is
+    chosen from :data:`GEAR_PANELS` by the gear's class.
+
+    Parameters
+    ----------
+    gear : ValveGear
+        As :func:`corliss.engine.simulate.build_gear` builds it (the Corliss gear with
+        its speed, for the trip).
+    fig : matplotlib Figure, optional
+        Drawn on; when None, a new figure sized for the panels (the caller closes it).
+    units_system : str
+        ``"US"`` (inches) or ``"SI"`` (mm).
+
+    Returns
+    -------
+    dict
+        At least ``{"figure": fig, "axes": [...]}``, one axes per panel, and what the
+        gear's drawing returns besides (e.g. ``"lines"``).
+    """
+    draw = find_by_class(GEAR_PANELS, gear) or plot_lapped_valve
+    return draw(gear, fig, units_system)

@@ -129,10 +129,6 @@ class BuckeyeGear(dv.DoubleValve):
         return (s.cutoff_eccentricity_m * math.sin(s.delta1),
                 s.cutoff_eccentricity_m * math.cos(s.delta1))
 
-    def draw_diagram(self, ax, u):
-        super().draw_diagram(ax, u)
-        dv._finish_diagram(ax, u, "Cut-off valve circle on the main valve (Arts. 137-139)")
-
 
 class _Linkage:
     """The Buckeye linkage solved per crank angle (see the module doc).

@@ -475,50 +475,6 @@ class CorlissGear(ValveGear):
     def discharge_coefficients(self):
         return np.full(4, self.spec.discharge_coefficient)
 
-    # ------------------------------------------------------------------ drawing
-    def draw(self, fig, units_system: str = "US") -> dict:
-        """Wrist plate and spindle angles, and the four port openings (latched dotted,
-        tripped solid), against crank angle."""
-        u = "in" if units_system == "US" else "mm"
-        ax_a, ax_o = fig.add_subplot(1, 2, 1), fig.add_subplot(1, 2, 2)
-        th = np.linspace(0.0, TWO_PI, 1441)
-        deg = np.degrees(th)
-        lines = {"plate": ax_a.plot(deg, np.degrees(self.plate_angle(th)), color="k", lw=1.6,
-                                    label="wrist plate")[0]}
-        ang = np.degrees(self.spindle_angles(th))
-        styles = [("head steam", "0.2", "-"), ("head exhaust", "0.45", "-"),
-                  ("crank steam", "0.2", "--"), ("crank exhaust", "0.45", "--")]
-        for p, (lab, c, ls) in enumerate(styles):
-            lines[lab + " spindle"] = ax_a.plot(deg, ang[p], color=c, lw=1.0, ls=ls,
-                                                label=f"{lab} spindle (latched)")[0]
-        ax_a.set_ylabel("angle from mid position [deg]")
-        ax_a.set_title("Wrist plate and valve spindles (Art. 156)", fontsize=10)
-        U = lambda v: units.to_unit(np.asarray(v), u)  # noqa: E731
-        w = self.port_widths()[:, None]
-        lat = np.clip(self.latched_signed_openings(th), 0.0, w)
-        act = np.clip(self.signed_openings(th), 0.0, w) if self.spec.speed_rad_s else lat
-        for p, (lab, c, ls) in enumerate(styles):
-            if p in (0, 2):
-                lines[lab + " latched"] = ax_o.plot(deg, U(lat[p]), color=c, lw=0.9, ls=":",
-                                                    label=f"{lab}, latched")[0]
-            lines[lab] = ax_o.plot(deg, U(act[p]), color=c, lw=1.4, ls=ls,
-                                   label=lab + (", tripped" if p in (0, 2) else ""))[0]
-        ax_o.set_ylabel(f"port opening [{u}]")
-        spd = (f", {self.spec.speed_rad_s / units.RPM_RAD_S:.0f} rpm"
-               if self.spec.speed_rad_s else "")
-        ax_o.set_title(f"Port openings, cam s = {self.spec.setting:g}{spd} (Art. 155)",
-                       fontsize=10)
-        for ax in (ax_a, ax_o):
-            ax.set_xlabel("crank angle from head-end dead centre [deg]")
-            ax.set_xlim(0, 360)
-            ax.set_xticks(range(0, 361, 60))
-            ax.axhline(0, color="0.8", lw=0.5)
-            ax.grid(True, color="0.9", lw=0.5)
-            ax.legend(fontsize=7, frameon=False)
-            for side in ("top", "right"):
-                ax.spines[side].set_visible(False)
-        return lines
-
 
 # ---------------------------------------------------------------------- parsing
 def _arc(t: Table, key: str, radius: float, default=None) -> tuple[float, float]:

@@ -50,7 +50,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from corliss import units
 from corliss.errors import InputError
 from corliss.tables import Table
 from corliss.valves.gear import ValveGear
@@ -291,87 +290,6 @@ class DoubleValve(ValveGear):
                             "valve must open before the main valve does)", self.name, end, a,
                             what)
 
-    # -- drawing ---------------------------------------------------------------
-    def draw(self, fig, units_system: str = "US") -> dict:
-        """Valve travels, steam-port openings and the book's diagram on ``fig``.
-
-        Left above: main, cut-off and relative valve travel against crank angle, with
-        the laps; left below: the head-end steam opening of each valve and the
-        combined one (the crank end's combined dashed), any double admission shaded;
-        right: the valve diagram of :meth:`draw_diagram`.
-        """
-        u = "in" if units_system == "US" else "mm"
-        gs = fig.add_gridspec(2, 2, width_ratios=(1.7, 1.0), hspace=0.35, wspace=0.25)
-        ax_t, ax_o, ax_d = fig.add_subplot(gs[0, 0]), fig.add_subplot(gs[1, 0]), \
-            fig.add_subplot(gs[:, 1])
-        th = np.linspace(0.0, TWO_PI, 1441)
-        deg = np.degrees(th)
-        U = lambda v: units.to_unit(np.asarray(v), u)  # noqa: E731
-        lines = {"main": ax_t.plot(deg, U(self.main_travel(th)), color="k", lw=1.4,
-                                   label="main valve")[0]}
-        lines["cutoff"] = ax_t.plot(deg, U(self.cutoff_travel(th)), color="0.35", lw=1.1,
-                                    ls="--", label="cut-off valve")[0]
-        sh, sc = self.spec.cutoff.lap_m
-        lh, lc = self.spec.main.lap_m
-        if self.spec.cutoff.kind == "seat":
-            marks = [(sh, "cut-off valve closes, +s", ":"), (-sc, "cut-off valve closes, -s", ":")]
-        else:
-            lines["relative"] = ax_t.plot(deg, U(self.closing_travel(th)), color="0.45", lw=1.0,
-                                          ls=":", label=self.relative_label)[0]
-            marks = [(sh, "head block lap s", ":"), (-sc, "crank block lap s", ":")]
-        marks += [(lh, "head steam lap", "-"), (-lc, "crank steam lap", "-")]
-        span = float(np.ptp(U(self.cutoff_travel(th)))) or 1.0
-        placed: list[float] = []
-        for y, lab, ls in sorted(marks, key=lambda m: -abs(m[0])):
-            ax_t.axhline(U(y), color="0.6", lw=0.7, ls=ls)
-            yt = float(U(y))
-            for other in placed:           # keep the labels of near laps apart
-                if abs(yt - other) < 0.07 * span:
-                    yt = other + math.copysign(0.07 * span, yt - other if yt != other else -yt)
-            placed.append(yt)
-            ax_t.text(362, yt, lab, fontsize=7, va="center", color="0.4")
-        ax_t.axhline(0, color="0.8", lw=0.5)
-        ax_t.set_ylabel(f"displacement [{u}]")
-        ax_t.legend(fontsize=7, frameon=False, loc="lower left", ncol=3)
-
-        w = self.port_widths()
-        main = np.clip(self.main_signed(th)[0], 0.0, self.spec.main.port_width_m)
-        cut = np.clip(self.cutoff_signed(th)[0], 0.0, self.spec.cutoff.passage_width_m)
-        comb = np.clip(self.signed_openings(th), 0.0, w[:, None])
-        ax_o.plot(deg, U(main), color="0.55", lw=1.0, label="main valve, head port")
-        ax_o.plot(deg, U(cut), color="0.55", lw=1.0, ls="--", label="cut-off valve, head passage")
-        lines["combined"] = ax_o.plot(deg, U(comb[0]), color="k", lw=1.5,
-                                      label="both together, head")[0]
-        ax_o.plot(deg, U(comb[2]), color="k", lw=1.0, ls="--", label="both together, crank")
-        for end, spans in self.double_admissions().items():
-            for a, b in spans:
-                ax_o.axvspan(a, b if b > a else b + 360.0, color="0.85", lw=0)
-                ax_o.text(a, U(w[0]) * 1.02, f"2nd admission ({end})", fontsize=7, color="0.3")
-        ax_o.set_ylabel(f"steam opening [{u}]")
-        ax_o.legend(fontsize=7, frameon=False, loc="upper right", ncol=2)
-        for ax in (ax_t, ax_o):
-            ax.set_xlim(0, 360)
-            ax.set_xticks(range(0, 361, 45))
-            for side in ("top", "right"):
-                ax.spines[side].set_visible(False)
-        ax_o.set_xlabel("crank angle from head-end dead centre [deg]")
-        self.draw_diagram(ax_d, u)
-        return {"axes": (ax_t, ax_o, ax_d), "lines": lines}
-
-    def draw_diagram(self, ax, u: str) -> None:
-        """The relative valve circle (Art. 128) of the Zeuner motion, with the block
-        lap circles of radius ``s`` (Art. 130: cut-off and re-opening where they cut
-        the relative circle) and the main valve's circle and lap circle in grey."""
-        th = np.linspace(0.0, TWO_PI, 1441)
-        C, S = self.zeuner_closing_coefficients()
-        xr = units.to_unit(C * np.cos(th) + S * np.sin(th), u)
-        _polar(ax, th, xr, "k", "relative valve circle")
-        _polar(ax, th, units.to_unit(self.main_travel(th), u), "0.6", "main valve circle", lw=0.9)
-        sh = units.to_unit(self.spec.cutoff.lap_m[0], u)
-        _circle(ax, abs(sh), "0.3", ":" if sh >= 0 else "-.", "block lap s")
-        _circle(ax, units.to_unit(self.spec.main.lap_m[0], u), "0.6", "-", "main lap")
-        _finish_diagram(ax, u, "Relative valve circle (Art. 128)")
-
 
 def _circular_runs(mask: np.ndarray) -> list[tuple[int, int]]:
     """Runs of True in a periodic boolean array, as (start, end) indices, end exclusive,
@@ -385,33 +303,6 @@ def _circular_runs(mask: np.ndarray) -> list[tuple[int, int]]:
     m = np.roll(mask, -k).astype(int)
     d = np.diff(np.concatenate([[0], m, [0]]))
     return [(int(a) + k, int(b) + k) for a, b in zip(np.nonzero(d == 1)[0], np.nonzero(d == -1)[0])]
-
-
-def _polar(ax, th, x, color, label, lw=1.3):
-    """The Zeuner polar of a displacement: x laid off along each crank line, the
-    positive loop (head end) solid and the negative one (crank end) dashed."""
-    pos = x > 0
-    for mask, rad, ls, lab in ((pos, x, "-", label), (~pos, -x, "--", None)):
-        ax.plot(np.where(mask, rad * np.cos(th), np.nan), np.where(mask, rad * np.sin(th), np.nan),
-                color=color, lw=lw, ls=ls, label=lab)
-
-
-def _circle(ax, radius, color, ls, label):
-    t = np.linspace(0.0, TWO_PI, 361)
-    if radius > 0:
-        ax.plot(radius * np.cos(t), radius * np.sin(t), color=color, lw=0.8, ls=ls, label=label)
-
-
-def _finish_diagram(ax, u, title):
-    ax.axhline(0, color="0.8", lw=0.6)
-    ax.axvline(0, color="0.8", lw=0.6)
-    ax.set_aspect("equal", adjustable="datalim")
-    ax.set_title(title, fontsize=10)
-    ax.set_xlabel(f"[{u}]  (crank turning counter-clockwise from head dead centre, right)")
-    ax.xaxis.label.set_fontsize(7)
-    ax.legend(fontsize=7, frameon=False, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=2)
-    for side in ("top", "right"):
-        ax.spines[side].set_visible(False)
 
 
 # -- reading scenes -------------------------------------------------------------

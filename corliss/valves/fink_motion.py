@@ -384,68 +384,6 @@ class PorterAllenGear(ValveGear):
     def discharge_coefficients(self):
         return np.full(4, self.spec.discharge_coefficient)
 
-    # -- the drawing
-    def draw(self, fig, units_system: str = "US") -> dict:
-        """Three panels in the style of :mod:`corliss.plot`: the stems' travels, the
-        four port openings against crank angle, and the Zeuner diagram of the steam
-        motion at the radius rod with the laps referred to it."""
-        u = "in" if units_system == "US" else "mm"
-        th = np.linspace(0.0, 2 * math.pi, 721)
-        deg = np.degrees(th)
-        ax1, ax2, ax3 = (fig.add_subplot(1, 3, k) for k in (1, 2, 3))
-        v = units.to_unit(self.valve_travels(th), u)
-        for row, label, style in ((0, "head steam valve", dict(color="k", lw=1.3)),
-                                  (1, "crank steam valve", dict(color="0.35", lw=1.3, ls="--")),
-                                  (2, "exhaust valves' stem", dict(color="0.55", lw=1.0, ls=":"))):
-            ax1.plot(deg, v[row], label=label, **style)
-        lh, lc = self.spec.steam_lap_m
-        laps = ([(lh, "steam laps", "-")] if lh == lc else
-                [(lh, "head steam lap", "-"), (lc, "crank steam lap", "--")])
-        for lam, label, ls in laps + [(self.spec.exhaust_lap_m[0], "head exhaust lap", ":")]:
-            if lam != 0.0:
-                ax1.axhline(units.to_unit(lam, u), color="0.6", lw=0.7, ls=ls)
-                ax1.text(362, units.to_unit(lam, u), label, fontsize=7, va="center", color="0.4")
-        ax1.set_ylabel(f"stem displacement, + opens its port [{u}]")
-        ax1.set_title("Valve travels", fontsize=10)
-        op = units.to_unit(self.openings(th), u)
-        for port, label, style in ((0, "head steam", dict(color="k", lw=1.3)),
-                                   (2, "crank steam", dict(color="0.35", lw=1.3, ls="--")),
-                                   (1, "head exhaust", dict(color="0.55", lw=1.0)),
-                                   (3, "crank exhaust", dict(color="0.55", lw=1.0, ls="--"))):
-            ax2.plot(deg, op[port], label=label, **style)
-        ax2.set_ylabel(f"port opening [{u}]")
-        ax2.set_title("Port openings", fontsize=10)
-        for ax in (ax1, ax2):
-            ax.axhline(0, color="0.8", lw=0.5)
-            ax.set_xlim(0, 360)
-            ax.set_xticks(range(0, 361, 90))
-            ax.set_xlabel("crank angle from head-end dead centre [deg]")
-            ax.legend(fontsize=7, frameon=False, loc="upper center")
-            for side in ("top", "right"):
-                ax.spines[side].set_visible(False)
-        x = units.to_unit(self.steam_drive(np.linspace(0, 2 * math.pi, 1441)), u)
-        t = np.linspace(0, 2 * math.pi, 1441)
-        pos = x > 0
-        for end, mask, rad, ls in (("head", pos, x, "-"), ("crank", ~pos, -x, "--")):
-            ax3.plot(np.where(mask, rad * np.cos(t), np.nan),
-                     np.where(mask, rad * np.sin(t), np.nan), color="k", lw=1.3, ls=ls,
-                     label=f"{end}-end valve circle")
-        c = np.linspace(0, 2 * math.pi, 361)
-        for lam, ls, label in zip(units.to_unit(np.array(self.spec.equivalent_lap_m), u),
-                                  ("-", "--"), ("head lap at the rod", "crank lap at the rod")):
-            ax3.plot(lam * np.cos(c), lam * np.sin(c), color="0.55", lw=0.8, ls=ls, label=label)
-        rmax = float(np.nanmax(np.abs(x)))
-        ax3.axhline(0, color="0.8", lw=0.6)
-        ax3.axvline(0, color="0.8", lw=0.6)
-        ax3.set_aspect("equal")
-        ax3.set_xlim(-1.1 * rmax, 1.1 * rmax)
-        ax3.set_ylim(-1.1 * rmax, 1.1 * rmax)
-        ax3.set_title(f"Zeuner diagram of the steam motion (s = {self.spec.setting:g})",
-                      fontsize=10)
-        ax3.set_xlabel(f"[{u}]")
-        ax3.legend(fontsize=7, frameon=False, loc="lower right")
-        return {"axes": (ax1, ax2, ax3)}
-
 
 def parse_porter_allen(t: Table) -> PorterAllenSpec:
     """Read a ``[valve_gear] type = "porter_allen"`` table."""

@@ -34,9 +34,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import numpy as np
-
-from corliss import units
 from corliss.errors import InputError
 from corliss.tables import Table
 from corliss.valves import double_valve as dv
@@ -111,19 +108,6 @@ class GridironValve(dv.DoubleValve):
         x = dv.eccentric_travel(theta, s.cutoff_eccentricity_m, s.cutoff_angular_advance_rad,
                                 s.cutoff_eccentric_rod_m, sign=-1)
         return s.ratio * x
-
-    def draw_diagram(self, ax, u):
-        """The combined diagram of Art. 119 (Fig. 80): the main valve circle and lap
-        circle, the cut-off valve's circle and the circle of radius s, which cuts it
-        where the cut-off valve closes (E) and opens again (F)."""
-        th = np.linspace(0.0, dv.TWO_PI, 1441)
-        dv._polar(ax, th, units.to_unit(self.main_travel(th), u), "k", "main valve circle")
-        dv._polar(ax, th, units.to_unit(self.cutoff_travel(th), u), "0.4", "cut-off valve circle",
-                  lw=1.0)
-        dv._circle(ax, units.to_unit(self.spec.main.lap_m[0], u), "0.6", "-", "main lap")
-        dv._circle(ax, units.to_unit(self.spec.cutoff.lap_m[0], u), "0.3", ":",
-                   "s = (e + f)/2")
-        dv._finish_diagram(ax, u, "Combined diagram (Arts. 118-119)")
 
 
 def parse_gridiron(t: Table) -> GridironSpec:

@@ -37,7 +37,6 @@ import dataclasses
 import math
 from dataclasses import dataclass
 
-
 from corliss.errors import InputError
 from corliss.tables import Table
 from corliss.valves import double_valve as dv
@@ -92,10 +91,16 @@ class MeyerSpec:
         y = (self.setting if setting is None else setting) * self.max_half_spacing_m
         return (y + self.block_offset_m[0], y + self.block_offset_m[1])
 
+    @property
+    def blocks_together_lap_m(self) -> float:
+        """L/2 - d [m]: the block lap s with the blocks together (y = 0), and the radius
+        of the Meyer diagram's circle about the origin, on which any cut-off line cuts
+        off be = L/2 - d = y + s (Art. 142)."""
+        return self.port_span_m / 2 - self.block_length_m
+
     def block_lap(self, setting: float | None = None) -> tuple[float, float]:
         """s = L/2 - d - y of each end [m] (Art. 142)."""
-        return tuple(self.port_span_m / 2 - self.block_length_m - y
-                     for y in self.half_spacing(setting))
+        return tuple(self.blocks_together_lap_m - y for y in self.half_spacing(setting))
 
     def relative_coefficients(self) -> tuple[float, float]:
         """(C, S) of the relative valve circle, x_r = C cos + S sin [m] (Art. 128)."""
@@ -133,17 +138,6 @@ class MeyerValve(dv.DoubleValve):
 
     def zeuner_closing_coefficients(self):
         return self.spec.relative_coefficients()
-
-    def draw_diagram(self, ax, u):
-        """The Meyer diagram (Art. 142, Fig. 92): the relative valve circle, the circle
-        of radius L/2 - d about the origin, on which any cut-off line cuts off
-        ``be = L/2 - d = y + s``, and the block lap circle s of this setting."""
-        from corliss import units
-        super().draw_diagram(ax, u)
-        s = self.spec
-        dv._circle(ax, units.to_unit(s.port_span_m / 2 - s.block_length_m, u), "0.45", "--",
-                   "L/2 - d (Art. 142)")
-        dv._finish_diagram(ax, u, "Meyer diagram (Arts. 128, 142)")
 
 
 def parse_meyer(t: Table) -> MeyerSpec:
