@@ -9,7 +9,7 @@ import pytest
 
 matplotlib.use("Agg")
 
-from corliss.engine.simulate import build_gear  # noqa: E402
+from corliss.engine.model import build_gear  # noqa: E402
 from corliss.plot import plot_gear  # noqa: E402
 from corliss.scene import load_scene  # noqa: E402
 from corliss.valves import GEARS, gear_type  # noqa: E402
