@@ -190,6 +190,9 @@ class OutputFiles:
                 self._remove_created()
 
     def _commit(self) -> None:
+        for target in self.files.values():
+            if target.is_dir():
+                raise IsADirectoryError(f"{target} is a folder: a file of this run goes there")
         backups, moved = [], []
         try:
             for name, target in self.files.items():

@@ -45,7 +45,7 @@ ONLY = {"US": SYSTEM_SUFFIXES["US"] - SYSTEM_SUFFIXES["SI"],
 def _expected(name: str, transient: bool) -> set[str]:
     tables = ("timeseries", "cycles") if transient else ("timeseries", "cycles", "cards")
     figs = ("loadstep",) if transient else ("card", "effort")
-    if not transient and "compound" in tomllib.loads(SCENES[name].read_text()):
+    if name in SCENES and "compound" in tomllib.loads(SCENES[name].read_text()):
         figs += ("lp_card",)
     out = {f"{name}.{t}.csv" for t in tables} | {f"{name}.{t}.meta.json" for t in tables}
     return out | {f"{name}.{f}.png" for f in figs} | {f"{name}.summary.json"}
@@ -151,17 +151,36 @@ def test_a_failure_in_a_figure_leaves_the_folder_as_it_was(tmp_path, capsys, mon
     assert _snapshot(tmp_path) == before
 
 
-def test_a_failure_while_moving_files_into_place_restores_the_earlier_run(tmp_path, capsys):
-    """The last file cannot be put in place (a folder stands where the summary goes):
-    the files already moved are taken back and the earlier ones restored."""
+def test_a_failure_while_moving_files_into_place_restores_the_earlier_run(
+        tmp_path, capsys, monkeypatch):
+    """The last file of a run cannot be put in place (the disk fills, say): the files
+    already moved are taken back and the earlier run's restored, byte for byte."""
     assert cli.main(["run", "--out", str(tmp_path), "--cycles", "2", "--fidelity", "fast"]) == 0
+    before = _snapshot(tmp_path)
+    real = os.replace
+    failed = []
+
+    def failing(src, dst):
+        if str(dst).endswith("default.summary.json") and not failed:
+            failed.append(dst)      # once: putting the earlier file back must work
+            raise OSError(28, "No space left on device (injected)")
+        return real(src, dst)
+    monkeypatch.setattr(os, "replace", failing)
+    with pytest.raises(OSError, match="injected"):
+        cli.main(["run", "--out", str(tmp_path), "--cycles", "3", "--fidelity", "fast"])
+    monkeypatch.setattr(os, "replace", real)
+    assert failed
+    assert _snapshot(tmp_path) == before
+
+
+def test_a_folder_where_a_file_goes_is_left_alone(tmp_path, capsys):
+    """A folder standing where the summary goes stops the run's files before any moves."""
     summary = tmp_path / "default.summary.json"
-    summary.unlink()
     summary.mkdir()
     (summary / "keep").write_text("x")
     before = _snapshot(tmp_path)
-    with pytest.raises(OSError):
-        cli.main(["run", "--out", str(tmp_path), "--cycles", "3", "--fidelity", "fast"])
+    with pytest.raises(IsADirectoryError):
+        cli.main(["run", "--out", str(tmp_path), "--cycles", "2", "--fidelity", "fast"])
     assert _snapshot(tmp_path) == before
 
 
