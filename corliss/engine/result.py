@@ -177,6 +177,11 @@ class SteadyResult(Result):
         ``(column prefix, geometry, crank lead [rad])`` of every cylinder; ``""`` first.
     lp_events : dict or None
         A compound's low-pressure valve events.
+    periodicity : dict
+        The last cycle's distance from periodic, per state (see
+        ``corliss.engine.steady``): work, mass, energy, mass balance, wall temperature
+        [-], each against its own scale; a run has converged when all are below the
+        fidelity's convergence tolerance.
 
     Tables: ``timeseries`` (``cycle``, ``crank_angle_deg``, ``time_s``, and per end
     ``p_*_Pa``, ``T_*_K``, ``x_*_frac`` (dryness), ``V_*_m3``, ``m_*_kg``), ``cycles``
@@ -198,6 +203,7 @@ class SteadyResult(Result):
     ideal_cards: dict | None = None
     cylinders: list | None = None
     lp_events: dict | None = None
+    periodicity: dict = field(default_factory=dict)
 
     @property
     def cylinder_list(self) -> list:
@@ -427,6 +433,8 @@ class SteadyResult(Result):
             "exhaust_pressure_Pa": self.exhaust.p,
             "cycles_simulated": int(len(self.cycles)),
             "cycles_to_converge": self.cycles_to_converge,
+            "convergence_tolerance": run.fidelity.convergence_tolerance,
+            "periodicity_residuals": dict(self.periodicity),
             "mass_balance_error": mass_err,
             "energy_balance_error": energy_err,
             "rhs_evaluations": self.rhs_evaluations,

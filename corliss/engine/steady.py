@@ -113,10 +113,14 @@ def _crank_resolved(scene, model, pm, progress):
     rows, samples_all = [], []
     w_prev = None
     converged = None
+    residuals = {}
     n_max = scene.run.cycles or fid.max_cycles
+    dT_scale = max(model.chest.T - model.exhaust.T, 1.0)
     for k in range(1, n_max + 1):
         if marks is not None:
             marks.apply(crank.net[19])
+        y_start = y.copy()
+        wall_start = None if net.wall_T is None else np.array(net.wall_T, dtype=float)
         y, samples = crank.cycle(y, 0.0, out_theta)
         if marks is not None:
             marks.update(steam, samples, out_theta)
@@ -144,10 +148,13 @@ def _crank_resolved(scene, model, pm, progress):
         rows.append(row)
         samples_all.append(samples)
         w = row["work_J"]
-        change = abs(w - w_prev) / max(abs(w), 1e-300) if w_prev is not None else math.inf
+        residuals = _periodicity(net, y_start, y, samples, wall_start, dT_scale, row,
+                                 w_prev)
+        change = max(residuals.values())
         if progress:
             progress(k, change)
-        log.debug("cycle %d: work %.6g J, change %.3g", k, w, change)
+        log.debug("cycle %d: work %.6g J, residuals %s", k, w,
+                  ", ".join(f"{n} {v:.2g}" for n, v in residuals.items()))
         if scene.run.cycles is None and change <= fid.convergence_tolerance:
             converged = k
             break
@@ -170,9 +177,33 @@ def _crank_resolved(scene, model, pm, progress):
         ts.append(frame)
     timeseries = pd.concat(ts, ignore_index=True)
     return {"timeseries": timeseries, "cycles": pd.DataFrame(rows),
-            "cycles_to_converge": converged, "portmap": pm, "nfev": crank.nfev,
+            "cycles_to_converge": converged, "periodicity": residuals, "portmap": pm, "nfev": crank.nfev,
             "cylinders": [(("lp_" if scene.compound and c else cylinder_prefix(c)), g, ph)
                           for c, (g, ph) in enumerate(zip(net.geometries, net.phases))]}
+
+
+def _periodicity(net, y0, y1, samples, wall0, dT_scale: float, row: dict,
+                 w_prev: float | None) -> dict[str, float]:
+    """How far one cycle is from periodic, each state against its own scale [-].
+
+    ``work``: change of the indicated work from the cycle before; ``mass``, ``energy``:
+    the largest change over the cycle of a volume's mass or internal energy (every end,
+    chest, receiver), against that state's largest value over the cycle; ``mass_balance``:
+    steam in less steam out over the cycle, against the steam in; ``wall_temperature``:
+    the largest change of a wall's temperature, against the supply's less the exhaust's
+    temperature.  A cycle is periodic when every one is below the convergence tolerance.
+    """
+    w = row["work_J"]
+    out = {"work": abs(w - w_prev) / max(abs(w), 1e-300) if w_prev is not None else math.inf}
+    for what, k in (("mass", 0), ("energy", 1)):
+        idx = np.arange(k, net.n_dyn, 2)
+        scale = np.maximum(np.nanmax(np.abs(samples[idx]), axis=1), 1e-300)
+        out[what] = float(np.max(np.abs(y1[idx] - y0[idx]) / scale))
+    m_in, m_out = row["m_supply_kg"], row["m_exhaust_kg"]
+    out["mass_balance"] = abs(m_in + m_out) / max(abs(m_in), abs(m_out), 1e-300)
+    if wall0 is not None and net.wall_T is not None and np.any(net.wall_T != wall0):
+        out["wall_temperature"] = float(np.max(np.abs(net.wall_T - wall0))) / dT_scale
+    return out
 
 
 # --- ideal ports (no port_flow) and the isentropic ideal card -----------------------
