@@ -189,7 +189,9 @@ def _periodicity(net, y0, y1, samples, wall0, dT_scale: float, row: dict,
     ``work``: change of the indicated work from the cycle before; ``mass``, ``energy``:
     the largest change over the cycle of a volume's mass or internal energy (every end,
     chest, receiver), against that state's largest value over the cycle; ``mass_balance``:
-    steam in less steam out over the cycle, against the steam in; ``wall_temperature``:
+    steam in less steam out over the cycle, against the greater of the steam through the
+    engine and the steam it holds (so that a valve that barely opens is judged by its
+    contents); ``wall_temperature``:
     the largest change of a wall's temperature, against the supply's less the exhaust's
     temperature.  A cycle is periodic when every one is below the convergence tolerance.
     """
@@ -200,7 +202,8 @@ def _periodicity(net, y0, y1, samples, wall0, dT_scale: float, row: dict,
         scale = np.maximum(np.nanmax(np.abs(samples[idx]), axis=1), 1e-300)
         out[what] = float(np.max(np.abs(y1[idx] - y0[idx]) / scale))
     m_in, m_out = row["m_supply_kg"], row["m_exhaust_kg"]
-    out["mass_balance"] = abs(m_in + m_out) / max(abs(m_in), abs(m_out), 1e-300)
+    held = float(np.sum(np.nanmax(np.abs(samples[0:net.n_dyn:2]), axis=1)))
+    out["mass_balance"] = abs(m_in + m_out) / max(abs(m_in), abs(m_out), held, 1e-300)
     if wall0 is not None and net.wall_T is not None and np.any(net.wall_T != wall0):
         out["wall_temperature"] = float(np.max(np.abs(net.wall_T - wall0))) / dT_scale
     return out
