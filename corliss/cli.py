@@ -89,8 +89,13 @@ def print_steady(result, files) -> None:
     if s["fluctuation_coefficient_c"] is None:
         print("  crank effort     fluctuation coefficient undefined: the card does no net work")
     conv = s["cycles_to_converge"]
+    res = s.get("periodicity_residuals") or {}
+    fixed = result.scene.run.cycles is not None
     print(f"  cycles           {s['cycles_simulated']} simulated"
-          + (f", periodic after {conv}" if conv else "") + f"; {s['wall_time_s']:.2f} s")
+          + (f", periodic after {conv}" if conv else
+             "" if fixed or not res else
+             f", NOT periodic (largest residual {max(res.values()):.2g}, tolerance "
+             f"{s['convergence_tolerance']:.2g})") + f"; {s['wall_time_s']:.2f} s")
     _print_files(files)
 
 
