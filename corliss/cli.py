@@ -41,7 +41,7 @@ from corliss import units
 from corliss.engine.load_range import load_range
 from corliss.engine.model import build_gear, scene_events
 from corliss.engine.simulate import simulate
-from corliss.errors import InputError
+from corliss.errors import InputError, RunError
 from corliss.logs import NOTICE
 from corliss.results import OutputFiles, scene_from_meta, summary_json
 from corliss.scene import bundled_scenes, default_scene_path, find_scene, load_scene
@@ -425,6 +425,9 @@ def main(argv: list[str] | None = None) -> int:
     except InputError as exc:
         print(f"corliss: {exc} Nothing was simulated and no files were written.",
               file=sys.stderr)
+        return 2
+    except RunError as exc:
+        print(f"corliss: the run stopped: {exc}. No files were written.", file=sys.stderr)
         return 2
     except BrokenPipeError:  # output piped into `head` and the like
         sys.stdout = open(os.devnull, "w")

@@ -1,4 +1,4 @@
-"""The one exception type for a user's mistake."""
+"""The exception types a user sees: a mistake in the input, and a run that cannot go on."""
 
 from __future__ import annotations
 
@@ -28,3 +28,15 @@ class InputError(ValueError):
         """The same error with its key placed under ``prefix`` (a table name)."""
         key = self.key if self.key.startswith(prefix + ".") else f"{prefix}.{self.key}"
         return InputError(key, self.value, self.expected)
+
+
+class RunError(RuntimeError):
+    """A run that cannot go on, for a reason in the scene rather than in the code: the
+    run-time budget exhausted, a state outside the steam properties.  The CLI turns it
+    into a one-paragraph message and exit code 2, with no files written.
+
+    Parameters
+    ----------
+    message : str
+        What happened, with the scene quantities that likely caused it.
+    """

@@ -20,6 +20,7 @@ from corliss.engine.options import (COMPILED_METHODS, EFFECT_KEYS, EFFECTS, EXPA
                                     METHODS, MODELS, PLANNED_EFFECTS, PRESETS, SCIPY_METHODS, Fidelity)
 from corliss.errors import InputError
 from corliss.tables import Table
+from corliss.textfiles import read_text
 from corliss.thermo.steam import BACKENDS, HEOSSteam
 from corliss.valves import gear_type
 
@@ -232,9 +233,10 @@ def _pair_fraction(t: Table, key: str) -> tuple[float, float]:
 
 
 def _engine(t: Table) -> EngineSpec:
-    bore = t.length("bore", positive=True)
-    stroke = t.length("stroke", positive=True)
-    rod = t.length("connecting_rod", positive=True)
+    # from a model's half-inch cylinder to the largest engines built (about 5 m of stroke)
+    bore = t.length("bore", within=(1e-3, 5.0))
+    stroke = t.length("stroke", within=(1e-3, 5.0))
+    rod = t.length("connecting_rod", within=(1e-3, 25.0))
     if rod <= stroke / 2.0:
         raise InputError(t.key("connecting_rod"), t.raw("connecting_rod"),
                          f"a connecting rod longer than the crank (half the stroke, "
@@ -313,6 +315,45 @@ def _compound(t: Table, hp: EngineSpec, lp_gear_data, hp_gear_type, hp_gear,
     return CompoundSpec(lp, name, lp_gear, -follows, receiver)
 
 
+def _check_states(data: dict, supply: SupplySpec, exhaust: ExhaustSpec, run: RunSpec) -> None:
+    """Supply and exhaust steam inside the range of the steam properties the run uses,
+    before any work: below the critical pressure (IAPWS: 22.064 MPa; no steam and
+    water apart above it), and for the ``table`` tier inside the table's density and
+    energy, with room for the exhaust steam to expand a little below back pressure."""
+    from corliss.thermo import steam_table
+    raw_p = data["supply"].get("pressure")
+    if supply.pressure_Pa >= units.CRITICAL_PRESSURE_Pa:
+        raise InputError("supply.pressure", raw_p, "a pressure below the critical pressure of "
+                         "water, 22.064 MPa (3200 psia): above it there is no saturated steam")
+    if exhaust.pressure_Pa >= units.CRITICAL_PRESSURE_Pa:
+        raise InputError("exhaust.pressure", data["exhaust"].get("pressure"),
+                         "a pressure below the critical pressure of water, 22.064 MPa")
+    if run.fidelity.properties != "table":
+        return
+    heos = HEOSSteam()
+    chest = (heos.pt(supply.pressure_Pa, supply.temperature_K) if supply.temperature_K
+             else heos.px(supply.pressure_Pa, supply.dryness))
+    if not steam_table.covers(chest.rho, chest.u):
+        key = ("supply.dryness" if supply.dryness < 1.0 else
+               "supply.temperature" if chest.u > steam_table.PARAMS["u_max"] else
+               "supply.pressure")
+        raise InputError(key, data["supply"].get(key.split(".")[1], raw_p),
+                         f"supply steam the \"table\" property tier covers (density "
+                         f"{steam_table.PARAMS['rho_min']:g} to {steam_table.PARAMS['rho_max']:g} "
+                         f"kg/m3, internal energy {steam_table.PARAMS['u_min'] / 1e6:g} to "
+                         f"{steam_table.PARAMS['u_max'] / 1e6:g} MJ/kg; this steam is "
+                         f"{chest.rho:.3g} kg/m3, {chest.u / 1e6:.3g} MJ/kg), or "
+                         f"run.properties = \"heos\"")
+    # the exhaust steam expands below back pressure in the cylinder: a fifth of its
+    # density in hand
+    ex = heos.px(exhaust.pressure_Pa, 1.0)
+    if ex.rho < 1.2 * steam_table.PARAMS["rho_min"]:
+        raise InputError("exhaust.pressure", data["exhaust"].get("pressure"),
+                         f"an exhaust the \"table\" property tier covers: dry steam at back "
+                         f"pressure of at least {1.2 * steam_table.PARAMS['rho_min']:g} kg/m3 "
+                         f"(this is {ex.rho:.3g} kg/m3), or run.properties = \"heos\"")
+
+
 def _supply(t: Table) -> SupplySpec:
     p = t.pressure("pressure")
     temp_raw = t.raw("temperature", "saturated")
@@ -355,9 +396,8 @@ def _supply(t: Table) -> SupplySpec:
 def _run(t: Table) -> RunSpec:
     mode = t.choice("mode", ("steady", "transient"), "steady")
     model = t.choice("model", MODELS, "crank_resolved")
-    speed = t.quantity("speed", "speed")
-    if not speed > 0.0:
-        raise InputError(t.key("speed"), t.raw("speed"), "a speed greater than zero")
+    # a tenth of a turn a minute (a museum engine turned over slowly) to 5000 rpm
+    speed = t.quantity("speed", "speed", within=(0.1 * units.RPM_RAD_S, math.inf))
     effects = t.raw("effects", ["port_flow", "rod_angularity"])
     if not isinstance(effects, list) or not all(isinstance(e, str) for e in effects):
         raise InputError(t.key("effects"), effects, "a list of effect names")
@@ -384,17 +424,13 @@ def _run(t: Table) -> RunSpec:
             raise InputError(t.key("convergence_tolerance"), changes["convergence_tolerance"],
                              "a fraction between 0 and 0.5")
     if t.has("max_cycles"):
-        changes["max_cycles"] = t.integer("max_cycles")
-        if changes["max_cycles"] < 2:
-            raise InputError(t.key("max_cycles"), changes["max_cycles"], "an integer >= 2")
+        changes["max_cycles"] = t.integer("max_cycles", within=(2, 1000))
     if t.has("step"):
         changes["step_deg"] = math.degrees(t.angle("step"))
         if not 0.01 <= changes["step_deg"] <= 10.0:
             raise InputError(t.key("step"), t.raw("step"), "a crank-angle step from 0.01 to 10 deg")
     if t.has("portmap_points"):
-        changes["portmap_points"] = t.integer("portmap_points")
-        if changes["portmap_points"] < 90:
-            raise InputError(t.key("portmap_points"), changes["portmap_points"], "an integer >= 90")
+        changes["portmap_points"] = t.integer("portmap_points", within=(90, 100_000))
     if changes:
         fid = dataclasses.replace(fid, name="custom", **changes)
     if fid.method in COMPILED_METHODS and BACKENDS[fid.properties].kernel_tier is None:
@@ -466,6 +502,7 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
     gear = gt.parse(vg)
     vg.finish()
     run = _run(Table(data["run"], "run", barometer))
+    _check_states(data, supply, exhaust, run)
     for effect, keys in EFFECT_KEYS.items():
         for k in keys:
             sec, _, key = k.rpartition(".")
@@ -551,11 +588,15 @@ def _speed_loop(data: dict, run: RunSpec, supply: SupplySpec, gt, gear, baromete
                 raise InputError("governor.type", gov_t.name, f"a valve gear with a setting for "
                                  f"the governor to move; the {gt.name} gear has none")
             lo, hi = g_obj.setting_range
-            if lo_hi[0] < lo - 1e-12 or lo_hi[1] > hi + 1e-12:
-                raise InputError("governor.setting_at_rest", [mech.actuator_at_rest,
-                                 mech.actuator_at_top, mech.actuator_safety],
-                                 f"gear settings (at rest, at the top stop, safety) within the "
-                                 f"{gt.name} gear's range {lo} to {hi} ({g_obj.setting_name})")
+            ends = [("governor.setting_at_rest", mech.actuator_at_rest),
+                    ("governor.setting_at_top", mech.actuator_at_top)]
+            if mech.safety_z > 0.0 and math.isfinite(mech.actuator_safety):
+                ends.append(("governor.safety_setting", mech.actuator_safety))
+            for key, value in ends:
+                if not lo - 1e-12 <= value <= hi + 1e-12:
+                    raise InputError(key, g.raw(key.split(".")[1], value),
+                                     f"a gear setting within the {gt.name} gear's range "
+                                     f"{lo} to {hi} ({g_obj.setting_name})")
         out["governor_type"] = gov_t.name
         out["governor"] = spec
     return out
@@ -575,10 +616,8 @@ def load_scene(path: str | Path) -> Scene:
         If the file is missing, is not TOML, or any key is invalid.
     """
     p = Path(path)
-    if not p.is_file():
-        raise InputError("scene", str(path), "the path of an existing scene file (.toml)")
+    text = read_text(p, "scene", "a scene file (.toml)")
     try:
-        text = p.read_text(encoding="utf-8")
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise InputError("scene", str(path), f"a TOML file ({exc})") from None

@@ -12,6 +12,8 @@ from corliss import units
 from corliss.errors import InputError
 
 _MISSING = object()
+#: The least length of a part that exists [m].
+MICRON_m = 1e-6
 
 
 class Table:
@@ -52,15 +54,20 @@ class Table:
             raise InputError(self.key(key), None, "a value: this key is required")
         return default
 
-    def quantity(self, key: str, kind: str, default=_MISSING) -> float:
+    def quantity(self, key: str, kind: str, default=_MISSING, *,
+                 within: tuple[float, float] | None = None) -> float:
+        """A quantity string in SI, inside its kind's physical range
+        (:data:`corliss.units.RANGES`) narrowed to ``within`` [SI] if given."""
         raw = self.raw(key, default)
-        return units.parse(raw, kind, self.key(key), barometer_Pa=self.barometer_Pa)
+        return units.parse(raw, kind, self.key(key), barometer_Pa=self.barometer_Pa,
+                           within=within)
 
-    def length(self, key: str, default=_MISSING, *, positive: bool = False) -> float:
-        v = self.quantity(key, "length", default)
-        if positive and not v > 0.0:
-            raise InputError(self.key(key), self.raw(key), "a length greater than zero")
-        return v
+    def length(self, key: str, default=_MISSING, *, positive: bool = False,
+               within: tuple[float, float] | None = None) -> float:
+        """A length [m]; ``positive``: at least a micron (a part that exists)."""
+        if positive and within is None:
+            within = (MICRON_m, math.inf)
+        return self.quantity(key, "length", default, within=within)
 
     def pressure(self, key: str, default=_MISSING) -> float:
         v = self.quantity(key, "pressure", default)
@@ -79,10 +86,14 @@ class Table:
             raise InputError(self.key(key), v, "a plain number")
         return float(v)
 
-    def integer(self, key: str, default=_MISSING) -> int:
+    def integer(self, key: str, default=_MISSING, *, within: tuple[int, int] = (0, 10_000)
+                ) -> int:
+        """A whole number within ``within`` (by default 0 to 10,000: a count)."""
         v = self.raw(key, default)
         if isinstance(v, bool) or not isinstance(v, int):
             raise InputError(self.key(key), v, "a whole number")
+        if not within[0] <= v <= within[1]:
+            raise InputError(self.key(key), v, f"a whole number from {within[0]} to {within[1]}")
         return v
 
     def string(self, key: str, default=_MISSING) -> str:

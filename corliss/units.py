@@ -74,10 +74,73 @@ _TEMPERATURE = ("K", "degC", "degF", "degR")
 
 KINDS = tuple(sorted(list(_LINEAR) + ["pressure", "temperature"]))
 
+#: Triple point of water (IAPWS-95): the least pressure [Pa] and temperature [K] at
+#: which steam exists beside liquid water; the critical pressure [Pa].
+TRIPLE_POINT_Pa = 611.657
+TRIPLE_POINT_K = 273.16
+CRITICAL_PRESSURE_Pa = 22.064e6
+
+#: The physical range of each kind of quantity, SI, and the unit it is shown in:
+#: magnitudes a steam engine, its valve gear, its governor or its steam can have.
+#: A value outside is refused whatever the key; a key may narrow its own range
+#: (``within=`` of the scene's getters).  Pressures and temperatures span the steam
+#: properties (IAPWS-95 from the triple point to 1273 K and 100 MPa); signed kinds
+#: (laps, leads, angles, torques) are bounded in magnitude.
+RANGES: dict[str, tuple[float, float, str]] = {
+    "length": (-50.0, 50.0, "m"),
+    "area": (0.0, 10.0, "m2"),
+    "volume": (0.0, 100.0, "m3"),
+    "speed": (0.0, 5000.0 * RPM_RAD_S, "rpm"),
+    "time": (0.0, 36000.0, "s"),
+    "torque": (-1e7, 1e7, "N m"),
+    "torque_per_speed": (0.0, 1e7, "N m s"),
+    "heat_transfer": (0.0, 1e6, "W/m2 K"),
+    "power": (0.0, 1e8, "W"),
+    "mass": (0.0, 1e5, "kg"),
+    "inertia": (0.0, 1e8, "kg m2"),
+    "angle": (-4.0 * math.pi, 4.0 * math.pi, "deg"),
+    "mass_flow": (0.0, 1e3, "kg/s"),
+    "force": (-1e6, 1e6, "N"),
+    "stiffness": (0.0, 1e9, "N/m"),
+    "damping": (0.0, 1e8, "N s/m"),
+    "specific_energy": (0.0, 1e7, "J/kg"),
+    "energy": (0.0, 1e10, "J"),
+    "specific_steam_consumption": (0.0, 1.0, "kg/kWh"),
+    "pressure": (TRIPLE_POINT_Pa, 100e6, "kPa"),
+    "temperature": (TRIPLE_POINT_K, 1273.15, "K"),
+}
+
+
+def _show(value_si: float, unit: str) -> str:
+    v = to_unit(value_si, unit) if unit not in ("K",) else value_si
+    return f"{v:.6g} {unit}"
+
+
+def check_range(value_si: float, kind: str, key: str, text: object,
+                within: tuple[float, float] | None = None) -> float:
+    """``value_si`` if it lies in the physical range of ``kind`` (narrowed to ``within``,
+    SI, when given), else an InputError naming the key, the value and the range."""
+    lo, hi, unit = RANGES[kind]
+    if within is not None:
+        lo, hi = max(lo, within[0]), min(hi, within[1])
+    if not (lo <= value_si <= hi):
+        extra = " absolute" if kind == "pressure" else ""
+        raise InputError(key, text, f"a {kind.replace('_', ' ')} from {_show(lo, unit)} to "
+                         f"{_show(hi, unit)}{extra}")
+    return value_si
+
+#: The grammar of a quantity: a signed decimal (up to 20 digits before and after the
+#: point, an exponent of up to 3 digits), a fraction of whole numbers or a whole number
+#: and a fraction (up to 9 digits each), then the unit.  Longer numbers are no
+#: measurement; the bound keeps every conversion exact and finite.
 _NUMBER = re.compile(
-    r"^\s*(?P<sign>[-+])?\s*(?:(?P<whole>\d+)\s+(?P<fn>\d+)/(?P<fd>\d+)|(?P<num>\d+)/(?P<den>\d+)"
-    r"|(?P<dec>(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?))\s*(?P<unit>.*?)\s*$"
+    r"^\s*(?P<sign>[-+])?\s*(?:(?P<whole>\d{1,9})\s+(?P<fn>\d{1,9})/(?P<fd>\d{1,9})"
+    r"|(?P<num>\d{1,9})/(?P<den>\d{1,9})"
+    r"|(?P<dec>(?:\d{1,20}(?:\.\d{0,20})?|\.\d{1,20})(?:[eE][-+]?\d{1,3})?))"
+    r"\s*(?P<unit>.*?)\s*$"
 )
+#: The longest quantity string read [characters].
+MAX_TEXT = 80
 
 
 @dataclass(frozen=True)
@@ -94,15 +157,24 @@ def _parse_text(text: object, key: str) -> Quantity:
     if isinstance(text, (int, float)):
         raise InputError(key, text, "a quantity with its unit as a string, e.g. "
                          f"\"{text} in\"; a bare number is ambiguous")
+    if len(text) > MAX_TEXT:
+        raise InputError(key, text[:40] + "...", f"a quantity of at most {MAX_TEXT} characters, "
+                         "e.g. \"2 3/4 in\"")
     m = _NUMBER.match(text)
     if not m:
-        raise InputError(key, text, "a number followed by a unit, e.g. \"2 3/4 in\"")
+        raise InputError(key, text, "a number (at most 20 digits, or a fraction of whole "
+                         "numbers of at most 9) followed by a unit, e.g. \"2 3/4 in\"")
+    den = m.group("fd") or m.group("den")
+    if den is not None and int(den) == 0:
+        raise InputError(key, text, "a fraction whose denominator is not zero")
     if m.group("whole") is not None:
         v = int(m.group("whole")) + int(m.group("fn")) / int(m.group("fd"))
     elif m.group("num") is not None:
         v = int(m.group("num")) / int(m.group("den"))
     else:
         v = float(m.group("dec"))
+    if not math.isfinite(v):
+        raise InputError(key, text, "a finite number with its unit")
     if m.group("sign") == "-":
         v = -v
     unit = re.sub(r"\s+", " ", m.group("unit").replace("°F", "degF").replace("°C", "degC"))
@@ -120,7 +192,8 @@ def units_of(kind: str) -> tuple[str, ...]:
 
 
 def parse(text: object, kind: str, key: str = "value", *,
-          barometer_Pa: float = STANDARD_ATMOSPHERE_Pa) -> float:
+          barometer_Pa: float = STANDARD_ATMOSPHERE_Pa,
+          within: tuple[float, float] | None = None) -> float:
     """Read a quantity string as an SI float.
 
     Parameters
@@ -133,6 +206,8 @@ def parse(text: object, kind: str, key: str = "value", *,
         Scene key the value came from, for the error message.
     barometer_Pa : float
         Atmospheric pressure [Pa] for gauge and vacuum readings.
+    within : (float, float), optional
+        The key's own range [SI], inside the kind's physical range :data:`RANGES`.
 
     Returns
     -------
@@ -142,7 +217,8 @@ def parse(text: object, kind: str, key: str = "value", *,
     Raises
     ------
     InputError
-        If the text has no unit, an unknown unit, or a unit of another kind.
+        If the text has no unit, an unknown unit, or a unit of another kind, or the value
+        lies outside the physical range of its kind (or ``within``).
     """
     q = _parse_text(text, key)
     if q.unit == "":
@@ -150,27 +226,25 @@ def parse(text: object, kind: str, key: str = "value", *,
                          + ", ".join(units_of(kind)))
     if kind == "pressure":
         if q.unit in _ABS_PRESSURE:
-            return q.value * _ABS_PRESSURE[q.unit]
+            return check_range(q.value * _ABS_PRESSURE[q.unit], kind, key, text, within)
         if q.unit in _GAUGE_PRESSURE:
-            return barometer_Pa + q.value * _GAUGE_PRESSURE[q.unit]
+            return check_range(barometer_Pa + q.value * _GAUGE_PRESSURE[q.unit], kind, key,
+                               text, within)
         if q.unit in _VACUUM:
-            return barometer_Pa - q.value * _VACUUM[q.unit]
+            return check_range(barometer_Pa - q.value * _VACUUM[q.unit], kind, key, text,
+                               within)
         if q.unit == "psi":
             raise InputError(key, text, "\"psia\" (absolute) or \"psig\" (gauge); a "
                              "bare psi does not say which")
     elif kind == "temperature":
-        if q.unit == "K":
-            return q.value
-        if q.unit == "degC":
-            return q.value + 273.15
-        if q.unit == "degF":
-            return (q.value - 32.0) * 5.0 / 9.0 + 273.15
-        if q.unit == "degR":
-            return q.value * 5.0 / 9.0
+        kelvin = {"K": q.value, "degC": q.value + 273.15,
+                  "degF": (q.value - 32.0) * 5.0 / 9.0 + 273.15, "degR": q.value * 5.0 / 9.0}
+        if q.unit in kelvin:
+            return check_range(kelvin[q.unit], kind, key, text, within)
     elif kind in _LINEAR:
         table = _LINEAR[kind]
         if q.unit in table:
-            return q.value * table[q.unit]
+            return check_range(q.value * table[q.unit], kind, key, text, within)
     else:
         raise ValueError(f"unknown kind of quantity {kind!r}")
     raise InputError(key, text, f"a {kind} in one of: " + ", ".join(units_of(kind)))

@@ -36,11 +36,9 @@ import dataclasses
 import math
 import tomllib
 
-import numpy as np
 import pytest
 
 import corliss
-from corliss.engine.options import Fidelity
 from corliss.scene import bundled_scenes, scene_from_dict
 
 MAX_RHS_PER_CYCLE = 100_000

@@ -22,6 +22,7 @@ from scipy.integrate import solve_ivp
 from corliss.engine import kernel
 from corliss.engine.network import Network
 from corliss.engine.options import COMPILED_METHODS
+from corliss.errors import RunError
 from corliss.thermo.orifice import kappa_of
 from corliss.thermo.steam import Steam
 
@@ -54,6 +55,8 @@ class CrankResolved:
         self.color, self.owner = network.column_colors()
         self.atol = rtol * network.scales()
         self.nfev = 0
+        #: the run-time budget of a cycle [right-hand-side evaluations]
+        self.max_rhs = kernel.MAX_RHS_PER_CYCLE
         self.compiled = method in COMPILED_METHODS
         if self.compiled and steam.kernel_tier is None:
             raise ValueError(f"property tier {steam.name!r} has no compiled form")
@@ -115,8 +118,11 @@ class CrankResolved:
         if self.compiled:
             y_end, samples, nfev, ok = kernel.integrate_cycle(
                 y, stops, out_theta, COMPILED_CODES[self.method], self.rtol, self.atol,
-                self.step, self.net, self._tier, self._tab, self._perf, self.color, self.owner)
+                self.step, self.net, self._tier, self._tab, self._perf, self.color, self.owner,
+                self.max_rhs)
             self.nfev += nfev
+            if not ok and nfev > self.max_rhs:
+                raise RunError(budget_message(self.network, self.max_rhs))
             if not ok:
                 raise RuntimeError("the compiled integrator failed (step size collapsed); "
                                    "try another method or a smaller rtol")
@@ -134,3 +140,15 @@ class CrankResolved:
                 samples[:, sel] = sol.y[:, np.searchsorted(sol.t, out_theta[sel])]
             y = sol.y[:, -1].copy()
         return y, samples
+
+
+def budget_message(network, max_rhs: int) -> str:
+    """Why a cycle ran out of its budget of ``max_rhs`` evaluations, with the scene
+    quantities that usually cause it."""
+    spec = network.geometries[0].spec
+    return (f"one cycle needed more than {int(max_rhs):,} evaluations of the model and was "
+            f"stopped: the run is stepping through something no engine "
+            f"does.  Check run.speed (a very slow engine makes the ports' filling stiff; the "
+            f"\"fast\" fidelity's L-stable integrator copes better), engine.stroke and "
+            f"engine.bore ({spec.stroke_m:.4g} m, {spec.bore_m:.4g} m) against the port "
+            f"areas, and any friction or governor force far beyond the engine's")

@@ -20,13 +20,17 @@ The schedule (``kind``):
 from __future__ import annotations
 
 import csv
+import io
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from corliss import units
 from corliss.errors import InputError
 from corliss.tables import Table
+from corliss.textfiles import read_text
 
 SPEED_LAWS = {"constant": 0, "proportional": 1, "square": 2}
 
@@ -113,27 +117,50 @@ def parse_load(t: Table, speed_rad_s: float, scene_dir: Path | None) -> LoadSpec
 
 
 def _read_schedule(t: Table, scene_dir: Path | None):
+    """The schedule CSV: a header naming ``time_s`` and ``load_fraction``, then one row
+    per point, times from zero up and never decreasing (equal times make a step)."""
     name = t.string("schedule")
     path = Path(name)
     if not path.is_absolute() and scene_dir is not None:
         path = scene_dir / path
-    if not path.is_file():
-        raise InputError(t.key("schedule"), name, "the path of a CSV file (relative to the "
-                         "scene) with columns time_s and load_fraction")
-    with path.open(newline="", encoding="utf-8") as fh:
-        rows = list(csv.DictReader(fh))
-    if not rows or not {"time_s", "load_fraction"} <= set(rows[0]):
-        raise InputError(t.key("schedule"), name, "a CSV with a header row naming the "
-                         "columns time_s and load_fraction")
+    key = t.key("schedule")
+    what = "a CSV file (relative to the scene) with columns time_s and load_fraction"
+    text = read_text(path, key, what)
     try:
-        times = [float(r["time_s"]) for r in rows]
-        fracs = [float(r["load_fraction"]) for r in rows]
-    except ValueError as exc:
-        raise InputError(t.key("schedule"), name, f"numbers in every row ({exc})") from None
-    if any(b < a for a, b in zip(times, times[1:])) or times[0] < 0.0:
-        raise InputError(t.key("schedule"), name, "times from zero up, never decreasing")
-    if any(not 0.0 <= f <= 5.0 for f in fracs):
-        raise InputError(t.key("schedule"), name, "load fractions from 0 to 5")
+        reader = csv.DictReader(io.StringIO(text, newline=""))
+        header = reader.fieldnames or []
+        rows = []
+        for row in reader:
+            rows.append((reader.line_num, row))
+    except csv.Error as exc:
+        raise InputError(key, name, f"{what}; it is not CSV ({exc})") from None
+    if not rows or not {"time_s", "load_fraction"} <= {h.strip() for h in header}:
+        raise InputError(key, name, "a CSV with a header row naming the columns time_s and "
+                         "load_fraction, and at least one row below it")
+    times, fracs = [], []
+    for line, row in rows:
+        row = {(k or "").strip(): v for k, v in row.items()}
+        cells = (row.get("time_s"), row.get("load_fraction"))
+        if any(c is None or not str(c).strip() for c in cells):
+            raise InputError(key, name, f"a time and a load fraction on every row; line "
+                             f"{line} has too few cells")
+        try:
+            tv, fv = float(cells[0]), float(cells[1])
+        except ValueError:
+            raise InputError(key, name, f"numbers on every row; line {line} has "
+                             f"{cells[0]!r}, {cells[1]!r}") from None
+        if not (math.isfinite(tv) and math.isfinite(fv)):
+            raise InputError(key, name, f"finite numbers; line {line} has {tv}, {fv}")
+        if not 0.0 <= tv <= units.RANGES["time"][1]:
+            raise InputError(key, name, f"times from 0 to {units.RANGES['time'][1]:g} s; line "
+                             f"{line} has {tv:g} s")
+        if times and tv < times[-1]:
+            raise InputError(key, name, f"times never decreasing; line {line} goes back from "
+                             f"{times[-1]:g} s to {tv:g} s")
+        if not 0.0 <= fv <= 5.0:
+            raise InputError(key, name, f"load fractions from 0 to 5; line {line} has {fv:g}")
+        times.append(tv)
+        fracs.append(fv)
     if len(times) == 1:
         times, fracs = times * 2, fracs * 2
         times[1] += 1.0

@@ -24,12 +24,13 @@ import numpy as np
 import pandas as pd
 
 from corliss.engine import transient_kernel as tk
-from corliss.engine.kernel import announce_compile
+from corliss.engine.kernel import MAX_RHS_PER_CYCLE, announce_compile
 from corliss.engine.condensation import MarksLaw
+from corliss.engine.crank_resolved import budget_message
 from corliss.engine.model import build_gear, build_network, geometry_of, reservoir_states
 from corliss.engine.network import throttle_area_m2
 from corliss.engine.result import TransientResult
-from corliss.errors import InputError
+from corliss.errors import InputError, RunError
 from corliss.governors import governor_type
 from corliss.governors.mechanism import CREEP_PER_S
 from corliss.thermo.steam import make_steam
@@ -136,6 +137,7 @@ def build_tables(scene, net, gear, geo) -> LoopTables:
     sc[tk.S_TREF] = load.torque_N_m
     sc[tk.S_WREF] = omega0
     sc[tk.S_WMIN] = STALL_FRACTION * omega0
+    sc[tk.S_MAX_RHS] = MAX_RHS_PER_CYCLE
     lt = np.asarray(load.times_s, dtype=float)
     lf = np.asarray(load.fractions, dtype=float)
     gov = np.zeros((5, 2))
@@ -259,6 +261,8 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
                                                     steam.kernel_tier, tab, perf, tables.tr,
                                                     False, math.inf)
         nfev += nf_
+        if status == 4:
+            raise RunError(budget_message(network, sc[tk.S_MAX_RHS]) + " (in the warm-up turns)")
         if status == 1:
             raise RuntimeError("the integrator failed during the warm-up turns")
         if marks is None:
@@ -290,6 +294,9 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
             y, th0, out_theta, rtol, atol, net, steam.kernel_tier, tab, perf, tables.tr,
             record == "step", duration)
         nfev += nf_
+        if status == 4:
+            raise RunError(budget_message(network, sc[tk.S_MAX_RHS]) + f" (in turn {k + 1}, at "
+                           f"{y[nn + tk.X_TIME]:.3f} s)")
         if status == 1:
             raise RuntimeError(f"the integrator failed in turn {k + 1} (step size collapsed)")
         rows.append(_cycle_row(k, y_start, y, network, tables, nn))

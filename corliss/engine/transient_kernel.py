@@ -43,7 +43,7 @@ import math
 import numpy as np
 from numba import njit
 
-from corliss.engine.kernel import (DOPRI_NODES, hermite, balances, dopri_error, dopri_stage,
+from corliss.engine.kernel import (DOPRI_NODES, balances, dopri_error, dopri_stage, hermite,
                                    node_states, port_areas)
 
 TWO_PI = 2.0 * math.pi
@@ -51,8 +51,8 @@ TWO_PI = 2.0 * math.pi
 # layout of the scalar parameters ``sc``
 S_INERTIA, S_MREC, S_TF0, S_TF1, S_RATIO, S_DAMP, S_FRIC, S_VEPS = 0, 1, 2, 3, 4, 5, 6, 7
 S_KLAW, S_TREF, S_WREF, S_ACT_GEAR, S_A0, S_A1, S_HAS_GOV, S_THR_EDGE = 8, 9, 10, 11, 12, 13, 14, 15
-S_FREEZE, S_FRICTION_ON, S_WMIN, S_TRIP, S_SAFE_Z, S_SAFE_A = 16, 17, 18, 19, 20, 21
-N_SCALARS = 22
+S_FREEZE, S_FRICTION_ON, S_WMIN, S_TRIP, S_SAFE_Z, S_SAFE_A, S_MAX_RHS = 16, 17, 18, 19, 20, 21, 22
+N_SCALARS = 23
 
 # the extra states after the network's, relative to its length
 X_OMEGA, X_Z, X_ZDOT, X_TIME, X_WLOAD, X_WFRIC, X_WGAS, X_ZDT, X_ADT = 0, 1, 2, 3, 4, 5, 6, 7, 8
@@ -307,7 +307,7 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
     ``out_theta[k]``; ``rec`` rows (theta, omega, z, actuator, t, T_gas, T_load) of
     every accepted step when ``record``; ``status`` 0 ok, 1 step size collapsed,
     2 the engine stalled (omega below the floor), 3 time ``t_end`` passed (the turn was
-    finished anyway).
+    finished anyway), 4 the turn exceeded the run-time budget (``sc[S_MAX_RHS]`` evaluations).
     """
     n = y0.shape[0]
     nn = n - N_EXTRA
@@ -392,6 +392,9 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
             h = h * max(0.2, 0.9 * err ** -0.2)
         if not (h > 0.0) or not math.isfinite(y[0]):
             status = 1
+            break
+        if nfev > sc[S_MAX_RHS]:
+            status = 4
             break
     while io < out_theta.shape[0]:
         samples[:, io] = y

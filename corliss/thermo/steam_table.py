@@ -51,6 +51,13 @@ PARAMS = {
 }
 
 
+def covers(rho: float, u: float) -> bool:
+    """True when the table spans density ``rho`` [kg/m3] and internal energy ``u``
+    [J/kg] (its build parameters, :data:`PARAMS`)."""
+    return (PARAMS["rho_min"] <= rho <= PARAMS["rho_max"]
+            and PARAMS["u_min"] <= u <= PARAMS["u_max"])
+
+
 @dataclass(frozen=True)
 class SteamTable:
     """Arrays of the table (all SI).  Build with :func:`load_table`."""

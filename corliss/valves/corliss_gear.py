@@ -532,9 +532,7 @@ def parse_corliss(t: Table) -> CorlissSpec:
     cd = t.number("discharge_coefficient", 0.7)
     if not 0.0 < cd <= 1.0:
         raise InputError(t.key("discharge_coefficient"), cd, "a number in (0, 1]")
-    ports = t.integer("ports_per_end", 1)
-    if ports < 1:
-        raise InputError(t.key("ports_per_end"), ports, "an integer >= 1")
+    ports = t.integer("ports_per_end", 1, within=(1, 8))   # double- and multi-ported valves
     spec = CorlissSpec(
         eccentricity_m=r, angular_advance_rad=t.angle("angular_advance"), hook_rod_m=g,
         wrist_plate_radius_m=R, steam=steam, exhaust=exhaust,

@@ -281,9 +281,7 @@ def parse_ports(t: Table) -> dict:
     cd = t.number("discharge_coefficient", 0.7)
     if not 0.0 < cd <= 1.0:
         raise InputError(t.key("discharge_coefficient"), cd, "a number in (0, 1]")
-    ports = t.integer("ports_per_end", 1)
-    if ports < 1:
-        raise InputError(t.key("ports_per_end"), ports, "an integer >= 1")
+    ports = t.integer("ports_per_end", 1, within=(1, 8))   # double- and multi-ported valves
     return {"port_width_m": t.length("port_width", positive=True),
             "port_length_m": t.length("port_length", positive=True),
             "discharge_coefficient": cd, "ports_per_end": ports}

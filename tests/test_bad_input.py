@@ -1,0 +1,239 @@
+"""Bad input never reaches the physics: every cause found by mutating the bundled
+scenes gets a regression test here, through the command line as a user meets it:
+exit code 2, the offending key named, no traceback, no file written, quickly.
+"""
+
+from __future__ import annotations
+
+import re
+import time
+import tomllib
+from pathlib import Path
+
+import pytest
+
+from corliss import cli
+from corliss.engine import kernel
+from corliss.engine import transient as transient_runner
+from corliss.scene import bundled_scenes
+
+SCENES = bundled_scenes()
+#: A refusal comes before any work: well under a second; the bound is generous for a
+#: loaded machine and catches a hang.
+REFUSAL_S = 20.0
+
+
+def _mutated(tmp_path: Path, name: str, section: str, key: str, value: str) -> Path:
+    """The bundled scene ``name`` with ``section.key`` set to the TOML text ``value``."""
+    text = SCENES[name].read_text()
+    lines = text.splitlines()
+    head = next(i for i, ln in enumerate(lines) if ln.strip() == f"[{section}]")
+    for i in range(head + 1, len(lines)):
+        if lines[i].startswith("["):
+            lines.insert(i, f"{key} = {value}")
+            break
+        if re.match(rf"{re.escape(key)}\s*=", lines[i]):
+            lines[i] = f"{key} = {value}"
+            break
+    else:
+        lines.append(f"{key} = {value}")
+    path = tmp_path / f"{name}-mutated.toml"
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def _refused(args: list[str], out: Path, capsys, key: str) -> str:
+    t0 = time.perf_counter()
+    code = cli.main([*args, "--out", str(out)] if args[0] in ("run", "gear") else args)
+    elapsed = time.perf_counter() - t0
+    err = capsys.readouterr().err
+    assert code == 2, err
+    assert key in err, err
+    assert "Traceback" not in err
+    assert not out.exists() or not any(out.iterdir())
+    assert elapsed < REFUSAL_S
+    return err
+
+
+# --- quantity strings -------------------------------------------------------------------
+
+@pytest.mark.parametrize("value, why", [
+    ('"1/0 in"', "denominator"),
+    ('"' + "7" * 401 + '/3 in"', "at most"),
+    ('"' + "9" * 5000 + ' 1/2 in"', "at most"),
+    ('"1e999 in"', "finite"),
+], ids=["division-by-zero", "401-digit-numerator", "5000-digit-whole", "infinite"])
+def test_a_quantity_string_is_read_by_a_grammar_that_only_refuses(value, why, tmp_path, capsys):
+    path = _mutated(tmp_path, "default", "engine", "connecting_rod", value)
+    err = _refused(["run", str(path)], tmp_path / "out", capsys, "engine.connecting_rod")
+    assert why in err
+
+
+def test_an_infinite_radius_rod_is_refused(tmp_path, capsys):
+    path = _mutated(tmp_path, "walschaerts-locomotive", "valve_gear", "radius_rod", '"1e999 in"')
+    _refused(["run", str(path)], tmp_path / "out", capsys, "valve_gear.radius_rod")
+
+
+def test_an_infinite_spring_preload_is_refused(tmp_path, capsys):
+    path = _mutated(tmp_path, "ball-governor", "governor", "spring_preload", '"1e999 lbf"')
+    _refused(["run", str(path)], tmp_path / "out", capsys, "governor.spring_preload")
+
+
+@pytest.mark.parametrize("command", ["events", "gear"])
+def test_an_infinite_speed_is_refused_by_events_and_gear(command, tmp_path, capsys):
+    path = _mutated(tmp_path, "default", "run", "speed", '"1e999 rpm"')
+    _refused([command, str(path)], tmp_path / "out", capsys, "run.speed")
+
+
+def test_a_value_outside_its_physical_range_names_the_range(tmp_path, capsys):
+    path = _mutated(tmp_path, "default", "engine", "bore", '"40 ft"')
+    err = _refused(["run", str(path)], tmp_path / "out", capsys, "engine.bore")
+    assert "from 0.001 m to 5 m" in err
+
+
+# --- files that are not UTF-8 TOML ------------------------------------------------------
+
+@pytest.mark.parametrize("content, where", [
+    (bytes(range(256)) * 4, "line"),
+    (b"\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR", "line"),
+    ("title = 'utf-16'\n".encode("utf-16"), "line 1"),
+    (SCENES["default"].read_text().replace('title = "12 x 24', 'title = "12 \xd7 24')
+     .encode("latin-1"), "line 9"),
+], ids=["binary", "png", "utf-16", "latin-1-title"])
+def test_a_file_that_is_not_utf8_toml_is_refused_naming_the_line(content, where, tmp_path,
+                                                                  capsys):
+    path = tmp_path / "bad.toml"
+    path.write_bytes(content)
+    err = _refused(["run", str(path)], tmp_path / "out", capsys, "scene")
+    assert where in err
+
+
+def test_a_file_that_is_not_toml_is_refused(tmp_path, capsys):
+    path = tmp_path / "bad.toml"
+    path.write_text("[engine\nbore = 12 in\n")
+    err = _refused(["events", str(path)], tmp_path / "out", capsys, "scene")
+    assert "TOML" in err
+
+
+# --- load schedules -----------------------------------------------------------------------
+
+def _schedule_scene(tmp_path: Path, csv_bytes: bytes) -> Path:
+    (tmp_path / "schedule.csv").write_bytes(csv_bytes)
+    text = SCENES["porter-allen-governor"].read_text()
+    data = tomllib.loads(text)
+    assert "load" in data
+    lines = text.splitlines()
+    head = lines.index("[load]")
+    end = next((i for i in range(head + 1, len(lines)) if lines[i].startswith("[")), len(lines))
+    keep = [ln for ln in lines[head + 1:end]
+            if re.match(r"(power|torque|speed_law)\s*=", ln) or not re.match(r"\w+\s*=", ln)]
+    lines[head + 1:end] = keep + ['kind = "schedule"', 'schedule = "schedule.csv"']
+    path = tmp_path / "scheduled.toml"
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+@pytest.mark.parametrize("csv_bytes, why", [
+    (bytes(range(256)), "UTF-8"),
+    ("time_s,load_fraction\n0,1\n5,0.5 \xe9\n".encode("latin-1"), "line 3"),
+    (b"time_s,load_fraction\n0,1\n5\n", "line 3 has too few cells"),
+    (b"time_s,load_fraction\n0,1\nnan,0.5\n", "finite"),
+    (b"time_s,load_fraction\n0,1\n5,0.5\n2,0.5\n", "line 4 goes back"),
+    (b"time,load\n0,1\n", "header"),
+], ids=["binary", "latin-1", "short-row", "nan-time", "decreasing", "no-header"])
+def test_a_bad_schedule_is_refused_naming_its_line(csv_bytes, why, tmp_path, capsys):
+    path = _schedule_scene(tmp_path, csv_bytes)
+    err = _refused(["run", str(path)], tmp_path / "out", capsys, "load.schedule")
+    assert why in err
+
+
+# --- steam states outside the property range ---------------------------------------------
+
+@pytest.mark.parametrize("section, key, value", [
+    ("supply", "pressure", '"4000 psia"'),
+    ("supply", "pressure", '"1e30 psia"'),
+    ("exhaust", "pressure", '"1e-30 psia"'),
+], ids=["saturated-above-critical", "1e30-psia", "exhaust-1e-30-psia"])
+def test_steam_states_outside_the_properties_are_refused(section, key, value, tmp_path, capsys):
+    path = _mutated(tmp_path, "default", section, key, value)
+    _refused(["run", str(path)], tmp_path / "out", capsys, f"{section}.{key}")
+
+
+def test_a_wet_supply_the_table_cannot_hold_is_refused(tmp_path, capsys):
+    """Steam of dryness 0.5 at 100 psig has 1.65 MJ/kg, below the table tier's 2 MJ/kg."""
+    path = _mutated(tmp_path, "default", "supply", "dryness", "0.5")
+    err = _refused(["run", str(path)], tmp_path / "out", capsys, "supply.dryness")
+    assert "heos" in err
+
+
+# --- the causes of hangs ------------------------------------------------------------------
+
+@pytest.mark.parametrize("name, section, key, value", [
+    ("default", "run", "speed", '"1e-30 rpm"'),
+    ("ball-governor", "governor", "friction_torque", '"1e30 lbf ft"'),
+    ("watt-throttling-governor", "governor", "friction", '"1e30 lbf"'),
+    ("default", "engine", "stroke", '"1e-30 in"'),
+    ("default", "valve_gear", "ports_per_end", str(10 ** 30)),
+], ids=["speed", "shaft-governor-friction", "flyball-friction", "stroke", "ports"])
+def test_what_hung_is_refused_before_any_work(name, section, key, value, tmp_path, capsys):
+    path = _mutated(tmp_path, name, section, key, value)
+    _refused(["run", str(path)], tmp_path / "out", capsys, f"{section}.{key}")
+
+
+def test_a_cycle_that_exhausts_its_budget_stops_with_a_message(tmp_path, capsys, monkeypatch):
+    """The budget is the guard behind the ranges: a cycle that needs more evaluations
+    than it allows stops the run with a message naming the likely scene quantities, and
+    writes nothing.  (A budget of 500 evaluations stands in for a run far outside the
+    physical; the default card needs 3,400 a cycle.)"""
+    monkeypatch.setattr(kernel, "MAX_RHS_PER_CYCLE", 500)
+    out = tmp_path / "out"
+    code = cli.main(["run", "--out", str(out), "--cycles", "2"])
+    err = capsys.readouterr().err
+    assert code == 2 and "run.speed" in err and "engine.stroke" in err, err
+    assert not out.exists()
+
+
+def test_a_turn_that_exhausts_its_budget_stops_with_a_message(tmp_path, capsys, monkeypatch):
+    monkeypatch.setattr(transient_runner, "MAX_RHS_PER_CYCLE", 500)
+    out = tmp_path / "out"
+    code = cli.main(["run", "porter-allen-governor", "--out", str(out), "--duration", "0.5 s",
+                     "--fidelity", "fast"])
+    err = capsys.readouterr().err
+    assert code == 2 and "run.speed" in err and "warm-up" in err, err
+    assert not out.exists()
+
+
+# --- valid settings at the ends of their ranges -------------------------------------------
+
+@pytest.mark.parametrize("name, setting", [
+    ("corliss-trip-gear", "0.0"),
+    ("joy-radial-gear", "-1.0"),
+    ("buckeye-engine", "1.0"),
+    ("porter-allen-engine", "1.0"),
+], ids=["corliss-trips-at-admission", "radial-full-backward", "buckeye-top", "porter-allen-top"])
+def test_settings_at_the_ends_of_their_ranges_are_results(name, setting, tmp_path, capsys):
+    """An engine doing little or no net work at the end of its gear's range is a result:
+    every file written, the fluctuation coefficient null when the work is not positive."""
+    import json
+    path = _mutated(tmp_path, name, "valve_gear", "setting", setting)
+    out = tmp_path / "out"
+    code = cli.main(["run", str(path), "--out", str(out), "--cycles", "3", "--fidelity", "fast"])
+    err = capsys.readouterr().err
+    assert code == 0, err
+    stem = path.stem
+    names = {p.name for p in out.iterdir()}
+    assert {f"{stem}.card.png", f"{stem}.effort.png", f"{stem}.summary.json"} <= names
+    s = json.loads((out / f"{stem}.summary.json").read_text())
+    if s["indicated_power_W"] <= 0:
+        assert s["fluctuation_coefficient_c"] is None
+    for end in ("head", "crank"):
+        for v in s["events"][end].values():
+            assert v is None or isinstance(v, float)
+
+
+# --- messages that name the right key ------------------------------------------------------
+
+def test_a_governor_top_setting_out_of_range_is_named_as_itself(tmp_path, capsys):
+    path = _mutated(tmp_path, "corliss-governor", "governor", "setting_at_top", "50.0")
+    err = _refused(["run", str(path)], tmp_path / "out", capsys, "governor.setting_at_top")
+    assert "50.0" in err and "nan" not in err
