@@ -82,7 +82,7 @@ def main(argv=None) -> int:
                      "turns": len(r.cycles), "rhs_evaluations": r.rhs_evaluations,
                      "max_speed_error_rpm": err,
                      "final_speed_error_rpm": s["final_speed_rpm"] - ref.summary["final_speed_rpm"],
-                     "regulation_error": s["regulation"] - ref.summary["regulation"],
+                     "regulation_error": s["regulation_frac"] - ref.summary["regulation_frac"],
                      "timeseries_rows": len(r.timeseries)})
         print(f"{label:32s} {rows[-1]['wall_time_s']:6.2f} s  speed error {err:.2e} rpm",
               file=sys.stderr)

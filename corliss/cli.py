@@ -111,16 +111,34 @@ def print_transient(result, files) -> None:
     pw = s["final_indicated_power_W"]
     print(f"  final speed      {s['final_speed_rpm']:.2f} rpm, "
           + (f"{pw / units.HP_W:.1f} ihp" if us else f"{pw / 1e3:.1f} kW"))
+    start = s.get("start") or {}
+    if start.get("status"):
+        where = {"balanced": "where the governor balances the load",
+                 "load_too_heavy": "with the governor down: the load is more than the engine "
+                                   "carries in the governor's range",
+                 "load_too_light": "at the governor's top stop: the load is too light to pull "
+                                   "the speed into the governor's range",
+                 "run_speed": "at run.speed, the governor balanced for it"}[start["status"]]
+        print(f"  start            {start['speed_rpm']:.2f} rpm, governor z "
+              f"{start['governor_z_frac']:.3f}, {where}")
     if s.get("speed_before_rpm") is not None:
+        reg = s["regulation_frac"]
         print(f"  load step at     {s['step_time_s']:.3g} s: speed before "
-              f"{s['speed_before_rpm']:.2f} rpm, regulation {100 * s['regulation']:+.2f} %")
+              f"{s['speed_before_rpm']:.2f} rpm, regulation "
+              + ("not measured (not settled)" if reg is None else f"{100 * reg:+.2f} %"))
         print(f"  largest change   {s['max_deviation_rpm']:+.2f} rpm "
               f"({100 * s['max_deviation_frac']:+.2f} %) at {s['time_of_max_deviation_s']:.2f} s "
               "after the step")
         st = s["settling_time_s"]
-        print("  settling         " + ("not settled by the end" if st is None else
-                                        f"{st:.2f} s to within "
-                                        f"{100 * result.scene.run.settling_band:g} %"))
+        if st is not None:
+            print(f"  settling         {st:.2f} s to within "
+                  f"{100 * result.scene.run.settling_band:g} %")
+    if not s["settled"]:
+        swing = s["settled_swing_frac"]
+        print("  NOT SETTLED      the speed still swings "
+              + ("" if swing is None else f"by {100 * swing:.3f} % ")
+              + "at the end of the run: its speeds are not steady-state speeds (run longer, "
+              "or --until-settled)")
     if s["hunting"]:
         print(f"  HUNTING          period {s['hunting_period_s']:.2f} s, governor swing "
               f"{100 * s['governor_swing']:.1f} % of travel")
@@ -210,6 +228,13 @@ def cmd_run(args) -> int:
         if not 0.0 < d <= 3600.0:
             raise InputError("--duration", args.duration, "a time above 0, up to 1 h")
         scene = scene.replace_run(duration_s=d)
+    if transient and (args.until_settled or scene.run.until_settled):
+        d = scene.run.duration_s
+        longest = max(scene.run.max_duration_s or 0.0, min(10.0 * d, 3600.0), d)
+        scene = scene.replace_run(until_settled=True, max_duration_s=longest)
+    elif args.until_settled:
+        raise InputError("--until-settled", True, "a transient scene: a steady run always "
+                         "runs until periodic")
     out = Path(args.out if args.out is not None else scene.output.dir)
     bar = None if args.json else (
         ProgressBar("time") if transient else
@@ -364,6 +389,9 @@ def build_parser() -> argparse.ArgumentParser:
                    help="override the scene's fidelity preset")
     r.add_argument("--cycles", type=int, help="simulate exactly N cycles (steady scenes)")
     r.add_argument("--duration", help="simulated time of a transient scene, e.g. \"5 s\"")
+    r.add_argument("--until-settled", action="store_true",
+                   help="a transient scene: run past its duration until the speed has settled "
+                        "(up to run.max_duration, by default ten times the duration)")
     r.add_argument("--from-meta", metavar="FILE",
                    help="rerun the run a .meta.json file records, exactly")
     r.set_defaults(func=cmd_run)

@@ -109,10 +109,22 @@ class RunSpec:
         ``output_step`` of crank angle) or ``"cycle"`` (once per turn).
     settling_band : float
         Transient: the speed band, as a fraction of the final mean speed, that the
-        settling time is measured to [-].
+        settling time is measured to [-].  By default 0.2 %: a fraction of the 1 to 5 %
+        by which the period's governors let the speed change between loads (Marks
+        Art. 70), so that the time measures the recovery, not the droop.
     warmup_cycles : int
         Transient: turns run at the initial speed with the governor held, before t = 0,
         so the cylinders start from a periodic state.
+    start : str
+        Transient with a governor: ``"equilibrium"`` (the speed and governor position at
+        which the governor balances the load at t = 0, found by steady turns along the
+        governor's static characteristic) or ``"run_speed"`` (at ``speed``, with the
+        governor balanced for that speed, whatever the load).
+    until_settled : bool
+        Transient: run past ``duration`` until the speed has settled (see
+        :mod:`corliss.engine.speed_metrics`), up to ``max_duration_s``.
+    max_duration_s : float or None
+        The longest a run ``until_settled`` goes on [s].
     """
 
     mode: str
@@ -124,8 +136,11 @@ class RunSpec:
     expansion: str
     duration_s: float | None = None
     record: str = "degree"
-    settling_band: float = 0.01
+    settling_band: float = 0.002
     warmup_cycles: int = 3
+    start: str = "equilibrium"
+    until_settled: bool = False
+    max_duration_s: float | None = None
 
     @property
     def speed_rpm(self) -> float:
@@ -393,6 +408,10 @@ def _supply(t: Table) -> SupplySpec:
     return SupplySpec(p, temperature, dryness, t.barometer_Pa, chest, pipe, cd, throttle, law)
 
 
+#: How a governed transient run starts (see :class:`RunSpec`).
+START_CHOICES = ("equilibrium", "run_speed")
+
+
 def _run(t: Table) -> RunSpec:
     mode = t.choice("mode", ("steady", "transient"), "steady")
     model = t.choice("model", MODELS, "crank_resolved")
@@ -459,15 +478,26 @@ def _run(t: Table) -> RunSpec:
         raise InputError(t.key("duration"), t.raw("duration"), "no duration in a steady run "
                          "(it runs until periodic, or run.cycles); or mode = \"transient\"")
     record = t.choice("record", RECORD_CHOICES, "degree")
-    band = t.number("settling_band", 0.01)
+    band = t.number("settling_band", 0.002)
     if not 0.0 < band < 0.5:
         raise InputError(t.key("settling_band"), band, "a fraction of the speed between 0 and 0.5")
     warm = t.integer("warmup_cycles", 3)
     if not 0 <= warm <= 100:
         raise InputError(t.key("warmup_cycles"), warm, "a number of turns from 0 to 100")
+    start = t.choice("start", START_CHOICES, "equilibrium")
+    until = t.raw("until_settled", False)
+    if not isinstance(until, bool):
+        raise InputError(t.key("until_settled"), until, "true or false")
+    longest = None
+    if until or t.has("max_duration"):
+        if mode != "transient":
+            raise InputError(t.key("until_settled"), until, "a transient run (mode = "
+                             "\"transient\"): a steady run always runs until periodic")
+        longest = t.quantity("max_duration", "time", f"{min(10.0 * duration, 3600.0)} s",
+                             within=(duration, 3600.0))
     t.finish()
     return RunSpec(mode, model, speed, tuple(dict.fromkeys(effects)), fid, cycles, expansion,
-                   duration, record, band, warm)
+                   duration, record, band, warm, start, until, longest)
 
 
 def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) -> Scene:
@@ -597,9 +627,38 @@ def _speed_loop(data: dict, run: RunSpec, supply: SupplySpec, gt, gear, baromete
                     raise InputError(key, g.raw(key.split(".")[1], value),
                                      f"a gear setting within the {gt.name} gear's range "
                                      f"{lo} to {hi} ({g_obj.setting_name})")
+        _check_governed_speed(gov_t.build(spec), g, run)
         out["governor_type"] = gov_t.name
         out["governor"] = spec
     return out
+
+
+#: How far outside its working range [fraction of speed] a governor's run speed may lie:
+#: a load step carries the speed a few per cent past the range; a governor whose range
+#: lies a quarter or more away from the run speed cannot govern that engine.
+GOVERNED_SPEED_MARGIN = 0.25
+
+
+def _check_governed_speed(gov, g: Table, run: RunSpec) -> None:
+    """Refuse a governor whose static characteristic balances nowhere near the run
+    speed (a drive ratio that puts its working speed far from the engine's), naming the
+    key and the speed it would govern at."""
+    from corliss.engine.operating_point import characteristic_speed, working_travel
+    mech = gov.mechanism(201)
+    z_lo, z_hi = working_travel(mech)
+    lo, hi = (characteristic_speed(mech, z) / units.RPM_RAD_S for z in (z_lo, z_hi))
+    rpm = run.speed_rpm
+    if (1.0 - GOVERNED_SPEED_MARGIN) * lo <= rpm <= (1.0 + GOVERNED_SPEED_MARGIN) * hi:
+        return
+    where = (f"this governor balances between {lo:.4g} and {hi:.4g} rpm of the engine, far "
+             f"from run.speed = {rpm:.4g} rpm")
+    if "ratio" in g.data:
+        ratio = mech.ratio * 0.5 * (lo + hi) / rpm
+        raise InputError("governor.ratio", g.raw("ratio"), f"a drive ratio that puts the "
+                         f"governor's working speeds about the engine's: {where}; a ratio "
+                         f"near {ratio:.3g} would govern at run.speed")
+    raise InputError("run.speed", run.speed_rpm, f"a speed within the governor's working "
+                     f"range: {where} (its springs and weights set that range)")
 
 
 def load_scene(path: str | Path) -> Scene:

@@ -152,7 +152,9 @@ def test_full_load_rejection_keeps_the_overspeed_bounded_and_settles(linear):
     the droop of the static characteristic."""
     rim = 1500.0
     c = 3.0 * critical_c(linear, scene(0.0, rim).flywheel.inertia_kg_m2)
-    sc = scene(c / generalised_c(1.0), rim, "14 s", ("5 s", 0.0))
+    # 25 s after the step: the speed must have settled (to 0.02 %) before a settling
+    # time or a regulation is reported
+    sc = scene(c / generalised_c(1.0), rim, "30 s", ("5 s", 0.0))
     r = corliss.simulate(sc)
     s = r.summary
     gov = governor_type(sc.governor_type).build(sc.governor)
@@ -163,4 +165,4 @@ def test_full_load_rejection_keeps_the_overspeed_bounded_and_settles(linear):
     assert s["settling_time_s"] is not None and s["settling_time_s"] < 8.0
     assert not s["hunting"]
     assert s["final_speed_rpm"] > s["speed_before_rpm"]
-    assert s["regulation"] < gov.droop() + 0.01
+    assert s["regulation_frac"] < gov.droop() + 0.01

@@ -45,4 +45,4 @@ def test_governed_scene_runs_its_load_step(path, tmp_path, capsys):
     assert s["settling_time_s"] is not None
     load = tomllib.loads(path.read_text())["load"]
     if load.get("step_fraction", 1.0) < 1.0:
-        assert 0.0 <= s["regulation"] < 0.12
+        assert 0.0 <= s["regulation_frac"] < 0.12

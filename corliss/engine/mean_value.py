@@ -29,6 +29,7 @@ import pandas as pd
 from scipy.integrate import solve_ivp
 
 from corliss.engine.model import at_knob, geometry_of, steady_scene
+from corliss.engine.operating_point import OperatingPoint, find_operating_point
 from corliss.engine.result import TransientResult
 from corliss.engine.steady import run_steady
 from corliss.governors import governor_type
@@ -159,8 +160,16 @@ def run_mean_value(scene, *, progress=None) -> TransientResult:
             out[2], out[3] = zd, zdd
         return out
 
-    z0 = mech.equilibrium_z(w_ref) if mech is not None else 0.0
-    y0 = np.array([0.0, w_ref, z0, 0.0, 0.0, 0.0, 0.0])
+    start = OperatingPoint(w_ref, mech.equilibrium_z(w_ref) if mech is not None else 0.0,
+                           math.nan, "run_speed", 0)
+    if mech is not None and run.start == "equilibrium":
+        def surplus(w, z):
+            tg, tl, tf = torques(0.0, w, z)
+            return tg - tl - tf
+
+        start = find_operating_point(surplus, mech, load.torque_N_m * float(lf[0]))
+    z0 = start.governor_z
+    y0 = np.array([0.0, start.speed_rad_s, z0, 0.0, 0.0, 0.0, 0.0])
     t_int = time.perf_counter()
 
     def stalled(t, y):
@@ -214,5 +223,5 @@ def run_mean_value(scene, *, progress=None) -> TransientResult:
                              rhs_evaluations=int(sol.nfev),
                              wall_time_s=time.perf_counter() - t_wall,
                              geometry=geometry_of(scene), stalled=sol.status == 1,
-                             mechanism=mech, z_start=z0, engine_map=emap)
+                             mechanism=mech, z_start=z0, engine_map=emap, start=start)
     return result

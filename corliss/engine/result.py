@@ -463,6 +463,9 @@ class TransientResult(Result):
         Reservoir states (None on the mean-value maps).
     engine_map : EngineMap or None
         The mean-value model's maps of torque and steam (None crank-resolved).
+    start : OperatingPoint or None
+        Where the run started: the governed operating point at the initial load
+        (``status`` "balanced", or why there is none), or the run speed.
 
     Tables: ``timeseries`` (``cycle``, ``time_s``, ``crank_angle_deg``, ``speed_rpm``,
     ``governor_z_frac``, ``actuator_frac`` (the throttle's opening or the gear's
@@ -486,6 +489,7 @@ class TransientResult(Result):
     chest: object = None
     exhaust: object = None
     engine_map: object = None
+    start: object = None
 
     @property
     def step_time_s(self) -> float | None:
@@ -504,6 +508,13 @@ class TransientResult(Result):
         if s.governor is not None:
             gov = {"type": s.governor_type, "acts_on": self.mechanism.acts_on,
                    "z_at_start": self.z_start}
+        start = None
+        if self.start is not None:
+            p = self.start
+            start = {"status": p.status, "speed_rpm": p.speed_rad_s * 60.0 / (2.0 * np.pi),
+                     "governor_z_frac": p.governor_z,
+                     "surplus_torque_N_m": None if np.isnan(p.surplus_N_m) else p.surplus_N_m,
+                     "evaluations_count": p.evaluations}
         return {
             "title": s.title, "kind": self.kind, "mode": "transient", "model": s.run.model,
             "effects": list(s.run.effects), "fidelity": s.run.fidelity.name,
@@ -513,7 +524,8 @@ class TransientResult(Result):
             "flywheel_inertia_kg_m2": s.flywheel.inertia_kg_m2,
             "load_torque_N_m": s.load.torque_N_m, "load_kind": s.load.kind,
             "load_speed_law": s.load.speed_law, "step_time_s": self.step_time_s,
-            "governor": gov, "stalled": self.stalled,
+            "governor": gov, "start": start, "until_settled": s.run.until_settled,
+            "stalled": self.stalled,
             **self.metrics,
             "final_indicated_power_W": float(c["indicated_power_W"].iloc[-5:].mean()),
             "final_steam_rate_kg_per_h": float(c["steam_rate_kg_per_h"].iloc[-5:].mean()),

@@ -5,27 +5,45 @@ governor's mean position), so the speed's fluctuation within a turn, which the
 flywheel sets (Marks Art. 62, the coefficient of steadiness), is not mistaken for the
 governor's doing.
 
+* **Settled**: a speed is a steady speed only once the engine has settled: over the
+  last third of the time after the step (at least ``SETTLE_MIN_TURNS`` turns), the
+  turn-mean speed swings by no more than ``SETTLED_SWING`` of itself.  A slow swing
+  of the governor that has not died away (a Porter-Allen engine's period can be half a
+  minute) fails this however quiet its last few turns look.
 * **Regulation (droop)**: the change of steady speed between the loads before and after
   the step, as a fraction of the speed before it; a centrifugal governor cannot avoid it
-  (Marks Art. 70: "the engine must go fast in order to go slow").
+  (Marks Art. 70: "the engine must go fast in order to go slow").  Reported only when
+  the speed before the step and at the end have both settled (None otherwise, with
+  ``settled`` False: run longer, or ``until_settled``).
 * **Largest deviation**: the largest departure of the turn-mean speed from the speed
   before the step [rpm and fraction].
-* **Settling time**: from the step to the last time the turn-mean speed was outside the
-  band (a fraction of the final speed) about the final speed.
-* **Hunting**: a sustained oscillation of the governor.  Over the last third of the
-  run, the governor's turn-mean position less its mean must swing by more than 1 % of
-  its travel, cross its mean at least four times, and the swing of the last half of
-  that window must be at least 70 % of the first half's (not decaying).  The period is
-  twice the mean spacing of the crossings.
+* **Settling time**: from the step to the last entry of the turn-mean speed into the
+  band (a fraction of the final speed) about the final speed; None when not settled.
+* **Hunting**: a sustained oscillation of the governor.  Over the last half of the time
+  after the step (of the run, without a step), the governor's turn-mean position less
+  its mean must swing by more than 1 % of its travel, cross its mean at least four
+  times, and the swing of the last half of that window must be at least 70 % of the
+  first half's (not decaying).  The period is twice the mean spacing of the crossings.
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 import pandas as pd
 
 #: Turns averaged for a steady speed (before the step, and at the end).
 STEADY_TURNS = 5
+#: Settled: the turn-mean speed's swing over the settling window, as a fraction of the
+#: speed.  0.02 % bounds what more running can change the final speed by, if the
+#: motion decays, to about that: an order below the 0.05 % to which regulation is
+#: reported meaningful, and well below any period governor's droop (1 to 5 %).
+SETTLED_SWING = 2e-4
+#: The settling window: the last third of the time after the step, at least this many
+#: turns.
+SETTLE_FRACTION = 1.0 / 3.0
+SETTLE_MIN_TURNS = 12
 HUNT_SWING = 0.01      # of the governor's travel
 HUNT_CROSSINGS = 4
 HUNT_PERSISTENCE = 0.7
@@ -35,13 +53,47 @@ def _mid_times(cycles: pd.DataFrame) -> np.ndarray:
     return 0.5 * (cycles["t_start_s"].to_numpy() + cycles["t_end_s"].to_numpy())
 
 
-def hunting(cycles: pd.DataFrame) -> dict:
-    """Whether the governor hunts at the end of the run, its period and swing."""
+def _window(t: np.ndarray, since: float, fraction: float, min_turns: int) -> np.ndarray:
+    """Mask of the turns in the last ``fraction`` of the time after ``since``, and at
+    least the last ``min_turns`` turns."""
+    mask = t >= since + (t[-1] - since) * (1.0 - fraction)
+    if mask.sum() < min_turns:
+        mask = np.zeros(t.size, dtype=bool)
+        mask[-min_turns:] = True
+    return mask
+
+
+def settled(t_mid_s: np.ndarray, speed_rpm: np.ndarray, since_s: float) -> tuple[bool, float]:
+    """Whether the turn-mean speed has settled after ``since_s``, and its swing over the
+    settling window as a fraction of its mean [-].
+
+    Parameters
+    ----------
+    t_mid_s : ndarray
+        Mid-times of the turns [s].
+    speed_rpm : ndarray
+        Turn-mean speeds [rpm].
+    since_s : float
+        The last change of load [s] (0 without one).
+    """
+    after = t_mid_s > since_s
+    if after.sum() < SETTLE_MIN_TURNS:
+        return False, math.nan
+    t, n = t_mid_s[after], speed_rpm[after]
+    w = _window(t, since_s, SETTLE_FRACTION, SETTLE_MIN_TURNS)
+    swing = float(np.ptp(n[w]) / np.mean(n[w]))
+    return bool(swing <= SETTLED_SWING), swing
+
+
+def hunting(cycles: pd.DataFrame, since_s: float = 0.0) -> dict:
+    """Whether the governor hunts at the end of the run, its period and swing (over the
+    last half of the time after ``since_s`` [s])."""
     t = _mid_times(cycles)
     if "governor_z_frac" not in cycles or len(cycles) < 12:
         return {"hunting": False, "hunting_period_s": None, "governor_swing": 0.0}
     z = cycles["governor_z_frac"].to_numpy()
-    window = t >= t[0] + (t[-1] - t[0]) * 2.0 / 3.0
+    since = since_s if (t > since_s).sum() >= 12 else t[0]
+    window = _window(t, since, 0.5, 12)
     tw, zw = t[window], z[window]
     d = zw - zw.mean()
     swing = float(d.max() - d.min())
@@ -68,38 +120,53 @@ def load_step_metrics(cycles: pd.DataFrame, step_time_s: float | None, band: flo
     cycles : DataFrame
         The per-turn table of a transient run.
     step_time_s : float or None
-        When the load changed [s]; None for a run without a change (only hunting and the
-        final speed are reported).
+        When the load changed [s]; None for a run without a change (only hunting,
+        whether it settled and the final speed are reported).
     band : float
         Settling band, a fraction of the final speed [-].
+
+    Returns
+    -------
+    dict
+        ``final_speed_rpm``, ``settled``, ``settled_swing_frac``, the hunting keys, and
+        with a step ``speed_before_rpm``, ``settled_before``, ``regulation_frac``,
+        ``max_deviation_rpm``, ``max_deviation_frac``, ``time_of_max_deviation_s``,
+        ``settling_time_s`` (None where they cannot be measured).
     """
     t = _mid_times(cycles)
     n = cycles["mean_speed_rpm"].to_numpy()
-    out = {"final_speed_rpm": float(np.mean(n[-STEADY_TURNS:])), **hunting(cycles)}
+    since = step_time_s if step_time_s is not None else float(cycles["t_start_s"].iloc[0])
+    ok, swing = settled(t, n, since)
+    out = {"final_speed_rpm": float(np.mean(n[-STEADY_TURNS:])), "settled": ok,
+           "settled_swing_frac": None if math.isnan(swing) else swing,
+           **hunting(cycles, since)}
     if step_time_s is None:
         return out
     before = cycles["t_end_s"].to_numpy() <= step_time_s
     after = t > step_time_s
+    out.update(speed_before_rpm=None, settled_before=False, regulation_frac=None,
+               max_deviation_rpm=None, max_deviation_frac=None, time_of_max_deviation_s=None,
+               settling_time_s=None)
     if before.sum() < 1 or after.sum() < 2:
-        out.update(speed_before_rpm=None, regulation=None, max_deviation_rpm=None,
-                   max_deviation_frac=None, settling_time_s=None)
         return out
     n0 = float(np.mean(n[before][-STEADY_TURNS:]))
+    nb = n[before][-STEADY_TURNS:]
+    out["settled_before"] = bool(np.ptp(nb) / n0 <= SETTLED_SWING)
     n1 = out["final_speed_rpm"]
     dev = n[after] - n0
     k = int(np.argmax(np.abs(dev)))
+    out.update(speed_before_rpm=n0, max_deviation_rpm=float(dev[k]),
+               max_deviation_frac=float(dev[k] / n0),
+               time_of_max_deviation_s=float(t[after][k] - step_time_s))
+    if not (ok and out["settled_before"]):
+        return out
     outside = np.abs(n[after] - n1) > band * n1
     if not outside.any():
         settle = 0.0
-    elif outside[-1]:
-        settle = None          # not settled by the end of the run
     else:
         last = int(np.nonzero(outside)[0][-1])
         settle = float(cycles["t_end_s"].to_numpy()[after][last] - step_time_s)
-    out.update(speed_before_rpm=n0, regulation=(n1 - n0) / n0,
-               max_deviation_rpm=float(dev[k]), max_deviation_frac=float(dev[k] / n0),
-               time_of_max_deviation_s=float(t[after][k] - step_time_s),
-               settling_time_s=settle)
+    out.update(regulation_frac=(n1 - n0) / n0, settling_time_s=settle)
     return out
 
 

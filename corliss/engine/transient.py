@@ -29,7 +29,10 @@ from corliss.engine.condensation import MarksLaw
 from corliss.engine.crank_resolved import budget_message
 from corliss.engine.model import build_gear, build_network, geometry_of, reservoir_states
 from corliss.engine.network import throttle_area_m2
+from corliss.engine.operating_point import (BALANCED, LOAD_TOO_HEAVY, SURPLUS_TOL,
+                                           OperatingPoint, find_operating_point)
 from corliss.engine.result import TransientResult
+from corliss.engine.speed_metrics import settled, step_time_of
 from corliss.errors import InputError, RunError
 from corliss.governors import governor_type
 from corliss.governors.mechanism import CREEP_PER_S
@@ -45,6 +48,13 @@ TWO_PI = 2.0 * math.pi
 SETTING_POINTS = 21
 #: The loop stops as stalled when the speed falls below this fraction of the start.
 STALL_FRACTION = 0.05
+#: Turns at most per evaluation of the surplus torque while the start is sought (each
+#: starts from the cylinders' state at the last point, so two or three usually suffice).
+EQUILIBRIUM_TURNS = 6
+#: Trial turns that set the speed at dead centre for the start's turn-mean speed.
+START_TRIALS = 3
+#: A run ``until_settled`` looks whether it has settled every this many turns.
+SETTLE_CHECK_TURNS = 10
 
 
 @dataclass
@@ -254,22 +264,77 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
     # warm-up: speed and governor held, time held at zero
     announce_compile(tk.integrate_turn)
     sc[tk.S_FREEZE] = 1.0
-    for _ in range(run.warmup_cycles):
-        y[network.n_dyn:nn] = 0.0
-        y[nn + tk.X_TIME] = 0.0
-        y, _, _, _, nf_, status = tk.integrate_turn(y, 0.0, np.zeros(0), rtol, atol, net,
-                                                    steam.kernel_tier, tab, perf, tables.tr,
-                                                    False, math.inf)
+
+    def frozen_turns(y, omega, z, turns, tol=None):
+        """Turns at speed ``omega`` with the governor held at ``z``: ``turns`` of them, or
+        with ``tol`` [N m] until the turn's mean surplus torque changes by less (at most
+        ``turns``).  Returns the state and the last turn's surplus [N m]."""
+        nonlocal nfev
+        y[nn + tk.X_OMEGA] = omega
+        y[nn + tk.X_Z] = z
+        y[nn + tk.X_ZDOT] = 0.0
+        last = math.inf
+        surplus = 0.0
+        for turn in range(turns):
+            y[network.n_dyn:nn] = 0.0
+            for q in (tk.X_TIME, tk.X_WLOAD, tk.X_WFRIC, tk.X_WGAS):
+                y[nn + q] = 0.0
+            if marks is not None:
+                marks.strokes_per_s = omega / math.pi
+                marks.apply(net[19])
+            y, _, _, _, nf_, status = tk.integrate_turn(y, 0.0, np.zeros(0), rtol, atol, net,
+                                                        steam.kernel_tier, tab, perf, tables.tr,
+                                                        False, math.inf)
+            nfev += nf_
+            if status == 4:
+                raise RunError(budget_message(network, sc[tk.S_MAX_RHS])
+                               + " (in the warm-up turns before t = 0)")
+            if status == 1:
+                raise RuntimeError("the integrator failed in the warm-up turns before t = 0")
+            if marks is None:
+                _update_wall(network, y)
+            surplus = (y[nn + tk.X_WGAS] - y[nn + tk.X_WFRIC] - y[nn + tk.X_WLOAD]) / TWO_PI
+            if tol is not None and turn >= 1 and abs(surplus - last) <= tol:
+                break
+            last = surplus
+        return y, surplus
+
+    y, _ = frozen_turns(y, omega0, tables.z0, run.warmup_cycles)
+    start = OperatingPoint(omega0, tables.z0, math.nan, "run_speed", 0)
+    if tables.mechanism is not None and run.start == "equilibrium":
+        t_load = abs(sc[tk.S_TREF] * tk.load_factor(0.0, tables.tr[1], tables.tr[2]))
+        tol = 0.25 * SURPLUS_TOL * max(t_load, 1e-9)
+
+        def surplus(omega, z):
+            nonlocal y
+            y, s = frozen_turns(y, omega, z, EQUILIBRIUM_TURNS, tol)
+            return s
+
+        start = find_operating_point(surplus, tables.mechanism, t_load)
+        y, _ = frozen_turns(y, start.speed_rad_s, start.governor_z, 2)
+        _report_start(start, omega0, tables.mechanism)
+    # The flywheel lets the speed swing within a turn (Marks Art. 62), and the governor
+    # balances on the turn's mean speed; released at dead centre at the mean speed, the
+    # engine would gain or lose the swing's offset and the governor follow it.  So the
+    # speed at dead centre is set, by trial turns with the governor held and the speed
+    # free, to give the turn-mean speed of the start.
+    sc[tk.S_FREEZE] = 2.0
+    omega_dc = start.speed_rad_s
+    for _ in range(START_TRIALS):
+        trial = y.copy()
+        trial[nn + tk.X_OMEGA] = omega_dc
+        trial[nn + tk.X_TIME] = 0.0
+        trial, _, _, _, nf_, status = tk.integrate_turn(trial, 0.0, np.zeros(0), rtol, atol, net,
+                                                        steam.kernel_tier, tab, perf, tables.tr,
+                                                        False, math.inf)
         nfev += nf_
-        if status == 4:
-            raise RunError(budget_message(network, sc[tk.S_MAX_RHS]) + " (in the warm-up turns)")
-        if status == 1:
-            raise RuntimeError("the integrator failed during the warm-up turns")
-        if marks is None:
-            _update_wall(network, y)
+        if status != 0:
+            break
+        omega_dc *= start.speed_rad_s / (TWO_PI / trial[nn + tk.X_TIME])
     sc[tk.S_FREEZE] = 0.0
     y[nn + tk.X_TIME] = 0.0
-    y[nn + tk.X_OMEGA] = omega0
+    y[nn + tk.X_OMEGA] = omega_dc
+    y[nn + tk.X_Z] = start.governor_z
     y[nn + tk.X_ZDOT] = 0.0
     duration = run.duration_s
     record = run.record
@@ -278,7 +343,20 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
     rows, frames = [], []
     k = 0
     status = 0
-    while y[nn + tk.X_TIME] < duration:
+    since = step_time_of(scene.load) or 0.0
+    longest = run.max_duration_s if run.until_settled else duration
+
+    def go_on(t: float) -> bool:
+        if t < duration:
+            return True
+        if t >= longest or len(rows) < SETTLE_CHECK_TURNS:
+            return False
+        if len(rows) % SETTLE_CHECK_TURNS:
+            return True
+        mid = np.array([0.5 * (r["t_start_s"] + r["t_end_s"]) for r in rows])
+        return not settled(mid, np.array([r["mean_speed_rpm"] for r in rows]), since)[0]
+
+    while go_on(y[nn + tk.X_TIME]):
         th0 = TWO_PI * k
         y[network.n_dyn:nn] = 0.0
         for q in (tk.X_WLOAD, tk.X_WFRIC, tk.X_WGAS, tk.X_ZDT, tk.X_ADT):
@@ -292,14 +370,16 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
             out_theta = np.zeros(0)
         y, samples, rec, n_rec, nf_, status = tk.integrate_turn(
             y, th0, out_theta, rtol, atol, net, steam.kernel_tier, tab, perf, tables.tr,
-            record == "step", duration)
+            record == "step", longest)
         nfev += nf_
         if status == 4:
             raise RunError(budget_message(network, sc[tk.S_MAX_RHS]) + f" (in turn {k + 1}, at "
                            f"{y[nn + tk.X_TIME]:.3f} s)")
         if status == 1:
             raise RuntimeError(f"the integrator failed in turn {k + 1} (step size collapsed)")
-        rows.append(_cycle_row(k, y_start, y, network, tables, nn))
+        if status != 2 or not rows:
+            # a turn the stall cut short is no turn: its row would be a wrong mean
+            rows.append(_cycle_row(k, y_start, y, network, tables, nn))
         if marks is not None:
             marks.strokes_per_s = 2.0 / (rows[-1]["t_end_s"] - rows[-1]["t_start_s"])
             marks.apply(net[19])
@@ -310,7 +390,7 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
         frames.append(frame)
         k += 1
         if progress:
-            progress(float(y[nn + tk.X_TIME]), duration)
+            progress(float(y[nn + tk.X_TIME]), max(duration, float(y[nn + tk.X_TIME])))
         if status == 2:
             log.warning("the engine stalled at t = %.3f s", y[nn + tk.X_TIME])
             break
@@ -319,7 +399,24 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
                            cycles=pd.DataFrame(rows), rhs_evaluations=nfev,
                            wall_time_s=time.perf_counter() - t_wall, geometry=geo,
                            stalled=status == 2, mechanism=tables.mechanism,
-                           z_start=tables.z0, chest=chest, exhaust=exhaust)
+                           z_start=start.governor_z, chest=chest, exhaust=exhaust,
+                           start=start)
+
+
+def _report_start(start: OperatingPoint, omega0: float, mech) -> None:
+    """Log where a governed run starts, and warn when no operating point exists."""
+    rpm = start.speed_rad_s * 60.0 / TWO_PI
+    if start.status == BALANCED:
+        log.info("start: the governor balances the load at %.2f rpm, z = %.3f (%d surplus "
+                 "evaluations)", rpm, start.governor_z, start.evaluations)
+    elif start.status == LOAD_TOO_HEAVY:
+        log.warning("the load is more than the engine carries with the governor down (at "
+                    "%.1f rpm the surplus torque is %.4g N m): the engine will slow below the "
+                    "governor's range; the run starts there", rpm, start.surplus_N_m)
+    else:
+        log.warning("with the governor at its top stop (%.1f rpm) the engine still has a "
+                    "surplus torque of %.4g N m: it will run above the governor's range; the "
+                    "run starts there", rpm, start.surplus_N_m)
 
 
 def _update_wall(network, y: np.ndarray) -> None:

@@ -243,7 +243,7 @@ def transient_rhs(th, y, dy, net, tier, tab, perf, pr, pa, tr, out):
     if sc[S_FRICTION_ON] > 0.0:
         tf = sc[S_TF0] + sc[S_TF1] * omega
     wdot = (tgas - tf - tload - 0.5 * die * omega * omega) / ie
-    if sc[S_FREEZE] > 0.0:
+    if sc[S_FREEZE] == 1.0:    # 1: speed and governor held; 2: the governor only
         wdot = 0.0
     dy[nn + X_OMEGA] = wdot / omega
     dy[nn + X_TIME] = 1.0 / omega

@@ -35,11 +35,13 @@ def plot_load_step(result, units_system: str | None = None) -> dict:
                  label=f"settling band ({100 * band:g} %)")
     ax_n.set_ylabel("speed [rev/min]")
     title = result.scene.title
-    if t_step is not None and m.get("regulation") is not None:
+    if t_step is not None and m.get("regulation_frac") is not None:
         st = m["settling_time_s"]
-        title += (f"\nregulation {100 * m['regulation']:+.2f} %, largest change "
+        title += (f"\nregulation {100 * m['regulation_frac']:+.2f} %, largest change "
                   f"{100 * m['max_deviation_frac']:+.2f} %, settling "
                   + ("beyond the run" if st is None else f"{st:.2f} s"))
+    elif not m["settled"]:
+        title += "\nnot settled by the end of the run: no steady-state speeds"
     if m["hunting"]:
         title += f"; HUNTING, period {m['hunting_period_s']:.2f} s"
     ax_n.set_title(title, fontsize=10)
