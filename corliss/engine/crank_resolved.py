@@ -10,6 +10,16 @@ The equations are those of :mod:`corliss.engine.network`, evaluated by
   and hands them to the same compiled derivatives.
 
 Integration stops at every kink of the port areas.
+
+No state a run visits is clamped silently: the compiled integrators count the
+evaluations that clamped a state to the range of the steam properties, apart for the
+states the run visits (the ends of accepted steps) and for trial states (stages inside
+a step, a Jacobian's probes, rejected steps); a visited state that needed a clamp
+stops the run (:class:`~corliss.errors.RunError`, naming the scene quantity to look
+at), and the trials are counted for the summary.  On the Python path (scipy's
+integrators, which do not say which evaluations were trials) every clamped evaluation
+is counted as a trial, and the run stops when a state of the accepted solution (the
+samples) lies outside the range.
 """
 
 from __future__ import annotations
@@ -23,8 +33,8 @@ from corliss.engine import kernel
 from corliss.engine.network import Network
 from corliss.engine.options import COMPILED_METHODS
 from corliss.errors import RunError
-from corliss.thermo.orifice import kappa_of
 from corliss.thermo.steam import Steam
+from corliss.thermo.steam_table import CLAMP_CODES, kappa_at
 
 COMPILED_CODES = {"dopri5": 0, "rk4": 1, "rosenbrock": 2}
 
@@ -55,6 +65,8 @@ class CrankResolved:
         self.color, self.owner = network.column_colors()
         self.atol = rtol * network.scales()
         self.nfev = 0
+        #: evaluations that clamped a trial state, over the run [-]
+        self.clamped_trials = 0
         #: the run-time budget of a cycle [right-hand-side evaluations]
         self.max_rhs = kernel.MAX_RHS_PER_CYCLE
         self.compiled = method in COMPILED_METHODS
@@ -66,7 +78,7 @@ class CrankResolved:
         self._tab = steam.table.arrays() if hasattr(steam, "table") else load_table().arrays()
         self._perf = (np.array(steam.perfect_params()) if hasattr(steam, "perfect_params")
                       else np.zeros(3))
-        self._pr = np.empty((8, network.n_nodes))
+        self._pr = np.empty((kernel.PR_ROWS, network.n_nodes))
         self._cell = np.empty((len(network.geometries), 4))
 
     def rhs(self, th: float, y: np.ndarray) -> np.ndarray:
@@ -77,19 +89,25 @@ class CrankResolved:
             kernel.rhs(th, y, dy, self.net, self._tier, self._tab, self._perf, self._pr,
                        self._cell)
             return dy
+        clamped = False
         for i in range(self.network.n_nodes):
             V, dV = kernel.node_volume(th, self.net, i)
             m = y[2 * i]
-            rho, u = kernel.admissible(m / V, y[2 * i + 1] / m if m > 0.0 else 2.6e6)
+            rho, u, code = kernel.admissible_flagged(m / V, y[2 * i + 1] / m if m > 0.0 else 2.6e6)
             try:
                 st = self.steam.du(rho, u)
             except ValueError:   # a trial state with no steam state: take the exhaust's
                 st = self.network.reservoirs[-1]
+                code |= 32
+            clamped = clamped or code != 0
             t_wet = st.T
             if st.superheated and self.network.node_heat[i][0] > 0.0:
                 t_wet = self.steam.t_sat(st.p)
-            self._pr[:, i] = (st.p, rho, u + st.p / rho, kappa_of(st.x, st.superheated), dV, V,
-                              st.T, t_wet)
+            self._pr[:, i] = (st.p, rho, u + st.p / rho, kappa_at(self._tab, rho, u), dV, V,
+                              st.T, t_wet, code)
+        # scipy does not say which evaluations are trials: each clamped one is counted as
+        # one, and the accepted solution is checked after the cycle (:meth:`cycle`)
+        self.clamped_trials += int(clamped)
         kernel.derivatives(th, y, self._pr, dy, self.net, self._cell)
         return dy
 
@@ -116,11 +134,17 @@ class CrankResolved:
         stops = np.asarray(self.network.stops(theta0), dtype=float)
         out_theta = np.asarray(out_theta, dtype=float)
         if self.compiled:
-            y_end, samples, nfev, ok = kernel.integrate_cycle(
+            y_end, samples, nfev, ok, clamps = kernel.integrate_cycle(
                 y, stops, out_theta, COMPILED_CODES[self.method], self.rtol, self.atol,
                 self.step, self.net, self._tier, self._tab, self._perf, self.color, self.owner,
                 self.max_rhs)
             self.nfev += nfev
+            self.clamped_trials += int(clamps[kernel.CL_REJECTED])
+            if clamps[kernel.CL_ACCEPTED] > 0:
+                raise RunError(clamp_message(self.network, int(clamps[kernel.CL_ACCEPTED_CODE]),
+                                             int(clamps[kernel.CL_NODE]),
+                                             float(clamps[kernel.CL_THETA] + theta0),
+                                             int(clamps[kernel.CL_ACCEPTED])))
             if not ok and nfev > self.max_rhs:
                 raise RunError(budget_message(self.network, self.max_rhs))
             if not ok:
@@ -139,7 +163,60 @@ class CrankResolved:
             if sel.size:
                 samples[:, sel] = sol.y[:, np.searchsorted(sol.t, out_theta[sel])]
             y = sol.y[:, -1].copy()
+        self._check_accepted(samples, out_theta)
         return y, samples
+
+    def _check_accepted(self, samples: np.ndarray, out_theta: np.ndarray) -> None:
+        """Stop the run when a sampled state of the accepted solution lies outside the
+        range of the steam properties (the Python path's test for clamped states)."""
+        for i in range(self.network.n_nodes):
+            V = self.network.volume(i, out_theta)
+            m = samples[2 * i]
+            ok = np.isfinite(m)
+            if not ok.any():
+                continue
+            m, V, U = m[ok], V[ok], samples[2 * i + 1][ok]
+            rho = m / V
+            u = np.where(m > 0.0, U / np.where(m > 0.0, m, 1.0), np.nan)
+            code = np.zeros(m.size, dtype=np.int64)
+            code[~(rho > kernel.RHO_MIN)] |= 1
+            code[rho > kernel.RHO_MAX] |= 2
+            code[~(u > kernel.U_MIN)] |= 4
+            code[u > kernel.U_MAX] |= 8
+            bad = np.nonzero(code)[0]
+            if bad.size:
+                k = bad[0]
+                raise RunError(clamp_message(self.network, int(np.bitwise_or.reduce(code)), i,
+                                             float(out_theta[ok][k]), int(bad.size)))
+
+
+#: The scene quantity to look at for each kind of clamp (bits of
+#: :data:`corliss.thermo.steam_table.CLAMP_CODES`), and why.
+CLAMP_CAUSES = {
+    1: ("exhaust.pressure", "the steam expanded below the least density the properties "
+        "cover: a condenser vacuum (or an expansion below back pressure) deeper than they reach"),
+    16: ("exhaust.pressure", "the steam cooled below the triple point: a condenser vacuum "
+         "deeper than steam exists"),
+    2: ("supply.pressure", "the steam was compressed above the greatest density the "
+        "properties cover"),
+    8: ("supply.temperature", "the steam was heated beyond the properties' range"),
+    4: ("supply.dryness", "the steam became wetter than the properties' range (very wet "
+        "supply, or condensation on the walls)"),
+    32: ("exhaust.pressure", "the steam reached a density and energy with no steam state"),
+}
+
+
+def clamp_message(network, code: int, node: int, theta: float, count: int) -> str:
+    """Why a run stopped: a state it visited needed clamping to the range of the steam
+    properties; names the scene quantity that most likely caused it."""
+    what = "; ".join(text for bit, text in CLAMP_CODES.items() if code & bit)
+    bit = next((b for b in CLAMP_CAUSES if code & b), 32)
+    key, why = CLAMP_CAUSES[bit]
+    name = network.node_names[node] if 0 <= node < network.n_nodes else "a volume"
+    return (f"the steam in the {name} left the range of the steam properties ({what}) at "
+            f"{math.degrees(theta) % 360.0:.1f} deg of crank angle, in {count} evaluation(s) "
+            f"at states the run visited: {why}.  The run was stopped rather than continue "
+            f"on clamped properties; check {key}")
 
 
 def budget_message(network, max_rhs: int) -> str:

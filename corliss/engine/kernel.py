@@ -25,7 +25,11 @@ Output samples between steps come from cubic Hermite interpolation on the states
 derivatives at the step ends (third-order, well inside the step error).
 
 Compiled code is cached on disk by numba (``cache=True``): a run pays compilation
-once per machine (measured in the accuracy study).
+once per machine (measured in the accuracy study).  Numba keys that cache on the
+content of this file alone, not on the compiled functions it inlines from
+:mod:`corliss.thermo.orifice` and :mod:`corliss.thermo.steam_table`: a change there
+must come with a new :data:`DEPENDENCY_REVISION` here (and in
+:mod:`corliss.engine.transient_kernel`), or the cached kernel keeps the old code.
 """
 
 from __future__ import annotations
@@ -38,18 +42,36 @@ import numpy as np
 from numba import njit
 
 from corliss.logs import NOTICE
-from corliss.thermo.orifice import kappa_of, port_flow
-from corliss.thermo.steam_table import lookup, t_sat
+from corliss.thermo.orifice import port_flow
+from corliss.thermo.steam_table import PARAMS, kappa_at, lookup_flagged, t_sat
 
 log = logging.getLogger(__name__)
+#: Revision of the inlined property and port-flow code (see the module's docstring).
+DEPENDENCY_REVISION = 6
 TIER_TABLE, TIER_PERFECT = 0, 1
 TWO_PI = 2.0 * math.pi
 #: Clamps on trial states: integrators probe states with no steam (a negative mass in
 #: a stiff blow-down); clamping keeps the right-hand side defined and its flows push
-#: the state back.
-RHO_MIN = 0.02       # [kg/m3], saturated vapour near 25 degC (far below any condenser)
-U_MIN = 1.0e6        # [J/kg], wet steam of dryness about 0.35
-U_MAX = 4.0e6        # [J/kg], superheated far beyond any engine
+#: the state back.  The bounds are the steam table's (and its port-flow exponent's):
+#: a state inside them is evaluated, not clamped.  Every clamped evaluation is
+#: flagged (row ``PR_CLAMP`` of the node properties, the bits of
+#: :data:`corliss.thermo.steam_table.CLAMP_CODES`) and counted by the integrators: a
+#: state the run visits (where an accepted step starts or ends) that needed one stops
+#: the run; a trial state (a stage inside a step, a Jacobian's probe, or any state of
+#: a rejected step) is counted.  Inside a stiff step an L-stable method's stages may
+#: leave the physical range while the step's result stays accurate.
+RHO_MIN = PARAMS["rho_min"]     # [kg/m3], below dry saturated steam at the triple point
+RHO_MAX = PARAMS["rho_max"]     # [kg/m3], dry saturated steam near 12.5 MPa
+U_MIN = PARAMS["kappa_u_min"]   # [J/kg], saturated water at the triple point
+U_MAX = PARAMS["u_max"]         # [J/kg], superheated steam beyond 1273 K
+#: Rows of the node-property scratch ``pr`` (see :func:`node_states`); the last holds
+#: each node's clamp code of the latest evaluation.
+PR_ROWS = 9
+PR_CLAMP = 8
+#: What the cycle integrator reports of clamps (the array it returns last): clamped
+#: evaluations at visited states, at trial states, the codes of each (OR of the
+#: bits), and the shaft angle [rad] and node of the first visited one.
+CL_ACCEPTED, CL_REJECTED, CL_ACCEPTED_CODE, CL_REJECTED_CODE, CL_THETA, CL_NODE = range(6)
 #: The run-time budget: right-hand-side evaluations allowed in one cycle (or one turn of
 #: the transient loop).  The default card needs 3,400 at the standard preset and a
 #: 10 rpm engine 36,000; a cycle that needs 2,000,000 (about half a minute) is stepping
@@ -61,26 +83,42 @@ MAX_RHS_PER_CYCLE = 2_000_000
 @njit(cache=True, inline="always")
 def admissible(rho, u):
     """Density and internal energy clamped to where steam properties exist."""
-    if not rho > RHO_MIN:
-        rho = RHO_MIN
-    if not u > U_MIN:
-        u = U_MIN
-    if u > U_MAX:
-        u = U_MAX
+    rho, u, _ = admissible_flagged(rho, u)
     return rho, u
 
 
 @njit(cache=True, inline="always")
+def admissible_flagged(rho, u):
+    """:func:`admissible` and its clamp code (0: nothing clamped)."""
+    code = 0
+    if not rho > RHO_MIN:
+        rho = RHO_MIN
+        code |= 1
+    if rho > RHO_MAX:
+        rho = RHO_MAX
+        code |= 2
+    if not u > U_MIN:
+        u = U_MIN
+        code |= 4
+    if u > U_MAX:
+        u = U_MAX
+        code |= 8
+    return rho, u, code
+
+
+@njit(cache=True, inline="always")
 def props(tier, tab, perf, rho, u):
-    """(p, T, dryness, superheated) from the compiled tier, inputs clamped."""
-    rho, u = admissible(rho, u)
+    """(p, T, dryness, superheated, clamp code) from the compiled tier, inputs clamped."""
+    rho, u, code = admissible_flagged(rho, u)
     if tier == TIER_PERFECT:
         R, cv, u_ref = perf[0], perf[1], perf[2]
         T = (u - u_ref) / cv
         if T < 1.0:
             T = 1.0
-        return rho * R * T, T, 1.0, True
-    return lookup(tab, rho, u)
+            code |= 16
+        return rho * R * T, T, 1.0, True, code
+    p, T, x, sup, c2 = lookup_flagged(tab, rho, u)
+    return p, T, x, sup, code | c2
 
 
 @njit(cache=True, inline="always")
@@ -216,7 +254,7 @@ def balances(th, y, pr, dy, net, areas):
         else:
             r = -1 - b
             pb, rb, hb, kb = res[r, 0], res[r, 1], res[r, 2], res[r, 3]
-        md = port_flow(edge_area(net, e, areas), ecd[e], pa, ra, ka, pb, rb, kb, band)
+        md = port_flow(edge_area(net, e, areas), ecd[e], pa, ra, ka, pb, rb, kb, band, True)
         hd = md * (ha if md > 0.0 else hb)
         md /= omega
         hd /= omega
@@ -232,23 +270,30 @@ def balances(th, y, pr, dy, net, areas):
 
 @njit(cache=True, inline="always")
 def node_states(th, y, net, tier, tab, perf, pr):
-    """Each node's pressure, density, enthalpy, isentropic exponent, dV/dtheta, volume,
-    temperature and (with wall heat) wetted-wall temperature into the rows of ``pr``,
-    on a compiled property tier."""
+    """Each node's pressure, density, enthalpy, isentropic exponent of its port flow,
+    dV/dtheta, volume, temperature, (with wall heat) wetted-wall temperature and clamp
+    code into the rows of ``pr``, on a compiled property tier.  The exponent is the
+    real fluid's (:func:`corliss.thermo.steam_table.kappa_at`), or the perfect tier's
+    own 1 + R/cv (then also the reservoirs')."""
     nv = net[4].shape[0]
+    if tier == TIER_PERFECT:
+        res = net[8]
+        for r in range(res.shape[0]):
+            res[r, 3] = 1.0 + perf[0] / perf[1]
     for i in range(nv):
         V, dV = node_volume(th, net, i)
         pr[4, i] = dV
         pr[5, i] = V
         m = y[2 * i]
         u = y[2 * i + 1] / m if m > 0.0 else 2.6e6
+        p, T, x, sup, code = props(tier, tab, perf, m / V, u)
         rho, u = admissible(m / V, u)
-        p, T, x, sup = props(tier, tab, perf, rho, u)
         pr[0, i] = p
         pr[1, i] = rho
         pr[2, i] = u + p / rho
-        pr[3, i] = kappa_of(x, sup)
+        pr[3, i] = 1.0 + perf[0] / perf[1] if tier == TIER_PERFECT else kappa_at(tab, rho, u)
         pr[6, i] = T
+        pr[PR_CLAMP, i] = code
         # the temperature of a wetted wall at this pressure, for the wall-heat effect only
         if net[19][i, 0] > 0.0:
             pr[7, i] = t_sat(tab, p) if (sup and tier != TIER_PERFECT) else T
@@ -259,6 +304,44 @@ def rhs(th, y, dy, net, tier, tab, perf, pr, cell):
     """Derivatives on a compiled property tier (``pr``, ``cell``: scratch arrays)."""
     node_states(th, y, net, tier, tab, perf, pr)
     derivatives(th, y, pr, dy, net, cell)
+
+
+@njit(cache=True, inline="always")
+def tally_clamps(pr, t, att):
+    """Add the latest evaluation's clamps (row ``PR_CLAMP`` of ``pr``) to a step
+    attempt's tally ``att``: (clamped evaluations, OR of their codes, shaft angle [rad]
+    and node of the first)."""
+    c = 0
+    first = -1
+    for i in range(pr.shape[1]):
+        ci = int(pr[PR_CLAMP, i])
+        if ci != 0 and first < 0:
+            first = i
+        c |= ci
+    if c != 0:
+        if att[0] == 0.0:
+            att[2] = t
+            att[3] = first
+        att[0] += 1.0
+        att[1] = float(int(att[1]) | c)
+
+
+@njit(cache=True, inline="always")
+def settle_clamps(att, accepted, clamps):
+    """Move a step attempt's tally into the cycle's ``clamps`` (accepted or rejected)
+    and clear it."""
+    if att[0] > 0.0:
+        if accepted:
+            if clamps[CL_ACCEPTED] == 0.0:
+                clamps[CL_THETA] = att[2]
+                clamps[CL_NODE] = att[3]
+            clamps[CL_ACCEPTED] += att[0]
+            clamps[CL_ACCEPTED_CODE] = float(int(clamps[CL_ACCEPTED_CODE]) | int(att[1]))
+        else:
+            clamps[CL_REJECTED] += att[0]
+            clamps[CL_REJECTED_CODE] = float(int(clamps[CL_REJECTED_CODE]) | int(att[1]))
+    for k in range(4):
+        att[k] = 0.0
 
 
 # Dormand-Prince 5(4) tableau
@@ -313,11 +396,12 @@ def dopri_error(y, ynew, K, h, atol, rtol):
 
 
 @njit(cache=True)
-def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, cell):
+def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, cell, att):
     """Finite-difference Jacobian of the dynamic columns, and the time derivative.
 
     Columns of one colour are perturbed together (their rows do not overlap), so a
-    single cylinder costs two evaluations, plus one for the time derivative.
+    single cylinder costs two evaluations, plus one for the time derivative.  Clamped
+    evaluations go into the step's tally ``att``.
     """
     n = y.shape[0]
     ndyn = J.shape[1]
@@ -333,6 +417,7 @@ def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, ce
             if color[j] == c:
                 yp[j] += dl[j]
         rhs(t, yp, fp, net, tier, tab, perf, pr, cell)
+        tally_clamps(pr, t, att)
         for j in range(ndyn):
             if color[j] == c:
                 for i in range(n):
@@ -343,6 +428,7 @@ def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, ce
                 J[i, j] = (fp[i] - f0[i]) / dl[j]
     dt = 1e-7 * max(abs(t), 1.0)
     rhs(t + dt, y, fp, net, tier, tab, perf, pr, cell)
+    tally_clamps(pr, t + dt, att)
     for i in range(n):
         T[i] = (fp[i] - f0[i]) / dt
     return ncol + 1
@@ -386,9 +472,11 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
     """Integrate from ``stops[0]`` to ``stops[-1]``, restarting at every stop.
 
     ``method``: 0 dopri5, 1 rk4, 2 Rosenbrock ode23s.  Returns
-    ``(y_end, samples, nfev, ok)``; ``samples[:, k]`` is the state at ``out_theta[k]``;
-    ``ok`` is False when the step size collapsed or more than ``max_rhs`` evaluations
-    were spent (the run-time budget).
+    ``(y_end, samples, nfev, ok, clamps)``; ``samples[:, k]`` is the state at
+    ``out_theta[k]``; ``ok`` is False when the step size collapsed or more than
+    ``max_rhs`` evaluations were spent (the run-time budget); ``clamps`` counts the
+    evaluations that clamped a state (indices ``CL_*``): at visited states (the ends of
+    accepted steps) and at trial states (stages, probes, rejected steps) apart.
     """
     n = y0.shape[0]
     ndyn = color.shape[0]
@@ -405,9 +493,13 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
     T = np.empty(n)
     x = np.empty(n)
     yscale = atol / rtol
-    pr = np.empty((8, net[4].shape[0]))
+    pr = np.empty((PR_ROWS, net[4].shape[0]))
     cell = np.empty((net[17].shape[0], 4))
     nfev = 0
+    clamps = np.zeros(6)
+    clamps[CL_NODE] = -1.0
+    att = np.zeros(4)
+    att_end = np.zeros(4)
     io = 0
     while io < out_theta.shape[0] and out_theta[io] <= stops[0]:
         samples[:, io] = y
@@ -421,6 +513,8 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
         t = a
         rhs(t, y, f0, net, tier, tab, perf, pr, cell)
         nfev += 1
+        tally_clamps(pr, t, att)
+        settle_clamps(att, True, clamps)
         if method == 1:   # rk4, fixed step
             nstep = int(math.ceil((b - a) / step - 1e-9))
             if nstep < 1:
@@ -428,12 +522,18 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
             h = (b - a) / nstep
             for k_ in range(nstep):
                 rhs(t + 0.5 * h, y + 0.5 * h * f0, K[1], net, tier, tab, perf, pr, cell)
+                tally_clamps(pr, t + 0.5 * h, att)
                 rhs(t + 0.5 * h, y + 0.5 * h * K[1], K[2], net, tier, tab, perf, pr, cell)
+                tally_clamps(pr, t + 0.5 * h, att)
                 rhs(t + h, y + h * K[2], K[3], net, tier, tab, perf, pr, cell)
+                tally_clamps(pr, t + h, att)
                 for i in range(n):
                     ynew[i] = y[i] + h / 6.0 * (f0[i] + 2 * K[1, i] + 2 * K[2, i] + K[3, i])
                 t1 = b if k_ == nstep - 1 else t + h
                 rhs(t1, ynew, f1, net, tier, tab, perf, pr, cell)
+                tally_clamps(pr, t1, att_end)
+                settle_clamps(att, False, clamps)
+                settle_clamps(att_end, True, clamps)
                 nfev += 4
                 while io < out_theta.shape[0] and out_theta[io] <= t1:
                     hermite(t, y, f0, t1, ynew, f1, out_theta[io], tmp)
@@ -457,7 +557,8 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
             if t + h > b or b - (t + h) < 1e-12:
                 h = b - t
             if method == 2:   # Rosenbrock ode23s
-                nfev += _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, cell)
+                nfev += _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr,
+                                  cell, att)
                 hd = h * _D
                 _w_inverse(J, hd, Winv)
                 for i in range(n):
@@ -466,6 +567,7 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
                 for i in range(n):
                     ytmp[i] = y[i] + 0.5 * h * K[0, i]
                 rhs(t + 0.5 * h, ytmp, K[1], net, tier, tab, perf, pr, cell)
+                tally_clamps(pr, t + 0.5 * h, att)
                 for i in range(n):
                     x[i] = K[1, i] - K[0, i]
                 _w_solve(J, Winv, hd, x, K[2])
@@ -473,6 +575,7 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
                     K[2, i] += K[0, i]
                     ytmp[i] = y[i] + h * K[2, i]
                 rhs(t + h, ytmp, K[6], net, tier, tab, perf, pr, cell)
+                tally_clamps(pr, t + h, att_end)
                 nfev += 2
                 for i in range(n):
                     x[i] = (K[6, i] - _E32 * (K[2, i] - K[1, i]) - 2.0 * (K[0, i] - f0[i])
@@ -491,12 +594,16 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
                 for s_ in range(1, 7):
                     dopri_stage(y, K, s_, h, ytmp)
                     rhs(t + DOPRI_NODES[s_] * h, ytmp, K[s_], net, tier, tab, perf, pr, cell)
+                    tally_clamps(pr, t + DOPRI_NODES[s_] * h, att_end if s_ == 6 else att)
                 nfev += 6
                 err = dopri_error(y, ytmp, K, h, atol, rtol)
                 expo = -0.2
                 safety = 0.9
             # ytmp: the new state; K[6]: the derivative there (FSAL)
-            if err <= 1.0 or h < 1e-12:
+            accepted = err <= 1.0 or h < 1e-12
+            settle_clamps(att, False, clamps)
+            settle_clamps(att_end, accepted, clamps)
+            if accepted:
                 t1 = t + h
                 while io < out_theta.shape[0] and out_theta[io] <= t1:
                     hermite(t, y, f0, t1, ytmp, K[6], out_theta[io], tmp)
@@ -511,11 +618,11 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
             else:
                 h = h * max(0.2, safety * err ** expo)
             if not (h > 0.0) or not math.isfinite(y[0]) or nfev > max_rhs:
-                return y, samples, nfev, False
+                return y, samples, nfev, False, clamps
     while io < out_theta.shape[0]:
         samples[:, io] = y
         io += 1
-    return y, samples, nfev, True
+    return y, samples, nfev, True, clamps
 
 
 def announce_compile(*dispatchers) -> None:

@@ -229,7 +229,8 @@ class Network:
     # --- arrays for the kernel ------------------------------------------------------
     def arrays(self) -> tuple:
         """The tuple the compiled right-hand side reads (see kernel.derivatives)."""
-        from corliss.thermo.orifice import kappa_of
+        from corliss.thermo.steam_table import kappa_at, load_table
+        tab = load_table().arrays()
         ncyl = len(self.geometries)
         geo = np.array([[g.crank_m, g.spec.connecting_rod_m, g.spec.stroke_m, g.area_head_m2,
                          g.area_crank_m2, *g.clearance_m3, 1.0 if g.rod_angularity else 0.0]
@@ -244,7 +245,9 @@ class Network:
             grid[c, n:] = pm.theta_rad[-1]
             area[c, :, :n] = pm.area_m2
             npts[c] = n
-        res = np.array([[s.p, s.rho, s.h, kappa_of(s.x, s.superheated)] for s in self.reservoirs])
+        # the reservoirs' port-flow exponent is the real fluid's (the kernel puts the
+        # perfect tier's own in its place)
+        res = np.array([[s.p, s.rho, s.h, kappa_at(tab, s.rho, s.u)] for s in self.reservoirs])
         i64 = lambda v: np.asarray(v, dtype=np.int64)  # noqa: E731
         f64 = lambda v: np.asarray(v, dtype=np.float64)  # noqa: E731
         if self.wall_T is None or self.wall_T.size != self.n_nodes:
@@ -257,18 +260,27 @@ class Network:
                 self.wall_T)
 
 
+def _band(band: float | None) -> float:
+    """The regularisation band asked for, or the port flow's own (read at each call)."""
+    from corliss.thermo import orifice
+    return orifice.PORT_BAND if band is None else float(band)
+
+
 def cylinder_prefix(c: int) -> str:
     """Column prefix of cylinder ``c``: "" for the first, "c2_", "c3_" ... after it."""
     return "" if c == 0 else f"c{c + 1}_"
 
 
-def single_cylinder(geometry, portmap, chest, exhaust, omega: float, band: float = 0.01,
+def single_cylinder(geometry, portmap, chest, exhaust, omega: float, band: float | None = None,
                     crank_angles: tuple[float, ...] = (0.0,)) -> Network:
     """Identical double-acting cylinders fed straight from the chest at supply state.
 
     One cylinder by default; with ``crank_angles``, one cylinder per entry, its crank
-    following the first by that angle [rad] (Marks Arts. 54-59).
+    following the first by that angle [rad] (Marks Arts. 54-59).  ``band``: the port
+    flow's regularisation band [-], :data:`corliss.thermo.orifice.PORT_BAND` unless
+    given.
     """
+    band = _band(band)
     n = len(crank_angles)
     net = Network(omega, band, [geometry] * n, [-a for a in crank_angles], [portmap] * n,
                   [chest, exhaust])
@@ -371,13 +383,14 @@ def with_wall_heat(net: Network, model: str, h_marks: float, steam_props) -> Net
 
 
 def compound(hp_geometry, hp_portmap, lp_geometry, lp_portmap, lp_phase: float, receiver_m3: float,
-             chest, exhaust, receiver_init, omega: float, band: float = 0.01) -> Network:
+             chest, exhaust, receiver_init, omega: float, band: float | None = None) -> Network:
     """A compound engine (Marks Arts. 87-92): the high-pressure cylinder exhausts into a
     receiver of fixed volume, from which the low-pressure cylinder takes its steam.
 
     Nodes: ``head``, ``crank`` (HP), ``receiver``, ``lp_head``, ``lp_crank``; edges
     named ``<end>_steam`` and ``<end>_exhaust`` as for one cylinder.
     """
+    band = _band(band)
     net = Network(omega, band, [hp_geometry, lp_geometry], [0.0, lp_phase],
                   [hp_portmap, lp_portmap], [chest, exhaust])
     hp = [net.add_node(end, PISTON, chest if e == 0 else receiver_init, cyl=0, end=e)

@@ -182,6 +182,10 @@ class SteadyResult(Result):
         ``corliss.engine.steady``): work, mass, energy, mass balance, wall temperature
         [-], each against its own scale; a run has converged when all are below the
         fidelity's convergence tolerance.
+    clamped_trials : int or None
+        Evaluations at trial states (stages inside a step, rejected steps) that were
+        clamped to the range of the steam properties (crank-resolved port flow; None
+        otherwise); a state the run visits is never clamped (the run stops).
 
     Tables: ``timeseries`` (``cycle``, ``crank_angle_deg``, ``time_s``, and per end
     ``p_*_Pa``, ``T_*_K``, ``x_*_frac`` (dryness), ``V_*_m3``, ``m_*_kg``), ``cycles``
@@ -204,6 +208,7 @@ class SteadyResult(Result):
     cylinders: list | None = None
     lp_events: dict | None = None
     periodicity: dict = field(default_factory=dict)
+    clamped_trials: int | None = None
 
     @property
     def cylinder_list(self) -> list:
@@ -438,6 +443,9 @@ class SteadyResult(Result):
             "mass_balance_error": mass_err,
             "energy_balance_error": energy_err,
             "rhs_evaluations": self.rhs_evaluations,
+            # trial states clamped to the steam properties' range (a visited state that
+            # needs it stops the run)
+            "clamped_trial_evaluations_count": self.clamped_trials,
             "wall_time_s": self.wall_time_s,
             **self._effort_summary(w),
             **self._compound_summary(),

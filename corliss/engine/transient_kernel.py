@@ -43,8 +43,15 @@ import math
 import numpy as np
 from numba import njit
 
-from corliss.engine.kernel import (DOPRI_NODES, balances, dopri_error, dopri_stage, hermite,
-                                   node_states, port_areas)
+from corliss.engine.kernel import (CL_ACCEPTED, CL_ACCEPTED_CODE, CL_REJECTED,
+                                   CL_REJECTED_CODE, DOPRI_NODES, PR_ROWS, balances,
+                                   dopri_error, dopri_stage, hermite, node_states, port_areas,
+                                   settle_clamps, tally_clamps)
+from corliss.errors import RunError
+
+#: Revision of the inlined kernel, property and port-flow code: numba keys this file's
+#: cache on its content alone (see :mod:`corliss.engine.kernel`).
+DEPENDENCY_REVISION = 6
 
 TWO_PI = 2.0 * math.pi
 
@@ -52,7 +59,10 @@ TWO_PI = 2.0 * math.pi
 S_INERTIA, S_MREC, S_TF0, S_TF1, S_RATIO, S_DAMP, S_FRIC, S_VEPS = 0, 1, 2, 3, 4, 5, 6, 7
 S_KLAW, S_TREF, S_WREF, S_ACT_GEAR, S_A0, S_A1, S_HAS_GOV, S_THR_EDGE = 8, 9, 10, 11, 12, 13, 14, 15
 S_FREEZE, S_FRICTION_ON, S_WMIN, S_TRIP, S_SAFE_Z, S_SAFE_A, S_MAX_RHS = 16, 17, 18, 19, 20, 21, 22
-N_SCALARS = 23
+#: written by :func:`integrate_turn`, summed over the turns: evaluations that clamped a
+#: trial state to the steam properties' range, and the OR of their codes
+S_CLAMPED_TRIALS, S_CLAMPED_TRIAL_CODE = 23, 24
+N_SCALARS = 25
 
 # the extra states after the network's, relative to its length
 X_OMEGA, X_Z, X_ZDOT, X_TIME, X_WLOAD, X_WFRIC, X_WGAS, X_ZDT, X_ADT = 0, 1, 2, 3, 4, 5, 6, 7, 8
@@ -308,6 +318,11 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
     every accepted step when ``record``; ``status`` 0 ok, 1 step size collapsed,
     2 the engine stalled (omega below the floor), 3 time ``t_end`` passed (the turn was
     finished anyway), 4 the turn exceeded the run-time budget (``sc[S_MAX_RHS]`` evaluations).
+
+    Evaluations that clamped a state to the range of the steam properties are counted:
+    at trial states (stages, rejected steps) into ``sc[S_CLAMPED_TRIALS]``; at a state
+    the run visits (an accepted step's end) they stop the run
+    (:class:`~corliss.errors.RunError`, naming the scene quantity to look at).
     """
     n = y0.shape[0]
     nn = n - N_EXTRA
@@ -320,14 +335,19 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
     K = np.empty((7, n))
     ytmp = np.empty(n)
     tmp = np.empty(n)
-    pr = np.empty((8, net[4].shape[0]))
+    pr = np.empty((PR_ROWS, net[4].shape[0]))
     pa = np.empty((net[17].shape[0], 4))
     out = np.empty(4)
     sc = tr[0]
+    clamps = np.zeros(6)
+    att = np.zeros(4)
+    att_end = np.zeros(4)
     a = th0
     b = th0 + TWO_PI
     t = a
     transient_rhs(t, y, f0, net, tier, tab, perf, pr, pa, tr, out)
+    tally_clamps(pr, t, att)
+    settle_clamps(att, True, clamps)
     nfev = 1
     io = 0
     while io < out_theta.shape[0] and out_theta[io] <= a:
@@ -357,9 +377,15 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
         for s_ in range(1, 7):
             dopri_stage(y, K, s_, h, ytmp)
             transient_rhs(t + DOPRI_NODES[s_] * h, ytmp, K[s_], net, tier, tab, perf, pr, pa, tr, out)
+            tally_clamps(pr, t + DOPRI_NODES[s_] * h, att_end if s_ == 6 else att)
         nfev += 6
         err = dopri_error(y, ytmp, K, h, atol, rtol)
-        if err <= 1.0 or h < 1e-10:
+        accepted = err <= 1.0 or h < 1e-10
+        settle_clamps(att, False, clamps)
+        settle_clamps(att_end, accepted, clamps)
+        if clamps[CL_ACCEPTED] > 0.0:
+            _clamp_error(int(clamps[CL_ACCEPTED_CODE]))
+        if accepted:
             t1 = t + h
             while io < out_theta.shape[0] and out_theta[io] <= t1:
                 hermite(t, y, f0, t1, ytmp, K[6], out_theta[io], tmp)
@@ -371,6 +397,10 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
             _project(y, nn)
             if y[nn + X_Z] != before:   # a stop was struck: restart the derivative
                 transient_rhs(t, y, K[6], net, tier, tab, perf, pr, pa, tr, out)
+                tally_clamps(pr, t, att)
+                settle_clamps(att, True, clamps)
+                if clamps[CL_ACCEPTED] > 0.0:
+                    _clamp_error(int(clamps[CL_ACCEPTED_CODE]))
                 nfev += 1
             f0[:] = K[6]
             if record and n_rec < nrec_max:
@@ -401,4 +431,30 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
         io += 1
     if status == 0 and y[nn + X_TIME] >= t_end:
         status = 3
+    sc[S_CLAMPED_TRIALS] += clamps[CL_REJECTED]
+    sc[S_CLAMPED_TRIAL_CODE] = float(int(sc[S_CLAMPED_TRIAL_CODE]) | int(clamps[CL_REJECTED_CODE]))
     return y, samples, rec, n_rec, nfev, status
+
+
+@njit(cache=True)
+def _clamp_error(code):
+    """Stop the run: an accepted step needed a state clamped to the range of the steam
+    properties (the bits of :data:`corliss.thermo.steam_table.CLAMP_CODES`); the
+    message names the scene quantity that most likely caused it."""
+    if code & 1 or code & 16 or code & 32:
+        raise RunError("the steam in a cylinder left the range of the steam properties in an "
+                       "accepted step (below their least density, or colder than the triple "
+                       "point): a condenser vacuum deeper than they reach.  The run was "
+                       "stopped rather than continue on clamped properties; check "
+                       "exhaust.pressure")
+    if code & 2:
+        raise RunError("the steam in a cylinder was compressed above the greatest density the "
+                       "steam properties cover, in an accepted step.  The run was stopped "
+                       "rather than continue on clamped properties; check supply.pressure")
+    if code & 8:
+        raise RunError("the steam in a cylinder was heated beyond the range of the steam "
+                       "properties in an accepted step.  The run was stopped rather than "
+                       "continue on clamped properties; check supply.temperature")
+    raise RunError("the steam in a cylinder became wetter than the range of the steam "
+                   "properties in an accepted step.  The run was stopped rather than continue "
+                   "on clamped properties; check supply.dryness")

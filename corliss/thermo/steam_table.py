@@ -20,7 +20,25 @@ Two parts, so that the saturation line is never smeared by interpolation:
 Which part applies is decided by the saturated-vapour energy ``u_g`` at the state's
 density.  Every index is clamped, so no input can read outside the arrays: a state
 off the table is evaluated at the nearest edge, never crashes (a crash near
-saturation at 0.18 bar is what ruled out CoolProp's TTSE backend).
+saturation at 0.18 bar is what ruled out CoolProp's TTSE backend); but
+:func:`lookup_flagged` says so, with a code of :data:`CLAMP_CODES`, and the kernel
+counts every such evaluation.
+
+Range: density from 0.002 kg/m3 (below dry saturated steam at the triple point,
+0.00485 kg/m3, so that a condenser at any pressure the scene grammar allows has room
+to expand below it) to 80 kg/m3 (dry saturated steam near 12.5 MPa); energy to
+4.2 MJ/kg (steam at 1273 K, the top of IAPWS-95's range and of a scene's supply
+temperature, is 4.06 MJ/kg).
+
+A third part is the **isentropic exponent of the port flow** (:func:`kappa_at`): for
+each upstream state on a coarse (ln rho, u) grid, HEOS's isentropic nozzle (for the
+stagnation state (p0, s0), the throat flux ``G(p) = rho(p, s0) sqrt(2 (h0 - h(p, s0)))``
+maximised over p; equilibrium expansion, IAPWS-95 via CoolProp) gives the choked flux
+``G*``, and the exponent is the kappa whose Saint-Venant--Wantzel choked flux
+``sqrt(kappa (2/(kappa+1))^((kappa+1)/(kappa-1)) p0 rho0)`` equals it.  The choked
+flux is continuous in the upstream state (an expansion that starts just superheated
+and one that starts just wet end alike), so this exponent is continuous across the
+saturation line, where Zeuner's 1.135 and the superheated 1.3 jump by 5 % in flux.
 """
 
 from __future__ import annotations
@@ -43,17 +61,33 @@ log = logging.getLogger(__name__)
 
 #: Build parameters; their hash names the cache file.
 PARAMS = {
-    "version": 1,
-    "rho_min": 0.01, "rho_max": 80.0, "n_rho": 481,        # kg/m3, geometric
-    "u_min": 2.0e6, "u_max": 3.9e6, "n_u": 951,            # J/kg, uniform
-    "T_row_step": 0.5, "T_row_max": 1250.0,                # K, fine rows for inversion
+    "version": 2,
+    "rho_min": 0.002, "rho_max": 80.0, "n_rho": 567,       # kg/m3, geometric
+    "u_min": 2.0e6, "u_max": 4.2e6, "n_u": 1101,           # J/kg, uniform
+    "T_row_step": 0.5, "T_row_max": 1400.0,                # K, fine rows for inversion
     "T_sat_min": 273.16, "T_sat_max": 646.0, "n_sat": 7500,
+    # the port-flow exponent: geometric in density over the same span, uniform in u
+    "kappa_n_rho": 89, "kappa_u_min": 0.0, "kappa_n_u": 261,
 }
+
+#: What :func:`lookup_flagged` reports (bits of its code): a density below or above
+#: the table, an energy below or above it, a state below the triple point (colder
+#: than 273.16 K: no steam there).  The kernel adds its own clamps with the same bits.
+CLAMP_LOW_DENSITY, CLAMP_HIGH_DENSITY, CLAMP_LOW_ENERGY, CLAMP_HIGH_ENERGY = 1, 2, 4, 8
+CLAMP_TRIPLE_POINT, CLAMP_NO_STATE = 16, 32
+CLAMP_CODES = {CLAMP_LOW_DENSITY: "density below the properties' range",
+               CLAMP_HIGH_DENSITY: "density above the properties' range",
+               CLAMP_LOW_ENERGY: "internal energy below the properties' range (very wet)",
+               CLAMP_HIGH_ENERGY: "internal energy above the properties' range (superheat)",
+               CLAMP_TRIPLE_POINT: "a state colder than the triple point",
+               CLAMP_NO_STATE: "no steam state at that density and energy"}
 
 
 def covers(rho: float, u: float) -> bool:
     """True when the table spans density ``rho`` [kg/m3] and internal energy ``u``
-    [J/kg] (its build parameters, :data:`PARAMS`)."""
+    [J/kg] as a supply (its build parameters, :data:`PARAMS`: the vapour grid's
+    energies).  Wetter states, down to water at the triple point, are answered by the
+    lever rule without a clamp (:func:`lookup_flagged`), for the cylinder's steam."""
     return (PARAMS["rho_min"] <= rho <= PARAMS["rho_max"]
             and PARAMS["u_min"] <= u <= PARAMS["u_max"])
 
@@ -77,13 +111,18 @@ class SteamTable:
     s_lnvg: np.ndarray   # ln v_g
     s_uf: np.ndarray     # [J/kg]
     s_ug: np.ndarray     # [J/kg]
+    k_lnrho0: float      # the port-flow exponent's grid: ln rho of its first row
+    k_dlnrho: float
+    k_u0: float          # [J/kg]
+    k_du: float
+    kappa: np.ndarray    # isentropic exponent of the choked flux [-], (k_n_rho, k_n_u)
     error: dict          # measured error against HEOS
 
     def arrays(self):
         """The tuple the compiled lookup takes."""
         return (self.lnrho0, self.dlnrho, self.u0, self.du, self.q, self.T, self.ug_row,
                 self.Tg_row, self.sT0, self.sdT, self.s_lnp, self.s_vf, self.s_lnvg, self.s_uf,
-                self.s_ug)
+                self.s_ug, self.k_lnrho0, self.k_dlnrho, self.k_u0, self.k_du, self.kappa)
 
 
 # --- compiled lookup ------------------------------------------------------------------
@@ -107,18 +146,33 @@ def _sat_at(T, sT0, sdT, arr):
 def lookup(tab, rho, u):
     """(p [Pa], T [K], dryness [-], superheated) at density ``rho`` and energy ``u``.
 
-    ``tab`` is :meth:`SteamTable.arrays`.  Inputs off the table are clamped to it.
+    ``tab`` is :meth:`SteamTable.arrays`.  Inputs off the table are clamped to it
+    (:func:`lookup_flagged` says when).
     """
-    (lnrho0, dlnrho, u0, du, q, TT, ug_row, Tg_row, sT0, sdT, s_lnp, s_vf, s_lnvg,
-     s_uf, s_ug) = tab
+    p, T, x, sup, _ = lookup_flagged(tab, rho, u)
+    return p, T, x, sup
+
+
+@njit(cache=True)
+def lookup_flagged(tab, rho, u):
+    """:func:`lookup` and a code: 0 when the state is inside the table, else the bits
+    of :data:`CLAMP_CODES` saying how it was clamped."""
+    lnrho0, dlnrho, u0, du, q, TT, ug_row, Tg_row = (tab[0], tab[1], tab[2], tab[3], tab[4],
+                                                     tab[5], tab[6], tab[7])
+    sT0, sdT, s_lnp, s_vf, s_lnvg, s_uf, s_ug = (tab[8], tab[9], tab[10], tab[11], tab[12],
+                                                 tab[13], tab[14])
     nr, nu = q.shape
+    code = 0
     if not rho > 0.0:
         rho = math.exp(lnrho0)
+        code |= 1
     fr = (math.log(rho) - lnrho0) / dlnrho
     if fr < 0.0:
         fr = 0.0
+        code |= 1
     if fr > nr - 1.0:
         fr = nr - 1.0
+        code |= 2
     i = int(fr)
     if i > nr - 2:
         i = nr - 2
@@ -132,12 +186,15 @@ def lookup(tab, rho, u):
         u_sat = -1.0
     if not (u == u):
         u = u0
+        code |= 32
     if u >= u_sat:
         fu = (u - u0) / du
         if fu < 0.0:
             fu = 0.0
+            code |= 16       # below the triple point's vapour: only rows there reach it
         if fu > nu - 1.0:
             fu = nu - 1.0
+            code |= 8
         j = int(fu)
         if j > nu - 2:
             j = nu - 2
@@ -148,7 +205,7 @@ def lookup(tab, rho, u):
         d = wr * wu
         qq = a * q[i, j] + b * q[i, j + 1] + c * q[i + 1, j] + d * q[i + 1, j + 1]
         T = a * TT[i, j] + b * TT[i, j + 1] + c * TT[i + 1, j] + d * TT[i + 1, j + 1]
-        return qq * rho_c, T, 1.0, True
+        return qq * rho_c, T, 1.0, True, code
     # wet steam: lever rule on the saturation table
     v = 1.0 / rho_c
     lo = sT0
@@ -166,6 +223,8 @@ def lookup(tab, rho, u):
     T = lo
     if flo <= 0.0:
         T = lo
+        if flo < 0.0:
+            code |= 16       # wet steam colder than the triple point
     elif fhi >= 0.0:
         T = hi
     else:
@@ -194,7 +253,37 @@ def lookup(tab, rho, u):
         x = 0.0
     if x > 1.0:
         x = 1.0
-    return math.exp(_sat_at(T, sT0, sdT, s_lnp)), T, x, False
+    return math.exp(_sat_at(T, sT0, sdT, s_lnp)), T, x, False, code
+
+
+@njit(cache=True)
+def kappa_at(tab, rho, u):
+    """Isentropic exponent [-] of the port flow from the upstream state at density
+    ``rho`` [kg/m3] and internal energy ``u`` [J/kg]: bilinear on the table's grid of
+    exponents fitted to HEOS's choked nozzle (module docstring), clamped to the grid
+    (whose edges are the property range's: a state off it is flagged by the lookup)."""
+    k_lnrho0, k_dlnrho, k_u0, k_du, kap = tab[15], tab[16], tab[17], tab[18], tab[19]
+    nr, nu = kap.shape
+    fr = (math.log(rho) - k_lnrho0) / k_dlnrho if rho > 0.0 else 0.0
+    if not fr > 0.0:
+        fr = 0.0
+    if fr > nr - 1.0:
+        fr = nr - 1.0
+    i = int(fr)
+    if i > nr - 2:
+        i = nr - 2
+    wr = fr - i
+    fu = (u - k_u0) / k_du
+    if not fu > 0.0:
+        fu = 0.0
+    if fu > nu - 1.0:
+        fu = nu - 1.0
+    j = int(fu)
+    if j > nu - 2:
+        j = nu - 2
+    wu = fu - j
+    return ((1.0 - wr) * ((1.0 - wu) * kap[i, j] + wu * kap[i, j + 1])
+            + wr * ((1.0 - wu) * kap[i + 1, j] + wu * kap[i + 1, j + 1]))
 
 
 @njit(cache=True)
@@ -261,16 +350,121 @@ def _build(params: dict) -> dict:
             st = (ts[1] - ts[0]) / (us[1] - us[0])
             q[i, lo] = ps[0] + sq * (u_grid[lo] - us[0])
             TT[i, lo] = ts[0] + st * (u_grid[lo] - us[0])
+    k_lnrho = np.linspace(math.log(params["rho_min"]), math.log(params["rho_max"]),
+                          params["kappa_n_rho"])
+    k_u = np.linspace(params["kappa_u_min"], params["u_max"], params["kappa_n_u"])
+    kappa = _kappa_grid(k_lnrho, k_u)
     return {"lnrho0": float(lnrho[0]), "dlnrho": float(lnrho[1] - lnrho[0]),
             "u0": float(u_grid[0]), "du": float(u_grid[1] - u_grid[0]), "q": q, "T": TT,
             "ug_row": ug_row, "Tg_row": Tg_row, "sT0": float(sT[0]), "sdT": float(sT[1] - sT[0]),
-            "s_lnp": sat[0], "s_vf": sat[1], "s_lnvg": sat[2], "s_uf": sat[3], "s_ug": sat[4]}
+            "s_lnp": sat[0], "s_vf": sat[1], "s_lnvg": sat[2], "s_uf": sat[3], "s_ug": sat[4],
+            "k_lnrho0": float(k_lnrho[0]), "k_dlnrho": float(k_lnrho[1] - k_lnrho[0]),
+            "k_u0": float(k_u[0]), "k_du": float(k_u[1] - k_u[0]), "kappa": kappa}
+
+
+TRIPLE_POINT_PA = 611.657
+
+
+def choked_flux_coefficient(flash, rho0: float, u0: float) -> tuple[float, float]:
+    """HEOS's isentropic nozzle from the stagnation state (``rho0``, ``u0``).
+
+    Parameters
+    ----------
+    flash : CoolProp.AbstractState
+        A HEOS water state to work with.
+    rho0, u0 : float
+        Stagnation density [kg/m3] and internal energy [J/kg].
+
+    Returns
+    -------
+    tuple of float
+        (``G* / sqrt(p0 rho0)`` [-], the critical pressure ratio [-]): the throat flux
+        ``rho(p, s0) sqrt(2 (h0 - h(p, s0)))`` maximised over the throat pressure p
+        (Brent, to 1e-6 in ratio); NaN when the stagnation state has no steam or the
+        maximum would need a throat below the triple-point pressure.
+    """
+    import CoolProp.CoolProp as CP
+    from scipy.optimize import minimize_scalar
+    try:
+        flash.update(CP.DmassUmass_INPUTS, rho0, u0)
+        p0, h0, s0, T0 = flash.p(), flash.hmass(), flash.smass(), flash.T()
+    except ValueError:
+        return math.nan, math.nan
+    if not (T0 >= 273.16 and p0 > 0.0):
+        return math.nan, math.nan
+    r_lo = max(0.3, 1.001 * TRIPLE_POINT_PA / p0)
+    if r_lo > 0.9:
+        return math.nan, math.nan
+
+    def neg_flux(r):
+        try:
+            flash.update(CP.PSmass_INPUTS, r * p0, s0)
+        except ValueError:
+            return 0.0
+        dh = h0 - flash.hmass()
+        return -flash.rhomass() * math.sqrt(2.0 * dh) if dh > 0.0 else 0.0
+
+    res = minimize_scalar(neg_flux, bounds=(r_lo, 0.95), method="bounded",
+                          options={"xatol": 1e-6})
+    if res.x < r_lo + 1e-3 or res.x > 0.95 - 1e-3 or not res.fun < 0.0:
+        return math.nan, math.nan      # no interior maximum: not a choked nozzle
+    return -res.fun / math.sqrt(p0 * rho0), float(res.x)
+
+
+def kappa_of_flux_coefficient(c: float) -> float:
+    """The exponent kappa [-] whose Saint-Venant--Wantzel choked flux coefficient
+    ``sqrt(kappa (2/(kappa+1))^((kappa+1)/(kappa-1)))`` is ``c`` (monotonic in kappa).
+
+    The coefficient cannot fall below ``exp(-1/2) = 0.607`` (kappa -> 1); very wet steam
+    (dryness under about 0.3, far wetter than a cylinder holds) chokes at less, and
+    takes kappa = 1.001, the floor, whose flux is then too high.
+    """
+    from scipy.optimize import brentq
+
+    def psi(k):
+        return math.sqrt(k * (2.0 / (k + 1.0)) ** ((k + 1.0) / (k - 1.0))) - c
+    if psi(KAPPA_FLOOR) >= 0.0:
+        return KAPPA_FLOOR
+    return brentq(psi, KAPPA_FLOOR, 2.0, xtol=1e-12)
+
+
+KAPPA_FLOOR = 1.001
+
+
+def _kappa_grid(k_lnrho: np.ndarray, k_u: np.ndarray) -> np.ndarray:
+    """The port-flow exponent on the grid; a cell with no computable nozzle (below the
+    triple point, or a stagnation pressure under about 2 kPa, where the throat would
+    fall below the triple-point pressure) takes the value at the nearest density of
+    the same energy that has one (off the range a run may visit: the kernel flags the
+    state)."""
+    import CoolProp
+    flash = CoolProp.AbstractState("HEOS", "Water")
+    kap = np.full((k_lnrho.size, k_u.size), np.nan)
+    for i, lr in enumerate(k_lnrho):
+        for j, u in enumerate(k_u):
+            c, _ = choked_flux_coefficient(flash, math.exp(lr), u)
+            if math.isfinite(c):
+                kap[i, j] = kappa_of_flux_coefficient(c)
+    for j in range(k_u.size):
+        col = kap[:, j]
+        ok = np.nonzero(np.isfinite(col))[0]
+        if ok.size == 0:
+            continue
+        for i in np.nonzero(~np.isfinite(col))[0]:
+            col[i] = col[ok[np.argmin(np.abs(ok - i))]]
+    for i in range(k_lnrho.size):     # a column with none at all: the nearest energy
+        row = kap[i]
+        ok = np.nonzero(np.isfinite(row))[0]
+        for j in np.nonzero(~np.isfinite(row))[0]:
+            row[j] = row[ok[np.argmin(np.abs(ok - j))]]
+    return kap
 
 
 def measure_error(table: SteamTable, n: int = 4000, seed: int = 0) -> dict:
     """Largest relative errors of p and T, and absolute error of dryness, against HEOS.
 
-    States: dryness 0.5 to 1 and superheat 0 to 300 K, 0.05 to 25 bar, plus a band
+    States: dryness 0.5 to 1 and superheat 0 to 300 K, 0.007 to 25 bar (from just
+    above the triple-point pressure: the deepest condenser), plus a band
     within 2 K of saturation on both sides, where the two parts of the table meet.
     """
     import CoolProp
@@ -279,7 +473,7 @@ def measure_error(table: SteamTable, n: int = 4000, seed: int = 0) -> dict:
     heos = CoolProp.AbstractState("HEOS", "Water")
     rho, u, ref = [], [], []
     for k in range(n):
-        p = math.exp(rng.uniform(math.log(5e3), math.log(2.5e6)))
+        p = math.exp(rng.uniform(math.log(700.0), math.log(2.5e6)))
         heos.update(CP.PQ_INPUTS, p, 1.0)
         Tsat = heos.T()
         kind = k % 4
@@ -301,7 +495,7 @@ def measure_error(table: SteamTable, n: int = 4000, seed: int = 0) -> dict:
             "max_rel_error_p": float(np.max(np.abs(p / ref[:, 0] - 1))),
             "max_rel_error_T": float(np.max(np.abs(T / ref[:, 1] - 1))),
             "max_abs_error_dryness": float(np.max(np.abs(x - ref[:, 2]))),
-            "range": "0.05-25 bar, dryness 0.5-1, superheat 0-300 K"}
+            "range": "0.007-25 bar, dryness 0.5-1, superheat 0-300 K"}
 
 
 def cache_dir() -> Path:
@@ -360,7 +554,8 @@ def load_table() -> SteamTable:
         except OSError as exc:   # a read-only home: keep it in memory only
             log.warning("could not cache the steam table at %s: %s", path, exc)
     meta = json.loads(str(data.pop("meta")))
-    scal = ("lnrho0", "dlnrho", "u0", "du", "sT0", "sdT")
+    scal = ("lnrho0", "dlnrho", "u0", "du", "sT0", "sdT", "k_lnrho0", "k_dlnrho", "k_u0",
+            "k_du")
     kw = {k: (float(v) if k in scal else np.ascontiguousarray(v, dtype=np.float64))
           for k, v in data.items()}
     tab = SteamTable(error=meta, **kw)
