@@ -19,10 +19,10 @@ from corliss.engine.geometry import EngineSpec
 from corliss.engine.options import (COMPILED_METHODS, EFFECT_KEYS, EFFECTS, EXPANSION_LAWS,
                                     METHODS, MODELS, PLANNED_EFFECTS, PRESETS, SCIPY_METHODS, Fidelity)
 from corliss.errors import InputError
-from corliss.tables import Table
+from corliss.tables import DISCHARGE_COEFFICIENT, Table
 from corliss.textfiles import read_text
 from corliss.thermo.steam import BACKENDS, HEOSSteam
-from corliss.valves import gear_type
+from corliss.valves import GEARS
 
 SECTIONS = ("title", "engine", "supply", "exhaust", "valve_gear", "run", "output", "compound",
             "lp_valve_gear", "governor", "flywheel", "load")
@@ -235,16 +235,42 @@ class Scene:
         return self.replace_run(fidelity=PRESETS[name])
 
 
+#: Clearance [fraction of the end's swept volume]: from half a percent (a uniflow
+#: engine has one or two; zero makes the compression pressure infinite, and a
+#: hundred-billionth drove the steam out of its properties) to half the swept volume.
+CLEARANCE_RANGE = (0.005, 0.5)
+#: The least steam chest or receiver, as a fraction of the swept volume of the cylinder
+#: it feeds: a smaller vessel empties in a small part of a stroke and the run grows stiff
+#: beyond any engine (a receiver of 0.2 % of the HP cylinder ran for minutes over two
+#: cycles; a chest of 0.6 % was drawn below the steam properties).
+VESSEL_LEAST_OF_SWEPT = 0.05
+
+
 def _pair_fraction(t: Table, key: str) -> tuple[float, float]:
     raw = t.raw(key)
     vals = raw if isinstance(raw, list) else [raw, raw]
     if len(vals) != 2 or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in vals):
         raise InputError(t.key(key), raw, "a fraction of the swept volume, or [head, crank]")
+    lo, hi = CLEARANCE_RANGE
     for v in vals:
-        if not 0.0 < v < 1.0:
-            raise InputError(t.key(key), raw, "a clearance fraction between 0 and 1 "
-                             "(zero clearance makes compression pressure infinite)")
+        if not lo <= v <= hi:
+            raise InputError(t.key(key), raw, f"a clearance fraction between 0 and 1, from "
+                             f"{lo:g} to {hi:g} of the swept volume (zero clearance makes "
+                             "compression pressure infinite)")
     return (float(vals[0]), float(vals[1]))
+
+
+def _vessel(t: Table, key: str, swept_m3: float, what: str) -> float:
+    """A steam chest's or receiver's volume [m3], at least
+    :data:`VESSEL_LEAST_OF_SWEPT` of the swept volume of the cylinder it feeds."""
+    v = t.quantity(key, "volume")
+    least = VESSEL_LEAST_OF_SWEPT * swept_m3
+    if not v >= least:
+        raise InputError(t.key(key), t.raw(key), f"a volume of at least "
+                         f"{VESSEL_LEAST_OF_SWEPT:g} of the swept volume of {what} "
+                         f"({least:.3g} m3, {least / units.FOOT_m ** 3:.3g} ft3): a smaller "
+                         "one empties within a small part of a stroke")
+    return v
 
 
 def _engine(t: Table) -> EngineSpec:
@@ -297,6 +323,17 @@ def _engine(t: Table) -> EngineSpec:
     return spec
 
 
+def _registered(t: Table, registry):
+    """The entry of ``registry`` (valve gears or governors) that the table's ``type``
+    names; a value that is not the name of one (another type, a list, a table) is
+    refused naming this table's key."""
+    raw = t.raw("type")
+    if not isinstance(raw, str) or raw not in registry:
+        raise InputError(t.key("type"), raw, f"a {registry.noun} from the registry: "
+                         + ", ".join(sorted(registry)))
+    return registry[raw]
+
+
 def _compound(t: Table, hp: EngineSpec, lp_gear_data, hp_gear_type, hp_gear,
               barometer: float) -> CompoundSpec:
     """The [compound] section: LP cylinder, its crank, the receiver; [lp_valve_gear] or,
@@ -314,13 +351,12 @@ def _compound(t: Table, hp: EngineSpec, lp_gear_data, hp_gear_type, hp_gear,
                              valve_leakage_area_m2=0.0, piston_leakage_area_m2=0.0,
                              crank_angles_rad=(0.0,))
     follows = t.angle("lp_crank_angle", "90 deg")
-    receiver = t.quantity("receiver_volume", "volume")
-    if not receiver > 0.0:
-        raise InputError(t.key("receiver_volume"), t.raw("receiver_volume"), "a volume above zero")
+    receiver = _vessel(t, "receiver_volume", math.pi / 4.0 * hp.bore_m ** 2 * hp.stroke_m,
+                       "the HP cylinder")
     t.finish()
     if lp_gear_data is not None:
         vg = Table(lp_gear_data, "lp_valve_gear", barometer)
-        gt = gear_type(vg.raw("type"))
+        gt = _registered(vg, GEARS)
         lp_gear = gt.parse(vg)
         vg.finish()
         name = gt.name
@@ -369,7 +405,8 @@ def _check_states(data: dict, supply: SupplySpec, exhaust: ExhaustSpec, run: Run
                          f"(this is {ex.rho:.3g} kg/m3), or run.properties = \"heos\"")
 
 
-def _supply(t: Table) -> SupplySpec:
+def _supply(t: Table, swept_m3: float) -> SupplySpec:
+    """The [supply] table; ``swept_m3``: one cylinder's swept volume (the least chest)."""
     p = t.pressure("pressure")
     temp_raw = t.raw("temperature", "saturated")
     dryness = 1.0
@@ -392,13 +429,10 @@ def _supply(t: Table) -> SupplySpec:
                              f"({t_sat - 273.15:.1f} degC at this pressure)")
         if temperature - t_sat < 1e-3:
             temperature = None
-    chest = t.quantity("chest_volume", "volume") if t.has("chest_volume") else None
+    chest = (_vessel(t, "chest_volume", swept_m3, "a cylinder") if t.has("chest_volume")
+             else None)
     pipe = t.length("pipe_diameter", positive=True) if t.has("pipe_diameter") else None
-    if chest is not None and not chest > 0.0:
-        raise InputError(t.key("chest_volume"), t.raw("chest_volume"), "a volume above zero")
-    cd = t.number("pipe_discharge_coefficient", 0.8)
-    if not 0.0 < cd <= 1.0:
-        raise InputError(t.key("pipe_discharge_coefficient"), cd, "a number in (0, 1]")
+    cd = t.number("pipe_discharge_coefficient", 0.8, within=DISCHARGE_COEFFICIENT)
     throttle = t.number("throttle", 1.0)
     if not 0.0 < throttle <= 1.0:
         raise InputError(t.key("throttle"), throttle,
@@ -409,7 +443,7 @@ def _supply(t: Table) -> SupplySpec:
 
 
 #: How a governed transient run starts (see :class:`RunSpec`).
-START_CHOICES = ("equilibrium", "run_speed")
+START_CHOICES = ("equilibrium", "run_speed", "rest")
 
 
 def _run(t: Table) -> RunSpec:
@@ -518,7 +552,7 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
     barometer = sup.pressure("barometer", "14.696 psia")
     sup.barometer_Pa = barometer
     engine = _engine(Table(data["engine"], "engine", barometer))
-    supply = _supply(sup)
+    supply = _supply(sup, math.pi / 4.0 * engine.bore_m ** 2 * engine.stroke_m)
     ex = Table(data["exhaust"], "exhaust", barometer)
     exhaust = ExhaustSpec(ex.pressure("pressure"))
     ex.finish()
@@ -528,7 +562,7 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
                          f"({data['exhaust'].get('pressure')!r} = "
                          f"{exhaust.pressure_Pa / units.PSI_Pa:.4g} psia)")
     vg = Table(data["valve_gear"], "valve_gear", barometer)
-    gt = gear_type(vg.raw("type"))
+    gt = _registered(vg, GEARS)
     gear = gt.parse(vg)
     vg.finish()
     run = _run(Table(data["run"], "run", barometer))
@@ -596,18 +630,18 @@ def _speed_loop(data: dict, run: RunSpec, supply: SupplySpec, gt, gear, baromete
     load = parse_load(Table(data["load"], "load", barometer), run.speed_rad_s, scene_dir)
     out = {"flywheel": flywheel, "load": load}
     if "governor" in data:
-        from corliss.governors import governor_type
+        from corliss.governors import GOVERNORS
         g = Table(data["governor"], "governor", barometer)
-        gov_t = governor_type(g.raw("type"))
+        gov_t = _registered(g, GOVERNORS)
         spec = gov_t.parse(g)
         g.finish()
         mech = gov_t.build(spec).mechanism(11)
         lo_hi = mech.actuator_range()
         if mech.acts_on == "throttle":
             if not run.has("steam_chest") or supply.pipe_diameter_m is None:
-                raise InputError("governor.type", gov_t.name, "a throttling governor needs the "
-                                 "\"steam_chest\" effect and supply.pipe_diameter: it moves the "
-                                 "throttle in the steam pipe")
+                raise InputError("governor.type", gov_t.name, "a throttling governor needs "
+                                 "\"steam_chest\" in run.effects and supply.pipe_diameter: it "
+                                 "moves the throttle in the steam pipe")
             if not (0.0 <= lo_hi[0] and lo_hi[1] <= 1.0):
                 raise InputError("governor.opening_at_rest", [mech.actuator_at_rest,
                                  mech.actuator_at_top], "throttle openings from 0 to 1 at rest "

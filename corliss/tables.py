@@ -14,6 +14,9 @@ from corliss.errors import InputError
 _MISSING = object()
 #: The least length of a part that exists [m].
 MICRON_m = 1e-6
+#: A port's or a pipe's coefficient of discharge [-]: valve ports have 0.6 to 0.9, a
+#: perfect nozzle 1; below a tenth no port passes steam (1e-12 was taken for one).
+DISCHARGE_COEFFICIENT = (0.1, 1.0)
 
 
 class Table:
@@ -77,13 +80,19 @@ class Table:
                              f"against the barometer, {self.barometer_Pa / units.PSI_Pa:.4g} psia)")
         return v
 
-    def angle(self, key: str, default=_MISSING) -> float:
-        return self.quantity(key, "angle", default)
+    def angle(self, key: str, default=_MISSING, *,
+              within: tuple[float, float] | None = None) -> float:
+        """An angle [rad], narrowed to ``within`` [rad] if given."""
+        return self.quantity(key, "angle", default, within=within)
 
-    def number(self, key: str, default=_MISSING) -> float:
+    def number(self, key: str, default=_MISSING, *,
+               within: tuple[float, float] | None = None) -> float:
+        """A plain finite number (a fraction, a ratio), inside ``within`` if given."""
         v = self.raw(key, default)
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
             raise InputError(self.key(key), v, "a plain number")
+        if within is not None and not within[0] <= v <= within[1]:
+            raise InputError(self.key(key), v, f"a number from {within[0]:g} to {within[1]:g}")
         return float(v)
 
     def integer(self, key: str, default=_MISSING, *, within: tuple[int, int] = (0, 10_000)

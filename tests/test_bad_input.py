@@ -237,3 +237,92 @@ def test_a_governor_top_setting_out_of_range_is_named_as_itself(tmp_path, capsys
     path = _mutated(tmp_path, "corliss-governor", "governor", "setting_at_top", "50.0")
     err = _refused(["run", str(path)], tmp_path / "out", capsys, "governor.setting_at_top")
     assert "50.0" in err and "nan" not in err
+
+
+# --- found by the scene fuzzing (tests/test_scene_fuzz.py) ---------------------------------
+
+@pytest.mark.parametrize("name, section, value", [
+    ("default", "valve_gear", '["slide_valve"]'),
+    ("default", "valve_gear", "{ name = 1 }"),
+    ("porter-allen-governor", "governor", '["porter_allen"]'),
+    ("marks-compound-9-14x14", "lp_valve_gear", "7"),
+], ids=["gear-list", "gear-table", "governor-list", "lp-gear-number"])
+def test_a_type_that_is_not_a_name_is_refused_naming_its_own_table(name, section, value,
+                                                                    tmp_path, capsys):
+    """A list or a table as a gear's or governor's type crashed the registry look-up
+    (unhashable); the LP gear's type was named ``valve_gear.type``."""
+    path = _mutated(tmp_path, name, section, "type", value)
+    err = _refused(["events", str(path)], tmp_path / "out", capsys, f"{section}.type")
+    assert "from the registry" in err
+
+
+def test_a_load_without_power_or_torque_says_so(tmp_path, capsys):
+    """The message said "either torque or power, not both" when neither was given."""
+    text = SCENES["porter-allen-governor"].read_text()
+    path = tmp_path / "no-power.toml"
+    path.write_text("\n".join(ln for ln in text.splitlines()
+                              if not re.match(r"power\s*=", ln)) + "\n")
+    err = _refused(["events", str(path)], tmp_path / "out", capsys, "load.power")
+    assert "not both" not in err and "required" in err
+
+
+def test_a_throttling_governor_without_the_chest_names_run_effects(tmp_path, capsys):
+    """Deleting run.effects left a throttling governor without its steam chest; the
+    message named only governor.type."""
+    text = SCENES["watt-throttling-governor"].read_text()
+    path = tmp_path / "no-effects.toml"
+    path.write_text("\n".join(ln for ln in text.splitlines()
+                              if not re.match(r"effects\s*=", ln)) + "\n")
+    err = _refused(["events", str(path)], tmp_path / "out", capsys, "governor.type")
+    assert "run.effects" in err
+
+
+@pytest.mark.parametrize("name, section, key, value, why", [
+    ("corliss-governor", "governor", "ratio", "3.75e12", "from 0.05 to 20"),
+    ("porter-allen-engine", "valve_gear", "exhaust_ratio", "1e12", "from 0.05 to 20"),
+    ("gridiron-valve", "valve_gear", "lever_ratio", "[inf, inf]", "from 0.05 to 20"),
+    ("gridiron-valve", "valve_gear", "lever_ratio", "[6e11, 1e12]", "from 0.05 to 20"),
+    ("default", "valve_gear", "discharge_coefficient", "7e-13", "from 0.1 to 1"),
+    ("twin-90-degrees", "supply", "pipe_discharge_coefficient", "1e-12", "from 0.1 to 1"),
+    ("default", "engine", "clearance", "8e-14", "from 0.005 to 0.5"),
+    ("marks-compound-9-14x14", "compound", "lp_clearance", "7e-14", "from 0.005 to 0.5"),
+], ids=["governor-ratio", "exhaust-ratio", "lever-ratio-inf", "lever-ratio-huge",
+        "discharge-coefficient", "pipe-discharge-coefficient", "clearance", "lp-clearance"])
+def test_ratios_and_fractions_outside_their_range_are_refused(name, section, key, value, why,
+                                                              tmp_path, capsys):
+    """Were accepted: ratios of 1e12 (an infinite lever ratio gave non-finite events),
+    coefficients of discharge of 1e-12, a clearance of 1e-13 (which drove the steam out
+    of its properties once the run had begun)."""
+    path = _mutated(tmp_path, name, section, key, value)
+    err = _refused(["run", str(path)], tmp_path / "out", capsys, f"{section}.{key}")
+    assert why in err
+
+
+@pytest.mark.parametrize("name, section, key, value", [
+    ("marks-compound-9-14x14", "compound", "receiver_volume", '"1.9e-12 ft3"'),
+    ("marks-compound-9-14x14", "compound", "receiver_volume", '"1e-3 ft3"'),
+    ("porter-throttling-governor", "supply", "chest_volume", '"3e-13 ft3"'),
+    ("watt-throttling-governor", "supply", "chest_volume", '"0.01 ft3"'),
+], ids=["receiver-1e-12", "receiver-0.2-percent", "chest-1e-13", "chest-0.6-percent"])
+def test_a_vessel_far_smaller_than_its_cylinder_is_refused(name, section, key, value, tmp_path,
+                                                          capsys):
+    """A receiver of 0.2 % of the HP cylinder ran for minutes over two cycles; a chest of
+    0.6 % of the cylinder was drawn below the steam properties after the run began.  A
+    vessel is now at least a twentieth of the swept volume it feeds."""
+    path = _mutated(tmp_path, name, section, key, value)
+    err = _refused(["run", str(path)], tmp_path / "out", capsys, f"{section}.{key}")
+    assert "swept volume" in err
+
+
+@pytest.mark.parametrize("name, key, value", [
+    ("watt-throttling-governor", "ball_mass", '"1.2e-11 lb"'),
+    ("armington-sims-governor", "weight_mass", '"1e-11 lb"'),
+    ("corliss-governor", "arm_angle_at_rest", '"3e-11 deg"'),
+], ids=["ball-mass", "weight-mass", "arm-angle"])
+def test_a_governor_without_body_is_refused(name, key, value, tmp_path, capsys):
+    """A ball of 1e-11 lb made a run step two million times a cycle (30 s, then the
+    budget); an arm at 3e-11 deg from the spindle divided by zero (warnings on the
+    user's terminal) before another key was blamed."""
+    path = _mutated(tmp_path, name, "governor", key, value)
+    err = _refused(["run", str(path)], tmp_path / "out", capsys, f"governor.{key}")
+    assert "Warning" not in err

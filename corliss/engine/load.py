@@ -82,9 +82,12 @@ def _fraction(t: Table, key: str) -> float:
 
 def parse_load(t: Table, speed_rad_s: float, scene_dir: Path | None) -> LoadSpec:
     """Read a ``[load]`` table; ``speed_rad_s`` turns a power into the reference torque."""
-    if t.has("torque") == t.has("power"):
+    if t.has("torque") and t.has("power"):
         raise InputError(t.key("torque"), t.raw("torque", None),
                          "either torque or power (at the run's speed), not both")
+    if not (t.has("torque") or t.has("power")):
+        raise InputError(t.key("power"), None, "a load: power (at the run's speed) or "
+                         "torque; one of them is required")
     if t.has("torque"):
         torque = t.quantity("torque", "torque")
     else:

@@ -51,7 +51,8 @@ from corliss import units
 from corliss.errors import InputError
 from corliss.governors import quantities
 from corliss.governors.mechanism import (GRAVITY_M_S2, Actuator, Governor, GovernorType,
-                                         PointMass, parse_actuator, parse_ratio, register)
+                                         PointMass, WEIGHT_MASS_KG, parse_actuator,
+                                         parse_ratio, register)
 from corliss.tables import Table
 
 
@@ -157,6 +158,12 @@ class FlyBallGovernor(Governor):
         return -self._weight() * dc + np.zeros_like(c)
 
 
+#: The angle of a fly-ball governor's arms from its spindle [rad]: out from the spindle
+#: (at under a degree the arms stand all but upright, the balls have no radius to fly
+#: out from and the geometry divides by it) and short of the horizontal.
+ARM_ANGLE_RAD = (math.radians(1.0), math.radians(89.0))
+
+
 def _flyball_parse(loaded: str, acts_on: str, corliss: bool = False):
     """A parser for a fly-ball governor table.
 
@@ -165,7 +172,7 @@ def _flyball_parse(loaded: str, acts_on: str, corliss: bool = False):
 
     def parse(t: Table):
         l = t.length("arm_length", positive=True)
-        m = t.quantity("ball_mass", "mass")
+        m = t.quantity("ball_mass", "mass", within=WEIGHT_MASS_KG)
         if not m > 0.0:
             raise InputError(t.key("ball_mass"), t.raw("ball_mass"), "a mass above zero")
         balls = t.integer("balls", 2)
@@ -180,7 +187,7 @@ def _flyball_parse(loaded: str, acts_on: str, corliss: bool = False):
         if W < 0.0 or (loaded == "required" and not W > 0.0):
             raise InputError(t.key(key), t.raw(key), "a mass above zero" if loaded == "required"
                              else "a mass of zero or more")
-        th0 = t.angle("arm_angle_at_rest")
+        th0 = t.angle("arm_angle_at_rest", within=ARM_ANGLE_RAD)
         if not 0.0 < th0 < 0.5 * math.pi:
             raise InputError(t.key("arm_angle_at_rest"), t.raw("arm_angle_at_rest"),
                              "an arm angle from the spindle between 0 and 90 deg (the balls "
@@ -190,7 +197,7 @@ def _flyball_parse(loaded: str, acts_on: str, corliss: bool = False):
                              "either arm_angle_at_top or sleeve_lift (one of them) for the top "
                              "stop")
         if t.has("arm_angle_at_top"):
-            th1 = t.angle("arm_angle_at_top")
+            th1 = t.angle("arm_angle_at_top", within=ARM_ANGLE_RAD)
             if not th0 < th1 < 0.5 * math.pi:
                 raise InputError(t.key("arm_angle_at_top"), t.raw("arm_angle_at_top"),
                                  f"an arm angle above the rest angle "
@@ -353,7 +360,7 @@ class SpringGovernor(Governor):
 
 def parse_spring(t: Table) -> SpringSpec:
     """Read a ``[governor] type = "spring"`` table."""
-    m = t.quantity("ball_mass", "mass")
+    m = t.quantity("ball_mass", "mass", within=WEIGHT_MASS_KG)
     if not m > 0.0:
         raise InputError(t.key("ball_mass"), t.raw("ball_mass"), "a mass above zero")
     balls = t.integer("balls", 2)

@@ -327,13 +327,22 @@ governor_type = GOVERNORS.lookup
 
 
 # --- scene keys every governor shares ---------------------------------------------------
+#: Governor spindle speed over shaft speed: a belt or gearing steps the speed up or
+#: down a few times (the bundled governors run at 0.5 to 3.75), never by orders of
+#: magnitude.
+RATIO_RANGE = (0.05, 20.0)
+
+
+#: The mass of a governor's ball or weight [kg]: from a model's 10 g to a tonne.  A
+#: lighter one is no governor: the dashpot and friction of any real one dwarf its
+#: inertia, and a ball of 1e-11 lb made a run need two million evaluations a cycle.
+WEIGHT_MASS_KG = (0.01, 1000.0)
+
+
 def parse_ratio(t) -> float:
-    """``ratio``: governor spindle speed over shaft speed (belt or gearing), default 1."""
-    ratio = t.number("ratio", 1.0)
-    if not ratio > 0.0:
-        raise InputError(t.key("ratio"), ratio, "a positive speed ratio (governor rpm / "
-                         "engine rpm)")
-    return ratio
+    """``ratio``: governor spindle speed over shaft speed (belt or gearing), default 1,
+    within :data:`RATIO_RANGE`."""
+    return t.number("ratio", 1.0, within=RATIO_RANGE)
 
 
 def parse_actuator(t, acts_on: str) -> Actuator:

@@ -56,7 +56,7 @@ from corliss import units
 from corliss.errors import InputError
 from corliss.governors import quantities
 from corliss.governors.mechanism import (Actuator, Governor, GovernorType, PointMass,
-                                         parse_actuator, register)
+                                         WEIGHT_MASS_KG, parse_actuator, register)
 from corliss.tables import Table
 
 
@@ -171,7 +171,7 @@ class ShaftGovernor(Governor):
 def parse_shaft(t: Table) -> ShaftSpec:
     """Read a ``[governor]`` table of a shaft governor (erie, armington_sims, ball,
     buckeye, thompson)."""
-    m = t.quantity("weight_mass", "mass")
+    m = t.quantity("weight_mass", "mass", within=WEIGHT_MASS_KG)
     if not m > 0.0:
         raise InputError(t.key("weight_mass"), t.raw("weight_mass"), "a mass above zero")
     n = t.integer("weights", 2)

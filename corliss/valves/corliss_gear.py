@@ -106,7 +106,7 @@ from scipy.optimize import brentq, minimize_scalar
 
 from corliss import units
 from corliss.errors import InputError
-from corliss.tables import Table
+from corliss.tables import DISCHARGE_COEFFICIENT, Table
 from corliss.valves.gear import GearType, ValveGear, register
 
 log = logging.getLogger(__name__)
@@ -529,9 +529,7 @@ def parse_corliss(t: Table) -> CorlissSpec:
     lo, hi = SETTING_RANGE
     if not lo <= setting <= hi:
         raise InputError(t.key("setting"), setting, f"a cam position from {lo} to {hi}")
-    cd = t.number("discharge_coefficient", 0.7)
-    if not 0.0 < cd <= 1.0:
-        raise InputError(t.key("discharge_coefficient"), cd, "a number in (0, 1]")
+    cd = t.number("discharge_coefficient", 0.7, within=DISCHARGE_COEFFICIENT)
     ports = t.integer("ports_per_end", 1, within=(1, 8))   # double- and multi-ported valves
     spec = CorlissSpec(
         eccentricity_m=r, angular_advance_rad=t.angle("angular_advance"), hook_rod_m=g,

@@ -65,7 +65,7 @@ import numpy as np
 
 from corliss import units
 from corliss.errors import InputError
-from corliss.tables import Table
+from corliss.tables import DISCHARGE_COEFFICIENT, Table
 from corliss.valves.gear import GearType, ValveGear, register
 from corliss.valves.slide_valve import LappedValve, pair, parse_ports
 
@@ -406,12 +406,9 @@ def parse_porter_allen(t: Table) -> PorterAllenSpec:
     if not all(0.0 <= lam < rv for lam in lap):
         raise InputError(t.key("steam_lap"), t.raw("steam_lap"),
                          "laps of zero or more, shorter than the valve arm")
-    ratio = t.number("exhaust_ratio", 1.0)
-    if not ratio > 0.0:
-        raise InputError(t.key("exhaust_ratio"), ratio, "a ratio greater than zero")
-    cd = t.number("discharge_coefficient", 0.7)
-    if not 0.0 < cd <= 1.0:
-        raise InputError(t.key("discharge_coefficient"), cd, "a number in (0, 1]")
+    # k_e, a bell crank's proportion: a few times either way, never orders of magnitude
+    ratio = t.number("exhaust_ratio", 1.0, within=(0.05, 20.0))
+    cd = t.number("discharge_coefficient", 0.7, within=DISCHARGE_COEFFICIENT)
     spec = PorterAllenSpec(
         link, blocks[0], blocks[1], rd, rv, lap, blocks[2], ratio,
         pair(t, "exhaust_lap", "length", "0 in"),

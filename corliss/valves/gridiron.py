@@ -110,6 +110,11 @@ class GridironValve(dv.DoubleValve):
         return s.ratio * x
 
 
+#: The reverse lever's ratio ih/ij: a lever's proportion, a few times either way (the
+#: bundled gridiron scene's runs from 0.6 to 1), never orders of magnitude.
+LEVER_RATIO = (0.05, 20.0)
+
+
 def parse_gridiron(t: Table) -> GridironSpec:
     """Read a ``[valve_gear] type = "gridiron"`` table."""
     main = dv.parse_main(t)
@@ -125,10 +130,11 @@ def parse_gridiron(t: Table) -> GridironSpec:
               else main.port_length_m * main.ports_per_end)
     raw = t.raw("lever_ratio", [1.0, 1.0])
     if (not isinstance(raw, list) or len(raw) != 2
-            or not all(isinstance(v, (int, float)) and not isinstance(v, bool) and v > 0
-                       for v in raw)):
+            or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                       and LEVER_RATIO[0] <= v <= LEVER_RATIO[1] for v in raw)):
         raise InputError(t.key("lever_ratio"), raw, "[lo, hi]: the reverse lever's ratio ih/ij "
-                         "at the two ends of h's arc, positive numbers")
+                         f"at the two ends of h's arc, numbers from {LEVER_RATIO[0]:g} to "
+                         f"{LEVER_RATIO[1]:g}")
     motion = t.choice("motion", ("zeuner", "exact"), "zeuner")
     s = 0.5 * (e + f)
     return GridironSpec(main, dv.CutoffSpec("seat", (s, s), e, length), r,

@@ -58,7 +58,7 @@ import numpy as np
 from corliss import units
 from corliss.errors import InputError
 from corliss.valves.gear import GearType, ValveGear, register
-from corliss.tables import Table
+from corliss.tables import DISCHARGE_COEFFICIENT, Table
 
 
 @dataclass(frozen=True)
@@ -278,9 +278,7 @@ def parse_allen_passage(t: Table) -> float | None:
 
 def parse_ports(t: Table) -> dict:
     """The port keys every lapped valve shares: widths, lengths, openings, discharge."""
-    cd = t.number("discharge_coefficient", 0.7)
-    if not 0.0 < cd <= 1.0:
-        raise InputError(t.key("discharge_coefficient"), cd, "a number in (0, 1]")
+    cd = t.number("discharge_coefficient", 0.7, within=DISCHARGE_COEFFICIENT)
     ports = t.integer("ports_per_end", 1, within=(1, 8))   # double- and multi-ported valves
     return {"port_width_m": t.length("port_width", positive=True),
             "port_length_m": t.length("port_length", positive=True),
