@@ -121,3 +121,21 @@ def test_a_visited_state_off_the_properties_stops_the_run():
     y[2 * i] = m
     with pytest.raises(RunError, match="exhaust.pressure"):
         crank.cycle(y, 0.0, np.linspace(0.0, 2.0 * math.pi, 361))
+
+
+def test_steam_heated_beyond_the_table_is_counted_and_warned(caplog):
+    """Marks's law gives the walls' heat back from cut-off to compression whatever
+    steam is left: in the exhaust stroke it heats the thin remainder beyond 4.2 MJ/kg
+    (over 1300 K; 6 to 8 MJ/kg once periodic, measured), where the properties end.
+    That clamp does not stop the run, but it is not silent: a warning names
+    engine.wall_heat_model and the summary counts the evaluations.  The adiabatic
+    default card needs none."""
+    import logging
+    from conftest import make_scene
+    scene = make_scene(engine={"wall_heat_model": "marks"},
+                       run={"effects": ["port_flow", "rod_angularity", "wall_heat"]})
+    with caplog.at_level(logging.WARNING, logger="corliss.engine.crank_resolved"):
+        s = corliss.simulate(scene).summary
+    assert s["clamped_hot_state_evaluations_count"] > 0
+    assert any("engine.wall_heat_model" in rec.getMessage() for rec in caplog.records)
+    assert corliss.simulate(_scene()).summary["clamped_hot_state_evaluations_count"] == 0

@@ -16,7 +16,11 @@ evaluations that clamped a state to the range of the steam properties, apart for
 states the run visits (the ends of accepted steps) and for trial states (stages inside
 a step, a Jacobian's probes, rejected steps); a visited state that needed a clamp
 stops the run (:class:`~corliss.errors.RunError`, naming the scene quantity to look
-at), and the trials are counted for the summary.  On the Python path (scipy's
+at), and the trials are counted for the summary.  One exception, loud rather than
+fatal: steam heated beyond the properties' energy (4.2 MJ/kg, about 1300 K), which
+Marks's law of condensation does to the thin steam of the exhaust stroke (it returns
+its heat whatever the steam left to take it); the run goes on at the edge of the
+table, warns naming the quantity, and the summary counts those evaluations.  On the Python path (scipy's
 integrators, which do not say which evaluations were trials) every clamped evaluation
 is counted as a trial, and the run stops when a state of the accepted solution (the
 samples) lies outside the range.
@@ -24,6 +28,7 @@ samples) lies outside the range.
 
 from __future__ import annotations
 
+import logging
 import math
 
 import numpy as np
@@ -34,7 +39,9 @@ from corliss.engine.network import Network
 from corliss.engine.options import COMPILED_METHODS
 from corliss.errors import RunError
 from corliss.thermo.steam import Steam
-from corliss.thermo.steam_table import CLAMP_CODES, kappa_at
+from corliss.thermo.steam_table import CLAMP_CODES, CLAMP_HIGH_ENERGY, kappa_at
+
+log = logging.getLogger(__name__)
 
 COMPILED_CODES = {"dopri5": 0, "rk4": 1, "rosenbrock": 2}
 
@@ -67,6 +74,8 @@ class CrankResolved:
         self.nfev = 0
         #: evaluations that clamped a trial state, over the run [-]
         self.clamped_trials = 0
+        #: evaluations that clamped a visited state to the greatest energy, over the run [-]
+        self.clamped_hot = 0
         #: the run-time budget of a cycle [right-hand-side evaluations]
         self.max_rhs = kernel.MAX_RHS_PER_CYCLE
         self.compiled = method in COMPILED_METHODS
@@ -140,11 +149,17 @@ class CrankResolved:
                 self.max_rhs)
             self.nfev += nfev
             self.clamped_trials += int(clamps[kernel.CL_REJECTED])
+            code = int(clamps[kernel.CL_ACCEPTED_CODE])
             if clamps[kernel.CL_ACCEPTED] > 0:
-                raise RunError(clamp_message(self.network, int(clamps[kernel.CL_ACCEPTED_CODE]),
-                                             int(clamps[kernel.CL_NODE]),
-                                             float(clamps[kernel.CL_THETA] + theta0),
-                                             int(clamps[kernel.CL_ACCEPTED])))
+                message = clamp_message(self.network, code, int(clamps[kernel.CL_NODE]),
+                                        float(clamps[kernel.CL_THETA] + theta0),
+                                        int(clamps[kernel.CL_ACCEPTED]))
+                if code & ~CLAMP_HIGH_ENERGY:
+                    raise RunError(message)
+                if self.clamped_hot == 0:
+                    log.warning("%s (the run goes on with the properties at the table's "
+                                "greatest energy)", message)
+                self.clamped_hot += int(clamps[kernel.CL_ACCEPTED])
             if not ok and nfev > self.max_rhs:
                 raise RunError(budget_message(self.network, self.max_rhs))
             if not ok:
@@ -186,8 +201,15 @@ class CrankResolved:
             bad = np.nonzero(code)[0]
             if bad.size:
                 k = bad[0]
-                raise RunError(clamp_message(self.network, int(np.bitwise_or.reduce(code)), i,
-                                             float(out_theta[ok][k]), int(bad.size)))
+                allc = int(np.bitwise_or.reduce(code))
+                message = clamp_message(self.network, allc, i, float(out_theta[ok][k]),
+                                        int(bad.size))
+                if allc & ~CLAMP_HIGH_ENERGY:
+                    raise RunError(message)
+                if self.clamped_hot == 0:
+                    log.warning("%s (the run goes on with the properties at the greatest "
+                                "energy)", message)
+                self.clamped_hot += int(bad.size)
 
 
 #: The scene quantity to look at for each kind of clamp (bits of
@@ -212,6 +234,10 @@ def clamp_message(network, code: int, node: int, theta: float, count: int) -> st
     what = "; ".join(text for bit, text in CLAMP_CODES.items() if code & bit)
     bit = next((b for b in CLAMP_CAUSES if code & b), 32)
     key, why = CLAMP_CAUSES[bit]
+    if bit == CLAMP_HIGH_ENERGY and any(h[0] > 0.0 for h in network.node_heat):
+        key, why = ("engine.wall_heat_model", "the heat given back by the walls (Marks's law "
+                    "returns it to whatever steam is left in the exhaust stroke) heated the "
+                    "steam beyond the properties' range")
     name = network.node_names[node] if 0 <= node < network.n_nodes else "a volume"
     return (f"the steam in the {name} left the range of the steam properties ({what}) at "
             f"{math.degrees(theta) % 360.0:.1f} deg of crank angle, in {count} evaluation(s) "

@@ -185,7 +185,11 @@ class SteadyResult(Result):
     clamped_trials : int or None
         Evaluations at trial states (stages inside a step, rejected steps) that were
         clamped to the range of the steam properties (crank-resolved port flow; None
-        otherwise); a state the run visits is never clamped (the run stops).
+        otherwise); a state the run visits is never clamped (the run stops), but for
+        ``clamped_hot``.
+    clamped_hot : int or None
+        Evaluations at visited states heated beyond the properties' greatest energy and
+        evaluated at it (with a warning; see ``corliss.engine.crank_resolved``).
 
     Tables: ``timeseries`` (``cycle``, ``crank_angle_deg``, ``time_s``, and per end
     ``p_*_Pa``, ``T_*_K``, ``x_*_frac`` (dryness), ``V_*_m3``, ``m_*_kg``), ``cycles``
@@ -209,6 +213,7 @@ class SteadyResult(Result):
     lp_events: dict | None = None
     periodicity: dict = field(default_factory=dict)
     clamped_trials: int | None = None
+    clamped_hot: int | None = None
 
     @property
     def cylinder_list(self) -> list:
@@ -446,6 +451,7 @@ class SteadyResult(Result):
             # trial states clamped to the steam properties' range (a visited state that
             # needs it stops the run)
             "clamped_trial_evaluations_count": self.clamped_trials,
+            "clamped_hot_state_evaluations_count": self.clamped_hot,
             "wall_time_s": self.wall_time_s,
             **self._effort_summary(w),
             **self._compound_summary(),

@@ -183,7 +183,7 @@ def _crank_resolved(scene, model, pm, progress):
     timeseries = pd.concat(ts, ignore_index=True)
     return {"timeseries": timeseries, "cycles": pd.DataFrame(rows),
             "cycles_to_converge": converged, "periodicity": residuals, "portmap": pm, "nfev": crank.nfev,
-            "clamped_trials": crank.clamped_trials,
+            "clamped_trials": crank.clamped_trials, "clamped_hot": crank.clamped_hot,
             "cylinders": [(("lp_" if scene.compound and c else cylinder_prefix(c)), g, ph)
                           for c, (g, ph) in enumerate(zip(net.geometries, net.phases))]}
 

@@ -51,7 +51,7 @@ from corliss.errors import RunError
 
 #: Revision of the inlined kernel, property and port-flow code: numba keys this file's
 #: cache on its content alone (see :mod:`corliss.engine.kernel`).
-DEPENDENCY_REVISION = 6
+DEPENDENCY_REVISION = 7
 
 TWO_PI = 2.0 * math.pi
 
@@ -62,7 +62,11 @@ S_FREEZE, S_FRICTION_ON, S_WMIN, S_TRIP, S_SAFE_Z, S_SAFE_A, S_MAX_RHS = 16, 17,
 #: written by :func:`integrate_turn`, summed over the turns: evaluations that clamped a
 #: trial state to the steam properties' range, and the OR of their codes
 S_CLAMPED_TRIALS, S_CLAMPED_TRIAL_CODE = 23, 24
-N_SCALARS = 25
+#: and evaluations at visited states heated beyond the properties' greatest energy,
+#: evaluated at it (the one clamp that does not stop a run; see
+#: :mod:`corliss.engine.crank_resolved`)
+S_CLAMPED_HOT = 25
+N_SCALARS = 26
 
 # the extra states after the network's, relative to its length
 X_OMEGA, X_Z, X_ZDOT, X_TIME, X_WLOAD, X_WFRIC, X_WGAS, X_ZDT, X_ADT = 0, 1, 2, 3, 4, 5, 6, 7, 8
@@ -322,7 +326,8 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
     Evaluations that clamped a state to the range of the steam properties are counted:
     at trial states (stages, rejected steps) into ``sc[S_CLAMPED_TRIALS]``; at a state
     the run visits (an accepted step's end) they stop the run
-    (:class:`~corliss.errors.RunError`, naming the scene quantity to look at).
+    (:class:`~corliss.errors.RunError`, naming the scene quantity to look at), but for
+    steam heated beyond the greatest energy (into ``sc[S_CLAMPED_HOT]``).
     """
     n = y0.shape[0]
     nn = n - N_EXTRA
@@ -384,7 +389,7 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
         settle_clamps(att, False, clamps)
         settle_clamps(att_end, accepted, clamps)
         if clamps[CL_ACCEPTED] > 0.0:
-            _clamp_error(int(clamps[CL_ACCEPTED_CODE]))
+            _visited_clamps(clamps, sc)
         if accepted:
             t1 = t + h
             while io < out_theta.shape[0] and out_theta[io] <= t1:
@@ -400,7 +405,7 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
                 tally_clamps(pr, t, att)
                 settle_clamps(att, True, clamps)
                 if clamps[CL_ACCEPTED] > 0.0:
-                    _clamp_error(int(clamps[CL_ACCEPTED_CODE]))
+                    _visited_clamps(clamps, sc)
                 nfev += 1
             f0[:] = K[6]
             if record and n_rec < nrec_max:
@@ -434,6 +439,18 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
     sc[S_CLAMPED_TRIALS] += clamps[CL_REJECTED]
     sc[S_CLAMPED_TRIAL_CODE] = float(int(sc[S_CLAMPED_TRIAL_CODE]) | int(clamps[CL_REJECTED_CODE]))
     return y, samples, rec, n_rec, nfev, status
+
+
+@njit(cache=True)
+def _visited_clamps(clamps, sc):
+    """A visited state needed a clamp: stop the run, unless it was only heated beyond
+    the greatest energy (counted into ``sc[S_CLAMPED_HOT]``)."""
+    code = int(clamps[CL_ACCEPTED_CODE])
+    if code & ~8:
+        _clamp_error(code)
+    sc[S_CLAMPED_HOT] += clamps[CL_ACCEPTED]
+    clamps[CL_ACCEPTED] = 0.0
+    clamps[CL_ACCEPTED_CODE] = 0.0
 
 
 @njit(cache=True)
