@@ -118,7 +118,8 @@ def print_transient(result, files) -> None:
                                    "carries in the governor's range",
                  "load_too_light": "at the governor's top stop: the load is too light to pull "
                                    "the speed into the governor's range",
-                 "run_speed": "at run.speed, the governor balanced for it"}[start["status"]]
+                 "run_speed": "at run.speed, the governor balanced for it",
+                 "rest": "from rest"}[start["status"]]
         print(f"  start            {start['speed_rpm']:.2f} rpm, governor z "
               f"{start['governor_z_frac']:.3f}, {where}")
     if s.get("speed_before_rpm") is not None:

@@ -116,10 +116,14 @@ class RunSpec:
         Transient: turns run at the initial speed with the governor held, before t = 0,
         so the cylinders start from a periodic state.
     start : str
-        Transient with a governor: ``"equilibrium"`` (the speed and governor position at
+        Transient: ``"equilibrium"`` (with a governor, the speed and governor position at
         which the governor balances the load at t = 0, found by steady turns along the
-        governor's static characteristic) or ``"run_speed"`` (at ``speed``, with the
-        governor balanced for that speed, whatever the load).
+        governor's static characteristic), ``"run_speed"`` (at ``speed``, with the
+        governor balanced for that speed, whatever the load) or ``"rest"`` (standing,
+        the crank at ``start_angle_rad``, the governor down; see
+        :mod:`corliss.engine.start_from_rest`).
+    start_angle_rad : float
+        Crank angle of a start from rest [rad].
     until_settled : bool
         Transient: run past ``duration`` until the speed has settled (see
         :mod:`corliss.engine.speed_metrics`), up to ``max_duration_s``.
@@ -141,6 +145,7 @@ class RunSpec:
     start: str = "equilibrium"
     until_settled: bool = False
     max_duration_s: float | None = None
+    start_angle_rad: float = 0.0
 
     @property
     def speed_rpm(self) -> float:
@@ -519,6 +524,15 @@ def _run(t: Table) -> RunSpec:
     if not 0 <= warm <= 100:
         raise InputError(t.key("warmup_cycles"), warm, "a number of turns from 0 to 100")
     start = t.choice("start", START_CHOICES, "equilibrium")
+    start_angle = 0.0
+    if start == "rest" or t.has("start_angle"):
+        if start != "rest" or mode != "transient":
+            raise InputError(t.key("start_angle"), t.raw("start_angle", None), "no start_angle "
+                             "unless start = \"rest\" in a transient run")
+        start_angle = t.angle("start_angle") % (2.0 * math.pi)
+        if model == "mean_value":
+            raise InputError(t.key("start"), start, "\"equilibrium\" or \"run_speed\" with "
+                             "the mean-value model: its maps hold running speeds only")
     until = t.raw("until_settled", False)
     if not isinstance(until, bool):
         raise InputError(t.key("until_settled"), until, "true or false")
@@ -531,7 +545,7 @@ def _run(t: Table) -> RunSpec:
                              within=(duration, 3600.0))
     t.finish()
     return RunSpec(mode, model, speed, tuple(dict.fromkeys(effects)), fid, cycles, expansion,
-                   duration, record, band, warm, start, until, longest)
+                   duration, record, band, warm, start, until, longest, start_angle)
 
 
 def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) -> Scene:

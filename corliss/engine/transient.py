@@ -33,6 +33,7 @@ from corliss.engine.operating_point import (BALANCED, LOAD_TOO_HEAVY, SURPLUS_TO
                                            OperatingPoint, find_operating_point)
 from corliss.engine.result import TransientResult
 from corliss.engine.speed_metrics import settled, step_time_of
+from corliss.engine.start_from_rest import HANDOVER_FRACTION, start_from_rest
 from corliss.errors import InputError, RunError
 from corliss.governors import governor_type
 from corliss.governors.mechanism import CREEP_PER_S
@@ -299,50 +300,71 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
             last = surplus
         return y, surplus
 
-    y, _ = frozen_turns(y, omega0, tables.z0, run.warmup_cycles)
-    start = OperatingPoint(omega0, tables.z0, math.nan, "run_speed", 0)
-    if tables.mechanism is not None and run.start == "equilibrium":
-        t_load = abs(sc[tk.S_TREF] * tk.load_factor(0.0, tables.tr[1], tables.tr[2]))
-        tol = 0.25 * SURPLUS_TOL * max(t_load, 1e-9)
+    rows, frames = [], []
+    k = 0
+    if run.start == "rest":
+        start = OperatingPoint(0.0, 0.0, math.nan, "rest", 0)
+        sc[tk.S_FREEZE] = 0.0
+        y[nn + tk.X_OMEGA] = 0.0
+        y[nn + tk.X_Z] = 0.0
+        y[nn + tk.X_ZDOT] = 0.0
+        y[nn + tk.X_TIME] = 0.0
+        begun = start_from_rest(y, run.start_angle_rad, omega0, net, steam.kernel_tier, tab,
+                                perf, tables.tr, rtol, atol,
+                                run.max_duration_s or run.duration_s)
+        nfev += begun["nfev"]
+        row, frame = _start_record(begun, y, network, steam, tables, nn)
+        rows.append(row)
+        frames.append(frame)
+        y = begun["y"]
+        k = int(round(begun["theta_rad"] / TWO_PI))
+        if begun["stalled"]:
+            log.warning("the engine did not start: from rest at %.1f deg of crank it had not "
+                        "reached %.0f %% of run.speed by %.3g s", math.degrees(run.start_angle_rad),
+                        100 * HANDOVER_FRACTION, y[nn + tk.X_TIME])
+    else:
+        y, _ = frozen_turns(y, omega0, tables.z0, run.warmup_cycles)
+        start = OperatingPoint(omega0, tables.z0, math.nan, "run_speed", 0)
+        if tables.mechanism is not None and run.start == "equilibrium":
+            t_load = abs(sc[tk.S_TREF] * tk.load_factor(0.0, tables.tr[1], tables.tr[2]))
+            tol = 0.25 * SURPLUS_TOL * max(t_load, 1e-9)
 
-        def surplus(omega, z):
-            nonlocal y
-            y, s = frozen_turns(y, omega, z, EQUILIBRIUM_TURNS, tol)
-            return s
+            def surplus(omega, z):
+                nonlocal y
+                y, s = frozen_turns(y, omega, z, EQUILIBRIUM_TURNS, tol)
+                return s
 
-        start = find_operating_point(surplus, tables.mechanism, t_load)
-        y, _ = frozen_turns(y, start.speed_rad_s, start.governor_z, 2)
-        _report_start(start, omega0, tables.mechanism)
-    # The flywheel lets the speed swing within a turn (Marks Art. 62), and the governor
-    # balances on the turn's mean speed; released at dead centre at the mean speed, the
-    # engine would gain or lose the swing's offset and the governor follow it.  So the
-    # speed at dead centre is set, by trial turns with the governor held and the speed
-    # free, to give the turn-mean speed of the start.
-    sc[tk.S_FREEZE] = 2.0
-    omega_dc = start.speed_rad_s
-    for _ in range(START_TRIALS):
-        trial = y.copy()
-        trial[nn + tk.X_OMEGA] = omega_dc
-        trial[nn + tk.X_TIME] = 0.0
-        trial, _, _, _, nf_, status = tk.integrate_turn(trial, 0.0, np.zeros(0), rtol, atol, net,
-                                                        steam.kernel_tier, tab, perf, tables.tr,
-                                                        False, math.inf)
-        nfev += nf_
-        if status != 0:
-            break
-        omega_dc *= start.speed_rad_s / (TWO_PI / trial[nn + tk.X_TIME])
-    sc[tk.S_FREEZE] = 0.0
-    y[nn + tk.X_TIME] = 0.0
-    y[nn + tk.X_OMEGA] = omega_dc
-    y[nn + tk.X_Z] = start.governor_z
-    y[nn + tk.X_ZDOT] = 0.0
+            start = find_operating_point(surplus, tables.mechanism, t_load)
+            y, _ = frozen_turns(y, start.speed_rad_s, start.governor_z, 2)
+            _report_start(start, omega0, tables.mechanism)
+        # The flywheel lets the speed swing within a turn (Marks Art. 62), and the governor
+        # balances on the turn's mean speed; released at dead centre at the mean speed, the
+        # engine would gain or lose the swing's offset and the governor follow it.  So the
+        # speed at dead centre is set, by trial turns with the governor held and the speed
+        # free, to give the turn-mean speed of the start.
+        sc[tk.S_FREEZE] = 2.0
+        omega_dc = start.speed_rad_s
+        for _ in range(START_TRIALS):
+            trial = y.copy()
+            trial[nn + tk.X_OMEGA] = omega_dc
+            trial[nn + tk.X_TIME] = 0.0
+            trial, _, _, _, nf_, status = tk.integrate_turn(trial, 0.0, np.zeros(0), rtol, atol, net,
+                                                            steam.kernel_tier, tab, perf, tables.tr,
+                                                            False, math.inf)
+            nfev += nf_
+            if status != 0:
+                break
+            omega_dc *= start.speed_rad_s / (TWO_PI / trial[nn + tk.X_TIME])
+        sc[tk.S_FREEZE] = 0.0
+        y[nn + tk.X_TIME] = 0.0
+        y[nn + tk.X_OMEGA] = omega_dc
+        y[nn + tk.X_Z] = start.governor_z
+        y[nn + tk.X_ZDOT] = 0.0
     duration = run.duration_s
     record = run.record
     step = math.radians(fid.output_step_deg)
     n_out = max(1, int(round(TWO_PI / step)))
-    rows, frames = [], []
-    k = 0
-    status = 0
+    status = 2 if run.start == "rest" and begun["stalled"] else 0
     since = step_time_of(scene.load) or 0.0
     longest = run.max_duration_s if run.until_settled else duration
 
@@ -356,7 +378,7 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
         mid = np.array([0.5 * (r["t_start_s"] + r["t_end_s"]) for r in rows])
         return not settled(mid, np.array([r["mean_speed_rpm"] for r in rows]), since)[0]
 
-    while go_on(y[nn + tk.X_TIME]):
+    while status != 2 and go_on(y[nn + tk.X_TIME]):
         th0 = TWO_PI * k
         y[network.n_dyn:nn] = 0.0
         for q in (tk.X_WLOAD, tk.X_WFRIC, tk.X_WGAS, tk.X_ZDT, tk.X_ADT):
@@ -417,6 +439,26 @@ def _report_start(start: OperatingPoint, omega0: float, mech) -> None:
         log.warning("with the governor at its top stop (%.1f rpm) the engine still has a "
                     "surplus torque of %.4g N m: it will run above the governor's range; the "
                     "run starts there", rpm, start.surplus_N_m)
+
+
+def _start_record(begun: dict, y0: np.ndarray, network, steam, tables: LoopTables, nn: int):
+    """The per-turn row and the time-series rows of a start from rest (``cycle`` 0):
+    from rest to the dead centre where the crank-angle loop takes over."""
+    t, theta, ys = begun["samples"]
+    y = begun["y"]
+    row = _cycle_row(-1, y0, y, network, tables, nn)
+    dt = max(float(t[-1]), 1e-12)
+    row["mean_speed_rpm"] = (theta[-1] - theta[0]) / dt * 60.0 / TWO_PI
+    sc = tables.tr[0]
+    z = np.clip(ys[nn + tk.X_Z], 0.0, 1.0)
+    cols = {"cycle": 0, "time_s": t, "crank_angle_deg": np.degrees(theta),
+            "speed_rpm": np.maximum(ys[nn + tk.X_OMEGA], 0.0) * 60.0 / TWO_PI,
+            "governor_z_frac": z, "actuator_frac": sc[tk.S_A0] + (sc[tk.S_A1] - sc[tk.S_A0]) * z}
+    for end in ("head", "crank"):
+        i = network.node(end)
+        V = network.volume(i, theta)
+        cols[f"p_{end}_Pa"] = steam.states(ys[2 * i] / V, ys[2 * i + 1] / ys[2 * i])[0]
+    return row, pd.DataFrame(cols)
 
 
 def _update_wall(network, y: np.ndarray) -> None:
