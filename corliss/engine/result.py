@@ -479,7 +479,10 @@ class TransientResult(Result):
         The mean-value model's maps of torque and steam (None crank-resolved).
     start : OperatingPoint or None
         Where the run started: the governed operating point at the initial load
-        (``status`` "balanced", or why there is none), or the run speed.
+        (``status`` "balanced", or why there is none), the run speed, or rest.
+    clamped_trials, clamped_hot : int or None
+        As for a steady run: evaluations at trial states clamped to the range of the
+        steam properties, and visited states heated beyond their greatest energy.
 
     Tables: ``timeseries`` (``cycle``, ``time_s``, ``crank_angle_deg``, ``speed_rpm``,
     ``governor_z_frac``, ``actuator_frac`` (the throttle's opening or the gear's
@@ -504,6 +507,8 @@ class TransientResult(Result):
     exhaust: object = None
     engine_map: object = None
     start: object = None
+    clamped_trials: int | None = None
+    clamped_hot: int | None = None
 
     @property
     def step_time_s(self) -> float | None:
@@ -543,6 +548,8 @@ class TransientResult(Result):
             **self.metrics,
             "final_indicated_power_W": float(c["indicated_power_W"].iloc[-5:].mean()),
             "final_steam_rate_kg_per_h": float(c["steam_rate_kg_per_h"].iloc[-5:].mean()),
+            "clamped_trial_evaluations_count": self.clamped_trials,
+            "clamped_hot_state_evaluations_count": self.clamped_hot,
             "rhs_evaluations": self.rhs_evaluations, "wall_time_s": self.wall_time_s,
         }
 

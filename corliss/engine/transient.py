@@ -422,7 +422,8 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
                            wall_time_s=time.perf_counter() - t_wall, geometry=geo,
                            stalled=status == 2, mechanism=tables.mechanism,
                            z_start=start.governor_z, chest=chest, exhaust=exhaust,
-                           start=start)
+                           start=start, clamped_trials=int(sc[tk.S_CLAMPED_TRIALS]),
+                           clamped_hot=int(sc[tk.S_CLAMPED_HOT]))
 
 
 def _report_start(start: OperatingPoint, omega0: float, mech) -> None:
