@@ -326,3 +326,11 @@ def test_a_governor_without_body_is_refused(name, key, value, tmp_path, capsys):
     path = _mutated(tmp_path, name, "governor", key, value)
     err = _refused(["run", str(path)], tmp_path / "out", capsys, f"governor.{key}")
     assert "Warning" not in err
+
+
+def test_a_flywheel_of_a_microgram_is_refused(tmp_path, capsys):
+    """A rim of 8e-9 lb was accepted and the run 'stalled at t = 0': no engine has such a
+    flywheel; the key's range says what would be valid."""
+    path = _mutated(tmp_path, "porter-allen-governor", "flywheel", "rim_weight", '"8e-9 lb"')
+    err = _refused(["run", str(path)], tmp_path / "out", capsys, "flywheel.rim_weight")
+    assert "from 0.1 kg to 100000 kg" in err

@@ -15,6 +15,15 @@ from corliss.errors import InputError
 from corliss.tables import Table
 
 
+#: The flywheels engines have [SI]: a model engine's rim of a kilogram a few centimetres
+#: out, to the largest mill engines' (rims of some 100 t, 15 m across; Marks Art. 61
+#: sizes them).  Smaller or larger is no flywheel: a rim of a microgram would let the
+#: speed swing without bound within a turn.
+RIM_MASS_RANGE = (0.1, 1e5)             # [kg]
+RIM_RADIUS_RANGE = (0.01, 10.0)         # [m]
+INERTIA_RANGE = (1e-5, 2e7)             # [kg m2]
+
+
 @dataclass(frozen=True)
 class FlywheelSpec:
     """The rotating train's inertia.
@@ -36,12 +45,10 @@ def parse_flywheel(t: Table) -> FlywheelSpec:
         raise InputError(t.key("moment_of_inertia"), t.raw("moment_of_inertia", None),
                          "either moment_of_inertia, or rim_weight with mean_radius (not both)")
     if direct:
-        inertia = t.quantity("moment_of_inertia", "inertia")
+        inertia = t.quantity("moment_of_inertia", "inertia", within=INERTIA_RANGE)
     else:
-        m = t.quantity("rim_weight", "mass")
-        r = t.length("mean_radius", positive=True)
-        if not m > 0.0:
-            raise InputError(t.key("rim_weight"), t.raw("rim_weight"), "a mass above zero")
+        m = t.quantity("rim_weight", "mass", within=RIM_MASS_RANGE)
+        r = t.length("mean_radius", within=RIM_RADIUS_RANGE)
         inertia = m * r * r
     inertia += t.quantity("other_inertia", "inertia", "0 kg m2")
     if not inertia > 0.0:
