@@ -43,7 +43,8 @@ from numba import njit
 
 from corliss.logs import NOTICE
 from corliss.thermo.orifice import port_flow
-from corliss.thermo.steam_table import PARAMS, kappa_at, lookup_flagged, t_sat
+from corliss.thermo.steam_table import (CLAMP_HIGH_ENERGY, PARAMS, kappa_at, lookup_flagged,
+                                        t_sat)
 
 log = logging.getLogger(__name__)
 #: Revision of the inlined property and port-flow code (see the module's docstring).
@@ -344,6 +345,17 @@ def settle_clamps(att, accepted, clamps):
         att[k] = 0.0
 
 
+@njit(cache=True, inline="always")
+def _positive_samples(y0, y1, s, nodes, out):
+    """Where the cubic Hermite interpolant of a step dips a volume's mass to zero or
+    below (a volume emptying steeply at the step's end), its mass and energy are read
+    linearly between the step's ends instead, which keeps them positive."""
+    for i in range(nodes):
+        if out[2 * i] <= 0.0:
+            out[2 * i] = y0[2 * i] + (y1[2 * i] - y0[2 * i]) * s
+            out[2 * i + 1] = y0[2 * i + 1] + (y1[2 * i + 1] - y0[2 * i + 1]) * s
+
+
 # Dormand-Prince 5(4) tableau
 DOPRI_NODES = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0, 1.0])
 _A = np.array([
@@ -493,6 +505,7 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
     T = np.empty(n)
     x = np.empty(n)
     yscale = atol / rtol
+    nodes = net[4].shape[0]
     pr = np.empty((PR_ROWS, net[4].shape[0]))
     cell = np.empty((net[17].shape[0], 4))
     nfev = 0
@@ -599,14 +612,20 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
                 err = dopri_error(y, ytmp, K, h, atol, rtol)
                 expo = -0.2
                 safety = 0.9
-            # ytmp: the new state; K[6]: the derivative there (FSAL)
-            accepted = err <= 1.0 or h < 1e-12
+            # ytmp: the new state; K[6]: the derivative there (FSAL).  A step whose end
+            # needed the properties clamped (a volume emptied below their least density,
+            # say) is no step of the physical path: it is retried shorter, as an
+            # inaccurate one is (positivity by step control).  Steam overheated by the
+            # walls (code 8) is not the step's doing and is let through (counted).
+            off = int(att_end[1]) & ~CLAMP_HIGH_ENERGY if att_end[0] > 0.0 else 0
+            accepted = (err <= 1.0 and off == 0) or h < 1e-12
             settle_clamps(att, False, clamps)
             settle_clamps(att_end, accepted, clamps)
             if accepted:
                 t1 = t + h
                 while io < out_theta.shape[0] and out_theta[io] <= t1:
                     hermite(t, y, f0, t1, ytmp, K[6], out_theta[io], tmp)
+                    _positive_samples(y, ytmp, (out_theta[io] - t) / h, nodes, tmp)
                     samples[:, io] = tmp
                     io += 1
                 t = t1
@@ -615,6 +634,8 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
                 fac = 5.0 if err == 0.0 else min(5.0, max(0.2, safety * err ** expo))
                 h_prev = h * fac
                 h = h_prev
+            elif err <= 1.0:
+                h = 0.5 * h      # accurate, but through a state the properties do not hold
             else:
                 h = h * max(0.2, safety * err ** expo)
             if not (h > 0.0) or not math.isfinite(y[0]) or nfev > max_rhs:
