@@ -109,9 +109,15 @@ def build_network(scene, geo, pm, steam: Steam, chest: State, exhaust: State) ->
         net = with_leakage(net, scene.engine.valve_leakage_area_m2,
                            scene.engine.piston_leakage_area_m2)
     if scene.run.has("wall_heat"):
-        net = with_wall_heat(net, scene.engine.wall_heat_model,
-                             scene.engine.marks_constant_W_m2K,
-                             transport_properties(chest.p, chest.T))
+        eng = scene.engine
+        jacket_T = None
+        if eng.jacket == "barrel":
+            from corliss.thermo.steam import HEOSSteam
+            jacket_T = HEOSSteam().t_sat(scene.supply.pressure_Pa)
+        net = with_wall_heat(net, eng.wall_heat_model, eng.marks_constant_W_m2K,
+                             transport_properties(chest.p, chest.T),
+                             condensing_W_m2K=eng.condensing_W_m2K, jacket_T_K=jacket_T,
+                             wall_thickness_m=eng.wall_thickness_m)
     return net
 
 
