@@ -291,7 +291,7 @@ def _engine(t: Table) -> EngineSpec:
     marks = t.quantity("marks_constant", "heat_transfer", "18.13 Btu/ft2 degF min")
     if not marks > 0.0:
         raise InputError(t.key("marks_constant"), t.raw("marks_constant"), "a conductance above 0")
-    condensing = t.quantity("condensing_coefficient", "heat_transfer", "28 kW/m2 K")
+    condensing = t.quantity("condensing_coefficient", "heat_transfer", "300 kW/m2 K")
     if not condensing > 0.0:
         raise InputError(t.key("condensing_coefficient"), t.raw("condensing_coefficient"),
                          "a coefficient above 0")

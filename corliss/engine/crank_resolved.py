@@ -102,7 +102,8 @@ class CrankResolved:
         steam leaves in the wall, and the jacket's): the first steps use the slope the
         kernel integrates (every coefficient's h A), which overstates it, since water
         condensed on a cooler wall evaporates from it later in the same cycle; then the
-        slope of the last two steps taken, kept between a hundredth and all of that one.
+        slope of the last two steps taken, kept between a hundredth and all of that one,
+        and a step that leaves the bracket of the root found so far bisects it.
         The balance is weak (the heat a wall takes at admission it mostly gives back
         the same cycle), so the runner takes a step only once the cycle at the present
         deep temperature is periodic, ``apply``; otherwise the step is only measured.
@@ -124,15 +125,24 @@ class CrankResolved:
             T = float(net.wall_T[i])
             Q = float(y_end[net.i_node_quad(i, "heat")])
             slope = d_full
-            prev = hist.get(i)
+            prev, lo, hi = hist.get(i, (None, -math.inf, math.inf))
             if prev is not None and abs(T - prev[0]) > 1e-9:
                 slope = min(max((Q - prev[1]) / (T - prev[0]), 0.01 * d_full), d_full)
-            step = (-Q + gap * (net.node_heat[i][10] - T)) / (slope + gap)
-            step = min(max(step, -20.0), 20.0)
+            r = -Q + gap * (net.node_heat[i][10] - T)
+            step = min(max(r / (slope + gap), -20.0), 20.0)
             largest = max(largest, abs(step))
             if apply:
-                hist[i] = (T, Q)
-                net.wall_T[i] = T + step
+                # the root's bracket: the balance falls as the wall warms; a secant step
+                # that leaves it bisects it instead
+                if r > 0.0:
+                    lo = max(lo, T)
+                else:
+                    hi = min(hi, T)
+                new = T + step
+                if math.isfinite(lo) and math.isfinite(hi) and not lo < new < hi:
+                    new = 0.5 * (lo + hi)
+                hist[i] = ((T, Q), lo, hi)
+                net.wall_T[i] = new
         return largest
 
     def initial_state(self) -> np.ndarray:
@@ -147,6 +157,8 @@ class CrankResolved:
         """
         y = np.array(y0, dtype=float)
         y[self.network.n_dyn:self.network.n_quad_end] = 0.0   # the wall states carry on
+        for i in self.network.wall_nodes:                        # but their quadratures
+            y[self.network.i_wall(i, "heat_sat")] = y[self.network.i_wall(i, "heat_conv")] = 0.0
         stops = np.asarray(self.network.stops(theta0), dtype=float)
         out_theta = np.asarray(out_theta, dtype=float)
         if self.compiled:

@@ -74,7 +74,7 @@ class EngineSpec:
     wall_heat_model: str = "marks"
     marks_constant_W_m2K: float = 6176.8
     crank_angles_rad: tuple[float, ...] = (0.0,)
-    condensing_W_m2K: float = 2.8e4
+    condensing_W_m2K: float = 3.0e5
     jacket: str = "none"
     wall_thickness_m: float = 0.0254
 

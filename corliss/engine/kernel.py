@@ -146,7 +146,7 @@ def derivatives(th, y, pr, dy, net, pa):
 #: The skin model's film (corliss.engine.wall): wetted from FILM_WET, running off into
 #: the steam beyond FILM_MAX [kg/m2]; wet steam wets the wall while it holds more than
 #: WET_BAND of water.
-FILM_WET = 1.0e-3
+FILM_WET = 1.0e-2
 FILM_MAX = 0.1
 WET_BAND = 0.02
 
@@ -211,7 +211,9 @@ def balances(th, y, pr, dy, net, areas):
                     hm = hf * (1.0 - wf) * wetted_share(pr[3, i])
                     hf *= wf
                 qf = hf * (Tw - Tsat) * A            # [W] from the wall into the film
-                qv = hv * (Tw - Ts) * A + hm * (Tw - Tsat) * A   # [W] into the steam
+                qm = hm * (Tw - Tsat) * A            # [W] into the mixture's water
+                qc = hv * (Tw - Ts) * A              # [W] into the steam by convection
+                qv = qm + qc
                 hL, L = heat[i, 11], heat[i, 12]
                 # evaporated (+, as vapour of h_L + L) or condensed (-, the steam
                 # giving up its own enthalpy, superheat and all, down to the film's
@@ -237,6 +239,8 @@ def balances(th, y, pr, dy, net, areas):
                 dy[q0 + 4] = d * wallT[i] - q + ga * heat[i, 10]
                 dy[k] = (-(qf + qv) + heat[i, 6] * Aw * (wallT[i] - Tw)) / (
                     heat[i, 5] * Aw * omega)
+                dy[k + 2] = (qf + qm) / omega
+                dy[k + 3] = qc / omega
                 continue
             if model == 3.0:
                 # Marks's law (Art. 75): the heat of eq. 221 leaves the steam during
@@ -295,6 +299,26 @@ def balances(th, y, pr, dy, net, areas):
             dy[2 * b + 1] += hd
         dy[ndyn + 2 * e] = md
         dy[ndyn + 2 * e + 1] = hd
+    sweep_films(y, pr, dy, net)
+
+
+@njit(cache=True, inline="always")
+def sweep_films(y, pr, dy, net):
+    """The skin model's film swept out with the steam (corliss.engine.wall): while an
+    end's steam flows out, the film beyond FILM_WET goes with it in the proportion
+    of the steam leaving, into the steam as water of the film's enthalpy."""
+    heat = net[19]
+    for i in range(heat.shape[0]):
+        if heat[i, 0] != 4.0 or not dy[2 * i] < 0.0:
+            continue
+        k = int(heat[i, 8])
+        extra = y[k + 1] - FILM_WET * heat[i, 7]
+        m = y[2 * i]
+        if extra > 0.0 and m > 0.0:
+            sw = extra * (-dy[2 * i]) / m
+            dy[2 * i] += sw
+            dy[2 * i + 1] += sw * heat[i, 11]
+            dy[k + 1] -= sw
 
 
 @njit(cache=True, inline="always")

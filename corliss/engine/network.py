@@ -115,18 +115,24 @@ class Network:
         """Nodes whose wall surface temperature is a state (the skin model), in order."""
         return [i for i, row in enumerate(self.node_heat) if row[0] == WALL_MODELS["skin"]]
 
+    #: States of a skin-model wall: the surface temperature less the deep wall's [K],
+    #: the water film [kg], and two quadratures restarted each cycle: the heat from the
+    #: wall that goes down T_w - T_sat (condensing on it, boiling off it) and down
+    #: T_w - T (convection) [J].
+    WALL_STATES = ("surface", "film", "heat_sat", "heat_conv")
+
     @property
     def n_state(self) -> int:
-        return self.n_quad_end + 2 * len(self.wall_nodes)
+        return self.n_quad_end + len(self.WALL_STATES) * len(self.wall_nodes)
 
-    def i_wall(self, node: int) -> int:
-        """Index of node's wall state: the surface temperature less the deep wall's [K];
-        the water film on the wall [kg] follows it."""
-        return self.n_quad_end + 2 * self.wall_nodes.index(node)
+    def i_wall(self, node: int, what: str = "surface") -> int:
+        """Index of one of node's wall states (WALL_STATES)."""
+        return (self.n_quad_end + len(self.WALL_STATES) * self.wall_nodes.index(node)
+                + self.WALL_STATES.index(what))
 
     def i_film(self, node: int) -> int:
         """Index of the mass of the water film on node's wall [kg]."""
-        return self.i_wall(node) + 1
+        return self.i_wall(node, "film")
 
     def i_edge_mass(self, e: int) -> int:
         return self.n_dyn + 2 * e
@@ -209,6 +215,7 @@ class Network:
             # the surface temperature's swing is a fraction of supply less exhaust
             sc[self.i_wall(i)] = max(ref.T - min(s.T for s in self.reservoirs), 10.0)
             sc[self.i_film(i)] = m
+            sc[self.i_wall(i, "heat_sat")] = sc[self.i_wall(i, "heat_conv")] = ref.p * vmax
         return sc
 
     def column_colors(self) -> tuple[np.ndarray, np.ndarray]:
@@ -250,8 +257,8 @@ class Network:
                 for what in self.NODE_QUADS:
                     owner[c, self.i_node_quad(i, what)] = col
                 if i in self.wall_nodes:
-                    owner[c, self.i_wall(i)] = col
-                    owner[c, self.i_film(i)] = col
+                    for what in self.WALL_STATES:
+                        owner[c, self.i_wall(i, what)] = col
         return color, owner
 
     # --- arrays for the kernel ------------------------------------------------------

@@ -338,14 +338,21 @@ class SteadyResult(Result):
                 "receiver_pressure_max_Pa": float(last["p_receiver_Pa"].max())}
 
     def _condensation_summary(self) -> dict:
-        """Initial condensation as the engineers of the time measured it (Marks Art. 74).
+        """Initial condensation per end (Marks Art. 74).
 
-        Per end: the heat the steam gave the walls over the cycle; the wet fraction of
-        the cylinder's contents at cut-off; and the "missing water": the steam supplied
-        less the steam the card shows at cut-off (volume at cut-off times the density
-        of dry saturated steam at the card's pressure there, less the cushion steam shut
-        in at compression, Marks eq. 219a), as a fraction of the steam supplied; and
-        beside it the fraction Marks's law of condensation predicts (eq. 221).
+        ``missing_water_fraction``: the steam supplied less the steam in the cylinder
+        at cut-off, as a fraction of the steam supplied; the steam at cut-off is read
+        from its state (mass times dryness, all of it when superheated) less the
+        cushion's shut in at compression (Marks eq. 219a), so water on the wall or in
+        the mixture is missing and superheat is not.  ``card_missing_water_fraction``:
+        the same with the steam the card shows (volume times the density of dry
+        saturated steam at the card's pressure), as the engineers of the time
+        measured it, and beside it the fraction Marks's law predicts for that card
+        (eq. 221).  Also the heat the steam gave the walls over the cycle, the wet
+        fraction of the contents at cut-off, and with the skin model the swing of the
+        wall's surface temperature and the heat into the steam in each phase
+        (admission to cut-off, cut-off to release, release to compression,
+        compression to admission).
         """
         sat = HEOSSteam()
         row = self.last_cycle
@@ -358,18 +365,39 @@ class SteadyResult(Result):
             out[f"wall_temperature_{end}_K"] = (float(row[f"T_wall_{end}_K"])
                                                 if f"T_wall_{end}_K" in row else None)
             ev = self.events[end]
-            if ev["cutoff_deg"] is None or ev["compression_deg"] is None:
-                continue
 
             def at(col, deg):
                 return float(np.interp(deg, ang, ts[col].to_numpy()[idx], period=360.0))
 
+            if f"T_wall_{end}_K" in ts:
+                tw = ts[f"T_wall_{end}_K"].to_numpy()
+                out[f"wall_surface_swing_{end}_K"] = float(np.max(tw) - np.min(tw))
+                out[f"wall_surface_mean_{end}_K"] = float(np.mean(tw))
+                q_total = float(row[f"Q_{end}_J"])
+                marks = [ev.get(k) for k in ("admission_deg", "cutoff_deg", "release_deg",
+                                             "compression_deg")]
+                if all(m is not None for m in marks):
+                    qs = [at(f"Q_{end}_J", m) for m in marks]
+                    for n, name in enumerate(("admission", "expansion", "exhaust",
+                                              "compression")):
+                        dq = qs[(n + 1) % 4] - qs[n]
+                        if marks[(n + 1) % 4] < marks[n]:   # the phase wraps past 0
+                            dq += q_total
+                        out[f"heat_into_steam_{name}_{end}_J"] = dq
+            if ev["cutoff_deg"] is None or ev["compression_deg"] is None:
+                continue
             c, k = ev["cutoff_deg"], ev["compression_deg"]
             out[f"wet_fraction_at_cutoff_{end}"] = 1.0 - at(f"x_{end}_frac", c)
+            supplied = float(row[f"m_chest_{end}_kg"])
             shown = (at(f"V_{end}_m3", c) * sat.px(at(f"p_{end}_Pa", c), 1.0).rho
                      - at(f"V_{end}_m3", k) * sat.px(at(f"p_{end}_Pa", k), 1.0).rho)
-            supplied = float(row[f"m_chest_{end}_kg"])
-            out[f"missing_water_fraction_{end}"] = (supplied - shown) / supplied
+            out[f"card_missing_water_fraction_{end}"] = (supplied - shown) / supplied
+            if f"m_{end}_kg" in ts:
+                steam = (at(f"m_{end}_kg", c) * at(f"x_{end}_frac", c)
+                         - at(f"m_{end}_kg", k) * at(f"x_{end}_frac", k))
+                out[f"missing_water_fraction_{end}"] = (supplied - steam) / supplied
+            else:
+                out[f"missing_water_fraction_{end}"] = out[f"card_missing_water_fraction_{end}"]
             # the period's prediction beside the model's (Marks eq. 221)
             e_idx = 0 if end == "head" else 1
             vc, vs = self.geometry.clearance_m3[e_idx], self.geometry.swept_m3[e_idx]

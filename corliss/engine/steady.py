@@ -192,6 +192,8 @@ def _crank_resolved(scene, model, pm, progress):
             frame[f"T_wall_{end}_K"] = walls_used[k][i] + s[net.i_wall(i)]
             frame[f"Q_{end}_J"] = s[net.i_node_quad(i, "heat")]
             frame[f"m_film_{end}_kg"] = s[net.i_film(i)]
+            frame[f"Q_sat_{end}_J"] = s[net.i_wall(i, "heat_sat")]
+            frame[f"Q_conv_{end}_J"] = s[net.i_wall(i, "heat_conv")]
         for vessel in ("chest", "receiver"):
             if vessel in net.node_names:
                 i = net.node(vessel)

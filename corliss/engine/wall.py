@@ -50,7 +50,7 @@ temperature difference:
 * the film, ``q_f = h_c (T_w - T_sat)`` where the surface is below the saturation
   temperature of the cylinder's pressure (steam condenses on it, whatever the bulk's
   superheat), or above it and wetted (its water boils off; the wetted share rises
-  from 0 to 1 as the film grows to ``FILM_WET_KG_M2``, a micron of water); where the
+  from 0 to 1 as the film grows to ``FILM_WET_KG_M2``, 10 microns of water); where the
   film is gone, wet steam still wets the surface with its own water (the share
   falling from 1 to 0 as the mixture's wetness falls through ``WET_BAND``), which
   boils off into the steam at the same coefficient: wet exhaust steam cools the wall;
@@ -87,7 +87,9 @@ mixture would lose its water with the first rush of the exhaust and leave the wa
 dry and hot through the exhaust stroke, which is not what the engineers measured
 (Marks Art. 74).  Water beyond the film gravity holds on a surface the height of the
 bore, Nusselt's film thickness (about 0.1 mm, ``FILM_MAX_KG_M2``), runs off into the
-steam, and the exhaust sweeps it out.
+steam; and while the steam flows out of the cylinder it sweeps the film beyond the
+thin layer that clings as drops (``FILM_WET_KG_M2``) with it, in the proportion of
+the steam leaving.
 
 The film is water of one specific enthalpy ``h_L``, saturated water at the
 temperature the wall starts from, so that its energy is ``m_f h_L`` exactly and the
@@ -117,9 +119,10 @@ import math
 CAST_IRON_K, CAST_IRON_C, CAST_IRON_RHO = 46.0, 490.0, 7500.0
 #: Effective condensing coefficient implied by Marks's constant for a cast-iron wall
 #: [W/(m2 K)] (see the module docstring).
-CONDENSING_W_M2K = 2.8e4
-#: Film of water over which the wall counts as wetted: a micron [kg/m2].
-FILM_WET_KG_M2 = 1.0e-3
+CONDENSING_W_M2K = 3.0e5
+#: Film of water over which the wall counts as wetted: 10 microns, where a draining
+#: film breaks into drops and rivulets [kg/m2].
+FILM_WET_KG_M2 = 1.0e-2
 #: The thickest film a surface holds before the water runs off into the steam [kg/m2]:
 #: Nusselt's film thickness, [4 mu_l k_l L dT / (rho_l^2 g h_fg)]^(1/4), about 0.1 mm
 #: for a 12 in cover and a 20 K drop.
