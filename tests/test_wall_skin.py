@@ -66,10 +66,11 @@ def test_the_wall_never_gives_heat_against_the_temperature_difference(supply, sp
     the heat may go either way; 0.05 K is the table's temperature resolution).  Every
     sampled state lies inside the steam table's range and away from the kernel's
     clamps (the old Marks schedule pushed exhaust steam to 1195 K)."""
-    r = corliss.simulate(_scene("default", run={"speed": speed}, supply=SUPPLIES[supply]))
+    r = corliss.simulate(_scene("default", "standard", run={"speed": speed},
+                                supply=SUPPLIES[supply]))
     s = r.summary
     assert s["cycles_to_converge"] is not None
-    assert s["energy_balance_error"] < 1e-3       # the fast preset's tolerance
+    assert s["energy_balance_error"] < 1e-4       # the standard preset's tolerance
     last = r.timeseries[r.timeseries["cycle"] == r.timeseries["cycle"].max()]
     heos = HEOSSteam()
     for end in ("head", "crank"):
@@ -104,8 +105,8 @@ def test_the_wall_never_gives_heat_against_the_temperature_difference(supply, sp
         for k in range(0, p.size, 8):     # every eighth sample: HEOS is slow
             st = heos.px(p[k], x[k]) if x[k] < 1.0 - 1e-9 else heos.pt(p[k], max(T[k], Tsat[k] + 1e-3))
             assert covers(rho[k], st.u), (end, k, rho[k], st.u)
-        # the film dries to nothing, not below (within the fast preset's 1e-4 of the
-        # steam the end holds, its absolute tolerance on the film)
+        # the film dries to nothing, not below (within 1e-4 of the steam the end
+        # holds, ten times the standard preset's absolute tolerance on the film)
         assert last[f"m_film_{end}_kg"].min() > -1e-4 * last[f"m_{end}_kg"].max()
 
 
@@ -217,7 +218,40 @@ def test_the_kernel_reads_the_dryness_the_orifice_encodes():
     fails instead of the wall silently drying."""
     from corliss.thermo.orifice import kappa_of
     assert kernel.wetted_share(kappa_of(1.0, False)) == 0.0
-    assert kernel.wetted_share(kappa_of(0.99, False)) == pytest.approx(0.5)
+    assert kernel.wetted_share(kappa_of(0.99, False)) == pytest.approx(0.5)   # mid-step
     assert kernel.wetted_share(kappa_of(0.9, False)) == 1.0
     assert kernel.wetted_share(kappa_of(1.0, True)) == 0.0
 
+
+# --- every cylinder its own wall ----------------------------------------------------
+
+def test_a_compound_with_every_effect_and_skin_walls_conserves_mass_and_energy():
+    """Marks's 9 & 14 x 14 compound with a chest behind its pipe, leaks, friction,
+    reciprocating masses and a skin wall with its film in each end of both cylinders
+    (each with its own geometry, area and events): over a converged cycle steam in
+    equals steam out and enthalpy in less enthalpy out plus the heat from the walls
+    equals the indicated work, to 1e-5 (the film's energy is m_f h_L, the same at
+    both ends of a periodic cycle).  Run at rtol 1e-8 and periodic to 1e-5, each
+    wall's heat over the cycle balanced to 1e-5 of the enthalpy supplied (the
+    conductance wall's test in test_periodicity asks 1e-7 of a wall with no film
+    and no deep temperature to find; four walls coupled through the receiver settle
+    to 1e-5 within a few hundred cycles, a second of compiled time each hundred)."""
+    import dataclasses
+    data = copy.deepcopy(tomllib.loads(bundled_scenes()["marks-compound-9-14x14"].read_text()))
+    data["engine"].update({"reciprocating_mass": "300 lb", "friction_torque": "100 lbf ft",
+                           "valve_leakage_area": "0.01 in2", "piston_leakage_area": "0.01 in2",
+                           "wall_heat_model": "skin"})
+    data["supply"].update({"chest_volume": "0.2 ft3", "pipe_diameter": "3 in"})
+    data["run"]["effects"] = ["port_flow", "rod_angularity", "steam_chest", "leakage",
+                              "wall_heat", "friction", "inertia"]
+    scene = scene_from_dict(data)
+    fid = dataclasses.replace(scene.run.fidelity, rtol=1e-8, convergence_tolerance=1e-5,
+                              max_cycles=100)
+    r = corliss.simulate(scene.replace_run(fidelity=fid))
+    s = r.summary
+    assert s["cycles_to_converge"] is not None
+    assert s["mass_balance_error"] < 1e-5
+    assert s["energy_balance_error"] < 1e-5
+    row = r.last_cycle
+    for end in ("head", "crank", "lp_head", "lp_crank"):
+        assert row[f"Q_to_wall_{end}_J"] > 0.0        # every end condenses on its wall

@@ -93,7 +93,8 @@ class CrankResolved:
         kernel.derivatives(th, y, self._pr, dy, self.net, self._cell)
         return dy
 
-    def update_wall(self, y_end: np.ndarray, apply: bool = True) -> float:
+    def update_wall(self, y_end: np.ndarray, apply: bool = True,
+                    heat_scale: float = 0.0) -> tuple[float, float]:
         """Set each wall to the h A-weighted mean steam temperature of the cycle just run,
         the temperature at which it neither gains nor loses heat over a cycle.
 
@@ -102,17 +103,21 @@ class CrankResolved:
         steam leaves in the wall, and the jacket's): the first steps use the slope the
         kernel integrates (every coefficient's h A), which overstates it, since water
         condensed on a cooler wall evaporates from it later in the same cycle; then the
-        slope of the last two steps taken, kept between a hundredth and all of that one,
-        and a step that leaves the bracket of the root found so far bisects it.
+        slope of the last two steps taken, kept between a hundredth and all of that one
+        (steps of 20 K at most).
         The balance is weak (the heat a wall takes at admission it mostly gives back
         the same cycle), so the runner takes a step only once the cycle at the present
         deep temperature is periodic, ``apply``; otherwise the step is only measured.
 
-        Returns the largest step of a skin model's deep wall [K] (0 without one).
+        Returns the largest step of a skin model's deep wall [K] and the largest
+        imbalance of a skin model's wall over the cycle, ``|r|`` against
+        ``heat_scale`` [J] (the enthalpy supplied, so that it reads as an error of the
+        engine's energy balance) or, without it, the heat the steam gave the wall
+        (0, 0 without one).
         """
         net = self.network
         hist = self.__dict__.setdefault("_wall_history", {})
-        largest = 0.0
+        largest = imbalance = 0.0
         for i in range(net.n_nodes):
             ha = y_end[net.i_node_quad(i, "hA")]
             if not ha > 0.0:
@@ -131,19 +136,12 @@ class CrankResolved:
             r = -Q + gap * (net.node_heat[i][10] - T)
             step = min(max(r / (slope + gap), -20.0), 20.0)
             largest = max(largest, abs(step))
+            scale = heat_scale or float(y_end[net.i_node_quad(i, "heat_to_wall")])
+            imbalance = max(imbalance, abs(r) / max(scale, 1e-300))
             if apply:
-                # the root's bracket: the balance falls as the wall warms; a secant step
-                # that leaves it bisects it instead
-                if r > 0.0:
-                    lo = max(lo, T)
-                else:
-                    hi = min(hi, T)
-                new = T + step
-                if math.isfinite(lo) and math.isfinite(hi) and not lo < new < hi:
-                    new = 0.5 * (lo + hi)
                 hist[i] = ((T, Q), lo, hi)
-                net.wall_T[i] = new
-        return largest
+                net.wall_T[i] = T + step
+        return largest, imbalance
 
     def initial_state(self) -> np.ndarray:
         return self.network.initial_state()

@@ -155,11 +155,12 @@ WET_BAND = 0.02
 def wetted_share(kappa):
     """Share of a wall wet steam wets [-], from the mixture's dryness as ``kappa_of``
     encodes it (Zeuner's 1.035 + 0.1 x when wet, 1.3 superheated): 1 while the mixture
-    holds more than WET_BAND of water, falling linearly to 0 at dry steam."""
+    holds more than WET_BAND of water, falling smoothly (a cubic step) to 0 at dry
+    steam."""
     if kappa > 1.2:
         return 0.0
-    w = (1.0 - (kappa - 1.035) / 0.1) / WET_BAND
-    return min(max(w, 0.0), 1.0)
+    w = min(max((1.0 - (kappa - 1.035) / 0.1) / WET_BAND, 0.0), 1.0)
+    return w * w * (3.0 - 2.0 * w)
 
 
 @njit(cache=True, inline="always")
@@ -208,6 +209,7 @@ def balances(th, y, pr, dy, net, areas):
                     # a wetted surface boils its water off: the film's, and where the
                     # film is gone, the water wet steam brings to it
                     wf = min(max(mf / (FILM_WET * Aw), 0.0), 1.0)
+                    wf = wf * wf * (3.0 - 2.0 * wf)      # smooth at dry and fully wet
                     hm = hf * (1.0 - wf) * wetted_share(pr[3, i])
                     hf *= wf
                 qf = hf * (Tw - Tsat) * A            # [W] from the wall into the film

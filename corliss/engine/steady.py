@@ -157,11 +157,20 @@ def _crank_resolved(scene, model, pm, progress):
                                  w_prev)
         if heat and wall_nodes:
             # the skin model's deep wall steps once the cycle at its temperature is
-            # periodic (CrankResolved.update_wall); the step is its residual
+            # periodic (CrankResolved.update_wall)
+            # (or, while the wall's own step is large, once the cycle's other residuals
+            # are a tenth of it)
+            # the wall is periodic when its heat over the cycle balances (what it took
+            # less what it gave, and the jacket's) to the tolerance of the enthalpy
+            # supplied, the energy balance's scale
             inner = max(v for n, v in residuals.items() if n != "wall_temperature")
-            step = crank.update_wall(y, apply=inner <= 10.0 * fid.convergence_tolerance)
+            h_in = abs(float(row["H_supply_J"]))
+            step, imbalance = crank.update_wall(y, apply=False, heat_scale=h_in)
+            settled = inner <= max(10.0 * fid.convergence_tolerance, 0.1 * step / dT_scale)
+            if settled:
+                crank.update_wall(y, apply=True, heat_scale=h_in)
             residuals["wall_temperature"] = max(residuals.get("wall_temperature", 0.0),
-                                                step / dT_scale)
+                                                imbalance)
         change = max(residuals.values())
         if progress:
             progress(k, change)
