@@ -9,6 +9,7 @@ check one layer of the model at a time.
 from __future__ import annotations
 
 import dataclasses
+import logging
 import math
 from dataclasses import dataclass
 
@@ -19,6 +20,8 @@ from corliss.errors import InputError
 from corliss.thermo.steam import State, Steam, make_steam, transport_properties
 from corliss.valves import events as valve_events
 from corliss.valves import gear_type, tabulate
+
+log = logging.getLogger(__name__)
 
 
 def geometry_of(scene) -> CylinderGeometry:
@@ -114,7 +117,15 @@ def build_network(scene, geo, pm, steam: Steam, chest: State, exhaust: State) ->
         if eng.jacket == "barrel":
             from corliss.thermo.steam import HEOSSteam
             jacket_T = HEOSSteam().t_sat(scene.supply.pressure_Pa)
-        net = with_wall_heat(net, eng.wall_heat_model, eng.marks_constant_W_m2K,
+        model = eng.wall_heat_model
+        if model == "skin" and scene.run.mode == "transient":
+            # the speed loop restarts every state past the nodes' each turn, which
+            # would empty the skin's film: its walls are Marks's conductance
+            log.warning("the speed loop runs wall_heat with the \"conductance\" wall; the "
+                        "\"skin\" wall (surface temperature and film as states) is for "
+                        "steady runs")
+            model = "conductance"
+        net = with_wall_heat(net, model, eng.marks_constant_W_m2K,
                              transport_properties(chest.p, chest.T),
                              condensing_W_m2K=eng.condensing_W_m2K, jacket_T_K=jacket_T,
                              wall_thickness_m=eng.wall_thickness_m)

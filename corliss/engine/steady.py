@@ -8,6 +8,7 @@ Only the effects the scene names are assembled (:mod:`corliss.engine.model`): wi
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import math
 import time
@@ -17,6 +18,7 @@ import numpy as np
 import pandas as pd
 
 from corliss.engine import equilibrium as eq
+from corliss.engine.calibration import marks_coefficient
 from corliss.engine.condensation import MarksLaw
 from corliss.engine.crank_resolved import CrankResolved
 from corliss.engine.ideal_card import card_area, hyperbolic_card, indicated_steam_kg
@@ -48,6 +50,12 @@ def run_steady(scene, *, portmap_scale: float = 1.0,
     SteadyResult
     """
     t0 = time.perf_counter()
+    eng = scene.engine
+    if (scene.run.has("wall_heat") and eng.wall_heat_model == "skin"
+            and eng.condensing_W_m2K is None):
+        h = marks_coefficient(dataclasses.replace(
+            scene, engine=dataclasses.replace(eng, condensing_W_m2K=0.0)), run_steady)
+        scene = dataclasses.replace(scene, engine=dataclasses.replace(eng, condensing_W_m2K=h))
     model = assemble(scene, tabulated=scene.run.model == "crank_resolved")
     steam, chest, exhaust = model.steam, model.chest, model.exhaust
     geo, pm, ev = model.geometry, model.portmap, model.events
@@ -227,9 +235,12 @@ def _periodicity(net, y0, y1, samples, wall0, dT_scale: float, row: dict,
     engine and the steam it holds (a periodic cycle's contents may drift by the tolerance
     of what they hold, and the flows' quadratures resolve the net flow to about a
     hundred integrator tolerances of it; a valve that barely opens, passing micrograms,
-    is judged by its contents); ``wall_temperature``:
-    the largest change of a wall's temperature (the skin model's surface and deep wall),
-    against the supply's less the exhaust's temperature.  A cycle is periodic when every one is below the convergence tolerance.
+    is judged by its contents; the skin model's film counts with its end's mass);
+    ``wall_temperature``: the largest change of a wall's temperature (the skin model's
+    surface), against the supply's less the exhaust's temperature, and for the skin
+    model the wall's heat imbalance over the cycle against the enthalpy supplied (set
+    by the runner).  A cycle is periodic when every one is below the convergence
+    tolerance.
     """
     w = row["work_J"]
     out = {"work": abs(w - w_prev) / max(abs(w), 1e-300) if w_prev is not None else math.inf}

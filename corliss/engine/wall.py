@@ -57,18 +57,25 @@ temperature difference:
 * convection, ``q_v = h_v (T_w - T)`` with ``T`` the steam's temperature (the
   saturation temperature when wet): dry steam is heated at most to ``T_w``.
 
-``h_c``, condensation and evaporation on the surface: Nusselt's laminar film on a
+``h_c``, condensation and evaporation on the surface.  Nusselt's laminar film on a
 vertical surface (Z. VDI 60, 1916, pp. 541-546, 569-575)::
 
     h = 0.943 [rho_l (rho_l - rho_v) g h_fg k_l^3 / (mu_l L dT)]^(1/4)
 
-gives about 8 kW/(m2 K) for a 12 in cover and a 20 K drop: a lower bound for a wall
-the piston wipes and the steam sweeps.  Marks's constant (Art. 82, p. 209, 18.13 Btu
-per ft2, degF and minute) is the heat the iron takes per degree of the cycle's range;
-a semi-infinite cast-iron wall whose surface swings behind a film resistance takes
-that heat at 100/15 psia and 150 rpm with an effective coefficient of about 2.8e4
-W/(m2 K) (the surface swings 38 % of the range).  That period calibration is the
-default, ``CONDENSING_W_M2K``; the scene's ``condensing_coefficient`` sets it.
+gives about 8 kW/(m2 K) for a 12 in cover and a 20 K drop (``nusselt_film_W_m2K``):
+a lower bound, for a film gravity drains, not a wall the piston wipes.  Cylinder oil
+is the classical promoter of dropwise condensation (E. Schmidt, W. Schurig and W.
+Sellschopp, Tech. Mech. Thermodyn. 1, 1930, pp. 53-63), whose coefficients for steam
+are of order 1e5 W/(m2 K) and more (J. W. Rose, "Dropwise condensation theory and
+experiment: a review", Proc. IMechE A 216, 2002, pp. 115-128).  The default,
+``CONDENSING_W_M2K`` = 3e5 W/(m2 K), is of that order: there the iron's conduction
+(``k / delta``, 2.3e4-5e4 W/(m2 K) at 60-300 rpm) limits the exchange, not the
+surface, and the missing water no longer depends on it (1e5 gives 0.33, 3e5 0.36 of
+the steam on the Meyer engine at 0.42 cut-off).  Marks's constant (Art. 82, p. 209,
+18.13 Btu per ft2, degF and minute) is a period calibration of the whole cycle, not a
+surface coefficient; ``condensing_coefficient = "marks"`` sets ``h_c`` so that the
+missing water at cut-off is what his eq. 221 gives for the same card
+(:func:`corliss.engine.calibration.marks_coefficient`).
 
 ``h_v``, forced convection of the steam itself: Adair, Qvale and Pearson's
 correlation for reciprocating machines (Purdue Compressor Conference, 1972),
@@ -117,8 +124,8 @@ import math
 #: Grey cast iron (makeitfrom.com, "Grey Cast Iron"): conductivity [W/(m K)], specific
 #: heat [J/(kg K)], density [kg/m3].
 CAST_IRON_K, CAST_IRON_C, CAST_IRON_RHO = 46.0, 490.0, 7500.0
-#: Effective condensing coefficient implied by Marks's constant for a cast-iron wall
-#: [W/(m2 K)] (see the module docstring).
+#: Coefficient of condensation and evaporation on the surface [W/(m2 K)]: dropwise
+#: condensation's order (see the module docstring).
 CONDENSING_W_M2K = 3.0e5
 #: Film of water over which the wall counts as wetted: 10 microns, where a draining
 #: film breaks into drops and rivulets [kg/m2].
