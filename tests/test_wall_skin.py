@@ -256,6 +256,11 @@ def test_a_compound_with_every_effect_and_skin_walls_conserves_mass_and_energy()
     row = r.last_cycle
     for end in ("head", "crank", "lp_head", "lp_crank"):
         assert row[f"Q_to_wall_{end}_J"] > 0.0        # every end condenses on its wall
+        # and is reported with its own events: water missing at its own cut-off, the
+        # heat of its admission leaving the steam
+        assert 0.0 < s[f"missing_water_fraction_{end}"] < 1.0
+        assert s[f"heat_into_steam_admission_{end}_J"] < 0.0
+        assert s[f"wall_surface_swing_{end}_K"] > 0.0
 
 
 @pytest.mark.parametrize("supply", sorted(SUPPLIES))
