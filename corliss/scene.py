@@ -318,12 +318,20 @@ def _engine(t: Table) -> EngineSpec:
     crank_angles = tuple(units.parse(a, "angle", t.key("crank_angles")) for a in angles)
     if abs(crank_angles[0]) > 1e-12:
         raise InputError(t.key("crank_angles"), angles, "a list whose first angle is \"0 deg\"")
-    model = t.choice("wall_heat_model", ("marks", "conductance", "adair"), "marks")
+    model = t.choice("wall_heat_model", ("skin", "marks", "conductance", "adair"), "skin")
     marks = t.quantity("marks_constant", "heat_transfer", "18.13 Btu/ft2 degF min")
     if not marks > 0.0:
         raise InputError(t.key("marks_constant"), t.raw("marks_constant"), "a conductance above 0")
+    condensing = None     # "marks": set by Marks's eq. 221 (corliss.engine.calibration)
+    if t.raw("condensing_coefficient", None) != "marks":
+        condensing = t.quantity("condensing_coefficient", "heat_transfer", "300 kW/m2 K")
+        if not condensing > 0.0:
+            raise InputError(t.key("condensing_coefficient"), t.raw("condensing_coefficient"),
+                             "a coefficient above 0, or \"marks\"")
+    jacket = t.choice("jacket", ("none", "barrel"), "none")
+    thickness = t.length("wall_thickness", "1 in", within=(1e-3, 0.5 * bore))
     spec = EngineSpec(bore, stroke, rod, prd, _pair_fraction(t, "clearance"), mass, f0, f1,
-                      *leaks, model, marks, crank_angles)
+                      *leaks, model, marks, crank_angles, condensing, jacket, thickness)
     t.finish()
     return spec
 

@@ -78,7 +78,7 @@ def test_marks_law_gives_his_missing_water_and_closes_the_balance():
         r = corliss.simulate(sc.replace_run(fidelity=fid))
         s = r.summary
         for end in ("head", "crank"):
-            got = s[f"missing_water_fraction_{end}"]
+            got = s[f"card_missing_water_fraction_{end}"]
             assert got == pytest.approx(s[f"marks_missing_water_fraction_{end}"], rel=0.15)
             assert 0.08 < got < 0.6
             row = r.last_cycle

@@ -15,10 +15,13 @@ mean of his concordant experiments (Art. 82, L11126).
 
 from __future__ import annotations
 
+import logging
 import math
 
 from corliss import units
 from corliss.thermo.steam import HEOSSteam, latent_heat
+
+log = logging.getLogger(__name__)
 
 #: Marks's mean constant of condensation, Art. 82, in kg / (m2 K s).
 MARKS_C = 0.02047 * units.POUND_kg / (units.FOOT_m ** 2 * (5.0 / 9.0) * 60.0)
@@ -95,6 +98,12 @@ class MarksLaw:
         self.ends = [(i, 0 if network.node_end[i] == 0 else 1)
                      for i, row in enumerate(network.node_heat) if row[0] == 3.0]
         self.t_cutoff = {i: supply_T_K for i, _ in self.ends}
+        if self.ends:
+            log.warning("wall_heat_model = \"marks\" imposes eq. 221's heat as a schedule, "
+                        "whatever the steam's temperature: the heat given back after release "
+                        "goes into the little steam left and can heat it beyond any wall's "
+                        "temperature.  It is the period's rule, kept for comparison; "
+                        "\"skin\" (the default) obeys the second law")
 
     @staticmethod
     def latent(T: float) -> float:

@@ -120,26 +120,70 @@ class CrankResolved:
         kernel.derivatives(th, y, self._pr, dy, self.net, self._cell)
         return dy
 
-    def update_wall(self, y_end: np.ndarray) -> None:
+    def update_wall(self, y_end: np.ndarray, apply: bool = True,
+                    heat_scale: float = 0.0) -> tuple[float, float]:
         """Set each wall to the h A-weighted mean steam temperature of the cycle just run,
-        the temperature at which it neither gains nor loses heat over a cycle."""
+        the temperature at which it neither gains nor loses heat over a cycle.
+
+        The skin model's deep wall (:mod:`corliss.engine.wall`) takes a secant step on
+        its balance over the cycle, ``r(T) = -Q + G_j A_j P (T_j - T) = 0`` (heat the
+        steam leaves in the wall, and the jacket's): the first steps use the slope the
+        kernel integrates (every coefficient's h A), which overstates it, since water
+        condensed on a cooler wall evaporates from it later in the same cycle; then the
+        slope of the last two steps taken, kept between a hundredth and all of that one
+        (steps of 20 K at most).
+        The balance is weak (the heat a wall takes at admission it mostly gives back
+        the same cycle), so the runner takes a step only once the cycle at the present
+        deep temperature is periodic, ``apply``; otherwise the step is only measured.
+
+        Returns the largest step of a skin model's deep wall [K] and the largest
+        imbalance of a skin model's wall over the cycle, ``|r|`` against
+        ``heat_scale`` [J] (the enthalpy supplied, so that it reads as an error of the
+        engine's energy balance) or, without it, the heat the steam gave the wall
+        (0, 0 without one).
+        """
         net = self.network
+        hist = self.__dict__.setdefault("_wall_history", {})
+        largest = imbalance = 0.0
         for i in range(net.n_nodes):
             ha = y_end[net.i_node_quad(i, "hA")]
-            if ha > 0.0:
+            if not ha > 0.0:
+                continue
+            if net.node_heat[i][0] != 4.0:
                 net.wall_T[i] = y_end[net.i_node_quad(i, "hAT")] / ha
+                continue
+            gap = net.node_heat[i][9] * 2.0 * math.pi / net.omega
+            d_full = ha - gap
+            T = float(net.wall_T[i])
+            Q = float(y_end[net.i_node_quad(i, "heat")])
+            slope = d_full
+            prev, lo, hi = hist.get(i, (None, -math.inf, math.inf))
+            if prev is not None and abs(T - prev[0]) > 1e-9:
+                slope = min(max((Q - prev[1]) / (T - prev[0]), 0.01 * d_full), d_full)
+            r = -Q + gap * (net.node_heat[i][10] - T)
+            step = min(max(r / (slope + gap), -20.0), 20.0)
+            largest = max(largest, abs(step))
+            scale = heat_scale or float(y_end[net.i_node_quad(i, "heat_to_wall")])
+            imbalance = max(imbalance, abs(r) / max(scale, 1e-300))
+            if apply:
+                hist[i] = ((T, Q), lo, hi)
+                net.wall_T[i] = T + step
+        return largest, imbalance
 
     def initial_state(self) -> np.ndarray:
         return self.network.initial_state()
 
     def cycle(self, y0: np.ndarray, theta0: float, out_theta: np.ndarray):
-        """Integrate one cycle from ``theta0``; quadratures restart from zero.
+        """Integrate one cycle from ``theta0``; quadratures restart from zero (the skin
+        model's wall states carry on from ``y0``).
 
         Returns the state at the end (quadratures = cycle totals) and the states at
         ``out_theta``, shape ``(n_state, len(out_theta))``.
         """
         y = np.array(y0, dtype=float)
-        y[self.network.n_dyn:] = 0.0
+        y[self.network.n_dyn:self.network.n_quad_end] = 0.0   # the wall states carry on
+        for i in self.network.wall_nodes:                        # but their quadratures
+            y[self.network.i_wall(i, "heat_sat")] = y[self.network.i_wall(i, "heat_conv")] = 0.0
         stops = np.asarray(self.network.stops(theta0), dtype=float)
         out_theta = np.asarray(out_theta, dtype=float)
         if self.compiled:

@@ -43,13 +43,24 @@ class EngineSpec:
         Equivalent orifice areas of the leaks past the valve (into each end) and past
         the piston (between the ends) [m2] (``leakage`` effect).
     wall_heat_model : str
-        ``"marks"`` (his law), ``"conductance"`` or ``"adair"`` (``wall_heat`` effect).
+        ``"skin"`` (a wall with a temperature, :mod:`corliss.engine.wall`; the
+        default), ``"marks"`` (his law as a schedule), ``"conductance"`` or ``"adair"``
+        (``wall_heat`` effect).
     marks_constant_W_m2K : float
         Marks's constant of condensation as a surface conductance [W/(m2 K)]
         (Art. 82: 18.13 Btu per ft2, degF and minute).
     crank_angles_rad : tuple of float
         One entry per identical cylinder on the shaft: the angle each crank follows
         the first [rad] (Marks Arts. 54-59: 90 deg for two, 120 deg for three).
+    condensing_W_m2K : float or None
+        The skin model's coefficient of condensation and evaporation on the wall
+        [W/(m2 K)] (:mod:`corliss.engine.wall`); None: set by Marks's eq. 221
+        (:mod:`corliss.engine.calibration`).
+    jacket : str
+        ``"none"`` or ``"barrel"``: the barrel's outer face held at the supply's
+        saturation temperature (skin model).
+    wall_thickness_m : float
+        The barrel's wall between bore and jacket [m] (skin model, with a jacket).
     """
 
     bore_m: float
@@ -62,9 +73,12 @@ class EngineSpec:
     friction_N_m_s: float = 0.0
     valve_leakage_area_m2: float = 0.0
     piston_leakage_area_m2: float = 0.0
-    wall_heat_model: str = "marks"
+    wall_heat_model: str = "skin"
     marks_constant_W_m2K: float = 6176.8
     crank_angles_rad: tuple[float, ...] = (0.0,)
+    condensing_W_m2K: float | None = 3.0e5
+    jacket: str = "none"
+    wall_thickness_m: float = 0.0254
 
 
 @dataclass(frozen=True)

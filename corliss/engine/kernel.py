@@ -182,6 +182,26 @@ def derivatives(th, y, pr, dy, net, pa):
     balances(th, y, pr, dy, net, pa)
 
 
+#: The skin model's film (corliss.engine.wall): wetted from FILM_WET, running off into
+#: the steam beyond FILM_MAX [kg/m2]; wet steam wets the wall while it holds more than
+#: WET_BAND of water.
+FILM_WET = 1.0e-2
+FILM_MAX = 0.1
+WET_BAND = 0.02
+
+
+@njit(cache=True, inline="always")
+def wetted_share(kappa):
+    """Share of a wall wet steam wets [-], from the mixture's dryness as ``kappa_of``
+    encodes it (Zeuner's 1.035 + 0.1 x when wet, 1.3 superheated): 1 while the mixture
+    holds more than WET_BAND of water, falling smoothly (a cubic step) to 0 at dry
+    steam."""
+    if kappa > 1.2:
+        return 0.0
+    w = min(max((1.0 - (kappa - 1.035) / 0.1) / WET_BAND, 0.0), 1.0)
+    return w * w * (3.0 - 2.0 * w)
+
+
 @njit(cache=True, inline="always")
 def balances(th, y, pr, dy, net, areas):
     """Mass and energy balances of every node per radian of crank angle, with the
@@ -210,6 +230,59 @@ def balances(th, y, pr, dy, net, areas):
             V = pr[5, i]
             A = 2.0 * ap + math.pi * bore * V / ap
             Ts = pr[6, i]
+            if model == 4.0:
+                # the skin model (corliss.engine.wall): states y[k] = T_w - T_deep and
+                # y[k + 1] = the film's water; the film's flow goes down T_w - T_sat,
+                # the convection's down T_w - T
+                k = int(heat[i, 8])
+                Tw = wallT[i] + y[k]
+                mf = y[k + 1]
+                Aw = heat[i, 7]
+                Tsat = pr[7, i]
+                de = 6.0 * V / A
+                re_ = RHO[i] * (0.5 * omega * de) * de / heat[i, 3]
+                hv = 0.053 * heat[i, 2] / de * re_ ** 0.8 * heat[i, 4] ** 0.6
+                hf = heat[i, 1]
+                hm = 0.0
+                if Tw > Tsat:
+                    # a wetted surface boils its water off: the film's, and where the
+                    # film is gone, the water wet steam brings to it
+                    wf = min(max(mf / (FILM_WET * Aw), 0.0), 1.0)
+                    wf = wf * wf * (3.0 - 2.0 * wf)      # smooth at dry and fully wet
+                    hm = hf * (1.0 - wf) * wetted_share(pr[3, i])
+                    hf *= wf
+                qf = hf * (Tw - Tsat) * A            # [W] from the wall into the film
+                qm = hm * (Tw - Tsat) * A            # [W] into the mixture's water
+                qc = hv * (Tw - Ts) * A              # [W] into the steam by convection
+                qv = qm + qc
+                hL, L = heat[i, 11], heat[i, 12]
+                # evaporated (+, as vapour of h_L + L) or condensed (-, the steam
+                # giving up its own enthalpy, superheat and all, down to the film's
+                # h_L) [kg/s]; water beyond the film the wall holds runs off into
+                # the steam (its excess per radian)
+                if qf < 0.0:
+                    lat = max(H[i] - hL, 0.5 * L)
+                else:
+                    lat = L
+                mdot = qf / lat
+                run = (mf - FILM_MAX * Aw) * omega if mf > FILM_MAX * Aw else 0.0
+                dy[2 * i] += (mdot + run) / omega
+                dy[2 * i + 1] += ((mdot + run) * hL + qf + qv) / omega
+                dy[k + 1] = -(mdot + run) / omega
+                q = (qf + qv) / omega
+                dy[q0 + 1] = q
+                dy[q0 + 2] = -q if q < 0.0 else 0.0
+                # for the deep wall's update (T_deep <- hAT / hA, a Newton step on the
+                # wall's, or with a jacket the wall and jacket's, balance over a cycle)
+                d = (hv + hf + hm) * A / omega
+                ga = heat[i, 9] / omega
+                dy[q0 + 3] = d + ga
+                dy[q0 + 4] = d * wallT[i] - q + ga * heat[i, 10]
+                dy[k] = (-(qf + qv) + heat[i, 6] * Aw * (wallT[i] - Tw)) / (
+                    heat[i, 5] * Aw * omega)
+                dy[k + 2] = (qf + qm) / omega
+                dy[k + 3] = qc / omega
+                continue
             if model == 3.0:
                 # Marks's law (Art. 75): the heat of eq. 221 leaves the steam during
                 # admission and comes back from cut-off to compression, each spread
@@ -267,6 +340,26 @@ def balances(th, y, pr, dy, net, areas):
             dy[2 * b + 1] += hd
         dy[ndyn + 2 * e] = md
         dy[ndyn + 2 * e + 1] = hd
+    sweep_films(y, pr, dy, net)
+
+
+@njit(cache=True, inline="always")
+def sweep_films(y, pr, dy, net):
+    """The skin model's film swept out with the steam (corliss.engine.wall): while an
+    end's steam flows out, the film beyond FILM_WET goes with it in the proportion
+    of the steam leaving, into the steam as water of the film's enthalpy."""
+    heat = net[19]
+    for i in range(heat.shape[0]):
+        if heat[i, 0] != 4.0 or not dy[2 * i] < 0.0:
+            continue
+        k = int(heat[i, 8])
+        extra = y[k + 1] - FILM_WET * heat[i, 7]
+        m = y[2 * i]
+        if extra > 0.0 and m > 0.0:
+            sw = extra * (-dy[2 * i]) / m
+            dy[2 * i] += sw
+            dy[2 * i + 1] += sw * heat[i, 11]
+            dy[k + 1] -= sw
 
 
 @njit(cache=True, inline="always")

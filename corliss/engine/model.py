@@ -9,6 +9,7 @@ check one layer of the model at a time.
 from __future__ import annotations
 
 import dataclasses
+import logging
 import math
 from dataclasses import dataclass
 
@@ -19,6 +20,8 @@ from corliss.errors import InputError
 from corliss.thermo.steam import State, Steam, make_steam, transport_properties
 from corliss.valves import events as valve_events
 from corliss.valves import gear_type, tabulate
+
+log = logging.getLogger(__name__)
 
 
 def geometry_of(scene) -> CylinderGeometry:
@@ -109,9 +112,23 @@ def build_network(scene, geo, pm, steam: Steam, chest: State, exhaust: State) ->
         net = with_leakage(net, scene.engine.valve_leakage_area_m2,
                            scene.engine.piston_leakage_area_m2)
     if scene.run.has("wall_heat"):
-        net = with_wall_heat(net, scene.engine.wall_heat_model,
-                             scene.engine.marks_constant_W_m2K,
-                             transport_properties(chest.p, chest.T))
+        eng = scene.engine
+        jacket_T = None
+        if eng.jacket == "barrel":
+            from corliss.thermo.steam import HEOSSteam
+            jacket_T = HEOSSteam().t_sat(scene.supply.pressure_Pa)
+        model = eng.wall_heat_model
+        if model == "skin" and scene.run.mode == "transient":
+            # the speed loop restarts every state past the nodes' each turn, which
+            # would empty the skin's film: its walls are Marks's conductance
+            log.warning("the speed loop runs wall_heat with the \"conductance\" wall; the "
+                        "\"skin\" wall (surface temperature and film as states) is for "
+                        "steady runs")
+            model = "conductance"
+        net = with_wall_heat(net, model, eng.marks_constant_W_m2K,
+                             transport_properties(chest.p, chest.T),
+                             condensing_W_m2K=eng.condensing_W_m2K, jacket_T_K=jacket_T,
+                             wall_thickness_m=eng.wall_thickness_m)
     return net
 
 

@@ -59,8 +59,10 @@ class Network:
     e_port: list[int] = field(default_factory=list)
     e_area: list[float] = field(default_factory=list)
     e_cd: list[float] = field(default_factory=list)
-    #: Wall heat of each node: (model 0 none, 1 constant h, 2 Adair; h [W/(m2 K)];
-    #: conductivity [W/(m K)]; viscosity [Pa s]; Prandtl [-]), and the wall temperature [K].
+    #: Wall heat of each node: (model 0 none, 1 constant h, 2 Adair, 3 Marks's law, 4 skin;
+    #: h [W/(m2 K)]; conductivity [W/(m K)]; viscosity [Pa s]; Prandtl [-]; then the
+    #: model's own columns, see HEAT_COLUMNS), and the wall temperature [K] (for the skin
+    #: model, the temperature of the deep wall under the skin).
     node_heat: list = field(default_factory=list)
     wall_T: np.ndarray | None = None
 
@@ -104,8 +106,33 @@ class Network:
     NODE_QUADS = ("work", "heat", "heat_to_wall", "hA", "hAT")
 
     @property
-    def n_state(self) -> int:
+    def n_quad_end(self) -> int:
+        """One past the last quadrature: the wall states (skin model) follow."""
         return 2 * self.n_nodes + 2 * self.n_edges + len(self.NODE_QUADS) * self.n_nodes
+
+    @property
+    def wall_nodes(self) -> list[int]:
+        """Nodes whose wall surface temperature is a state (the skin model), in order."""
+        return [i for i, row in enumerate(self.node_heat) if row[0] == WALL_MODELS["skin"]]
+
+    #: States of a skin-model wall: the surface temperature less the deep wall's [K],
+    #: the water film [kg], and two quadratures restarted each cycle: the heat from the
+    #: wall that goes down T_w - T_sat (condensing on it, boiling off it) and down
+    #: T_w - T (convection) [J].
+    WALL_STATES = ("surface", "film", "heat_sat", "heat_conv")
+
+    @property
+    def n_state(self) -> int:
+        return self.n_quad_end + len(self.WALL_STATES) * len(self.wall_nodes)
+
+    def i_wall(self, node: int, what: str = "surface") -> int:
+        """Index of one of node's wall states (WALL_STATES)."""
+        return (self.n_quad_end + len(self.WALL_STATES) * self.wall_nodes.index(node)
+                + self.WALL_STATES.index(what))
+
+    def i_film(self, node: int) -> int:
+        """Index of the mass of the water film on node's wall [kg]."""
+        return self.i_wall(node, "film")
 
     def i_edge_mass(self, e: int) -> int:
         return self.n_dyn + 2 * e
@@ -184,6 +211,11 @@ class Network:
             # diagnostics for the wall temperature: kept out of the step-size control
             sc[self.i_node_quad(i, "hA")] = 1e12
             sc[self.i_node_quad(i, "hAT")] = 1e15
+        for i in self.wall_nodes:
+            # the surface temperature's swing is a fraction of supply less exhaust
+            sc[self.i_wall(i)] = max(ref.T - min(s.T for s in self.reservoirs), 10.0)
+            sc[self.i_film(i)] = m
+            sc[self.i_wall(i, "heat_sat")] = sc[self.i_wall(i, "heat_conv")] = ref.p * vmax
         return sc
 
     def column_colors(self) -> tuple[np.ndarray, np.ndarray]:
@@ -224,6 +256,9 @@ class Network:
                         owner[c, self.i_edge_enthalpy(e)] = col
                 for what in self.NODE_QUADS:
                     owner[c, self.i_node_quad(i, what)] = col
+                if i in self.wall_nodes:
+                    for what in self.WALL_STATES:
+                        owner[c, self.i_wall(i, what)] = col
         return color, owner
 
     # --- arrays for the kernel ------------------------------------------------------
@@ -348,12 +383,19 @@ def with_leakage(net: Network, valve_area_m2: float, piston_area_m2: float,
 #: Columns of a node's wall-heat row: model code, conductance, conductivity, viscosity,
 #: Prandtl number (codes 1, 2); heat of a cycle, admission, cut-off and compression
 #: angles, and the wall exposed over admission and over cut-off to compression,
-#: integrated in crank angle (code 3, Marks's law).
-HEAT_COLUMNS = 11
-WALL_MODELS = {"conductance": 1.0, "adair": 2.0, "marks": 3.0}
+#: integrated in crank angle (code 3, Marks's law); the surface node's capacity and
+#: conductance to the deep wall, its mean area, the index of its state, the jacket's
+#: conductance and temperature, the film's enthalpy and latent heat (code 4, the skin
+#: model, :mod:`corliss.engine.wall`).
+#: The skin model's film: the water's specific enthalpy and the latent heat it takes to
+#: evaporate [J/kg] (columns 11, 12).
+HEAT_COLUMNS = 13
+WALL_MODELS = {"conductance": 1.0, "adair": 2.0, "marks": 3.0, "skin": 4.0}
 
 
-def with_wall_heat(net: Network, model: str, h_marks: float, steam_props) -> Network:
+def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
+                   condensing_W_m2K: float | None = None, jacket_T_K: float | None = None,
+                   wall_thickness_m: float = 0.025) -> Network:
     """Heat exchange between the steam of each cylinder end and its walls.
 
     ``model``:
@@ -372,13 +414,29 @@ def with_wall_heat(net: Network, model: str, h_marks: float, steam_props) -> Net
       Pearson (Purdue Compressor Conference, 1972), h = 0.053 (k/D_e) Re^0.8 Pr^0.6
       with D_e = 6 V / A and the gas velocity taken as omega D_e / 2, with transport
       properties of the supply steam (``steam_props``: conductivity, viscosity,
-      Prandtl), to a wall at its periodic mean temperature.
+      Prandtl), to a wall at its periodic mean temperature;
+    * ``"skin"``: a wall with a temperature (:mod:`corliss.engine.wall`): each end's
+      surface temperature is a state, exchanging heat with the steam by condensation and
+      evaporation (``condensing_W_m2K``) and Adair's convection, over a deep wall found
+      cycle by cycle; with ``jacket_T_K``, the barrel's outer face (``wall_thickness_m``
+      of iron away) is held at that temperature.  Every cylinder has its own wall.
     """
+    from corliss.engine import wall
     k, mu, pr = steam_props
     code = WALL_MODELS[model]
     for i, kind in enumerate(net.node_kind):
         if kind == PISTON:
             net.node_heat[i] = (code, h_marks, k, mu, pr) + (0.0,) * (HEAT_COLUMNS - 5)
+    if model == "skin":
+        h_c = wall.CONDENSING_W_M2K if condensing_W_m2K is None else condensing_W_m2K
+        # the film's water and its latent heat, at the temperature the wall starts from
+        # (constant over a run, so that the film's energy is m_f h_L exactly)
+        t0 = 0.5 * (net.reservoirs[0].T + net.reservoirs[-1].T)
+        film = wall.film_enthalpies(t0)
+        for i in net.wall_nodes:
+            net.node_heat[i] = wall.skin_row(net.geometries[net.node_cyl[i]], net.node_end[i],
+                                             net.omega, h_c, steam_props, net.i_wall(i),
+                                             jacket_T_K, wall_thickness_m) + film
     return net
 
 

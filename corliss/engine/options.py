@@ -23,11 +23,13 @@ EFFECTS: dict[str, str] = {
                    "([supply] throttle, throttle_law)",
     "leakage": "leaks past the valve into each end ([engine] valve_leakage_area) and past the "
                "piston ([engine] piston_leakage_area), as orifices of equivalent area",
-    "wall_heat": "heat between the steam and the cylinder walls, held at their periodic mean "
-                 "temperature: initial condensation and re-evaporation ([engine] "
-                 "wall_heat_model = \"marks\" (Marks's law of condensation, Arts. 74-75), "
-                 "\"conductance\" (his constant as a surface conductance, Art. 82) or "
-                 "\"adair\" (Adair et al. 1972))",
+    "wall_heat": "heat between the steam and the cylinder walls: initial condensation and "
+                 "re-evaporation ([engine] wall_heat_model = \"skin\" (a wall whose surface "
+                 "temperature and water film are states, heat only down the temperature "
+                 "difference; condensing_coefficient, jacket, wall_thickness), \"marks\" "
+                 "(Marks's law of condensation as a schedule, Arts. 74-75), \"conductance\" "
+                 "(his constant as a surface conductance, Art. 82) or \"adair\" (Adair et al. "
+                 "1972))",
     "friction": "engine friction torque ([engine] friction_torque, friction_torque_per_speed): "
                 "brake power and mechanical efficiency",
 }

@@ -97,6 +97,53 @@ class Result:
             self._summary = self._make_summary()
         return self._summary
 
+    def _end_condensation(self, end, ev, geo, e_idx, shift_deg, row, ts, at, sat) -> dict:
+        """The condensation summary of one end (``end`` with its cylinder's prefix; its
+        events ``ev`` in its own crank angle, ``shift_deg`` its lead on the shaft)."""
+        out = {f"heat_to_walls_{end}_J_per_cycle": float(row[f"Q_to_wall_{end}_J"]),
+               f"wall_temperature_{end}_K": (float(row[f"T_wall_{end}_K"])
+                                             if f"T_wall_{end}_K" in row else None)}
+
+        def angle(key):
+            return None if ev.get(key) is None else (ev[key] - shift_deg) % 360.0
+
+        if f"T_wall_{end}_K" in ts:
+            tw = ts[f"T_wall_{end}_K"].to_numpy()
+            out[f"wall_surface_swing_{end}_K"] = float(np.max(tw) - np.min(tw))
+            out[f"wall_surface_mean_{end}_K"] = float(np.mean(tw))
+            q_total = float(row[f"Q_{end}_J"])
+            marks = [angle(k) for k in ("admission_deg", "cutoff_deg", "release_deg",
+                                        "compression_deg")]
+            if all(m is not None for m in marks):
+                qs = [at(f"Q_{end}_J", m) for m in marks]
+                for n, name in enumerate(("admission", "expansion", "exhaust", "compression")):
+                    dq = qs[(n + 1) % 4] - qs[n]
+                    if marks[(n + 1) % 4] < marks[n]:   # the phase wraps past 0
+                        dq += q_total
+                    out[f"heat_into_steam_{name}_{end}_J"] = dq
+        if ev["cutoff_deg"] is None or ev["compression_deg"] is None:
+            return out
+        c, k = angle("cutoff_deg"), angle("compression_deg")
+        out[f"wet_fraction_at_cutoff_{end}"] = 1.0 - at(f"x_{end}_frac", c)
+        supplied = float(row[f"m_chest_{end}_kg"])
+        shown = (at(f"V_{end}_m3", c) * sat.px(at(f"p_{end}_Pa", c), 1.0).rho
+                 - at(f"V_{end}_m3", k) * sat.px(at(f"p_{end}_Pa", k), 1.0).rho)
+        out[f"card_missing_water_fraction_{end}"] = (supplied - shown) / supplied
+        if f"m_{end}_kg" in ts:
+            steam = (at(f"m_{end}_kg", c) * at(f"x_{end}_frac", c)
+                     - at(f"m_{end}_kg", k) * at(f"x_{end}_frac", k))
+            out[f"missing_water_fraction_{end}"] = (supplied - steam) / supplied
+        else:
+            out[f"missing_water_fraction_{end}"] = out[f"card_missing_water_fraction_{end}"]
+        # the period's prediction beside the model's (Marks eq. 221)
+        vc, vs = geo.clearance_m3[e_idx], geo.swept_m3[e_idx]
+        e_true = (vc + vs * ev["cutoff_frac"]) / (vc + vs)
+        cond = marks_condensation_kg(
+            geo.spec.bore_m, geo.spec.stroke_m, 2.0 * self.scene.run.speed_rad_s / TWO_PI,
+            e_true, sat.t_sat(at(f"p_{end}_Pa", c)), self.exhaust.T)
+        out[f"marks_missing_water_fraction_{end}"] = cond / (cond + shown)
+        return out
+
     def _make_summary(self) -> dict:  # pragma: no cover - interface
         raise NotImplementedError
 
@@ -348,14 +395,23 @@ class SteadyResult(Result):
                 "receiver_pressure_max_Pa": float(last["p_receiver_Pa"].max())}
 
     def _condensation_summary(self) -> dict:
-        """Initial condensation as the engineers of the time measured it (Marks Art. 74).
+        """Initial condensation per end (Marks Art. 74).
 
-        Per end: the heat the steam gave the walls over the cycle; the wet fraction of
-        the cylinder's contents at cut-off; and the "missing water": the steam supplied
-        less the steam the card shows at cut-off (volume at cut-off times the density
-        of dry saturated steam at the card's pressure there, less the cushion steam shut
-        in at compression, Marks eq. 219a), as a fraction of the steam supplied; and
-        beside it the fraction Marks's law of condensation predicts (eq. 221).
+        ``missing_water_fraction``: the steam supplied less the steam in the cylinder
+        at cut-off, as a fraction of the steam supplied; the steam at cut-off is read
+        from its state (mass times dryness, all of it when superheated) less the
+        cushion's shut in at compression (Marks eq. 219a), so water on the wall or in
+        the mixture is missing and superheat is not.  ``card_missing_water_fraction``:
+        the same with the steam the card shows (volume times the density of dry
+        saturated steam at the card's pressure), as the engineers of the time
+        measured it, and beside it the fraction Marks's law predicts for that card
+        (eq. 221).  Also the heat the steam gave the walls over the cycle, the wet
+        fraction of the contents at cut-off, and with the skin model the swing of the
+        wall's surface temperature and the heat into the steam in each phase
+        (admission to cut-off, cut-off to release, release to compression,
+        compression to admission).  Every end of every cylinder whose walls exchange
+        heat, each with its own geometry and events (``lp_`` ends with the
+        low-pressure cylinder's, the angles moved by the cylinder's crank lead).
         """
         sat = HEOSSteam()
         row = self.last_cycle
@@ -363,32 +419,17 @@ class SteadyResult(Result):
         ang = np.mod(ts["crank_angle_deg"].to_numpy(), 360.0)
         ang, idx = np.unique(ang, return_index=True)
         out = {}
-        for end in ("head", "crank"):
-            out[f"heat_to_walls_{end}_J_per_cycle"] = float(row[f"Q_to_wall_{end}_J"])
-            out[f"wall_temperature_{end}_K"] = (float(row[f"T_wall_{end}_K"])
-                                                if f"T_wall_{end}_K" in row else None)
-            ev = self.events[end]
-            if ev["cutoff_deg"] is None or ev["compression_deg"] is None:
-                continue
 
-            def at(col, deg):
-                return float(np.interp(deg, ang, ts[col].to_numpy()[idx], period=360.0))
+        def at(col, deg):
+            return float(np.interp(deg, ang, ts[col].to_numpy()[idx], period=360.0))
 
-            c, k = ev["cutoff_deg"], ev["compression_deg"]
-            out[f"wet_fraction_at_cutoff_{end}"] = 1.0 - at(f"x_{end}_frac", c)
-            shown = (at(f"V_{end}_m3", c) * sat.px(at(f"p_{end}_Pa", c), 1.0).rho
-                     - at(f"V_{end}_m3", k) * sat.px(at(f"p_{end}_Pa", k), 1.0).rho)
-            supplied = float(row[f"m_chest_{end}_kg"])
-            out[f"missing_water_fraction_{end}"] = (supplied - shown) / supplied
-            # the period's prediction beside the model's (Marks eq. 221)
-            e_idx = 0 if end == "head" else 1
-            vc, vs = self.geometry.clearance_m3[e_idx], self.geometry.swept_m3[e_idx]
-            e_true = (vc + vs * ev["cutoff_frac"]) / (vc + vs)
-            cond = marks_condensation_kg(
-                self.geometry.spec.bore_m, self.geometry.spec.stroke_m,
-                2.0 * self.scene.run.speed_rad_s / TWO_PI, e_true,
-                sat.t_sat(at(f"p_{end}_Pa", c)), self.exhaust.T)
-            out[f"marks_missing_water_fraction_{end}"] = cond / (cond + shown)
+        for prefix, geo, phase in self.cylinder_list:
+            evs = self.lp_events if prefix == "lp_" and self.lp_events else self.events
+            for e_idx, end0 in enumerate(("head", "crank")):
+                end = prefix + end0
+                if f"Q_to_wall_{end}_J" in row:
+                    out.update(self._end_condensation(
+                        end, evs[end0], geo, e_idx, math.degrees(phase), row, ts, at, sat))
         return out
 
     def _make_summary(self) -> dict:

@@ -8,6 +8,7 @@ Only the effects the scene names are assembled (:mod:`corliss.engine.model`): wi
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import math
 import time
@@ -17,6 +18,7 @@ import numpy as np
 import pandas as pd
 
 from corliss.engine import equilibrium as eq
+from corliss.engine.calibration import marks_coefficient
 from corliss.engine.condensation import MarksLaw
 from corliss.engine.crank_resolved import CrankResolved
 from corliss.engine.ideal_card import card_area, hyperbolic_card, indicated_steam_kg
@@ -48,6 +50,12 @@ def run_steady(scene, *, portmap_scale: float = 1.0,
     SteadyResult
     """
     t0 = time.perf_counter()
+    eng = scene.engine
+    if (scene.run.has("wall_heat") and eng.wall_heat_model == "skin"
+            and eng.condensing_W_m2K is None):
+        h = marks_coefficient(dataclasses.replace(
+            scene, engine=dataclasses.replace(eng, condensing_W_m2K=0.0)), run_steady)
+        scene = dataclasses.replace(scene, engine=dataclasses.replace(eng, condensing_W_m2K=h))
     model = assemble(scene, tabulated=scene.run.model == "crank_resolved")
     steam, chest, exhaust = model.steam, model.chest, model.exhaust
     geo, pm, ev = model.geometry, model.portmap, model.events
@@ -102,6 +110,7 @@ def _crank_resolved(scene, model, pm, progress):
     steam, geo = model.steam, model.geometry
     net = model.network(pm)
     heat = scene.run.has("wall_heat")
+    wall_nodes = net.wall_nodes
     marks = None
     if heat and scene.engine.wall_heat_model == "marks":
         marks = MarksLaw(net, geo, model.events, omega, model.chest.T, model.exhaust.T)
@@ -110,11 +119,14 @@ def _crank_resolved(scene, model, pm, progress):
     step = math.radians(fid.output_step_deg)
     out_theta = np.linspace(0.0, TWO_PI, int(round(TWO_PI / step)) + 1)
     y = crank.initial_state()
-    rows, samples_all = [], []
+    rows, samples_all, walls_used = [], [], []
     w_prev = None
     converged = None
     residuals = {}
     n_max = scene.run.cycles or fid.max_cycles
+    if net.wall_nodes and not scene.run.cycles:
+        # the skin model's deep wall settles over a few periodic cycles of its own
+        n_max *= 3
     dT_scale = max(model.chest.T - model.exhaust.T, 1.0)
     for k in range(1, n_max + 1):
         if marks is not None:
@@ -122,9 +134,10 @@ def _crank_resolved(scene, model, pm, progress):
         y_start = y.copy()
         wall_start = None if net.wall_T is None else np.array(net.wall_T, dtype=float)
         y, samples = crank.cycle(y, 0.0, out_theta)
+        walls_used.append(wall_start)
         if marks is not None:
             marks.update(steam, samples, out_theta)
-        elif heat:
+        elif heat and not wall_nodes:
             crank.update_wall(y)
         row = {"cycle": k}
         for end in ends_all:
@@ -133,12 +146,12 @@ def _crank_resolved(scene, model, pm, progress):
                 row[f"m_{what}_{end}_kg"] = y[net.i_edge_mass(e)]
                 row[f"H_{what}_{end}_J"] = y[net.i_edge_enthalpy(e)]
             row[f"work_{end}_J"] = y[net.i_work(net.node(end))]
-            if heat and end in ("head", "crank"):
-                i = net.node(end)
+            i = net.node(end)
+            if heat:           # every end's heat, so a compound's balance closes
                 row[f"Q_{end}_J"] = y[net.i_node_quad(i, "heat")]
                 row[f"Q_to_wall_{end}_J"] = y[net.i_node_quad(i, "heat_to_wall")]
                 if marks is None:      # Marks's law imposes the heat: the wall has no T
-                    row[f"T_wall_{end}_K"] = net.wall_T[i]
+                    row[f"T_wall_{end}_K"] = wall_start[i]
         if "steam_pipe" in net.edge_names:
             row["m_pipe_kg"] = y[net.i_edge_mass(net.edge("steam_pipe"))]
         for name, e in net.leak_edges():
@@ -150,6 +163,22 @@ def _crank_resolved(scene, model, pm, progress):
         w = row["work_J"]
         residuals = _periodicity(net, y_start, y, samples, wall_start, dT_scale, row,
                                  w_prev)
+        if heat and wall_nodes:
+            # the skin model's deep wall steps once the cycle at its temperature is
+            # periodic (CrankResolved.update_wall)
+            # (or, while the wall's own step is large, once the cycle's other residuals
+            # are a tenth of it)
+            # the wall is periodic when its heat over the cycle balances (what it took
+            # less what it gave, and the jacket's) to the tolerance of the enthalpy
+            # supplied, the energy balance's scale
+            inner = max(v for n, v in residuals.items() if n != "wall_temperature")
+            h_in = abs(float(row["H_supply_J"]))
+            step, imbalance = crank.update_wall(y, apply=False, heat_scale=h_in)
+            settled = inner <= max(10.0 * fid.convergence_tolerance, 0.1 * step / dT_scale)
+            if settled:
+                crank.update_wall(y, apply=True, heat_scale=h_in)
+            residuals["wall_temperature"] = max(residuals.get("wall_temperature", 0.0),
+                                                imbalance)
         change = max(residuals.values())
         if progress:
             progress(k, change)
@@ -174,6 +203,14 @@ def _crank_resolved(scene, model, pm, progress):
             m, U = s[2 * i], s[2 * i + 1]
             ends[end] = (*steam.states(m / V, U / m), V, m)
         frame = _cycle_frame(k, out_theta, omega, ends)
+        for i in wall_nodes:
+            # the skin model's surface temperature and the heat into the steam so far
+            end = net.node_names[i]
+            frame[f"T_wall_{end}_K"] = walls_used[k][i] + s[net.i_wall(i)]
+            frame[f"Q_{end}_J"] = s[net.i_node_quad(i, "heat")]
+            frame[f"m_film_{end}_kg"] = s[net.i_film(i)]
+            frame[f"Q_sat_{end}_J"] = s[net.i_wall(i, "heat_sat")]
+            frame[f"Q_conv_{end}_J"] = s[net.i_wall(i, "heat_conv")]
         for vessel in ("chest", "receiver"):
             if vessel in net.node_names:
                 i = net.node(vessel)
@@ -199,9 +236,12 @@ def _periodicity(net, y0, y1, samples, wall0, dT_scale: float, row: dict,
     engine and the steam it holds (a periodic cycle's contents may drift by the tolerance
     of what they hold, and the flows' quadratures resolve the net flow to about a
     hundred integrator tolerances of it; a valve that barely opens, passing micrograms,
-    is judged by its contents); ``wall_temperature``:
-    the largest change of a wall's temperature, against the supply's less the exhaust's
-    temperature.  A cycle is periodic when every one is below the convergence tolerance.
+    is judged by its contents; the skin model's film counts with its end's mass);
+    ``wall_temperature``: the largest change of a wall's temperature (the skin model's
+    surface), against the supply's less the exhaust's temperature, and for the skin
+    model the wall's heat imbalance over the cycle against the enthalpy supplied (set
+    by the runner).  A cycle is periodic when every one is below the convergence
+    tolerance.
     """
     w = row["work_J"]
     out = {"work": abs(w - w_prev) / max(abs(w), 1e-300) if w_prev is not None else math.inf}
@@ -214,6 +254,15 @@ def _periodicity(net, y0, y1, samples, wall0, dT_scale: float, row: dict,
     out["mass_balance"] = abs(m_in + m_out) / max(abs(m_in), abs(m_out), held, 1e-300)
     if wall0 is not None and net.wall_T is not None and np.any(net.wall_T != wall0):
         out["wall_temperature"] = float(np.max(np.abs(net.wall_T - wall0))) / dT_scale
+    for i in net.wall_nodes:
+        # the skin model's surface: its change over the cycle, and its deep wall's
+        k = net.i_wall(i)
+        out["wall_temperature"] = max(out.get("wall_temperature", 0.0),
+                                      abs(y1[k] - y0[k]) / dT_scale)
+        # the film's water against the steam the end holds at most
+        f = net.i_film(i)
+        m_end = max(float(np.nanmax(np.abs(samples[2 * i]))), 1e-300)
+        out["mass"] = max(out["mass"], abs(y1[f] - y0[f]) / m_end)
     return out
 
 

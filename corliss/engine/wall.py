@@ -1,0 +1,199 @@
+"""A cylinder wall with a temperature: the ``skin`` model of initial condensation.
+
+Why a wall with a temperature
+-----------------------------
+Marks (Relative Proportions, 3rd ed. 1887, Art. 74, p. 187) explains initial
+condensation as heat stored in the iron: the exhaust cools the surface, the entering
+steam condenses on it until the surface is warmed, and the water re-evaporates as the
+pressure falls during expansion and exhaust (Art. 74, 3-4).  A model that obeys the
+second law must therefore carry the surface's temperature: heat flows only from the
+hotter of steam and surface to the colder, and dry steam is heated at most to the
+surface's temperature.
+
+The surface as one lumped node (the choice, argued)
+---------------------------------------------------
+The temperature wave the cycle drives into the iron dies within the skin depth
+``delta = sqrt(2 alpha / omega)``: for grey cast iron (k = 46 W/(m K), c = 490 J/(kg K),
+rho = 7500 kg/m3; alpha = 1.25e-5 m2/s) 2.0 mm at 60 rpm and 0.89 mm at 300 rpm,
+against walls of 20 mm or more, so the wall is thermally semi-infinite.  A
+semi-infinite solid answers a surface temperature oscillating at omega,
+``theta_s e^{i omega t}``, with the heat flux into it (Carslaw & Jaeger, Conduction of
+Heat in Solids, 2nd ed. 1959, sec. 2.6)::
+
+    q = sqrt(k rho c omega) e^{i pi/4} theta_s = (k / delta) (1 + i) theta_s.
+
+A lumped surface node of areal capacity ``C`` joined by a conductance ``G`` to a deep
+node at the cycle's mean answers ``q = (G + i omega C) theta_s``.  With
+
+    G = k / delta,        C = rho c delta / 2
+
+the two are identical at the engine's frequency, the one that carries most of the
+swing; the higher harmonics (sharp admission) are given a little too much capacity
+(``n omega C`` against ``sqrt(n)`` growth), which errs on the side of a smaller swing.
+A 1-D conduction grid through several skin depths would capture the harmonics at the
+cost of ten states per end and a stiff diffusion operator in every right-hand side;
+the lumped node keeps one state per end and the exact fundamental, and gives the
+``1/sqrt(N)`` speed law of the heat a conducting wall absorbs per cycle (Cotterill's
+liquefaction factor has ``sqrt(N)`` in its denominator; Lineham, Text-Book of
+Mechanical Engineering, App. II, p. 884) rather than Marks's ``1/N``.
+
+The deep node's temperature is found cycle by cycle (:meth:`update_wall` of the
+runners): without a jacket, so that the wall neither gains nor loses heat over a
+cycle; with a jacket, so that what the steam leaves in the wall over a cycle is what
+the jacket gives through the wall's thickness, ``k / L (T_jacket - T_deep)``.
+
+Exchange between steam, film and surface
+----------------------------------------
+Per unit of the wall the steam touches [W/m2], two flows, each down its own
+temperature difference:
+
+* the film, ``q_f = h_c (T_w - T_sat)`` where the surface is below the saturation
+  temperature of the cylinder's pressure (steam condenses on it, whatever the bulk's
+  superheat), or above it and wetted (its water boils off; the wetted share rises
+  from 0 to 1 as the film grows to ``FILM_WET_KG_M2``, 10 microns of water); where the
+  film is gone, wet steam still wets the surface with its own water (the share
+  falling from 1 to 0 as the mixture's wetness falls through ``WET_BAND``), which
+  boils off into the steam at the same coefficient: wet exhaust steam cools the wall;
+* convection, ``q_v = h_v (T_w - T)`` with ``T`` the steam's temperature (the
+  saturation temperature when wet): dry steam is heated at most to ``T_w``.
+
+``h_c``, condensation and evaporation on the surface.  Nusselt's laminar film on a
+vertical surface (Z. VDI 60, 1916, pp. 541-546, 569-575)::
+
+    h = 0.943 [rho_l (rho_l - rho_v) g h_fg k_l^3 / (mu_l L dT)]^(1/4)
+
+gives about 8 kW/(m2 K) for a 12 in cover and a 20 K drop (``nusselt_film_W_m2K``):
+a lower bound, for a film gravity drains, not a wall the piston wipes.  Cylinder oil
+is the classical promoter of dropwise condensation (E. Schmidt, W. Schurig and W.
+Sellschopp, Tech. Mech. Thermodyn. 1, 1930, pp. 53-63), whose coefficients for steam
+are of order 1e5 W/(m2 K) and more (J. W. Rose, "Dropwise condensation theory and
+experiment: a review", Proc. IMechE A 216, 2002, pp. 115-128).  The default,
+``CONDENSING_W_M2K`` = 3e5 W/(m2 K), is of that order: there the iron's conduction
+(``k / delta``, 2.3e4-5e4 W/(m2 K) at 60-300 rpm) mostly limits the exchange, and
+the missing water depends on the coefficient weakly (on the bundled Meyer engine at
+0.42 cut-off: 0.18 of the steam at 3e4, 0.29 at 1e5, 0.345 at 3e5, 0.36 at 1e6; at
+3e4 the expansion line falls 10 % under the hyperbola, at 3e5 it is within 2 %).  Marks's constant (Art. 82, p. 209,
+18.13 Btu per ft2, degF and minute) is a period calibration of the whole cycle, not a
+surface coefficient; ``condensing_coefficient = "marks"`` sets ``h_c`` so that the
+missing water at cut-off is what his eq. 221 gives for the same card
+(:func:`corliss.engine.calibration.marks_coefficient`).
+
+``h_v``, forced convection of the steam itself: Adair, Qvale and Pearson's
+correlation for reciprocating machines (Purdue Compressor Conference, 1972),
+``h = 0.053 (k/D_e) Re^0.8 Pr^0.6``, ``D_e = 6 V / A``, gas speed ``omega D_e / 2``:
+a few hundred W/(m2 K), rising with density; it is all a dry surface exchanges with
+superheated steam.
+
+The water film
+--------------
+The water condensed on the wall stays there, a film of mass ``m_f`` per end (a
+state), until the surface, warmer than the falling saturation temperature, boils it
+off: during expansion (re-evaporation, which feeds the expanding steam and lifts the
+expansion line towards the hyperbola) and through the exhaust (the period's loss:
+the heat the wall took at admission carried to the condenser).  A homogeneous
+mixture would lose its water with the first rush of the exhaust and leave the wall
+dry and hot through the exhaust stroke, which is not what the engineers measured
+(Marks Art. 74).  Water beyond the film gravity holds on a surface the height of the
+bore, Nusselt's film thickness (about 0.1 mm, ``FILM_MAX_KG_M2``), runs off into the
+steam; and while the steam flows out of the cylinder it sweeps the film beyond the
+thin layer that clings as drops (``FILM_WET_KG_M2``) with it, in the proportion of
+the steam leaving.
+
+The film is water of one specific enthalpy ``h_L``, saturated water at the
+temperature the wall starts from, so that its energy is ``m_f h_L`` exactly and the
+first law closes over the steam, the film and the wall.  Condensing, the steam gives
+up its own enthalpy ``h`` (superheat and all) and the wall takes ``h - h_L`` per
+kilogram; evaporating, the film gives vapour of ``h_L + L``, with ``L`` the latent
+heat at that temperature, which differs from the latent heat at the pressure of the
+moment by under 10 % between 15 and 150 psia.
+
+Both flows carry heat down their own difference (the film's between surface and
+saturation, the convection's between surface and steam), so the wall never gives
+heat to what is hotter than it nor takes it from what is colder.
+
+Jackets
+-------
+A jacket holds the outer face of the barrel at the supply's saturation temperature;
+its heat reaches the deep node through the wall's thickness, ``k / L`` per unit of
+the barrel's mean exposed area (Marks Art. 79: the heads are usually not jacketed).
+"""
+
+from __future__ import annotations
+
+import math
+
+#: Grey cast iron (makeitfrom.com, "Grey Cast Iron"): conductivity [W/(m K)], specific
+#: heat [J/(kg K)], density [kg/m3].
+CAST_IRON_K, CAST_IRON_C, CAST_IRON_RHO = 46.0, 490.0, 7500.0
+#: Coefficient of condensation and evaporation on the surface [W/(m2 K)]: dropwise
+#: condensation's order (see the module docstring).
+CONDENSING_W_M2K = 3.0e5
+#: Film of water over which the wall counts as wetted: 10 microns, where a draining
+#: film breaks into drops and rivulets [kg/m2].
+FILM_WET_KG_M2 = 1.0e-2
+#: The thickest film a surface holds before the water runs off into the steam [kg/m2]:
+#: Nusselt's film thickness, [4 mu_l k_l L dT / (rho_l^2 g h_fg)]^(1/4), about 0.1 mm
+#: for a 12 in cover and a 20 K drop.
+FILM_MAX_KG_M2 = 0.1
+#: The mixture's wetness from which wet steam wets the whole wall [-].
+WET_BAND = 0.02
+#: Skin-model columns of a node's wall-heat row (after code, h_c, k, mu, Pr).
+COL_CAPACITY, COL_CONDUCTANCE, COL_AREA, COL_STATE, COL_JACKET_GA, COL_JACKET_T = 5, 6, 7, 8, 9, 10
+
+
+def skin_depth_m(omega_rad_s: float, k: float = CAST_IRON_K, c: float = CAST_IRON_C,
+                 rho: float = CAST_IRON_RHO) -> float:
+    """Depth [m] at which the cycle's temperature wave falls to 1/e,
+    sqrt(2 alpha / omega) (Carslaw & Jaeger sec. 2.6)."""
+    return math.sqrt(2.0 * k / (rho * c) / omega_rad_s)
+
+
+def surface_node(omega_rad_s: float) -> tuple[float, float]:
+    """(areal capacity [J/(m2 K)], conductance to the deep wall [W/(m2 K)]) of the lumped
+    surface node that has a semi-infinite cast-iron wall's impedance at omega."""
+    d = skin_depth_m(omega_rad_s)
+    return CAST_IRON_RHO * CAST_IRON_C * d / 2.0, CAST_IRON_K / d
+
+
+def nusselt_film_W_m2K(rho_l: float, rho_v: float, h_fg: float, k_l: float, mu_l: float,
+                       height_m: float, dT_K: float, g: float = 9.80665) -> float:
+    """Nusselt's mean coefficient of laminar film condensation on a vertical surface of
+    height ``height_m`` [W/(m2 K)] (Z. VDI 60, 1916)."""
+    return 0.943 * (rho_l * (rho_l - rho_v) * g * h_fg * k_l ** 3
+                    / (mu_l * height_m * dT_K)) ** 0.25
+
+
+def film_enthalpies(T_K: float) -> tuple[float, float]:
+    """(h_L, L) [J/kg]: saturated water's enthalpy and the latent heat at ``T_K``, the
+    film's constants over a run (IAPWS-95)."""
+    import CoolProp.CoolProp as CP
+    T = min(max(T_K, 280.0), 640.0)
+    h_f = CP.PropsSI("H", "T", T, "Q", 0.0, "Water")
+    return h_f, CP.PropsSI("H", "T", T, "Q", 1.0, "Water") - h_f
+
+
+def mean_exposed_area_m2(geometry, end: int, n: int = 361) -> float:
+    """The wall one end's steam touches, averaged over the cycle [m2] (the area of
+    :func:`corliss.engine.condensation.exposed_wall_m2`)."""
+    import numpy as np
+
+    from corliss.engine.condensation import exposed_wall_m2
+    th = np.linspace(0.0, 2.0 * math.pi, n)
+    return float(np.mean(exposed_wall_m2(geometry, end, th)))
+
+
+def skin_row(geometry, end: int, omega_rad_s: float, h_c: float, steam_props,
+             state_index: int, jacket_T_K: float | None = None,
+             wall_thickness_m: float = 0.025) -> tuple:
+    """A node's wall-heat row for the skin model (columns as HEAT_COLUMNS)."""
+    import numpy as np
+    k, mu, pr = steam_props
+    cap, cond = surface_node(omega_rad_s)
+    area = mean_exposed_area_m2(geometry, end)
+    ga, tj = 0.0, 0.0
+    if jacket_T_K is not None:
+        ap = geometry.area_head_m2 if end == 0 else geometry.area_crank_m2
+        th = np.linspace(0.0, 2.0 * math.pi, 361)
+        barrel = math.pi * geometry.spec.bore_m * float(np.mean(geometry.volumes_m3(th)[end])) / ap
+        ga, tj = CAST_IRON_K / wall_thickness_m * barrel, jacket_T_K
+    return (4.0, h_c, k, mu, pr, cap, cond, area, float(state_index), ga, tj)
