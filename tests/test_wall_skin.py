@@ -213,15 +213,15 @@ def test_the_skin_matches_a_semi_infinite_wall_at_the_engine_frequency():
                                                           math.sin(math.pi / 4)), rel=1e-12)
 
 
-def test_the_kernel_reads_the_dryness_the_orifice_encodes():
-    """The wall's wetted share is read from the isentropic exponent the property step
-    stores (kappa_of: Zeuner's 1.035 + 0.1 x when wet); if that encoding changes, this
-    fails instead of the wall silently drying."""
-    from corliss.thermo.orifice import kappa_of
-    assert kernel.wetted_share(kappa_of(1.0, False)) == 0.0
-    assert kernel.wetted_share(kappa_of(0.99, False)) == pytest.approx(0.5)   # mid-step
-    assert kernel.wetted_share(kappa_of(0.9, False)) == 1.0
-    assert kernel.wetted_share(kappa_of(1.0, True)) == 0.0
+def test_the_wall_is_wetted_by_the_mixtures_dryness():
+    """The wall's wetted share is read from the mixture's dryness, which the property
+    step stores in its own row (``PR_X``; the port flow's exponent is the real fluid's
+    and says nothing of the dryness): wholly wet below 1 - WET_BAND, dry at x = 1, the
+    cubic step's middle half-way between."""
+    assert kernel.PR_X < kernel.PR_ROWS and kernel.PR_X != kernel.PR_CLAMP
+    assert kernel.wetted_share(1.0) == 0.0
+    assert kernel.wetted_share(1.0 - kernel.WET_BAND / 2) == pytest.approx(0.5)
+    assert kernel.wetted_share(0.9) == 1.0
 
 
 # --- every cylinder its own wall ----------------------------------------------------

@@ -67,8 +67,10 @@ U_MIN = PARAMS["kappa_u_min"]   # [J/kg], saturated water at the triple point
 U_MAX = PARAMS["u_max"]         # [J/kg], superheated steam beyond 1273 K
 #: Rows of the node-property scratch ``pr`` (see :func:`node_states`); the last holds
 #: each node's clamp code of the latest evaluation.
-PR_ROWS = 9
+PR_ROWS = 10
 PR_CLAMP = 8
+#: row of the node properties holding the mixture's dryness [-] (1 when superheated)
+PR_X = 9
 #: What the cycle integrator reports of clamps (the array it returns last): clamped
 #: evaluations at visited states, at trial states, the codes of each (OR of the
 #: bits), and the shaft angle [rad] and node of the first visited one.
@@ -191,14 +193,11 @@ WET_BAND = 0.02
 
 
 @njit(cache=True, inline="always")
-def wetted_share(kappa):
-    """Share of a wall wet steam wets [-], from the mixture's dryness as ``kappa_of``
-    encodes it (Zeuner's 1.035 + 0.1 x when wet, 1.3 superheated): 1 while the mixture
-    holds more than WET_BAND of water, falling smoothly (a cubic step) to 0 at dry
-    steam."""
-    if kappa > 1.2:
-        return 0.0
-    w = min(max((1.0 - (kappa - 1.035) / 0.1) / WET_BAND, 0.0), 1.0)
+def wetted_share(x):
+    """Share of a wall wet steam wets [-], from the mixture's dryness ``x`` [-] (1 when
+    dry or superheated): 1 while the mixture holds more than WET_BAND of water, falling
+    smoothly (a cubic step) to 0 at dry steam."""
+    w = min(max((1.0 - x) / WET_BAND, 0.0), 1.0)
     return w * w * (3.0 - 2.0 * w)
 
 
@@ -249,7 +248,7 @@ def balances(th, y, pr, dy, net, areas):
                     # film is gone, the water wet steam brings to it
                     wf = min(max(mf / (FILM_WET * Aw), 0.0), 1.0)
                     wf = wf * wf * (3.0 - 2.0 * wf)      # smooth at dry and fully wet
-                    hm = hf * (1.0 - wf) * wetted_share(pr[3, i])
+                    hm = hf * (1.0 - wf) * wetted_share(pr[PR_X, i])
                     hf *= wf
                 qf = hf * (Tw - Tsat) * A            # [W] from the wall into the film
                 qm = hm * (Tw - Tsat) * A            # [W] into the mixture's water
@@ -388,6 +387,7 @@ def node_states(th, y, net, tier, tab, perf, pr):
         pr[3, i] = 1.0 + perf[0] / perf[1] if tier == TIER_PERFECT else kappa_at(tab, rho, u)
         pr[6, i] = T
         pr[PR_CLAMP, i] = code
+        pr[PR_X, i] = 1.0 if sup else x
         # the temperature of a wetted wall at this pressure, for the wall-heat effect only
         if net[19][i, 0] > 0.0:
             pr[7, i] = t_sat(tab, p) if (sup and tier != TIER_PERFECT) else T

@@ -51,7 +51,7 @@ from corliss.errors import RunError
 
 #: Revision of the inlined kernel, property and port-flow code: numba keys this file's
 #: cache on its content alone (see :mod:`corliss.engine.kernel`).
-DEPENDENCY_REVISION = 7
+DEPENDENCY_REVISION = 8
 
 TWO_PI = 2.0 * math.pi
 
