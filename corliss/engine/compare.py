@@ -1,0 +1,412 @@
+"""Throttling against cut-off governing: one engine governed both ways across its load.
+
+A governor meets a lighter load either by closing a throttle in the steam pipe, the
+cut-off fixed, or by shortening the cut-off, the throttle wide open.  On the card the
+second wins: the steam is expanded further instead of being wire-drawn (Marks,
+*Relative Proportions of the Steam-Engine*, Art. 2).  But the shorter the cut-off the
+larger the initial condensation (Marks Arts. 74-75), which eats into that advantage,
+and for a small engine may reverse it.  This study runs both: from one scene's
+engine, a throttled variant at a fixed gear setting and a cut-off variant at full
+throttle, each at a series of loads, with and without the wall-heat effect.
+
+At each load the operating point is the throttle opening or gear setting that gives
+the engine that power at the scene's speed: a root of power against the knob,
+bracketed on a grid of the knob, solved on the ``fast`` tier and refined on the
+scene's.  The runs go to every core the machine has (processes).
+
+Both variants keep the same steam chest and pipe: the scene's, or when the scene has
+none, a chest of :data:`DEFAULT_CHEST_OF_SWEPT` of the swept volume and a pipe sized
+for :data:`PIPE_STEAM_SPEED_M_S` at the mean piston speed.  A chest charges between
+admissions and then expands into the cylinder like an early cut-off; that is real, and
+the table shows it (``chest_pressure_admission_Pa``).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import logging
+import math
+import os
+import time
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from typing import Callable
+
+import numpy as np
+import pandas as pd
+
+from corliss.engine.model import at_knob, build_gear, geometry_of, steady_scene
+from corliss.engine.result import willans_fit
+from corliss.engine.steady import run_steady
+from corliss.errors import InputError, RunError
+
+log = logging.getLogger(__name__)
+
+__all__ = ["VARIANTS", "compare", "variants", "DEFAULT_LOADS"]
+
+#: The two governings, in the order of the tables.
+VARIANTS = ("throttling", "cutoff")
+#: Loads of the study, as fractions of the rated power [-].
+DEFAULT_LOADS = tuple(round(0.1 * i, 10) for i in range(1, 12))
+#: A chest added when the scene has none, as a fraction of the head end's swept volume
+#: (a slide-valve chest of the period held some tenth of the cylinder; the Watt scene's
+#: 0.2 ft3 is 13 %).
+DEFAULT_CHEST_OF_SWEPT = 0.10
+#: Steam speed in the supply pipe at the mean piston speed when the scene gives no pipe
+#: [m/s]: the rule of the time, 6000 ft/min (Kent, *Mechanical Engineers' Pocket-Book*,
+#: "Steam pipes"), the pipe's area = piston area x piston speed / 6000 ft/min.
+PIPE_STEAM_SPEED_M_S = 6000.0 * 0.3048 / 60.0
+#: Knob values of the grid that brackets each operating point [-].
+GRID_POINTS = 9
+#: Least throttle opening the study tries [-] (a shut throttle runs no engine); the
+#: grid of openings is geometric, the power changing most at small openings.
+LEAST_OPENING = 0.005
+#: The refined operating point's power is within this fraction of the asked power [-].
+POWER_TOL = 0.003
+#: The fast tier's root is within this fraction of the asked power [-].
+FAST_TOL = 0.002
+#: Most refinement steps on the scene's tier.
+MAX_REFINE = 5
+
+
+@dataclasses.dataclass(frozen=True)
+class Variant:
+    """One governing of the engine.
+
+    Attributes
+    ----------
+    name : str
+        ``"throttling"`` or ``"cutoff"``.
+    knob : str
+        The knob the governor works: ``"throttle"`` or ``"setting"``.
+    knob_range : (float, float)
+        Its range [-].
+    scene : Scene
+        The steady scene with the other knob fixed (throttle wide open, or the gear at
+        the throttled variant's setting).
+    fixed : float
+        The other knob's value [-].
+    """
+
+    name: str
+    knob: str
+    knob_range: tuple[float, float]
+    scene: object
+    fixed: float
+
+
+def _with_chest(scene, chest_volume_m3: float | None, pipe_diameter_m: float | None):
+    """The scene with a steam chest and pipe (its own, or the defaults)."""
+    sup = scene.supply
+    geo = geometry_of(scene)
+    vol = chest_volume_m3 or sup.chest_volume_m3 or DEFAULT_CHEST_OF_SWEPT * float(geo.swept_m3[0])
+    if pipe_diameter_m is None and sup.pipe_diameter_m is None:
+        piston_speed = 2.0 * scene.engine.stroke_m * scene.run.speed_rad_s / (2.0 * math.pi)
+        area = math.pi / 4.0 * scene.engine.bore_m ** 2 * piston_speed / PIPE_STEAM_SPEED_M_S
+        pipe_diameter_m = math.sqrt(4.0 * area / math.pi)
+    pipe = pipe_diameter_m or sup.pipe_diameter_m
+    effects = tuple(dict.fromkeys(scene.run.effects + ("steam_chest",)))
+    sc = scene.replace_run(effects=effects)
+    return dataclasses.replace(sc, supply=dataclasses.replace(
+        sup, chest_volume_m3=vol, pipe_diameter_m=pipe, throttle=1.0))
+
+
+def _with_wall_heat(scene, on: bool):
+    eff = tuple(e for e in scene.run.effects if e != "wall_heat")
+    return scene.replace_run(effects=eff + (("wall_heat",) if on else ()))
+
+
+def variants(scene, *, throttled_setting: float | None = None,
+             setting_range: tuple[float, float] | None = None,
+             chest_volume_m3: float | None = None,
+             pipe_diameter_m: float | None = None) -> dict[str, Variant]:
+    """The throttled and the cut-off-governed variants of ``scene``'s engine.
+
+    Parameters
+    ----------
+    scene : Scene
+        Any scene whose gear has a setting (the cut-off variant works it).
+    throttled_setting : float, optional
+        The gear setting the throttled variant keeps [-] (default: the scene's).
+    setting_range : (float, float), optional
+        The settings the cut-off governor may use [-] (default: the gear's range).
+    chest_volume_m3, pipe_diameter_m : float, optional
+        Steam chest [m3] and pipe [m] of both variants (default: the scene's, else
+        :data:`DEFAULT_CHEST_OF_SWEPT` of the swept volume and a pipe for
+        :data:`PIPE_STEAM_SPEED_M_S`).
+
+    Raises
+    ------
+    InputError
+        A gear without a setting, or a setting out of the gear's range.
+    """
+    base = steady_scene(scene)
+    gear = build_gear(base)
+    if gear.setting_range is None:
+        raise InputError("valve_gear.type", scene.gear_type, "a gear with a setting (cut-off "
+                         "governing works it); the throttled engine alone is `corliss sweep "
+                         "--throttle`")
+    lo, hi = gear.setting_range
+    rng = tuple(float(v) for v in (setting_range or (lo, hi)))
+    if not (lo <= min(rng) < max(rng) <= hi):
+        raise InputError("--setting-range", rng, f"two settings from {lo} to {hi}")
+    fixed = float(gear.spec.setting if throttled_setting is None else throttled_setting)
+    if not lo <= fixed <= hi:
+        raise InputError("--throttled-setting", fixed, f"a setting from {lo} to {hi}")
+    for v, key in ((chest_volume_m3, "chest_volume_m3"), (pipe_diameter_m, "pipe_diameter_m")):
+        if v is not None and not v > 0:
+            raise InputError(key, v, "a positive size")
+    base = _with_chest(base, chest_volume_m3, pipe_diameter_m)
+    thr = at_knob(base, "setting", fixed)
+    return {"throttling": Variant("throttling", "throttle", (LEAST_OPENING, 1.0), thr, fixed),
+            "cutoff": Variant("cutoff", "setting", (min(rng), max(rng)), base, 1.0)}
+
+
+# --- one steady run, and the rows made of it ---------------------------------------------
+
+def _run(scene, knob: str, value: float, tier: str | None) -> dict | None:
+    """One steady run's figures (None if the run stopped)."""
+    sc = at_knob(scene, knob, value)
+    if tier is not None:
+        sc = sc.with_fidelity(tier)
+    try:
+        r = run_steady(sc)
+    except RunError as exc:
+        log.debug("%s at %s: %s", knob, value, exc)
+        return None
+    s = r.summary
+    ts = r.timeseries[r.timeseries["cycle"] == r.timeseries["cycle"].max()]
+    adm = s["events"]["head"].get("admission_deg")
+    p_adm = float("nan")
+    if adm is not None and "p_chest_Pa" in ts:
+        ang = np.mod(ts["crank_angle_deg"].to_numpy(), 360.0)
+        ang, idx = np.unique(ang, return_index=True)
+        p_adm = float(np.interp(adm, ang, ts["p_chest_Pa"].to_numpy()[idx], period=360.0))
+    miss = [s[k] for k in ("missing_water_fraction_head", "missing_water_fraction_crank")
+            if s.get(k) is not None]
+    return {"indicated_power_W": s["indicated_power_W"],
+            "brake_power_W": s.get("brake_power_W", s["indicated_power_W"]),
+            "steam_rate_kg_per_h": s["steam_rate_kg_per_h"],
+            "water_rate_kg_per_kWh": (s["water_rate_kg_per_kWh"]
+                                      if s["indicated_power_W"] > 0 else float("nan")),
+            "cutoff_head_frac": s["events"]["head"]["cutoff_frac"],
+            "chest_pressure_admission_Pa": p_adm,
+            "missing_water_frac": float(np.mean(miss)) if miss else float("nan"),
+            "rhs_evaluations": r.rhs_evaluations}
+
+
+def _power(row: dict | None, brake: bool) -> float:
+    if row is None:
+        return float("nan")
+    return row["brake_power_W" if brake else "indicated_power_W"]
+
+
+def _grid_task(scene, knob, value):
+    return value, _run(scene, knob, value, "fast")
+
+
+def _point_task(scene, knob, bracket, target_W, brake, tier):
+    """The operating point at ``target_W``: a bracketed root on the fast tier, refined by
+    secant steps on the scene's tier (``tier`` None: the fast root is final)."""
+    (a, pa), (b, pb) = bracket
+    lo_k, hi_k = min(a, b), max(a, b)
+    runs = 0
+    cache = {}
+
+    def f(k):
+        nonlocal runs
+        runs += 1
+        row = _run(scene, knob, k, "fast")
+        cache[k] = row
+        p = _power(row, brake)
+        if not math.isfinite(p):
+            raise RunError(f"{knob} {k}: the run stopped")
+        return p - target_W
+
+    # regula falsi, Illinois-modified: a bracketing root to FAST_TOL of the power
+    fa, fb = pa - target_W, pb - target_W
+    k, fk = (a, fa) if abs(fa) < abs(fb) else (b, fb)
+    for _ in range(40):
+        if abs(fk) <= FAST_TOL * abs(target_W) or fa == fb:
+            break
+        k = b - fb * (b - a) / (fb - fa)
+        fk = f(k)
+        if fk * fb < 0:
+            a, fa = b, fb
+        else:
+            fa = fa / 2.0
+        b, fb = k, fk
+    row = cache.get(k) or _run(scene, knob, k, "fast")
+    slope = (pb - pa) / (b - a)
+    if tier is not None and tier != "fast":
+        pts = []
+        for _ in range(MAX_REFINE):
+            row = _run(scene, knob, k, tier)
+            runs += 1
+            err = _power(row, brake) - target_W
+            if not math.isfinite(err):
+                raise RunError(f"{knob} {k}: the run stopped on the {tier} tier")
+            pts.append((k, err))
+            if abs(err) <= POWER_TOL * abs(target_W):
+                break
+            if len(pts) >= 2 and pts[-1][1] != pts[-2][1]:
+                slope = (pts[-1][1] - pts[-2][1]) / (pts[-1][0] - pts[-2][0])
+            k = float(np.clip(k - err / slope, lo_k, hi_k))
+    return k, row, runs
+
+
+def _map(tasks, workers: int, progress, done0: int, total: int):
+    """Run ``tasks`` [(fn, args)] on ``workers`` processes (serial with one); results in
+    order."""
+    out = [None] * len(tasks)
+    done = done0
+    if workers <= 1:
+        for i, (fn, args) in enumerate(tasks):
+            out[i] = _safe(fn, *args)
+            done += 1
+            if progress:
+                progress(done, total)
+        return out, done
+    with ProcessPoolExecutor(max_workers=workers) as pool:
+        futs = {pool.submit(_safe, fn, *args): i for i, (fn, args) in enumerate(tasks)}
+        for fut in as_completed(futs):
+            out[futs[fut]] = fut.result()
+            done += 1
+            if progress:
+                progress(done, total)
+    return out, done
+
+
+def _safe(fn, *args):
+    try:
+        return fn(*args)
+    except (RunError, ValueError) as exc:
+        return exc
+
+
+def rated_power_W(scene, brake: bool) -> float | None:
+    """The scene's rated power [W]: its load at the start (torque x speed), or None."""
+    if scene.load is None:
+        return None
+    return scene.load.torque_N_m * scene.load.fractions[0] * scene.run.speed_rad_s
+
+
+def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
+            fidelity: str | None = None, workers: int | None = None,
+            progress: Callable[[int, int], None] | None = None, **variant_options):
+    """Run the throttling-versus-cut-off study of ``scene``'s engine.
+
+    Parameters
+    ----------
+    scene : Scene
+        A scene whose gear has a setting; a transient one is run steady at its speed.
+    loads : sequence of float
+        Loads as fractions of the rated power [-]: the scene's load (brake power when
+        ``friction`` is named, else indicated), or without a load, the throttled
+        variant's power wide open.
+    condensation : str
+        ``"both"``, ``"on"`` or ``"off"``: with the ``wall_heat`` effect, without, or
+        both.
+    fidelity : str, optional
+        The tier the operating points are refined on (default: the scene's).
+    workers : int, optional
+        Processes (default: every core).
+    progress : callable, optional
+        Called with (runs done, runs in all).
+    **variant_options
+        ``throttled_setting``, ``setting_range``, ``chest_volume_m3``,
+        ``pipe_diameter_m`` (see :func:`variants`).
+
+    Returns
+    -------
+    CompareResult
+    """
+    from corliss.engine.compare_result import CompareResult
+
+    t0 = time.perf_counter()
+    loads = [float(v) for v in loads]
+    if not loads or any(not (0.0 < v <= 2.0) for v in loads):
+        raise InputError("--loads", loads, "fractions of the rated power above 0, up to 2")
+    if condensation not in ("both", "on", "off"):
+        raise InputError("--with-condensation", condensation, "both, on or off")
+    if fidelity is not None:
+        scene = scene.with_fidelity(fidelity)
+    tier = scene.run.fidelity.name
+    var = variants(scene, **variant_options)
+    conds = {"both": (False, True), "on": (True,), "off": (False,)}[condensation]
+    brake = scene.run.has("friction")
+    workers = workers or os.cpu_count() or 1
+
+    groups = {}
+    for v in var.values():
+        for c in conds:
+            groups[(v.name, c)] = dataclasses.replace(v, scene=_with_wall_heat(v.scene, c))
+    # the full-power run of each group sets the rated power when the scene has no load
+    rated = rated_power_W(scene, brake)
+    grid_tasks, grid_keys = [], []
+    for key, v in groups.items():
+        grid = (np.geomspace if v.knob == "throttle" else np.linspace)(*v.knob_range,
+                                                                       GRID_POINTS)
+        for k in grid:
+            grid_tasks.append((_grid_task, (v.scene, v.knob, float(k))))
+            grid_keys.append(key)
+    total = len(grid_tasks) + len(groups) * len(loads)
+    grid, done = _map(grid_tasks, workers, progress, 0, total)
+    curves = {key: [] for key in groups}
+    runs = len(grid_tasks)
+    for key, res in zip(grid_keys, grid):
+        if isinstance(res, Exception) or res[1] is None:
+            continue
+        curves[key].append((res[0], _power(res[1], brake)))
+    if rated is None:
+        p = [pw for k, pw in curves[("throttling", False if False in conds else True)]]
+        rated = max(p) if p else float("nan")
+
+    point_tasks, point_keys = [], []
+    for key, v in groups.items():
+        curve = curves[key]
+        for load in loads:
+            target = load * rated
+            bracket = None
+            for (k0, p0), (k1, p1) in zip(curve, curve[1:]):
+                if (p0 - target) * (p1 - target) <= 0 and p0 != p1:
+                    bracket = ((k0, p0), (k1, p1))
+                    break
+            point_keys.append((key, load, target, bracket))
+            if bracket is not None:
+                point_tasks.append((_point_task, (v.scene, v.knob, bracket, target, brake,
+                                                  None if tier == "fast" else tier)))
+    found, _ = _map(point_tasks, workers, progress, done, total)
+    found = iter(found)
+    rows = []
+    for (name, cond), load, target, bracket in point_keys:
+        v = groups[(name, cond)]
+        base = {"load_frac": load, "variant": name, "condensation": "on" if cond else "off",
+                "knob": v.knob, "target_power_W": target}
+        res = next(found) if bracket is not None else None
+        if bracket is None or isinstance(res, Exception) or res[1] is None:
+            why = ("beyond the engine's reach" if bracket is None else f"no steady run: {res}")
+            log.info("%s, condensation %s, load %.2f: %s", name, base["condensation"], load, why)
+            rows.append({**base, "status": "unreached", "knob_frac": float("nan")})
+            continue
+        k, row, n = res
+        runs += n
+        row = dict(row)
+        row.pop("rhs_evaluations", None)
+        if not brake:
+            row.pop("brake_power_W", None)
+        got = row["brake_power_W" if brake else "indicated_power_W"]
+        rows.append({**base, "status": "found", "knob_frac": k, **row,
+                     "power_error_frac": (got - target) / target})
+    points = pd.DataFrame(rows)
+    return CompareResult(scene=scene, property_tier=scene.run.fidelity.properties,
+                         timeseries=points, cycles=points, rhs_evaluations=0,
+                         wall_time_s=time.perf_counter() - t0, loads=loads,
+                         variants={n: {"knob": v.knob, "knob_range": list(v.knob_range),
+                                       "fixed": v.fixed} for n, v in var.items()},
+                         rated_power_W=rated, brake=brake, runs=runs,
+                         chest_volume_m3=var["cutoff"].scene.supply.chest_volume_m3,
+                         pipe_diameter_m=var["cutoff"].scene.supply.pipe_diameter_m,
+                         workers=workers)
+
+
+__all__ += ["Variant", "rated_power_W", "willans_fit"]
