@@ -9,9 +9,9 @@
     The valve events of each end, without simulating; at several gear settings.
 ``corliss gear SCENE [--out DIR]``
     Valve travel, port openings and the Zeuner diagram, as PNG.
-``corliss sweep SCENE --settings 0,0.5,1 | --throttle 0.2,0.6,1 [--out DIR]``
-    Steady cards across the load range at each gear setting or throttle opening: a
-    CSV with its meta file and the Willans line as PNG.
+``corliss sweep SCENE [--settings 0,0.5,1] [--throttle 0.2,0.6,1] [--fidelity F] [--json] [--out DIR]``
+    Steady cards across the load range at each gear setting and/or throttle opening:
+    a CSV with its meta file and the Willans lines as PNG.
 ``corliss compare SCENE [--loads 0.1:1.1:0.1] [--with-condensation both|on|off] [--fidelity F] [--json] [--out DIR]``
     Throttling against cut-off governing of one engine across its load range, with
     and without condensation: the table (CSV with its meta), the Willans lines and
@@ -43,7 +43,7 @@ from pathlib import Path
 
 import corliss
 from corliss import units
-from corliss.engine.load_range import load_range
+from corliss.engine.load_range import load_ranges
 from corliss.engine.model import build_gear, scene_events
 from corliss.engine.simulate import simulate
 from corliss.errors import InputError, RunError
@@ -310,17 +310,19 @@ def cmd_sweep(args) -> int:
     scene = _load(args.scene, args.units)
     if args.fidelity:
         scene = scene.with_fidelity(args.fidelity)
-    if (args.settings is None) == (args.throttle is None):
-        raise InputError("--settings", args.settings, "either --settings or --throttle, e.g. "
+    if args.settings is None and args.throttle is None:
+        raise InputError("--settings", args.settings, "--settings, --throttle or both, e.g. "
                          "--settings 0,0.25,0.5,0.75,1 or --throttle 0.2,0.4,0.6,0.8,1")
-    knob, flag, text = (("setting", "--settings", args.settings) if args.settings is not None
-                        else ("throttle", "--throttle", args.throttle))
-    values = _numbers(flag, text)
-    if len(values) < 2:
-        raise InputError(flag, text, "two values or more")
+    values = {}
+    for knob, flag, text in (("setting", "--settings", args.settings),
+                             ("throttle", "--throttle", args.throttle)):
+        if text is not None:
+            values[knob] = _numbers(flag, text)
+            if len(values[knob]) < 2:
+                raise InputError(flag, text, "two values or more")
     bar = None if args.json else ProgressBar("runs")
     try:
-        result = load_range(scene, knob, values, progress=bar)   # values checked before work
+        result = load_ranges(scene, values, progress=bar)   # values checked before work
     finally:
         if bar:
             bar.close()

@@ -263,8 +263,10 @@ def plot_result(result, kind: str, ax=None, units_system: str | None = None) -> 
         return plot.plot_load_step(result, units_system=units_system)
     if kind == "compare":
         return plot.plot_compare(result, units_system or result.scene.output.units)
-    label = f"{result.scene.title} ({result.knob})"
-    return plot.plot_willans({label: result.points}, ax,
+    pts = result.points
+    sweeps = ({f"{result.scene.title} ({k})": g for k, g in pts.groupby("knob", sort=False)}
+              if "knob" in pts else {f"{result.scene.title} ({result.knob})": pts})
+    return plot.plot_willans(sweeps, ax,
                              units_system or result.scene.output.units)
 
 

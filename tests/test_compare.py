@@ -144,3 +144,28 @@ def test_cli_compare_writes_table_figure_and_verdict(tmp_path, capsys):
     rc = main(["compare", "armington-sims-governor", "--loads", "0.1:0.05:0.1",
                "--out", str(tmp_path / "no")])
     assert rc == 2 and not (tmp_path / "no").exists()
+
+
+def test_sweep_takes_both_knobs_in_one_call(tmp_path, capsys):
+    """`corliss sweep` runs gear settings and throttle openings in one call, at the
+    fidelity asked, in units of one system (lb/h beside lb/hp-h)."""
+    text = find_scene("armington-sims-governor").read_text()
+    text = text.replace('barometer = "14.696 psia"', 'barometer = "14.696 psia"\n'
+                        'chest_volume = "0.06 ft3"\npipe_diameter = "3 in"')
+    text = text.replace('effects = ["port_flow", "rod_angularity", "friction"]',
+                        'effects = ["port_flow", "rod_angularity", "friction", "steam_chest"]')
+    scene = tmp_path / "small-with-chest.toml"
+    scene.write_text(text)
+    rc = main(["sweep", str(scene), "--settings", "0.6,0.9", "--throttle", "0.1,1",
+               "--fidelity", "fast", "--json", "--out", str(tmp_path)])
+    assert rc == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["knob"] == "both" and summary["fidelity"] == "fast"
+    assert summary["setting_willans_intercept_kg_per_h"] is not None
+    assert summary["throttle_willans_intercept_kg_per_h"] is not None
+    meta = json.loads((tmp_path / "small-with-chest.sweep.meta.json").read_text())
+    assert meta["columns"]["knob"].startswith("label")
+    assert meta["columns"]["steam_rate_lb_per_h"] == "lb/h"
+    assert meta["columns"]["water_rate_lb_per_hp_h"] == "lb/hp h"
+    csv = (tmp_path / "small-with-chest.sweep.csv").read_text().splitlines()
+    assert len(csv) == 5 and csv[0].startswith("knob,")
