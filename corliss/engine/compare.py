@@ -204,11 +204,13 @@ def _grid_task(scene, knob, value):
     return value, _run(scene, knob, value, "fast")
 
 
-def _point_task(scene, knob, bracket, target_W, brake, tier):
-    """The operating point at ``target_W``: a bracketed root on the fast tier, refined by
-    secant steps on the scene's tier (``tier`` None: the fast root is final)."""
+def _point_task(scene, knob, bracket, target_W, brake, tier, guess=None):
+    """The operating point at ``target_W``: a bracketed root on the fast tier (the first
+    trial at ``guess``, the root of the grid's interpolant), refined by secant steps on
+    the scene's tier (``tier`` None: the fast root is final)."""
     (a, pa), (b, pb) = bracket
     lo_k, hi_k = min(a, b), max(a, b)
+    slope = (pb - pa) / (b - a)
     runs = 0
     cache = {}
 
@@ -225,6 +227,14 @@ def _point_task(scene, knob, bracket, target_W, brake, tier):
     # regula falsi, Illinois-modified: a bracketing root to FAST_TOL of the power
     fa, fb = pa - target_W, pb - target_W
     k, fk = (a, fa) if abs(fa) < abs(fb) else (b, fb)
+    if guess is not None and lo_k < guess < hi_k and abs(fk) > FAST_TOL * abs(target_W):
+        k, fk = guess, f(guess)
+        if fk * fa > 0:
+            a, fa = k, fk
+        else:
+            b, fb = k, fk
+        if abs(fa) < abs(fb):            # the newest point last, as the loop wants it
+            a, fa, b, fb = b, fb, a, fa
     for _ in range(40):
         if abs(fk) <= FAST_TOL * abs(target_W) or fa == fb:
             break
@@ -236,7 +246,6 @@ def _point_task(scene, knob, bracket, target_W, brake, tier):
             fa = fa / 2.0
         b, fb = k, fk
     row = cache.get(k) or _run(scene, knob, k, "fast")
-    slope = (pb - pa) / (b - a)
     if tier is not None and tier != "fast":
         pts = []
         for _ in range(MAX_REFINE):
@@ -254,26 +263,47 @@ def _point_task(scene, knob, bracket, target_W, brake, tier):
     return k, row, runs
 
 
-def _map(tasks, workers: int, progress, done0: int, total: int):
-    """Run ``tasks`` [(fn, args)] on ``workers`` processes (serial with one); results in
-    order."""
+def _map(tasks, pool, progress, done0: int, total: int):
+    """Run ``tasks`` [(fn, args)] on the process ``pool`` (here, serially, when None);
+    results in order, an exception in place of a task's result when it failed."""
     out = [None] * len(tasks)
     done = done0
-    if workers <= 1:
+    if pool is None:
         for i, (fn, args) in enumerate(tasks):
             out[i] = _safe(fn, *args)
             done += 1
             if progress:
                 progress(done, total)
         return out, done
-    with ProcessPoolExecutor(max_workers=workers) as pool:
-        futs = {pool.submit(_safe, fn, *args): i for i, (fn, args) in enumerate(tasks)}
-        for fut in as_completed(futs):
-            out[futs[fut]] = fut.result()
-            done += 1
-            if progress:
-                progress(done, total)
+    futs = {pool.submit(_safe, fn, *args): i for i, (fn, args) in enumerate(tasks)}
+    for fut in as_completed(futs):
+        out[futs[fut]] = fut.result()
+        done += 1
+        if progress:
+            progress(done, total)
     return out, done
+
+
+def _guess(curve, bracket, target_W):
+    """The knob where the monotone cubic through the grid's powers gives ``target_W``
+    (None if it cannot be had): the operating point's first trial."""
+    from scipy.interpolate import PchipInterpolator
+    from scipy.optimize import brentq
+
+    k = np.array([c[0] for c in curve])
+    p = np.array([c[1] for c in curve])
+    ok = np.isfinite(p)
+    k, p = k[ok], p[ok]
+    order = np.argsort(k)
+    k, p = k[order], p[order]
+    if len(k) < 3 or np.any(np.diff(k) <= 0):
+        return None
+    try:
+        f = PchipInterpolator(k, p - target_W)
+        (a, _), (b, _) = bracket
+        return float(brentq(f, min(a, b), max(a, b), xtol=1e-9))
+    except ValueError:
+        return None
 
 
 def _safe(fn, *args):
@@ -350,7 +380,23 @@ def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
             grid_tasks.append((_grid_task, (v.scene, v.knob, float(k))))
             grid_keys.append(key)
     total = len(grid_tasks) + len(groups) * len(loads)
-    grid, done = _map(grid_tasks, workers, progress, 0, total)
+    # one pool for both rounds: a worker pays its imports and steam table once
+    pool = ProcessPoolExecutor(max_workers=workers) if workers > 1 else None
+    try:
+        return _solve(scene, loads, var, groups, grid_tasks, grid_keys, rated, brake, tier,
+                      pool, progress, total, t0, workers)
+    finally:
+        if pool is not None:
+            pool.shutdown()
+
+
+def _solve(scene, loads, var, groups, grid_tasks, grid_keys, rated, brake, tier, pool,
+           progress, total, t0, workers):
+    """The two rounds of :func:`compare`: the knob grids, then the operating points."""
+    from corliss.engine.compare_result import CompareResult
+
+    conds = sorted({c for _, c in groups})
+    grid, done = _map(grid_tasks, pool, progress, 0, total)
     curves = {key: [] for key in groups}
     runs = len(grid_tasks)
     for key, res in zip(grid_keys, grid):
@@ -374,8 +420,9 @@ def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
             point_keys.append((key, load, target, bracket))
             if bracket is not None:
                 point_tasks.append((_point_task, (v.scene, v.knob, bracket, target, brake,
-                                                  None if tier == "fast" else tier)))
-    found, _ = _map(point_tasks, workers, progress, done, total)
+                                                  None if tier == "fast" else tier,
+                                                  _guess(curve, bracket, target))))
+    found, _ = _map(point_tasks, pool, progress, done, total)
     found = iter(found)
     rows = []
     for (name, cond), load, target, bracket in point_keys:
