@@ -169,3 +169,23 @@ def test_sweep_takes_both_knobs_in_one_call(tmp_path, capsys):
     assert meta["columns"]["water_rate_lb_per_hp_h"] == "lb/hp h"
     csv = (tmp_path / "small-with-chest.sweep.csv").read_text().splitlines()
     assert len(csv) == 5 and csv[0].startswith("knob,")
+
+
+def test_scene_names_the_variants(tmp_path):
+    """A scene's [compare] section names the throttled variant's setting, the cut-off
+    governor's range and the chest; a bad one is refused when the scene is read."""
+    text = find_scene("armington-sims-governor").read_text()
+    good = tmp_path / "named.toml"
+    good.write_text(text + '\n[compare]\nthrottled_setting = 0.2\nsetting_range = [0.1, 0.9]\n'
+                    'chest_volume = "0.05 ft3"\npipe_diameter = "2.5 in"\n')
+    scene = load_scene(good)
+    assert scene.compare.throttled_setting == 0.2
+    r = compare(scene, [1.0], condensation="off", fidelity="fast", workers=1)
+    assert r.variants["throttling"]["fixed"] == 0.2
+    assert r.variants["cutoff"]["knob_range"] == [0.1, 0.9]
+    assert r.chest_volume_m3 == pytest.approx(0.05 * 0.3048 ** 3)
+    assert r.pipe_diameter_m == pytest.approx(2.5 * 0.0254)
+    bad = tmp_path / "bad.toml"
+    bad.write_text(text + '\n[compare]\nsetting_range = [0.5, 1.5]\n')
+    with pytest.raises(InputError, match="setting_range"):
+        load_scene(bad)

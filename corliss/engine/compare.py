@@ -344,7 +344,8 @@ def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
         Called with (runs done, runs in all).
     **variant_options
         ``throttled_setting``, ``setting_range``, ``chest_volume_m3``,
-        ``pipe_diameter_m`` (see :func:`variants`).
+        ``pipe_diameter_m`` (see :func:`variants`); by default the scene's ``[compare]``
+        section's.
 
     Returns
     -------
@@ -361,6 +362,10 @@ def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
     if fidelity is not None:
         scene = scene.with_fidelity(fidelity)
     tier = scene.run.fidelity.name
+    if scene.compare is not None:       # the scene's [compare] section, unless overridden
+        for k, v in dataclasses.asdict(scene.compare).items():
+            if v is not None:
+                variant_options.setdefault(k, v)
     var = variants(scene, **variant_options)
     conds = {"both": (False, True), "on": (True,), "off": (False,)}[condensation]
     brake = scene.run.has("friction")
