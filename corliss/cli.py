@@ -360,7 +360,10 @@ def print_verdict(result) -> None:
     unit = "lb/h" if us else "kg/h"
     s = result.summary
     print(f"{s['title']}: throttling or cut-off?")
-    print(f"  {s['speed_rpm']:.0f} rpm, rated {s['rated_power_W'] / (units.HP_W if us else 1e3):.1f} "
+    speeds = result.points["speed_rpm"]
+    print(f"  {speeds.max():.1f} to {speeds.min():.1f} rpm from no load to full (the "
+          f"governor's droop)" if s["governor_droop_applied"] else f"  {s['speed_rpm']:.0f} rpm")
+    print(f"  rated {s['rated_power_W'] / (units.HP_W if us else 1e3):.1f} "
           f"{'hp' if us else 'kW'} ({s['power_basis']}), chest "
           f"{s['chest_volume_m3'] / (units.FOOT_m ** 3 if us else 1.0):.3g} {'ft3' if us else 'm3'}; "
           f"throttled at setting {s['variants']['throttling']['fixed']:.3g}, cut-off over "
@@ -393,7 +396,7 @@ def cmd_compare(args) -> int:
     bar = None if args.json else ProgressBar("runs")
     try:
         result = compare(scene, loads, condensation=args.with_condensation,
-                         fidelity=args.fidelity, progress=bar)
+                         fidelity=args.fidelity, droop=not args.no_droop, progress=bar)
     finally:
         if bar:
             bar.close()
@@ -504,6 +507,8 @@ def build_parser() -> argparse.ArgumentParser:
                     help="with the wall-heat effect, without, or both (default)")
     cp.add_argument("--fidelity", choices=("reference", "standard", "fast"),
                     help="the tier the operating points are refined on (default the scene's)")
+    cp.add_argument("--no-droop", action="store_true", help="every load at the scene's speed "
+                    "(default: at the speed the scene's governor holds at that load)")
     cp.add_argument("--out", help="output directory (default: the scene's [output] dir)")
     cp.add_argument("--units", choices=("US", "SI"), help=units_help)
     cp.add_argument("--json", action="store_true", help="print the summary as JSON")

@@ -206,3 +206,16 @@ def test_small_engine_throttled_at_early_cutoff_can_come_out_ahead(small):
     assert v.loc[("on", 0.1), "cutoff_saving_frac"] < -0.05
     assert v.loc[("off", 0.1), "winner"] == "cutoff"
     assert v.loc[("off", 0.1), "cutoff_saving_frac"] > 0.1
+
+
+def test_governor_droop_sets_the_speed_of_each_load(study, small):
+    """With a governor in the scene, each load runs at the speed its static
+    characteristic balances at (Marks Art. 70): fastest at the lightest load; without
+    droop, all at the scene's speed."""
+    pts = study.points
+    assert study.droop
+    speed = pts.groupby("load_frac")["speed_rpm"].first()
+    assert speed.is_monotonic_decreasing and speed.iloc[0] > small.run.speed_rpm > speed.iloc[-1]
+    assert 0.02 < (speed.iloc[0] - speed.iloc[-1]) / small.run.speed_rpm < 0.1
+    flat = compare(small, [1.0], condensation="off", fidelity="fast", droop=False, workers=1)
+    assert list(flat.points["speed_rpm"]) == pytest.approx([small.run.speed_rpm] * 2)

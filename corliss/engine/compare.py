@@ -40,6 +40,7 @@ from corliss.engine.steady import run_steady
 from corliss.errors import InputError, RunError
 
 log = logging.getLogger(__name__)
+TWO_PI = 2.0 * math.pi
 
 __all__ = ["VARIANTS", "compare", "variants", "DEFAULT_LOADS"]
 
@@ -204,15 +205,18 @@ def _grid_task(scene, knob, value):
     return value, _run(scene, knob, value, "fast")
 
 
-def _point_task(scene, knob, bracket, target_W, brake, tier, guess=None):
+def _point_task(scene, knob, bracket, target_W, brake, tier, guess=None, exact=True):
     """The operating point at ``target_W``: a bracketed root on the fast tier (the first
     trial at ``guess``, the root of the grid's interpolant), refined by secant steps on
-    the scene's tier (``tier`` None: the fast root is final)."""
+    the scene's tier (``tier`` None: the fast root is final).  ``exact`` False: the
+    bracket's powers are estimates (the grid ran at another speed); they are run at this
+    scene's speed if the root is not found inside them."""
     (a, pa), (b, pb) = bracket
     lo_k, hi_k = min(a, b), max(a, b)
     slope = (pb - pa) / (b - a)
     runs = 0
     cache = {}
+    tol = FAST_TOL * abs(target_W)
 
     def f(k):
         nonlocal runs
@@ -224,27 +228,33 @@ def _point_task(scene, knob, bracket, target_W, brake, tier, guess=None):
             raise RunError(f"{knob} {k}: the run stopped")
         return p - target_W
 
-    # regula falsi, Illinois-modified: a bracketing root to FAST_TOL of the power
-    fa, fb = pa - target_W, pb - target_W
-    k, fk = (a, fa) if abs(fa) < abs(fb) else (b, fb)
-    if guess is not None and lo_k < guess < hi_k and abs(fk) > FAST_TOL * abs(target_W):
-        k, fk = guess, f(guess)
-        if fk * fa > 0:
-            a, fa = k, fk
-        else:
+    def illinois(a, fa, b, fb, guess):
+        """Regula falsi, Illinois-modified: a bracketing root to FAST_TOL of the power."""
+        k, fk = (a, fa) if abs(fa) < abs(fb) else (b, fb)
+        if guess is not None and lo_k < guess < hi_k and abs(fk) > tol:
+            k, fk = guess, f(guess)
+            if fk * fa > 0:
+                a, fa, b, fb = b, fb, k, fk      # the newest point is b, as below
+            else:
+                b, fb = k, fk
+        for _ in range(40):
+            if abs(fk) <= tol or fa == fb:
+                break
+            k = b - fb * (b - a) / (fb - fa)
+            fk = f(k)
+            if fk * fb < 0:
+                a, fa = b, fb
+            else:
+                fa = fa / 2.0
             b, fb = k, fk
-        if abs(fa) < abs(fb):            # the newest point last, as the loop wants it
-            a, fa, b, fb = b, fb, a, fa
-    for _ in range(40):
-        if abs(fk) <= FAST_TOL * abs(target_W) or fa == fb:
-            break
-        k = b - fb * (b - a) / (fb - fa)
-        fk = f(k)
-        if fk * fb < 0:
-            a, fa = b, fb
-        else:
-            fa = fa / 2.0
-        b, fb = k, fk
+        return k, fk
+
+    k, fk = illinois(a, pa - target_W, b, pb - target_W, guess)
+    if abs(fk) > tol and not exact:
+        fa, fb = f(a), f(b)
+        if fa * fb > 0:
+            raise RunError(f"no {knob} gives {target_W:.6g} W at this speed")
+        k, fk = illinois(a, fa, b, fb, k)
     row = cache.get(k) or _run(scene, knob, k, "fast")
     if tier is not None and tier != "fast":
         pts = []
@@ -313,6 +323,22 @@ def _safe(fn, *args):
         return exc
 
 
+def droop_speeds(scene, loads) -> dict[float, float] | None:
+    """The shaft speed at each load under the scene's governor [rad/s], or None without
+    one: the governor balances along its static characteristic (Marks Art. 70), at the
+    bottom of its working travel under full load and at the top with none, so the speed
+    falls linearly with the load across the governor's range (its droop), full load at
+    the slowest.  Loads beyond 1 extrapolate the line."""
+    if scene.governor is None or scene.governor_type is None:
+        return None
+    from corliss.engine.operating_point import characteristic_speed, working_travel
+    from corliss.governors import GOVERNORS
+    mech = GOVERNORS[scene.governor_type].build(scene.governor).mechanism(201)
+    z_lo, z_hi = working_travel(mech)
+    w_lo, w_hi = sorted(characteristic_speed(mech, z) for z in (z_lo, z_hi))
+    return {load: w_hi - (w_hi - w_lo) * load for load in loads}
+
+
 def rated_power_W(scene, brake: bool) -> float | None:
     """The scene's rated power [W]: its load at the start (torque x speed), or None."""
     if scene.load is None:
@@ -321,7 +347,7 @@ def rated_power_W(scene, brake: bool) -> float | None:
 
 
 def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
-            fidelity: str | None = None, workers: int | None = None,
+            fidelity: str | None = None, workers: int | None = None, droop: bool = True,
             progress: Callable[[int, int], None] | None = None, **variant_options):
     """Run the throttling-versus-cut-off study of ``scene``'s engine.
 
@@ -340,6 +366,10 @@ def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
         The tier the operating points are refined on (default: the scene's).
     workers : int, optional
         Processes (default: every core).
+    droop : bool
+        With a governor in the scene, run each load at the speed the governor holds
+        there (:func:`droop_speeds`); otherwise, and without a governor, at the scene's
+        speed.
     progress : callable, optional
         Called with (runs done, runs in all).
     **variant_options
@@ -370,6 +400,7 @@ def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
     conds = {"both": (False, True), "on": (True,), "off": (False,)}[condensation]
     brake = scene.run.has("friction")
     workers = workers or os.cpu_count() or 1
+    speeds = droop_speeds(scene, loads) if droop else None
 
     groups = {}
     for v in var.values():
@@ -389,14 +420,14 @@ def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
     pool = ProcessPoolExecutor(max_workers=workers) if workers > 1 else None
     try:
         return _solve(scene, loads, var, groups, grid_tasks, grid_keys, rated, brake, tier,
-                      pool, progress, total, t0, workers)
+                      pool, progress, total, t0, workers, speeds)
     finally:
         if pool is not None:
             pool.shutdown()
 
 
 def _solve(scene, loads, var, groups, grid_tasks, grid_keys, rated, brake, tier, pool,
-           progress, total, t0, workers):
+           progress, total, t0, workers, speeds):
     """The two rounds of :func:`compare`: the knob grids, then the operating points."""
     from corliss.engine.compare_result import CompareResult
 
@@ -417,23 +448,33 @@ def _solve(scene, loads, var, groups, grid_tasks, grid_keys, rated, brake, tier,
         curve = curves[key]
         for load in loads:
             target = load * rated
+            sc, crv = v.scene, curve
+            if speeds is not None:
+                # at the governor's speed for this load; the grid's powers scaled to it
+                # (the work of a turn changes little with a few per cent of speed)
+                w = speeds[load]
+                sc = v.scene.replace_run(speed_rad_s=w)
+                crv = [(k, p * w / scene.run.speed_rad_s) for k, p in curve]
             bracket = None
-            for (k0, p0), (k1, p1) in zip(curve, curve[1:]):
+            for (k0, p0), (k1, p1) in zip(crv, crv[1:]):
                 if (p0 - target) * (p1 - target) <= 0 and p0 != p1:
                     bracket = ((k0, p0), (k1, p1))
                     break
             point_keys.append((key, load, target, bracket))
             if bracket is not None:
-                point_tasks.append((_point_task, (v.scene, v.knob, bracket, target, brake,
+                point_tasks.append((_point_task, (sc, v.knob, bracket, target, brake,
                                                   None if tier == "fast" else tier,
-                                                  _guess(curve, bracket, target))))
+                                                  _guess(crv, bracket, target),
+                                                  speeds is None)))
     found, _ = _map(point_tasks, pool, progress, done, total)
     found = iter(found)
     rows = []
     for (name, cond), load, target, bracket in point_keys:
         v = groups[(name, cond)]
         base = {"load_frac": load, "variant": name, "condensation": "on" if cond else "off",
-                "knob": v.knob, "target_power_W": target}
+                "knob": v.knob,
+                "speed_rpm": (speeds[load] if speeds else scene.run.speed_rad_s) * 60 / TWO_PI,
+                "target_power_W": target}
         res = next(found) if bracket is not None else None
         if bracket is None or isinstance(res, Exception) or res[1] is None:
             why = ("beyond the engine's reach" if bracket is None else f"no steady run: {res}")
@@ -458,7 +499,7 @@ def _solve(scene, loads, var, groups, grid_tasks, grid_keys, rated, brake, tier,
                          rated_power_W=rated, brake=brake, runs=runs,
                          chest_volume_m3=var["cutoff"].scene.supply.chest_volume_m3,
                          pipe_diameter_m=var["cutoff"].scene.supply.pipe_diameter_m,
-                         workers=workers)
+                         workers=workers, droop=speeds is not None)
 
 
 __all__ += ["Variant", "rated_power_W", "willans_fit"]

@@ -16,7 +16,7 @@ from corliss.engine.result import Result, willans_fit
 
 #: Columns of the ``points`` table, in order (``brake_power_W`` with ``friction``).
 POINT_COLUMNS = ("load_frac", "variant", "condensation", "knob", "status", "knob_frac",
-                 "target_power_W", "indicated_power_W", "brake_power_W",
+                 "speed_rpm", "target_power_W", "indicated_power_W", "brake_power_W",
                  "steam_rate_kg_per_h", "water_rate_kg_per_kWh", "cutoff_head_frac",
                  "chest_pressure_admission_Pa", "missing_water_frac", "power_error_frac")
 
@@ -41,6 +41,8 @@ class CompareResult(Result):
         The steam chest [m3] and pipe [m] both variants have.
     workers : int
         Processes used [-].
+    droop : bool
+        Whether each load ran at its governor's speed (``speed_rpm`` in the table).
 
     Tables
     ------
@@ -64,6 +66,7 @@ class CompareResult(Result):
     chest_volume_m3: float = float("nan")
     pipe_diameter_m: float = float("nan")
     workers: int = 1
+    droop: bool = False
 
     @property
     def points(self) -> pd.DataFrame:
@@ -130,6 +133,7 @@ class CompareResult(Result):
                 "rated_power_W": self.rated_power_W,
                 "power_basis": "brake" if self.brake else "indicated",
                 "speed_rpm": s.run.speed_rad_s * 60.0 / (2.0 * np.pi),
+                "governor_droop_applied": self.droop,
                 "variants": self.variants, "chest_volume_m3": self.chest_volume_m3,
                 "pipe_diameter_m": self.pipe_diameter_m,
                 "willans": w.replace({np.nan: None}).to_dict(orient="records"),
