@@ -205,12 +205,14 @@ def _grid_task(scene, knob, value):
     return value, _run(scene, knob, value, "fast")
 
 
-def _point_task(scene, knob, bracket, target_W, brake, tier, guess=None, exact=True):
+def _point_task(scene, knob, bracket, target_W, brake, tier, guess=None, exact=True,
+                wider=None):
     """The operating point at ``target_W``: a bracketed root on the fast tier (the first
     trial at ``guess``, the root of the grid's interpolant), refined by secant steps on
     the scene's tier (``tier`` None: the fast root is final).  ``exact`` False: the
     bracket's powers are estimates (the grid ran at another speed); they are run at this
-    scene's speed if the root is not found inside them."""
+    scene's speed if the root is not found inside them, and ``wider`` (the neighbouring
+    grid knobs) if it is not between them either."""
     (a, pa), (b, pb) = bracket
     lo_k, hi_k = min(a, b), max(a, b)
     slope = (pb - pa) / (b - a)
@@ -252,6 +254,14 @@ def _point_task(scene, knob, bracket, target_W, brake, tier, guess=None, exact=T
     k, fk = illinois(a, pa - target_W, b, pb - target_W, guess)
     if abs(fk) > tol and not exact:
         fa, fb = f(a), f(b)
+        if fa * fb > 0 and wider is not None:
+            # the root moved past an end with the speed: beyond the end nearer the
+            # power asked, out to the neighbouring grid knob on that side
+            near, f_near = (a, fa) if abs(fa) < abs(fb) else (b, fb)
+            far = max(wider) if near == max(a, b) else min(wider)
+            a, fa, b = near, f_near, far
+            lo_k, hi_k = min(lo_k, *wider), max(hi_k, *wider)
+            fb = f(b) if b != a else fa
         if fa * fb > 0:
             raise RunError(f"no {knob} gives {target_W:.6g} W at this speed")
         k, fk = illinois(a, fa, b, fb, k)
@@ -455,17 +465,18 @@ def _solve(scene, loads, var, groups, grid_tasks, grid_keys, rated, brake, tier,
                 w = speeds[load]
                 sc = v.scene.replace_run(speed_rad_s=w)
                 crv = [(k, p * w / scene.run.speed_rad_s) for k, p in curve]
-            bracket = None
-            for (k0, p0), (k1, p1) in zip(crv, crv[1:]):
+            bracket = wider = None
+            for i, ((k0, p0), (k1, p1)) in enumerate(zip(crv, crv[1:])):
                 if (p0 - target) * (p1 - target) <= 0 and p0 != p1:
                     bracket = ((k0, p0), (k1, p1))
+                    wider = (crv[max(i - 1, 0)][0], crv[min(i + 2, len(crv) - 1)][0])
                     break
             point_keys.append((key, load, target, bracket))
             if bracket is not None:
                 point_tasks.append((_point_task, (sc, v.knob, bracket, target, brake,
                                                   None if tier == "fast" else tier,
                                                   _guess(crv, bracket, target),
-                                                  speeds is None)))
+                                                  speeds is None, wider)))
     found, _ = _map(point_tasks, pool, progress, done, total)
     found = iter(found)
     rows = []
