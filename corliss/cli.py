@@ -9,9 +9,13 @@
     The valve events of each end, without simulating; at several gear settings.
 ``corliss gear SCENE [--out DIR]``
     Valve travel, port openings and the Zeuner diagram, as PNG.
-``corliss sweep SCENE --settings 0,0.5,1 | --throttle 0.2,0.6,1 [--out DIR]``
-    Steady cards across the load range at each gear setting or throttle opening: a
-    CSV with its meta file and the Willans line as PNG.
+``corliss sweep SCENE [--settings 0,0.5,1] [--throttle 0.2,0.6,1] [--fidelity F] [--json] [--out DIR]``
+    Steady cards across the load range at each gear setting and/or throttle opening:
+    a CSV with its meta file and the Willans lines as PNG.
+``corliss compare SCENE [--loads 0.1:1.1:0.1] [--with-condensation both|on|off] [--fidelity F] [--json] [--out DIR]``
+    Throttling against cut-off governing of one engine across its load range, with
+    and without condensation: the table (CSV with its meta), the Willans lines and
+    steam rates (PNG), and a verdict printed: which governing uses less steam where.
 ``corliss bench [--repeats N] [--out DIR]``
     The accuracy-versus-time study of ``benchmarks/`` (from a source checkout).
 ``corliss list scenes|gears|effects|governors``
@@ -30,6 +34,7 @@ import argparse
 import dataclasses
 import json
 import logging
+import math
 import os
 import sys
 import time
@@ -38,7 +43,7 @@ from pathlib import Path
 
 import corliss
 from corliss import units
-from corliss.engine.load_range import load_range
+from corliss.engine.load_range import load_ranges
 from corliss.engine.model import build_gear, scene_events
 from corliss.engine.simulate import simulate
 from corliss.errors import InputError, RunError
@@ -305,17 +310,19 @@ def cmd_sweep(args) -> int:
     scene = _load(args.scene, args.units)
     if args.fidelity:
         scene = scene.with_fidelity(args.fidelity)
-    if (args.settings is None) == (args.throttle is None):
-        raise InputError("--settings", args.settings, "either --settings or --throttle, e.g. "
+    if args.settings is None and args.throttle is None:
+        raise InputError("--settings", args.settings, "--settings, --throttle or both, e.g. "
                          "--settings 0,0.25,0.5,0.75,1 or --throttle 0.2,0.4,0.6,0.8,1")
-    knob, flag, text = (("setting", "--settings", args.settings) if args.settings is not None
-                        else ("throttle", "--throttle", args.throttle))
-    values = _numbers(flag, text)
-    if len(values) < 2:
-        raise InputError(flag, text, "two values or more")
+    values = {}
+    for knob, flag, text in (("setting", "--settings", args.settings),
+                             ("throttle", "--throttle", args.throttle)):
+        if text is not None:
+            values[knob] = _numbers(flag, text)
+            if len(values[knob]) < 2:
+                raise InputError(flag, text, "two values or more")
     bar = None if args.json else ProgressBar("runs")
     try:
-        result = load_range(scene, knob, values, progress=bar)   # values checked before work
+        result = load_ranges(scene, values, progress=bar)   # values checked before work
     finally:
         if bar:
             bar.close()
@@ -325,6 +332,79 @@ def cmd_sweep(args) -> int:
         return 0
     frame = convert_frame(result.points, scene.output.units, scene.supply.barometer_Pa)[0]
     print(frame.to_string(index=False))
+    _print_files(files)
+    return 0
+
+
+def _loads(text: str) -> list[float]:
+    """``0.1:1.1:0.1`` (start:stop:step, stop included) or ``0.25,0.5,1``."""
+    if ":" in text:
+        parts = text.split(":")
+        try:
+            a, b, step = (float(v) for v in parts) if len(parts) == 3 else (None,) * 3
+        except ValueError:
+            a = None
+        if a is None or not step > 0 or b < a:
+            raise InputError("--loads", text, "start:stop:step with step > 0, e.g. 0.1:1.1:0.1")
+        n = int(math.floor((b - a) / step + 1e-9)) + 1
+        if n > 200:
+            raise InputError("--loads", text, "at most 200 loads")
+        return [round(a + i * step, 10) for i in range(n)]
+    return _numbers("--loads", text)
+
+
+def print_verdict(result) -> None:
+    """The study's verdict: per load and condensation, the steam of each governing."""
+    us = result.scene.output.units == "US"
+    rate = (lambda v: v / units.POUND_kg) if us else (lambda v: v)
+    unit = "lb/h" if us else "kg/h"
+    s = result.summary
+    print(f"{s['title']}: throttling or cut-off?")
+    speeds = result.points["speed_rpm"]
+    print(f"  {speeds.max():.1f} to {speeds.min():.1f} rpm from no load to full (the "
+          f"governor's droop)" if s["governor_droop_applied"] else f"  {s['speed_rpm']:.0f} rpm")
+    print(f"  rated {s['rated_power_W'] / (units.HP_W if us else 1e3):.1f} "
+          f"{'hp' if us else 'kW'} ({s['power_basis']}), chest "
+          f"{s['chest_volume_m3'] / (units.FOOT_m ** 3 if us else 1.0):.3g} {'ft3' if us else 'm3'}; "
+          f"throttled at setting {s['variants']['throttling']['fixed']:.3g}, cut-off over "
+          f"settings {s['variants']['cutoff']['knob_range'][0]:.3g} to "
+          f"{s['variants']['cutoff']['knob_range'][1]:.3g}; fidelity {s['fidelity']}")
+    print(f"  {'load':>5s} {'condensation':>12s} {'throttled':>10s} {'cut-off':>10s} "
+          f"{'saving':>8s}  less steam [{unit}]")
+    for r in result.verdict.itertuples():
+        fmt = lambda v: "       -" if v != v else f"{rate(v):10.1f}"  # noqa: E731
+        sv = "      -" if r.cutoff_saving_frac != r.cutoff_saving_frac else \
+            f"{100 * r.cutoff_saving_frac:+7.1f}%"
+        print(f"  {100 * r.load_frac:4.0f}% {r.condensation:>12s} {fmt(r.throttling_steam_rate_kg_per_h)}"
+              f" {fmt(r.cutoff_steam_rate_kg_per_h)} {sv}  {r.winner}")
+    for r in result.willans.itertuples():
+        print(f"  Willans line, {r.variant}, condensation {r.condensation}: "
+              f"{rate(r.willans_intercept_kg_per_h):.1f} {unit} + "
+              + (f"{r.willans_slope_kg_per_kWh * units.HP_W / 1e3 / units.POUND_kg:.2f} lb/h per ihp"
+                 if us else f"{r.willans_slope_kg_per_kWh:.2f} kg/h per kW")
+              + f" (R2 {r.willans_r2_frac:.5f})")
+    if s["unreached_points"]:
+        print(f"  {s['unreached_points']} operating point(s) beyond the engine's reach "
+              "(status 'unreached' in the table)")
+    print(f"  {s['runs']} steady runs on {s['workers']} process(es) in {s['wall_time_s']:.1f} s")
+
+
+def cmd_compare(args) -> int:
+    from corliss.engine.compare import DEFAULT_LOADS, compare
+    scene = _load(args.scene, args.units)
+    loads = _loads(args.loads) if args.loads else list(DEFAULT_LOADS)
+    bar = None if args.json else ProgressBar("runs")
+    try:
+        result = compare(scene, loads, condensation=args.with_condensation,
+                         fidelity=args.fidelity, droop=not args.no_droop, progress=bar)
+    finally:
+        if bar:
+            bar.close()
+    files = result.write(Path(args.out if args.out is not None else scene.output.dir))
+    if args.json:
+        print(summary_json(result.summary))
+        return 0
+    print_verdict(result)
     _print_files(files)
     return 0
 
@@ -417,6 +497,22 @@ def build_parser() -> argparse.ArgumentParser:
                     help="override the scene's fidelity preset")
     sw.add_argument("--json", action="store_true", help="print the summary as JSON")
     sw.set_defaults(func=cmd_sweep)
+    cp = sub.add_parser("compare", help="throttling against cut-off governing across the "
+                        "load range, with and without condensation")
+    cp.add_argument("scene", help="scene TOML or a bundled scene's name (its gear needs a "
+                    "setting)")
+    cp.add_argument("--loads", help="loads as fractions of the rated power: start:stop:step "
+                    "or a list (default 0.1:1.1:0.1)")
+    cp.add_argument("--with-condensation", choices=("both", "on", "off"), default="both",
+                    help="with the wall-heat effect, without, or both (default)")
+    cp.add_argument("--fidelity", choices=("reference", "standard", "fast"),
+                    help="the tier the operating points are refined on (default the scene's)")
+    cp.add_argument("--no-droop", action="store_true", help="every load at the scene's speed "
+                    "(default: at the speed the scene's governor holds at that load)")
+    cp.add_argument("--out", help="output directory (default: the scene's [output] dir)")
+    cp.add_argument("--units", choices=("US", "SI"), help=units_help)
+    cp.add_argument("--json", action="store_true", help="print the summary as JSON")
+    cp.set_defaults(func=cmd_compare)
     b = sub.add_parser("bench", help="run the accuracy-versus-time study (source checkout)")
     b.add_argument("--repeats", type=int, default=3, help="repeats per setting (median)")
     b.add_argument("--out", help="directory for the CSV and plot (default benchmarks/results)")

@@ -23,7 +23,11 @@ from corliss import units
 INDEX_COLUMNS = {"cycle": "count (turn or cycle number, from 1)",
                  "end": "label (head or crank, with a cylinder prefix)",
                  "phase": "label (before or after the load step)",
-                 "knob": "label (setting or throttle)"}
+                 "knob": "label (setting or throttle)",
+                 "variant": "label (throttling or cutoff: how the engine is governed)",
+                 "condensation": "label (on or off: the wall-heat effect)",
+                 "status": "label (found, or unreached: no operating point at that load)",
+                 "winner": "label (the governing that uses less steam at that load)"}
 
 #: Suffix -> (SI unit, US suffix, US unit, SI output suffix, SI output unit).  The
 #: units are names :mod:`corliss.units` converts; suffixes of two parts come first.

@@ -223,7 +223,9 @@ class OutputFiles:
 #: Output files of each kind of result: table name -> file suffix.
 TABLE_FILES = {"steady": {"timeseries": "timeseries", "cycles": "cycles", "cards": "cards"},
                "transient": {"timeseries": "timeseries", "cycles": "cycles"},
-               "sweep": {"points": "sweep"}}
+               "sweep": {"points": "sweep"},
+               "compare": {"points": "compare", "willans": "compare.willans",
+                           "verdict": "compare.verdict"}}
 
 
 def _write_table(result, table: str, path: Path, name: str, units_system: str | None) -> None:
@@ -259,8 +261,12 @@ def plot_result(result, kind: str, ax=None, units_system: str | None = None) -> 
         return plot.plot_crank_effort(result, ax=ax, units_system=units_system)
     if kind == "loadstep":
         return plot.plot_load_step(result, units_system=units_system)
-    label = f"{result.scene.title} ({result.knob})"
-    return plot.plot_willans({label: result.points}, ax,
+    if kind == "compare":
+        return plot.plot_compare(result, units_system or result.scene.output.units)
+    pts = result.points
+    sweeps = ({f"{result.scene.title} ({k})": g for k, g in pts.groupby("knob", sort=False)}
+              if "knob" in pts else {f"{result.scene.title} ({result.knob})": pts})
+    return plot.plot_willans(sweeps, ax,
                              units_system or result.scene.output.units)
 
 
@@ -272,6 +278,8 @@ def _figures(result) -> list[tuple[str, tuple[float, float]]]:
         return figs
     if result.kind == "transient":
         return [("loadstep", (0, 0))]
+    if result.kind == "compare":
+        return [("compare", (0, 0))]
     return [("willans", (8, 5.5))]
 
 
@@ -307,7 +315,8 @@ def write(result, out_dir, plots: bool = True) -> dict[str, Path]:
                     files[kind] = out.files[name]
                 finally:
                     plt.close(fig)
-        name = f"{stem}.summary.json" if result.kind != "sweep" else f"{stem}.sweep.summary.json"
+        name = (f"{stem}.{result.kind}.summary.json" if result.kind in ("sweep", "compare")
+                else f"{stem}.summary.json")
         out.stage(name).write_text(summary_json(result.summary))
         files["summary"] = out.files[name]
     return files

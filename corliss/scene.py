@@ -25,7 +25,7 @@ from corliss.thermo.steam import BACKENDS, HEOSSteam
 from corliss.valves import GEARS
 
 SECTIONS = ("title", "engine", "supply", "exhaust", "valve_gear", "run", "output", "compound",
-            "lp_valve_gear", "governor", "flywheel", "load")
+            "lp_valve_gear", "governor", "flywheel", "load", "compare")
 RECORD_CHOICES = ("step", "degree", "cycle")
 
 
@@ -199,6 +199,50 @@ class CompoundSpec:
 
 
 @dataclass(frozen=True)
+class CompareSpec:
+    """The ``[compare]`` section: how `corliss compare` governs the engine both ways
+    (every field None: the study's default, see :mod:`corliss.engine.compare`).
+
+    Attributes
+    ----------
+    throttled_setting : float or None
+        The gear setting the throttled variant keeps [-].
+    setting_range : (float, float) or None
+        The settings the cut-off governor may use [-].
+    chest_volume_m3, pipe_diameter_m : float or None
+        Steam chest [m3] and pipe [m] of both variants, when the scene's [supply] has none.
+    """
+
+    throttled_setting: float | None = None
+    setting_range: tuple[float, float] | None = None
+    chest_volume_m3: float | None = None
+    pipe_diameter_m: float | None = None
+
+
+def _compare(t: Table, swept_m3: float, gear) -> CompareSpec:
+    lo, hi = gear.setting_range or (None, None)
+    fixed = rng = None
+    if t.has("throttled_setting"):
+        if lo is None:
+            raise InputError(t.key("throttled_setting"), t.raw("throttled_setting"),
+                             "no setting: the gear has none")
+        fixed = t.number("throttled_setting", within=(lo, hi))
+    if t.has("setting_range"):
+        raw = t.raw("setting_range")
+        ok = (lo is not None and isinstance(raw, list) and len(raw) == 2
+              and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in raw)
+              and lo <= min(raw) < max(raw) <= hi)
+        if not ok:
+            raise InputError(t.key("setting_range"), raw,
+                             f"[least, greatest] settings within the gear's {lo} to {hi}")
+        rng = (float(min(raw)), float(max(raw)))
+    chest = _vessel(t, "chest_volume", swept_m3, "a cylinder") if t.has("chest_volume") else None
+    pipe = t.length("pipe_diameter", positive=True) if t.has("pipe_diameter") else None
+    t.finish()
+    return CompareSpec(fixed, rng, chest, pipe)
+
+
+@dataclass(frozen=True)
 class Scene:
     """A validated scene, all SI.  Build it with :func:`load_scene`."""
 
@@ -217,6 +261,7 @@ class Scene:
     governor: object | None = None
     flywheel: object | None = None
     load: object | None = None
+    compare: CompareSpec | None = None
     #: The scene's tables as read (TOML or a dict), to rebuild it exactly.
     data: dict | None = dataclasses.field(default=None, compare=False, repr=False)
     #: The scene file's text, when it was read from a file.
@@ -626,8 +671,12 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
         raise InputError("title", title, "a string")
     loop = _speed_loop(data, run, supply, gt, gear, barometer,
                        Path(source).parent if source else None)
+    cmp = None
+    if "compare" in data:
+        cmp = _compare(Table(data["compare"], "compare", barometer),
+                       math.pi / 4.0 * engine.bore_m ** 2 * engine.stroke_m, gt.build(gear))
     return Scene(title, engine, supply, exhaust, gt.name, gear, run, output, name, source, compound,
-                 **loop, data=data)
+                 **loop, compare=cmp, data=data)
 
 
 def _speed_loop(data: dict, run: RunSpec, supply: SupplySpec, gt, gear, barometer: float,

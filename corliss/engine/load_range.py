@@ -20,7 +20,7 @@ from corliss.engine.model import KNOBS, at_knob
 from corliss.engine.result import SweepResult, willans_fit
 from corliss.engine.steady import run_steady
 
-__all__ = ["KNOBS", "load_range", "willans_fit"]
+__all__ = ["KNOBS", "load_range", "load_ranges", "willans_fit"]
 
 
 def load_range(scene, knob: str, values, *,
@@ -68,3 +68,47 @@ def load_range(scene, knob: str, values, *,
     return SweepResult(scene=scene, property_tier=tier, timeseries=points, cycles=points,
                        rhs_evaluations=nfev, wall_time_s=time.perf_counter() - t0, knob=knob,
                        values=values)
+
+
+def load_ranges(scene, values_by_knob: dict, *,
+                progress: Callable[[float, float], None] | None = None) -> SweepResult:
+    """Steady runs at each value of several knobs, in one table with a ``knob`` column.
+
+    Parameters
+    ----------
+    scene : Scene
+    values_by_knob : dict
+        ``{"setting": [...], "throttle": [...]}`` (either or both); every value is
+        checked before any run.
+    progress : callable, optional
+        Called after each run with (runs done, runs in all).
+
+    Returns
+    -------
+    SweepResult
+        ``knob`` is ``"both"`` when both knobs ran; its ``points`` carry the ``knob``
+        of each row.
+    """
+    for knob, values in values_by_knob.items():
+        for v in values:
+            at_knob(scene, knob, float(v))
+    if len(values_by_knob) == 1:
+        (knob, values), = values_by_knob.items()
+        return load_range(scene, knob, values, progress=progress)
+    t0 = time.perf_counter()
+    total = sum(len(v) for v in values_by_knob.values())
+    parts, nfev, done, tier = [], 0, 0, scene.run.fidelity.properties
+    for knob, values in values_by_knob.items():
+        def step(n, _total, base=done):
+            if progress:
+                progress(base + n, total)
+        r = load_range(scene, knob, values, progress=step)
+        done += len(values)
+        nfev += r.rhs_evaluations
+        tier = r.property_tier
+        parts.append(r.points.assign(knob=knob))
+    points = pd.concat(parts, ignore_index=True)
+    points = points[["knob"] + [c for c in points.columns if c != "knob"]]
+    return SweepResult(scene=scene, property_tier=tier, timeseries=points, cycles=points,
+                       rhs_evaluations=nfev, wall_time_s=time.perf_counter() - t0, knob="both",
+                       values=[float(v) for vs in values_by_knob.values() for v in vs])

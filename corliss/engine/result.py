@@ -665,14 +665,19 @@ class SweepResult(Result):
         return willans_fit(self.points)
 
     def _make_summary(self) -> dict:
-        a, b, r2 = self.willans() if len(self.points) >= 2 else (None, None, None)
         s = self.scene
-        return {"title": s.title, "kind": self.kind, "knob": self.knob,
-                "values": list(self.values), "fidelity": s.run.fidelity.name,
-                "property_tier": self.property_tier,
-                "willans_intercept_kg_per_h": a, "willans_slope_kg_per_h_per_W": b,
-                "willans_r2": r2, "rhs_evaluations": self.rhs_evaluations,
-                "wall_time_s": self.wall_time_s}
+        out = {"title": s.title, "kind": self.kind, "knob": self.knob,
+               "values": list(self.values), "fidelity": s.run.fidelity.name,
+               "property_tier": self.property_tier}
+        groups = (self.points.groupby("knob", sort=False) if "knob" in self.points
+                  else [(self.knob, self.points)])
+        for knob, pts in groups:
+            a, b, r2 = willans_fit(pts) if len(pts) >= 2 else (None, None, None)
+            pre = "" if self.knob != "both" else f"{knob}_"
+            out.update({f"{pre}willans_intercept_kg_per_h": a,
+                        f"{pre}willans_slope_kg_per_h_per_W": b, f"{pre}willans_r2": r2})
+        out.update({"rhs_evaluations": self.rhs_evaluations, "wall_time_s": self.wall_time_s})
+        return out
 
 
 def willans_fit(frame: pd.DataFrame) -> tuple[float, float, float]:

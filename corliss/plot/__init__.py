@@ -15,8 +15,8 @@ from corliss.plot.cards import plot_card, plot_crank_effort
 from corliss.plot.gears import (bilgram_events, plot_bilgram_diagram, plot_gear,
                                 plot_valve_travel, plot_zeuner_diagram)
 from corliss.plot.transients import plot_load_step, plot_static_characteristic
-from corliss.plot.willans import plot_willans
+from corliss.plot.willans import plot_compare, plot_willans
 
 __all__ = ["bilgram_events", "plot_bilgram_diagram", "plot_card", "plot_crank_effort",
            "plot_gear", "plot_load_step", "plot_static_characteristic", "plot_valve_travel",
-           "plot_willans", "plot_zeuner_diagram"]
+           "plot_compare", "plot_willans", "plot_zeuner_diagram"]
