@@ -320,20 +320,31 @@ def cmd_sweep(args) -> int:
             values[knob] = _numbers(flag, text)
             if len(values[knob]) < 2:
                 raise InputError(flag, text, "two values or more")
+    # values checked before work
+    result, files = _study(args, scene, lambda bar: load_ranges(scene, values, progress=bar))
+    if files is None:
+        return 0
+    frame = convert_frame(result.points, scene.output.units, scene.supply.barometer_Pa)[0]
+    print(frame.to_string(index=False))
+    _print_files(files)
+    return 0
+
+
+def _study(args, scene, run):
+    """Run a study of many steady runs, ``run(progress)``, with a progress bar unless
+    ``--json``; write its files; with ``--json`` print its summary instead and return
+    no files."""
     bar = None if args.json else ProgressBar("runs")
     try:
-        result = load_ranges(scene, values, progress=bar)   # values checked before work
+        result = run(bar)
     finally:
         if bar:
             bar.close()
     files = result.write(Path(args.out if args.out is not None else scene.output.dir))
     if args.json:
         print(summary_json(result.summary))
-        return 0
-    frame = convert_frame(result.points, scene.output.units, scene.supply.barometer_Pa)[0]
-    print(frame.to_string(index=False))
-    _print_files(files)
-    return 0
+        return result, None
+    return result, files
 
 
 def _loads(text: str) -> list[float]:
@@ -393,16 +404,10 @@ def cmd_compare(args) -> int:
     from corliss.engine.compare import DEFAULT_LOADS, compare
     scene = _load(args.scene, args.units)
     loads = _loads(args.loads) if args.loads else list(DEFAULT_LOADS)
-    bar = None if args.json else ProgressBar("runs")
-    try:
-        result = compare(scene, loads, condensation=args.with_condensation,
-                         fidelity=args.fidelity, droop=not args.no_droop, progress=bar)
-    finally:
-        if bar:
-            bar.close()
-    files = result.write(Path(args.out if args.out is not None else scene.output.dir))
-    if args.json:
-        print(summary_json(result.summary))
+    result, files = _study(args, scene, lambda bar: compare(
+        scene, loads, condensation=args.with_condensation, fidelity=args.fidelity,
+        droop=not args.no_droop, progress=bar))
+    if files is None:
         return 0
     print_verdict(result)
     _print_files(files)

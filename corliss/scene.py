@@ -14,8 +14,11 @@ import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
+
 from corliss import units
 from corliss.engine.geometry import EngineSpec
+from corliss.engine.operating_point import working_travel
 from corliss.engine.options import (COMPILED_METHODS, EFFECT_KEYS, EFFECTS, EXPANSION_LAWS,
                                     METHODS, MODELS, PLANNED_EFFECTS, PRESETS, SCIPY_METHODS, Fidelity)
 from corliss.errors import InputError
@@ -706,7 +709,8 @@ def _speed_loop(data: dict, run: RunSpec, supply: SupplySpec, gt, gear, baromete
         gov_t = _registered(g, GOVERNORS)
         spec = gov_t.parse(g)
         g.finish()
-        mech = gov_t.build(spec).mechanism(11)
+        governor = gov_t.build(spec)
+        mech = governor.mechanism(11)
         lo_hi = mech.actuator_range()
         if mech.acts_on == "throttle":
             if not run.has("steam_chest") or supply.pipe_diameter_m is None:
@@ -732,7 +736,7 @@ def _speed_loop(data: dict, run: RunSpec, supply: SupplySpec, gt, gear, baromete
                     raise InputError(key, g.raw(key.split(".")[1], value),
                                      f"a gear setting within the {gt.name} gear's range "
                                      f"{lo} to {hi} ({g_obj.setting_name})")
-        _check_governed_speed(gov_t.build(spec), g, run)
+        _check_governed_speed(governor, mech, g, run)
         out["governor_type"] = gov_t.name
         out["governor"] = spec
     return out
@@ -744,14 +748,12 @@ def _speed_loop(data: dict, run: RunSpec, supply: SupplySpec, gt, gear, baromete
 GOVERNED_SPEED_MARGIN = 0.25
 
 
-def _check_governed_speed(gov, g: Table, run: RunSpec) -> None:
-    """Refuse a governor whose static characteristic balances nowhere near the run
-    speed (a drive ratio that puts its working speed far from the engine's), naming the
-    key and the speed it would govern at."""
-    from corliss.engine.operating_point import characteristic_speed, working_travel
-    mech = gov.mechanism(201)
-    z_lo, z_hi = working_travel(mech)
-    lo, hi = (characteristic_speed(mech, z) / units.RPM_RAD_S for z in (z_lo, z_hi))
+def _check_governed_speed(gov, mech, g: Table, run: RunSpec) -> None:
+    """Refuse a governor ``gov`` (tabulated as ``mech``) whose static characteristic
+    balances nowhere near the run speed (a drive ratio that puts its working speed far
+    from the engine's), naming the key and the speed it would govern at."""
+    ends = np.array(working_travel(mech))
+    lo, hi = gov.equilibrium_speed_rad_s(ends) / units.RPM_RAD_S
     rpm = run.speed_rpm
     if (1.0 - GOVERNED_SPEED_MARGIN) * lo <= rpm <= (1.0 + GOVERNED_SPEED_MARGIN) * hi:
         return

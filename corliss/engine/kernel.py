@@ -438,17 +438,6 @@ def settle_clamps(att, accepted, clamps):
         att[k] = 0.0
 
 
-@njit(cache=True, inline="always")
-def _positive_samples(y0, y1, s, nodes, out):
-    """Where the cubic Hermite interpolant of a step dips a volume's mass to zero or
-    below (a volume emptying steeply at the step's end), its mass and energy are read
-    linearly between the step's ends instead, which keeps them positive."""
-    for i in range(nodes):
-        if out[2 * i] <= 0.0:
-            out[2 * i] = y0[2 * i] + (y1[2 * i] - y0[2 * i]) * s
-            out[2 * i + 1] = y0[2 * i + 1] + (y1[2 * i + 1] - y0[2 * i + 1]) * s
-
-
 # Dormand-Prince 5(4) tableau
 DOPRI_NODES = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0, 1.0])
 _A = np.array([
@@ -598,7 +587,6 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
     T = np.empty(n)
     x = np.empty(n)
     yscale = atol / rtol
-    nodes = net[4].shape[0]
     pr = np.empty((PR_ROWS, net[4].shape[0]))
     cell = np.empty((net[17].shape[0], 4))
     nfev = 0
@@ -718,7 +706,6 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
                 t1 = t + h
                 while io < out_theta.shape[0] and out_theta[io] <= t1:
                     hermite(t, y, f0, t1, ytmp, K[6], out_theta[io], tmp)
-                    _positive_samples(y, ytmp, (out_theta[io] - t) / h, nodes, tmp)
                     samples[:, io] = tmp
                     io += 1
                 t = t1

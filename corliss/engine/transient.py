@@ -336,7 +336,7 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
 
             start = find_operating_point(surplus, tables.mechanism, t_load)
             y, _ = frozen_turns(y, start.speed_rad_s, start.governor_z, 2)
-            _report_start(start, omega0, tables.mechanism)
+            _report_start(start)
         # The flywheel lets the speed swing within a turn (Marks Art. 62), and the governor
         # balances on the turn's mean speed; released at dead centre at the mean speed, the
         # engine would gain or lose the swing's offset and the governor follow it.  So the
@@ -426,7 +426,7 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
                            clamped_hot=int(sc[tk.S_CLAMPED_HOT]))
 
 
-def _report_start(start: OperatingPoint, omega0: float, mech) -> None:
+def _report_start(start: OperatingPoint) -> None:
     """Log where a governed run starts, and warn when no operating point exists."""
     rpm = start.speed_rad_s * 60.0 / TWO_PI
     if start.status == BALANCED:
@@ -453,7 +453,7 @@ def _start_record(begun: dict, y0: np.ndarray, network, steam, tables: LoopTable
     sc = tables.tr[0]
     z = np.clip(ys[nn + tk.X_Z], 0.0, 1.0)
     cols = {"cycle": 0, "time_s": t, "crank_angle_deg": np.degrees(theta),
-            "speed_rpm": np.maximum(ys[nn + tk.X_OMEGA], 0.0) * 60.0 / TWO_PI,
+            "speed_rpm": ys[nn + tk.X_OMEGA] * 60.0 / TWO_PI,
             "governor_z_frac": z, "actuator_frac": sc[tk.S_A0] + (sc[tk.S_A1] - sc[tk.S_A0]) * z}
     for end in ("head", "crank"):
         i = network.node(end)
