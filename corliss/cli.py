@@ -87,6 +87,7 @@ def print_steady(result, files) -> None:
               f"{s['mep_crank_Pa'] / 1e5:.3f}, mean {s['mep_mean_Pa'] / 1e5:.3f} bar")
         print(f"  steam            {s['steam_rate_kg_per_h']:.1f} kg/h, "
               f"{_fmt(s['water_rate_kg_per_kWh'], 'kg/kWh')}")
+    _print_walls(s, us)
     for end, ev in s["events"].items():
         print(f"  {end:5s} end        cut-off {_fmt(ev['cutoff_frac'], '', 3)}, release "
               f"{_fmt(ev['release_frac'], '', 3)}, compression {_fmt(ev['compression_frac'], '', 3)}"
@@ -102,6 +103,25 @@ def print_steady(result, files) -> None:
              f", NOT periodic (largest residual {max(res.values()):.2g}, tolerance "
              f"{s['convergence_tolerance']:.2g})") + f"; {s['wall_time_s']:.2f} s")
     _print_files(files)
+
+
+def _print_walls(s: dict, us: bool) -> None:
+    """Initial condensation and the jacket's steam, when the walls exchange heat."""
+    miss = [s[k] for k in ("missing_water_fraction_head", "missing_water_fraction_crank")
+            if s.get(k) is not None]
+    if miss:
+        print(f"  missing water    {', '.join(f'{m:.3f}' for m in miss)} of the steam at "
+              "cut-off (head, crank)")
+    if "jacket_steam_kg_per_h" in s:
+        wr = s["water_rate_with_jacket_kg_per_kWh"]
+        if us:
+            print(f"  jacket           {s['jacket_steam_kg_per_h'] / units.POUND_kg:.1f} lb/h of "
+                  "steam; with it "
+                  + _fmt(None if wr is None else wr / units.POUND_kg * units.HP_W / 1e3,
+                         "lb per ihp-hour"))
+        else:
+            print(f"  jacket           {s['jacket_steam_kg_per_h']:.1f} kg/h of steam; with "
+                  f"it {_fmt(wr, 'kg/kWh')}")
 
 
 def print_transient(result, files) -> None:

@@ -95,3 +95,32 @@ def test_events_at_settings_and_the_gear_drawing(tmp_path, capsys):
     assert "--settings" in capsys.readouterr().err
     assert cli.main(["gear", str(scene), "--out", str(tmp_path)]) == 0
     assert (tmp_path / "hinkley-stephenson-link.gear.png").read_bytes()[:4] == b"\x89PNG"
+
+
+@pytest.mark.parametrize("system", ["US", "SI"])
+def test_a_jacketed_run_prints_its_condensation_and_the_jackets_steam(tmp_path, capsys,
+                                                                      system):
+    """A run with walls prints the missing water of each end and, with a jacket, the
+    jacket's steam and the water rate counting it, in the run's units, the same
+    figures as its summary file (Marks Art. 79: the jacket is paid for in steam)."""
+    text = (SCENES / "meyer-cutoff.toml").read_text()
+    text = text.replace("effects = [", 'effects = ["wall_heat", ', 1)
+    text = text.replace("[engine]\n", '[engine]\njacket = "barrel"\n', 1)
+    text = text.replace('fidelity = "standard"', 'fidelity = "fast"')
+    scene = tmp_path / "jacketed.toml"
+    scene.write_text(text)
+    out = tmp_path / "out"
+    assert cli.main(["run", str(scene), "--out", str(out), "--no-plots",
+                     "--units", system]) == 0
+    printed = capsys.readouterr().out
+    s = json.loads((out / "jacketed.summary.json").read_text())
+    line = next(x for x in printed.splitlines() if x.strip().startswith("jacket"))
+    steam = float(line.split()[1])
+    if system == "US":
+        assert steam == pytest.approx(s["jacket_steam_kg_per_h"] / 0.45359237, abs=0.05)
+        assert "lb per ihp-hour" in line
+    else:
+        assert steam == pytest.approx(s["jacket_steam_kg_per_h"], abs=0.05)
+        assert "kg/kWh" in line
+    miss = next(x for x in printed.splitlines() if x.strip().startswith("missing water"))
+    assert f"{s['missing_water_fraction_head']:.3f}" in miss

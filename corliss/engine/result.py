@@ -133,6 +133,8 @@ class Result:
             steam = (at(f"m_{end}_kg", c) * at(f"x_{end}_frac", c)
                      - at(f"m_{end}_kg", k) * at(f"x_{end}_frac", k))
             out[f"missing_water_fraction_{end}"] = (supplied - steam) / supplied
+            # the mass Marks's eq. 221 predicts: condensation per stroke
+            out[f"missing_water_per_stroke_{end}_kg"] = supplied - steam
         else:
             out[f"missing_water_fraction_{end}"] = out[f"card_missing_water_fraction_{end}"]
         # the period's prediction beside the model's (Marks eq. 221)
@@ -430,7 +432,32 @@ class SteadyResult(Result):
                 if f"Q_to_wall_{end}_J" in row:
                     out.update(self._end_condensation(
                         end, evs[end0], geo, e_idx, math.degrees(phase), row, ts, at, sat))
+        if self.scene.engine.jacket != "none":
+            out.update(self._jacket_summary(row, sat))
         return out
+
+    def _jacket_summary(self, row, sat) -> dict:
+        """The jacket's steam (Marks Art. 79: the jacket's heat is paid for in steam).
+
+        Over a periodic cycle the walls neither gain nor lose heat, so what the steam in
+        the cylinders took from them net, the sum of ``Q_<end>_J``, is what the jacket
+        gave through the iron.  The jacket condenses supply steam and drains it as
+        saturated water at the supply's pressure, so each kilogram gives the latent
+        heat there; the period's trials counted that water with the feed (Marks Art.
+        79, p. 204), and ``water_rate_with_jacket`` does too.
+        """
+        rev_per_s = self.scene.run.speed_rad_s / TWO_PI
+        q = sum(float(row[c]) for c in row.index if c.startswith("Q_")
+                and "to_wall" not in c and c.endswith("_J"))
+        p = self.scene.supply.pressure_Pa
+        latent = sat.px(p, 1.0).h - sat.px(p, 0.0).h
+        jacket_kg_h = max(q, 0.0) / latent * rev_per_s * 3600.0
+        steam_kg_h = float(row["m_supply_kg"]) * rev_per_s * 3600.0
+        power_kW = (float(row["work_J"]) if "work_J" in row
+                    else float(row["work_head_J"]) + float(row["work_crank_J"])) * rev_per_s / 1e3
+        total = steam_kg_h + jacket_kg_h
+        return {"jacket_heat_W": q * rev_per_s, "jacket_steam_kg_per_h": jacket_kg_h,
+                "water_rate_with_jacket_kg_per_kWh": total / power_kW if power_kW > 0 else None}
 
     def _make_summary(self) -> dict:
         run = self.scene.run
