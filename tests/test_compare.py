@@ -224,3 +224,24 @@ def test_governor_droop_sets_the_speed_of_each_load(study, small):
     assert 0.02 < (speed.iloc[0] - speed.iloc[-1]) / small.run.speed_rpm < 0.1
     flat = compare(small, [1.0], condensation="off", fidelity="fast", droop=False, workers=1)
     assert list(flat.points["speed_rpm"]) == pytest.approx([small.run.speed_rpm] * 2)
+
+
+def test_a_jacket_is_counted_in_the_studys_steam():
+    """Marks Art. 79, p. 204: a jacket is paid for in steam, which the period's trials
+    weighed with the feed.  A jacketed engine's point in the study carries the
+    cylinder's steam and the jacket's (the steady summary's two figures), and its
+    water rate is their sum over the indicated power."""
+    import dataclasses
+
+    import corliss
+    from corliss.engine import compare as cmp
+    sc = load_scene(find_scene("meyer-cutoff"))
+    sc = dataclasses.replace(sc, engine=dataclasses.replace(sc.engine, jacket="barrel"))
+    sc = sc.replace_run(effects=tuple(sc.run.effects) + ("wall_heat",)).with_fidelity("fast")
+    row = cmp._run(sc, "setting", 0.4, None)
+    s = corliss.simulate(cmp.at_knob(sc, "setting", 0.4)).summary
+    assert s["jacket_steam_kg_per_h"] > 0.0
+    assert row["steam_rate_kg_per_h"] == pytest.approx(
+        s["steam_rate_kg_per_h"] + s["jacket_steam_kg_per_h"], rel=1e-9)
+    assert row["water_rate_kg_per_kWh"] == pytest.approx(
+        s["water_rate_with_jacket_kg_per_kWh"], rel=1e-9)

@@ -184,11 +184,13 @@ def _run(scene, knob: str, value: float, tier: str | None) -> dict | None:
         p_adm = float(np.interp(adm, ang, ts["p_chest_Pa"].to_numpy()[idx], period=360.0))
     miss = [s[k] for k in ("missing_water_fraction_head", "missing_water_fraction_crank")
             if s.get(k) is not None]
+    # a jacket is paid for in steam (Marks Art. 79): the study counts it with the feed
+    steam = s["steam_rate_kg_per_h"] + s.get("jacket_steam_kg_per_h", 0.0)
+    power_kW = s["indicated_power_W"] / 1e3
     return {"indicated_power_W": s["indicated_power_W"],
             "brake_power_W": s.get("brake_power_W", s["indicated_power_W"]),
-            "steam_rate_kg_per_h": s["steam_rate_kg_per_h"],
-            "water_rate_kg_per_kWh": (s["water_rate_kg_per_kWh"]
-                                      if s["indicated_power_W"] > 0 else float("nan")),
+            "steam_rate_kg_per_h": steam,
+            "water_rate_kg_per_kWh": steam / power_kW if power_kW > 0 else float("nan"),
             "cutoff_head_frac": s["events"]["head"]["cutoff_frac"],
             "chest_pressure_admission_Pa": p_adm,
             "missing_water_frac": float(np.mean(miss)) if miss else float("nan"),

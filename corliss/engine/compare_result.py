@@ -14,7 +14,8 @@ import pandas as pd
 
 from corliss.engine.result import Result, willans_fit
 
-#: Columns of the ``points`` table, in order (``brake_power_W`` with ``friction``).
+#: Columns of the ``points`` table, in order (``brake_power_W`` with ``friction``;
+#: ``steam_rate_kg_per_h`` and the water rate count a jacket's steam with the feed).
 POINT_COLUMNS = ("load_frac", "variant", "condensation", "knob", "status", "knob_frac",
                  "speed_rpm", "target_power_W", "indicated_power_W", "brake_power_W",
                  "steam_rate_kg_per_h", "water_rate_kg_per_kWh", "cutoff_head_frac",
