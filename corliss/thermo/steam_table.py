@@ -268,7 +268,7 @@ def lookup_flagged(tab, rho, u):
                 Tn = 0.5 * (lo + hi)
             elif not Tn < hi:
                 Tn = 0.5 * (lo + hi)
-            if abs(Tn - T) < 1e-7 or hi - lo < 1e-9:
+            if abs(Tn - T) < 1e-9 or hi - lo < 1e-9:
                 T = Tn
                 break
             T = Tn
