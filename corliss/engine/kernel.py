@@ -25,7 +25,14 @@ Output samples between steps come from cubic Hermite interpolation on the states
 derivatives at the step ends (third-order, well inside the step error).
 
 Compiled code is cached on disk by numba (``cache=True``): a run pays compilation
-once per machine (measured in the accuracy study).  Numba keys that cache on the
+once per machine (measured in the accuracy study).  What it compiles is kept small:
+the right-hand side is one compiled function (:func:`rhs`, its parts and the property
+lookups inlined into it once), called by one function per integrator
+(:data:`CYCLE_KERNELS`), so that a run compiles the right-hand side once and only the
+integrator it uses; inlining :func:`rhs` itself at every stage of every method, as
+before, made numba compile it ten times (2 min against 10 s on a loaded 2-core
+machine).  The functions that take the network or the table tuple stay inlined inside
+:func:`rhs`: a call that passes those tuples costs more than the work of a small one.  Numba keys that cache on the
 content of this file alone, not on the compiled functions it inlines from
 :mod:`corliss.thermo.orifice` and :mod:`corliss.thermo.steam_table`: a change there
 must come with a new :data:`DEPENDENCY_REVISION` here (and in
@@ -48,7 +55,7 @@ from corliss.thermo.steam_table import (CLAMP_HIGH_ENERGY, PARAMS, kappa_at, loo
 
 log = logging.getLogger(__name__)
 #: Revision of the inlined property and port-flow code (see the module's docstring).
-DEPENDENCY_REVISION = 8
+DEPENDENCY_REVISION = 9
 TIER_TABLE, TIER_PERFECT = 0, 1
 TWO_PI = 2.0 * math.pi
 #: Clamps on trial states: integrators probe states with no steam (a negative mass in
@@ -523,19 +530,18 @@ def dopri_error(y, ynew, K, h, atol, rtol):
 
 
 @njit(cache=True)
-def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, cell, att):
+def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, cell, att,
+              yp, fp, dl):
     """Finite-difference Jacobian of the dynamic columns, and the time derivative.
 
     Columns of one colour are perturbed together (their rows do not overlap), so a
     single cylinder costs two evaluations, plus one for the time derivative.  Clamped
-    evaluations go into the step's tally ``att``.
+    evaluations go into the step's tally ``att``; ``yp``, ``fp`` (length of the state)
+    and ``dl`` (of the dynamic states) are scratch.
     """
     n = y.shape[0]
     ndyn = J.shape[1]
     ncol = owner.shape[0]
-    yp = y.copy()
-    fp = np.empty(n)
-    dl = np.empty(ndyn)
     for j in range(ndyn):
         dl[j] = 1e-7 * max(abs(y[j]), yscale[j])
     for c in range(ncol):
@@ -562,11 +568,11 @@ def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, ce
 
 
 @njit(cache=True)
-def _w_inverse(J, hd, Winv):
-    """Inverse of the dynamic block of W = I - hd J, by Gauss-Jordan elimination with
-    partial pivoting (a few rows: no LAPACK call, and none to compile)."""
+def _w_inverse(J, hd, Winv, A):
+    """Inverse of the dynamic block of W = I - hd J into ``Winv``, by Gauss-Jordan
+    elimination with partial pivoting (a few rows: no LAPACK call, and none to
+    compile); ``A`` is scratch of its shape."""
     ndyn = J.shape[1]
-    A = np.empty((ndyn, ndyn))
     for i in range(ndyn):
         for j in range(ndyn):
             A[i, j] = (1.0 if i == j else 0.0) - hd * J[i, j]
@@ -815,9 +821,13 @@ def cycle_rosenbrock(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, col
     tmp = np.empty(n)
     J = np.zeros((n, ndyn))
     Winv = np.empty((ndyn, ndyn))
+    A = np.empty((ndyn, ndyn))
     T = np.empty(n)
     x = np.empty(n)
     yscale = atol / rtol
+    yp = np.empty(n)
+    fp = np.empty(n)
+    dl = np.empty(ndyn)
     pr = np.empty((PR_ROWS, net[4].shape[0]))
     cell = np.empty((net[17].shape[0], 4))
     nfev = 0
@@ -843,9 +853,9 @@ def cycle_rosenbrock(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, col
             if t + h > b or b - (t + h) < 1e-12:
                 h = b - t
             nfev += _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr,
-                              cell, att)
+                              cell, att, yp, fp, dl)
             hd = h * _D
-            _w_inverse(J, hd, Winv)
+            _w_inverse(J, hd, Winv, A)
             for i in range(n):
                 x[i] = f0[i] + hd * T[i]
             _w_solve(J, Winv, hd, x, K[0])

@@ -182,7 +182,7 @@ def lookup(tab, rho, u):
     return p, T, x, sup
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def lookup_flagged(tab, rho, u):
     """:func:`lookup` and a code: 0 when the state is inside the table, else the bits
     of :data:`CLAMP_CODES` saying how it was clamped."""
@@ -206,7 +206,8 @@ def lookup_flagged(tab, rho, u):
     if i > nr - 2:
         i = nr - 2
     wr = fr - i
-    rho_c = math.exp(lnrho0 + fr * dlnrho)
+    # the density evaluated: the table's edge when clamped
+    rho_c = math.exp(lnrho0 + fr * dlnrho) if code & 3 else rho
     ug0 = ug_row[i]
     ug1 = ug_row[i + 1]
     if ug0 == ug0 and ug1 == ug1:      # both rows below the critical density
@@ -285,7 +286,7 @@ def lookup_flagged(tab, rho, u):
     return math.exp(_sat_at(T, sT0, sdT, s_lnp)), T, x, False, code
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def kappa_at(tab, rho, u):
     """Isentropic exponent [-] of the port flow from the upstream state at density
     ``rho`` [kg/m3] and internal energy ``u`` [J/kg]: bilinear on the table's grid of
@@ -637,7 +638,7 @@ def load_table() -> SteamTable:
     return tab
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def t_sat(tab, p):
     """Saturation temperature [K] at pressure ``p`` [Pa]: bisection on the table's
     ln p_sat over its uniform temperature grid, linear within the cell."""
