@@ -25,7 +25,14 @@ Output samples between steps come from cubic Hermite interpolation on the states
 derivatives at the step ends (third-order, well inside the step error).
 
 Compiled code is cached on disk by numba (``cache=True``): a run pays compilation
-once per machine (measured in the accuracy study).  Numba keys that cache on the
+once per machine (measured in the accuracy study).  What it compiles is kept small:
+the right-hand side is one compiled function (:func:`rhs`, its parts and the property
+lookups inlined into it once), called by one function per integrator
+(:data:`CYCLE_KERNELS`), so that a run compiles the right-hand side once and only the
+integrator it uses; inlining :func:`rhs` itself at every stage of every method, as
+before, made numba compile it ten times (2 min against 10 s on a loaded 2-core
+machine).  The functions that take the network or the table tuple stay inlined inside
+:func:`rhs`: a call that passes those tuples costs more than the work of a small one.  Numba keys that cache on the
 content of this file alone, not on the compiled functions it inlines from
 :mod:`corliss.thermo.orifice` and :mod:`corliss.thermo.steam_table`: a change there
 must come with a new :data:`DEPENDENCY_REVISION` here (and in
@@ -48,7 +55,7 @@ from corliss.thermo.steam_table import (CLAMP_HIGH_ENERGY, PARAMS, kappa_at, loo
 
 log = logging.getLogger(__name__)
 #: Revision of the inlined property and port-flow code (see the module's docstring).
-DEPENDENCY_REVISION = 6
+DEPENDENCY_REVISION = 9
 TIER_TABLE, TIER_PERFECT = 0, 1
 TWO_PI = 2.0 * math.pi
 #: Clamps on trial states: integrators probe states with no steam (a negative mass in
@@ -393,14 +400,14 @@ def node_states(th, y, net, tier, tab, perf, pr):
             pr[7, i] = t_sat(tab, p) if (sup and tier != TIER_PERFECT) else T
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def rhs(th, y, dy, net, tier, tab, perf, pr, cell):
     """Derivatives on a compiled property tier (``pr``, ``cell``: scratch arrays)."""
     node_states(th, y, net, tier, tab, perf, pr)
     derivatives(th, y, pr, dy, net, cell)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def tally_clamps(pr, t, att):
     """Add the latest evaluation's clamps (row ``PR_CLAMP`` of ``pr``) to a step
     attempt's tally ``att``: (clamped evaluations, OR of their codes, shaft angle [rad]
@@ -420,22 +427,55 @@ def tally_clamps(pr, t, att):
         att[1] = float(int(att[1]) | c)
 
 
-@njit(cache=True, inline="always")
-def settle_clamps(att, accepted, clamps):
-    """Move a step attempt's tally into the cycle's ``clamps`` (accepted or rejected)
-    and clear it."""
+@njit(cache=True)
+def settle_visited(att, clamps):
+    """Move a step attempt's tally ``att`` into the cycle's ``clamps`` as evaluations
+    at visited states, and clear it."""
     if att[0] > 0.0:
-        if accepted:
-            if clamps[CL_ACCEPTED] == 0.0:
-                clamps[CL_THETA] = att[2]
-                clamps[CL_NODE] = att[3]
-            clamps[CL_ACCEPTED] += att[0]
-            clamps[CL_ACCEPTED_CODE] = float(int(clamps[CL_ACCEPTED_CODE]) | int(att[1]))
-        else:
-            clamps[CL_REJECTED] += att[0]
-            clamps[CL_REJECTED_CODE] = float(int(clamps[CL_REJECTED_CODE]) | int(att[1]))
+        if clamps[CL_ACCEPTED] == 0.0:
+            clamps[CL_THETA] = att[2]
+            clamps[CL_NODE] = att[3]
+        clamps[CL_ACCEPTED] += att[0]
+        clamps[CL_ACCEPTED_CODE] = float(int(clamps[CL_ACCEPTED_CODE]) | int(att[1]))
     for k in range(4):
         att[k] = 0.0
+
+
+@njit(cache=True)
+def settle_trial(att, clamps):
+    """Move a step attempt's tally ``att`` into the cycle's ``clamps`` as evaluations
+    at trial states, and clear it."""
+    if att[0] > 0.0:
+        clamps[CL_REJECTED] += att[0]
+        clamps[CL_REJECTED_CODE] = float(int(clamps[CL_REJECTED_CODE]) | int(att[1]))
+    for k in range(4):
+        att[k] = 0.0
+
+
+@njit(cache=True)
+def settle_clamps(att, accepted, clamps):
+    """Move a step attempt's tally into the cycle's ``clamps`` (accepted or rejected)
+    and clear it (``accepted`` a run-time flag: constant callers use
+    :func:`settle_visited` or :func:`settle_trial`, one compiled version each)."""
+    if accepted:
+        settle_visited(att, clamps)
+    else:
+        settle_trial(att, clamps)
+
+
+@njit(cache=True)
+def copy_into(dst, src):
+    """``dst[:] = src`` for 1-d arrays of one length (without the shape check's error
+    path, which numba would compile into every caller)."""
+    for i in range(dst.shape[0]):
+        dst[i] = src[i]
+
+
+@njit(cache=True)
+def put_column(samples, k, y):
+    """``samples[:, k] = y``, as :func:`copy_into`."""
+    for i in range(y.shape[0]):
+        samples[i, k] = y[i]
 
 
 # Dormand-Prince 5(4) tableau
@@ -465,7 +505,7 @@ def hermite(t0, y0, f0, t1, y1, f1, t, out):
         out[i] = h00 * y0[i] + h10 * h * f0[i] + h01 * y1[i] + h11 * h * f1[i]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def dopri_stage(y, K, s_, h, ytmp):
     """The state at Dormand-Prince stage ``s_``: y + h sum_j a_sj K_j, into ``ytmp``."""
     for i in range(y.shape[0]):
@@ -475,7 +515,7 @@ def dopri_stage(y, K, s_, h, ytmp):
         ytmp[i] = y[i] + h * acc
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def dopri_error(y, ynew, K, h, atol, rtol):
     """The 5(4) pair's error, max |err_i| / (atol_i + rtol max(|y_i|, |ynew_i|))."""
     err = 0.0
@@ -490,23 +530,22 @@ def dopri_error(y, ynew, K, h, atol, rtol):
 
 
 @njit(cache=True)
-def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, cell, att):
+def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, cell, att,
+              yp, fp, dl):
     """Finite-difference Jacobian of the dynamic columns, and the time derivative.
 
     Columns of one colour are perturbed together (their rows do not overlap), so a
     single cylinder costs two evaluations, plus one for the time derivative.  Clamped
-    evaluations go into the step's tally ``att``.
+    evaluations go into the step's tally ``att``; ``yp``, ``fp`` (length of the state)
+    and ``dl`` (of the dynamic states) are scratch.
     """
     n = y.shape[0]
     ndyn = J.shape[1]
     ncol = owner.shape[0]
-    yp = y.copy()
-    fp = np.empty(n)
-    dl = np.empty(ndyn)
     for j in range(ndyn):
         dl[j] = 1e-7 * max(abs(y[j]), yscale[j])
     for c in range(ncol):
-        yp[:] = y
+        copy_into(yp, y)
         for j in range(ndyn):
             if color[j] == c:
                 yp[j] += dl[j]
@@ -529,14 +568,35 @@ def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, ce
 
 
 @njit(cache=True)
-def _w_inverse(J, hd, Winv):
-    """Inverse of the dynamic block of W = I - hd J."""
+def _w_inverse(J, hd, Winv, A):
+    """Inverse of the dynamic block of W = I - hd J into ``Winv``, by Gauss-Jordan
+    elimination with partial pivoting (a few rows: no LAPACK call, and none to
+    compile); ``A`` is scratch of its shape."""
     ndyn = J.shape[1]
-    A = np.empty((ndyn, ndyn))
     for i in range(ndyn):
         for j in range(ndyn):
             A[i, j] = (1.0 if i == j else 0.0) - hd * J[i, j]
-    Winv[:, :] = np.linalg.inv(A)
+            Winv[i, j] = 1.0 if i == j else 0.0
+    for c in range(ndyn):
+        piv = c
+        for r in range(c + 1, ndyn):
+            if abs(A[r, c]) > abs(A[piv, c]):
+                piv = r
+        if piv != c:
+            for j in range(ndyn):
+                A[c, j], A[piv, j] = A[piv, j], A[c, j]
+                Winv[c, j], Winv[piv, j] = Winv[piv, j], Winv[c, j]
+        d = 1.0 / A[c, c]
+        for j in range(ndyn):
+            A[c, j] *= d
+            Winv[c, j] *= d
+        for r in range(ndyn):
+            if r != c:
+                f = A[r, c]
+                if f != 0.0:
+                    for j in range(ndyn):
+                        A[r, j] -= f * A[c, j]
+                        Winv[r, j] -= f * Winv[c, j]
 
 
 @njit(cache=True)
@@ -561,6 +621,295 @@ _E32 = 6.0 + math.sqrt(2.0)
 
 
 @njit(cache=True)
+def emit_samples(io, out_theta, t0, y0, f0, t1, y1, f1, samples, tmp):
+    """Write the states at the output angles ``out_theta[io:]`` up to ``t1`` into
+    ``samples`` (cubic Hermite on the step from ``t0`` to ``t1``); returns the index of
+    the next output angle."""
+    while io < out_theta.shape[0] and out_theta[io] <= t1:
+        hermite(t0, y0, f0, t1, y1, f1, out_theta[io], tmp)
+        put_column(samples, io, tmp)
+        io += 1
+    return io
+
+
+@njit(cache=True)
+def initial_step(f0, y, atol, rtol, span):
+    """A first step [rad] from the derivative's scale, 0.01 rtol^(1/5) / max
+    |f_i| / (atol_i + rtol |y_i|), kept within (1e-9, ``span``]."""
+    scale = 0.0
+    for i in range(y.shape[0]):
+        v = abs(f0[i]) / (atol[i] + rtol * abs(y[i]))
+        if v > scale:
+            scale = v
+    h = 0.01 * (rtol ** 0.2) / scale if scale > 0.0 else span
+    return min(max(h, 1e-9), span)
+
+
+@njit(cache=True)
+def step_factor(err, safety, expo):
+    """The next step over this one after an accepted step of scaled error ``err``."""
+    if err == 0.0:
+        return 5.0
+    return min(5.0, max(0.2, safety * err ** expo))
+
+
+@njit(cache=True)
+def visited_clamp_off(att_end):
+    """The clamp bits of a step's end that make it no step of the physical path (every
+    clamp but steam overheated by the walls, code 8, which is not the step's doing)."""
+    if att_end[0] > 0.0:
+        return int(att_end[1]) & ~CLAMP_HIGH_ENERGY
+    return 0
+
+
+@njit(cache=True)
+def segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att):
+    """The derivative at the start of a segment between kinks, a visited state."""
+    rhs(t, y, f0, net, tier, tab, perf, pr, cell)
+    tally_clamps(pr, t, att)
+    settle_visited(att, clamps)
+
+
+@njit(cache=True)
+def cycle_dopri5(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, max_rhs):
+    """:func:`integrate_cycle` with Dormand-Prince 5(4) (see the module docstring)."""
+    n = y0.shape[0]
+    y = y0.copy()
+    samples = np.full((n, out_theta.shape[0]), np.nan)
+    f0 = np.empty(n)
+    K = np.empty((7, n))
+    ytmp = np.empty(n)
+    tmp = np.empty(n)
+    pr = np.empty((PR_ROWS, net[4].shape[0]))
+    cell = np.empty((net[17].shape[0], 4))
+    nfev = 0
+    clamps = np.zeros(6)
+    clamps[CL_NODE] = -1.0
+    att = np.zeros(4)
+    att_end = np.zeros(4)
+    io = 0
+    while io < out_theta.shape[0] and out_theta[io] <= stops[0]:
+        put_column(samples, io, y)
+        io += 1
+    h_prev = 0.0
+    for seg in range(stops.shape[0] - 1):
+        a = stops[seg]
+        b = stops[seg + 1]
+        if b - a <= 0.0:
+            continue
+        t = a
+        segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att)
+        nfev += 1
+        h = min(h_prev, b - a) if h_prev > 0.0 else initial_step(f0, y, atol, rtol, b - a)
+        while t < b:
+            if t + h > b or b - (t + h) < 1e-12:
+                h = b - t
+            copy_into(K[0], f0)
+            for s_ in range(1, 7):
+                dopri_stage(y, K, s_, h, ytmp)
+                rhs(t + DOPRI_NODES[s_] * h, ytmp, K[s_], net, tier, tab, perf, pr, cell)
+                tally_clamps(pr, t + DOPRI_NODES[s_] * h, att_end if s_ == 6 else att)
+            nfev += 6
+            err = dopri_error(y, ytmp, K, h, atol, rtol)
+            # ytmp: the new state; K[6]: the derivative there (FSAL).  A step whose end
+            # needed the properties clamped (a volume emptied below their least density,
+            # say) is no step of the physical path: it is retried shorter, as an
+            # inaccurate one is (positivity by step control).
+            accepted = (err <= 1.0 and visited_clamp_off(att_end) == 0) or h < 1e-12
+            settle_trial(att, clamps)
+            settle_clamps(att_end, accepted, clamps)
+            if accepted:
+                t1 = t + h
+                io = emit_samples(io, out_theta, t, y, f0, t1, ytmp, K[6], samples, tmp)
+                t = t1
+                copy_into(y, ytmp)
+                copy_into(f0, K[6])
+                h_prev = h * step_factor(err, 0.9, -0.2)
+                h = h_prev
+            elif err <= 1.0:
+                h = 0.5 * h      # accurate, but through a state the properties do not hold
+            else:
+                h = h * max(0.2, 0.9 * err ** -0.2)
+            if not (h > 0.0) or not math.isfinite(y[0]) or nfev > max_rhs:
+                return y, samples, nfev, False, clamps
+    while io < out_theta.shape[0]:
+        put_column(samples, io, y)
+        io += 1
+    return y, samples, nfev, True, clamps
+
+
+@njit(cache=True)
+def cycle_rk4(y0, stops, out_theta, step, net, tier, tab, perf, max_rhs):
+    """:func:`integrate_cycle` with the classical Runge-Kutta method at a fixed step."""
+    n = y0.shape[0]
+    y = y0.copy()
+    samples = np.full((n, out_theta.shape[0]), np.nan)
+    f0 = np.empty(n)
+    f1 = np.empty(n)
+    K = np.empty((4, n))
+    ynew = np.empty(n)
+    ytmp = np.empty(n)
+    tmp = np.empty(n)
+    pr = np.empty((PR_ROWS, net[4].shape[0]))
+    cell = np.empty((net[17].shape[0], 4))
+    nfev = 0
+    clamps = np.zeros(6)
+    clamps[CL_NODE] = -1.0
+    att = np.zeros(4)
+    att_end = np.zeros(4)
+    io = 0
+    while io < out_theta.shape[0] and out_theta[io] <= stops[0]:
+        put_column(samples, io, y)
+        io += 1
+    for seg in range(stops.shape[0] - 1):
+        a = stops[seg]
+        b = stops[seg + 1]
+        if b - a <= 0.0:
+            continue
+        t = a
+        segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att)
+        nfev += 1
+        nstep = int(math.ceil((b - a) / step - 1e-9))
+        if nstep < 1:
+            nstep = 1
+        h = (b - a) / nstep
+        for k_ in range(nstep):
+            for i in range(n):
+                ytmp[i] = y[i] + 0.5 * h * f0[i]
+            rhs(t + 0.5 * h, ytmp, K[1], net, tier, tab, perf, pr, cell)
+            tally_clamps(pr, t + 0.5 * h, att)
+            for i in range(n):
+                ytmp[i] = y[i] + 0.5 * h * K[1, i]
+            rhs(t + 0.5 * h, ytmp, K[2], net, tier, tab, perf, pr, cell)
+            tally_clamps(pr, t + 0.5 * h, att)
+            for i in range(n):
+                ytmp[i] = y[i] + h * K[2, i]
+            rhs(t + h, ytmp, K[3], net, tier, tab, perf, pr, cell)
+            tally_clamps(pr, t + h, att)
+            for i in range(n):
+                ynew[i] = y[i] + h / 6.0 * (f0[i] + 2 * K[1, i] + 2 * K[2, i] + K[3, i])
+            t1 = b if k_ == nstep - 1 else t + h
+            rhs(t1, ynew, f1, net, tier, tab, perf, pr, cell)
+            tally_clamps(pr, t1, att_end)
+            settle_trial(att, clamps)
+            settle_visited(att_end, clamps)
+            nfev += 4
+            io = emit_samples(io, out_theta, t, y, f0, t1, ynew, f1, samples, tmp)
+            t = t1
+            copy_into(y, ynew)
+            copy_into(f0, f1)
+        if not math.isfinite(y[0]) or nfev > max_rhs:
+            return y, samples, nfev, False, clamps
+    while io < out_theta.shape[0]:
+        put_column(samples, io, y)
+        io += 1
+    return y, samples, nfev, True, clamps
+
+
+@njit(cache=True)
+def cycle_rosenbrock(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, owner,
+                     max_rhs):
+    """:func:`integrate_cycle` with the Rosenbrock 2(3) pair of ode23s (module docstring)."""
+    n = y0.shape[0]
+    ndyn = color.shape[0]
+    y = y0.copy()
+    samples = np.full((n, out_theta.shape[0]), np.nan)
+    f0 = np.empty(n)
+    K = np.empty((4, n))
+    f1 = np.empty(n)
+    ytmp = np.empty(n)
+    tmp = np.empty(n)
+    J = np.zeros((n, ndyn))
+    Winv = np.empty((ndyn, ndyn))
+    A = np.empty((ndyn, ndyn))
+    T = np.empty(n)
+    x = np.empty(n)
+    yscale = atol / rtol
+    yp = np.empty(n)
+    fp = np.empty(n)
+    dl = np.empty(ndyn)
+    pr = np.empty((PR_ROWS, net[4].shape[0]))
+    cell = np.empty((net[17].shape[0], 4))
+    nfev = 0
+    clamps = np.zeros(6)
+    clamps[CL_NODE] = -1.0
+    att = np.zeros(4)
+    att_end = np.zeros(4)
+    io = 0
+    while io < out_theta.shape[0] and out_theta[io] <= stops[0]:
+        put_column(samples, io, y)
+        io += 1
+    h_prev = 0.0
+    for seg in range(stops.shape[0] - 1):
+        a = stops[seg]
+        b = stops[seg + 1]
+        if b - a <= 0.0:
+            continue
+        t = a
+        segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att)
+        nfev += 1
+        h = min(h_prev, b - a) if h_prev > 0.0 else initial_step(f0, y, atol, rtol, b - a)
+        while t < b:
+            if t + h > b or b - (t + h) < 1e-12:
+                h = b - t
+            nfev += _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr,
+                              cell, att, yp, fp, dl)
+            hd = h * _D
+            _w_inverse(J, hd, Winv, A)
+            for i in range(n):
+                x[i] = f0[i] + hd * T[i]
+            _w_solve(J, Winv, hd, x, K[0])
+            for i in range(n):
+                ytmp[i] = y[i] + 0.5 * h * K[0, i]
+            rhs(t + 0.5 * h, ytmp, K[1], net, tier, tab, perf, pr, cell)
+            tally_clamps(pr, t + 0.5 * h, att)
+            for i in range(n):
+                x[i] = K[1, i] - K[0, i]
+            _w_solve(J, Winv, hd, x, K[2])
+            for i in range(n):
+                K[2, i] += K[0, i]
+                ytmp[i] = y[i] + h * K[2, i]
+            rhs(t + h, ytmp, f1, net, tier, tab, perf, pr, cell)
+            tally_clamps(pr, t + h, att_end)
+            nfev += 2
+            for i in range(n):
+                x[i] = (f1[i] - _E32 * (K[2, i] - K[1, i]) - 2.0 * (K[0, i] - f0[i])
+                        + hd * T[i])
+            _w_solve(J, Winv, hd, x, K[3])
+            err = 0.0
+            for i in range(n):
+                e = abs(h / 6.0 * (K[0, i] - 2.0 * K[2, i] + K[3, i]))
+                e /= atol[i] + rtol * max(abs(y[i]), abs(ytmp[i]))
+                if e > err:
+                    err = e
+            accepted = (err <= 1.0 and visited_clamp_off(att_end) == 0) or h < 1e-12
+            settle_trial(att, clamps)
+            settle_clamps(att_end, accepted, clamps)
+            if accepted:
+                t1 = t + h
+                io = emit_samples(io, out_theta, t, y, f0, t1, ytmp, f1, samples, tmp)
+                t = t1
+                copy_into(y, ytmp)
+                copy_into(f0, f1)
+                h_prev = h * step_factor(err, 0.8, -1.0 / 3.0)
+                h = h_prev
+            elif err <= 1.0:
+                h = 0.5 * h      # accurate, but through a state the properties do not hold
+            else:
+                h = h * max(0.2, 0.8 * err ** (-1.0 / 3.0))
+            if not (h > 0.0) or not math.isfinite(y[0]) or nfev > max_rhs:
+                return y, samples, nfev, False, clamps
+    while io < out_theta.shape[0]:
+        put_column(samples, io, y)
+        io += 1
+    return y, samples, nfev, True, clamps
+
+
+#: The compiled integrators by code (0 dopri5, 1 rk4, 2 Rosenbrock ode23s): separate
+#: functions, so that a run compiles only the one it uses.
+CYCLE_KERNELS = (cycle_dopri5, cycle_rk4, cycle_rosenbrock)
+
+
 def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, tab, perf,
                     color, owner, max_rhs):
     """Integrate from ``stops[0]`` to ``stops[-1]``, restarting at every stop.
@@ -572,158 +921,12 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
     evaluations that clamped a state (indices ``CL_*``): at visited states (the ends of
     accepted steps) and at trial states (stages, probes, rejected steps) apart.
     """
-    n = y0.shape[0]
-    ndyn = color.shape[0]
-    y = y0.copy()
-    samples = np.full((n, out_theta.shape[0]), np.nan)
-    f0 = np.empty(n)
-    f1 = np.empty(n)
-    K = np.empty((7, n))
-    ytmp = np.empty(n)
-    ynew = np.empty(n)
-    tmp = np.empty(n)
-    J = np.zeros((n, ndyn))
-    Winv = np.empty((ndyn, ndyn))
-    T = np.empty(n)
-    x = np.empty(n)
-    yscale = atol / rtol
-    pr = np.empty((PR_ROWS, net[4].shape[0]))
-    cell = np.empty((net[17].shape[0], 4))
-    nfev = 0
-    clamps = np.zeros(6)
-    clamps[CL_NODE] = -1.0
-    att = np.zeros(4)
-    att_end = np.zeros(4)
-    io = 0
-    while io < out_theta.shape[0] and out_theta[io] <= stops[0]:
-        samples[:, io] = y
-        io += 1
-    h_prev = 0.0
-    for seg in range(stops.shape[0] - 1):
-        a = stops[seg]
-        b = stops[seg + 1]
-        if b - a <= 0.0:
-            continue
-        t = a
-        rhs(t, y, f0, net, tier, tab, perf, pr, cell)
-        nfev += 1
-        tally_clamps(pr, t, att)
-        settle_clamps(att, True, clamps)
-        if method == 1:   # rk4, fixed step
-            nstep = int(math.ceil((b - a) / step - 1e-9))
-            if nstep < 1:
-                nstep = 1
-            h = (b - a) / nstep
-            for k_ in range(nstep):
-                rhs(t + 0.5 * h, y + 0.5 * h * f0, K[1], net, tier, tab, perf, pr, cell)
-                tally_clamps(pr, t + 0.5 * h, att)
-                rhs(t + 0.5 * h, y + 0.5 * h * K[1], K[2], net, tier, tab, perf, pr, cell)
-                tally_clamps(pr, t + 0.5 * h, att)
-                rhs(t + h, y + h * K[2], K[3], net, tier, tab, perf, pr, cell)
-                tally_clamps(pr, t + h, att)
-                for i in range(n):
-                    ynew[i] = y[i] + h / 6.0 * (f0[i] + 2 * K[1, i] + 2 * K[2, i] + K[3, i])
-                t1 = b if k_ == nstep - 1 else t + h
-                rhs(t1, ynew, f1, net, tier, tab, perf, pr, cell)
-                tally_clamps(pr, t1, att_end)
-                settle_clamps(att, False, clamps)
-                settle_clamps(att_end, True, clamps)
-                nfev += 4
-                while io < out_theta.shape[0] and out_theta[io] <= t1:
-                    hermite(t, y, f0, t1, ynew, f1, out_theta[io], tmp)
-                    samples[:, io] = tmp
-                    io += 1
-                t = t1
-                y[:] = ynew
-                f0[:] = f1
-            continue
-        if h_prev > 0.0:
-            h = min(h_prev, b - a)
-        else:
-            scale = 0.0
-            for i in range(n):
-                v = abs(f0[i]) / (atol[i] + rtol * abs(y[i]))
-                if v > scale:
-                    scale = v
-            h = 0.01 * (rtol ** 0.2) / scale if scale > 0.0 else (b - a)
-            h = min(max(h, 1e-9), b - a)
-        while t < b:
-            if t + h > b or b - (t + h) < 1e-12:
-                h = b - t
-            if method == 2:   # Rosenbrock ode23s
-                nfev += _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr,
-                                  cell, att)
-                hd = h * _D
-                _w_inverse(J, hd, Winv)
-                for i in range(n):
-                    x[i] = f0[i] + hd * T[i]
-                _w_solve(J, Winv, hd, x, K[0])
-                for i in range(n):
-                    ytmp[i] = y[i] + 0.5 * h * K[0, i]
-                rhs(t + 0.5 * h, ytmp, K[1], net, tier, tab, perf, pr, cell)
-                tally_clamps(pr, t + 0.5 * h, att)
-                for i in range(n):
-                    x[i] = K[1, i] - K[0, i]
-                _w_solve(J, Winv, hd, x, K[2])
-                for i in range(n):
-                    K[2, i] += K[0, i]
-                    ytmp[i] = y[i] + h * K[2, i]
-                rhs(t + h, ytmp, K[6], net, tier, tab, perf, pr, cell)
-                tally_clamps(pr, t + h, att_end)
-                nfev += 2
-                for i in range(n):
-                    x[i] = (K[6, i] - _E32 * (K[2, i] - K[1, i]) - 2.0 * (K[0, i] - f0[i])
-                            + hd * T[i])
-                _w_solve(J, Winv, hd, x, K[3])
-                err = 0.0
-                for i in range(n):
-                    e = abs(h / 6.0 * (K[0, i] - 2.0 * K[2, i] + K[3, i]))
-                    e /= atol[i] + rtol * max(abs(y[i]), abs(ytmp[i]))
-                    if e > err:
-                        err = e
-                expo = -1.0 / 3.0
-                safety = 0.8
-            else:             # dopri5
-                K[0, :] = f0
-                for s_ in range(1, 7):
-                    dopri_stage(y, K, s_, h, ytmp)
-                    rhs(t + DOPRI_NODES[s_] * h, ytmp, K[s_], net, tier, tab, perf, pr, cell)
-                    tally_clamps(pr, t + DOPRI_NODES[s_] * h, att_end if s_ == 6 else att)
-                nfev += 6
-                err = dopri_error(y, ytmp, K, h, atol, rtol)
-                expo = -0.2
-                safety = 0.9
-            # ytmp: the new state; K[6]: the derivative there (FSAL).  A step whose end
-            # needed the properties clamped (a volume emptied below their least density,
-            # say) is no step of the physical path: it is retried shorter, as an
-            # inaccurate one is (positivity by step control).  Steam overheated by the
-            # walls (code 8) is not the step's doing and is let through (counted).
-            off = int(att_end[1]) & ~CLAMP_HIGH_ENERGY if att_end[0] > 0.0 else 0
-            accepted = (err <= 1.0 and off == 0) or h < 1e-12
-            settle_clamps(att, False, clamps)
-            settle_clamps(att_end, accepted, clamps)
-            if accepted:
-                t1 = t + h
-                while io < out_theta.shape[0] and out_theta[io] <= t1:
-                    hermite(t, y, f0, t1, ytmp, K[6], out_theta[io], tmp)
-                    samples[:, io] = tmp
-                    io += 1
-                t = t1
-                y[:] = ytmp
-                f0[:] = K[6]
-                fac = 5.0 if err == 0.0 else min(5.0, max(0.2, safety * err ** expo))
-                h_prev = h * fac
-                h = h_prev
-            elif err <= 1.0:
-                h = 0.5 * h      # accurate, but through a state the properties do not hold
-            else:
-                h = h * max(0.2, safety * err ** expo)
-            if not (h > 0.0) or not math.isfinite(y[0]) or nfev > max_rhs:
-                return y, samples, nfev, False, clamps
-    while io < out_theta.shape[0]:
-        samples[:, io] = y
-        io += 1
-    return y, samples, nfev, True, clamps
+    if method == 0:
+        return cycle_dopri5(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, max_rhs)
+    if method == 1:
+        return cycle_rk4(y0, stops, out_theta, step, net, tier, tab, perf, max_rhs)
+    return cycle_rosenbrock(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color,
+                            owner, max_rhs)
 
 
 def announce_compile(*dispatchers) -> None:

@@ -45,13 +45,14 @@ from numba import njit
 
 from corliss.engine.kernel import (CL_ACCEPTED, CL_ACCEPTED_CODE, CL_REJECTED,
                                    CL_REJECTED_CODE, DOPRI_NODES, PR_ROWS, balances,
-                                   dopri_error, dopri_stage, hermite, node_states, port_areas,
-                                   settle_clamps, tally_clamps)
+                                   copy_into, dopri_error, dopri_stage, emit_samples,
+                                   node_states, port_areas, put_column, settle_clamps,
+                                   settle_trial, settle_visited, step_factor, tally_clamps)
 from corliss.errors import RunError
 
 #: Revision of the inlined kernel, property and port-flow code: numba keys this file's
 #: cache on its content alone (see :mod:`corliss.engine.kernel`).
-DEPENDENCY_REVISION = 8
+DEPENDENCY_REVISION = 11
 
 TWO_PI = 2.0 * math.pi
 
@@ -76,7 +77,7 @@ N_EXTRA = 9
 N_REC = 7
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def piston_kinematics(th, net, c):
     """(ds/dtheta, d2s/dtheta2) of cylinder ``c``'s piston [m/rad, m/rad2]."""
     geo, phase = net[2], net[3]
@@ -93,7 +94,7 @@ def piston_kinematics(th, net, c):
     return ds, d2s
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _lin(grid0, dgrid, table, x):
     """Linear interpolation in a table on a uniform grid, clamped at its ends."""
     n = table.shape[0]
@@ -107,7 +108,7 @@ def _lin(grid0, dgrid, table, x):
     return table[k] * (1.0 - w) + table[k + 1] * w
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def uniform_cell(x, x0, x1, n):
     """(k, w): the cell of ``x`` on n uniform points from x0 to x1 and the weight of
     point k + 1, clamped to the grid (a single point gives (0, 0))."""
@@ -124,7 +125,7 @@ def uniform_cell(x, x0, x1, n):
     return k, f - k
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def load_factor(t, lt, lf):
     """The load schedule f(t): piecewise linear, constant beyond its ends."""
     n = lt.shape[0]
@@ -139,7 +140,7 @@ def load_factor(t, lt, lf):
     return lf[k] + (lf[k + 1] - lf[k]) * (t - lt[k]) / dt
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def governed_areas(th, s, omega, net, tr, pa):
     """Port areas of the governed cylinders at gear setting ``s``, bilinear in the
     (setting, crank angle) table; with a trip gear, the steam valves released at the
@@ -167,7 +168,7 @@ def governed_areas(th, s, omega, net, tr, pa):
             trip_areas(t, s, omega, tr, c, pa)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def trip_areas(t, s, omega, tr, c, pa):
     """A trip gear's steam ports (0: head, 2: crank): the latched opening (as tabulated)
     until the cam releases the valve at its release angle, then at most the opening at
@@ -352,11 +353,11 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
     t = a
     transient_rhs(t, y, f0, net, tier, tab, perf, pr, pa, tr, out)
     tally_clamps(pr, t, att)
-    settle_clamps(att, True, clamps)
+    settle_visited(att, clamps)
     nfev = 1
     io = 0
     while io < out_theta.shape[0] and out_theta[io] <= a:
-        samples[:, io] = y
+        put_column(samples, io, y)
         io += 1
     if record:
         rec[0, 0] = t
@@ -378,7 +379,7 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
     while t < b:
         if t + h > b or b - (t + h) < 1e-12:
             h = b - t
-        K[0, :] = f0
+        copy_into(K[0], f0)
         for s_ in range(1, 7):
             dopri_stage(y, K, s_, h, ytmp)
             transient_rhs(t + DOPRI_NODES[s_] * h, ytmp, K[s_], net, tier, tab, perf, pr, pa, tr, out)
@@ -386,28 +387,25 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
         nfev += 6
         err = dopri_error(y, ytmp, K, h, atol, rtol)
         accepted = err <= 1.0 or h < 1e-10
-        settle_clamps(att, False, clamps)
+        settle_trial(att, clamps)
         settle_clamps(att_end, accepted, clamps)
         if clamps[CL_ACCEPTED] > 0.0:
             _visited_clamps(clamps, sc)
         if accepted:
             t1 = t + h
-            while io < out_theta.shape[0] and out_theta[io] <= t1:
-                hermite(t, y, f0, t1, ytmp, K[6], out_theta[io], tmp)
-                samples[:, io] = tmp
-                io += 1
+            io = emit_samples(io, out_theta, t, y, f0, t1, ytmp, K[6], samples, tmp)
             t = t1
-            y[:] = ytmp
+            copy_into(y, ytmp)
             before = y[nn + X_Z]
             _project(y, nn)
             if y[nn + X_Z] != before:   # a stop was struck: restart the derivative
                 transient_rhs(t, y, K[6], net, tier, tab, perf, pr, pa, tr, out)
                 tally_clamps(pr, t, att)
-                settle_clamps(att, True, clamps)
+                settle_visited(att, clamps)
                 if clamps[CL_ACCEPTED] > 0.0:
                     _visited_clamps(clamps, sc)
                 nfev += 1
-            f0[:] = K[6]
+            copy_into(f0, K[6])
             if record and n_rec < nrec_max:
                 # out[] holds the values at the last stage, which is the step's end (FSAL)
                 rec[0, n_rec] = t
@@ -418,8 +416,7 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
                 rec[5, n_rec] = out[0]
                 rec[6, n_rec] = out[1]
                 n_rec += 1
-            fac = 5.0 if err == 0.0 else min(5.0, max(0.2, 0.9 * err ** -0.2))
-            h = h * fac
+            h = h * step_factor(err, 0.9, -0.2)
             if y[nn + X_OMEGA] < sc[S_WMIN]:
                 status = 2
                 break
@@ -432,7 +429,7 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
             status = 4
             break
     while io < out_theta.shape[0]:
-        samples[:, io] = y
+        put_column(samples, io, y)
         io += 1
     if status == 0 and y[nn + X_TIME] >= t_end:
         status = 3

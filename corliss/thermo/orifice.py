@@ -71,10 +71,16 @@ def kappa_of(x: float, superheated: bool) -> float:
 
 @njit(cache=True)
 def _flux_unregularised(r: float, p0: float, rho0: float, kappa: float) -> float:
-    r_crit = (2.0 / (kappa + 1.0)) ** (kappa / (kappa - 1.0))
-    if r < r_crit:
-        r = r_crit
-    term = r ** (2.0 / kappa) - r ** ((kappa + 1.0) / kappa)
+    # in logarithms: ln r_crit = kappa/(kappa-1) ln(2/(kappa+1)), and with
+    # a = r^(1/kappa) the bracket r^(2/kappa) - r^((kappa+1)/kappa) is a (a - r): two
+    # logarithms and an exponential instead of three powers
+    ln_crit = kappa / (kappa - 1.0) * math.log(2.0 / (kappa + 1.0))
+    ln_r = math.log(r) if r > 0.0 else -math.inf
+    if ln_r < ln_crit:
+        ln_r = ln_crit
+        r = math.exp(ln_crit)
+    a = math.exp(ln_r / kappa)
+    term = a * (a - r)
     if term <= 0.0:
         return 0.0
     return math.sqrt(2.0 * kappa / (kappa - 1.0) * p0 * rho0 * term)
@@ -88,9 +94,10 @@ def _flux_in_band_c1(r: float, r_edge: float, band: float, p0: float, rho0: floa
     g_e = _flux_unregularised(r_edge, p0, rho0, kappa)
     if g_e <= 0.0:
         return 0.0
-    # s = (dG/dt) / G at t = 1, from G^2 = c term(r): dG/dt = -band c term'(r) / (2 G)
-    term_d = ((2.0 / kappa) * r_edge ** (2.0 / kappa - 1.0)
-              - ((kappa + 1.0) / kappa) * r_edge ** (1.0 / kappa))
+    # s = (dG/dt) / G at t = 1, from G^2 = c term(r): dG/dt = -band c term'(r) / (2 G),
+    # term'(r) = (2/kappa) r^(2/kappa - 1) - ((kappa+1)/kappa) r^(1/kappa)
+    a = math.exp(math.log(r_edge) / kappa)
+    term_d = (2.0 / kappa) * a * a / r_edge - ((kappa + 1.0) / kappa) * a
     c = 2.0 * kappa / (kappa - 1.0) * p0 * rho0
     s = -band * c * term_d / (2.0 * g_e * g_e)
     s = min(max(s, 0.0), 2.0)        # keeps the quadratic monotonic on the band

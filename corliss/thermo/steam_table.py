@@ -143,6 +143,35 @@ def _sat_at(T, sT0, sdT, arr):
 
 
 @njit(cache=True)
+def _lever(T, u, v, sT0, sdT, s_vf, s_lnvg, s_uf, s_ug):
+    """The lever rule's residual at saturation temperature ``T`` [K] for specific
+    volume ``v`` [m3/kg] and energy ``u`` [J/kg],
+    ``(u - u_f)(v_g - v_f) - (v - v_f)(u_g - u_f)`` (falling with T through the wet
+    state's temperature), and its derivative in T within the saturation table's cell."""
+    f = (T - sT0) / sdT
+    n = s_vf.shape[0]
+    if f < 0.0:
+        f = 0.0
+    k = int(f)
+    if k > n - 2:
+        k = n - 2
+    w = f - k
+    if w > 1.0:
+        w = 1.0
+    vf = s_vf[k] * (1.0 - w) + s_vf[k + 1] * w
+    dvf = (s_vf[k + 1] - s_vf[k]) / sdT
+    vg = math.exp(s_lnvg[k] * (1.0 - w) + s_lnvg[k + 1] * w)
+    dvg = vg * (s_lnvg[k + 1] - s_lnvg[k]) / sdT
+    uf = s_uf[k] * (1.0 - w) + s_uf[k + 1] * w
+    duf = (s_uf[k + 1] - s_uf[k]) / sdT
+    ug = s_ug[k] * (1.0 - w) + s_ug[k + 1] * w
+    dug = (s_ug[k + 1] - s_ug[k]) / sdT
+    res = (u - uf) * (vg - vf) - (v - vf) * (ug - uf)
+    der = -duf * (vg - vf) + (u - uf) * (dvg - dvf) + dvf * (ug - uf) - (v - vf) * (dug - duf)
+    return res, der
+
+
+@njit(cache=True)
 def lookup(tab, rho, u):
     """(p [Pa], T [K], dryness [-], superheated) at density ``rho`` and energy ``u``.
 
@@ -153,7 +182,7 @@ def lookup(tab, rho, u):
     return p, T, x, sup
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def lookup_flagged(tab, rho, u):
     """:func:`lookup` and a code: 0 when the state is inside the table, else the bits
     of :data:`CLAMP_CODES` saying how it was clamped."""
@@ -177,7 +206,8 @@ def lookup_flagged(tab, rho, u):
     if i > nr - 2:
         i = nr - 2
     wr = fr - i
-    rho_c = math.exp(lnrho0 + fr * dlnrho)
+    # the density evaluated: the table's edge when clamped
+    rho_c = math.exp(lnrho0 + fr * dlnrho) if code & 3 else rho
     ug0 = ug_row[i]
     ug1 = ug_row[i + 1]
     if ug0 == ug0 and ug1 == ug1:      # both rows below the critical density
@@ -210,41 +240,41 @@ def lookup_flagged(tab, rho, u):
     v = 1.0 / rho_c
     lo = sT0
     hi = Tg_row[i] * (1.0 - wr) + Tg_row[i + 1] * wr
-
-    def f(T):
-        vf = _sat_at(T, sT0, sdT, s_vf)
-        vg = math.exp(_sat_at(T, sT0, sdT, s_lnvg))
-        uf = _sat_at(T, sT0, sdT, s_uf)
-        ugs = _sat_at(T, sT0, sdT, s_ug)
-        return (u - uf) * (vg - vf) - (v - vf) * (ugs - uf)
-
-    flo = f(lo)
-    fhi = f(hi)
-    T = lo
-    if flo <= 0.0:
-        T = lo
-        if flo < 0.0:
-            code |= 16       # wet steam colder than the triple point
-    elif fhi >= 0.0:
-        T = hi
-    else:
-        side = 0
+    fhi, dhi = _lever(hi, u, v, sT0, sdT, s_vf, s_lnvg, s_uf, s_ug)
+    T = hi
+    if fhi < 0.0:
+        # Newton from the saturated-vapour end (cylinder steam is nearly dry), kept
+        # inside the bracket [lo, hi] (f falls through its root), bisecting when a
+        # step would leave it; the triple point's end is evaluated only when a step
+        # reaches it
+        ft = fhi
+        dt = dhi
+        lo_known = False
         for _ in range(100):
-            T = (lo * fhi - hi * flo) / (fhi - flo)
-            ft = f(T)
-            if ft == 0.0 or hi - lo < 1e-9:
-                break
             if ft > 0.0:
-                lo, flo = T, ft
-                if side == 1:
-                    fhi *= 0.5
-                side = 1
+                lo = T
+                lo_known = True
             else:
-                hi, fhi = T, ft
-                if side == -1:
-                    flo *= 0.5
-                side = -1
-            if abs(ft) < 1e-12 * abs(u) * abs(v):
+                hi = T
+            Tn = T - ft / dt if dt < 0.0 else lo
+            if not Tn > lo:
+                if not lo_known:
+                    flo, dlo = _lever(lo, u, v, sT0, sdT, s_vf, s_lnvg, s_uf, s_ug)
+                    if flo <= 0.0:
+                        T = lo
+                        if flo < 0.0:
+                            code |= 16       # wet steam colder than the triple point
+                        break
+                    lo_known = True
+                Tn = 0.5 * (lo + hi)
+            elif not Tn < hi:
+                Tn = 0.5 * (lo + hi)
+            if abs(Tn - T) < 1e-9 or hi - lo < 1e-9:
+                T = Tn
+                break
+            T = Tn
+            ft, dt = _lever(T, u, v, sT0, sdT, s_vf, s_lnvg, s_uf, s_ug)
+            if ft == 0.0:
                 break
     vf = _sat_at(T, sT0, sdT, s_vf)
     vg = math.exp(_sat_at(T, sT0, sdT, s_lnvg))
@@ -256,7 +286,7 @@ def lookup_flagged(tab, rho, u):
     return math.exp(_sat_at(T, sT0, sdT, s_lnp)), T, x, False, code
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def kappa_at(tab, rho, u):
     """Isentropic exponent [-] of the port flow from the upstream state at density
     ``rho`` [kg/m3] and internal energy ``u`` [J/kg]: bilinear on the table's grid of
@@ -350,16 +380,61 @@ def _build(params: dict) -> dict:
             st = (ts[1] - ts[0]) / (us[1] - us[0])
             q[i, lo] = ps[0] + sq * (u_grid[lo] - us[0])
             TT[i, lo] = ts[0] + st * (u_grid[lo] - us[0])
-    k_lnrho = np.linspace(math.log(params["rho_min"]), math.log(params["rho_max"]),
-                          params["kappa_n_rho"])
-    k_u = np.linspace(params["kappa_u_min"], params["u_max"], params["kappa_n_u"])
-    kappa = _kappa_grid(k_lnrho, k_u)
+    k_lnrho, k_u = kappa_axes(params)
+    kappa = shipped_kappa(params)
+    if kappa is None:
+        kappa = _kappa_grid(k_lnrho, k_u)
     return {"lnrho0": float(lnrho[0]), "dlnrho": float(lnrho[1] - lnrho[0]),
             "u0": float(u_grid[0]), "du": float(u_grid[1] - u_grid[0]), "q": q, "T": TT,
             "ug_row": ug_row, "Tg_row": Tg_row, "sT0": float(sT[0]), "sdT": float(sT[1] - sT[0]),
             "s_lnp": sat[0], "s_vf": sat[1], "s_lnvg": sat[2], "s_uf": sat[3], "s_ug": sat[4],
             "k_lnrho0": float(k_lnrho[0]), "k_dlnrho": float(k_lnrho[1] - k_lnrho[0]),
             "k_u0": float(k_u[0]), "k_du": float(k_u[1] - k_u[0]), "kappa": kappa}
+
+
+#: The port-flow exponent's grid, shipped with the package (its build is three
+#: quarters of the table's: a nozzle maximisation per cell), with the parameters it
+#: was built for; :func:`write_kappa_grid` remakes it.
+KAPPA_FILE = Path(__file__).with_name("kappa_grid.npz")
+KAPPA_KEYS = ("rho_min", "rho_max", "kappa_n_rho", "kappa_u_min", "u_max", "kappa_n_u")
+
+
+def kappa_axes(params: dict) -> tuple[np.ndarray, np.ndarray]:
+    """The port-flow exponent's grid: ln density [ln(kg/m3)] and internal energy [J/kg]."""
+    k_lnrho = np.linspace(math.log(params["rho_min"]), math.log(params["rho_max"]),
+                          params["kappa_n_rho"])
+    k_u = np.linspace(params["kappa_u_min"], params["u_max"], params["kappa_n_u"])
+    return k_lnrho, k_u
+
+
+def shipped_kappa(params: dict, path: Path = KAPPA_FILE) -> np.ndarray | None:
+    """The shipped grid of the port-flow exponent [-] when it was built for ``params``
+    (the keys of :data:`KAPPA_KEYS`), else None (then it is computed)."""
+    try:
+        with np.load(path, allow_pickle=False) as z:
+            built_for = json.loads(str(z["params"]))
+            kappa = np.array(z["kappa"], dtype=np.float64)
+    except (OSError, KeyError, ValueError):
+        return None
+    if built_for != {k: params[k] for k in KAPPA_KEYS}:
+        return None
+    if kappa.shape != (params["kappa_n_rho"], params["kappa_n_u"]):
+        return None
+    return kappa
+
+
+def write_kappa_grid(path: Path = KAPPA_FILE, params: dict | None = None) -> Path:
+    """Compute the port-flow exponent's grid from HEOS (about 15 s) and write it to
+    ``path`` with the parameters and the CoolProp version it was built with::
+
+        python -c "from corliss.thermo.steam_table import write_kappa_grid; write_kappa_grid()"
+    """
+    params = params or PARAMS
+    kappa = _kappa_grid(*kappa_axes(params))
+    np.savez_compressed(path, kappa=kappa,
+                        params=np.array(json.dumps({k: params[k] for k in KAPPA_KEYS})),
+                        coolprop=np.array(_coolprop_version()))
+    return Path(path)
 
 
 TRIPLE_POINT_PA = 611.657
@@ -563,7 +638,7 @@ def load_table() -> SteamTable:
     return tab
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def t_sat(tab, p):
     """Saturation temperature [K] at pressure ``p`` [Pa]: bisection on the table's
     ln p_sat over its uniform temperature grid, linear within the cell."""
