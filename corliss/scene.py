@@ -24,7 +24,7 @@ from corliss.engine.options import (COMPILED_METHODS, EFFECT_KEYS, EFFECTS, EXPA
 from corliss.errors import InputError
 from corliss.tables import DISCHARGE_COEFFICIENT, Table
 from corliss.textfiles import read_text
-from corliss.thermo.steam import BACKENDS, HEOSSteam
+from corliss.thermo.steam import BACKENDS, HEOSSteam, TableSteam
 from corliss.valves import GEARS
 
 SECTIONS = ("title", "engine", "supply", "exhaust", "valve_gear", "run", "output", "compound",
@@ -442,9 +442,10 @@ def _check_states(data: dict, supply: SupplySpec, exhaust: ExhaustSpec, run: Run
                          "a pressure below the critical pressure of water, 22.064 MPa")
     if run.fidelity.properties != "table":
         return
-    heos = HEOSSteam()
-    chest = (heos.pt(supply.pressure_Pa, supply.temperature_K) if supply.temperature_K
-             else heos.px(supply.pressure_Pa, supply.dryness))
+    # the table's own states (CoolProp only for a state off its arrays)
+    steam = TableSteam()
+    chest = (steam.pt(supply.pressure_Pa, supply.temperature_K) if supply.temperature_K
+             else steam.px(supply.pressure_Pa, supply.dryness))
     if not steam_table.covers(chest.rho, chest.u):
         key = ("supply.dryness" if supply.dryness < 1.0 else
                "supply.temperature" if chest.u > steam_table.PARAMS["u_max"] else
@@ -458,7 +459,7 @@ def _check_states(data: dict, supply: SupplySpec, exhaust: ExhaustSpec, run: Run
                          f"run.properties = \"heos\"")
     # the exhaust steam expands below back pressure in the cylinder: a fifth of its
     # density in hand
-    ex = heos.px(exhaust.pressure_Pa, 1.0)
+    ex = steam.px(exhaust.pressure_Pa, 1.0)
     if ex.rho < 1.2 * steam_table.PARAMS["rho_min"]:
         raise InputError("exhaust.pressure", data["exhaust"].get("pressure"),
                          f"an exhaust the \"table\" property tier covers: dry steam at back "
