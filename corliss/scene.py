@@ -107,9 +107,10 @@ class RunSpec:
         Expansion law of the ideal card: ``"hyperbolic"`` or ``"isentropic"``.
     duration_s : float or None
         Transient: simulated time [s] (rounded up to whole turns).
-    record : str
+    record : str or None
         Transient time series: ``"step"`` (every integrator step), ``"degree"`` (every
-        ``output_step`` of crank angle) or ``"cycle"`` (once per turn).
+        ``output_step`` of crank angle) or ``"cycle"`` (once per turn); None (not in the
+        scene): by the run's length (:func:`corliss.engine.options.record_of`).
     settling_band : float
         Transient: the speed band, as a fraction of the final mean speed, that the
         settling time is measured to [-].  By default 0.2 %: a fraction of the 1 to 5 %
@@ -142,7 +143,7 @@ class RunSpec:
     cycles: int | None
     expansion: str
     duration_s: float | None = None
-    record: str = "degree"
+    record: str | None = None
     settling_band: float = 0.002
     warmup_cycles: int = 3
     start: str = "equilibrium"
@@ -573,7 +574,7 @@ def _run(t: Table) -> RunSpec:
     elif t.has("duration"):
         raise InputError(t.key("duration"), t.raw("duration"), "no duration in a steady run "
                          "(it runs until periodic, or run.cycles); or mode = \"transient\"")
-    record = t.choice("record", RECORD_CHOICES, "degree")
+    record = t.choice("record", RECORD_CHOICES) if t.has("record") else None
     band = t.number("settling_band", 0.002)
     if not 0.0 < band < 0.5:
         raise InputError(t.key("settling_band"), band, "a fraction of the speed between 0 and 0.5")
