@@ -30,14 +30,15 @@ import math
 
 import numpy as np
 
-#: Derived arrays of a table, by ``id`` of its arrays: (T grid, s_f, s_g) [K, J/(kg K)].
+#: Derived arrays of a table, by ``id`` of its saturation array (kept, so the id stays
+#: its): (that array, T grid [K], s_f, s_g [J/(kg K)]).
 _DERIVED: dict[int, tuple] = {}
 
 
 def _saturation_entropy(tab) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(T grid [K], s_f [J/(kg K)], s_g [J/(kg K)]) on the table's saturation grid."""
     key = id(tab.s_lnp)
-    if key not in _DERIVED:
+    if key not in _DERIVED or _DERIVED[key][0] is not tab.s_lnp:
         n = tab.s_lnp.size
         T = tab.sT0 + tab.sdT * np.arange(n)
         p = np.exp(tab.s_lnp)
@@ -48,8 +49,8 @@ def _saturation_entropy(tab) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         ds = (np.diff(hf) - 0.5 * (vf[1:] + vf[:-1]) * np.diff(p)) / (0.5 * (T[1:] + T[:-1]))
         sf = np.concatenate([[0.0], np.cumsum(ds)])
         sg = sf + (hg - hf) / T
-        _DERIVED[key] = (T, sf, sg)
-    return _DERIVED[key]
+        _DERIVED[key] = (tab.s_lnp, T, sf, sg)
+    return _DERIVED[key][1:]
 
 
 def t_sat(tab, p: float) -> float | None:
@@ -59,7 +60,7 @@ def t_sat(tab, p: float) -> float | None:
         return None
     i = min(int(np.searchsorted(tab.s_lnp, lp, side="right")) - 1, tab.s_lnp.size - 2)
     w = (lp - tab.s_lnp[i]) / (tab.s_lnp[i + 1] - tab.s_lnp[i])
-    return tab.sT0 + tab.sdT * (i + w)
+    return float(tab.sT0 + tab.sdT * (i + w))
 
 
 def _at(tab, T: float, arr: np.ndarray) -> float:
@@ -73,7 +74,7 @@ def _at(tab, T: float, arr: np.ndarray) -> float:
 def px(tab, p: float, x: float) -> tuple | None:
     """Saturated steam of dryness ``x`` [-] at pressure ``p`` [Pa]."""
     T = t_sat(tab, p)
-    if T is None:
+    if T is None or not 0.0 <= x <= 1.0:      # IAPWS-95 says what is wrong with it
         return None
     _, sf, sg = _saturation_entropy(tab)
     vf, vg = _at(tab, T, tab.s_vf), math.exp(_at(tab, T, tab.s_lnvg))
