@@ -24,8 +24,9 @@
 A user's mistake exits with code 2 and a one-paragraph message, no traceback, and
 writes nothing.  Messages go through the ``corliss`` logger: once-per-machine notices
 (compiling the kernels, building the steam table) by default, everything with ``-v``;
-other libraries' logs stay quiet.  Runs that take more than a couple of seconds show
-a progress line on a terminal.
+other libraries' logs stay quiet.  While such a step runs, a line says what it is doing
+and for how long (:mod:`corliss.heartbeat`), so a first run is never silent for long.
+Runs that take more than a couple of seconds show a progress line on a terminal.
 """
 
 from __future__ import annotations
@@ -47,6 +48,7 @@ from corliss.engine.load_range import load_ranges
 from corliss.engine.model import build_gear, scene_events
 from corliss.engine.simulate import simulate
 from corliss.errors import InputError, RunError
+from corliss.heartbeat import Heartbeat
 from corliss.logs import NOTICE
 from corliss.results import OutputFiles, scene_from_meta, summary_json
 from corliss.scene import bundled_scenes, default_scene_path, find_scene, load_scene
@@ -556,20 +558,27 @@ class _Handler(logging.StreamHandler):
         super().emit(record)
 
 
-def configure_logging(verbose: bool) -> None:
+def configure_logging(verbose: bool) -> Heartbeat:
     """The ``corliss`` logger to stderr: notices by default, debug with ``-v``; the root
-    logger (and with it every other library) untouched."""
+    logger (and with it every other library) untouched.  Returns the started
+    :class:`~corliss.heartbeat.Heartbeat`, which says what a slow once-per-machine step
+    is doing while it runs (stop it when the command ends)."""
     handler = _Handler()
+    handler.setLevel(logging.DEBUG if verbose else NOTICE)
     handler.setFormatter(logging.Formatter("corliss: %(message)s" if not verbose else
                                            "%(levelname)s %(name)s: %(message)s"))
-    log.handlers[:] = [handler]
-    log.setLevel(logging.DEBUG if verbose else NOTICE)
+    beat = Heartbeat(lambda: sys.stderr)
+    log.handlers[:] = [beat, handler]       # the heartbeat ends its line first
+    # INFO reaches the heartbeat (the end of a step: "built the steam table in ..."),
+    # not the screen
+    log.setLevel(logging.DEBUG if verbose else logging.INFO)
     log.propagate = False
+    return beat.start()
 
 
 def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
-    configure_logging(args.verbose)
+    beat = configure_logging(args.verbose)
     try:
         return args.func(args)
     except InputError as exc:
@@ -582,6 +591,8 @@ def main(argv: list[str] | None = None) -> int:
     except BrokenPipeError:  # output piped into `head` and the like
         sys.stdout = open(os.devnull, "w")
         return 0
+    finally:
+        beat.stop()
 
 
 if __name__ == "__main__":  # pragma: no cover

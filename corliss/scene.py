@@ -24,7 +24,7 @@ from corliss.engine.options import (COMPILED_METHODS, EFFECT_KEYS, EFFECTS, EXPA
 from corliss.errors import InputError
 from corliss.tables import DISCHARGE_COEFFICIENT, Table
 from corliss.textfiles import read_text
-from corliss.thermo.steam import BACKENDS, HEOSSteam
+from corliss.thermo.steam import BACKENDS, HEOSSteam, TableSteam
 from corliss.valves import GEARS
 
 SECTIONS = ("title", "engine", "supply", "exhaust", "valve_gear", "run", "output", "compound",
@@ -107,9 +107,10 @@ class RunSpec:
         Expansion law of the ideal card: ``"hyperbolic"`` or ``"isentropic"``.
     duration_s : float or None
         Transient: simulated time [s] (rounded up to whole turns).
-    record : str
+    record : str or None
         Transient time series: ``"step"`` (every integrator step), ``"degree"`` (every
-        ``output_step`` of crank angle) or ``"cycle"`` (once per turn).
+        ``output_step`` of crank angle) or ``"cycle"`` (once per turn); None (not in the
+        scene): by the run's length (:func:`corliss.engine.options.record_of`).
     settling_band : float
         Transient: the speed band, as a fraction of the final mean speed, that the
         settling time is measured to [-].  By default 0.2 %: a fraction of the 1 to 5 %
@@ -142,7 +143,7 @@ class RunSpec:
     cycles: int | None
     expansion: str
     duration_s: float | None = None
-    record: str = "degree"
+    record: str | None = None
     settling_band: float = 0.002
     warmup_cycles: int = 3
     start: str = "equilibrium"
@@ -442,9 +443,10 @@ def _check_states(data: dict, supply: SupplySpec, exhaust: ExhaustSpec, run: Run
                          "a pressure below the critical pressure of water, 22.064 MPa")
     if run.fidelity.properties != "table":
         return
-    heos = HEOSSteam()
-    chest = (heos.pt(supply.pressure_Pa, supply.temperature_K) if supply.temperature_K
-             else heos.px(supply.pressure_Pa, supply.dryness))
+    # the table's own states (CoolProp only for a state off its arrays)
+    steam = TableSteam()
+    chest = (steam.pt(supply.pressure_Pa, supply.temperature_K) if supply.temperature_K
+             else steam.px(supply.pressure_Pa, supply.dryness))
     if not steam_table.covers(chest.rho, chest.u):
         key = ("supply.dryness" if supply.dryness < 1.0 else
                "supply.temperature" if chest.u > steam_table.PARAMS["u_max"] else
@@ -458,7 +460,7 @@ def _check_states(data: dict, supply: SupplySpec, exhaust: ExhaustSpec, run: Run
                          f"run.properties = \"heos\"")
     # the exhaust steam expands below back pressure in the cylinder: a fifth of its
     # density in hand
-    ex = heos.px(exhaust.pressure_Pa, 1.0)
+    ex = steam.px(exhaust.pressure_Pa, 1.0)
     if ex.rho < 1.2 * steam_table.PARAMS["rho_min"]:
         raise InputError("exhaust.pressure", data["exhaust"].get("pressure"),
                          f"an exhaust the \"table\" property tier covers: dry steam at back "
@@ -572,7 +574,7 @@ def _run(t: Table) -> RunSpec:
     elif t.has("duration"):
         raise InputError(t.key("duration"), t.raw("duration"), "no duration in a steady run "
                          "(it runs until periodic, or run.cycles); or mode = \"transient\"")
-    record = t.choice("record", RECORD_CHOICES, "degree")
+    record = t.choice("record", RECORD_CHOICES) if t.has("record") else None
     band = t.number("settling_band", 0.002)
     if not 0.0 < band < 0.5:
         raise InputError(t.key("settling_band"), band, "a fraction of the speed between 0 and 0.5")

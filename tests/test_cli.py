@@ -124,3 +124,57 @@ def test_a_jacketed_run_prints_its_condensation_and_the_jackets_steam(tmp_path, 
         assert "kg/kWh" in line
     miss = next(x for x in printed.splitlines() if x.strip().startswith("missing water"))
     assert f"{s['missing_water_fraction_head']:.3f}" in miss
+
+
+class _Log:
+    """A stream that is not a terminal, keeping what was written."""
+
+    def __init__(self):
+        self.text = ""
+
+    def isatty(self):
+        return False
+
+    def write(self, s):
+        self.text += s
+
+    def flush(self):
+        pass
+
+
+def test_a_slow_first_run_step_says_what_it_is_doing_while_it_runs(monkeypatch):
+    """A notice opens a step (building the steam table), the next record closes it; a
+    numba compile is a step of its own while it lasts; each is reported every few
+    seconds while it runs, and nothing once it is over."""
+    import logging
+    import time
+
+    from numba.core import event
+
+    from corliss import heartbeat
+    from corliss.logs import NOTICE
+    monkeypatch.setattr(heartbeat, "AFTER_S", 0.5)
+    monkeypatch.setattr(heartbeat, "EVERY_S", 0.9)
+    stream = _Log()
+    beat = heartbeat.Heartbeat(lambda: stream)
+    log = logging.getLogger("corliss.test_heartbeat")
+    log.addHandler(beat)
+    log.setLevel(logging.INFO)
+    beat.start()
+    try:
+        log.log(NOTICE, "building the steam table once for this machine (about a minute)")
+        time.sleep(2.3)
+        log.info("built steam table in 2.3 s")
+        time.sleep(1.5)
+        building = stream.text
+        assert "still building the steam table" in building
+        event.start_event("numba:compile", data={"dispatcher": cli.main})
+        time.sleep(2.3)
+        event.end_event("numba:compile", data={"dispatcher": cli.main})
+        time.sleep(1.5)
+    finally:
+        beat.stop()
+        log.removeHandler(beat)
+    compiling = stream.text[len(building):]
+    assert "still compiling main" in compiling and "steam table" not in compiling
+    assert stream.text.endswith("\n") and stream.text.count("\n") <= 6

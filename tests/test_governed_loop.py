@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 import corliss
+from corliss.engine.options import record_of
 from corliss.governors import governor_type
 
 # A 9 x 10 in high-speed engine with a shaft-governed eccentric (straight path, as the
@@ -166,3 +167,27 @@ def test_full_load_rejection_keeps_the_overspeed_bounded_and_settles(linear):
     assert not s["hunting"]
     assert s["final_speed_rpm"] > s["speed_before_rpm"]
     assert s["regulation_frac"] < gov.droop() + 0.01
+
+
+def test_a_long_run_records_once_a_turn_unless_the_scene_says_otherwise():
+    """By default the time series holds every output degree for a duration of up to 300
+    turns and one row a turn beyond (the summary says which); a scene's own ``record``
+    is kept whatever the length."""
+    long = scene(20.0, 400.0, duration="66 s").replace_run(record=None).with_fidelity("fast")
+    assert 66.0 * SPEED_RPM / 60.0 > 300
+    r = corliss.simulate(long)
+    assert r.summary["record"] == "cycle"
+    assert len(r.timeseries) == len(r.cycles) == r.summary["turns"] > 300
+    short = scene(20.0, 400.0, duration="1 s").replace_run(record=None)
+    r = corliss.simulate(short)
+    assert r.summary["record"] == "degree"
+    assert len(r.timeseries) == 360 * len(r.cycles)
+    d = copy.deepcopy(ENGINE)
+    d.update(governor={**GOVERNOR, "dashpot": "20 lbf s/ft"},
+             flywheel={"rim_weight": "400 lb", "mean_radius": "20 in"},
+             load={"power": f"{LOAD_HP} hp"},
+             run={"mode": "transient", "speed": f"{SPEED_RPM} rpm", "duration": "66 s",
+                  "effects": EFFECTS, "record": "degree"})
+    assert record_of(corliss.scene_from_dict(d, "explicit").run) == "degree"
+    del d["run"]["record"]
+    assert record_of(corliss.scene_from_dict(d, "default").run) == "cycle"

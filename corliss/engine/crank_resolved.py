@@ -32,7 +32,6 @@ import logging
 import math
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from corliss.engine import kernel
 from corliss.engine.network import Network
@@ -211,6 +210,9 @@ class CrankResolved:
                 raise RuntimeError("the compiled integrator failed (step size collapsed); "
                                    "try another method or a smaller rtol")
             return y_end, samples
+        # scipy only on this path (a method the compiled integrator does not have): a
+        # compiled run should not pay the import (a third of a second)
+        from scipy.integrate import solve_ivp
         samples = np.full((y.size, out_theta.size), np.nan)
         for a, b in zip(stops[:-1], stops[1:]):
             sel = np.nonzero((out_theta >= a) & (out_theta <= b))[0]

@@ -24,7 +24,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 from corliss.thermo.steam import State, Steam
 
@@ -59,6 +58,9 @@ def _fill(steam: Steam, st: State, m: float, V: float, res: State) -> tuple[Stat
     hi = m * 1.5
     while excess(hi) < 0.0:
         hi *= 2.0
+    # scipy at its one point of use: the crank-resolved runs import this module and
+    # never fill an ideal end, and scipy.optimize costs a third of a second to import
+    from scipy.optimize import brentq
     m2 = brentq(excess, m, hi, xtol=1e-14 * m, rtol=1e-12)
     return steam.du(m2 / V, (U + (m2 - m) * res.h) / m2), m2
 

@@ -26,7 +26,6 @@ import time
 
 import numpy as np
 import pandas as pd
-from scipy.integrate import solve_ivp
 
 from corliss.engine.model import at_knob, geometry_of, steady_scene
 from corliss.engine.operating_point import OperatingPoint, find_operating_point
@@ -175,6 +174,9 @@ def run_mean_value(scene, *, progress=None) -> TransientResult:
     def stalled(t, y):
         return y[1] - 0.05 * w_ref
     stalled.terminal, stalled.direction = True, -1
+    # scipy at its one point of use: every run imports this module through
+    # corliss.engine.simulate, and only the mean-value model integrates with scipy
+    from scipy.integrate import solve_ivp
     sol = solve_ivp(rhs, (0.0, run.duration_s), y0, method="LSODA", rtol=min(run.fidelity.rtol, 1e-6),
                     atol=np.array([1e-6, 1e-6 * w_ref, 1e-7, 1e-6, 1e-3, 1e-3, 1e-3]),
                     events=stalled, dense_output=True)

@@ -31,6 +31,7 @@ import pandas as pd
 from corliss import columns, units
 from corliss.engine import crank_effort as ce
 from corliss.engine.condensation import marks_condensation_kg
+from corliss.engine.options import record_of
 from corliss.engine.speed_metrics import load_step_metrics, step_time_of
 from corliss.thermo.steam import HEOSSteam
 
@@ -612,6 +613,7 @@ class TransientResult(Result):
             "load_torque_N_m": s.load.torque_N_m, "load_kind": s.load.kind,
             "load_speed_law": s.load.speed_law, "step_time_s": self.step_time_s,
             "governor": gov, "start": start, "until_settled": s.run.until_settled,
+            "record": record_of(s.run) if s.run.model != "mean_value" else None,
             "stalled": self.stalled,
             **self.metrics,
             "final_indicated_power_W": float(c["indicated_power_W"].iloc[-5:].mean()),

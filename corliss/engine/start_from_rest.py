@@ -23,7 +23,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from corliss.engine import transient_kernel as tk
 from corliss.engine.kernel import PR_ROWS
@@ -101,6 +100,9 @@ def start_from_rest(y0: np.ndarray, theta0: float, omega_run: float, net, tier, 
         return Y[1 + i_w] - HANDOVER_FRACTION * omega_run
     fast_enough.terminal, fast_enough.direction = True, 1
 
+    # scipy here, where it is used: every transient run imports this module, and only a
+    # start from rest integrates with it (scipy costs a third of a second to import)
+    from scipy.integrate import solve_ivp
     Y = np.concatenate([[theta0], y0])
     ts, ths, ys = [], [], []
     stalled = False

@@ -31,6 +31,7 @@ from corliss.engine.model import build_gear, build_network, geometry_of, reservo
 from corliss.engine.network import throttle_area_m2
 from corliss.engine.operating_point import (BALANCED, LOAD_TOO_HEAVY, SURPLUS_TOL,
                                            OperatingPoint, find_operating_point)
+from corliss.engine.options import record_of
 from corliss.engine.result import TransientResult
 from corliss.engine.speed_metrics import settled, step_time_of
 from corliss.engine.start_from_rest import HANDOVER_FRACTION, start_from_rest
@@ -361,7 +362,7 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
         y[nn + tk.X_Z] = start.governor_z
         y[nn + tk.X_ZDOT] = 0.0
     duration = run.duration_s
-    record = run.record
+    record = record_of(run)
     step = math.radians(fid.output_step_deg)
     n_out = max(1, int(round(TWO_PI / step)))
     status = 2 if run.start == "rest" and begun["stalled"] else 0

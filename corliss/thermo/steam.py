@@ -18,6 +18,7 @@ import math
 import numpy as np
 
 from corliss.errors import InputError
+from corliss.thermo import table_states
 
 
 class State(NamedTuple):
@@ -170,11 +171,14 @@ class HEOSSteam(Steam):
         return self._update(self._CP.PQ_INPUTS, p, 1.0, "pressure, dryness").T
 
 
-class TableSteam(HEOSSteam):
+class TableSteam(Steam):
     """The project's own (density, internal energy) table (:mod:`corliss.thermo.steam_table`).
 
-    ``du`` comes from the table (entropy is not tabulated: ``s`` is NaN); every other
-    method, used only to set up reservoirs and the ideal-port models, is HEOS.  The
+    ``du`` comes from the table (entropy is not tabulated: ``s`` is NaN).  The states a
+    run sets up its reservoirs with, ``px``, ``pt`` and ``t_sat``, come from the table's
+    arrays too (:mod:`corliss.thermo.table_states`, entropy included), so a run on this
+    tier never imports CoolProp; ``ph``, ``ps`` and ``ds`` (the ideal-port models), and
+    a state off the arrays, are HEOS's, CoolProp imported on the first such call.  The
     table's measured error against HEOS is in ``self.error``.
     """
 
@@ -184,11 +188,17 @@ class TableSteam(HEOSSteam):
     kernel_tier = 0
 
     def __init__(self) -> None:
-        super().__init__()
         from corliss.thermo.steam_table import load_table
         self.table = load_table()
         self.error = self.table.error
         self._arrays = self.table.arrays()
+        self._heos_tier: HEOSSteam | None = None
+
+    @property
+    def _heos(self) -> HEOSSteam:
+        if self._heos_tier is None:
+            self._heos_tier = HEOSSteam()
+        return self._heos_tier
 
     def du(self, rho, u):
         from corliss.thermo.steam_table import lookup
@@ -198,6 +208,27 @@ class TableSteam(HEOSSteam):
     def states(self, rho, u):
         from corliss.thermo.steam_table import lookup_many
         return lookup_many(self._arrays, np.asarray(rho, float), np.asarray(u, float))
+
+    def px(self, p, x):
+        st = table_states.px(self.table, p, x)
+        return State(*st) if st is not None else self._heos.px(p, x)
+
+    def pt(self, p, T):
+        st = table_states.pt(self.table, p, T)
+        return State(*st) if st is not None else self._heos.pt(p, T)
+
+    def t_sat(self, p):
+        T = table_states.t_sat(self.table, p)
+        return T if T is not None else self._heos.t_sat(p)
+
+    def ph(self, p, h):
+        return self._heos.ph(p, h)
+
+    def ps(self, p, s):
+        return self._heos.ps(p, s)
+
+    def ds(self, rho, s):
+        return self._heos.ds(rho, s)
 
 
 class PerfectSteam(Steam):

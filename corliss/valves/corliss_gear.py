@@ -102,7 +102,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq, minimize_scalar
 
 from corliss import units
 from corliss.errors import InputError
@@ -110,6 +109,10 @@ from corliss.tables import DISCHARGE_COEFFICIENT, Table
 from corliss.valves.gear import GearType, ValveGear, register
 
 log = logging.getLogger(__name__)
+
+# scipy.optimize (a third of a second to import) is imported in the three methods that
+# solve for the trip gear's angles: every scene loads this module with the gear registry,
+# and only a Corliss gear calls them.
 
 TWO_PI = 2.0 * math.pi
 #: Setting range: below 0 the safety cam (no admission), above 1 no release.
@@ -301,6 +304,7 @@ class CorlissGear(ValveGear):
             p = self._psi_exact(th, xo)
             return float(p.max() + p.min())
 
+        from scipy.optimize import brentq
         g, r = s.hook_rod_m, s.eccentricity_m
         return brentq(asym, g - 0.9 * r, g + 0.9 * r, xtol=1e-14)
 
@@ -362,6 +366,7 @@ class CorlissGear(ValveGear):
 
     # ------------------------------------------------------------------ trip
     def _prepare(self) -> dict:
+        from scipy.optimize import brentq, minimize_scalar
         s = self.spec
         sh = {"xo": None, "k_steam": s.steam.ratio_at_mid(), "k_exhaust": s.exhaust.ratio_at_mid()}
         self._geom = sh
@@ -406,6 +411,7 @@ class CorlissGear(ValveGear):
         return self._release_at(float(setting))
 
     def _release_at(self, s: float):
+        from scipy.optimize import brentq
         out = []
         for w in self._geom["windows"]:
             if s > 1.0:
