@@ -609,7 +609,7 @@ def load_table() -> SteamTable:
         except (OSError, ValueError):
             data = None
     if data is None:
-        log.log(NOTICE, "building the steam table once for this machine (about a minute); "
+        log.log(NOTICE, "building the steam table once for this machine (a few seconds); "
                 "it is cached in %s", path.parent)
         t0 = time.perf_counter()
         built = _build(PARAMS)
