@@ -6,7 +6,7 @@ governor, load halved at 10 s).  For each setting it reports the wall time of th
 (median of repeats, compilation excluded by a first run that is not timed) and the
 error of its speed trace against a reference (table properties, dopri5 at rtol
 1e-10): the largest difference of the turn-mean speed over the run, and of the final
-speed and of the speed regulation.  The target is 3 s or less at ``standard``.  The
+speed and of the speed regulation.  The target is 0.5 s or less at ``standard``.  The
 mean-value model's time includes building its maps (45 steady runs).
 
 Usage::
