@@ -116,11 +116,16 @@ def test_a_jacketed_run_prints_its_condensation_and_the_jackets_steam(tmp_path, 
     s = json.loads((out / "jacketed.summary.json").read_text())
     line = next(x for x in printed.splitlines() if x.strip().startswith("jacket"))
     steam = float(line.split()[1])
+    rate = float(line.split("with it")[1].split()[0])
     if system == "US":
         assert steam == pytest.approx(s["jacket_steam_kg_per_h"] / 0.45359237, abs=0.05)
+        # kg/kWh to lb per ihp-hour: over 0.45359237 kg/lb, times 0.74570 kW/hp
+        assert rate == pytest.approx(s["water_rate_with_jacket_kg_per_kWh"] / 0.45359237
+                                     * 0.745699872, rel=1e-3)
         assert "lb per ihp-hour" in line
     else:
         assert steam == pytest.approx(s["jacket_steam_kg_per_h"], abs=0.05)
+        assert rate == pytest.approx(s["water_rate_with_jacket_kg_per_kWh"], rel=1e-3)
         assert "kg/kWh" in line
     miss = next(x for x in printed.splitlines() if x.strip().startswith("missing water"))
     assert f"{s['missing_water_fraction_head']:.3f}" in miss
