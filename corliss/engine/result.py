@@ -361,7 +361,7 @@ class SteadyResult(Result):
         if "m_piston_leak_kg" in row:
             out["piston_leakage_net_kg_per_cycle"] = float(row["m_piston_leak_kg"])
         if "Q_head_J" in row:
-            out.update(self._condensation_summary())
+            out.update(self._condensation_summary(work_J))
         if "p_chest_Pa" in self.timeseries:
             last = _last(self.timeseries)
             out["chest_pressure_mean_Pa"] = float(last["p_chest_Pa"].mean())
@@ -397,7 +397,7 @@ class SteadyResult(Result):
                 "receiver_pressure_min_Pa": float(last["p_receiver_Pa"].min()),
                 "receiver_pressure_max_Pa": float(last["p_receiver_Pa"].max())}
 
-    def _condensation_summary(self) -> dict:
+    def _condensation_summary(self, work_J: float) -> dict:
         """Initial condensation per end (Marks Art. 74).
 
         ``missing_water_fraction``: the steam supplied less the steam in the cylinder
@@ -434,10 +434,10 @@ class SteadyResult(Result):
                     out.update(self._end_condensation(
                         end, evs[end0], geo, e_idx, math.degrees(phase), row, ts, at, sat))
         if self.scene.engine.jacket != "none":
-            out.update(self._jacket_summary(row, sat))
+            out.update(self._jacket_summary(row, sat, work_J))
         return out
 
-    def _jacket_summary(self, row, sat) -> dict:
+    def _jacket_summary(self, row, sat, work_J: float) -> dict:
         """The jacket's steam (Marks Art. 79: the jacket's heat is paid for in steam).
 
         Over a periodic cycle the walls neither gain nor lose heat, so what the steam in
@@ -454,8 +454,7 @@ class SteadyResult(Result):
         latent = sat.px(p, 1.0).h - sat.px(p, 0.0).h
         jacket_kg_h = max(q, 0.0) / latent * rev_per_s * 3600.0
         steam_kg_h = float(row["m_supply_kg"]) * rev_per_s * 3600.0
-        power_kW = (float(row["work_J"]) if "work_J" in row
-                    else float(row["work_head_J"]) + float(row["work_crank_J"])) * rev_per_s / 1e3
+        power_kW = work_J * rev_per_s / 1e3
         total = steam_kg_h + jacket_kg_h
         return {"jacket_heat_W": q * rev_per_s, "jacket_steam_kg_per_h": jacket_kg_h,
                 "water_rate_with_jacket_kg_per_kWh": total / power_kW if power_kW > 0 else None}
