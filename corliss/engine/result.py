@@ -33,7 +33,7 @@ from corliss.engine import crank_effort as ce
 from corliss.engine.condensation import marks_condensation_kg
 from corliss.engine.options import record_of
 from corliss.engine.speed_metrics import load_step_metrics, step_time_of
-from corliss.thermo.steam import HEOSSteam
+from corliss.thermo.steam import HEOSSteam, TableSteam
 
 TWO_PI = 2.0 * math.pi
 #: Why a card's fluctuation coefficient is undefined (the summary's value is null).
@@ -416,7 +416,8 @@ class SteadyResult(Result):
         heat, each with its own geometry and events (``lp_`` ends with the
         low-pressure cylinder's, the angles moved by the cylinder's crank lead).
         """
-        sat = HEOSSteam()
+        # saturation read on the run's own table (no CoolProp import) or else on HEOS
+        sat = TableSteam() if self.property_tier == "table" else HEOSSteam()
         row = self.last_cycle
         ts = _last(self.timeseries)
         ang = np.mod(ts["crank_angle_deg"].to_numpy(), 360.0)
