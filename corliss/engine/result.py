@@ -240,6 +240,9 @@ class SteadyResult(Result):
     clamped_hot : int or None
         Evaluations at visited states heated beyond the properties' greatest energy and
         evaluated at it (with a warning; see ``corliss.engine.crank_resolved``).
+    final_state : SteadyStart or None
+        Where a crank-resolved run ended: the ``start`` of a neighbouring run
+        (``corliss.engine.steady.run_steady``); None for the other models.
 
     Tables: ``timeseries`` (``cycle``, ``crank_angle_deg``, ``time_s``, and per end
     ``p_*_Pa``, ``T_*_K``, ``x_*_frac`` (dryness), ``V_*_m3``, ``m_*_kg``), ``cycles``
@@ -264,6 +267,7 @@ class SteadyResult(Result):
     periodicity: dict = field(default_factory=dict)
     clamped_trials: int | None = None
     clamped_hot: int | None = None
+    final_state: object = None
 
     @property
     def cylinder_list(self) -> list:
