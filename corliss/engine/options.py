@@ -1,8 +1,8 @@
 """The knobs of a run: effects a scene may name, and fidelity presets.
 
 Effects are switched by the scene alone; the model is assembled from those named
-(``docs/architecture.md``, "The engine"; the README lists them).  Fidelity presets are documented sets of knobs, each knob
-also settable alone in ``[run]``.
+(``docs/architecture.md``, "The engine"; the README lists them).  Fidelity presets
+are documented sets of knobs, each knob also settable alone in ``[run]``.
 """
 
 from __future__ import annotations
