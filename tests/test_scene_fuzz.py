@@ -270,7 +270,7 @@ def run_cli(args: list[str], bound_s: float) -> tuple[int, str, str, float]:
     return code, out.getvalue(), err.getvalue(), time.perf_counter() - t0
 
 
-_NAMED = re.compile(r"^corliss: (\S+) = ", re.M)
+_NAMED = re.compile(r"^corliss: (\S+)(?: = | is missing:)", re.M)
 
 
 def named_key(stderr: str) -> str | None:

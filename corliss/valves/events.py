@@ -95,7 +95,10 @@ def _solve_crossings(gear: ValveGear, ports: np.ndarray, lev: np.ndarray, a: np.
     cols = np.arange(a.size)
     width0 = np.abs(b - a)
     for rnd in range(CROSSING_MAX_ROUNDS):
-        if np.all(np.abs(b - a) <= CROSSING_TOL_RAD):
+        # a bracket closed stays as it is, whatever the others still need, so that each
+        # crossing is the same however many it is solved beside
+        active = np.abs(b - a) > CROSSING_TOL_RAD
+        if not np.any(active):
             break
         with np.errstate(divide="ignore", invalid="ignore"):
             c = b - fb * (b - a) / (fb - fa)
@@ -107,9 +110,9 @@ def _solve_crossings(gear: ValveGear, ports: np.ndarray, lev: np.ndarray, a: np.
         # the new point replaces the end on its side; the kept end's value is halved
         # when it was kept on a secant step (Illinois), so that both ends move
         same_b = (fc > 0.0) == (fb > 0.0)
-        fa = np.where(same_b, np.where(bisect, fa, 0.5 * fa), fb)
-        a = np.where(same_b, a, b)
-        b, fb = c, fc
+        fa = np.where(active, np.where(same_b, np.where(bisect, fa, 0.5 * fa), fb), fa)
+        a = np.where(active, np.where(same_b, a, b), a)
+        b, fb = np.where(active, c, b), np.where(active, fc, fb)
         if check:
             width0 = np.abs(b - a)
     return 0.5 * (a + b)
