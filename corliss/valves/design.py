@@ -363,7 +363,7 @@ def _solve_valve(base, piston_fraction, given: dict, th_cut, ref: int, equalise:
 
     sol = root(residual, [1.0, d0], method="hybr", options={"xtol": 1e-14})
     r, d = r0 * float(sol.x[0]), float(sol.x[1])
-    if not sol.success or max(abs(v) for v in residual(sol.x)) > 1e-10:
+    if max(abs(v) for v in residual(sol.x)) > 1e-10:
         raise _NoValve(f"the infinite-rod valve (throw {_in(r0)}, advance "
                        f"{math.degrees(d0):.3f} deg) has no counterpart with the finite rods")
     if not abs(d) < 0.5 * math.pi:
