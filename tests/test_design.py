@@ -358,6 +358,24 @@ def test_finite_rods_bound_the_earliest_cutoff():
     assert e.value.key == "cutoff" and "from 0." in e.value.expected
 
 
+def test_finite_rods_late_cutoff_range_is_true():
+    """Equal cut-offs near the end of the stroke with the default engine's rods: the
+    crank end's lap (Art. 31) reaches zero first, so the latest cut-off both ends can
+    share is earlier than the head end alone allows.  The error names the cut-off and
+    states the range, and the range is true: its last value designs, with laps >= 0,
+    and a step past it (0.005) is refused."""
+    kw = dict(lead="0.25 in", max_opening="1.25 in")
+    with pytest.raises(InputError) as e:
+        design(make_scene(), cutoff=0.995, **kw)
+    assert e.value.key == "cutoff"
+    top = float(e.value.expected.split(" to ")[1].split()[0])
+    d = design(make_scene(), cutoff=top, **kw)
+    assert min(d.valve.lap_m) >= 0.0
+    with pytest.raises(InputError) as e:
+        design(make_scene(), cutoff=top + 0.005, **kw)
+    assert "crank end would need a negative steam lap" in e.value.expected
+
+
 @pytest.mark.parametrize("kwargs, key", [
     (dict(cutoff=0.6, lead="0.25 in", max_opening="2 in"), "max_opening"),   # port 1.25 in
     (dict(cutoff=0.6, lead="1 in", max_opening="1 in"), "lead"),

@@ -322,10 +322,14 @@ def _rate(base, r, d, end: int, theta: float) -> float:
     return (1.0 if end == 0 else -1.0) * float(x[1] - x[0]) / (2 * h)
 
 
-def _solve_valve(base, piston_fraction, given: dict, th_cut, ref: int, equalise: str):
+def _solve_valve(base, piston_fraction, given: dict, th_cut, ref: int, equalise: str,
+                 both: bool = False):
     """Throw, advance and laps meeting the cut-offs at ``th_cut`` [rad] and the two
     quantities ``given`` at the reference end on the exact valve: the Zeuner valve
     (Arts. 19-22) as the start, then Powell's hybrid Newton method on (r, delta).
+
+    With ``both`` (one cut-off asked of both ends, laps per end) the other end's lap
+    must be one too.
 
     Returns (r, delta, lap_head, lap_crank, zeuner (r, delta, lap)); raises _NoValve."""
     from scipy.optimize import root
@@ -374,20 +378,28 @@ def _solve_valve(base, piston_fraction, given: dict, th_cut, ref: int, equalise:
         raise _NoValve(f"a negative steam lap ({_in(lap)}) would be needed")
     if _rate(base, r, d, ref, th_cut[ref]) >= 0.0:
         raise _NoValve("the port would close while the valve still moves out")
+    if both and equalise == "cutoff":
+        k = 1 - ref
+        if (lh, lc)[k] < 0.0:
+            raise _NoValve(f"the {ENDS[k]} end would need a negative steam lap "
+                           f"({_in((lh, lc)[k])})")
+        if _rate(base, r, d, k, th_cut[k]) >= 0.0:
+            raise _NoValve(f"the {ENDS[k]} end's port would close while the valve still "
+                           "moves out")
     return r, d, lh, lc, z
 
 
-def _cutoff_range(base, piston_fraction, given, th_cut, ref, equalise):
-    """The cut-off fractions [-] of the reference end from which to which a plain valve
-    exists with the two quantities asked and the rods (scanned every 0.005 of the
-    stroke); None if at none."""
-    end = ENDS[ref]
+def _cutoff_range(base, piston_fraction, given, th_cut, ref, equalise, both):
+    """The cut-off fractions [-] of the reference end (of both ends, with ``both``)
+    from which to which a plain valve exists with the two quantities asked and the
+    rods (scanned every 0.005 of the stroke); None if at none."""
     ok = []
     for f in np.arange(0.005, 0.9999, 0.005):
         th = list(th_cut)
-        th[ref] = crank_angle(piston_fraction, float(f), end, "out")
+        for k in ((0, 1) if both else (ref,)):
+            th[k] = crank_angle(piston_fraction, float(f), ENDS[k], "out")
         try:
-            _solve_valve(base, piston_fraction, given, th, ref, equalise)
+            _solve_valve(base, piston_fraction, given, th, ref, equalise, both)
         except _NoValve:
             continue
         ok.append(float(f))
@@ -454,10 +466,12 @@ def design_slide_valve(base: SlideValveSpec, piston_fraction: Callable[[float], 
     dead = (0.0, math.pi)
     ref_key = "cutoff" if ref == 0 or cutoff_crank is None else "cutoff_crank"
     try:
-        r, d, lh, lc, z = _solve_valve(base, piston_fraction, given, th_cut, ref, equalise)
+        r, d, lh, lc, z = _solve_valve(base, piston_fraction, given, th_cut, ref, equalise,
+                                       both=cutoff_crank is None)
     except _NoValve as exc:
         asked = ", ".join(f"{k} {_len_text(k, v)}" for k, v in given.items())
-        span = _cutoff_range(base, piston_fraction, given, th_cut, ref, equalise)
+        span = _cutoff_range(base, piston_fraction, given, th_cut, ref, equalise,
+                             cutoff_crank is None)
         raise InputError(ref_key, cut[ref], (
             f"a cut-off from {span[0]:.3f} to {span[1]:.3f} of the stroke, the range over "
             f"which a plain slide valve exists with {asked} and these rods (Spangler "
