@@ -416,6 +416,14 @@ def test_a_gears_cutoff_out_of_its_range_names_cutoff_and_the_range():
     assert e.value.key == "lead"
 
 
+def test_the_package_front_door_has_design():
+    """``corliss.design`` is the same function, with the command's arguments."""
+    import corliss
+    assert corliss.design is design
+    d = corliss.design(cutoff=0.8, lead="0.25 in", max_opening="1.25 in")
+    assert d.events["head"]["cutoff_frac"] == pytest.approx(0.8, abs=1e-9)
+
+
 def test_cli_bad_design_exits_2_and_writes_nothing(tmp_path, capsys):
     """A user's mistake: exit code 2, a message naming the key, no folder made."""
     out = tmp_path / "none"
