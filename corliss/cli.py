@@ -335,7 +335,9 @@ def cmd_design(args) -> int:
     scene = _load(args.scene, args.units)
     d = design(scene, cutoff=args.cutoff, cutoff_crank=args.cutoff_crank, lead=args.lead,
                max_opening=args.max_opening, eccentricity=args.eccentricity, lap=args.lap,
-               angular_advance=args.angular_advance, release=args.release,
+               angular_advance=args.angular_advance, lead_angle=args.lead_angle,
+               overtravel=args.overtravel,
+               release=args.release,
                compression=args.compression, exhaust_lap=args.exhaust_lap,
                equalise=args.equalise, reference_end=args.reference_end, end=args.end)
     files = d.write(Path(args.out if args.out is not None else scene.output.dir))
@@ -556,9 +558,12 @@ def build_parser() -> argparse.ArgumentParser:
     ds.add_argument("--cutoff-crank", type=float, help="crank-end cut-off, if not the same")
     for flag, text in (("--lead", "lead, e.g. 0.25in"), ("--max-opening", "greatest port "
                        "opening"), ("--eccentricity", "eccentric throw"), ("--lap", "steam lap"),
-                       ("--angular-advance", "angular advance, e.g. 30deg")):
+                       ("--angular-advance", "angular advance, e.g. 30deg"),
+                       ("--lead-angle", "angle of lead, the crank before dead centre at admission")):
         ds.add_argument(flag, help=text + " (two of lead, max-opening, eccentricity, lap, "
-                        "angular-advance; slide valve)")
+                        "angular-advance, lead-angle; slide valve)")
+    ds.add_argument("--overtravel", help="instead of --max-opening: the valve's travel past "
+                    "the port (the opening is the port width plus it)")
     ds.add_argument("--release", help="release, fraction of stroke (or head,crank)")
     ds.add_argument("--compression", help="compression, fraction of stroke from the end's "
                     "dead centre as `corliss events` gives it (or head,crank)")

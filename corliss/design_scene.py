@@ -126,7 +126,8 @@ def _scene(scene) -> tuple[Scene, str]:
 
 
 def design(scene=None, *, cutoff, cutoff_crank=None, lead=None, max_opening=None,
-           eccentricity=None, lap=None, angular_advance=None, release=None, compression=None,
+           eccentricity=None, lap=None, angular_advance=None, lead_angle=None,
+           overtravel=None, release=None, compression=None,
            exhaust_lap=None, equalise: str = "cutoff", reference_end: str = "head",
            end: str = "head") -> Design:
     """Design a scene's valve for the events asked (the arguments of ``corliss design``).
@@ -142,8 +143,12 @@ def design(scene=None, *, cutoff, cutoff_crank=None, lead=None, max_opening=None
         The crank end's, when it differs (slide valve).
     lead, max_opening, eccentricity, lap : str or float, optional
         Quantity strings (``"0.25 in"``) or SI floats [m]; with ``angular_advance``
-        (``"30 deg"`` or [rad]) exactly two of the five (slide valve; Spangler
+        and ``lead_angle`` (the crank before the dead point at admission, Art. 21)
+        (``"30 deg"`` or [rad]) exactly two of the six (slide valve; Spangler
         Arts. 19-22).
+    overtravel : str or float, optional
+        Instead of ``max_opening``: the valve's travel past the port (the opening is
+        then the port width plus it, Art. 18).
     release, compression : float, (float, float) or str, optional
         Fractions of the stroke as ``corliss events`` gives them ("0.9" or "0.9,0.92"
         for head, crank) (slide valve).
@@ -181,6 +186,8 @@ def design(scene=None, *, cutoff, cutoff_crank=None, lead=None, max_opening=None
             lead_m=_length("lead", lead), max_opening_m=_length("max_opening", max_opening),
             eccentricity_m=_length("eccentricity", eccentricity), lap_m=_length("lap", lap),
             angular_advance_rad=_length("angular_advance", angular_advance, "angle"),
+            lead_angle_rad=_length("lead_angle", lead_angle, "angle"),
+            overtravel_m=_length("overtravel", overtravel),
             release=_fractions("release", release),
             compression=_fractions("compression", compression),
             exhaust_lap_m=_length("exhaust_lap", exhaust_lap), equalise=equalise,
@@ -188,7 +195,9 @@ def design(scene=None, *, cutoff, cutoff_crank=None, lead=None, max_opening=None
     else:
         slide_args = {"cutoff_crank": cutoff_crank, "lead": lead, "max_opening": max_opening,
                       "eccentricity": eccentricity, "lap": lap,
-                      "angular_advance": angular_advance, "release": release,
+                      "angular_advance": angular_advance, "lead_angle": lead_angle,
+                      "overtravel": overtravel,
+                      "release": release,
                       "compression": compression, "exhaust_lap": exhaust_lap}
         for key, value in slide_args.items():
             if value is not None:

@@ -170,6 +170,33 @@ def test_problem_22_unequal_laps_for_equal_cutoff_art_31():
     assert d.lap_m[0] > d.lap_m[1]
 
 
+def test_problem_3_angle_of_lead_port_and_overtravel_art_21():
+    """Spangler's Problem 3 (Art. 21, p. 21): "Given the cut-off, angle of lead, width of
+    port, and the overtravel, to determine eccentricity, lap, lead, and angular
+    advance".  The port opens at the angle of lead lam before the dead point and closes
+    at the cut-off w_c: asin(l/r) - delta = -lam and 180 deg - asin(l/r) - delta = w_c,
+    so delta = (180 deg - w_c + lam)/2 -- the valve circle's diameter bisects the two
+    crank lines, as the book constructs it; then r - l = port + overtravel (Art. 18)
+    with l = r sin(w_c + delta).  For cut-off 3/4 (w_c = 120 deg with infinite rods),
+    lam = 10 deg, port 1 1/4 in and overtravel 1/4 in: delta = 35 deg,
+    r = 1.5/(1 - sin 155 deg) = 2.5979 in, l = 1.0979 in, lead r sin 35 deg - l =
+    0.3922 in.  Exact; tolerance 1e-9."""
+    lam, port, over = math.radians(10.0), 1.25, 0.25
+    wc = math.radians(120.0)
+    delta = (math.pi - wc + lam) / 2
+    r = (port + over) / (1 - math.sin(wc + delta))
+    lap = r - port - over
+    assert (math.degrees(delta), r, lap) == pytest.approx((35.0, 2.5979, 1.0979), abs=1e-4)
+    d = design_slide_valve(zeuner_base(port), HARMONIC, cutoff=0.75, lead_angle_rad=lam,
+                           overtravel_m=over * IN)
+    assert d.angular_advance_rad == pytest.approx(delta, abs=1e-10)
+    assert d.eccentricity_m / IN == pytest.approx(r, abs=1e-9)
+    assert d.lap_m[0] / IN == pytest.approx(lap, abs=1e-9)
+    assert d.lead_m[0] / IN == pytest.approx(r * math.sin(delta) - lap, abs=1e-9)
+    assert d.events["head"]["admission_deg"] == pytest.approx(350.0, abs=1e-6)
+    assert d.events["head"]["overtravel_m"] / IN == pytest.approx(over, abs=1e-6)
+
+
 def test_the_zeuner_closed_form_helper_refuses_what_cannot_be():
     """Art. 20 with lap 7/8 and lead 1/4: cot(delta) = (l/(l + i) - cos w_c)/sin w_c is
     positive only for w_c > arccos(7/9) = 38.94 deg; an earlier cut-off has no valve
@@ -291,6 +318,19 @@ def test_round_trip_reference_end_crank_and_si_units():
                                       for ln in designed), designed
 
 
+def test_round_trip_angle_of_lead_and_overtravel_with_finite_rods():
+    """Art. 21's data on the default engine's rods: the head end admits 6 deg before its
+    dead centre and both ends cut off at 0.7 (within 0.05 deg), and the head port is
+    overrun by the 0.2 in asked (the events' overtravel, to 1e-6 in: the extreme of the
+    finite-rod valve is exact, the events sample it every 0.05 deg)."""
+    sc = make_scene()
+    d = design(sc, cutoff=0.7, lead_angle="6 deg", overtravel="0.2 in")
+    ev = _check_round_trip(d, {"head": {"admission_deg": 354.0,
+                                        "cutoff_deg": _asked_deg(sc, "head", "cutoff_deg", 0.7)},
+                               "crank": {"cutoff_deg": _asked_deg(sc, "crank", "cutoff_deg", 0.7)}})
+    assert ev["head"]["overtravel_m"] / IN == pytest.approx(0.2, abs=1e-6)
+
+
 def test_cli_design_then_events_then_run(tmp_path, capsys):
     """Through the command line: ``corliss design`` writes the scene, ``corliss events``
     on it prints the events asked (within 0.05 deg), and ``corliss run`` runs it."""
@@ -388,6 +428,8 @@ def test_finite_rods_late_cutoff_range_is_true():
     (dict(cutoff=0.6, cutoff_crank=0.62, lead="0.25 in", max_opening="1 in",
           equalise="laps"), "cutoff_crank"),
     (dict(cutoff=0.6, lap="-0.1 in", lead="0.25 in"), "lap"),
+    (dict(cutoff=0.6, lead="0.25 in", max_opening="1 in", overtravel="0.1 in"), "overtravel"),
+    (dict(cutoff=0.6, lead_angle="5 deg", angular_advance="30 deg"), "lead_angle"),
 ])
 def test_impossible_designs_name_their_key(kwargs, key):
     """Each design that cannot exist says which event: an opening wider than the
@@ -397,7 +439,9 @@ def test_impossible_designs_name_their_key(kwargs, key):
     the head end the valve turns back at about 235 deg, so the exhaust cannot close with the
     piston still 0.9 of the stroke from the head),
     both release and compression at one end (one exhaust lap, one event, Art. 31), a
-    crank-end cut-off with equal laps, a negative lap asked."""
+    crank-end cut-off with equal laps, a negative lap asked, an opening and an
+    overtravel (one is the other plus the port, Art. 18), both the angle of lead and the
+    advance (with the cut-off each fixes the other, Art. 21)."""
     with pytest.raises(InputError) as e:
         design(make_scene(), **kwargs)
     assert e.value.key == key

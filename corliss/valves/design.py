@@ -67,7 +67,8 @@ INCH_m = 0.0254
 #: The design is checked on the forward events to this [deg] (the asked tolerance is
 #: 0.05 deg; the solve reaches 1e-9 deg, the events' bisection 1e-13 rad).
 CHECK_DEG = 1e-6
-KNOWN = ("lead", "max_opening", "eccentricity", "lap", "angular_advance")
+KNOWN = ("lead", "max_opening", "eccentricity", "lap", "angular_advance", "lead_angle")
+ANGLES = ("angular_advance", "lead_angle")
 ENDS = ("head", "crank")
 
 
@@ -76,7 +77,7 @@ def _in(v: float) -> str:
 
 
 def _len_text(key: str, v: float) -> str:
-    return f"{math.degrees(v):.4g} deg" if key == "angular_advance" else _in(v)
+    return f"{math.degrees(v):.4g} deg" if key in ANGLES else _in(v)
 
 
 # ---------------------------------------------------------------- piston <-> crank
@@ -123,7 +124,8 @@ def _unit_quantities(delta: np.ndarray, w_c: float) -> dict:
 def zeuner_valve(cutoff_rad: float, **known: float) -> tuple[float, float, float] | None:
     """The plain valve of the Zeuner diagram (infinite rods) that cuts off at
     ``cutoff_rad`` from its end's dead point, given two of ``lead``,
-    ``max_opening``, ``eccentricity``, ``lap`` [m] and ``angular_advance`` [rad].
+    ``max_opening``, ``eccentricity``, ``lap`` [m], ``angular_advance`` and
+    ``lead_angle`` (the crank before the dead point at admission, Art. 21) [rad].
 
     Spangler Arts. 19-22: ``l = r sin(w_c + delta)``, ``i = r sin(delta) - l``,
     ``p = r - l``.  Only valves with ``w_c + delta`` in (90, 180) deg (the port
@@ -142,6 +144,15 @@ def zeuner_valve(cutoff_rad: float, **known: float) -> tuple[float, float, float
     hi = min(math.pi - cutoff_rad, 0.5 * math.pi) - 1e-12
     if not lo < hi:
         return None
+    if "lead_angle" in names:
+        # Art. 21 (Problem 3): admission at asin(l/r) - delta, the angle of lead before
+        # the dead point lam = delta - asin(l/r); with asin(l/r) = 180 deg - w_c - delta
+        # the valve circle's diameter bisects the admission and cut-off lines:
+        d = 0.5 * (math.pi - cutoff_rad + known["lead_angle"])
+        if "angular_advance" in names:
+            return None
+        known = {"angular_advance": d, **{k: v for k, v in known.items() if k != "lead_angle"}}
+        names = sorted(known)
     if "angular_advance" in names:
         d = known["angular_advance"]
         other = names[0] if names[1] == "angular_advance" else names[1]
@@ -245,7 +256,7 @@ def _fraction(key: str, v) -> float:
 
 
 def _check_inputs(base: SlideValveSpec, cutoff, cutoff_crank, known: dict, release,
-                  compression, exhaust_lap, equalise, reference_end):
+                  compression, exhaust_lap, equalise, reference_end, overtravel_m=None):
     if equalise not in ("cutoff", "laps"):
         raise InputError("equalise", equalise, "\"cutoff\" (laps per end, Spangler Art. 31) "
                          "or \"laps\" (equal laps, unequal cut-offs, Art. 32)")
@@ -260,9 +271,9 @@ def _check_inputs(base: SlideValveSpec, cutoff, cutoff_crank, known: dict, relea
     given = {k: v for k, v in known.items() if v is not None}
     if len(given) != 2:
         raise InputError(", ".join(given) or "lead", ", ".join(f"{k}={v}" for k, v in given.items())
-                         or None, "exactly two of lead, max_opening, eccentricity, lap and "
-                         "angular_advance with the cut-off (Spangler Arts. 19-22: e.g. lead "
-                         "and max_opening, Art. 22)")
+                         or None, "exactly two of lead, max_opening, eccentricity, lap, "
+                         "angular_advance and lead_angle with the cut-off (Spangler Arts. "
+                         "19-22: e.g. lead and max_opening, Art. 22)")
     for k, v in given.items():
         if not math.isfinite(v):
             raise InputError(k, v, "a finite number")
@@ -270,7 +281,7 @@ def _check_inputs(base: SlideValveSpec, cutoff, cutoff_crank, known: dict, relea
         p = given["max_opening"]
         if not p > 0.0:
             raise InputError("max_opening", _in(p), "a port opening above zero")
-        if p > base.port_width_m * (1 + 1e-12):
+        if p > base.port_width_m * (1 + 1e-12) and overtravel_m is None:
             raise InputError("max_opening", _in(p), f"an opening no wider than the port "
                              f"({_in(base.port_width_m)}): the valve cannot open the port "
                              "further than its width (a wider opening is overtravel; give "
@@ -282,6 +293,13 @@ def _check_inputs(base: SlideValveSpec, cutoff, cutoff_crank, known: dict, relea
         raise InputError("eccentricity", _in(given["eccentricity"]), "a throw above zero")
     if "lap" in given and given["lap"] < 0.0:
         raise InputError("lap", _in(given["lap"]), "a steam lap of zero or more")
+    if "lead_angle" in given and "angular_advance" in given:
+        raise InputError("lead_angle", _len_text("lead_angle", given["lead_angle"]),
+                         "no angle of lead with the angular advance: with the cut-off either "
+                         "fixes the other (Spangler Art. 21); give a length instead")
+    if "lead_angle" in given and not abs(given["lead_angle"]) < 0.5 * math.pi:
+        raise InputError("lead_angle", _len_text("lead_angle", given["lead_angle"]),
+                         "an angle between -90 and 90 deg")
     if "angular_advance" in given and not abs(given["angular_advance"]) < 0.5 * math.pi:
         raise InputError("angular_advance", f"{math.degrees(given['angular_advance']):.4g} deg",
                          "an angle between -90 and 90 deg")
@@ -340,39 +358,48 @@ def _solve_valve(base, piston_fraction, given: dict, th_cut, ref: int, equalise:
         raise _NoValve("not even with infinite rods")
     r0, d0, _ = z
     sign = (1.0, -1.0)
+    names = list(given)
+    scale = [r0 if n not in ("angular_advance", "lead_angle") else 1.0 for n in names]
+    g = base.eccentric_rod_m
 
-    def laps(r, d):
-        x = _travel(base, r, d, np.array(th_cut))
+    def laps(b, r, d):
+        x = _travel(b, r, d, np.array(th_cut))
         lh, lc = float(x[0]), float(-x[1])
         if equalise == "laps":
             lh = lc = (lh, lc)[ref]
         return lh, lc
 
-    def quantities(r, d):
-        lp = laps(r, d)
-        x = sign[ref] * _travel(base, r, d, np.array([dead[ref], 0.5 * math.pi - d + dead[ref]]))
-        return {"lead": float(x[0]) - lp[ref], "max_opening": float(x[1]) - lp[ref],
-                "eccentricity": r, "lap": lp[ref], "angular_advance": d}
-
-    names = list(given)
-    scale = [r0 if n != "angular_advance" else 1.0 for n in names]
-    g = base.eccentric_rod_m
-
-    def residual(v):
+    def residual(v, b):
         r, d = r0 * v[0], v[1]
-        if not (r > 0.0 and (g is None or r < g)):
+        if not (r > 0.0 and (b.eccentric_rod_m is None or r < b.eccentric_rod_m)):
             return [1e3, 1e3]
-        q = quantities(r, d)
+        lap = laps(b, r, d)[ref]
+        lam = given.get("lead_angle", 0.0)
+        x = sign[ref] * _travel(b, r, d, np.array([dead[ref], 0.5 * math.pi - d + dead[ref],
+                                                   dead[ref] - lam]))
+        q = {"lead": float(x[0]) - lap, "max_opening": float(x[1]) - lap,
+             "eccentricity": r, "lap": lap, "angular_advance": d,
+             # the port opens at the angle of lead before the dead point (Art. 21)
+             "lead_angle": lam + (float(x[2]) - lap) / r0}
         return [(q[n] - given[n]) / s for n, s in zip(names, scale)]
 
-    sol = root(residual, [1.0, d0], method="hybr", options={"xtol": 1e-14})
-    r, d = r0 * float(sol.x[0]), float(sol.x[1])
-    if max(abs(v) for v in residual(sol.x)) > 1e-10:
+    def attempt(b, start):
+        sol = root(residual, start, args=(b,), method="hybr", options={"xtol": 1e-14})
+        return sol.x, max(abs(v) for v in residual(sol.x, b)) <= 1e-10
+
+    # (a continuation in 1/g from the Zeuner valve was tried on 1728 designs across rods,
+    # connections and events: it rescued none that this start refuses; where it fails, no
+    # valve with the asked lead reaches the asked opening on so short a rod)
+
+    v, ok = attempt(base, [1.0, d0])
+    r, d = r0 * float(v[0]), float(v[1])
+    if not ok:
         raise _NoValve(f"the infinite-rod valve (throw {_in(r0)}, advance "
-                       f"{math.degrees(d0):.3f} deg) has no counterpart with the finite rods")
+                       f"{math.degrees(d0):.3f} deg) has no counterpart with an eccentric "
+                       f"rod of {_in(g)}")
+    lh, lc = laps(base, r, d)
     if not abs(d) < 0.5 * math.pi:
         raise _NoValve(f"the advance would be {math.degrees(d):.1f} deg")
-    lh, lc = laps(r, d)
     lap = (lh, lc)[ref]
     if lap < 0.0:
         raise _NoValve(f"a negative steam lap ({_in(lap)}) would be needed")
@@ -412,6 +439,7 @@ def design_slide_valve(base: SlideValveSpec, piston_fraction: Callable[[float], 
                        lead_m: float | None = None, max_opening_m: float | None = None,
                        eccentricity_m: float | None = None, lap_m: float | None = None,
                        angular_advance_rad: float | None = None,
+                       lead_angle_rad: float | None = None, overtravel_m: float | None = None,
                        release=None, compression=None, exhaust_lap_m=None,
                        equalise: str = "cutoff", reference_end: str = "head") -> SlideValveDesign:
     """Design a plain slide valve for the events asked.
@@ -432,8 +460,14 @@ def design_slide_valve(base: SlideValveSpec, piston_fraction: Callable[[float], 
     lead_m, max_opening_m, eccentricity_m, lap_m : float, optional
         Lead, greatest port opening (no more than the port width), eccentric throw,
         steam lap of the reference end [m].
-    angular_advance_rad : float, optional
-        [rad].  Exactly two of these five are given (Spangler Arts. 19-22).
+    angular_advance_rad, lead_angle_rad : float, optional
+        Angular advance, and the angle of lead (the crank before the dead point when
+        the port opens, Art. 21) [rad].  Exactly two of these six are given (Spangler
+        Arts. 19-22), not both angles.
+    overtravel_m : float, optional
+        Instead of ``max_opening_m``: how far the valve travels past the far edge of
+        the port, so that the greatest signed opening is the port width plus this
+        (Art. 18; Art. 21 gives "width of port, and the overtravel") [m].
     release, compression : float or (float, float), optional
         Piston position at release, or at compression, as fraction of the end's stroke
         from its own dead centre as ``corliss events`` reports it (a compression of 0.1
@@ -457,9 +491,19 @@ def design_slide_valve(base: SlideValveSpec, piston_fraction: Callable[[float], 
         Naming the event asked that no plain valve can give, and the valid range.
     """
     known = {"lead": lead_m, "max_opening": max_opening_m, "eccentricity": eccentricity_m,
-             "lap": lap_m, "angular_advance": angular_advance_rad}
+             "lap": lap_m, "angular_advance": angular_advance_rad,
+             "lead_angle": lead_angle_rad}
+    if overtravel_m is not None:
+        if max_opening_m is not None:
+            raise InputError("overtravel", _in(overtravel_m), "either the greatest opening or "
+                             "the overtravel, not both (the opening is the port width plus the "
+                             "overtravel, Spangler Art. 18)")
+        if not overtravel_m >= 0.0:
+            raise InputError("overtravel", _in(overtravel_m), "an overtravel of zero or more")
+        known["max_opening"] = base.port_width_m + overtravel_m
     ch, cc, given, exhaust = _check_inputs(base, cutoff, cutoff_crank, known, release,
-                                           compression, exhaust_lap_m, equalise, reference_end)
+                                           compression, exhaust_lap_m, equalise, reference_end,
+                                           overtravel_m)
     ref = 0 if reference_end == "head" else 1
     cut = (ch, cc)
     th_cut = tuple(crank_angle(piston_fraction, cut[k], ENDS[k], "out") for k in (0, 1))
@@ -506,6 +550,8 @@ def design_slide_valve(base: SlideValveSpec, piston_fraction: Callable[[float], 
                  "crank": {"cutoff_deg": math.degrees(th_cut[1])}}
     if equalise == "laps":
         asked_deg[ENDS[1 - ref]].pop("cutoff_deg")
+    if "lead_angle" in given:
+        asked_deg[ENDS[ref]]["admission_deg"] = math.degrees(dead[ref] - given["lead_angle"]) % 360.0
     for k, end in enumerate(ENDS):
         kind, v = exhaust[k]
         if kind == "exhaust_lap":
