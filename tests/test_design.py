@@ -112,6 +112,7 @@ def test_problem_10_lap_lead_and_cutoff_art_20():
     assert d.angular_advance_rad == pytest.approx(delta, abs=1e-10)
     assert d.eccentricity_m / IN == pytest.approx(r, abs=1e-9)
     assert d.lead_m[0] / IN == pytest.approx(i, abs=1e-9)
+    assert d.zeuner["angular_advance_rad"] == pytest.approx(delta, abs=1e-10)
 
 
 def test_problem_21_throw_lap_and_cutoff_art_19():
@@ -129,6 +130,7 @@ def test_problem_21_throw_lap_and_cutoff_art_19():
                            lap_m=l * IN)
     assert d.angular_advance_rad == pytest.approx(delta, abs=1e-10)
     assert d.lead_m[0] / IN == pytest.approx(r * math.sin(delta) - l, abs=1e-9)
+    assert d.zeuner["angular_advance_rad"] == pytest.approx(delta, abs=1e-10)
 
 
 def test_problem_22_unequal_laps_for_equal_cutoff_art_31():
@@ -194,6 +196,9 @@ def test_problem_3_angle_of_lead_port_and_overtravel_art_21():
     assert d.lap_m[0] / IN == pytest.approx(lap, abs=1e-9)
     assert d.lead_m[0] / IN == pytest.approx(r * math.sin(delta) - lap, abs=1e-9)
     assert d.events["head"]["admission_deg"] == pytest.approx(350.0, abs=1e-6)
+    # the closed form the solve starts from is the answer itself with infinite rods
+    assert d.zeuner["angular_advance_rad"] == pytest.approx(delta, abs=1e-10)
+    assert d.zeuner["eccentricity_m"] / IN == pytest.approx(r, abs=1e-9)
     assert d.events["head"]["overtravel_m"] / IN == pytest.approx(over, abs=1e-6)
 
 
