@@ -380,6 +380,17 @@ def test_setting_for_a_cutoff_round_trip(name, cutoff, tmp_path):
     assert files["scene"].exists()
 
 
+def test_setting_for_the_mean_cutoff_of_both_ends():
+    """``end="mean"``: the Stephenson link's two ends cut off unequally (the connecting
+    rod's angularity, Spangler Art. 63); the block found puts the mean of the two
+    fractions at 0.4 (to 1e-8, Brent's method closing the setting to 1e-10), with the
+    head end's later than the crank end's."""
+    d = design("hinkley-stephenson-link", cutoff=0.4, end="mean")
+    h, c = (d.events[e]["cutoff_frac"] for e in ("head", "crank"))
+    assert (h + c) / 2 == pytest.approx(0.4, abs=1e-8)
+    assert h > c
+
+
 # ------------------------------------------------------------------ what cannot be
 def test_cutoff_earlier_than_the_valve_allows_names_cutoff():
     """Art. 22 with lead 1/4 in and opening 1 1/4 in (infinite rods): l = 0 at the
@@ -471,6 +482,17 @@ def test_the_package_front_door_has_design():
     assert corliss.design is design
     d = corliss.design(cutoff=0.8, lead="0.25 in", max_opening="1.25 in")
     assert d.events["head"]["cutoff_frac"] == pytest.approx(0.8, abs=1e-9)
+
+
+def test_a_compound_or_no_valve_data_is_refused():
+    """A compound's two gears are not designed; a slide valve asked only its cut-off has
+    one condition of the three a plain valve needs (Arts. 19-22)."""
+    with pytest.raises(InputError) as e:
+        design("marks-compound-9-14x14", cutoff=0.4)
+    assert e.value.key == "scene"
+    with pytest.raises(InputError) as e:
+        design(make_scene(), cutoff=0.4)
+    assert e.value.key == "lead" and "exactly two" in e.value.expected
 
 
 def test_cli_bad_design_exits_2_and_writes_nothing(tmp_path, capsys):

@@ -270,10 +270,13 @@ def _check_inputs(base: SlideValveSpec, cutoff, cutoff_crank, known: dict, relea
                          "valve (Spangler Art. 32); ask equalise = \"cutoff\" for laps per end")
     given = {k: v for k, v in known.items() if v is not None}
     if len(given) != 2:
-        raise InputError(", ".join(given) or "lead", ", ".join(f"{k}={v}" for k, v in given.items())
-                         or None, "exactly two of lead, max_opening, eccentricity, lap, "
-                         "angular_advance and lead_angle with the cut-off (Spangler Arts. "
-                         "19-22: e.g. lead and max_opening, Art. 22)")
+        what = ("exactly two of lead, max_opening (or overtravel), eccentricity, lap, "
+                "angular_advance and lead_angle with the cut-off (Spangler Arts. 19-22: e.g. "
+                "lead and max_opening, Art. 22)")
+        if not given:
+            raise InputError("lead", "none given", what)
+        raise InputError(", ".join(given), ", ".join(_len_text(k, v) for k, v in given.items()),
+                         what)
     for k, v in given.items():
         if not math.isfinite(v):
             raise InputError(k, v, "a finite number")
