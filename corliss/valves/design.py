@@ -287,8 +287,8 @@ def _check_inputs(base: SlideValveSpec, cutoff, cutoff_crank, known: dict, relea
         if p > base.port_width_m * (1 + 1e-12) and overtravel_m is None:
             raise InputError("max_opening", _in(p), f"an opening no wider than the port "
                              f"({_in(base.port_width_m)}): the valve cannot open the port "
-                             "further than its width (a wider opening is overtravel; give "
-                             "the eccentricity instead, or a wider port)")
+                             "further than its width (travel beyond it is overtravel: give "
+                             "the overtravel instead, or a wider port)")
         if "lead" in given and given["lead"] >= p:
             raise InputError("lead", _in(given["lead"]), f"a lead less than the greatest "
                              f"opening ({_in(p)}): the port opens further after the dead point")
