@@ -13,7 +13,8 @@ class InputError(ValueError):
     key : str
         Dotted scene key, e.g. ``"valve_gear.lap"``.
     value : object
-        The value as given.
+        The value as given; None for a key or section the scene lacks (the message then
+        says it is missing).
     expected : str
         What would be valid, in words.
     """
@@ -22,7 +23,10 @@ class InputError(ValueError):
         self.key = key
         self.value = value
         self.expected = expected
-        super().__init__(f"{key} = {value!r} is not valid: expected {expected}.")
+        if value is None:       # a key or section the scene lacks
+            super().__init__(f"{key} is missing: expected {expected}.")
+        else:
+            super().__init__(f"{key} = {value!r} is not valid: expected {expected}.")
 
     def with_prefix(self, prefix: str) -> "InputError":
         """The same error with its key placed under ``prefix`` (a table name)."""

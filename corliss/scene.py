@@ -3,7 +3,8 @@
 Every dimensional value is a quantity string with its unit; unknown keys, missing
 units and impossible geometry are :class:`~corliss.errors.InputError` naming the key,
 the value and what would be valid, raised before any work starts.  The format is
-described in DESIGN.md and shown by ``scenes/default.toml``.
+described in the README and ``docs/architecture.md`` and shown by
+``scenes/default.toml``.
 """
 
 from __future__ import annotations

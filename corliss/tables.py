@@ -19,6 +19,13 @@ MICRON_m = 1e-6
 DISCHARGE_COEFFICIENT = (0.1, 1.0)
 
 
+def _closest(key: str, candidates) -> str | None:
+    """The candidate most like ``key`` (a misspelling of it), or None."""
+    import difflib
+    near = difflib.get_close_matches(str(key), [str(c) for c in candidates], n=1, cutoff=0.7)
+    return near[0] if near else None
+
+
 class Table:
     """A scene table with its dotted name and the scene's barometer.
 
@@ -54,7 +61,9 @@ class Table:
         if key in self.data:
             return self.data[key]
         if default is _MISSING:
-            raise InputError(self.key(key), None, "a value: this key is required")
+            near = _closest(key, [k for k in self.data if k not in self._read])
+            hint = f" (the scene has {self.key(near)}: a misspelling?)" if near else ""
+            raise InputError(self.key(key), None, f"a value: this key is required{hint}")
         return default
 
     def quantity(self, key: str, kind: str, default=_MISSING, *,
@@ -123,5 +132,7 @@ class Table:
         if unknown:
             k = unknown[0]
             known = ", ".join(sorted(self._read))
+            near = _closest(k, self._read)
+            hint = f"{self.key(near)}? " if near else ""
             raise InputError(self.key(k), self.data[k],
-                             f"a known key; {self.name or 'the scene'} takes: {known}")
+                             f"a known key; {hint}{self.name or 'the scene'} takes: {known}")

@@ -4,9 +4,12 @@ Scenes give every dimensional value as a string with its unit (``"14.5 in"``,
 ``"100 psig"``, ``"26 inHg vacuum"``, ``"2 3/4 in"``).  Inside corliss everything is
 SI with absolute pressure; this module is the only place units are converted.
 
-Gauge pressure is never implicit: ``psig``, ``barg`` and ``inHg vacuum`` are read
-against a barometer, which the scene states (default 14.696 psia).  A bare ``psi``
-is refused because it does not say which.
+Gauge pressure is never implicit: ``psig``, ``barg``, ``kPa(g)`` and ``inHg vacuum``
+are read against a barometer, which the scene states (default 14.696 psia).  A bare
+``psi``, ``bar``, ``kPa`` or ``MPa`` is refused because it does not say which; each
+takes ``a``, ``(a)``, ``abs`` or ``absolute`` after it for absolute, ``g``, ``(g)``,
+``gauge`` or ``gage`` for gauge.  ``Pa``, ``atm``, ``inHg`` and ``mmHg`` are absolute
+as written.  Speeds in ``rpm``, ``RPM``, ``rev/min``, ``r/min``, ``rev/s`` or ``rad/s``.
 """
 
 from __future__ import annotations
@@ -38,7 +41,8 @@ _LINEAR: dict[str, dict[str, float]] = {
     "area": {"m2": 1.0, "mm2": 1e-6, "cm2": 1e-4, "in2": INCH_m**2, "ft2": FOOT_m**2},
     "volume": {"m3": 1.0, "L": 1e-3, "l": 1e-3, "cm3": 1e-6, "in3": INCH_m**3,
                "ft3": FOOT_m**3},
-    "speed": {"rpm": RPM_RAD_S, "rad/s": 1.0, "rev/s": 2.0 * math.pi},
+    "speed": {"rpm": RPM_RAD_S, "RPM": RPM_RAD_S, "rev/min": RPM_RAD_S,
+              "r/min": RPM_RAD_S, "rad/s": 1.0, "rev/s": 2.0 * math.pi},
     "time": {"s": 1.0, "ms": 1e-3, "min": 60.0, "h": 3600.0},
     "torque": {"N m": 1.0, "kN m": 1e3, "lbf ft": LBF_N * FOOT_m,
                "ft lbf": LBF_N * FOOT_m, "lbf in": LBF_N * INCH_m},
@@ -68,6 +72,17 @@ _ABS_PRESSURE = {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "bar": 1e5, "bara": 1e5,
                  "psia": PSI_Pa, "atm": STANDARD_ATMOSPHERE_Pa, "inHg": INHG_Pa,
                  "mmHg": MMHG_Pa}
 _GAUGE_PRESSURE = {"psig": PSI_Pa, "barg": 1e5, "kPag": 1e3}
+#: Pressure units a scene must qualify as absolute or gauge: gauges of the period and of
+#: today read in them as often as tables do.  ``Pa``, ``atm``, ``inHg`` and ``mmHg``
+#: are absolute as written (a barometer reads inHg absolute; "inHg vacuum" is gauge).
+_QUALIFIED = {"psi": PSI_Pa, "bar": 1e5, "kPa": 1e3, "MPa": 1e6}
+#: The spellings of "absolute" and "gauge" after one of :data:`_QUALIFIED`:
+#: ``psia``, ``psi(a)``, ``psi abs``, ``psi absolute``; ``psig``, ``psi(g)``, ...
+_ABS_MARKS = ("a", "(a)", " a", " abs", " absolute")
+_GAUGE_MARKS = ("g", "(g)", " g", " gauge", " gage")
+_ABS_INPUT = {u + m: f for u, f in _QUALIFIED.items() for m in _ABS_MARKS}
+_ABS_INPUT.update({u: _ABS_PRESSURE[u] for u in ("Pa", "atm", "inHg", "mmHg")})
+_GAUGE_INPUT = {u + m: f for u, f in _QUALIFIED.items() for m in _GAUGE_MARKS}
 _VACUUM = {"inHg vacuum": INHG_Pa, "inHg vac": INHG_Pa, "mmHg vacuum": MMHG_Pa,
            "mmHg vac": MMHG_Pa}
 _TEMPERATURE = ("K", "degC", "degF", "degR")
@@ -185,7 +200,7 @@ def _parse_text(text: object, key: str) -> Quantity:
 def units_of(kind: str) -> tuple[str, ...]:
     """Unit names accepted for a kind of quantity."""
     if kind == "pressure":
-        return tuple(_ABS_PRESSURE) + tuple(_GAUGE_PRESSURE) + tuple(_VACUUM)
+        return tuple(_ABS_INPUT) + tuple(_GAUGE_INPUT) + tuple(_VACUUM)
     if kind == "temperature":
         return _TEMPERATURE
     return tuple(_LINEAR[kind])
@@ -225,17 +240,19 @@ def parse(text: object, kind: str, key: str = "value", *,
         raise InputError(key, text, f"a {kind} with its unit; one of "
                          + ", ".join(units_of(kind)))
     if kind == "pressure":
-        if q.unit in _ABS_PRESSURE:
-            return check_range(q.value * _ABS_PRESSURE[q.unit], kind, key, text, within)
-        if q.unit in _GAUGE_PRESSURE:
-            return check_range(barometer_Pa + q.value * _GAUGE_PRESSURE[q.unit], kind, key,
+        if q.unit in _ABS_INPUT:
+            return check_range(q.value * _ABS_INPUT[q.unit], kind, key, text, within)
+        if q.unit in _GAUGE_INPUT:
+            return check_range(barometer_Pa + q.value * _GAUGE_INPUT[q.unit], kind, key,
                                text, within)
         if q.unit in _VACUUM:
             return check_range(barometer_Pa - q.value * _VACUUM[q.unit], kind, key, text,
                                within)
-        if q.unit == "psi":
-            raise InputError(key, text, "\"psia\" (absolute) or \"psig\" (gauge); a "
-                             "bare psi does not say which")
+        if q.unit in _QUALIFIED:
+            u, v = q.unit, f"{q.value:g}"
+            a, g = ("a", "g") if u in ("psi", "bar") else ("(a)", "(g)")
+            raise InputError(key, text, f"\"{v} {u}{a}\" (absolute) or \"{v} {u}{g}\" (gauge, "
+                             f"against the barometer); a bare {u} does not say which")
     elif kind == "temperature":
         kelvin = {"K": q.value, "degC": q.value + 273.15,
                   "degF": (q.value - 32.0) * 5.0 / 9.0 + 273.15, "degR": q.value * 5.0 / 9.0}
@@ -247,6 +264,10 @@ def parse(text: object, kind: str, key: str = "value", *,
             return check_range(q.value * table[q.unit], kind, key, text, within)
     else:
         raise ValueError(f"unknown kind of quantity {kind!r}")
+    if kind == "pressure":
+        raise InputError(key, text, "a pressure in psia, psig, bara, barg, kPa(a), kPa(g), "
+                         "MPa(a), MPa(g), Pa, atm, inHg, mmHg or inHg vacuum (absolute or "
+                         "gauge also as psi(a), bar abs, kPa gauge, ...)")
     raise InputError(key, text, f"a {kind} in one of: " + ", ".join(units_of(kind)))
 
 

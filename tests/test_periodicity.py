@@ -92,3 +92,25 @@ def test_a_compound_with_every_effect_conserves_mass_and_energy():
     assert s["mass_balance_error"] < 1e-5
     assert s["energy_balance_error"] < 1e-5
     assert "lp_power_W" in s and s["valve_leakage_kg_per_h"] > 0 and "brake_power_W" in s
+
+
+def test_a_warm_start_settles_on_the_same_periodic_cycle_sooner():
+    """A steady run started where a neighbouring run ended (another cut-off of the same
+    walled engine) must reach the periodic cycle a cold start reaches: the periodic
+    solution does not depend on where the cycles began.  Both stop when every state
+    changes by under the tolerance (1e-3 on the fast preset) over a cycle, so their
+    indicated work and heat to the walls may differ by a few times that (a
+    contraction's remainder, as above): 0.5 % allowed.  The walls' temperature, the
+    slowest state, starts near its periodic value, so fewer cycles are needed."""
+    from corliss.engine.steady import run_steady
+    sc = corliss.load_scene(bundled_scenes()["default"]).with_fidelity("fast")
+    sc = sc.replace_run(effects=sc.run.effects + ("wall_heat",))
+    early = dataclasses.replace(sc, gear=dataclasses.replace(sc.gear, lap_m=(0.030, 0.030)))
+    neighbour = run_steady(early)
+    cold = run_steady(sc)
+    warm = run_steady(sc, start=neighbour.final_state)
+    for key in ("indicated_power_W", "heat_to_walls_head_J_per_cycle"):
+        assert warm.summary[key] == pytest.approx(cold.summary[key], rel=5e-3), key
+    assert warm.summary["wall_temperature_head_K"] == pytest.approx(
+        cold.summary["wall_temperature_head_K"], abs=0.1)
+    assert warm.cycles_to_converge < cold.cycles_to_converge

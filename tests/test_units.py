@@ -73,3 +73,54 @@ def test_output_frames_convert_rates_torques_and_powers():
     assert si["steam_rate_kg_per_h"][0] == pytest.approx(0.45359237)
     assert si["p_head_kPa_abs"][0] == pytest.approx(101.325)
     assert set(si_units) == set(si.columns)
+
+
+@pytest.mark.parametrize("text, absolute_Pa", [
+    # 7 bar absolute is 700 kPa; gauge adds the standard barometer, 101.325 kPa
+    ("7 bara", 7e5), ("7 bar(a)", 7e5), ("7 bar abs", 7e5), ("7 bar absolute", 7e5),
+    ("7 barg", 7e5 + 101_325.0), ("7 bar(g)", 7e5 + 101_325.0), ("7 bar gauge", 7e5 + 101_325.0),
+    ("700 kPa(a)", 7e5), ("700 kPa abs", 7e5), ("700 kPa(g)", 801_325.0), ("700 kPag", 801_325.0),
+    ("0.7 MPa(a)", 7e5), ("0.7 MPa(g)", 801_325.0),
+    ("100 psi(a)", 100 * 6894.757293168361), ("100 psi gage", 114.69594877551 * 6894.757293168361),
+    ("101325 Pa", 101_325.0), ("1 atm", 101_325.0),
+])
+def test_absolute_and_gauge_spelt_out(text, absolute_Pa):
+    """Every pressure unit a gauge may read in is taken as absolute or gauge only when
+    the scene says which (1 bar = 1e5 Pa, 1 psi = 6894.757 Pa, NIST SP 811; the standard
+    atmosphere 101 325 Pa)."""
+    assert units.parse(text, "pressure") == pytest.approx(absolute_Pa, rel=1e-9)
+
+
+@pytest.mark.parametrize("text, spelt", [("7 bar", "7 bara"), ("700 kPa", "700 kPa(a)"),
+                                         ("0.7 MPa", "0.7 MPa(g)"), ("100 psi", "100 psig")])
+def test_a_bare_pressure_unit_is_refused_with_its_spellings(text, spelt):
+    with pytest.raises(InputError) as e:
+        units.parse(text, "pressure", "supply.pressure")
+    assert e.value.key == "supply.pressure" and spelt in str(e.value)
+    assert "does not say which" in str(e.value)
+
+
+@pytest.mark.parametrize("text", ["120 rpm", "120 RPM", "120 rev/min", "120 r/min", "2 rev/s"])
+def test_speed_spellings(text):
+    """120 revolutions a minute are 4 pi rad/s, as is 2 rev/s."""
+    assert units.parse(text, "speed") == pytest.approx(4.0 * math.pi, rel=1e-12)
+
+
+def test_a_misspelt_key_is_reported_missing_with_the_key_the_scene_has():
+    """``boer`` for ``bore``: the message says engine.bore is missing and names the
+    misspelling; an unknown key is refused with the nearest key the table takes."""
+    import tomllib
+
+    from corliss.scene import default_scene_path, scene_from_dict
+    data = tomllib.loads(default_scene_path().read_text())
+    data["engine"]["boer"] = data["engine"].pop("bore")
+    with pytest.raises(InputError) as e:
+        scene_from_dict(data)
+    assert e.value.key == "engine.bore"
+    assert str(e.value).startswith("engine.bore is missing") and "engine.boer" in str(e.value)
+    data = tomllib.loads(default_scene_path().read_text())
+    data["valve_gear"]["eccentricty"] = "3 in"
+    with pytest.raises(InputError) as e:
+        scene_from_dict(data)
+    assert e.value.key == "valve_gear.eccentricty"
+    assert "valve_gear.eccentricity?" in str(e.value)

@@ -255,8 +255,10 @@ def test_the_jacket_is_paid_for_in_steam():
         conducted += ga * (t_j - float(row[f"T_wall_{end}_K"]))
     assert s["jacket_heat_W"] == pytest.approx(conducted, rel=0.02)
     latent = steam.px(p, 1.0).h - steam.px(p, 0.0).h
+    # 1e-6: the summary reads the latent heat on the run's steam table (no CoolProp in a
+    # table-tier run), whose saturation line is HEOS's to well under that
     assert s["jacket_steam_kg_per_h"] == pytest.approx(s["jacket_heat_W"] / latent * 3600.0,
-                                                       rel=1e-12)
+                                                       rel=1e-6)
     saving = 1.0 - s["water_rate_with_jacket_kg_per_kWh"] / bare.summary["water_rate_kg_per_kWh"]
     assert s["water_rate_with_jacket_kg_per_kWh"] > s["water_rate_kg_per_kWh"]
     assert 0.02 < saving < 0.20

@@ -58,6 +58,9 @@ DEFAULT_CHEST_OF_SWEPT = 0.10
 PIPE_STEAM_SPEED_M_S = 6000.0 * 0.3048 / 60.0
 #: Knob values of the grid that brackets each operating point [-].
 GRID_POINTS = 9
+#: The grid of each variant is run as this many chains of neighbouring knobs (a chain
+#: is one task; its runs start each where the last ended).
+GRID_CHAINS = 2
 #: Least throttle opening the study tries [-] (a shut throttle runs no engine); the
 #: grid of openings is geometric, the power changing most at small openings.
 LEAST_OPENING = 0.005
@@ -164,13 +167,15 @@ def variants(scene, *, throttled_setting: float | None = None,
 
 # --- one steady run, and the rows made of it ---------------------------------------------
 
-def _run(scene, knob: str, value: float, tier: str | None) -> dict | None:
-    """One steady run's figures (None if the run stopped)."""
+def _run(scene, knob: str, value: float, tier: str | None, start=None) -> dict | None:
+    """One steady run's figures (None if the run stopped), started from ``start`` (a
+    :class:`~corliss.engine.steady.SteadyStart`) when given; ``final_state`` in the row
+    is where it ended, the start of the next run nearby."""
     sc = at_knob(scene, knob, value)
     if tier is not None:
         sc = sc.with_fidelity(tier)
     try:
-        r = run_steady(sc)
+        r = run_steady(sc, start=start)
     except RunError as exc:
         log.debug("%s at %s: %s", knob, value, exc)
         return None
@@ -194,7 +199,7 @@ def _run(scene, knob: str, value: float, tier: str | None) -> dict | None:
             "cutoff_head_frac": s["events"]["head"]["cutoff_frac"],
             "chest_pressure_admission_Pa": p_adm,
             "missing_water_frac": float(np.mean(miss)) if miss else float("nan"),
-            "rhs_evaluations": r.rhs_evaluations}
+            "rhs_evaluations": r.rhs_evaluations, "final_state": r.final_state}
 
 
 def _power(row: dict | None, brake: bool) -> float:
@@ -203,30 +208,43 @@ def _power(row: dict | None, brake: bool) -> float:
     return row["brake_power_W" if brake else "indicated_power_W"]
 
 
-def _grid_task(scene, knob, value):
-    return value, _run(scene, knob, value, "fast")
+def _grid_task(scene, knob, values):
+    """Steady runs at a run of neighbouring knob ``values`` on the fast tier, each
+    started where the one before ended: [(value, row)]."""
+    out, last = [], None
+    for value in values:
+        row = _run(scene, knob, value, "fast", last)
+        if row is not None:
+            last = row["final_state"]
+        out.append((value, row))
+    return out
 
 
 def _point_task(scene, knob, bracket, target_W, brake, tier, guess=None, exact=True,
-                wider=None):
+                wider=None, start=None):
     """The operating point at ``target_W``: a bracketed root on the fast tier (the first
     trial at ``guess``, the root of the grid's interpolant), refined by secant steps on
     the scene's tier (``tier`` None: the fast root is final).  ``exact`` False: the
     bracket's powers are estimates (the grid ran at another speed); they are run at this
     scene's speed if the root is not found inside them, and ``wider`` (the neighbouring
-    grid knobs) if it is not between them either."""
+    grid knobs) if it is not between them either.  Each run starts where the one before
+    it ended (the first, from ``start``: the grid's run nearest the guess), so the walls
+    settle once, not at every trial."""
     (a, pa), (b, pb) = bracket
     lo_k, hi_k = min(a, b), max(a, b)
     slope = (pb - pa) / (b - a)
     runs = 0
     cache = {}
     tol = FAST_TOL * abs(target_W)
+    last = start
 
     def f(k):
-        nonlocal runs
+        nonlocal runs, last
         runs += 1
-        row = _run(scene, knob, k, "fast")
+        row = _run(scene, knob, k, "fast", last)
         cache[k] = row
+        if row is not None:
+            last = row["final_state"]
         p = _power(row, brake)
         if not math.isfinite(p):
             raise RunError(f"{knob} {k}: the run stopped")
@@ -267,12 +285,16 @@ def _point_task(scene, knob, bracket, target_W, brake, tier, guess=None, exact=T
         if fa * fb > 0:
             raise RunError(f"no {knob} gives {target_W:.6g} W at this speed")
         k, fk = illinois(a, fa, b, fb, k)
-    row = cache.get(k) or _run(scene, knob, k, "fast")
+    row = cache.get(k) or _run(scene, knob, k, "fast", last)
+    if row is not None:
+        last = row["final_state"]
     if tier is not None and tier != "fast":
         pts = []
         for _ in range(MAX_REFINE):
-            row = _run(scene, knob, k, tier)
+            row = _run(scene, knob, k, tier, last)
             runs += 1
+            if row is not None:
+                last = row["final_state"]
             err = _power(row, brake) - target_W
             if not math.isfinite(err):
                 raise RunError(f"{knob} {k}: the run stopped on the {tier} tier")
@@ -421,11 +443,13 @@ def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
     # the full-power run of each group sets the rated power when the scene has no load
     rated = rated_power_W(scene, brake)
     grid_tasks, grid_keys = [], []
-    for key, v in groups.items():
+    # each group's grid in GRID_CHAINS runs of neighbouring knobs, the walled groups
+    # (whose walls settle slowly, and settle once a chain) first
+    for key, v in sorted(groups.items(), key=lambda kv: not kv[0][1]):
         grid = (np.geomspace if v.knob == "throttle" else np.linspace)(*v.knob_range,
                                                                        GRID_POINTS)
-        for k in grid:
-            grid_tasks.append((_grid_task, (v.scene, v.knob, float(k))))
+        for chain in np.array_split(grid, GRID_CHAINS):
+            grid_tasks.append((_grid_task, (v.scene, v.knob, [float(k) for k in chain])))
             grid_keys.append(key)
     total = len(grid_tasks) + len(groups) * len(loads)
     # one pool for both rounds: a worker pays its imports and steam table once
@@ -446,11 +470,17 @@ def _solve(scene, loads, var, groups, grid_tasks, grid_keys, rated, brake, tier,
     conds = sorted({c for _, c in groups})
     grid, done = _map(grid_tasks, pool, progress, 0, total)
     curves = {key: [] for key in groups}
-    runs = len(grid_tasks)
-    for key, res in zip(grid_keys, grid):
-        if isinstance(res, Exception) or res[1] is None:
+    states = {key: {} for key in groups}
+    runs = GRID_POINTS * len(groups)
+    for key, chain in zip(grid_keys, grid):
+        if isinstance(chain, Exception):
             continue
-        curves[key].append((res[0], _power(res[1], brake)))
+        for k, row in chain:
+            if row is not None:
+                curves[key].append((k, _power(row, brake)))
+                states[key][k] = row["final_state"]
+    for key in curves:
+        curves[key].sort()
     if rated is None:
         p = [pw for k, pw in curves[("throttling", False if False in conds else True)]]
         rated = max(p) if p else float("nan")
@@ -475,10 +505,13 @@ def _solve(scene, loads, var, groups, grid_tasks, grid_keys, rated, brake, tier,
                     break
             point_keys.append((key, load, target, bracket))
             if bracket is not None:
+                guess = _guess(crv, bracket, target)
+                near = min(states[key], key=lambda kk: abs(kk - (
+                    guess if guess is not None else bracket[0][0])))
                 point_tasks.append((_point_task, (sc, v.knob, bracket, target, brake,
                                                   None if tier == "fast" else tier,
-                                                  _guess(crv, bracket, target),
-                                                  speeds is None, wider)))
+                                                  guess, speeds is None, wider,
+                                                  states[key][near])))
     found, _ = _map(point_tasks, pool, progress, done, total)
     found = iter(found)
     rows = []
@@ -498,6 +531,7 @@ def _solve(scene, loads, var, groups, grid_tasks, grid_keys, rated, brake, tier,
         runs += n
         row = dict(row)
         row.pop("rhs_evaluations", None)
+        row.pop("final_state", None)
         if not brake:
             row.pop("brake_power_W", None)
         got = row["brake_power_W" if brake else "indicated_power_W"]

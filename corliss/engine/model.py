@@ -17,7 +17,8 @@ from corliss.engine.geometry import CylinderGeometry
 from corliss.engine.network import (Network, compound, single_cylinder, with_leakage,
                                     with_steam_chest, with_wall_heat)
 from corliss.errors import InputError
-from corliss.thermo.steam import State, Steam, make_steam, transport_properties
+from corliss.thermo.steam import State, Steam, make_steam
+from corliss.thermo.wall_properties import transport_properties
 from corliss.valves import events as valve_events
 from corliss.valves import gear_type, tabulate
 

@@ -422,6 +422,7 @@ def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
       of iron away) is held at that temperature.  Every cylinder has its own wall.
     """
     from corliss.engine import wall
+    from corliss.thermo.wall_properties import film_enthalpies
     k, mu, pr = steam_props
     code = WALL_MODELS[model]
     for i, kind in enumerate(net.node_kind):
@@ -432,7 +433,7 @@ def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
         # the film's water and its latent heat, at the temperature the wall starts from
         # (constant over a run, so that the film's energy is m_f h_L exactly)
         t0 = 0.5 * (net.reservoirs[0].T + net.reservoirs[-1].T)
-        film = wall.film_enthalpies(t0)
+        film = film_enthalpies(t0)
         for i in net.wall_nodes:
             net.node_heat[i] = wall.skin_row(net.geometries[net.node_cyl[i]], net.node_end[i],
                                              net.omega, h_c, steam_props, net.i_wall(i),

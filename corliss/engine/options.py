@@ -1,8 +1,8 @@
 """The knobs of a run: effects a scene may name, and fidelity presets.
 
 Effects are switched by the scene alone; the model is assembled from those named
-(DESIGN.md, "Effects").  Fidelity presets are documented sets of knobs, each knob
-also settable alone in ``[run]``.
+(``docs/architecture.md``, "The engine"; the README lists them).  Fidelity presets
+are documented sets of knobs, each knob also settable alone in ``[run]``.
 """
 
 from __future__ import annotations
@@ -10,8 +10,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-#: Effects a scene may name, with what each does.  Only these are implemented; the
-#: others of DESIGN.md are refused by name until they land.
+#: Effects a scene may name, with what each does.  Only these are implemented; any
+#: other name is refused.
 EFFECTS: dict[str, str] = {
     "port_flow": "finite port areas with discharge coefficient, choking and reverse flow; "
                  "without it, admission and exhaust are at chest and back pressure",

@@ -33,7 +33,7 @@ from corliss.engine import crank_effort as ce
 from corliss.engine.condensation import marks_condensation_kg
 from corliss.engine.options import record_of
 from corliss.engine.speed_metrics import load_step_metrics, step_time_of
-from corliss.thermo.steam import HEOSSteam
+from corliss.thermo.steam import HEOSSteam, TableSteam
 
 TWO_PI = 2.0 * math.pi
 #: Why a card's fluctuation coefficient is undefined (the summary's value is null).
@@ -240,6 +240,9 @@ class SteadyResult(Result):
     clamped_hot : int or None
         Evaluations at visited states heated beyond the properties' greatest energy and
         evaluated at it (with a warning; see ``corliss.engine.crank_resolved``).
+    final_state : SteadyStart or None
+        Where a crank-resolved run ended: the ``start`` of a neighbouring run
+        (``corliss.engine.steady.run_steady``); None for the other models.
 
     Tables: ``timeseries`` (``cycle``, ``crank_angle_deg``, ``time_s``, and per end
     ``p_*_Pa``, ``T_*_K``, ``x_*_frac`` (dryness), ``V_*_m3``, ``m_*_kg``), ``cycles``
@@ -264,6 +267,7 @@ class SteadyResult(Result):
     periodicity: dict = field(default_factory=dict)
     clamped_trials: int | None = None
     clamped_hot: int | None = None
+    final_state: object = None
 
     @property
     def cylinder_list(self) -> list:
@@ -416,7 +420,8 @@ class SteadyResult(Result):
         heat, each with its own geometry and events (``lp_`` ends with the
         low-pressure cylinder's, the angles moved by the cylinder's crank lead).
         """
-        sat = HEOSSteam()
+        # saturation read on the run's own table (no CoolProp import) or else on HEOS
+        sat = TableSteam() if self.property_tier == "table" else HEOSSteam()
         row = self.last_cycle
         ts = _last(self.timeseries)
         ang = np.mod(ts["crank_angle_deg"].to_numpy(), 360.0)

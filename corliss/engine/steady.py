@@ -32,8 +32,31 @@ TWO_PI = 2.0 * math.pi
 EQUILIBRIUM_STEP_DEG = 0.25
 
 
+@dataclasses.dataclass(frozen=True)
+class SteadyStart:
+    """Where a crank-resolved steady run ended, to start a neighbouring run from.
+
+    A run of the same engine at a nearby setting, throttle, speed or tier settles in a
+    few cycles from here instead of from the cold start (states at the reservoirs'
+    conditions, walls midway between them): a study that walks a knob, or refines on a
+    finer tier, pays for the walls' slow settling once.
+
+    Attributes
+    ----------
+    y : ndarray
+        The kernel's state at the end of the last cycle (masses [kg], energies [J],
+        film and wall states; the quadratures restart each cycle).
+    wall_T_K : ndarray or None
+        Each node's wall temperature [K] (the skin model's deep wall), or None.
+    """
+
+    y: np.ndarray
+    wall_T_K: np.ndarray | None
+
+
 def run_steady(scene, *, portmap_scale: float = 1.0,
-               progress: Callable[[int, float], None] | None = None) -> SteadyResult:
+               progress: Callable[[int, float], None] | None = None,
+               start: SteadyStart | None = None) -> SteadyResult:
     """Run a steady scene until its cycle is periodic (or for ``run.cycles`` cycles).
 
     Parameters
@@ -44,6 +67,11 @@ def run_steady(scene, *, portmap_scale: float = 1.0,
         Multiply every port area by this factor [-] (for studies of the port-flow limit).
     progress : callable, optional
         Called after each cycle with (cycle number, relative change of work [-]).
+    start : SteadyStart, optional
+        Start the cycles from where a run of the same engine ended
+        (:attr:`SteadyResult.final_state`) instead of the cold start; taken only by the
+        crank-resolved model, and only when the two runs' states have the same layout.
+        The run still goes on until it is periodic to the fidelity's tolerance.
 
     Returns
     -------
@@ -72,7 +100,7 @@ def run_steady(scene, *, portmap_scale: float = 1.0,
     elif scene.run.has("port_flow"):
         if portmap_scale != 1.0:
             pm = pm.scaled(portmap_scale)
-        data = _crank_resolved(scene, model, pm, progress)
+        data = _crank_resolved(scene, model, pm, progress, start)
     else:
         data = _equilibrium(scene, geo, steam_eq(), chest, exhaust, _portmap_schedule(pm), pm,
                             progress)
@@ -104,7 +132,7 @@ def _cycle_frame(k: int, theta: np.ndarray, omega: float, ends: dict) -> pd.Data
 
 # --- crank-resolved with port flow -------------------------------------------------
 
-def _crank_resolved(scene, model, pm, progress):
+def _crank_resolved(scene, model, pm, progress, start=None):
     fid = scene.run.fidelity
     omega = scene.run.speed_rad_s
     steam, geo = model.steam, model.geometry
@@ -119,6 +147,11 @@ def _crank_resolved(scene, model, pm, progress):
     step = math.radians(fid.output_step_deg)
     out_theta = np.linspace(0.0, TWO_PI, int(round(TWO_PI / step)) + 1)
     y = crank.initial_state()
+    if start is not None and start.y.shape == y.shape:
+        y = start.y.copy()
+        if start.wall_T_K is not None and net.wall_T is not None \
+                and start.wall_T_K.shape == net.wall_T.shape:
+            net.wall_T[:] = start.wall_T_K
     rows, samples_all, walls_used = [], [], []
     w_prev = None
     converged = None
@@ -218,7 +251,8 @@ def _crank_resolved(scene, model, pm, progress):
                 frame[f"p_{vessel}_Pa"] = steam.states(s[2 * i] / V, s[2 * i + 1] / s[2 * i])[0]
         ts.append(frame)
     timeseries = pd.concat(ts, ignore_index=True)
-    return {"timeseries": timeseries, "cycles": pd.DataFrame(rows),
+    final = SteadyStart(y.copy(), None if net.wall_T is None else np.array(net.wall_T, dtype=float))
+    return {"timeseries": timeseries, "cycles": pd.DataFrame(rows), "final_state": final,
             "cycles_to_converge": converged, "periodicity": residuals, "portmap": pm, "nfev": crank.nfev,
             "clamped_trials": crank.clamped_trials, "clamped_hot": crank.clamped_hot,
             "cylinders": [(("lp_" if scene.compound and c else cylinder_prefix(c)), g, ph)

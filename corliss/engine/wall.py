@@ -163,15 +163,6 @@ def nusselt_film_W_m2K(rho_l: float, rho_v: float, h_fg: float, k_l: float, mu_l
                     / (mu_l * height_m * dT_K)) ** 0.25
 
 
-def film_enthalpies(T_K: float) -> tuple[float, float]:
-    """(h_L, L) [J/kg]: saturated water's enthalpy and the latent heat at ``T_K``, the
-    film's constants over a run (IAPWS-95)."""
-    import CoolProp.CoolProp as CP
-    T = min(max(T_K, 280.0), 640.0)
-    h_f = CP.PropsSI("H", "T", T, "Q", 0.0, "Water")
-    return h_f, CP.PropsSI("H", "T", T, "Q", 1.0, "Water") - h_f
-
-
 def mean_exposed_area_m2(geometry, end: int, n: int = 361) -> float:
     """The wall one end's steam touches, averaged over the cycle [m2] (the area of
     :func:`corliss.engine.condensation.exposed_wall_m2`)."""

@@ -303,24 +303,6 @@ def make_steam(name: str = "heos") -> Steam:
                          "one of " + ", ".join(sorted(BACKENDS))) from None
 
 
-def transport_properties(p_Pa: float, T_K: float) -> tuple[float, float, float]:
-    """Transport properties of steam as vapour at pressure ``p_Pa`` [Pa] and the greater
-    of ``T_K`` [K] and the saturation temperature (0.5 K above it, on the vapour side).
-
-    Returns
-    -------
-    tuple of float
-        (thermal conductivity [W/(m K)], dynamic viscosity [Pa s], Prandtl number [-]),
-        from CoolProp's IAPWS formulations.
-    """
-    import CoolProp
-    import CoolProp.CoolProp as CP
-    a = CoolProp.AbstractState("HEOS", "Water")
-    a.update(CP.PQ_INPUTS, p_Pa, 1.0)
-    a.update(CP.PT_INPUTS, p_Pa, max(T_K, a.T()) + 0.5)
-    return a.conductivity(), a.viscosity(), a.Prandtl()
-
-
 def latent_heat(T_K: float) -> float:
     """Latent heat of evaporation h_g - h_f [J/kg] at saturation temperature ``T_K`` [K]
     (IAPWS-95 through CoolProp)."""

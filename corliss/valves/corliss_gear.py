@@ -394,8 +394,12 @@ class CorlissGear(ValveGear):
                                   bounds=(th[k] - 2 * TWO_PI / 7200, th[k] + 2 * TWO_PI / 7200),
                                   method="bounded", options={"xatol": 1e-12})
             t_peak = float(res.x) % TWO_PI
+            # the rise from opening to the peak, sampled: it brackets each release
+            rise = np.nonzero(inside & (u <= (t_peak - t_open) % TWO_PI))[0]
+            rise = rise[np.argsort(u[rise])]
             windows.append({"open": t_open % TWO_PI, "close": t_close % TWO_PI,
-                            "peak": t_peak, "p_max": -float(res.fun), "f": f})
+                            "peak": t_peak, "p_max": -float(res.fun), "f": f,
+                            "rise_t": t_open + u[rise], "rise_p": p[rise]})
         sh["windows"] = windows
         return sh
 
@@ -409,6 +413,18 @@ class CorlissGear(ValveGear):
                 self._release = self._release_at(self.spec.setting)
             return self._release
         return self._release_at(float(setting))
+
+    @functools.cached_property
+    def _released_opening(self) -> tuple:
+        """The steam valves' latched openings at release (head, crank) [m], at the
+        gear's own setting (0 at the safety cam; None for an end not released)."""
+        out = []
+        for w, rel in zip(self._geom["windows"], self.release_angle_rad()):
+            if rel is None:
+                out.append(None)
+            else:
+                out.append(0.0 if self.spec.setting <= 0.0 else max(w["f"](rel), 0.0))
+        return tuple(out)
 
     def _release_at(self, s: float):
         from scipy.optimize import brentq
@@ -424,6 +440,10 @@ class CorlissGear(ValveGear):
                 level = s * w["p_max"]
                 a = w["open"]
                 b = a + (w["peak"] - a) % TWO_PI
+                # the samples' bracket of the level (the rise is monotone), else the rise
+                k = int(np.searchsorted(w["rise_p"], level))
+                if 0 < k < w["rise_p"].size and np.all(np.diff(w["rise_p"]) > 0.0):
+                    a, b = w["rise_t"][k - 1], w["rise_t"][k]
                 t = brentq(lambda t: w["f"](t) - level, a, b, xtol=1e-14)
                 out.append(t % TWO_PI)
         return tuple(out)
@@ -460,9 +480,8 @@ class CorlissGear(ValveGear):
             window = (w["close"] - w["open"]) % TWO_PI
             rel_from_open = (rel[e] - w["open"]) % TWO_PI
             if self.spec.setting <= 0.0:
-                rel_from_open, p_rel = 0.0, 0.0
-            else:
-                p_rel = max(w["f"](rel[e]), 0.0)
+                rel_from_open = 0.0
+            p_rel = self._released_opening[e]
             since_open = (th - w["open"]) % TWO_PI
             m = (since_open >= rel_from_open) & (since_open <= window)
             if np.any(m):

@@ -40,7 +40,9 @@ def crossing_table(gear: ValveGear, levels: np.ndarray) -> list[list[list[tuple[
     list
         ``out[port][level]`` = sorted list of ``(angle [rad] in [0, 2 pi), rising)``;
         ``rising`` is True where the opening passes the level upwards.  Brackets come
-        from 7200 samples a turn; all of them are bisected together to 1e-13 rad.
+        from 7200 samples a turn; all of them are solved together to 1e-13 rad by
+        regula falsi, Illinois-modified (bracketing like bisection, but superlinear on
+        a smooth opening: some 8 evaluations of the gear instead of bisection's 42).
     """
     levels = np.atleast_2d(np.asarray(levels, dtype=float))
     th = np.linspace(0.0, TWO_PI, _SAMPLES + 1)
@@ -61,22 +63,56 @@ def crossing_table(gear: ValveGear, levels: np.ndarray) -> list[list[list[tuple[
     idx = np.concatenate(idx)
     rising = np.concatenate(rising)
     lev = levels[ports, np.array(levs)]
-    a, b = th[idx].copy(), th[idx + 1].copy()
-    cols = np.arange(idx.size)
-    for _ in range(42):
-        m = 0.5 * (a + b)
-        above_m = gear.signed_openings(m)[ports, cols] - lev > 0.0
-        # the left end is below when the crossing rises: move it while m is still below
-        move_a = above_m != rising
-        a = np.where(move_a, m, a)
-        b = np.where(move_a, b, m)
-    t = (0.5 * (a + b)) % TWO_PI
+    t = _solve_crossings(gear, ports, lev, th[idx], th[idx + 1],
+                         s[ports, idx] - lev, s[ports, idx + 1] - lev) % TWO_PI
     for k in range(idx.size):
         out[ports[k]][levs[k]].append((float(t[k]), bool(rising[k])))
     for row in out:
         for lst in row:
             lst.sort()
     return out
+
+
+#: The crossings' bracket is closed to this width [rad].
+CROSSING_TOL_RAD = 1e-13
+#: Most evaluations of the gear in the solve (bisection alone needs 43 from a sample's
+#: bracket to 1e-13 rad).
+CROSSING_MAX_ROUNDS = 60
+
+
+def _solve_crossings(gear: ValveGear, ports: np.ndarray, lev: np.ndarray, a: np.ndarray,
+                     b: np.ndarray, fa: np.ndarray, fb: np.ndarray) -> np.ndarray:
+    """Where ``signed_openings(t)[ports] - lev`` passes from above zero to not above (or
+    back) in each bracket [a, b], whose ends' differences ``fa`` and ``fb`` lie on the
+    two sides, all brackets together [rad].
+
+    Illinois steps; a bisection instead where the secant's point falls outside its
+    bracket (as it does where an opening rests at the level, a valve seated after its
+    dash-pot closed it: the crossing is then the edge of that rest) or where the
+    bracket did not shrink to a quarter in three steps.  A point is above when its
+    difference is positive, as the samples' brackets were found."""
+    a, b, fa, fb = (np.array(v, dtype=float) for v in (a, b, fa, fb))
+    cols = np.arange(a.size)
+    width0 = np.abs(b - a)
+    for rnd in range(CROSSING_MAX_ROUNDS):
+        if np.all(np.abs(b - a) <= CROSSING_TOL_RAD):
+            break
+        with np.errstate(divide="ignore", invalid="ignore"):
+            c = b - fb * (b - a) / (fb - fa)
+        lo, hi = np.minimum(a, b), np.maximum(a, b)
+        check = rnd % 3 == 2
+        bisect = ~((c > lo) & (c < hi)) | (check & (np.abs(b - a) > 0.25 * width0))
+        c = np.where(bisect, 0.5 * (a + b), c)
+        fc = gear.signed_openings(c)[ports, cols] - lev
+        # the new point replaces the end on its side; the kept end's value is halved
+        # when it was kept on a secant step (Illinois), so that both ends move
+        same_b = (fc > 0.0) == (fb > 0.0)
+        fa = np.where(same_b, np.where(bisect, fa, 0.5 * fa), fb)
+        a = np.where(same_b, a, b)
+        b, fb = c, fc
+        if check:
+            width0 = np.abs(b - a)
+    return 0.5 * (a + b)
 
 
 def crossings(gear: ValveGear, port: int, level: float = 0.0) -> list[tuple[float, bool]]:
