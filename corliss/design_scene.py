@@ -16,7 +16,6 @@ linkage and gets the setting that gives the cut-off asked.
 
 from __future__ import annotations
 
-import copy
 import dataclasses
 import json
 import math
@@ -29,6 +28,7 @@ from corliss.engine.model import build_gear, geometry_of, scene_events
 from corliss.errors import InputError
 from corliss.results import OutputFiles
 from corliss.scene import Scene, default_scene_path, find_scene, load_scene, scene_from_dict
+from corliss.scene_keys import with_keys
 from corliss.valves.design import (SettingDesign, SlideValveDesign, design_setting,
                                    design_slide_valve)
 from corliss.valves.slide_valve import LappedValve
@@ -239,23 +239,24 @@ def _pair_q(pair, unit):
 
 
 def _designed_tables(base: Scene, valve) -> dict:
-    data = copy.deepcopy(base.data)
-    vg = data["valve_gear"]
+    """The scene's tables with the designed keys of its gear set, in the scene's units
+    (every other key as the scene wrote it)."""
     u = _unit(base)
     if isinstance(valve, SlideValveDesign):
-        for key in ("lead", "angular_advance", "eccentricity", "lap", "exhaust_lap"):
-            vg.pop(key, None)
-        vg["eccentricity"] = _q(valve.eccentricity_m, u)
-        vg["angular_advance"] = f"{math.degrees(valve.angular_advance_rad):.12g} deg"
-        vg["lap"] = _pair_q(valve.lap_m, u)
-        vg["exhaust_lap"] = _pair_q(valve.exhaust_lap_m, u)
+        values = {"valve_gear.eccentricity": _q(valve.eccentricity_m, u),
+                  "valve_gear.angular_advance": f"{math.degrees(valve.angular_advance_rad):.12g} deg",
+                  "valve_gear.lap": _pair_q(valve.lap_m, u),
+                  "valve_gear.exhaust_lap": _pair_q(valve.exhaust_lap_m, u)}
     elif base.gear_type in BLOCK_KEY:
         half = (base.gear.link.half_link_m if base.gear_type == "fink_motion"
                 else base.gear.half_link_m)
-        vg[BLOCK_KEY[base.gear_type]] = _q(valve.setting * half, u)
+        values = {f"valve_gear.{BLOCK_KEY[base.gear_type]}": _q(valve.setting * half, u)}
     else:
-        vg["setting"] = float(f"{valve.setting:.12g}")
-    data["title"] = f"{data.get('title', base.title)} (designed)"
+        values = {"valve_gear.setting": float(f"{valve.setting:.12g}")}
+    values["title"] = f"{base.data.get('title', base.title)} (designed)"
+    data = with_keys(base.data, values)
+    if isinstance(valve, SlideValveDesign):
+        data["valve_gear"].pop("lead", None)     # the advance is written instead (exact)
     return data
 
 
