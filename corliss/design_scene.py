@@ -27,7 +27,7 @@ from corliss import units
 from corliss.engine.model import build_gear, geometry_of, scene_events
 from corliss.errors import InputError
 from corliss.results import OutputFiles
-from corliss.scene import Scene, default_scene_path, find_scene, load_scene, scene_from_dict
+from corliss.scene import Scene, bundled_scenes, default_scene_path, find_scene, load_scene, scene_from_dict
 from corliss.scene_keys import with_keys
 from corliss.valves.design import (SettingDesign, SlideValveDesign, design_setting,
                                    design_slide_valve)
@@ -120,7 +120,8 @@ def _fractions(key: str, v):
 
 def _scene(scene) -> tuple[Scene, str]:
     if isinstance(scene, Scene):
-        return scene, scene.source or scene.name
+        bundled = {str(v): k for k, v in bundled_scenes().items()}
+        return scene, bundled.get(str(scene.source), scene.source or scene.name)
     path = find_scene(scene) if scene is not None else default_scene_path()
     return load_scene(path), str(scene if scene is not None else "default")
 
