@@ -9,6 +9,9 @@
     The valve events of each end, without simulating; at several gear settings.
 ``corliss gear SCENE [--out DIR]``
     Valve travel, port openings and the Zeuner diagram, as PNG.
+``corliss design [SCENE] --cutoff F [--lead Q --max-opening Q ...] [--release F | --compression F | --exhaust-lap Q] [--equalise cutoff|laps] [--out DIR] [--json]``
+    A plain slide valve (eccentricity, advance, laps per end), or a gear's setting,
+    for the events asked; writes ``design.toml`` (runnable) and its diagrams.
 ``corliss sweep SCENE [--settings 0,0.5,1] [--throttle 0.2,0.6,1] [--fidelity F] [--json] [--out DIR]``
     Steady cards across the load range at each gear setting and/or throttle opening:
     a CSV with its meta file and the Willans lines as PNG.
@@ -327,6 +330,40 @@ def cmd_gear(args) -> int:
     return 0
 
 
+def cmd_design(args) -> int:
+    from corliss.design_scene import design
+    scene = _load(args.scene, args.units)
+    d = design(scene, cutoff=args.cutoff, cutoff_crank=args.cutoff_crank, lead=args.lead,
+               max_opening=args.max_opening, eccentricity=args.eccentricity, lap=args.lap,
+               angular_advance=args.angular_advance, lead_angle=args.lead_angle,
+               overtravel=args.overtravel,
+               release=args.release,
+               compression=args.compression, exhaust_lap=args.exhaust_lap,
+               equalise=args.equalise, reference_end=args.reference_end, end=args.end)
+    files = d.write(Path(args.out if args.out is not None else scene.output.dir))
+    if args.json:
+        print(json.dumps(d.summary(), indent=2))
+        return 0
+    u = "in" if scene.output.units == "US" else "mm"
+    q = lambda v: f"{units.to_unit(v, u):.4f} {u}"  # noqa: E731
+    v = d.valve
+    print(f"{d.scene.title}: {d.scene.gear_type}")
+    if hasattr(v, "eccentricity_m"):
+        print(f"  eccentricity     {q(v.eccentricity_m)}, angular advance "
+              f"{math.degrees(v.angular_advance_rad):.3f} deg")
+        for k, end in enumerate(("head", "crank")):
+            print(f"  {end:5s} end        lap {q(v.lap_m[k])}, exhaust lap {q(v.exhaust_lap_m[k])}, "
+                  f"lead {q(v.lead_m[k])}, greatest opening {q(v.max_opening_m[k])}")
+    else:
+        print(f"  setting          {v.setting:.6f} ({v.setting_name})")
+    for end, ev in d.events.items():
+        print(f"  {end:5s} events     cut-off {_fmt(ev['cutoff_frac'], '', 4)}, release "
+              f"{_fmt(ev['release_frac'], '', 4)}, compression {_fmt(ev['compression_frac'], '', 4)}"
+              " (fractions of stroke)")
+    _print_files(files)
+    return 0
+
+
 def cmd_sweep(args) -> int:
     from corliss.columns import convert_frame
     scene = _load(args.scene, args.units)
@@ -513,6 +550,35 @@ def build_parser() -> argparse.ArgumentParser:
     gp.add_argument("--out", help="output directory (default: the scene's [output] dir)")
     gp.add_argument("--units", choices=("US", "SI"), help=units_help)
     gp.set_defaults(func=cmd_gear)
+    ds = sub.add_parser("design", help="a valve (or a gear's setting) for the events asked: "
+                        "a runnable scene and its Zeuner and Bilgram diagrams")
+    ds.add_argument("scene", nargs="?", help="scene TOML or a bundled scene's name whose "
+                    "engine, ports and rods are kept (default: the bundled default scene)")
+    ds.add_argument("--cutoff", type=float, required=True, help="cut-off, fraction of stroke")
+    ds.add_argument("--cutoff-crank", type=float, help="crank-end cut-off, if not the same")
+    for flag, text in (("--lead", "lead, e.g. 0.25in"), ("--max-opening", "greatest port "
+                       "opening"), ("--eccentricity", "eccentric throw"), ("--lap", "steam lap"),
+                       ("--angular-advance", "angular advance, e.g. 30deg"),
+                       ("--lead-angle", "angle of lead, the crank before dead centre at admission")):
+        ds.add_argument(flag, help=text + " (two of lead, max-opening, eccentricity, lap, "
+                        "angular-advance, lead-angle; slide valve)")
+    ds.add_argument("--overtravel", help="instead of --max-opening: the valve's travel past "
+                    "the port (the opening is the port width plus it)")
+    ds.add_argument("--release", help="release, fraction of stroke (or head,crank)")
+    ds.add_argument("--compression", help="compression, fraction of stroke from the end's "
+                    "dead centre as `corliss events` gives it (or head,crank)")
+    ds.add_argument("--exhaust-lap", help="exhaust lap instead of release or compression")
+    ds.add_argument("--equalise", choices=("cutoff", "laps"), default="cutoff",
+                    help="laps per end for equal cut-offs (default), or equal laps")
+    ds.add_argument("--reference-end", choices=("head", "crank"), default="head",
+                    help="end at which the lead and opening asked hold (default head)")
+    ds.add_argument("--end", choices=("head", "crank", "mean"), default="head",
+                    help="whose cut-off a gear's setting is found for (default head)")
+    ds.add_argument("--out", help="output directory (default: the scene's [output] dir)")
+    ds.add_argument("--units", choices=("US", "SI"), help="units of the scene written and "
+                    "the figures (default: the scene's)")
+    ds.add_argument("--json", action="store_true", help="print the design as JSON")
+    ds.set_defaults(func=cmd_design)
     sw = sub.add_parser("sweep", help="steady cards across the load range: Willans line")
     sw.add_argument("scene", help="scene TOML or a bundled scene's name (a transient one "
                     "runs steady at its speed)")

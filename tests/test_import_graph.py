@@ -27,6 +27,7 @@ LAYERS = [
     ("corliss.scene", 3),
     ("corliss.plot", 4),
     ("corliss.results", 5),
+    ("corliss.design_scene", 5),
     ("corliss.heartbeat", 6),
     ("corliss.cli", 6),
 ]

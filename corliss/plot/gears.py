@@ -72,10 +72,15 @@ def plot_zeuner_diagram(gear, ax=None, units_system: str = "US") -> dict:
     lh, lc = (units.to_unit(v, u) for v in gear.spec.lap_m)
     eh, ec = (units.to_unit(v, u) for v in gear.spec.exhaust_lap_m)
     t = np.linspace(0, 2 * np.pi, 361)
-    for r_, label in ((lh, "lap"), (abs(eh), "exhaust lap")):
+    circles = [(lh, "-", "lap circle" if lh == lc else "head lap circle")]
+    if lc != lh:                      # unequal laps (Spangler Art. 31): one circle each
+        circles.append((lc, "--", "crank lap circle"))
+    circles.append((abs(eh), ":", "exhaust lap circle" if eh == ec else "head exhaust lap circle"))
+    if ec != eh:
+        circles.append((abs(ec), "-.", "crank exhaust lap circle"))
+    for r_, ls, label in circles:
         if r_ > 0:
-            ax.plot(r_ * np.cos(t), r_ * np.sin(t), color="0.55", lw=0.8,
-                    ls="-" if label == "lap" else ":", label=f"{label} circle")
+            ax.plot(r_ * np.cos(t), r_ * np.sin(t), color="0.55", lw=0.8, ls=ls, label=label)
     rmax = float(np.nanmax(np.abs(x)))
     ax.axhline(0, color="0.8", lw=0.6)
     ax.axvline(0, color="0.8", lw=0.6)

@@ -1,0 +1,380 @@
+"""``corliss design``: a scene's valve designed for the events asked, written back as a
+runnable scene with its Zeuner and Bilgram diagrams.
+
+The physics is :mod:`corliss.valves.design`; this module knows scenes: it takes the
+engine (its connecting rod, when the scene names ``rod_angularity``) and the port and
+rods of the scene's gear, designs the gear, writes its ``[valve_gear]`` table back
+into the scene's tables in the scene's units, rebuilds the scene from them and checks
+that the rebuilt scene's events (:func:`corliss.engine.model.scene_events`, what
+``corliss events`` prints) are those asked.
+
+A plain slide valve (``type = "slide_valve"``) is designed whole: eccentricity,
+angular advance, steam and exhaust laps per end.  A gear with a setting (link and
+radial gears, shaft governors, riding cut-off valves, the Corliss cam) keeps its
+linkage and gets the setting that gives the cut-off asked.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+
+from corliss import units
+from corliss.engine.model import build_gear, geometry_of, scene_events
+from corliss.errors import InputError
+from corliss.results import OutputFiles
+from corliss.scene import Scene, bundled_scenes, default_scene_path, find_scene, load_scene, scene_from_dict
+from corliss.scene_keys import with_keys
+from corliss.valves.design import (SettingDesign, SlideValveDesign, design_setting,
+                                   design_slide_valve)
+from corliss.valves.slide_valve import LappedValve
+
+#: The scene keys that hold a gear's setting, when it is not the number ``setting``:
+#: the block's offset as a length (setting x half link).
+BLOCK_KEY = {"link_motion": "block", "fink_motion": "block"}
+#: The designed scene's events must be the asked ones to this [deg] after the round
+#: trip through the TOML text (12 significant digits).
+SCENE_CHECK_DEG = 1e-4
+
+
+@dataclass(frozen=True)
+class Design:
+    """A designed scene.
+
+    Attributes
+    ----------
+    scene : Scene
+        The scene with the designed gear, built from ``text``.
+    text : str
+        The designed scene as TOML (what ``design.toml`` holds).
+    valve : SlideValveDesign or SettingDesign
+        The design (SI).
+    events : dict
+        The designed scene's events by :func:`corliss.engine.model.scene_events`.
+    base : str
+        The scene designed from (name or path).
+    """
+
+    scene: Scene
+    text: str
+    valve: SlideValveDesign | SettingDesign
+    events: dict
+    base: str
+
+    def write(self, out_dir) -> dict:
+        """Write ``design.toml`` and the diagrams into ``out_dir``, all or nothing."""
+        return write_design(self, out_dir)
+
+    def summary(self) -> dict:
+        """The design as plain JSON-able values (SI, unit in every name)."""
+        v = self.valve
+        out = {"base_scene": self.base, "gear": self.scene.gear_type, "events": self.events}
+        if isinstance(v, SlideValveDesign):
+            out.update(eccentricity_m=v.eccentricity_m,
+                       angular_advance_deg=math.degrees(v.angular_advance_rad),
+                       lap_m=list(v.lap_m), exhaust_lap_m=list(v.exhaust_lap_m),
+                       lead_m=list(v.lead_m), max_opening_m=list(v.max_opening_m),
+                       equalise=v.equalise, reference_end=v.reference_end,
+                       zeuner={"eccentricity_m": v.zeuner["eccentricity_m"],
+                               "angular_advance_deg": math.degrees(v.zeuner["angular_advance_rad"]),
+                               "lap_m": v.zeuner["lap_m"]},
+                       asked_deg=v.asked_deg)
+        else:
+            out.update(setting=v.setting, setting_name=v.setting_name, end=v.end,
+                       cutoff_frac=v.cutoff_frac, asked_deg=v.asked_deg)
+        return out
+
+
+def _length(key: str, v, kind: str = "length"):
+    if v is None:
+        return None
+    if isinstance(v, (list, tuple)):
+        if len(v) != 2:
+            raise InputError(key, v, "one value, or a pair (head, crank)")
+        return tuple(_length(key, x, kind) for x in v)
+    if isinstance(v, str):
+        return units.parse(v, kind, key)
+    try:
+        return float(v)
+    except (TypeError, ValueError):
+        raise InputError(key, v, f"a {kind} with its unit, e.g. "
+                         + ("\"0.25 in\"" if kind == "length" else "\"30 deg\"")) from None
+
+
+def _fractions(key: str, v):
+    if isinstance(v, str):
+        parts = [p for p in v.split(",") if p.strip()]
+        try:
+            vals = [float(p) for p in parts]
+        except ValueError:
+            raise InputError(key, v, "a fraction of the stroke, or two (head,crank)") from None
+        if len(vals) not in (1, 2):
+            raise InputError(key, v, "a fraction of the stroke, or two (head,crank)")
+        return vals[0] if len(vals) == 1 else tuple(vals)
+    return v
+
+
+def _scene(scene) -> tuple[Scene, str]:
+    if isinstance(scene, Scene):
+        bundled = {str(v): k for k, v in bundled_scenes().items()}
+        return scene, bundled.get(str(scene.source), scene.source or scene.name)
+    path = find_scene(scene) if scene is not None else default_scene_path()
+    return load_scene(path), str(scene if scene is not None else "default")
+
+
+def design(scene=None, *, cutoff, cutoff_crank=None, lead=None, max_opening=None,
+           eccentricity=None, lap=None, angular_advance=None, lead_angle=None,
+           overtravel=None, release=None, compression=None,
+           exhaust_lap=None, equalise: str = "cutoff", reference_end: str = "head",
+           end: str = "head") -> Design:
+    """Design a scene's valve for the events asked (the arguments of ``corliss design``).
+
+    Parameters
+    ----------
+    scene : Scene, str or Path, optional
+        The scene to design for (a file, a bundled scene's name, a Scene); the default
+        scene when None.
+    cutoff : float
+        Cut-off, fraction of the stroke [-].
+    cutoff_crank : float, optional
+        The crank end's, when it differs (slide valve).
+    lead, max_opening, eccentricity, lap : str or float, optional
+        Quantity strings (``"0.25 in"``) or SI floats [m]; with ``angular_advance``
+        and ``lead_angle`` (the crank before the dead point at admission, Art. 21)
+        (``"30 deg"`` or [rad]) exactly two of the six (slide valve; Spangler
+        Arts. 19-22).
+    overtravel : str or float, optional
+        Instead of ``max_opening``: the valve's travel past the port (the opening is
+        then the port width plus it, Art. 18).
+    release, compression : float, (float, float) or str, optional
+        Fractions of the stroke as ``corliss events`` gives them ("0.9" or "0.9,0.92"
+        for head, crank) (slide valve).
+    exhaust_lap : str, float or pair, optional
+        Instead of release or compression (slide valve).
+    equalise : str
+        ``"cutoff"`` (laps per end) or ``"laps"`` (equal laps) (slide valve).
+    reference_end : str
+        Where the lead and opening asked hold (slide valve).
+    end : str
+        Whose cut-off a gear's setting is found for: ``"head"``, ``"crank"``,
+        ``"mean"`` (gears with a setting).
+
+    Returns
+    -------
+    Design
+
+    Raises
+    ------
+    InputError
+        Naming the event that no valve (or no setting) can give, and what is valid.
+    """
+    base, base_name = _scene(scene)
+    if base.compound is not None:
+        raise InputError("scene", base_name, "a simple engine: a compound's two gears are "
+                         "not designed here")
+    geo = geometry_of(base)
+
+    def frac(t):
+        return float(geo.fraction(t))
+
+    if base.gear_type == "slide_valve":
+        valve = design_slide_valve(
+            base.gear, frac, cutoff=cutoff, cutoff_crank=cutoff_crank,
+            lead_m=_length("lead", lead), max_opening_m=_length("max_opening", max_opening),
+            eccentricity_m=_length("eccentricity", eccentricity), lap_m=_length("lap", lap),
+            angular_advance_rad=_length("angular_advance", angular_advance, "angle"),
+            lead_angle_rad=_length("lead_angle", lead_angle, "angle"),
+            overtravel_m=_length("overtravel", overtravel),
+            release=_fractions("release", release),
+            compression=_fractions("compression", compression),
+            exhaust_lap_m=_length("exhaust_lap", exhaust_lap), equalise=equalise,
+            reference_end=reference_end)
+    else:
+        slide_args = {"cutoff_crank": cutoff_crank, "lead": lead, "max_opening": max_opening,
+                      "eccentricity": eccentricity, "lap": lap,
+                      "angular_advance": angular_advance, "lead_angle": lead_angle,
+                      "overtravel": overtravel,
+                      "release": release,
+                      "compression": compression, "exhaust_lap": exhaust_lap}
+        for key, value in slide_args.items():
+            if value is not None:
+                raise InputError(key, value, f"only the cut-off (and the end): the "
+                                 f"{base.gear_type} gear is designed by its setting, its linkage "
+                                 "kept (a plain slide valve is designed whole)")
+        gear = build_gear(base)
+        if gear.setting_range is None:
+            raise InputError("valve_gear.type", base.gear_type, "a plain slide valve or a gear "
+                             "with a setting")
+        valve = design_setting(gear, frac, cutoff, end=end)
+    data = _designed_tables(base, valve)
+    text = _header(base, base_name, valve) + dumps_toml(data)
+    if tomllib.loads(text) != data:                     # pragma: no cover - writer's own check
+        raise RuntimeError("the designed scene did not read back as written")
+    designed = dataclasses.replace(scene_from_dict(data, name="design"), text=text)
+    ev = scene_events(designed)
+    for e, want in valve.asked_deg.items():
+        for key, deg in want.items():
+            got = ev[e][key]
+            if got is None or abs((got - deg + 180.0) % 360.0 - 180.0) > SCENE_CHECK_DEG:
+                raise RuntimeError(f"designed scene check failed: {e} {key} asked {deg:.6f} "
+                                   f"deg, the scene gives {got}")
+    return Design(scene=designed, text=text, valve=valve, events=ev, base=base_name)
+
+
+# ---------------------------------------------------------------- the scene's tables
+def _unit(scene: Scene) -> str:
+    return "in" if scene.output.units == "US" else "mm"
+
+
+def _q(v: float, unit: str) -> str:
+    return f"{units.to_unit(v, unit):.12g} {unit}"
+
+
+def _pair_q(pair, unit):
+    a, b = pair
+    return _q(a, unit) if a == b else [_q(a, unit), _q(b, unit)]
+
+
+def _designed_tables(base: Scene, valve) -> dict:
+    """The scene's tables with the designed keys of its gear set, in the scene's units
+    (every other key as the scene wrote it)."""
+    u = _unit(base)
+    if isinstance(valve, SlideValveDesign):
+        values = {"valve_gear.eccentricity": _q(valve.eccentricity_m, u),
+                  "valve_gear.angular_advance": f"{math.degrees(valve.angular_advance_rad):.12g} deg",
+                  "valve_gear.lap": _pair_q(valve.lap_m, u),
+                  "valve_gear.exhaust_lap": _pair_q(valve.exhaust_lap_m, u)}
+    elif base.gear_type in BLOCK_KEY:
+        half = (base.gear.link.half_link_m if base.gear_type == "fink_motion"
+                else base.gear.half_link_m)
+        values = {f"valve_gear.{BLOCK_KEY[base.gear_type]}": _q(valve.setting * half, u)}
+    else:
+        values = {"valve_gear.setting": float(f"{valve.setting:.12g}")}
+    values["title"] = f"{base.data.get('title', base.title)} (designed)"
+    data = with_keys(base.data, values)
+    if isinstance(valve, SlideValveDesign):
+        data["valve_gear"].pop("lead", None)     # the advance is written instead (exact)
+    return data
+
+
+def _header(base: Scene, base_name: str, valve) -> str:
+    u = _unit(base)
+    lines = [f"# Designed by `corliss design` from the scene {base_name}.",
+             "# Events asked (crank angle from head-end dead centre):"]
+    for end, want in valve.asked_deg.items():
+        for key, deg in want.items():
+            lines.append(f"#   {end:5s} {key[:-4]:12s} {deg:9.4f} deg")
+    if isinstance(valve, SlideValveDesign):
+        lines.append(f"# Leads {_q(valve.lead_m[0], u)} (head), {_q(valve.lead_m[1], u)} (crank); "
+                     f"greatest openings {_q(valve.max_opening_m[0], u)}, "
+                     f"{_q(valve.max_opening_m[1], u)}.")
+    else:
+        lines.append(f"# Setting {valve.setting:.6f}: {valve.setting_name}.")
+    return "\n".join(lines) + "\n\n"
+
+
+def _toml_value(v) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (int, float)):
+        if isinstance(v, float) and not math.isfinite(v):
+            raise ValueError(f"no TOML for {v}")
+        return repr(v)
+    if isinstance(v, str):
+        return json.dumps(v, ensure_ascii=False)
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
+    if isinstance(v, dict):
+        return "{" + ", ".join(f"{_key(k)} = {_toml_value(x)}" for k, x in v.items()) + "}"
+    raise ValueError(f"no TOML for {type(v).__name__}")
+
+
+def _key(k: str) -> str:
+    return k if k.replace("_", "").replace("-", "").isalnum() else json.dumps(k)
+
+
+def dumps_toml(data: dict, prefix: str = "") -> str:
+    """Scene tables as TOML text: the scalars of each table, then its sub-tables as
+    ``[a.b]`` sections (a scene holds no arrays of tables)."""
+    out = []
+    for k, v in data.items():
+        if not isinstance(v, dict):
+            out.append(f"{_key(k)} = {_toml_value(v)}")
+    for k, v in data.items():
+        if isinstance(v, dict):
+            name = f"{prefix}.{_key(k)}" if prefix else _key(k)
+            out.append(f"\n[{name}]")
+            body = dumps_toml(v, name)
+            if body:
+                out.append(body)
+    return "\n".join(out).lstrip("\n") + ("\n" if not prefix else "")
+
+
+# ---------------------------------------------------------------- files
+def _mark_asked(ax, valve, radius: float, drawn_from: str) -> None:
+    """Rays along the crank angles asked, each labelled."""
+    import numpy as np
+    colours = {"head": "tab:red", "crank": "tab:blue"}
+    for end, want in valve.asked_deg.items():
+        for key, deg in want.items():
+            p = np.radians(deg)
+            ax.plot([0, radius * np.cos(p)], [0, radius * np.sin(p)], color=colours[end],
+                    lw=1.6, alpha=0.8, label=f"asked {end} {key[:-4]} {deg:.2f} deg")
+    ax.legend(fontsize=7, frameon=False, loc="upper left", bbox_to_anchor=(1.02, 1.0))
+    ax.text(1.02, 0.0, "asked events: their exact crank angles (finite rods);\n"
+            f"the diagram: {drawn_from}", transform=ax.transAxes, fontsize=7,
+            color="0.3", va="bottom")
+
+
+def write_design(design: Design, out_dir) -> dict:
+    """``design.toml`` and the diagrams with the asked events marked:
+    ``design-zeuner.png`` and ``design-bilgram.png`` for a lapped valve (Spangler
+    Arts. 10-18, 149), ``design-gear.png`` (the gear's own panels) for another.
+    Staged and moved into place together; a failure leaves ``out_dir`` as it was.
+
+    Returns
+    -------
+    dict
+        ``{kind: path}`` of the files written.
+    """
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from corliss.plot import plot_gear
+    from corliss.plot.gears import plot_bilgram_diagram, plot_zeuner_diagram
+
+    gear = build_gear(design.scene)
+    units_system = design.scene.output.units
+    files = {}
+    with OutputFiles(out_dir) as out:
+        out.stage("design.toml").write_text(design.text, encoding="utf-8")
+        files["scene"] = Path(out_dir) / "design.toml"
+        if isinstance(gear, LappedValve):
+            for kind, draw, drawn_from in (
+                    ("zeuner", plot_zeuner_diagram, "the valve's exact travel"),
+                    ("bilgram", plot_bilgram_diagram, "the gear's Zeuner form (infinite rods)")):
+                fig, ax = plt.subplots(figsize=(7, 7))
+                try:
+                    drawn = draw(gear, ax=ax, units_system=units_system)
+                    lim = ax.get_xlim()[1]
+                    _mark_asked(ax, design.valve, 0.95 * lim, drawn_from)
+                    ax.set_title(f"{drawn['ax'].get_title()}: {design.scene.title}", fontsize=9)
+                    name = f"design-{kind}.png"
+                    fig.savefig(out.stage(name), dpi=120, bbox_inches="tight", format="png")
+                    files[kind] = Path(out_dir) / name
+                finally:
+                    plt.close(fig)
+        else:
+            fig = plot_gear(gear, units_system=units_system)["figure"]
+            try:
+                fig.suptitle(f"{design.scene.title}: setting {design.valve.setting:.4f}", fontsize=10)
+                fig.savefig(out.stage("design-gear.png"), dpi=120, bbox_inches="tight", format="png")
+                files["gear"] = Path(out_dir) / "design-gear.png"
+            finally:
+                plt.close(fig)
+    return files
