@@ -18,10 +18,12 @@ from __future__ import annotations
 
 import json
 import logging
+import math
+import tomllib
 from pathlib import Path
 
-from corliss.logs import NOTICE
 from corliss.errors import InputError
+from corliss.logs import NOTICE
 from corliss.results import DPI, PNG_OPTIONS, OutputFiles, jsonable, meta, summary_json, write_csv
 from corliss.scene import scene_from_dict
 from corliss.studies import result as study_result
@@ -36,6 +38,36 @@ REBUILD = ("the scene of a row is the base scene (scene_data, or the .base.toml 
            "each varied key set to the row's value in its unit: "
            "with_keys(scene_data, {key: f'{row[column]:.12g} {unit}'}) (a bare number for "
            "a key without a unit); corliss.study_output.study_scene(file, run_id) does it")
+
+
+def _toml_value(v) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (int, float)):
+        return repr(v) if math.isfinite(v) else ("nan" if v != v else
+                                                  ("inf" if v > 0 else "-inf"))
+    if isinstance(v, str):
+        return json.dumps(v)          # a JSON string is a TOML basic string
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
+    raise TypeError(f"no TOML for {type(v).__name__}")
+
+
+def toml_text(data: dict, prefix: str = "") -> str:
+    """A scene's tables as TOML text (for a scene given as tables, with no file):
+    scalars and lists of scalars first, then each sub-table under its dotted header;
+    ``tomllib.loads`` gives the tables back."""
+    lines, tables = [], []
+    for k, v in data.items():
+        if isinstance(v, dict):
+            tables.append((k, v))
+        else:
+            lines.append(f"{json.dumps(k)} = {_toml_value(v)}")
+    text = "\n".join(lines) + ("\n" if lines else "")
+    for k, v in tables:
+        name = f"{prefix}{json.dumps(k)}"
+        text += f"\n[{name}]\n" + toml_text(v, name + ".")
+    return text
 
 
 def have_parquet() -> bool:
@@ -74,7 +106,8 @@ def write(result, out_dir, plots: bool = True, parquet: bool | None = None) -> d
     -------
     dict
         ``{kind: path}``: ``points`` (CSV, its meta beside it), ``parquet``, ``base``
-        (the base scene's TOML, when it came from a file), ``study`` (figure),
+        (the base scene's TOML: its file's text, or the tables written out),
+        ``study`` (figure),
         ``summary``.
     """
     if parquet and not have_parquet():
@@ -98,10 +131,12 @@ def write(result, out_dir, plots: bool = True, parquet: bool | None = None) -> d
             pname = f"{stem}.parquet"
             _write_parquet(pts, out.stage(pname), m | {"file": pname})
             files["parquet"] = out.files[pname]
-        if result.scene.text:
-            bname = f"{stem}.base.toml"
-            out.stage(bname).write_text(result.scene.text, encoding="utf-8")
-            files["base"] = out.files[bname]
+        bname = f"{stem}.base.toml"
+        text = (result.scene.text if result.scene.text and
+                tomllib.loads(result.scene.text) == result.base_data
+                else toml_text(result.base_data))
+        out.stage(bname).write_text(text, encoding="utf-8")
+        files["base"] = out.files[bname]
         if plots:
             import matplotlib
             matplotlib.use("Agg")

@@ -31,8 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from corliss.errors import InputError
-from corliss.scene_keys import (KeyDistribution, KeyRange, KeyValues, parse_distribution,
-                                parse_range, parse_values)
+from corliss.scene_keys import KeyRange, KeyValues, parse_distribution, parse_range, parse_values
 
 #: The designs a study knows.
 DESIGNS = ("grid", "lhs", "monte_carlo")

@@ -12,7 +12,9 @@ from __future__ import annotations
 
 import math
 
+from corliss.engine.model import build_lp_gear, lp_geometry_of, scene_events
 from corliss.errors import InputError
+from corliss.valves import events as valve_events
 
 #: Responses of a study by default: power, mean effective pressure, steam and the
 #: head end's cut-off.
@@ -32,9 +34,6 @@ BASE_KEYS = (
     "clamped_hot_state_evaluations_count", "wall_time_s", "max_torque_N_m",
     "min_torque_N_m", "mean_torque_N_m", "energy_fluctuation_J",
     "fluctuation_coefficient_c")
-#: Keys of each end's valve events (``events.head.<key>``, ``events.crank.<key>``).
-EVENT_KEYS = ("admission_deg", "cutoff_deg", "cutoff_frac", "release_deg", "release_frac",
-              "compression_deg", "compression_frac", "lead_m", "max_port_opening_m")
 FRICTION_KEYS = ("friction_torque_N_m", "friction_power_W", "friction_work_J_per_cycle",
                  "brake_power_W", "brake_power_hp", "mechanical_efficiency")
 CHEST_KEYS = ("chest_pressure_mean_Pa", "chest_pressure_min_Pa")
@@ -99,8 +98,12 @@ def response_keys(scene) -> tuple[str, ...]:
         keys += list(FRICTION_KEYS)
     if scene.compound is not None:
         keys += list(COMPOUND_KEYS)
-    for table in ("events",) + (("lp_events",) if scene.compound is not None else ()):
-        keys += [f"{table}.{end}.{k}" for end in ("head", "crank") for k in EVENT_KEYS]
+    # the events a gear reports (a slide valve's overtravel, say) are found without a run
+    keys += list(flatten({"events": scene_events(scene)}))
+    if scene.compound is not None:
+        lp_geo = lp_geometry_of(scene)
+        keys += list(flatten({"lp_events": valve_events(build_lp_gear(scene),
+                                                       lambda t: float(lp_geo.fraction(t)))}))
     return tuple(dict.fromkeys(keys))
 
 

@@ -123,7 +123,7 @@ class StudyResult(Result):
     def scene_of(self, row):
         """The scene of one run, loaded and checked: the scene that was run, with the
         study's fidelity.  ``row`` as for :meth:`scene_data`."""
-        from corliss.scene import scene_from_dict     # noqa: PLC0415  (same layer)
+        from corliss.scene import scene_from_dict  # noqa: PLC0415  (same layer)
         sc = scene_from_dict(self.scene_data(row), name=self.scene.name)
         return sc.with_fidelity(self.fidelity) if self.fidelity else sc
 
@@ -156,7 +156,7 @@ class StudyResult(Result):
         """Write the study into ``out_dir``: ``<scene>.study.csv`` with its meta file,
         ``<scene>.study.parquet`` (with pyarrow; ``parquet=None`` writes it when
         pyarrow is installed, ``True`` insists), the base scene
-        (``<scene>.study.base.toml``, when it came from a file), the summary as JSON
+        (``<scene>.study.base.toml``), the summary as JSON
         and (``plots``) the figure; all together or none."""
         return _export().write(self, out_dir, plots, parquet)
 

@@ -287,6 +287,7 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
     client, own = (dask_client(scheduler) if scheduler is not None else (None, False))
     try:
         if client is not None:
+            address = str(client.scheduler.address)
             workers = max(1, sum(client.nthreads().values()))
         else:
             workers = jobs if jobs is not None else (os.cpu_count() or 1)
@@ -320,4 +321,4 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
                        responses=list(responses), seed=design.seed, base_data=base,
                        fidelity=fidelity or scene_from_dict(base).run.fidelity.name,
                        runs=design.runs, failed=failed, workers=workers,
-                       scheduler=None if client is None else str(client.scheduler.address))
+                       scheduler=None if client is None else address)
