@@ -43,6 +43,7 @@ saturation line, where Zeuner's 1.135 and the superheated 1.3 jump by 5 % in flu
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import json
 import logging
@@ -583,9 +584,11 @@ def cache_dir() -> Path:
 _LOADED: dict[str, SteamTable] = {}
 
 
+@functools.lru_cache(maxsize=1)
 def _coolprop_version() -> str:
     """CoolProp's version from its distribution's metadata (without importing it, which
-    takes over a second)."""
+    takes over a second); read once per process (reading the metadata takes 1.4 ms,
+    and every run asks for the table several times)."""
     from importlib.metadata import PackageNotFoundError, version
     try:
         return version("CoolProp")
