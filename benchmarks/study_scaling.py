@@ -37,6 +37,8 @@ import statistics
 import time
 from pathlib import Path
 
+import numpy as np
+
 import corliss
 from corliss.studies import runner
 
@@ -75,9 +77,10 @@ def _study(n, **kw):
 
 def _noop(n_tasks: int, client):
     base = corliss.load_scene(corliss.default_scene_path()).data
+    keys = (("valve_gear.lap", "in"),)
     futs = client.map(runner.run_chunk, [base] * n_tasks, ["default"] * n_tasks,
-                      ["fast"] * n_tasks, [tuple(RESPONSES)] * n_tasks,
-                      [[] for _ in range(n_tasks)], pure=False)
+                      ["fast"] * n_tasks, [tuple(RESPONSES)] * n_tasks, [keys] * n_tasks,
+                      [range(0)] * n_tasks, [np.zeros((0, 1))] * n_tasks, pure=False)
     client.gather(futs)
 
 
@@ -116,7 +119,7 @@ def main(argv=None) -> int:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig = res.plot()["figure"]
-    fig.savefig(out / f"study_lhs_{n}.png", dpi=90, bbox_inches="tight")
+    fig.savefig(out / f"study_lhs_{n}.png", dpi=60, bbox_inches="tight")
     plt.close(fig)
 
     try:

@@ -27,7 +27,7 @@ from corliss.logs import NOTICE
 from corliss.results import DPI, PNG_OPTIONS, OutputFiles, jsonable, meta, summary_json, write_csv
 from corliss.scene import scene_from_dict
 from corliss.studies import result as study_result
-from corliss.studies.result import column_unit, scene_data_of
+from corliss.studies.result import column_unit, converted, scene_data_of
 
 log = logging.getLogger(__name__)
 
@@ -79,11 +79,19 @@ def have_parquet() -> bool:
     return True
 
 
-def study_meta(result, name: str) -> dict:
-    """The meta file of a study's table."""
-    pts = result.points
-    m = meta(result, {c: column_unit(c, result.varied) for c in pts.columns}, name,
-             "as written: varied keys in their own units, responses in SI")
+def study_meta(result, name: str, frame=None, converted_units: dict | None = None,
+               units_system: str | None = None) -> dict:
+    """The meta file of a study's table (``frame``, its responses converted into
+    ``units_system``, ``{column: unit}`` of those converted; by default the table as
+    made)."""
+    frame = result.points if frame is None else frame
+    conv = converted_units or {}
+    col_units = {c: conv[c] if c in conv else column_unit(c, result.varied)
+                 for c in frame.columns}
+    m = meta(result, col_units, name,
+             f"varied keys in their own units, responses in {units_system}"
+             if units_system else "varied keys in their own units, responses as the "
+             "summary names them (SI unless the name says otherwise)")
     m.update({"design": result.design, "seed": result.seed, "varied": result.varied,
               "responses": list(result.responses), "fidelity": result.fidelity,
               "rebuild_scene": REBUILD})
@@ -155,6 +163,20 @@ def write(result, out_dir, plots: bool = True, parquet: bool | None = None) -> d
     return files
 
 
+def to_csv(result, path, units_system: str | None = None) -> Path:
+    """Write a study's table as CSV with its ``.meta.json``, both or neither."""
+    path = Path(path)
+    frame, renamed = converted(result.points, result.responses, units_system,
+                               result.scene.supply.barometer_Pa)
+    with OutputFiles(path.parent) as out:
+        staged = out.stage(path.name)
+        meta_name = path.name[:-len(".csv")] if path.name.endswith(".csv") else path.name
+        m = study_meta(result, path.name, frame, renamed, units_system)
+        write_csv(frame, staged)
+        out.stage(f"{meta_name}.meta.json").write_text(json.dumps(m, indent=2))
+    return path
+
+
 def plot(result, ax=None, units_system: str | None = None) -> dict:
     """The study's figure: each response against each varied key."""
     from corliss.plot import plot_study
@@ -200,6 +222,7 @@ def study_scene(path, run_id: int):
 
 class _StudyExporter:
     write = staticmethod(write)
+    to_csv = staticmethod(to_csv)
     plot = staticmethod(plot)
 
 

@@ -342,3 +342,23 @@ def test_the_command_writes_the_table_and_prints_the_summary_as_json(tmp_path, c
     assert frame["run.speed_rpm"].tolist() == [100.0, 140.0, 100.0, 140.0]
     assert (tmp_path / "default.study.parquet").exists()
     assert (tmp_path / "default.study.png").exists()
+
+
+def test_the_table_in_us_units_converts_the_responses_and_keeps_the_keys(tmp_path):
+    """``to_pandas("points", "US")``: watts to horse-power (745.7 W each), Pa to psia; the
+    varied keys as given; ``to_csv`` writes the same with its meta file."""
+    r = corliss.study(_base(model="ideal"), ["engine.clearance=0.05,0.1"], grid=True, jobs=1,
+                      responses=["indicated_power_W", "mep_mean_Pa",
+                                 "fluctuation_coefficient_c"])
+    us = r.to_pandas("points", "US")
+    assert list(us.columns) == ["run_id", "engine.clearance_frac", "indicated_power_hp",
+                                "mep_mean_psia", "fluctuation_coefficient_c", "status",
+                                "error"]
+    assert us["indicated_power_hp"].to_numpy() == pytest.approx(
+        r.points["indicated_power_W"].to_numpy() / 745.69987158227022, rel=1e-12)
+    assert us["mep_mean_psia"].to_numpy() == pytest.approx(
+        r.points["mep_mean_Pa"].to_numpy() / PSI_Pa, rel=1e-12)
+    path = r.to_csv(tmp_path / "s.csv", units_system="US")
+    meta = json.loads((tmp_path / "s.meta.json").read_text())
+    assert meta["columns"]["indicated_power_hp"] == "hp"
+    assert list(pd.read_csv(path).columns) == list(us.columns)

@@ -28,7 +28,8 @@ _exporter = None
 
 def register_study_exporter(exporter) -> None:
     """Register the study's export layer: an object with ``write(result, out_dir,
-    plots, parquet)`` and ``plot(result, ax, units_system)``
+    plots, parquet)``, ``to_csv(result, path, units_system)`` and ``plot(result, ax,
+    units_system)``
     (:mod:`corliss.study_output` registers itself when imported)."""
     global _exporter
     _exporter = exporter
@@ -151,6 +152,22 @@ class StudyResult(Result):
                 "runs_per_s": self.runs / self.wall_time_s if self.wall_time_s > 0
                 else math.nan}
 
+    def to_pandas(self, table: str | None = None, units_system: str | None = None
+                  ) -> pd.DataFrame:
+        """The table as a DataFrame: as the study made it, or with ``units_system``
+        (``"US"`` or ``"SI"``) its responses whose names end in a unit converted and
+        renamed (``indicated_power_W`` to ``indicated_power_hp``); the varied keys
+        stay in the units they were given (a row's scene is rebuilt from them), and a
+        response without a unit in its name (``fluctuation_coefficient_c``) as it is."""
+        return converted(self.table(table), self.responses, units_system,
+                         self.scene.supply.barometer_Pa)[0]
+
+    def to_csv(self, path: str | Path, table: str | None = None,
+               units_system: str | None = None) -> Path:
+        """Write the table as CSV with its ``.meta.json`` (both or neither); with
+        ``units_system`` its responses converted as in :meth:`to_pandas`."""
+        return _export().to_csv(self, path, units_system)
+
     def write(self, out_dir: str | Path, *, plots: bool = True,
               parquet: bool | None = None) -> dict[str, Path]:
         """Write the study into ``out_dir``: ``<scene>.study.csv`` with its meta file,
@@ -164,6 +181,25 @@ class StudyResult(Result):
         """Each response against each varied key, as scatter plots (a grid of axes;
         ``ax`` is ignored)."""
         return _export().plot(self, ax, units_system)
+
+
+def converted(frame: pd.DataFrame, responses, units_system: str | None,
+              barometer_Pa: float) -> tuple[pd.DataFrame, dict]:
+    """A study's table with its responses in ``units_system`` (None: as made) and the
+    columns that changed, ``{new name: its unit}``."""
+    out = frame.copy()
+    if units_system is None:
+        return out, {}
+    renamed = {}
+    for col in responses:
+        try:
+            conv, col_units = columns.convert_frame(frame[[col]], units_system, barometer_Pa)
+        except KeyError:              # no unit in the name: a pure number
+            continue
+        new = conv.columns[0]
+        out[col] = conv[new].to_numpy()
+        renamed[col] = (new, col_units[new])
+    return out.rename(columns={k: v[0] for k, v in renamed.items()}), dict(renamed.values())
 
 
 def scene_data_of(base_data: dict, varied: list[dict], row: dict) -> dict:

@@ -11,7 +11,7 @@ inside (a solver that does not converge, a state beyond the steam properties) is
 row with ``status = "failed"`` and its error, not a stopped study.
 
 Runs go in chunks (:func:`run_chunk`, one task: the base tables once and each run's
-changed keys) to a local process pool on every core, or, given a scheduler's address,
+values of the varied keys) to a local process pool on every core, or, given a scheduler's address,
 to a Dask cluster (:mod:`dask.distributed`, the optional extra ``corliss[dask]``).  A
 worker process imports corliss once, loads the compiled kernels from numba's cache
 and the steam table from its file once, and keeps them for every later task; the
@@ -36,7 +36,7 @@ from corliss.engine.model import steady_scene
 from corliss.engine.steady import run_steady
 from corliss.errors import InputError
 from corliss.scene import Scene, find_scene, load_scene, scene_from_dict
-from corliss.scene_keys import with_keys
+from corliss.scene_keys import KeyValue, with_keys
 from corliss.studies.design import make_design
 from corliss.studies.responses import check_responses, flatten, response_value
 from corliss.studies.result import ERROR, RUN_ID, STATUS, StudyResult
@@ -65,7 +65,7 @@ def _scene(base: dict, name: str, fidelity: str | None, changes: dict):
 
 
 def run_chunk(base: dict, name: str, fidelity: str | None, responses: tuple,
-              chunk: list) -> tuple[list, int, str | None]:
+              keys: tuple, run_ids, values) -> tuple[list, int, str | None]:
     """Run one task's runs (in a worker process, or here).
 
     Parameters
@@ -78,8 +78,13 @@ def run_chunk(base: dict, name: str, fidelity: str | None, responses: tuple,
         The fidelity preset of every run (None: the scene's own knobs).
     responses : tuple of str
         Dotted summary keys to return.
-    chunk : list of (int, dict)
-        ``(run_id, {dotted key: scene value})`` of each run.
+    keys : tuple of (str, str)
+        Each varied key and its unit.
+    run_ids : sequence of int
+        The runs' numbers in the design.
+    values : ndarray
+        Runs x keys: each run's values in its key's unit (a task carries numbers, not
+        scenes: a million runs' scenes would not fit the client's memory).
 
     Returns
     -------
@@ -88,16 +93,18 @@ def run_chunk(base: dict, name: str, fidelity: str | None, responses: tuple,
         the right-hand side over the chunk [-]; the property tier of its runs.
     """
     rows, nfev, tier = [], 0, None
-    for run_id, changes in chunk:
+    for run_id, vals in zip(run_ids, values):
+        changes = {k: KeyValue(float(v), unit).text() for (k, unit), v in zip(keys, vals)}
         try:
             r = run_steady(_scene(base, name, fidelity, changes))
             flat = flatten(r.summary)
             nfev += r.rhs_evaluations
             tier = r.property_tier
-            rows.append((run_id, "ok", "", *(response_value(flat.get(k)) for k in responses)))
+            rows.append((int(run_id), "ok", "",
+                         *(response_value(flat.get(k)) for k in responses)))
         except Exception as exc:      # noqa: BLE001  a stopped run is a row, not a stopped study
             log.debug("run %d (%s) stopped: %s", run_id, changes, exc)
-            rows.append((run_id, "failed", f"{type(exc).__name__}: {exc}",
+            rows.append((int(run_id), "failed", f"{type(exc).__name__}: {exc}",
                          *(math.nan for _ in responses)))
     return rows, nfev, tier
 
@@ -138,8 +145,9 @@ def _check_scenes(design, base, name, fidelity) -> None:
                              + ")") from None
 
 
-def _chunks(design, size: int) -> list[list]:
-    return [[(i, design.changes(i)) for i in range(a, min(a + size, design.runs))]
+def _chunks(design, size: int) -> list[tuple]:
+    """``(run_ids, values)`` of each task: ``size`` consecutive runs."""
+    return [(range(a, min(a + size, design.runs)), design.values[a:a + size])
             for a in range(0, design.runs, size)]
 
 
@@ -156,17 +164,17 @@ def _run_local(args, chunks, jobs, progress, total):
     done = 0
     if jobs == 1:
         for i, c in enumerate(chunks):
-            out[i] = run_chunk(*args, c)
-            done += len(c)
+            out[i] = run_chunk(*args, *c)
+            done += len(c[0])
             if progress:
                 progress(done, total)
         return out
     with ProcessPoolExecutor(max_workers=jobs) as pool:
-        futs = {pool.submit(run_chunk, *args, c): i for i, c in enumerate(chunks)}
+        futs = {pool.submit(run_chunk, *args, *c): i for i, c in enumerate(chunks)}
         for fut in as_completed(futs):
             i = futs[fut]
             out[i] = fut.result()
-            done += len(chunks[i])
+            done += len(chunks[i][0])
             if progress:
                 progress(done, total)
     return out
@@ -201,17 +209,16 @@ def dask_client(scheduler):
 
 def _run_dask(client, args, chunks, progress, total):
     from distributed import as_completed as dask_completed
-    base, name, fidelity, responses = args
-    futs = client.map(run_chunk, [base] * len(chunks), [name] * len(chunks),
-                      [fidelity] * len(chunks), [responses] * len(chunks), chunks,
-                      pure=False)
+    n = len(chunks)
+    futs = client.map(run_chunk, *([a] * n for a in args), [c[0] for c in chunks],
+                      [c[1] for c in chunks], pure=False)
     index = {f.key: i for i, f in enumerate(futs)}
     out = [None] * len(chunks)
     done = 0
     for fut in dask_completed(futs):
         i = index[fut.key]
         out[i] = fut.result()
-        done += len(chunks[i])
+        done += len(chunks[i][0])
         if progress:
             progress(done, total)
     return out
@@ -295,7 +302,8 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
                 raise InputError("--jobs", jobs, "a whole number of processes, 1 or more")
             workers = min(workers, design.runs)
         chunks = _chunks(design, _chunk_size(design.runs, workers, chunk_size))
-        args = (base, name, fidelity, responses)
+        args = (base, name, fidelity, responses,
+                tuple((spec.key, spec.unit) for spec in design.specs))
         if client is not None:
             parts = _run_dask(client, args, chunks, progress, design.runs)
         else:
