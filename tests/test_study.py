@@ -290,6 +290,14 @@ def test_without_distributed_the_scheduler_says_how_to_get_it(monkeypatch):
     assert err.value.key == "--scheduler" and "corliss[dask]" in str(err.value)
 
 
+def test_jobs_and_a_scheduler_together_are_refused(monkeypatch):
+    _no_run(monkeypatch)
+    with pytest.raises(InputError) as err:
+        corliss.study(_base(), ["valve_gear.lap=0.8:1.2in"], grid=True, jobs=2,
+                      scheduler="tcp://127.0.0.1:8786")
+    assert err.value.key == "--jobs"
+
+
 def test_without_pyarrow_the_csv_is_written_alone(monkeypatch, tmp_path):
     r = corliss.study(_base(model="ideal"), ["engine.clearance=0.05,0.1"], grid=True, jobs=1)
     monkeypatch.setattr(study_output, "have_parquet", lambda: False)

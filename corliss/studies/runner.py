@@ -290,6 +290,9 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
     if clash:
         raise InputError("--response", sorted(clash)[0], "a response other than a varied "
                          "key's column")
+    if scheduler is not None and jobs is not None:
+        raise InputError("--jobs", jobs, "no --jobs with --scheduler: the cluster's workers "
+                         "run the study")
     _check_scenes(design, base, name, fidelity)
     client, own = (dask_client(scheduler) if scheduler is not None else (None, False))
     try:
