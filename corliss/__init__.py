@@ -9,13 +9,15 @@
 __version__ = "0.2.0"
 
 from corliss import results as _export  # noqa: E402,F401  (registers the export layer)
+from corliss import study_output as _study_export  # noqa: E402,F401  (and the study's)
 from corliss.design_scene import Design, design  # noqa: E402
 from corliss.engine.model import scene_events  # noqa: E402
 from corliss.engine.result import Result, SteadyResult, SweepResult, TransientResult  # noqa: E402
 from corliss.engine.simulate import simulate  # noqa: E402
 from corliss.errors import InputError  # noqa: E402
 from corliss.scene import Scene, bundled_scenes, default_scene_path, load_scene, scene_from_dict  # noqa: E402
+from corliss.studies import StudyResult, study  # noqa: E402
 
-__all__ = ["Design", "InputError", "Result", "Scene", "SteadyResult", "SweepResult", "TransientResult",
-           "__version__", "bundled_scenes", "default_scene_path", "design", "load_scene", "scene_events",
-           "scene_from_dict", "simulate"]
+__all__ = ["Design", "InputError", "Result", "Scene", "SteadyResult", "StudyResult", "SweepResult",
+           "TransientResult", "__version__", "bundled_scenes", "default_scene_path", "design",
+           "load_scene", "scene_events", "scene_from_dict", "simulate", "study"]

@@ -19,6 +19,9 @@
     Throttling against cut-off governing of one engine across its load range, with
     and without condensation: the table (CSV with its meta), the Willans lines and
     steam rates (PNG), and a verdict printed: which governing uses less steam where.
+``corliss study SCENE --vary KEY=LOW:HIGH ... (--grid [--levels N] | --lhs N | --monte-carlo N) [--response KEY] [--jobs N | --scheduler ADDR] [--json] [--out DIR]``
+    Steady runs over a design of scene keys: one tidy table (CSV with its meta, and
+    Parquet), the base scene, the figure of responses against keys.
 ``corliss bench [--repeats N] [--out DIR]``
     The accuracy-versus-time study of ``benchmarks/`` (from a source checkout).
 ``corliss list scenes|gears|effects|governors``
@@ -473,6 +476,30 @@ def cmd_compare(args) -> int:
     return 0
 
 
+def cmd_study(args) -> int:
+    from corliss.studies import study
+    scene = _load(args.scene)
+    result, files = _study(args, scene, lambda bar: study(
+        scene, args.vary, grid=args.grid, levels=args.levels, lhs=args.lhs,
+        monte_carlo=args.monte_carlo, seed=args.seed, responses=args.response,
+        fidelity=args.fidelity, jobs=args.jobs, scheduler=args.scheduler, progress=bar))
+    if files is None:
+        return 0
+    s = result.summary
+    print(f"{s['title']}: {s['design']} of {s['runs']} runs over "
+          + ", ".join(v["key"] for v in s["varied"]) + f", fidelity {s['fidelity']}")
+    for r, rng in s["response_ranges"].items():
+        print(f"  {r:32s} " + ("no run gave it" if rng is None else
+                               f"{rng['min']:.5g} to {rng['max']:.5g} (median {rng['median']:.5g})"))
+    if s["failed"]:
+        print(f"  {s['failed']} run(s) stopped: status 'failed', the reason in 'error'")
+    where = s["scheduler"] or f"{s['workers']} local process(es)"
+    print(f"  {s['runs']} runs on {where} in {s['wall_time_s']:.1f} s "
+          f"({s['runs_per_s']:.1f} runs/s)")
+    _print_files(files)
+    return 0
+
+
 def cmd_list(args) -> int:
     if args.what == "scenes":
         for name, path in bundled_scenes().items():
@@ -606,6 +633,34 @@ def build_parser() -> argparse.ArgumentParser:
     cp.add_argument("--units", choices=("US", "SI"), help=units_help)
     cp.add_argument("--json", action="store_true", help="print the summary as JSON")
     cp.set_defaults(func=cmd_compare)
+    st = sub.add_parser("study", help="steady runs over a grid, Latin hypercube or Monte "
+                        "Carlo design of scene keys, locally or on a Dask cluster")
+    st.add_argument("scene", help="scene TOML or a bundled scene's name (a transient one "
+                    "runs steady at its speed)")
+    st.add_argument("--vary", action="append", required=True, metavar="KEY=SPEC",
+                    help="a scene key and its values: KEY=LOW:HIGH (one unit, e.g. "
+                    "valve_gear.lap=0.8:1.2in), KEY=a,b,c (grid), KEY=normal(MEAN,SD)UNIT or "
+                    "KEY=triangular(LOW,MODE,HIGH)UNIT (--lhs, --monte-carlo); repeat per key")
+    dg = st.add_mutually_exclusive_group(required=True)
+    dg.add_argument("--grid", action="store_true", help="full factorial design")
+    dg.add_argument("--lhs", type=int, metavar="N", help="Latin hypercube of N runs")
+    dg.add_argument("--monte-carlo", type=int, metavar="N", help="N random runs")
+    st.add_argument("--levels", type=int, default=3, help="levels of each LOW:HIGH key of a "
+                    "grid, ends included (default 3)")
+    st.add_argument("--seed", type=int, default=0, help="seed of --lhs and --monte-carlo "
+                    "(default 0)")
+    st.add_argument("--response", action="append", metavar="KEY",
+                    help="a summary key to record, e.g. indicated_power_hp or "
+                    "events.head.cutoff_frac; repeat (default: power, m.e.p., steam and "
+                    "water rates, head cut-off)")
+    st.add_argument("--fidelity", choices=("reference", "standard", "fast"),
+                    help="fidelity of every run (default the scene's; fast for large studies)")
+    st.add_argument("--jobs", type=int, help="local processes (default: every core)")
+    st.add_argument("--scheduler", metavar="ADDR", help="run on the Dask cluster whose "
+                    "scheduler is at ADDR, e.g. tcp://10.0.0.5:8786 (needs corliss[dask])")
+    st.add_argument("--out", help="output directory (default: the scene's [output] dir)")
+    st.add_argument("--json", action="store_true", help="print the summary as JSON")
+    st.set_defaults(func=cmd_study)
     b = sub.add_parser("bench", help="run the accuracy-versus-time study (source checkout)")
     b.add_argument("--repeats", type=int, default=3, help="repeats per setting (median)")
     b.add_argument("--out", help="directory for the CSV and plot (default benchmarks/results)")

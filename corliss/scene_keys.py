@@ -161,3 +161,165 @@ def with_keys(data: dict, values: dict) -> dict:
                                  f"{'.'.join(parts[:depth + 1])} is not one")
         node[parts[-1]] = value
     return out
+
+
+# --- grids and distributions (the study's --vary) ------------------------------------------
+
+_CALL = re.compile(r"^\s*(?P<kind>[A-Za-z_]+)\s*\((?P<args>[^()]*)\)\s*(?P<unit>[^()]*?)\s*$")
+#: Distributions a Monte Carlo or Latin-hypercube key may take, with their parameters.
+DISTRIBUTIONS = {"uniform": ("low", "high"), "normal": ("mean", "sd"),
+                 "triangular": ("low", "mode", "high")}
+
+
+@dataclass(frozen=True)
+class KeyValues:
+    """A scene key and an explicit list of its values, all in one unit (a grid's
+    levels: ``KEY=a,b,c`` with the unit once at the end or on every value).
+
+    Attributes
+    ----------
+    key : str
+        Dotted scene key.
+    values : tuple of float
+        The values in ``unit``, in the order given, no repeats.
+    unit : str
+        Their unit; empty for a dimensionless key.
+    """
+
+    key: str
+    values: tuple
+    unit: str
+
+    def text(self, number: float):
+        """The scene value of ``number`` (in :attr:`unit`)."""
+        return KeyValue(number, self.unit).text()
+
+    @property
+    def label(self) -> str:
+        """``key [unit]`` for an axis."""
+        return f"{self.key} [{self.unit or '-'}]"
+
+
+@dataclass(frozen=True)
+class KeyDistribution:
+    """A scene key and the distribution it is drawn from, its parameters in one unit.
+
+    Attributes
+    ----------
+    key : str
+        Dotted scene key.
+    kind : str
+        ``"uniform"`` (low, high), ``"normal"`` (mean, sd) or ``"triangular"``
+        (low, mode, high): :data:`DISTRIBUTIONS`.
+    params : tuple of float
+        The parameters in ``unit``, in the order of :data:`DISTRIBUTIONS`.
+    unit : str
+        Their unit; empty for a dimensionless key.
+    """
+
+    key: str
+    kind: str
+    params: tuple
+    unit: str
+
+    def text(self, number: float):
+        """The scene value of ``number`` (in :attr:`unit`)."""
+        return KeyValue(number, self.unit).text()
+
+    @property
+    def label(self) -> str:
+        """``key [unit]`` for an axis."""
+        return f"{self.key} [{self.unit or '-'}]"
+
+    def ppf(self, u):
+        """The values at the cumulative probabilities ``u`` (in (0, 1)) [unit]: the
+        inverse of the distribution function, so uniform samples of ``u`` (random or
+        stratified) become samples of the distribution."""
+        import numpy as np
+        u = np.asarray(u, dtype=float)
+        if self.kind == "uniform":
+            lo, hi = self.params
+            return lo + (hi - lo) * u
+        if self.kind == "normal":
+            from scipy.special import ndtri
+            mean, sd = self.params
+            return mean + sd * ndtri(u)
+        a, c, b = self.params          # triangular: closed-form inverse on either side
+        f = (c - a) / (b - a)
+        return np.where(u < f, a + np.sqrt(u * (b - a) * (c - a)),
+                        b - np.sqrt((1.0 - u) * (b - a) * (b - c)))
+
+
+def _one_unit(values: list, where: str, text: str) -> tuple[list[float], str]:
+    """Numbers of several :class:`KeyValue` and their one unit (a unit written on the
+    last value only serves them all)."""
+    units = {v.unit for v in values if v.unit != ""}
+    if len(units) > 1:
+        raise InputError(where, text, "every value in one unit, e.g. 0.8,1.0,1.2in")
+    return [v.number for v in values], (units.pop() if units else "")
+
+
+def parse_values(spec: str, where: str = "--vary") -> KeyValues:
+    """A ``KEY=a,b,c`` option (a grid's explicit levels) as a :class:`KeyValues`.
+
+    Raises
+    ------
+    InputError
+        If the option is not ``KEY=a,b,...`` with two or more distinct values in one
+        unit.
+    """
+    if not isinstance(spec, str) or spec.count("=") != 1:
+        raise InputError(where, spec, "KEY=a,b,c, e.g. valve_gear.lap=0.8,1.0,1.2in")
+    key, rest = (s.strip() for s in spec.split("="))
+    check_key(key, where)
+    here = f"{where} {key}"
+    parts = [s for s in rest.split(",")]
+    if len(parts) < 2 or any(not s.strip() for s in parts):
+        raise InputError(here, rest, "two values or more separated by commas, e.g. 0.8,1.0,1.2in")
+    numbers, unit = _one_unit([parse_value(s, here) for s in parts], here, rest)
+    if len(set(numbers)) != len(numbers):
+        raise InputError(here, rest, "values that differ (a level given twice runs twice)")
+    return KeyValues(key, tuple(numbers), unit)
+
+
+def parse_distribution(spec: str, where: str = "--vary") -> KeyDistribution:
+    """A ``KEY=LOW:HIGH`` (uniform), ``KEY=uniform(LOW,HIGH)UNIT``,
+    ``KEY=normal(MEAN,SD)UNIT`` or ``KEY=triangular(LOW,MODE,HIGH)UNIT`` option as a
+    :class:`KeyDistribution` (the unit at the end, or on every parameter).
+
+    Raises
+    ------
+    InputError
+        Naming the option, for an unknown distribution, a wrong count of parameters,
+        parameters in two units, ``sd <= 0``, or ends out of order.
+    """
+    if isinstance(spec, str) and spec.count("=") == 1 and "(" not in spec:
+        r = parse_range(spec, where)
+        return KeyDistribution(r.key, "uniform", (r.low, r.high), r.unit)
+    example = ("KEY=LOW:HIGH, KEY=normal(MEAN,SD)UNIT or KEY=triangular(LOW,MODE,HIGH)UNIT, "
+               "e.g. run.speed=normal(120,5)rpm")
+    if not isinstance(spec, str) or spec.count("=") != 1:
+        raise InputError(where, spec, example)
+    key, rest = (s.strip() for s in spec.split("="))
+    check_key(key, where)
+    here = f"{where} {key}"
+    m = _CALL.match(rest)
+    if not m or m.group("kind") not in DISTRIBUTIONS:
+        raise InputError(here, rest, "a distribution: " + ", ".join(
+            f"{k}({','.join(p)})UNIT" for k, p in DISTRIBUTIONS.items()) + ", or LOW:HIGH")
+    kind, names = m.group("kind"), DISTRIBUTIONS[m.group("kind")]
+    args = [parse_value(s, here) for s in m.group("args").split(",")]
+    if len(args) != len(names):
+        raise InputError(here, rest, f"{kind} takes {len(names)} parameters: "
+                         f"{kind}({','.join(names)})")
+    tail = m.group("unit")
+    numbers, unit = _one_unit(args + ([KeyValue(0.0, tail)] if tail else []), here, rest)
+    numbers = numbers[:len(names)]
+    if kind == "normal" and not numbers[1] > 0:
+        raise InputError(here, rest, "a standard deviation above 0")
+    if kind == "uniform" and not numbers[0] < numbers[1]:
+        raise InputError(here, rest, "low below high")
+    if kind == "triangular" and not (numbers[0] <= numbers[1] <= numbers[2]
+                                     and numbers[0] < numbers[2]):
+        raise InputError(here, rest, "low <= mode <= high, low below high")
+    return KeyDistribution(key, kind, tuple(numbers), unit)

@@ -1,0 +1,221 @@
+"""The result of a study (:func:`corliss.study`): one tidy table, a row a run.
+
+Kept apart from :mod:`corliss.engine.result` (whose base class it extends): a study
+is made of scenes (the scene layer), not of one engine's model.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import ClassVar
+
+import numpy as np
+import pandas as pd
+
+from corliss import columns
+from corliss.engine.result import Result
+from corliss.scene_keys import KeyValue, with_keys
+
+#: Columns every study table has besides the varied keys and the responses.
+RUN_ID = "run_id"
+STATUS = "status"
+ERROR = "error"
+
+_exporter = None
+
+
+def register_study_exporter(exporter) -> None:
+    """Register the study's export layer: an object with ``write(result, out_dir,
+    plots, parquet)``, ``to_csv(result, path, units_system)`` and ``plot(result, ax,
+    units_system)``
+    (:mod:`corliss.study_output` registers itself when imported)."""
+    global _exporter
+    _exporter = exporter
+
+
+def _export():
+    if _exporter is None:       # only if the study is used without the corliss package
+        raise RuntimeError("no study export layer registered: import corliss")
+    return _exporter
+
+
+def column_unit(column: str, varied: list[dict]) -> str:
+    """The unit of a study table's column (for its meta file and axes)."""
+    for v in varied:
+        if v["column"] == column:
+            return v["unit"] or "-"
+    if column in (RUN_ID, STATUS, ERROR):
+        return {RUN_ID: "count (the run's number in the design, from 0)",
+                STATUS: "label (ok, or failed: the run stopped, see error)",
+                ERROR: "label (why the run stopped; empty when it did not)"}[column]
+    try:
+        return columns.unit_of(column.rsplit(".", 1)[-1])
+    except KeyError:
+        return "-"
+
+
+@dataclass
+class StudyResult(Result):
+    """Steady runs of one base scene with some of its keys changed, a row a run.
+
+    Attributes
+    ----------
+    design : str
+        ``"grid"``, ``"lhs"`` or ``"monte_carlo"``.
+    varied : list of dict
+        Each varied key: ``key``, ``unit``, ``column`` (its column in the table),
+        and its range, levels or distribution.
+    responses : list of str
+        The summary keys recorded (the table's columns after the varied keys).
+    seed : int or None
+        The random designs' seed.
+    base_data : dict
+        The base scene's tables as read: a row's scene is :meth:`scene_data` of it.
+    fidelity : str
+        The fidelity preset the runs were made at.
+    runs, failed : int
+        Runs made, and of them the ones that stopped [-].
+    workers : int
+        Processes (local) or Dask workers' threads that ran them [-].
+    scheduler : str or None
+        The Dask scheduler's address, or None for local processes.
+
+    Tables
+    ------
+    ``points``: ``run_id``, one column per varied key in its unit
+    (``valve_gear.lap_in``), one per response in SI as the summary names it
+    (``indicated_power_W``, ``events.head.cutoff_frac``), ``status`` (``ok`` or
+    ``failed``) and ``error`` (why a run stopped; its responses are NaN).
+    """
+
+    kind: ClassVar[str] = "study"
+    TABLES: ClassVar[tuple[str, ...]] = ("points",)
+    FIGURES: ClassVar[tuple[str, ...]] = ("study",)
+
+    design: str = "grid"
+    varied: list = field(default_factory=list)
+    responses: list = field(default_factory=list)
+    seed: int | None = None
+    base_data: dict = field(default_factory=dict)
+    fidelity: str = ""
+    runs: int = 0
+    failed: int = 0
+    workers: int = 1
+    scheduler: str | None = None
+
+    @property
+    def points(self) -> pd.DataFrame:
+        """The study's table (see the class's tables)."""
+        return self.cycles.reset_index(drop=True)
+
+    def scene_data(self, row) -> dict:
+        """The scene of one run as tables (what :func:`corliss.scene_from_dict` loads).
+
+        Parameters
+        ----------
+        row : int or Series or dict
+            A ``run_id``, or a row of the table (from the result, or read back from
+            its CSV or Parquet file).
+        """
+        return scene_data_of(self.base_data, self.varied, self._row(row))
+
+    def scene_of(self, row):
+        """The scene of one run, loaded and checked: the scene that was run, with the
+        study's fidelity.  ``row`` as for :meth:`scene_data`."""
+        from corliss.scene import scene_from_dict  # noqa: PLC0415  (same layer)
+        sc = scene_from_dict(self.scene_data(row), name=self.scene.name)
+        return sc.with_fidelity(self.fidelity) if self.fidelity else sc
+
+    def _row(self, row):
+        if isinstance(row, (int, np.integer)):
+            return self.points.set_index(RUN_ID).loc[int(row)].to_dict() | {RUN_ID: int(row)}
+        return dict(row)
+
+    def _make_summary(self) -> dict:
+        pts = self.points
+        ok = pts[pts[STATUS] == "ok"]
+        ranges = {}
+        for r in self.responses:
+            v = ok[r].to_numpy(dtype=float)
+            v = v[np.isfinite(v)]
+            ranges[r] = ({"min": float(v.min()), "median": float(np.median(v)),
+                          "max": float(v.max())} if v.size else None)
+        return {"title": self.scene.title, "kind": self.kind, "design": self.design,
+                "runs": self.runs, "failed": self.failed, "seed": self.seed,
+                "varied": self.varied, "responses": list(self.responses),
+                "response_ranges": ranges, "fidelity": self.fidelity,
+                "property_tier": self.property_tier, "workers": self.workers,
+                "scheduler": self.scheduler, "rhs_evaluations": self.rhs_evaluations,
+                "wall_time_s": self.wall_time_s,
+                "runs_per_s": self.runs / self.wall_time_s if self.wall_time_s > 0
+                else math.nan}
+
+    def to_pandas(self, table: str | None = None, units_system: str | None = None
+                  ) -> pd.DataFrame:
+        """The table as a DataFrame: as the study made it, or with ``units_system``
+        (``"US"`` or ``"SI"``) its responses whose names end in a unit converted and
+        renamed (``indicated_power_W`` to ``indicated_power_hp``); the varied keys
+        stay in the units they were given (a row's scene is rebuilt from them), and a
+        response without a unit in its name (``fluctuation_coefficient_c``) as it is."""
+        return converted(self.table(table), self.responses, units_system,
+                         self.scene.supply.barometer_Pa)[0]
+
+    def to_csv(self, path: str | Path, table: str | None = None,
+               units_system: str | None = None) -> Path:
+        """Write the table as CSV with its ``.meta.json`` (both or neither); with
+        ``units_system`` its responses converted as in :meth:`to_pandas`."""
+        return _export().to_csv(self, path, units_system)
+
+    def write(self, out_dir: str | Path, *, plots: bool = True,
+              parquet: bool | None = None) -> dict[str, Path]:
+        """Write the study into ``out_dir``: ``<scene>.study.csv`` with its meta file,
+        ``<scene>.study.parquet`` (with pyarrow; ``parquet=None`` writes it when
+        pyarrow is installed, ``True`` insists), the base scene
+        (``<scene>.study.base.toml``), the summary as JSON
+        and (``plots``) the figure; all together or none."""
+        return _export().write(self, out_dir, plots, parquet)
+
+    def plot(self, kind: str | None = None, ax=None, units_system: str | None = None) -> dict:
+        """Each response against each varied key, as scatter plots (a grid of axes;
+        ``ax`` is ignored)."""
+        return _export().plot(self, ax, units_system)
+
+
+def converted(frame: pd.DataFrame, responses, units_system: str | None,
+              barometer_Pa: float) -> tuple[pd.DataFrame, dict]:
+    """A study's table with its responses in ``units_system`` (None: as made) and the
+    columns that changed, ``{new name: its unit}``."""
+    out = frame.copy()
+    if units_system is None:
+        return out, {}
+    renamed = {}
+    for col in responses:
+        try:
+            conv, col_units = columns.convert_frame(frame[[col]], units_system, barometer_Pa)
+        except KeyError:              # no unit in the name: a pure number
+            continue
+        new = conv.columns[0]
+        out[col] = conv[new].to_numpy()
+        renamed[col] = (new, col_units[new])
+    return out.rename(columns={k: v[0] for k, v in renamed.items()}), dict(renamed.values())
+
+
+def scene_data_of(base_data: dict, varied: list[dict], row: dict) -> dict:
+    """A study row's scene as tables: the base scene with the row's varied keys set
+    (``with_keys(base, {key: value in its unit})``).
+
+    Parameters
+    ----------
+    base_data : dict
+        The base scene's tables (the study's meta file holds them as
+        ``scene_data``, and its ``.base.toml`` as text).
+    varied : list of dict
+        The meta file's ``varied``: ``key``, ``unit`` and ``column`` of each key.
+    row : dict
+        A row of the study's table, by column.
+    """
+    changes = {v["key"]: KeyValue(float(row[v["column"]]), v["unit"]).text()
+               for v in varied}
+    return with_keys(base_data, changes)
