@@ -16,7 +16,7 @@
     Throttling against cut-off governing of one engine across its load range, with
     and without condensation: the table (CSV with its meta), the Willans lines and
     steam rates (PNG), and a verdict printed: which governing uses less steam where.
-``corliss fit SCENE CARD.csv --vary KEY=LOW:HIGH ... [--refine] [--bootstrap N] [--json] [--out DIR]``
+``corliss fit SCENE CARD.csv --vary KEY=LOW:HIGH ... [--refine] [--bootstrap N] [--out DIR]``
     Calibrate scene keys to a measured card by least squares: the fitted values with
     their standard errors (or that the card does not determine a key), ``fit.json``,
     the runnable ``fitted.toml`` and the measured card over the fitted one.

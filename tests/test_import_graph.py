@@ -21,10 +21,10 @@ ROOT = Path(corliss.__file__).parent
 LAYERS = [
     ("corliss.errors", 0), ("corliss.units", 0), ("corliss.registry", 0),
     ("corliss.tables", 0), ("corliss.columns", 0), ("corliss.logs", 0),
-    ("corliss.textfiles", 0),
+    ("corliss.textfiles", 0), ("corliss.scene_keys", 0),
     ("corliss.thermo", 1), ("corliss.valves", 1), ("corliss.governors", 1),
     ("corliss.engine", 2),
-    ("corliss.scene", 3), ("corliss.scene_keys", 3), ("corliss.fitting", 3),
+    ("corliss.scene", 3), ("corliss.fitting", 3),
     ("corliss.plot", 4),
     ("corliss.results", 5), ("corliss.fit_output", 5),
     ("corliss.heartbeat", 6),

@@ -27,11 +27,11 @@ difference; on the steep ones, the horizontal distance scaled alike.  The residu
 point does not depend on any other point, needs no branch and no crank angle.
 
 Shape alone would let a loop slide along itself; the card's area, the indicated work
-(its area over its length is the mean effective pressure of Marks Art. 3), is added for each end as one
-more residual: the simulated area less the measured, both as the integral of pressure
-over the normalised abscissa, divided by the area's own standard deviation when every
-point's pressure carries an independent error of one unit (the root of the sum of the
-squared trapezoid weights, :func:`area_weights`).  Weighted so, the area residual has
+(its area over its length is the mean effective pressure of Marks Art. 3), is added for
+each end as one more residual: the simulated area less the measured, both as the
+integral of pressure over the normalised abscissa, divided by the area's own standard
+deviation when every point's pressure carries an independent error of one unit (the
+root of the sum of the squared trapezoid weights, :func:`area_weights`).  Weighted so, the area residual has
 the same noise as one point's residual, so the noise estimate ``s`` holds for every
 residual alike and the area is counted once, as the one observation it is (it is
 made of the same points).  Shape and area then both count, the area as a strong single
@@ -411,8 +411,8 @@ class _Problem:
         try:
             return simulate(sc)
         except RunError as exc:
-            raise RunError(f"{exc} (at {', '.join(f'{k} = {v:.6g}' for k, v in self.values(u).items())}"
-                           " of the fit's search)") from None
+            where = ", ".join(f"{k} = {v:.6g}" for k, v in self.values(u).items())
+            raise RunError(f"{exc} (at {where} of the fit's search)") from None
 
     def scales(self, result) -> dict:
         """The abscissa's scale of each end, fixed by the first result [unit of x]."""
@@ -452,8 +452,8 @@ class _Problem:
         pilot = self.run(u0, tolerance=PILOT_TOLERANCE)
         missing = [e for e in self.card.ends if e not in pilot.cards]
         if missing:
-            raise InputError("card", self.card.source, f"ends the scene has ({', '.join(pilot.cards)});"
-                             f" the card holds {', '.join(missing)}")
+            raise InputError("card", self.card.source, "ends the scene has ("
+                             f"{', '.join(pilot.cards)}); the card holds {', '.join(missing)}")
         conv = pilot.cycles_to_converge
         self.cycles = (conv if conv is not None else len(pilot.cycles)) + 1
         self.xs = self.scales(pilot)
