@@ -183,12 +183,13 @@ def print_fit(fit_result: FitResult, files: dict | None = None,
     unit, size = _pressure_unit(system)
     print(f"{f.scene.title}: fitted to {f.card.source} ({', '.join(f.card.ends)} end; "
           f"{f.n_points} points)")
-    print(f"  {'key':32s} {'start':>10s} {'fitted':>10s} {'std error':>10s}  range")
+    w = max(len(r.label) for r in f.ranges)
+    print(f"  {'key':{w}s} {'start':>10s} {'fitted':>10s} {'std error':>10s}  range")
     for r in f.ranges:
         k = r.key
         se = f.standard_errors[k]
         u = f" {r.unit}" if r.unit else ""
-        line = (f"  {r.label:32s} {f.start[k]:10.5g} {f.values[k]:10.5g} "
+        line = (f"  {r.label:{w}s} {f.start[k]:10.5g} {f.values[k]:10.5g} "
                 + (f"{se:10.2g}" if se is not None else f"{'-':>10s}")
                 + f"  {r.low:g} to {r.high:g}{u}")
         if f.bootstrap is not None and k in f.bootstrap["standard_errors"]:
