@@ -256,3 +256,44 @@ def test_the_command_fits_a_card_corliss_wrote_and_prints_json(truth_run, tmp_pa
     written = tomllib.loads((tmp_path / "o" / "fitted.toml").read_text())["valve_gear"]["lap"]
     assert units.parse(written, "length") == pytest.approx(lap["value"] * units.INCH_m, rel=1e-5)
     assert math.isfinite(s["residual_rms_Pa"])
+
+
+def test_a_card_of_volumes_fits_as_a_card_of_positions(truth_run, tmp_path):
+    """The card ``corliss run`` writes, with its volume column alone (no position): the
+    lap comes back as from positions, the volume read in ft3 with the clearance in it."""
+    df = truth_run.to_pandas("cards", "US")[["end", "V_ft3", "p_psia"]].iloc[::3]
+    path = tmp_path / "volumes.csv"
+    df.to_csv(path, index=False)
+    card = read_card(path)
+    assert card.ends["crank"].abscissa == "V_m3"
+    start = scene_with(valve_gear={"lap": "1.2 in"})
+    f = corliss.fit(start, card, "valve_gear.lap=0.7:1.3in")
+    assert f.values["valve_gear.lap"] == pytest.approx(1.0, abs=2e-3)
+    assert f.standard_errors["valve_gear.lap"] < 2e-3
+
+
+def test_the_python_function_refuses_bad_input_before_any_simulation(truth_run, monkeypatch):
+    """An end the scene does not have, a transient scene, a key outside the scene:
+    each an InputError naming it, raised before the first simulation."""
+    from corliss.engine import simulate as sim_module
+    from corliss.fitting import solver
+
+    def no_run(*a, **k):
+        raise AssertionError("a simulation ran before the input was checked")
+
+    monkeypatch.setattr(solver, "simulate", no_run)
+    assert sim_module.simulate is not no_run
+    good = noisy_card(truth_run, 0.5, seed=1)
+    lp = MeasuredCard({"lp_head": good.ends["head"]}, "lp card")
+    with pytest.raises(InputError, match="ends of the scene"):
+        corliss.fit(scene_with(), lp, RANGES)
+    transient = copy.deepcopy(BASE)
+    transient["run"].update(mode="transient", duration="2 s")
+    transient["flywheel"] = {"moment_of_inertia": "500 kg m2"}
+    transient["load"] = {"torque": "1000 N m"}
+    with pytest.raises(InputError, match="steady"):
+        corliss.fit(corliss.scene_from_dict(transient), good, RANGES)
+    with pytest.raises(InputError, match="bogus"):
+        corliss.fit(scene_with(), good, "valve_gear.bogus=1:2in")
+    with pytest.raises(InputError, match="run and output keys"):
+        corliss.fit(scene_with(), good, "run.speed=100:140rpm")

@@ -496,14 +496,21 @@ class _Problem:
         return (r, res, geo) if detail else r
 
 
-def _check(scene, ranges: list) -> None:
-    """Every key at both ends of its range makes a valid scene (before any work)."""
+def _check(scene, ranges: list, card: MeasuredCard | None = None) -> None:
+    """Every key at both ends of its range makes a valid scene, and the card's ends are
+    the scene's (before any work)."""
     if scene.data is None:
         raise InputError("scene", scene.name, "a scene read from a file or a dict (its tables "
                          "are edited key by key)")
     if scene.run.mode != "steady":
         raise InputError("run.mode", scene.run.mode, "\"steady\": a card is fitted with the "
                          "speed held (the card's own speed, run.speed)")
+    if card is not None:
+        has = ("head", "crank") + (("lp_head", "lp_crank") if scene.compound else ())
+        missing = [e for e in card.ends if e not in has]
+        if missing or not card.ends:
+            raise InputError("card", card.source, f"ends of the scene ({', '.join(has)}); "
+                             f"the card holds {', '.join(card.ends) or 'none'}")
     if not ranges:
         raise InputError("--vary", None, "at least one KEY=LOW:HIGH")
     keys = [r.key for r in ranges]
@@ -659,7 +666,7 @@ def fit_card(scene, card: MeasuredCard, ranges: list, *, fidelity: str = "fast",
         raise InputError("--fidelity", fidelity, "one of " + ", ".join(PRESETS))
     if isinstance(bootstrap, bool) or not isinstance(bootstrap, int) or not 0 <= bootstrap <= 10000:
         raise InputError("--bootstrap", bootstrap, "a whole number of refits from 0 to 10000")
-    _check(scene, ranges)
+    _check(scene, ranges, card)
     n_res = card.n_points + len(card.ends)
     if n_res <= len(ranges) + 1:
         raise InputError("card", card.source, f"more points ({card.n_points}) than keys to "
