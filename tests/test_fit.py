@@ -133,21 +133,27 @@ def test_the_fit_writes_its_files_and_the_fitted_scene_runs(fit_half_psi):
     assert fitted.run.fidelity.name == "standard"       # the scene's own, not the search's
 
 
-def test_a_key_the_card_does_not_show_is_reported_unidentifiable(truth_run):
-    """The piston rod's diameter changes only the crank end: on a card of the head end
-    alone it is reported as not determined, with no number, while the clearance beside
-    it still gets its error."""
+def test_keys_the_card_does_not_show_are_reported_unidentifiable(truth_run):
+    """The reciprocating mass changes the crank effort, not the card (its column of the
+    Jacobian is exactly zero); the piston rod's diameter changes only the crank end, so
+    on a card of the head end alone it changes nothing above the solver's noise.  Both
+    are reported as not determined, with no number, while the clearance beside them
+    keeps its error."""
     card = noisy_card(truth_run, 0.5, seed=11, ends=("head",))
-    start = scene_with(engine={"clearance": START["clearance"], "piston_rod_diameter": "2 in"})
+    start = scene_with(engine={"clearance": START["clearance"], "piston_rod_diameter": "2 in",
+                               "reciprocating_mass": "300 lb"})
     f = fit_card(start, card, [parse_range("engine.clearance=0.04:0.14"),
-                               parse_range("engine.piston_rod_diameter=1:4in")])
-    assert "engine.piston_rod_diameter" in f.unidentifiable
+                               parse_range("engine.piston_rod_diameter=1:4in"),
+                               parse_range("engine.reciprocating_mass=100:900lb")])
+    assert set(f.unidentifiable) == {"engine.piston_rod_diameter", "engine.reciprocating_mass"}
+    assert "does not change with it" in f.unidentifiable["engine.reciprocating_mass"]
     why = f.unidentifiable["engine.piston_rod_diameter"]
     assert "noise" in why or "larger than its range" in why
     assert f.standard_errors["engine.piston_rod_diameter"] is None
+    assert f.standard_errors["engine.reciprocating_mass"] is None
     se = f.standard_errors["engine.clearance"]
     assert se is not None and abs(f.values["engine.clearance"] - 0.08) < 3.0 * se
-    assert f.summary["parameters"][1]["identifiable"] is False
+    assert [p["identifiable"] for p in f.summary["parameters"]] == [True, False, False]
 
 
 def test_two_keys_that_act_only_together_are_reported_unidentifiable(truth_run):
@@ -160,6 +166,9 @@ def test_two_keys_that_act_only_together_are_reported_unidentifiable(truth_run):
     assert set(f.unidentifiable) == {"valve_gear.port_length",
                                      "valve_gear.discharge_coefficient"}
     assert all(v is None for v in f.standard_errors.values())
+    # each is named with the key it cannot be told from
+    assert "valve_gear.discharge_coefficient" in f.unidentifiable["valve_gear.port_length"]
+    assert "valve_gear.port_length" in f.unidentifiable["valve_gear.discharge_coefficient"]
     # their columns of the Jacobian are parallel; the fitted product is near the truth's
     assert abs(f.sensitivity_cosine[0, 1]) > 0.999
     product = f.values["valve_gear.port_length"] * f.values["valve_gear.discharge_coefficient"]
