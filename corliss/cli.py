@@ -570,7 +570,7 @@ def build_parser() -> argparse.ArgumentParser:
     ft.add_argument("--refine", action="store_true", help="repeat the search on the "
                     "standard tier from the fast optimum")
     ft.add_argument("--bootstrap", type=int, default=0, metavar="N",
-                    help="residual-bootstrap refits for a second uncertainty (default 0)")
+                    help="wild-bootstrap refits of the residuals, a second uncertainty (default 0)")
     ft.add_argument("--seed", type=int, default=0, help="the bootstrap's seed")
     ft.add_argument("--out", help="output directory (default: the scene's [output] dir)")
     ft.add_argument("--units", choices=("US", "SI"), help=units_help)

@@ -69,7 +69,7 @@ def fit(scene, card, vary, *, fidelity: str = "fast", refine: bool = False,
     refine : bool
         Repeat the search on the ``standard`` tier from the optimum.
     bootstrap : int
-        Residual-bootstrap refits (0: none).
+        Wild-bootstrap refits of the residuals (0: none).
     seed : int
         The bootstrap's seed.
     out : str or Path, optional
