@@ -195,7 +195,7 @@ def print_fit(fit_result: FitResult, files: dict | None = None,
         if f.bootstrap is not None and k in f.bootstrap["standard_errors"]:
             b = f.bootstrap
             line += (f"; bootstrap {b['standard_errors'][k]:.2g}, 95 % "
-                     f"{b['low'][k]:.5g} to {b['high'][k]:.5g}")
+                     f"{b['low'][k]:.6g} to {b['high'][k]:.6g}")
         if f.at_bound.get(k):
             line += f"  (at the {f.at_bound[k]} end of its range)"
         print(line)

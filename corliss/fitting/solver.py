@@ -671,7 +671,7 @@ def fit_card(scene, card: MeasuredCard, ranges: list, *, fidelity: str = "fast",
     fidelity : str
         Tier of the search: ``fast`` (default), ``standard`` or ``reference``.
     refine : bool
-        Repeat the search from the optimum on the ``standard`` tier.
+        Repeat a ``fast`` search from its optimum on the ``standard`` tier.
     bootstrap : int
         Wild-bootstrap refits of the residuals (0: none).
     seed : int
@@ -706,7 +706,7 @@ def fit_card(scene, card: MeasuredCard, ranges: list, *, fidelity: str = "fast",
     free = list(range(len(ranges)))
     u, sol = _solve(prob, u0, free, DIFF_STEP[fidelity])
     final = fidelity
-    if refine and fidelity != "standard":
+    if refine and fidelity == "fast":
         final = "standard"
         prob.set_fidelity(final, None)
         prob.prepare(u)
