@@ -14,8 +14,9 @@ from corliss.engine.result import Result, SteadyResult, SweepResult, TransientRe
 from corliss.engine.simulate import simulate  # noqa: E402
 from corliss.errors import InputError  # noqa: E402
 from corliss.fit_output import fit  # noqa: E402
+from corliss.fitting.solver import FitResult  # noqa: E402
 from corliss.scene import Scene, bundled_scenes, default_scene_path, load_scene, scene_from_dict  # noqa: E402
 
-__all__ = ["InputError", "Result", "Scene", "SteadyResult", "SweepResult", "TransientResult",
+__all__ = ["FitResult", "InputError", "Result", "Scene", "SteadyResult", "SweepResult", "TransientResult",
            "__version__", "bundled_scenes", "default_scene_path", "fit", "load_scene", "scene_events",
            "scene_from_dict", "simulate"]

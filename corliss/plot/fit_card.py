@@ -10,7 +10,7 @@ from corliss import units
 
 
 def _abscissa(fit, end: str, units_system: str):
-    """(label, unit, scale from SI) of the x axis: the card's own abscissa."""
+    """(label, unit) of the x axis: the card's own abscissa."""
     e = fit.card.ends[end]
     if e.abscissa == "V_m3":
         unit = "ft3" if units_system == "US" else "L"
@@ -72,12 +72,12 @@ def plot_fit_card(fit, ax=None, units_system: str | None = None) -> dict:
     ax.set_xlabel(f"{label_x} [{unit_x}]")
     ax.set_ylabel(f"pressure [{p_unit}]")
     parts = []
-    for i, r in enumerate(fit.ranges):
+    for r in fit.ranges:
         v = fit.values[r.key]
         se = fit.standard_errors[r.key]
         unit = f" {r.unit}" if r.unit else ""
-        parts.append(f"{r.key} = {v:.4g}{unit} " + (f"± {se:.2g}" if se is not None
-                                                     else "(not determined by the card)"))
+        parts.append(f"{r.key} = {v:.4g}" + (f" ± {se:.2g}{unit}" if se is not None
+                                              else f"{unit} (not determined by the card)"))
     rms = fit.residual_rms_Pa / (units.PSI_Pa if system == "US" else 1e5)
     ax.set_title(f"{fit.scene.title}: measured card over the fitted one\n"
                  + "; ".join(parts) + f"\nresidual r.m.s. {rms:.3g} "
