@@ -212,7 +212,9 @@ def print_fit(fit_result: FitResult, files: dict | None = None,
     for end, w in f.end_work.items():
         print(f"  m.e.p. {end:9s} measured {w['measured_mep_Pa'] / size:.4g} {unit}, fitted "
               f"{w['fitted_mep_Pa'] / size:.4g} {unit}")
-    print(f"  {f.simulations} simulations ({f.fidelity}, {f.cycles} cycles each) in "
+    tier = f.fidelity + (f" at rtol {solver.SEARCH_RTOL[f.fidelity]:g}"
+                         if f.fidelity in solver.SEARCH_RTOL else "")
+    print(f"  {f.simulations} simulations ({tier}, {f.cycles} cycles each) in "
           f"{f.wall_time_s:.1f} s; {f.status}")
     for kind, path in (files or {}).items():
         print(f"  wrote {kind:12s} {path}")

@@ -161,7 +161,7 @@ NOISE_FACTOR = 3.0
 OUTPUT_STEP_DEG = 0.5
 #: Work periodic to this fraction sets the cycle count of every run of a fit.
 PILOT_TOLERANCE = 1e-5
-#: Search tolerances: on the scaled keys (a thousandth of the range) and the cost.
+#: Search tolerances: on the scaled keys (a ten-thousandth of the range) and the cost.
 XTOL, FTOL = 1e-4, 1e-8
 #: At most this many simulations per key in one search.
 MAX_NFEV_PER_KEY = 60
@@ -287,7 +287,7 @@ class FitResult:
     def summary(self) -> dict:
         """The fit as plain values (the JSON of ``corliss fit --json``)."""
         params = []
-        for i, r in enumerate(self.ranges):
+        for r in self.ranges:
             k = r.key
             entry = {"key": k, "unit": r.unit or "-", "low": r.low, "high": r.high,
                      "start": self.start[k], "start_from": self.start_from.get(k),
