@@ -15,9 +15,11 @@ from corliss.engine.model import scene_events  # noqa: E402
 from corliss.engine.result import Result, SteadyResult, SweepResult, TransientResult  # noqa: E402
 from corliss.engine.simulate import simulate  # noqa: E402
 from corliss.errors import InputError  # noqa: E402
+from corliss.fit_output import fit  # noqa: E402
+from corliss.fitting.solver import FitResult  # noqa: E402
 from corliss.scene import Scene, bundled_scenes, default_scene_path, load_scene, scene_from_dict  # noqa: E402
 from corliss.studies import StudyResult, study  # noqa: E402
 
-__all__ = ["Design", "InputError", "Result", "Scene", "SteadyResult", "StudyResult", "SweepResult",
-           "TransientResult", "__version__", "bundled_scenes", "default_scene_path", "design",
-           "load_scene", "scene_events", "scene_from_dict", "simulate", "study"]
+__all__ = ["Design", "FitResult", "InputError", "Result", "Scene", "SteadyResult", "StudyResult",
+           "SweepResult", "TransientResult", "__version__", "bundled_scenes", "default_scene_path",
+           "design", "fit", "load_scene", "scene_events", "scene_from_dict", "simulate", "study"]

@@ -22,6 +22,10 @@
 ``corliss study SCENE --vary KEY=LOW:HIGH ... (--grid [--levels N] | --lhs N | --monte-carlo N) [--response KEY] [--jobs N | --scheduler ADDR] [--json] [--out DIR]``
     Steady runs over a design of scene keys: one tidy table (CSV with its meta, and
     Parquet), the base scene, the figure of responses against keys.
+``corliss fit SCENE CARD.csv --vary KEY=LOW:HIGH ... [--refine] [--bootstrap N] [--out DIR]``
+    Calibrate scene keys to a measured card by least squares: the fitted values with
+    their standard errors (or that the card does not determine a key), ``fit.json``,
+    the runnable ``fitted.toml`` and the measured card over the fitted one.
 ``corliss bench [--repeats N] [--out DIR]``
     The accuracy-versus-time study of ``benchmarks/`` (from a source checkout).
 ``corliss list scenes|gears|effects|governors``
@@ -497,6 +501,17 @@ def cmd_study(args) -> int:
     print(f"  {s['runs']} runs on {where} in {s['wall_time_s']:.1f} s "
           f"({s['runs_per_s']:.1f} runs/s)")
     _print_files(files)
+def cmd_fit(args) -> int:
+    from corliss.fit_output import fit, print_fit
+    scene = _load(args.scene, args.units)
+    result = fit(scene, args.card, args.vary, fidelity=args.fidelity, refine=args.refine,
+                 bootstrap=args.bootstrap, seed=args.seed)
+    files = result.write(Path(args.out if args.out is not None else scene.output.dir),
+                         plots=not args.no_plots)
+    if args.json:
+        print(summary_json(result.summary))
+    else:
+        print_fit(result, files)
     return 0
 
 
@@ -661,6 +676,25 @@ def build_parser() -> argparse.ArgumentParser:
     st.add_argument("--out", help="output directory (default: the scene's [output] dir)")
     st.add_argument("--json", action="store_true", help="print the summary as JSON")
     st.set_defaults(func=cmd_study)
+    ft = sub.add_parser("fit", help="calibrate scene keys to a measured indicator card")
+    ft.add_argument("scene", help="scene TOML or a bundled scene's name (steady)")
+    ft.add_argument("card", help="card CSV, its header naming each column's unit (e.g. "
+                    "end,piston_position [in],pressure [psig]; or a card corliss run wrote)")
+    ft.add_argument("--vary", action="append", required=True, metavar="KEY=LOW:HIGH",
+                    help="a scene key to fit and its range, e.g. valve_gear.lap=0.7:1.3in "
+                    "(repeat for more keys)")
+    ft.add_argument("--fidelity", choices=("fast", "standard", "reference"), default="fast",
+                    help="tier of the search (default fast)")
+    ft.add_argument("--refine", action="store_true", help="repeat the search on the "
+                    "standard tier from the fast optimum")
+    ft.add_argument("--bootstrap", type=int, default=0, metavar="N",
+                    help="wild-bootstrap refits of the residuals, a second uncertainty (default 0)")
+    ft.add_argument("--seed", type=int, default=0, help="the bootstrap's seed")
+    ft.add_argument("--out", help="output directory (default: the scene's [output] dir)")
+    ft.add_argument("--units", choices=("US", "SI"), help=units_help)
+    ft.add_argument("--no-plots", action="store_true", help="no fit-card.png")
+    ft.add_argument("--json", action="store_true", help="print the fit as JSON")
+    ft.set_defaults(func=cmd_fit)
     b = sub.add_parser("bench", help="run the accuracy-versus-time study (source checkout)")
     b.add_argument("--repeats", type=int, default=3, help="repeats per setting (median)")
     b.add_argument("--out", help="directory for the CSV and plot (default benchmarks/results)")

@@ -265,10 +265,33 @@ def parse(text: object, kind: str, key: str = "value", *,
     else:
         raise ValueError(f"unknown kind of quantity {kind!r}")
     if kind == "pressure":
-        raise InputError(key, text, "a pressure in psia, psig, bara, barg, kPa(a), kPa(g), "
-                         "MPa(a), MPa(g), Pa, atm, inHg, mmHg or inHg vacuum (absolute or "
-                         "gauge also as psi(a), bar abs, kPa gauge, ...)")
+        raise InputError(key, text, f"a pressure in {PRESSURE_UNITS_TEXT}")
     raise InputError(key, text, f"a {kind} in one of: " + ", ".join(units_of(kind)))
+
+
+#: What a pressure's unit must be, in words (for the messages that refuse one).
+PRESSURE_UNITS_TEXT = ("psia, psig, bara, barg, kPa(a), kPa(g), MPa(a), MPa(g), Pa, atm, inHg, "
+                       "mmHg or inHg vacuum (absolute or gauge also as psi(a), bar abs, kPa "
+                       "gauge, ...)")
+
+
+def pressure_to_si(values, unit: str, *, barometer_Pa: float = STANDARD_ATMOSPHERE_Pa):
+    """Absolute pressures [Pa] of ``values`` (a number or an array) read in ``unit``, a
+    spelling a scene may use (:func:`units_of` ``("pressure")``; gauge and vacuum
+    against ``barometer_Pa`` [Pa]).
+
+    Raises
+    ------
+    ValueError
+        For a unit that is not a pressure or does not say absolute or gauge.
+    """
+    if unit in _ABS_INPUT:
+        return values * _ABS_INPUT[unit]
+    if unit in _GAUGE_INPUT:
+        return barometer_Pa + values * _GAUGE_INPUT[unit]
+    if unit in _VACUUM:
+        return barometer_Pa - values * _VACUUM[unit]
+    raise ValueError(f"unknown pressure unit {unit!r}")
 
 
 def to_unit(value_si: float, unit: str, *, barometer_Pa: float = STANDARD_ATMOSPHERE_Pa):

@@ -24,9 +24,10 @@ LAYERS = [
     ("corliss.textfiles", 0), ("corliss.scene_keys", 0),
     ("corliss.thermo", 1), ("corliss.valves", 1), ("corliss.governors", 1),
     ("corliss.engine", 2),
-    ("corliss.scene", 3), ("corliss.studies", 3),
+    ("corliss.scene", 3), ("corliss.studies", 3), ("corliss.fitting", 3),
     ("corliss.plot", 4),
     ("corliss.results", 5), ("corliss.study_output", 5), ("corliss.design_scene", 5),
+    ("corliss.fit_output", 5),
     ("corliss.heartbeat", 6),
     ("corliss.cli", 6),
 ]

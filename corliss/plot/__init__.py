@@ -3,6 +3,7 @@ figure of several panels), returns what it drew and never calls ``show()``;
 matplotlib is imported when a figure is first drawn.
 
 - :mod:`corliss.plot.cards`: indicator cards and crank-effort diagrams;
+- :mod:`corliss.plot.fit_card`: a measured card over the card fitted to it;
 - :mod:`corliss.plot.gears`: valve travel, Zeuner and Bilgram diagrams, and
   :func:`plot_gear`, all the panels of any gear;
 - :mod:`corliss.plot.gear_panels`: the panels of gears whose motion is not one lapped
@@ -13,6 +14,7 @@ matplotlib is imported when a figure is first drawn.
 """
 
 from corliss.plot.cards import plot_card, plot_crank_effort
+from corliss.plot.fit_card import plot_fit_card
 from corliss.plot.gears import (bilgram_events, plot_bilgram_diagram, plot_gear,
                                 plot_valve_travel, plot_zeuner_diagram)
 from corliss.plot.study import plot_study
@@ -20,5 +22,5 @@ from corliss.plot.transients import plot_load_step, plot_static_characteristic
 from corliss.plot.willans import plot_compare, plot_willans
 
 __all__ = ["bilgram_events", "plot_bilgram_diagram", "plot_card", "plot_crank_effort",
-           "plot_gear", "plot_load_step", "plot_static_characteristic", "plot_study",
-           "plot_valve_travel", "plot_compare", "plot_willans", "plot_zeuner_diagram"]
+           "plot_fit_card", "plot_gear", "plot_load_step", "plot_static_characteristic",
+           "plot_study", "plot_valve_travel", "plot_compare", "plot_willans", "plot_zeuner_diagram"]

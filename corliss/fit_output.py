@@ -1,0 +1,235 @@
+"""``corliss fit``: scene keys calibrated to a measured card, as a function and its
+files.
+
+:func:`fit` takes what the command takes (a scene, a card CSV, ``KEY=LOW:HIGH``
+ranges, the fidelity, refine, bootstrap and seed, an output folder), checks all of it
+before any simulation, runs :func:`corliss.fitting.solver.fit_card` and, given ``out``,
+writes into it as one transaction (:class:`corliss.results.OutputFiles`):
+
+- ``fit.json``: the fitted values with their standard errors (or why a key is not
+  determined), the correlations, the residual r.m.s. in the pressure unit of the
+  units system, the m.e.p. of each end measured and fitted, and what reruns the fit:
+  the scene's text and SHA-256, the card file's SHA-256, the ranges, the versions;
+- ``fitted.toml``: the scene with the fitted values, runnable by ``corliss run``;
+- ``fit-card.png``: the measured card over the fitted one.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import hashlib
+import json
+from pathlib import Path
+
+from corliss import units
+from corliss.errors import InputError
+from corliss.fitting import solver
+from corliss.fitting.card import MeasuredCard, read_card
+from corliss.fitting.solver import FitResult, fit_card
+from corliss.fitting.toml_text import dumps
+from corliss.plot.fit_card import plot_fit_card
+from corliss.results import (DPI, PNG_OPTIONS, OutputFiles, dependency_versions, jsonable,
+                             package_version)
+from corliss.scene import Scene, find_scene, load_scene
+from corliss.scene_keys import KeyRange, parse_range
+
+FILES = {"summary": "fit.json", "scene": "fitted.toml", "card": "fit-card.png"}
+
+
+def _ranges(vary) -> list[KeyRange]:
+    if isinstance(vary, (str, KeyRange)):
+        vary = [vary]
+    out = []
+    for v in vary or []:
+        out.append(v if isinstance(v, KeyRange) else parse_range(v, "--vary"))
+    if not out:
+        raise InputError("--vary", None, "at least one KEY=LOW:HIGH, e.g. "
+                         "--vary engine.clearance=0.04:0.14 --vary valve_gear.lap=0.7:1.3in")
+    return out
+
+
+def fit(scene, card, vary, *, fidelity: str = "fast", refine: bool = False,
+        bootstrap: int = 0, seed: int = 0, out=None, units_system: str | None = None,
+        plots: bool = True, progress=None) -> FitResult:
+    """Calibrate scene keys to a measured indicator card (``corliss fit``).
+
+    Parameters
+    ----------
+    scene : str, Path or Scene
+        A scene file, a bundled scene's name, or a loaded steady scene.
+    card : str, Path or MeasuredCard
+        A card CSV whose header names each column's quantity and unit (the card CSV
+        ``corliss run`` writes, or a digitised card: see :mod:`corliss.fitting.card`);
+        gauge pressures are read against the scene's barometer.
+    vary : str or list
+        ``KEY=LOW:HIGH`` ranges (or :class:`~corliss.scene_keys.KeyRange`), e.g.
+        ``["engine.clearance=0.04:0.14", "valve_gear.lap=0.7:1.3in"]``.
+    fidelity : str
+        Tier of the search (``fast``; ``standard``, ``reference``).
+    refine : bool
+        Repeat the search on the ``standard`` tier from the optimum.
+    bootstrap : int
+        Wild-bootstrap refits of the residuals (0: none).
+    seed : int
+        The bootstrap's seed.
+    out : str or Path, optional
+        Write ``fit.json``, ``fitted.toml`` and ``fit-card.png`` into this folder.
+    units_system : str, optional
+        ``"US"`` or ``"SI"`` for the files and figure (default: the scene's).
+    plots : bool
+        Draw ``fit-card.png``.
+    progress : callable, optional
+        Called after each simulation with (simulations, residual r.m.s. [Pa]).
+
+    Returns
+    -------
+    FitResult
+
+    Raises
+    ------
+    InputError
+        Before any simulation: a bad scene, range, key or card.
+    """
+    if units_system not in (None, "US", "SI"):
+        raise InputError("--units", units_system, "US or SI")
+    if not isinstance(scene, Scene):
+        scene = load_scene(find_scene(scene))
+    ranges = _ranges(vary)
+    if not isinstance(card, MeasuredCard):
+        card = read_card(card, barometer_Pa=scene.supply.barometer_Pa)
+    result = fit_card(scene, card, ranges, fidelity=fidelity, refine=refine,
+                      bootstrap=bootstrap, seed=seed, progress=progress)
+    if out is not None:
+        result.write(out, plots=plots, units_system=units_system)
+    return result
+
+
+def _pressure_unit(system: str) -> tuple[str, float]:
+    """The unit of a pressure difference in ``system`` and its size [Pa]."""
+    return ("psi", units.PSI_Pa) if system == "US" else ("kPa", 1e3)
+
+
+def fit_json(fit_result: FitResult, units_system: str | None = None) -> dict:
+    """The fit's summary with what reruns it (the content of ``fit.json``)."""
+    s = fit_result.scene
+    system = units_system or s.output.units
+    unit, size = _pressure_unit(system)
+    src = fit_result.card.source
+    try:
+        card_sha = hashlib.sha256(Path(src).read_bytes()).hexdigest()
+    except OSError:
+        card_sha = None
+    out = dict(fit_result.summary)
+    out.update({
+        "units_system": system,
+        "residual_rms": {"value": fit_result.residual_rms_Pa / size, "unit": unit},
+        "noise_estimate": {"value": fit_result.s_Pa / size, "unit": unit},
+        "card_columns": fit_result.card.columns,
+        "card_sha256": card_sha,
+        "vary": [f"{r.key}={r.low:g}:{r.high:g}{r.unit}" for r in fit_result.ranges],
+        "corliss_version": package_version(), "versions": dependency_versions(),
+        "created_utc": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+        "scene_name": s.name, "scene_file": s.source,
+        "scene_sha256": hashlib.sha256(s.text.encode("utf-8")).hexdigest() if s.text else None,
+        "scene_toml": s.text,
+    })
+    return jsonable(out)
+
+
+def fitted_toml(fit_result: FitResult) -> str:
+    """The fitted scene as TOML text, its header saying what was fitted and how well."""
+    lines = [f"{fit_result.scene.title}: fitted by corliss fit to {fit_result.card.source}"]
+    for r in fit_result.ranges:
+        k = r.key
+        se = fit_result.standard_errors[k]
+        unit = f" {r.unit}" if r.unit else ""
+        lines.append(f"  {k} = {fit_result.values[k]:.6g}{unit} " +
+                     (f"+- {se:.2g}{unit}" if se is not None else
+                      "(NOT determined by the card: " + fit_result.unidentifiable[k] + ")"))
+    return dumps(fit_result.fitted_data, "\n".join(lines))
+
+
+def write(fit_result: FitResult, out_dir, plots: bool = True,
+          units_system: str | None = None) -> dict[str, Path]:
+    """Write the fit's files into ``out_dir`` (all or none); ``{kind: path}``."""
+    files = {}
+    toml_text = fitted_toml(fit_result)
+    with OutputFiles(out_dir) as out:
+        out.stage(FILES["summary"]).write_text(json.dumps(fit_json(fit_result, units_system),
+                                                          indent=2))
+        files["summary"] = out.files[FILES["summary"]]
+        out.stage(FILES["scene"]).write_text(toml_text, encoding="utf-8")
+        files["scene"] = out.files[FILES["scene"]]
+        if plots:
+            import matplotlib
+            matplotlib.use("Agg")
+            import matplotlib.pyplot as plt
+            fig, ax = plt.subplots(figsize=(9, 5.8))
+            try:
+                plot_fit_card(fit_result, ax=ax, units_system=units_system)
+                fig.savefig(out.stage(FILES["card"]), dpi=DPI, bbox_inches="tight",
+                            format="png", pil_kwargs=PNG_OPTIONS)
+                files["card"] = out.files[FILES["card"]]
+            finally:
+                plt.close(fig)
+    return files
+
+
+def print_fit(fit_result: FitResult, files: dict | None = None,
+              units_system: str | None = None) -> None:
+    """The short account of a fit, in the scene's units."""
+    f = fit_result
+    system = units_system or f.scene.output.units
+    unit, size = _pressure_unit(system)
+    print(f"{f.scene.title}: fitted to {f.card.source} ({', '.join(f.card.ends)} end; "
+          f"{f.n_points} points)")
+    w = max(len(r.label) for r in f.ranges)
+    print(f"  {'key':{w}s} {'start':>10s} {'fitted':>10s} {'std error':>10s}  range")
+    for r in f.ranges:
+        k = r.key
+        se = f.standard_errors[k]
+        u = f" {r.unit}" if r.unit else ""
+        line = (f"  {r.label:{w}s} {f.start[k]:10.5g} {f.values[k]:10.5g} "
+                + (f"{se:10.2g}" if se is not None else f"{'-':>10s}")
+                + f"  {r.low:g} to {r.high:g}{u}")
+        if f.bootstrap is not None and k in f.bootstrap["standard_errors"]:
+            b = f.bootstrap
+            line += (f"; bootstrap {b['standard_errors'][k]:.2g}, 95 % "
+                     f"{b['low'][k]:.6g} to {b['high'][k]:.6g}")
+        if f.at_bound.get(k):
+            line += f"  (at the {f.at_bound[k]} end of its range)"
+        print(line)
+    for k, why in f.unidentifiable.items():
+        print(f"  NOT DETERMINED   {k}: {why}")
+    keys = f.keys
+    for i in range(len(keys)):
+        for j in range(i + 1, len(keys)):
+            c = f.correlation[i, j]
+            if c == c:
+                print(f"  correlation      {keys[i]} / {keys[j]}: {c:+.3f}")
+    print(f"  residual r.m.s.  {f.residual_rms_Pa / size:.3g} {unit} (noise estimate "
+          f"{f.s_Pa / size:.3g} {unit}); {f.n_residuals} residuals")
+    for end, w in f.end_work.items():
+        print(f"  m.e.p. {end:9s} measured {w['measured_mep_Pa'] / size:.4g} {unit}, fitted "
+              f"{w['fitted_mep_Pa'] / size:.4g} {unit}")
+    tier = f.fidelity + (f" at rtol {solver.SEARCH_RTOL[f.fidelity]:g}"
+                         if f.fidelity in solver.SEARCH_RTOL else "")
+    print(f"  {f.simulations} simulations ({tier}, {f.cycles} cycles each) in "
+          f"{f.wall_time_s:.1f} s; {f.status}")
+    for kind, path in (files or {}).items():
+        print(f"  wrote {kind:12s} {path}")
+
+
+class _Exporter:
+    """What a FitResult's ``write`` and ``plot`` call."""
+
+    write = staticmethod(write)
+
+    @staticmethod
+    def plot(fit_result, ax=None, units_system=None):
+        return plot_fit_card(fit_result, ax=ax, units_system=units_system)
+
+
+solver.register_exporter(_Exporter())
+
+__all__ = ["FILES", "fit", "fit_json", "fitted_toml", "print_fit", "write"]

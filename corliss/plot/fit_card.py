@@ -1,0 +1,89 @@
+"""A measured card over the card fitted to it, in period style: gauge pressure with the
+atmospheric line, the measured points as the indicator's dots, the fitted card drawn
+through them."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from corliss import units
+
+
+def _abscissa(fit, end: str, units_system: str):
+    """(label, unit) of the x axis: the card's own abscissa."""
+    e = fit.card.ends[end]
+    if e.abscissa == "V_m3":
+        unit = "ft3" if units_system == "US" else "L"
+        return "volume of the end", unit
+    return "piston position from head-end dead centre", "in" if units_system == "US" else "mm"
+
+
+def plot_fit_card(fit, ax=None, units_system: str | None = None) -> dict:
+    """The measured card (points) over the fitted card (lines), every end the card holds.
+
+    Parameters
+    ----------
+    fit : FitResult
+        From :func:`corliss.fit`.
+    ax : matplotlib Axes, optional
+    units_system : str, optional
+        ``"US"`` (psig, inches) or ``"SI"`` (bar gauge, mm); default the scene's.
+
+    Returns
+    -------
+    dict
+        ``{"ax": ax, "measured": {end: line}, "fitted": {end: line}}``.
+    """
+    import matplotlib.pyplot as plt
+
+    system = units_system or fit.scene.output.units
+    if ax is None:
+        _, ax = plt.subplots(figsize=(9, 5.5))
+    res = fit.result
+    baro = fit.scene.supply.barometer_Pa
+    p_unit = "psig" if system == "US" else "barg"
+    geos = {prefix: g for prefix, g, _ in res.cylinder_list}
+    styles = {"head": dict(color="k", ls="-", marker="o"),
+              "crank": dict(color="0.35", ls="--", marker="s")}
+    measured, fitted = {}, {}
+    xmax = 0.0
+    label_x = unit_x = None
+    for end, e in fit.card.ends.items():
+        g = geos.get("lp_" if end.startswith("lp_") else "", res.geometry)
+        st = styles.get(end.removeprefix("lp_"), styles["head"])
+        label_x, unit_x = _abscissa(fit, end, system)
+        c = res.cards[end]
+        if e.abscissa == "V_m3":
+            xs, xm = c["V_m3"].to_numpy(), e.x
+        else:
+            xs = c["piston_frac"].to_numpy() * g.spec.stroke_m
+            xm = e.x * g.spec.stroke_m if e.abscissa == "piston_frac" else e.x
+        xs, xm = units.to_unit(xs, unit_x), units.to_unit(xm, unit_x)
+        ys = units.to_unit(c["p_Pa"].to_numpy(), p_unit, barometer_Pa=baro)
+        ym = units.to_unit(e.p_Pa, p_unit, barometer_Pa=baro)
+        (fitted[end],) = ax.plot(xs, ys, color=st["color"], ls=st["ls"], lw=1.3,
+                                 label=f"{end} end, fitted")
+        (measured[end],) = ax.plot(xm, ym, ls="none", marker=st["marker"], ms=2.5,
+                                   mfc="white", mec=st["color"], mew=0.7,
+                                   label=f"{end} end, measured")
+        xmax = max(xmax, float(np.max(xs)), float(np.max(xm)))
+    ax.axhline(0.0, color="0.35", lw=0.8)
+    ax.text(xmax * 0.5, 0.0, "atmosphere", ha="center", va="bottom", fontsize=8, color="0.35")
+    ax.set_xlabel(f"{label_x} [{unit_x}]")
+    ax.set_ylabel(f"pressure [{p_unit}]")
+    parts = []
+    for r in fit.ranges:
+        v = fit.values[r.key]
+        se = fit.standard_errors[r.key]
+        unit = f" {r.unit}" if r.unit else ""
+        parts.append(f"{r.key} = {v:.4g}" + (f" ± {se:.2g}{unit}" if se is not None
+                                              else f"{unit} (not determined by the card)"))
+    rms = fit.residual_rms_Pa / (units.PSI_Pa if system == "US" else 1e5)
+    ax.set_title(f"{fit.scene.title}: measured card over the fitted one\n"
+                 + "; ".join(parts) + f"\nresidual r.m.s. {rms:.3g} "
+                 + ("psi" if system == "US" else "bar"), fontsize=9)
+    ax.grid(True, color="0.9", lw=0.5)
+    ax.legend(loc="center", fontsize=8, frameon=False)
+    for side in ("top", "right"):
+        ax.spines[side].set_visible(False)
+    return {"ax": ax, "measured": measured, "fitted": fitted}
