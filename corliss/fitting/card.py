@@ -16,7 +16,7 @@ digitiser) went round it.  Two layouts are read:
   (``end,crank_angle_deg,piston_frac,V_ft3,p_psia`` in US units,
   ``...,V_m3,p_kPa_abs`` in SI), which is read as it stands;
 
-- wide, the end in each column's name (``head pressure [psig]``, ``p_crank [bar]``,
+- wide, the end in each column's name (``head pressure [psig]``, ``p_crank [bara]``,
   ``piston_position_head [in]``), a column pair per end; an end's rows may stop early
   (empty fields).
 
