@@ -17,9 +17,7 @@ linkage and gets the setting that gives the cut-off asked.
 from __future__ import annotations
 
 import dataclasses
-import json
 import math
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -29,6 +27,7 @@ from corliss.errors import InputError
 from corliss.results import OutputFiles
 from corliss.scene import Scene, bundled_scenes, default_scene_path, find_scene, load_scene, scene_from_dict
 from corliss.scene_keys import with_keys
+from corliss.toml_text import dumps
 from corliss.valves.design import (SettingDesign, SlideValveDesign, design_setting,
                                    design_slide_valve)
 from corliss.valves.slide_valve import LappedValve
@@ -211,9 +210,7 @@ def design(scene=None, *, cutoff, cutoff_crank=None, lead=None, max_opening=None
                              "with a setting")
         valve = design_setting(gear, frac, cutoff, end=end)
     data = _designed_tables(base, valve)
-    text = _header(base, base_name, valve) + dumps_toml(data)
-    if tomllib.loads(text) != data:                     # pragma: no cover - writer's own check
-        raise RuntimeError("the designed scene did not read back as written")
+    text = dumps(data, header=_header(base, base_name, valve))   # checked by reading back
     designed = dataclasses.replace(scene_from_dict(data, name="design"), text=text)
     ev = scene_events(designed)
     for e, want in valve.asked_deg.items():
@@ -263,55 +260,18 @@ def _designed_tables(base: Scene, valve) -> dict:
 
 def _header(base: Scene, base_name: str, valve) -> str:
     u = _unit(base)
-    lines = [f"# Designed by `corliss design` from the scene {base_name}.",
-             "# Events asked (crank angle from head-end dead centre):"]
+    lines = [f"Designed by `corliss design` from the scene {base_name}.",
+             "Events asked (crank angle from head-end dead centre):"]
     for end, want in valve.asked_deg.items():
         for key, deg in want.items():
-            lines.append(f"#   {end:5s} {key[:-4]:12s} {deg:9.4f} deg")
+            lines.append(f"  {end:5s} {key[:-4]:12s} {deg:9.4f} deg")
     if isinstance(valve, SlideValveDesign):
-        lines.append(f"# Leads {_q(valve.lead_m[0], u)} (head), {_q(valve.lead_m[1], u)} (crank); "
+        lines.append(f"Leads {_q(valve.lead_m[0], u)} (head), {_q(valve.lead_m[1], u)} (crank); "
                      f"greatest openings {_q(valve.max_opening_m[0], u)}, "
                      f"{_q(valve.max_opening_m[1], u)}.")
     else:
-        lines.append(f"# Setting {valve.setting:.6f}: {valve.setting_name}.")
-    return "\n".join(lines) + "\n\n"
-
-
-def _toml_value(v) -> str:
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, (int, float)):
-        if isinstance(v, float) and not math.isfinite(v):
-            raise ValueError(f"no TOML for {v}")
-        return repr(v)
-    if isinstance(v, str):
-        return json.dumps(v, ensure_ascii=False)
-    if isinstance(v, (list, tuple)):
-        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
-    if isinstance(v, dict):
-        return "{" + ", ".join(f"{_key(k)} = {_toml_value(x)}" for k, x in v.items()) + "}"
-    raise ValueError(f"no TOML for {type(v).__name__}")
-
-
-def _key(k: str) -> str:
-    return k if k.replace("_", "").replace("-", "").isalnum() else json.dumps(k)
-
-
-def dumps_toml(data: dict, prefix: str = "") -> str:
-    """Scene tables as TOML text: the scalars of each table, then its sub-tables as
-    ``[a.b]`` sections (a scene holds no arrays of tables)."""
-    out = []
-    for k, v in data.items():
-        if not isinstance(v, dict):
-            out.append(f"{_key(k)} = {_toml_value(v)}")
-    for k, v in data.items():
-        if isinstance(v, dict):
-            name = f"{prefix}.{_key(k)}" if prefix else _key(k)
-            out.append(f"\n[{name}]")
-            body = dumps_toml(v, name)
-            if body:
-                out.append(body)
-    return "\n".join(out).lstrip("\n") + ("\n" if not prefix else "")
+        lines.append(f"Setting {valve.setting:.6f}: {valve.setting_name}.")
+    return "\n".join(lines)
 
 
 # ---------------------------------------------------------------- files

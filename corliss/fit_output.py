@@ -26,7 +26,7 @@ from corliss.errors import InputError
 from corliss.fitting import solver
 from corliss.fitting.card import MeasuredCard, read_card
 from corliss.fitting.solver import FitResult, fit_card
-from corliss.fitting.toml_text import dumps
+from corliss.toml_text import dumps
 from corliss.plot.fit_card import plot_fit_card
 from corliss.results import (DPI, PNG_OPTIONS, OutputFiles, dependency_versions, jsonable,
                              package_version)

@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import json
 import logging
-import math
 import tomllib
 from pathlib import Path
 
@@ -28,6 +27,7 @@ from corliss.results import DPI, PNG_OPTIONS, OutputFiles, jsonable, meta, summa
 from corliss.scene import scene_from_dict
 from corliss.studies import result as study_result
 from corliss.studies.result import column_unit, converted, scene_data_of
+from corliss.toml_text import dumps
 
 log = logging.getLogger(__name__)
 
@@ -38,36 +38,6 @@ REBUILD = ("the scene of a row is the base scene (scene_data, or the .base.toml 
            "each varied key set to the row's value in its unit: "
            "with_keys(scene_data, {key: f'{row[column]:.12g} {unit}'}) (a bare number for "
            "a key without a unit); corliss.study_output.study_scene(file, run_id) does it")
-
-
-def _toml_value(v) -> str:
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, (int, float)):
-        return repr(v) if math.isfinite(v) else ("nan" if v != v else
-                                                  ("inf" if v > 0 else "-inf"))
-    if isinstance(v, str):
-        return json.dumps(v)          # a JSON string is a TOML basic string
-    if isinstance(v, (list, tuple)):
-        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
-    raise TypeError(f"no TOML for {type(v).__name__}")
-
-
-def toml_text(data: dict, prefix: str = "") -> str:
-    """A scene's tables as TOML text (for a scene given as tables, with no file):
-    scalars and lists of scalars first, then each sub-table under its dotted header;
-    ``tomllib.loads`` gives the tables back."""
-    lines, tables = [], []
-    for k, v in data.items():
-        if isinstance(v, dict):
-            tables.append((k, v))
-        else:
-            lines.append(f"{json.dumps(k)} = {_toml_value(v)}")
-    text = "\n".join(lines) + ("\n" if lines else "")
-    for k, v in tables:
-        name = f"{prefix}{json.dumps(k)}"
-        text += f"\n[{name}]\n" + toml_text(v, name + ".")
-    return text
 
 
 def have_parquet() -> bool:
@@ -142,7 +112,7 @@ def write(result, out_dir, plots: bool = True, parquet: bool | None = None) -> d
         bname = f"{stem}.base.toml"
         text = (result.scene.text if result.scene.text and
                 tomllib.loads(result.scene.text) == result.base_data
-                else toml_text(result.base_data))
+                else dumps(result.base_data))
         out.stage(bname).write_text(text, encoding="utf-8")
         files["base"] = out.files[bname]
         if plots:

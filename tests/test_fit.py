@@ -22,7 +22,7 @@ from corliss import cli, units
 from corliss.errors import InputError
 from corliss.fitting.card import EndCard, MeasuredCard, parse_card, read_card
 from corliss.fitting.solver import fit_card, loop_area
-from corliss.fitting.toml_text import dumps
+from corliss.toml_text import dumps
 from corliss.scene_keys import parse_range
 from conftest import BASE
 

@@ -3,8 +3,7 @@
 - :mod:`corliss.fitting.card`: card CSV files (long or wide, units in the header) to a
   :class:`~corliss.fitting.card.MeasuredCard`;
 - :mod:`corliss.fitting.solver`: the least-squares fit, its uncertainties and the
-  :class:`~corliss.fitting.solver.FitResult`;
-- :mod:`corliss.fitting.toml_text`: a fitted scene's tables as TOML text.
+  :class:`~corliss.fitting.solver.FitResult`.
 
 The command and the public function are :func:`corliss.fit` (:mod:`corliss.fit_output`).
 """

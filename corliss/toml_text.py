@@ -1,5 +1,7 @@
 """A scene's tables as TOML text (the standard library reads TOML but does not write
-it): enough of TOML for a scene, checked by reading the text back."""
+it): enough of TOML for a scene, checked by reading the text back.  The written scenes
+of ``corliss design`` (``design.toml``), ``corliss fit`` (``fitted.toml``) and
+``corliss study`` (the base scene) all come from :func:`dumps`."""
 
 from __future__ import annotations
 
@@ -66,7 +68,7 @@ def dumps(data: dict, header: str = "") -> str:
     ValueError
         If the text does not read back as ``data``.
     """
-    lines = [f"# {h}".rstrip() for h in header.splitlines()] if header else []
+    lines = [f"# {h}".rstrip() for h in header.splitlines()] + [""] if header else []
     _table(data, [], lines)
     text = "\n".join(lines).lstrip("\n") + "\n"
     if tomllib.loads(text) != data:
