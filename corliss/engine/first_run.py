@@ -68,8 +68,11 @@ def prepare(scene) -> None:
     log.log(NOTICE, "first run on this machine: building the steam table in a second "
             "process while the kernels compile in this one")
     try:
+        # the second process compiles nothing (its one compiled call, the table's error
+        # against HEOS, runs as Python: cheaper than compiling it twice)
         builder = subprocess.Popen([sys.executable, "-c", BUILD_COMMAND],
-                                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                   env={**os.environ, "NUMBA_DISABLE_JIT": "1"})
     except OSError as exc:         # no second process: the run builds it itself
         log.debug("no second process for the steam table: %s", exc)
         return

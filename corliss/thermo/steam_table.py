@@ -613,8 +613,37 @@ def table_path() -> Path:
     return cache_dir() / f"steam-table-{key}.npz"
 
 
+#: The miniature table, shipped with the package (its port-flow exponent is the shipped
+#: grid's, not repeated): a first run reads it without importing CoolProp.
+MINI_FILE = Path(__file__).with_name("mini_table.npz")
+_SCALARS = ("lnrho0", "dlnrho", "u0", "du", "sT0", "sdT", "k_lnrho0", "k_dlnrho", "k_u0",
+            "k_du")
+
+
+def write_mini_table(path: Path = MINI_FILE) -> Path:
+    """Build the miniature table from HEOS and write it to ``path``::
+
+        python -c "from corliss.thermo.steam_table import write_mini_table; write_mini_table()"
+    """
+    built = _build(MINI_PARAMS)
+    built.pop("kappa")
+    np.savez_compressed(path, params=np.array(json.dumps(MINI_PARAMS)),
+                        **{k: np.asarray(v) for k, v in built.items()})
+    return Path(path)
+
+
 def mini_table() -> SteamTable:
-    """A coarse table of :data:`MINI_PARAMS` (not cached, not measured)."""
+    """A coarse table of :data:`MINI_PARAMS` (not cached, not measured): the shipped one,
+    or built from HEOS when it is missing or was made for other parameters."""
+    kappa = shipped_kappa(MINI_PARAMS)
+    try:
+        with np.load(MINI_FILE, allow_pickle=False) as z:
+            if kappa is not None and json.loads(str(z["params"])) == MINI_PARAMS:
+                kw = {k: (float(z[k]) if k in _SCALARS else np.array(z[k], dtype=np.float64))
+                      for k in z.files if k != "params"}
+                return SteamTable(error={"params": MINI_PARAMS}, kappa=kappa, **kw)
+    except (OSError, KeyError, ValueError):
+        pass
     return SteamTable(error={"params": MINI_PARAMS}, **_build(MINI_PARAMS))
 
 
