@@ -444,8 +444,14 @@ def _check_states(data: dict, supply: SupplySpec, exhaust: ExhaustSpec, run: Run
                          "a pressure below the critical pressure of water, 22.064 MPa")
     if run.fidelity.properties != "table":
         return
-    # the table's own states (CoolProp only for a state off its arrays)
-    steam = TableSteam()
+    # the table's own states (CoolProp only for a state off its arrays); before the table
+    # is built (a machine's first run, which builds it beside the compilation:
+    # corliss.engine.first_run), the shipped miniature table's, whose ranges are the same
+    if steam_table.table_path().is_file():
+        steam = TableSteam()
+    else:
+        with steam_table.stand_in(steam_table.mini_table()):
+            steam = TableSteam()
     chest = (steam.pt(supply.pressure_Pa, supply.temperature_K) if supply.temperature_K
              else steam.px(supply.pressure_Pa, supply.dryness))
     if not steam_table.covers(chest.rho, chest.u):

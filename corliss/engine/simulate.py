@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from typing import Callable
 
+from corliss.engine import first_run
 from corliss.engine.mean_value import run_mean_value
 from corliss.engine.model import scene_events
 from corliss.engine.result import Result
@@ -39,6 +40,7 @@ def simulate(scene, *, portmap_scale: float = 1.0,
         A :class:`~corliss.engine.result.SteadyResult` for a steady scene, a
         :class:`~corliss.engine.result.TransientResult` for a transient one.
     """
+    first_run.prepare(scene)
     if scene.run.mode == "transient":
         if scene.run.model == "mean_value":
             return run_mean_value(scene, progress=progress)

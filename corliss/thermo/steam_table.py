@@ -43,6 +43,7 @@ saturation line, where Zeuner's 1.135 and the superheated 1.3 jump by 5 % in flu
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import hashlib
 import json
@@ -582,6 +583,14 @@ def cache_dir() -> Path:
 
 
 _LOADED: dict[str, SteamTable] = {}
+#: A table :func:`load_table` returns in place of the real one (:func:`stand_in`).
+_STAND_IN: list[SteamTable] = []
+
+#: A miniature table, built in a fraction of a second: the same arrays (and so the same
+#: compiled signatures) on a coarse grid, for compiling the kernels while the real table
+#: is built (``corliss.engine.first_run``).  Its values are coarse; no result is read
+#: from it.
+MINI_PARAMS = {**PARAMS, "n_rho": 24, "n_u": 40, "n_sat": 200, "T_row_step": 10.0}
 
 
 @functools.lru_cache(maxsize=1)
@@ -597,13 +606,65 @@ def _coolprop_version() -> str:
         return CoolProp.__version__
 
 
-def load_table() -> SteamTable:
-    """The steam table: from memory, from the disk cache, or built from HEOS (and cached)."""
+def table_path() -> Path:
+    """The disk cache's file of the steam table for :data:`PARAMS` and this CoolProp."""
     key = hashlib.sha1((json.dumps(PARAMS, sort_keys=True) + _coolprop_version())
                        .encode()).hexdigest()[:12]
+    return cache_dir() / f"steam-table-{key}.npz"
+
+
+#: The miniature table, shipped with the package (its port-flow exponent is the shipped
+#: grid's, not repeated): a first run reads it without importing CoolProp.
+MINI_FILE = Path(__file__).with_name("mini_table.npz")
+_SCALARS = ("lnrho0", "dlnrho", "u0", "du", "sT0", "sdT", "k_lnrho0", "k_dlnrho", "k_u0",
+            "k_du")
+
+
+def write_mini_table(path: Path = MINI_FILE) -> Path:
+    """Build the miniature table from HEOS and write it to ``path``::
+
+        python -c "from corliss.thermo.steam_table import write_mini_table; write_mini_table()"
+    """
+    built = _build(MINI_PARAMS)
+    built.pop("kappa")
+    np.savez_compressed(path, params=np.array(json.dumps(MINI_PARAMS)),
+                        **{k: np.asarray(v) for k, v in built.items()})
+    return Path(path)
+
+
+def mini_table() -> SteamTable:
+    """A coarse table of :data:`MINI_PARAMS` (not cached, not measured): the shipped one,
+    or built from HEOS when it is missing or was made for other parameters."""
+    kappa = shipped_kappa(MINI_PARAMS)
+    try:
+        with np.load(MINI_FILE, allow_pickle=False) as z:
+            if kappa is not None and json.loads(str(z["params"])) == MINI_PARAMS:
+                kw = {k: (float(z[k]) if k in _SCALARS else np.array(z[k], dtype=np.float64))
+                      for k in z.files if k != "params"}
+                return SteamTable(error={"params": MINI_PARAMS}, kappa=kappa, **kw)
+    except (OSError, KeyError, ValueError):
+        pass
+    return SteamTable(error={"params": MINI_PARAMS}, **_build(MINI_PARAMS))
+
+
+@contextlib.contextmanager
+def stand_in(table: SteamTable):
+    """Within the block, :func:`load_table` returns ``table``."""
+    _STAND_IN.append(table)
+    try:
+        yield table
+    finally:
+        _STAND_IN.remove(table)
+
+
+def load_table() -> SteamTable:
+    """The steam table: from memory, from the disk cache, or built from HEOS (and cached)."""
+    if _STAND_IN:
+        return _STAND_IN[-1]
+    path = table_path()
+    key = path.stem
     if key in _LOADED:
         return _LOADED[key]
-    path = cache_dir() / f"steam-table-{key}.npz"
     data = None
     if path.is_file():
         try:

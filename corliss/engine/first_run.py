@@ -1,0 +1,100 @@
+"""A fresh machine's first run: the steam table built beside the kernels' compilation.
+
+The first run on a machine pays twice, and each on one core: the steam table is built
+from CoolProp (some 7 s) and the compiled kernels are compiled by numba (some 11 s),
+one after the other.  Neither needs the other's result: the kernels need only the
+table's array types, not its values.  So when both are missing, the table is built
+in a second process, which caches it on disk, while this one compiles the kernels by
+running one cycle of the scene on a miniature table of the same arrays
+(:data:`corliss.thermo.steam_table.MINI_PARAMS`, built in a fraction of a second);
+then this process waits for the table and the run goes on from both caches.  On two
+cores the first run takes the longer of the two instead of their sum.
+
+Nothing here changes a result: the miniature cycle is thrown away, and the run itself
+is the run of a warm machine.  When either cache is already there, or the scene needs
+no table (the ``heos`` tier) or no compiled kernel, nothing is done.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import subprocess
+import sys
+
+from corliss.logs import NOTICE
+
+log = logging.getLogger(__name__)
+
+#: The command that builds and caches the steam table in the second process.
+BUILD_COMMAND = "from corliss.thermo.steam_table import load_table; load_table()"
+
+
+def _kernels_missing(scene) -> bool:
+    """True when the scene's compiled cycle integrator is not in numba's disk cache."""
+    from corliss.engine import kernel
+    from corliss.engine.crank_resolved import COMPILED_CODES
+    method = scene.run.fidelity.method
+    if method not in COMPILED_CODES:
+        return False
+    d = kernel.CYCLE_KERNELS[COMPILED_CODES[method]]
+    try:
+        return not d.signatures and not os.path.exists(d._cache._cache_file._index_path)
+    except AttributeError:         # a numba without these internals: do nothing
+        return False
+
+
+def _wanted(scene) -> bool:
+    run = scene.run
+    return (run.model == "crank_resolved" and run.has("port_flow")
+            and run.fidelity.properties == "table")
+
+
+def prepare(scene) -> None:
+    """Build the steam table in a second process while the kernels compile here, when
+    both are missing (see the module's text); otherwise do nothing.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene about to run; its first cycle, on a miniature table, compiles what
+        its run will call.
+    """
+    if not _wanted(scene):
+        return
+    from corliss.thermo import steam_table
+    if steam_table.table_path().is_file() or not _kernels_missing(scene):
+        return
+    log.log(NOTICE, "first run on this machine: building the steam table in a second "
+            "process while the kernels compile in this one")
+    try:
+        # the second process compiles nothing (its one compiled call, the table's error
+        # against HEOS, runs as Python: cheaper than compiling it twice)
+        builder = subprocess.Popen([sys.executable, "-c", BUILD_COMMAND],
+                                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                   env={**os.environ, "NUMBA_DISABLE_JIT": "1"})
+    except OSError as exc:         # no second process: the run builds it itself
+        log.debug("no second process for the steam table: %s", exc)
+        return
+    try:
+        _compile_on(steam_table.mini_table(), scene)
+    finally:
+        if builder.wait() != 0:
+            log.debug("the steam table's process ended with %s; this one builds it",
+                      builder.returncode)
+
+
+def _compile_on(table, scene) -> None:
+    """One cycle of ``scene`` on ``table``: numba compiles (and caches) what it calls."""
+    import dataclasses
+
+    from corliss.engine.model import steady_scene
+    from corliss.engine.steady import run_steady
+    from corliss.thermo.steam_table import stand_in
+    sc = steady_scene(scene)
+    sc = dataclasses.replace(sc, run=dataclasses.replace(sc.run, cycles=1))
+    with stand_in(table):
+        try:
+            run_steady(sc)
+        except Exception as exc:    # noqa: BLE001 - a coarse table may stop the cycle
+            log.debug("the compiling cycle on the miniature table stopped: %s", exc)
