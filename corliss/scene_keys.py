@@ -47,8 +47,24 @@ class KeyValue:
         return x if self.unit == "" else f"{x:.12g} {self.unit}"
 
 
+class _KeyInUnit:
+    """What a key with values in one unit writes: ``key`` and ``unit`` attributes."""
+
+    key: str
+    unit: str
+
+    def text(self, number: float):
+        """The scene value of ``number`` (in :attr:`unit`)."""
+        return KeyValue(number, self.unit).text()
+
+    @property
+    def label(self) -> str:
+        """``key [unit]`` for a table's column or an axis."""
+        return f"{self.key} [{self.unit or '-'}]"
+
+
 @dataclass(frozen=True)
-class KeyRange:
+class KeyRange(_KeyInUnit):
     """A scene key and the range it may take, both ends in one unit.
 
     Attributes
@@ -65,15 +81,6 @@ class KeyRange:
     low: float
     high: float
     unit: str
-
-    def text(self, number: float):
-        """The scene value of ``number`` (in :attr:`unit`)."""
-        return KeyValue(number, self.unit).text()
-
-    @property
-    def label(self) -> str:
-        """``key [unit]`` for a table's column or an axis."""
-        return f"{self.key} [{self.unit or '-'}]"
 
 
 def check_key(key: str, where: str) -> str:
@@ -172,7 +179,7 @@ DISTRIBUTIONS = {"uniform": ("low", "high"), "normal": ("mean", "sd"),
 
 
 @dataclass(frozen=True)
-class KeyValues:
+class KeyValues(_KeyInUnit):
     """A scene key and an explicit list of its values, all in one unit (a grid's
     levels: ``KEY=a,b,c`` with the unit once at the end or on every value).
 
@@ -190,18 +197,9 @@ class KeyValues:
     values: tuple
     unit: str
 
-    def text(self, number: float):
-        """The scene value of ``number`` (in :attr:`unit`)."""
-        return KeyValue(number, self.unit).text()
-
-    @property
-    def label(self) -> str:
-        """``key [unit]`` for an axis."""
-        return f"{self.key} [{self.unit or '-'}]"
-
 
 @dataclass(frozen=True)
-class KeyDistribution:
+class KeyDistribution(_KeyInUnit):
     """A scene key and the distribution it is drawn from, its parameters in one unit.
 
     Attributes
@@ -222,14 +220,6 @@ class KeyDistribution:
     params: tuple
     unit: str
 
-    def text(self, number: float):
-        """The scene value of ``number`` (in :attr:`unit`)."""
-        return KeyValue(number, self.unit).text()
-
-    @property
-    def label(self) -> str:
-        """``key [unit]`` for an axis."""
-        return f"{self.key} [{self.unit or '-'}]"
 
     def ppf(self, u):
         """The values at the cumulative probabilities ``u`` (in (0, 1)) [unit]: the
