@@ -29,7 +29,7 @@ from corliss.scene_keys import parse_distribution, with_keys
 from corliss.studies import make_design, response_keys
 from corliss.studies import runner as study_runner
 from corliss.studies.responses import flatten
-from tests.conftest import BASE
+from conftest import BASE
 
 #: psi in Pa (exact: 0.45359237 kg x 9.80665 m/s2 / 0.0254**2 m2).
 PSI_Pa = 0.45359237 * 9.80665 / 0.0254 ** 2
