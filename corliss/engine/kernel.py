@@ -940,5 +940,5 @@ def announce_compile(*dispatchers) -> None:
         except AttributeError:     # a numba without these internals: say nothing
             return
     if missing:
-        log.log(NOTICE, "compiling the kernels once for this machine (%s; about 20 s); "
+        log.log(NOTICE, "compiling the kernels once for this machine (%s; about 15 s); "
                 "later runs load them from the cache", ", ".join(missing))
