@@ -17,12 +17,17 @@ no table (the ``heos`` tier) or no compiled kernel, nothing is done.
 
 from __future__ import annotations
 
+import dataclasses
 import logging
-import os
 import subprocess
 import sys
 
+from corliss.engine import kernel
+from corliss.engine.crank_resolved import COMPILED_CODES
+from corliss.engine.model import steady_scene
+from corliss.engine.steady import run_steady
 from corliss.logs import NOTICE
+from corliss.thermo import steam_table
 
 log = logging.getLogger(__name__)
 
@@ -31,17 +36,12 @@ BUILD_COMMAND = "from corliss.thermo.steam_table import load_table; load_table()
 
 
 def _kernels_missing(scene) -> bool:
-    """True when the scene's compiled cycle integrator is not in numba's disk cache."""
-    from corliss.engine import kernel
-    from corliss.engine.crank_resolved import COMPILED_CODES
+    """True when the scene's compiled cycle integrator is not in numba's disk cache
+    (False when this numba does not show its cache: then nothing is done)."""
     method = scene.run.fidelity.method
     if method not in COMPILED_CODES:
         return False
-    d = kernel.CYCLE_KERNELS[COMPILED_CODES[method]]
-    try:
-        return not d.signatures and not os.path.exists(d._cache._cache_file._index_path)
-    except AttributeError:         # a numba without these internals: do nothing
-        return False
+    return bool(kernel.uncached(kernel.CYCLE_KERNELS[COMPILED_CODES[method]]))
 
 
 def _wanted(scene) -> bool:
@@ -62,7 +62,6 @@ def prepare(scene) -> None:
     """
     if not _wanted(scene):
         return
-    from corliss.thermo import steam_table
     if steam_table.table_path().is_file() or not _kernels_missing(scene):
         return
     log.log(NOTICE, "first run on this machine: building the steam table in a second "
@@ -86,14 +85,9 @@ def prepare(scene) -> None:
 
 def _compile_on(table, scene) -> None:
     """One cycle of ``scene`` on ``table``: numba compiles (and caches) what it calls."""
-    import dataclasses
-
-    from corliss.engine.model import steady_scene
-    from corliss.engine.steady import run_steady
-    from corliss.thermo.steam_table import stand_in
     sc = steady_scene(scene)
     sc = dataclasses.replace(sc, run=dataclasses.replace(sc.run, cycles=1))
-    with stand_in(table):
+    with steam_table.stand_in(table):
         try:
             run_steady(sc)
         except Exception as exc:    # noqa: BLE001 - a coarse table may stop the cycle

@@ -929,16 +929,24 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
                             owner, max_rhs)
 
 
+def uncached(dispatcher) -> bool | None:
+    """True when the compiled function is neither compiled in this process nor in
+    numba's disk cache (its first call will compile it); None when this numba does not
+    show its cache (internals this reads are gone)."""
+    try:
+        return (not dispatcher.signatures
+                and not os.path.exists(dispatcher._cache._cache_file._index_path))
+    except AttributeError:
+        return None
+
+
 def announce_compile(*dispatchers) -> None:
     """Say so, once, before compiled functions that are not yet in numba's disk cache
     are first called: the first run on a machine spends a minute compiling them."""
-    missing = []
-    for d in dispatchers:
-        try:
-            if not d.signatures and not os.path.exists(d._cache._cache_file._index_path):
-                missing.append(d.__name__)
-        except AttributeError:     # a numba without these internals: say nothing
-            return
+    state = [uncached(d) for d in dispatchers]
+    if None in state:          # a numba without these internals: say nothing
+        return
+    missing = [d.__name__ for d, m in zip(dispatchers, state) if m]
     if missing:
         log.log(NOTICE, "compiling the kernels once for this machine (%s; about 15 s); "
                 "later runs load them from the cache", ", ".join(missing))

@@ -620,6 +620,14 @@ _SCALARS = ("lnrho0", "dlnrho", "u0", "du", "sT0", "sdT", "k_lnrho0", "k_dlnrho"
             "k_du")
 
 
+def _table_of(arrays: dict, error: dict) -> SteamTable:
+    """A :class:`SteamTable` of the arrays read from a file (its scalars as floats, its
+    arrays contiguous float64, as the compiled lookup takes them)."""
+    return SteamTable(error=error, **{
+        k: (float(v) if k in _SCALARS else np.ascontiguousarray(v, dtype=np.float64))
+        for k, v in arrays.items()})
+
+
 def write_mini_table(path: Path = MINI_FILE) -> Path:
     """Build the miniature table from HEOS and write it to ``path``::
 
@@ -639,9 +647,8 @@ def mini_table() -> SteamTable:
     try:
         with np.load(MINI_FILE, allow_pickle=False) as z:
             if kappa is not None and json.loads(str(z["params"])) == MINI_PARAMS:
-                kw = {k: (float(z[k]) if k in _SCALARS else np.array(z[k], dtype=np.float64))
-                      for k in z.files if k != "params"}
-                return SteamTable(error={"params": MINI_PARAMS}, kappa=kappa, **kw)
+                arrays = {k: z[k] for k in z.files if k != "params"}
+                return _table_of({**arrays, "kappa": kappa}, {"params": MINI_PARAMS})
     except (OSError, KeyError, ValueError):
         pass
     return SteamTable(error={"params": MINI_PARAMS}, **_build(MINI_PARAMS))
@@ -693,11 +700,7 @@ def load_table() -> SteamTable:
         except OSError as exc:   # a read-only home: keep it in memory only
             log.warning("could not cache the steam table at %s: %s", path, exc)
     meta = json.loads(str(data.pop("meta")))
-    scal = ("lnrho0", "dlnrho", "u0", "du", "sT0", "sdT", "k_lnrho0", "k_dlnrho", "k_u0",
-            "k_du")
-    kw = {k: (float(v) if k in scal else np.ascontiguousarray(v, dtype=np.float64))
-          for k, v in data.items()}
-    tab = SteamTable(error=meta, **kw)
+    tab = _table_of(data, meta)
     _LOADED[key] = tab
     return tab
 

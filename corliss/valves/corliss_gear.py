@@ -395,8 +395,11 @@ class CorlissGear(ValveGear):
                                   method="bounded", options={"xatol": 1e-12})
             t_peak = float(res.x) % TWO_PI
             # the rise from opening to the peak, sampled: it brackets each release
+            # (kept only when it rises throughout, as a bracket by search needs)
             rise = np.nonzero(inside & (u <= (t_peak - t_open) % TWO_PI))[0]
             rise = rise[np.argsort(u[rise])]
+            if not np.all(np.diff(p[rise]) > 0.0):
+                rise = rise[:0]
             windows.append({"open": t_open % TWO_PI, "close": t_close % TWO_PI,
                             "peak": t_peak, "p_max": -float(res.fun), "f": f,
                             "rise_t": t_open + u[rise], "rise_p": p[rise]})
@@ -440,9 +443,9 @@ class CorlissGear(ValveGear):
                 level = s * w["p_max"]
                 a = w["open"]
                 b = a + (w["peak"] - a) % TWO_PI
-                # the samples' bracket of the level (the rise is monotone), else the rise
+                # the samples' bracket of the level, else the whole rise
                 k = int(np.searchsorted(w["rise_p"], level))
-                if 0 < k < w["rise_p"].size and np.all(np.diff(w["rise_p"]) > 0.0):
+                if 0 < k < w["rise_p"].size:
                     a, b = w["rise_t"][k - 1], w["rise_t"][k]
                 t = brentq(lambda t: w["f"](t) - level, a, b, xtol=1e-14)
                 out.append(t % TWO_PI)
