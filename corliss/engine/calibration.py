@@ -23,12 +23,34 @@ LOWEST, HIGHEST = 1.0e3, 3.0e5
 
 
 def marks_coefficient(scene, run, *, tol: float = 0.01, max_runs: int = 12) -> float:
-    """The coefficient [W/(m2 K)] at which the skin wall's missing water at cut-off is
-    Marks's eq. 221's for the same card, to ``tol`` of it (relative), ``run`` being the
-    steady runner (scene -> result): a secant on the
-    logarithm of the coefficient, bracketed by :data:`LOWEST` and :data:`HIGHEST`
-    (the missing water rises with the coefficient).  Returns the nearer bound when
-    eq. 221 lies outside what the range gives."""
+    """Marks's condensing coefficient for the scene's own engine.
+
+    The coefficient at which the skin wall's missing water at cut-off (head end) is
+    Marks's eq. 221's for the same card (Relative Proportions, Art. 75, p. 190), to
+    ``tol`` of it: a regula falsi (Illinois) on the logarithm of the coefficient,
+    bracketed by :data:`LOWEST` and :data:`HIGHEST` (the missing water rises with the
+    coefficient).
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene whose engine is calibrated; its ``engine.condensing_W_m2K`` is
+        replaced at each trial.
+    run : callable
+        The steady runner, ``run(scene) -> result``; the result's ``summary`` holds
+        ``missing_water_fraction_head`` and ``marks_missing_water_fraction_head``.
+    tol : float
+        Tolerance on the logarithm of the ratio of the two missing waters [-] (about
+        a relative tolerance on the ratio).
+    max_runs : int
+        Most trial runs after the two at the bounds.
+
+    Returns
+    -------
+    float
+        The coefficient of condensation and evaporation [W/(m2 K)]; the nearer bound
+        when eq. 221 lies outside what the range gives.
+    """
     def gap(h):
         eng = dataclasses.replace(scene.engine, condensing_W_m2K=h)
         s = run(dataclasses.replace(scene, engine=eng)).summary

@@ -76,7 +76,7 @@ MAX_REFINE = 5
 class Variant:
     """One governing of the engine.
 
-    Attributes
+    Parameters
     ----------
     name : str
         ``"throttling"`` or ``"cutoff"``.
@@ -137,6 +137,13 @@ def variants(scene, *, throttled_setting: float | None = None,
         Steam chest [m3] and pipe [m] of both variants (default: the scene's, else
         :data:`DEFAULT_CHEST_OF_SWEPT` of the swept volume and a pipe for
         :data:`PIPE_STEAM_SPEED_M_S`).
+
+    Returns
+    -------
+    dict of str to Variant
+        ``"throttling"``: the throttle as knob over [:data:`LEAST_OPENING`, 1], the gear
+        at ``throttled_setting``; ``"cutoff"``: the gear setting as knob over
+        ``setting_range``, the throttle wide open.  Both with the steam chest and pipe.
 
     Raises
     ------
@@ -358,11 +365,26 @@ def _safe(fn, *args):
 
 
 def droop_speeds(scene, loads) -> dict[float, float] | None:
-    """The shaft speed at each load under the scene's governor [rad/s], or None without
-    one: the governor balances along its static characteristic (Marks Art. 70), at the
+    """The shaft speed the scene's governor holds at each load.
+
+    The governor balances along its static characteristic (Marks Art. 70), at the
     bottom of its working travel under full load and at the top with none, so the speed
     falls linearly with the load across the governor's range (its droop), full load at
-    the slowest.  Loads beyond 1 extrapolate the line."""
+    the slowest.  Loads beyond 1 extrapolate the line.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene; its governor (if any) gives the characteristic.
+    loads : iterable of float
+        Loads as fractions of the rated power [-].
+
+    Returns
+    -------
+    dict of float to float or None
+        The speed at each load [rad/s], keyed by the load; None when the scene has no
+        governor.
+    """
     if scene.governor is None or scene.governor_type is None:
         return None
     from corliss.engine.operating_point import characteristic_speed, working_travel
@@ -374,7 +396,22 @@ def droop_speeds(scene, loads) -> dict[float, float] | None:
 
 
 def rated_power_W(scene, brake: bool) -> float | None:
-    """The scene's rated power [W]: its load at the start (torque x speed), or None."""
+    """The scene's rated power: its load at the start.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene; its load's torque and first fraction, and the run's speed, are read.
+    brake : bool
+        Whether the study compares brake power (the ``friction`` effect named); the
+        load's torque x speed is the power either way, so it does not change the value.
+
+    Returns
+    -------
+    float or None
+        ``torque x first load fraction x speed`` [W], or None when the scene has no
+        load.
+    """
     if scene.load is None:
         return None
     return scene.load.torque_N_m * scene.load.fractions[0] * scene.run.speed_rad_s
@@ -414,6 +451,15 @@ def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
     Returns
     -------
     CompareResult
+        One row per variant, condensation and load: the knob at the operating point
+        (``knob_frac``), power, steam and water rates, cut-off, chest pressure at
+        admission, missing water, or ``status = "unreached"``.
+
+    Raises
+    ------
+    InputError
+        Loads outside (0, 2], an unknown ``condensation``, or what :func:`variants`
+        refuses.
     """
     from corliss.engine.compare_result import CompareResult
 

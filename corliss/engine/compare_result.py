@@ -26,8 +26,12 @@ POINT_COLUMNS = ("load_frac", "variant", "condensation", "knob", "status", "knob
 class CompareResult(Result):
     """One engine governed by throttling and by cut-off across its load range.
 
-    Attributes
+    Parameters
     ----------
+    scene, property_tier, rhs_evaluations, wall_time_s
+        As for :class:`~corliss.engine.result.Result` (``wall_time_s`` [s]).
+    timeseries, cycles : DataFrame
+        Both the ``points`` table (one row per load, variant and condensation).
     loads : list of float
         The loads run, fractions of the rated power [-].
     variants : dict
@@ -45,9 +49,9 @@ class CompareResult(Result):
     droop : bool
         Whether each load ran at its governor's speed (``speed_rpm`` in the table).
 
-    Tables
-    ------
-    ``points``: one row per load, variant and condensation (:data:`POINT_COLUMNS`);
+    Notes
+    -----
+    Tables: ``points``: one row per load, variant and condensation (:data:`POINT_COLUMNS`);
     ``willans``: the least-squares Willans line of each variant and condensation,
     steam = intercept + slope x indicated power (slope as kg/kWh: the steam of each
     further kilowatt);

@@ -24,7 +24,7 @@ import numpy as np
 class EngineSpec:
     """A double-acting cylinder (all SI).
 
-    Attributes
+    Parameters
     ----------
     bore_m, stroke_m, connecting_rod_m, piston_rod_diameter_m : float
         Cylinder bore, piston stroke, connecting rod centre to centre, piston rod
@@ -88,6 +88,7 @@ class CylinderGeometry:
     Parameters
     ----------
     spec : EngineSpec
+        The cylinder's dimensions.
     rod_angularity : bool
         True: exact slider crank; False: infinite connecting rod.
     """
@@ -122,7 +123,19 @@ class CylinderGeometry:
         return (self.spec.clearance[0] * sh, self.spec.clearance[1] * sc)
 
     def piston_m(self, theta):
-        """Piston displacement from head-end dead centre [m]."""
+        """Piston displacement from head-end dead centre (Marks Art. 96 III, eq. 239).
+
+        Parameters
+        ----------
+        theta : float or array_like
+            Crank angle from head-end dead centre [rad].
+
+        Returns
+        -------
+        ndarray
+            ``s = R (1 - cos theta) + L - sqrt(L^2 - R^2 sin^2 theta)`` [m] (without
+            rod angularity, ``R (1 - cos theta)``), of ``theta``'s shape.
+        """
         R = self.crank_m
         th = np.asarray(theta, dtype=float)
         s = R * (1.0 - np.cos(th))
@@ -132,7 +145,19 @@ class CylinderGeometry:
         return s
 
     def dpiston_m_per_rad(self, theta):
-        """Derivative of the piston displacement with crank angle [m/rad]."""
+        """Derivative of the piston displacement with crank angle.
+
+        Parameters
+        ----------
+        theta : float or array_like
+            Crank angle from head-end dead centre [rad].
+
+        Returns
+        -------
+        ndarray
+            ``ds/dtheta = R sin theta + R^2 sin theta cos theta / sqrt(L^2 - R^2
+            sin^2 theta)`` [m/rad], of ``theta``'s shape.
+        """
         R = self.crank_m
         th = np.asarray(theta, dtype=float)
         ds = R * np.sin(th)
@@ -142,17 +167,54 @@ class CylinderGeometry:
         return ds
 
     def fraction(self, theta):
-        """Piston position as a fraction of stroke from head-end dead centre [-]."""
+        """Piston position as a fraction of the stroke from head-end dead centre.
+
+        Parameters
+        ----------
+        theta : float or array_like
+            Crank angle from head-end dead centre [rad].
+
+        Returns
+        -------
+        ndarray
+            ``s / S`` [-], 0 at head-end and 1 at crank-end dead centre.
+        """
         return self.piston_m(theta) / self.spec.stroke_m
 
     def volumes_m3(self, theta):
-        """Volumes of the (head, crank) ends [m3] at crank angle ``theta`` [rad]."""
+        """Volumes of the two cylinder ends, clearance included.
+
+        Parameters
+        ----------
+        theta : float or array_like
+            Crank angle from head-end dead centre [rad].
+
+        Returns
+        -------
+        V_head : ndarray
+            ``clearance + A_head s`` [m3], of ``theta``'s shape.
+        V_crank : ndarray
+            ``clearance + A_crank (S - s)`` [m3], of ``theta``'s shape.
+        """
         s = self.piston_m(theta)
         ch, cc = self.clearance_m3
         return (ch + self.area_head_m2 * s,
                 cc + self.area_crank_m2 * (self.spec.stroke_m - s))
 
     def dvolumes_m3_per_rad(self, theta):
-        """Derivatives of the end volumes with crank angle [m3/rad]."""
+        """Derivatives of the end volumes with crank angle.
+
+        Parameters
+        ----------
+        theta : float or array_like
+            Crank angle from head-end dead centre [rad].
+
+        Returns
+        -------
+        dV_head : ndarray
+            ``A_head ds/dtheta`` [m3/rad], of ``theta``'s shape.
+        dV_crank : ndarray
+            ``-A_crank ds/dtheta`` [m3/rad], of ``theta``'s shape.
+        """
         ds = self.dpiston_m_per_rad(theta)
         return (self.area_head_m2 * ds, -self.area_crank_m2 * ds)

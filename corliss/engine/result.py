@@ -44,9 +44,17 @@ _exporter = None
 
 
 def register_exporter(exporter) -> None:
-    """Register the export layer: an object with ``to_csv(result, path, table,
-    units_system)``, ``plot(result, kind, ax, units_system)`` and ``write(result, out_dir,
-    plots)``.  :mod:`corliss.results` registers itself on import."""
+    """Register the export layer the export methods of :class:`Result` hand over to.
+
+    :mod:`corliss.results` registers itself on import; the engine never imports it.
+
+    Parameters
+    ----------
+    exporter : object
+        An object with ``to_csv(result, path, table, units_system)``, ``plot(result,
+        kind, ax, units_system)`` and ``write(result, out_dir, plots)``; it replaces any
+        registered before.
+    """
     global _exporter
     _exporter = exporter
 
@@ -61,7 +69,7 @@ def _export():
 class Result:
     """A run's outcome (base of every kind).
 
-    Attributes
+    Parameters
     ----------
     scene : Scene
         The scene that was run (resolved, SI).
@@ -151,8 +159,24 @@ class Result:
         raise NotImplementedError
 
     def table(self, name: str | None = None) -> pd.DataFrame:
-        """One of the result's tables, SI (names in :attr:`TABLES`; the first by
-        default)."""
+        """One of the result's tables, SI.
+
+        Parameters
+        ----------
+        name : str, optional
+            One of :attr:`TABLES` (the first by default).
+
+        Returns
+        -------
+        DataFrame
+            The table as computed, SI, the unit in every column name (not a copy: see
+            :meth:`to_pandas`).
+
+        Raises
+        ------
+        ValueError
+            A name not in :attr:`TABLES`.
+        """
         name = name or self.TABLES[0]
         if name not in self.TABLES:
             raise ValueError(f"table {name!r}: one of {', '.join(self.TABLES)}")
@@ -170,6 +194,11 @@ class Result:
         units_system : str, optional
             None for SI as computed (``p_head_Pa``); ``"US"`` or ``"SI"`` for the output
             units of that system, named by them (``p_head_psia``, ``p_head_kPa_abs``).
+
+        Returns
+        -------
+        DataFrame
+            A copy of the table, its columns renamed to their units when converted.
         """
         df = self.table(table)
         if units_system is None:
@@ -178,14 +207,39 @@ class Result:
 
     def to_csv(self, path: str | Path, table: str | None = None,
                units_system: str | None = None) -> Path:
-        """Write a table as CSV in the output units with its ``.meta.json`` beside it
-        (both whole or not at all).  ``table`` is one of :attr:`TABLES` (the first by
-        default); ``units_system`` "US" or "SI" (default: the scene's).  Returns the CSV
-        path."""
+        """Write a table as CSV in the output units with its ``.meta.json`` beside it.
+
+        Both files are written whole or not at all (by the registered export layer,
+        :func:`register_exporter`).
+
+        Parameters
+        ----------
+        path : str or Path
+            The CSV file to write.
+        table : str, optional
+            One of :attr:`TABLES` (the first by default).
+        units_system : str, optional
+            ``"US"`` or ``"SI"`` (default: the scene's output units).
+
+        Returns
+        -------
+        Path
+            The CSV file written.
+        """
         return _export().to_csv(self, path, table or self.TABLES[0], units_system)
 
     def plot(self, kind: str | None = None, ax=None, units_system: str | None = None) -> dict:
-        """Draw one of :attr:`FIGURES` (the first by default) in period style.
+        """Draw one of :attr:`FIGURES` in period style.
+
+        Parameters
+        ----------
+        kind : str, optional
+            One of :attr:`FIGURES` (the first by default).
+        ax : matplotlib Axes, optional
+            The axes to draw a one-axes figure on (``card``, ``effort``, ``lp_card``,
+            ``willans``; default: a new figure).
+        units_system : str, optional
+            ``"US"`` or ``"SI"`` for the axes' units (default: the scene's).
 
         Returns
         -------
@@ -195,9 +249,25 @@ class Result:
         return _export().plot(self, kind or self.FIGURES[0], ax, units_system)
 
     def write(self, out_dir: str | Path, *, plots: bool = True) -> dict[str, Path]:
-        """Write every file of the run into ``out_dir``: tables as CSV with their meta
-        files, the summary as JSON and (``plots``) the figures as PNG.  All files appear
-        together or none does; an earlier run's files are never damaged."""
+        """Write every file of the run into a directory.
+
+        The tables as CSV with their meta files, the summary as JSON and the figures as
+        PNG.  All files appear together or none does; an earlier run's files are never
+        damaged.
+
+        Parameters
+        ----------
+        out_dir : str or Path
+            The directory (made if missing).
+        plots : bool
+            Whether to draw the figures too.
+
+        Returns
+        -------
+        dict of str to Path
+            Each file written, keyed by the table, figure or summary it holds (the meta
+            files beside the tables).
+        """
         return _export().write(self, out_dir, plots)
 
 
@@ -209,8 +279,10 @@ def _last(ts: pd.DataFrame) -> pd.DataFrame:
 class SteadyResult(Result):
     """A steady run: the speed held, cycles until periodic.
 
-    Attributes
+    Parameters
     ----------
+    scene, property_tier, timeseries, cycles, rhs_evaluations, wall_time_s
+        As for :class:`Result` (``wall_time_s`` [s]); the tables are described below.
     events : dict
         Valve events of each end (the JSON contract of ``corliss events``).
     geometry : CylinderGeometry
@@ -244,6 +316,8 @@ class SteadyResult(Result):
         Where a crank-resolved run ended: the ``start`` of a neighbouring run
         (``corliss.engine.steady.run_steady``); None for the other models.
 
+    Notes
+    -----
     Tables: ``timeseries`` (``cycle``, ``crank_angle_deg``, ``time_s``, and per end
     ``p_*_Pa``, ``T_*_K``, ``x_*_frac`` (dryness), ``V_*_m3``, ``m_*_kg``), ``cycles``
     (per cycle: work, mass and enthalpy from the chest and to the exhaust, heat), ``cards``
@@ -537,9 +611,12 @@ class SteadyResult(Result):
 class TransientResult(Result):
     """A transient run: the speed a state, the load changing, the governor acting.
 
-    Attributes
+    Parameters
     ----------
+    scene, property_tier, timeseries, cycles, rhs_evaluations, wall_time_s
+        As for :class:`Result` (``wall_time_s`` [s]); the tables are described below.
     geometry : CylinderGeometry
+        The cylinder.
     stalled : bool
         True when the load stopped the engine before the run's end.
     mechanism : GovernorMechanism or None
@@ -557,6 +634,8 @@ class TransientResult(Result):
         As for a steady run: evaluations at trial states clamped to the range of the
         steam properties, and visited states heated beyond their greatest energy.
 
+    Notes
+    -----
     Tables: ``timeseries`` (``cycle``, ``time_s``, ``crank_angle_deg``, ``speed_rpm``,
     ``governor_z_frac``, ``actuator_frac`` (the throttle's opening or the gear's
     setting), and with ``record`` = step or degree the cylinder pressures ``p_head_Pa``,
@@ -628,10 +707,18 @@ class TransientResult(Result):
         }
 
     def cards(self) -> dict:
-        """Head and crank cards of the turn before the step and of the last turn:
-        ``{"before": {"head": frame, "crank": frame, "cycle": k}, "after": ...}`` with
-        ``V_m3``, ``p_Pa``; empty when the time series has no pressures (``record`` =
-        cycle, or the mean-value model)."""
+        """Head and crank cards of the turn before the step and of the last turn.
+
+        Without a step in the run, "before" is the first turn.
+
+        Returns
+        -------
+        dict
+            ``{"before": {"head": frame, "crank": frame, "cycle": k}, "after": ...}``,
+            each frame with ``V_m3`` [m3] and ``p_Pa`` [Pa] over the turn ``k``; empty
+            when the time series has no pressures (``record`` = cycle, or the
+            mean-value model).
+        """
         ts = self.timeseries
         if "p_head_Pa" not in ts:
             return {}
@@ -667,13 +754,17 @@ class SweepResult(Result):
     """Steady runs across the load range at a series of gear settings or throttle
     openings.
 
-    Attributes
+    Parameters
     ----------
+    scene, property_tier, timeseries, cycles, rhs_evaluations, wall_time_s
+        As for :class:`Result` (``wall_time_s`` [s]); the tables are described below.
     knob : str
         ``"setting"`` or ``"throttle"``.
     values : list of float
         The settings [-] or openings [-] run.
 
+    Notes
+    -----
     Tables: ``points`` (one row per value: ``knob_frac`` (the setting or opening),
     ``indicated_power_W``, ``steam_rate_kg_per_h``, ``water_rate_kg_per_kWh``,
     ``cutoff_head_frac``, and ``brake_power_W`` with ``friction``), also as
@@ -693,8 +784,17 @@ class SweepResult(Result):
         return self.cycles
 
     def willans(self) -> tuple[float, float, float]:
-        """The least-squares Willans line steam = a + b power: (a [kg/h], b [kg/h per W],
-        R^2 [-])."""
+        """The least-squares Willans line ``steam = a + b * power`` through the points.
+
+        Returns
+        -------
+        a : float
+            Intercept: the steam rate at no power [kg/h].
+        b : float
+            Slope: the steam of each further watt [kg/h per W].
+        r2 : float
+            Coefficient of determination [-].
+        """
         return willans_fit(self.points)
 
     def _make_summary(self) -> dict:
@@ -714,8 +814,23 @@ class SweepResult(Result):
 
 
 def willans_fit(frame: pd.DataFrame) -> tuple[float, float, float]:
-    """Least-squares line steam = a + b power through a sweep: (a [kg/h], b [kg/h per W],
-    R^2 [-])."""
+    """Least-squares Willans line ``steam = a + b * power`` through a sweep.
+
+    Parameters
+    ----------
+    frame : DataFrame
+        At least two rows with ``indicated_power_W`` [W] and ``steam_rate_kg_per_h``
+        [kg/h].
+
+    Returns
+    -------
+    a : float
+        Intercept: the steam rate at no power [kg/h].
+    b : float
+        Slope: the steam of each further watt [kg/h per W].
+    r2 : float
+        Coefficient of determination [-] (1 when every steam rate is the same).
+    """
     x = frame["indicated_power_W"].to_numpy()
     y = frame["steam_rate_kg_per_h"].to_numpy()
     b, a = np.polyfit(x, y, 1)
