@@ -32,7 +32,36 @@ CLOSED, STEAM, EXHAUST = 0, 1, 2
 
 @dataclass
 class EndTrace:
-    """One end over one cycle of the ideal-port stepping (arrays over the grid)."""
+    """One end over one cycle of the ideal-port stepping.
+
+    The arrays have one entry per point of the grid, ``n + 1`` of them; at a point where
+    a port opens, the state after the filling or blow-down.
+
+    Parameters
+    ----------
+    theta_rad : ndarray
+        Crank angles of the grid [rad].
+    V_m3 : ndarray
+        Volume of the end [m3].
+    p_Pa : ndarray
+        Pressure [Pa].
+    T_K : ndarray
+        Temperature [K].
+    x : ndarray
+        Dryness [-] (as the steam state gives it).
+    m_kg : ndarray
+        Mass in the end [kg].
+    work_J : float
+        Work of the steam on the piston over the cycle [J].
+    m_chest_kg : float
+        Net mass from the chest over the cycle [kg].
+    H_chest_J : float
+        Net enthalpy from the chest over the cycle [J].
+    m_exhaust_kg : float
+        Net mass from the exhaust over the cycle [kg] (negative: to it).
+    H_exhaust_J : float
+        Net enthalpy from the exhaust over the cycle [J] (negative: to it).
+    """
 
     theta_rad: np.ndarray
     V_m3: np.ndarray
@@ -91,6 +120,8 @@ def step_end(steam: Steam, theta: np.ndarray, V: np.ndarray, conn: np.ndarray,
 
     Parameters
     ----------
+    steam : Steam
+        The property tier.
     theta, V : ndarray
         Crank angles [rad] and end volumes [m3], ``n + 1`` points.
     conn : ndarray of int
@@ -102,8 +133,12 @@ def step_end(steam: Steam, theta: np.ndarray, V: np.ndarray, conn: np.ndarray,
 
     Returns
     -------
-    trace, state, mass
-        The cycle's trace, and the state and mass at its end.
+    trace : EndTrace
+        The cycle's trace.
+    state : State
+        The state at the cycle's end.
+    mass : float
+        The mass at the cycle's end [kg].
     """
     n = len(theta) - 1
     p = np.empty(n + 1)
@@ -151,6 +186,29 @@ def run_cycles(steam: Steam, theta: np.ndarray, volumes: tuple[np.ndarray, np.nd
                tol: float, max_cycles: int, cycles: int | None = None):
     """Repeat the cycle until the indicated work is periodic.
 
+    Each end starts full of exhaust steam; the cycle is periodic when the work of both
+    ends changes by no more than ``tol`` of itself from one cycle to the next.
+
+    Parameters
+    ----------
+    steam : Steam
+        The property tier.
+    theta : ndarray
+        The crank grid [rad], ``n + 1`` points (:func:`stepping_grid`).
+    volumes : (ndarray, ndarray)
+        Head- and crank-end volumes at the grid's points [m3].
+    conns : (ndarray, ndarray)
+        Head- and crank-end connections over the ``n`` intervals
+        (:func:`connection_from_areas`).
+    chest, exhaust : State
+        Reservoir states.
+    tol : float
+        Relative change of the cycle's work that counts as periodic [-].
+    max_cycles : int
+        Most cycles run when ``cycles`` is None.
+    cycles : int, optional
+        Run exactly this many cycles, without the test.
+
     Returns
     -------
     traces : list of (EndTrace, EndTrace)
@@ -181,7 +239,21 @@ def run_cycles(steam: Steam, theta: np.ndarray, volumes: tuple[np.ndarray, np.nd
 
 
 def connection_from_areas(open_steam: np.ndarray, open_exhaust: np.ndarray) -> np.ndarray:
-    """Connection code of each interval from port-open masks (steam wins a blow-through)."""
+    """Connection code of each interval from port-open masks.
+
+    Steam wins a blow-through (both ports open).
+
+    Parameters
+    ----------
+    open_steam, open_exhaust : ndarray of bool
+        Whether the steam port and the exhaust port are open over each interval; one
+        shape.
+
+    Returns
+    -------
+    ndarray of int8
+        :data:`STEAM`, :data:`EXHAUST` or :data:`CLOSED` for each interval.
+    """
     c = np.full(open_steam.shape, CLOSED, dtype=np.int8)
     c[open_exhaust] = EXHAUST
     c[open_steam] = STEAM
@@ -189,7 +261,21 @@ def connection_from_areas(open_steam: np.ndarray, open_exhaust: np.ndarray) -> n
 
 
 def stepping_grid(breakpoints: np.ndarray, step_rad: float) -> np.ndarray:
-    """A crank grid over [0, 2 pi] with at most ``step_rad`` spacing, through every kink."""
+    """A crank grid over one turn through every kink of the port areas.
+
+    Parameters
+    ----------
+    breakpoints : ndarray
+        Crank angles where a port area has a kink [rad] (taken modulo ``2 pi``).
+    step_rad : float
+        The largest spacing [rad] (at least 4 intervals a turn).
+
+    Returns
+    -------
+    ndarray
+        Increasing crank angles from 0 to ``2 pi`` [rad], both included, points closer
+        than 1e-10 rad merged.
+    """
     n = max(int(math.ceil(2 * math.pi / step_rad)), 4)
     g = np.union1d(np.linspace(0.0, 2 * math.pi, n + 1), np.asarray(breakpoints) % (2 * math.pi))
     g = g[np.concatenate([[True], np.diff(g) > 1e-10])]

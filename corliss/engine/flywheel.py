@@ -28,7 +28,7 @@ INERTIA_RANGE = (1e-5, 2e7)             # [kg m2]
 class FlywheelSpec:
     """The rotating train's inertia.
 
-    Attributes
+    Parameters
     ----------
     inertia_kg_m2 : float
         Moment of inertia about the shaft [kg m2].
@@ -38,7 +38,27 @@ class FlywheelSpec:
 
 
 def parse_flywheel(t: Table) -> FlywheelSpec:
-    """Read a ``[flywheel]`` table."""
+    """Read a ``[flywheel]`` table.
+
+    Either ``moment_of_inertia``, or ``rim_weight`` with ``mean_radius`` (the rim's
+    ``m r^2``, Marks Art. 61); ``other_inertia`` is added to either.
+
+    Parameters
+    ----------
+    t : Table
+        The scene's ``[flywheel]`` table.
+
+    Returns
+    -------
+    FlywheelSpec
+        The train's moment of inertia [kg m2].
+
+    Raises
+    ------
+    InputError
+        Both forms or neither, a value outside :data:`INERTIA_RANGE`,
+        :data:`RIM_MASS_RANGE` or :data:`RIM_RADIUS_RANGE`, or an unknown key.
+    """
     direct = t.has("moment_of_inertia")
     rim = t.has("rim_weight") or t.has("mean_radius")
     if direct == rim:

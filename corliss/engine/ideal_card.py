@@ -28,7 +28,22 @@ _N = 2000  # samples per process
 
 
 def card_area(V: np.ndarray, p: np.ndarray) -> float:
-    """Closed-path integral of p dV [J] over a card traced as a polygon (shoelace)."""
+    """The area of a card: the closed-path integral of ``p dV``.
+
+    Trapezoids along the polygon, closed from the last point back to the first.
+
+    Parameters
+    ----------
+    V : ndarray
+        Volumes around the card [m3]; shape (n,).
+    p : ndarray
+        Pressures at those volumes [Pa]; shape (n,).
+
+    Returns
+    -------
+    float
+        The work [J]: positive for a card traced clockwise in (V, p) (the engine's).
+    """
     return float(np.sum(0.5 * (p[1:] + p[:-1]) * np.diff(V))
                  + 0.5 * (p[0] + p[-1]) * (V[0] - V[-1]))
 
@@ -75,5 +90,26 @@ def hyperbolic_card(V_clear: float, V_swept: float, f_cut: float, f_rel: float,
 
 def indicated_steam_kg(V_clear: float, V_swept: float, f_cut: float, f_comp: float,
                        supply: State, cushion: State) -> float:
-    """Marks's indicated steam per stroke [kg] (Art. 73, eq. 219b): at cut-off minus cushion."""
+    """Marks's indicated steam per stroke (Art. 73, eq. 219b).
+
+    The steam present at cut-off at the supply's density less the cushion shut in at
+    compression at the cushion's density.
+
+    Parameters
+    ----------
+    V_clear, V_swept : float
+        Clearance and swept volume of the end [m3].
+    f_cut, f_comp : float
+        Cut-off and compression as fractions of the stroke from this end's dead
+        centre [-].
+    supply : State
+        The steam at cut-off (supply pressure).
+    cushion : State
+        The steam shut in at compression (dry saturated at back pressure).
+
+    Returns
+    -------
+    float
+        The indicated steam per stroke [kg].
+    """
     return (V_clear + V_swept * f_cut) * supply.rho - (V_clear + V_swept * f_comp) * cushion.rho

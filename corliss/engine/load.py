@@ -37,9 +37,9 @@ SPEED_LAWS = {"constant": 0, "proportional": 1, "square": 2}
 
 @dataclass(frozen=True)
 class LoadSpec:
-    """The shaft load (all SI).
+    """The shaft load (all SI): ``T_load(t, omega) = T_ref f(t) (omega / omega_ref)^k``.
 
-    Attributes
+    Parameters
     ----------
     torque_N_m : float
         Reference torque T_ref [N m].
@@ -61,15 +61,34 @@ class LoadSpec:
 
     @property
     def speed_exponent(self) -> int:
+        """The exponent ``k`` of the speed law [-]: 0, 1 or 2."""
         return SPEED_LAWS[self.speed_law]
 
     def fraction(self, t_s):
-        """f(t) [-] (vectorised)."""
+        """The schedule's load fraction ``f(t)``, piecewise linear, held beyond its ends.
+
+        Parameters
+        ----------
+        t_s : float or array_like
+            Time from the start of the run [s].
+
+        Returns
+        -------
+        float or ndarray
+            ``f`` [-], of ``t_s``'s shape.
+        """
         t = np.asarray(t_s, dtype=float)
         return np.interp(t, self.times_s, self.fractions)
 
     def change_times_s(self) -> list[float]:
-        """Times where the schedule changes slope or steps [s]."""
+        """Times where the schedule changes slope or steps.
+
+        Returns
+        -------
+        list of float
+            The schedule's inner times, sorted, without repeats [s] (empty for a
+            constant load).
+        """
         return sorted(set(self.times_s[1:-1])) if len(self.times_s) > 2 else []
 
 
@@ -81,7 +100,30 @@ def _fraction(t: Table, key: str) -> float:
 
 
 def parse_load(t: Table, speed_rad_s: float, scene_dir: Path | None) -> LoadSpec:
-    """Read a ``[load]`` table; ``speed_rad_s`` turns a power into the reference torque."""
+    """Read a ``[load]`` table.
+
+    Parameters
+    ----------
+    t : Table
+        The scene's ``[load]`` table.
+    speed_rad_s : float
+        The run's speed [rad/s], which turns a ``power`` into the reference torque
+        (``T_ref = P / omega_ref``).
+    scene_dir : Path or None
+        The scene's directory, against which a relative ``schedule`` path is read.
+
+    Returns
+    -------
+    LoadSpec
+        The load; a step or ramp as a schedule of four points, the last one second
+        after the change.
+
+    Raises
+    ------
+    InputError
+        Both or neither of ``torque`` and ``power``, a negative load, a fraction outside
+        0 to 5, a bad step or ramp time, a bad schedule file, or an unknown key.
+    """
     if t.has("torque") and t.has("power"):
         raise InputError(t.key("torque"), t.raw("torque", None),
                          "either torque or power (at the run's speed), not both")

@@ -44,7 +44,25 @@ SPEED_FRACTIONS = (0.8, 0.9, 1.0, 1.1, 1.2)
 
 @dataclasses.dataclass
 class EngineMap:
-    """Mean indicated torque [N m] and steam per turn [kg] on (actuator, speed) grids."""
+    """Mean indicated torque and steam per turn on (actuator, speed) grids.
+
+    Parameters
+    ----------
+    actuator : ndarray
+        The actuator's values [-] (throttle opening or gear setting), increasing;
+        shape (na,).
+    speed_rad_s : ndarray
+        The speeds [rad/s], increasing; shape (nw,).
+    torque_N_m : ndarray
+        Mean indicated torque over a turn [N m]; shape (na, nw).
+    steam_kg : ndarray
+        Steam from the supply per turn [kg]; shape (na, nw).
+    cutoff_head_frac : ndarray
+        The head end's cut-off at the middle speed [-], as a fraction of the stroke;
+        shape (na,), NaN for a throttle (or no governor).
+    build_s : float
+        Wall time spent building the maps [s].
+    """
 
     actuator: np.ndarray
     speed_rad_s: np.ndarray
@@ -54,7 +72,22 @@ class EngineMap:
     build_s: float
 
     def at(self, a: float, w: float) -> tuple[float, float]:
-        """(torque, steam per turn) by bilinear interpolation, held at the grid's edges."""
+        """Torque and steam per turn by bilinear interpolation, held at the grid's edges.
+
+        Parameters
+        ----------
+        a : float
+            Actuator value [-].
+        w : float
+            Shaft speed [rad/s].
+
+        Returns
+        -------
+        torque : float
+            Mean indicated torque [N m].
+        steam : float
+            Steam per turn [kg].
+        """
         i, fa = _cell(self.actuator, a)
         j, fw = _cell(self.speed_rad_s, w)
         def bil(tab):
@@ -71,7 +104,26 @@ def _cell(grid: np.ndarray, x: float):
 
 
 def build_map(scene, mech) -> EngineMap:
-    """Steady crank-resolved runs on the grid (the scene's effects and fidelity)."""
+    """Build the maps from steady crank-resolved runs on the grid.
+
+    :data:`ACTUATOR_POINTS` actuator values across the governor's range (without a
+    governor, two points at the scene's own gear and throttle) by
+    :data:`SPEED_FRACTIONS` of the run's speed, each run steady with the scene's effects
+    and fidelity.
+
+    Parameters
+    ----------
+    scene : Scene
+        The transient scene.
+    mech : GovernorMechanism or None
+        The governor in its common form: what it acts on (``throttle`` or the gear's
+        ``setting``) and its actuator's range; None for a free engine.
+
+    Returns
+    -------
+    EngineMap
+        The maps.
+    """
     t0 = time.perf_counter()
     knob = "throttle" if mech is not None and mech.acts_on == "throttle" else "setting"
     if mech is None:

@@ -26,12 +26,36 @@ log = logging.getLogger(__name__)
 
 
 def geometry_of(scene) -> CylinderGeometry:
-    """The cylinder geometry, with the connecting rod only if ``rod_angularity`` is named."""
+    """The cylinder's geometry, with the connecting rod only if ``rod_angularity`` is named.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+
+    Returns
+    -------
+    CylinderGeometry
+        The (first or high-pressure) cylinder: exact slider crank with the
+        ``rod_angularity`` effect, an infinite rod without.
+    """
     return CylinderGeometry(scene.engine, rod_angularity=scene.run.has("rod_angularity"))
 
 
 def lp_geometry_of(scene) -> CylinderGeometry | None:
-    """A compound's low-pressure cylinder geometry (None for a simple engine)."""
+    """A compound's low-pressure cylinder geometry.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+
+    Returns
+    -------
+    CylinderGeometry or None
+        The LP cylinder (rod angularity as for :func:`geometry_of`); None for a simple
+        engine.
+    """
     if scene.compound is None:
         return None
     return CylinderGeometry(scene.compound.lp_engine,
@@ -39,13 +63,36 @@ def lp_geometry_of(scene) -> CylinderGeometry | None:
 
 
 def build_gear(scene):
-    """The scene's valve gear object (at the run's speed, for gears that need it)."""
+    """The scene's valve gear, built from its registry entry.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+
+    Returns
+    -------
+    object
+        The valve gear (:mod:`corliss.valves`), at the run's speed for gears whose
+        motion depends on it (those with a ``with_speed``).
+    """
     gear = gear_type(scene.gear_type).build(scene.gear)
     return gear.with_speed(scene.run.speed_rad_s) if hasattr(gear, "with_speed") else gear
 
 
 def build_lp_gear(scene):
-    """A compound's low-pressure valve gear (None for a simple engine)."""
+    """A compound's low-pressure valve gear.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+
+    Returns
+    -------
+    object or None
+        The LP cylinder's valve gear; None for a simple engine.
+    """
     if scene.compound is None:
         return None
     return gear_type(scene.compound.lp_gear_type).build(scene.compound.lp_gear)
@@ -57,6 +104,7 @@ def scene_events(scene, settings: list[float] | None = None):
     Parameters
     ----------
     scene : Scene
+        The scene.
     settings : list of float, optional
         Values of the gear's setting (e.g. the block offset of a link motion).
 
@@ -65,6 +113,11 @@ def scene_events(scene, settings: list[float] | None = None):
     dict or list of dict
         The events of each end (see :func:`corliss.valves.events.events`); with
         ``settings``, a list of ``{"setting": s, "head": {...}, "crank": {...}}``.
+
+    Raises
+    ------
+    InputError
+        ``settings`` for a gear without a setting, or a setting outside its range.
     """
     geo = geometry_of(scene)
     gear = build_gear(scene)
@@ -86,7 +139,23 @@ def scene_events(scene, settings: list[float] | None = None):
 
 
 def reservoir_states(scene, steam: Steam) -> tuple[State, State]:
-    """(chest, exhaust): supply steam at the chest; dry saturated steam at back pressure."""
+    """The two reservoirs' states.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene: supply pressure and temperature (superheated) or dryness, and
+        exhaust pressure.
+    steam : Steam
+        The property tier.
+
+    Returns
+    -------
+    chest : State
+        The supply steam at the chest.
+    exhaust : State
+        Dry saturated steam at back pressure.
+    """
     s = scene.supply
     chest = (steam.pt(s.pressure_Pa, s.temperature_K) if s.temperature_K is not None
              else steam.px(s.pressure_Pa, s.dryness))
@@ -94,7 +163,32 @@ def reservoir_states(scene, steam: Steam) -> tuple[State, State]:
 
 
 def build_network(scene, geo, pm, steam: Steam, chest: State, exhaust: State) -> Network:
-    """The network of control volumes the scene's effects call for."""
+    """The network of control volumes the scene's effects call for.
+
+    One cylinder (or identical ones on ``engine.crank_angles``) or a compound with its
+    receiver (which starts dry saturated at the geometric mean of supply and back
+    pressure); then, as named, ``steam_chest``, ``leakage`` and ``wall_heat`` (a
+    transient run takes the ``conductance`` wall in place of the ``skin``, with a
+    warning).
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+    geo : CylinderGeometry
+        The (first or high-pressure) cylinder.
+    pm : PortMap
+        Its port areas against crank angle.
+    steam : Steam
+        The property tier.
+    chest, exhaust : State
+        The reservoirs (:func:`reservoir_states`).
+
+    Returns
+    -------
+    Network
+        A fresh network.
+    """
     fid = scene.run.fidelity
     omega = scene.run.speed_rad_s
     if scene.compound is None:
@@ -137,14 +231,16 @@ def build_network(scene, geo, pm, steam: Steam, chest: State, exhaust: State) ->
 class Model:
     """A scene assembled: what every runner starts from.
 
-    Attributes
+    Parameters
     ----------
     scene : Scene
+        The scene assembled.
     steam : Steam
         The property tier of the scene's fidelity.
     chest, exhaust : State
         Supply steam at the chest; dry saturated steam at back pressure.
     geometry : CylinderGeometry
+        The (first or high-pressure) cylinder.
     gear : object
         The valve gear (a registry entry built from the scene).
     portmap : PortMap or None
@@ -166,14 +262,40 @@ class Model:
     lp_events: dict | None = None
 
     def network(self, portmap=None) -> Network:
-        """A fresh network of the scene's control volumes (on ``portmap`` if given)."""
+        """A fresh network of the scene's control volumes (:func:`build_network`).
+
+        Parameters
+        ----------
+        portmap : PortMap, optional
+            Port areas to build it on (default: the model's).
+
+        Returns
+        -------
+        Network
+            The network.
+        """
         return build_network(self.scene, self.geometry, portmap or self.portmap, self.steam,
                              self.chest, self.exhaust)
 
 
 def assemble(scene, *, tabulated: bool = True) -> Model:
-    """Build the model of ``scene``: property tier, reservoirs, geometry, gear, port map
-    (when ``tabulated``), and the valve events found on the gear's motion."""
+    """Build the model of a scene.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+    tabulated : bool
+        Whether to tabulate the gear's port areas (a PortMap at the fidelity's
+        ``portmap_points``); the ideal card needs none.
+
+    Returns
+    -------
+    Model
+        Property tier, reservoirs, geometry, gear, port map (or None) and the valve
+        events found on the gear's motion (at the port map's crossings when
+        tabulated).
+    """
     fid = scene.run.fidelity
     steam = make_steam(fid.properties)
     chest, exhaust = reservoir_states(scene, steam)
@@ -194,7 +316,19 @@ KNOBS = ("setting", "throttle")
 
 
 def steady_scene(scene):
-    """The scene as a steady run: no flywheel, load or governor, speed held."""
+    """The scene as a steady run: no flywheel, load or governor, speed held.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+
+    Returns
+    -------
+    Scene
+        A copy with ``run.mode = "steady"`` and no duration, flywheel, load or
+        governor.
+    """
     run = dataclasses.replace(scene.run, mode="steady", duration_s=None)
     return dataclasses.replace(scene, run=run, governor=None, governor_type=None, flywheel=None,
                                load=None)
@@ -206,10 +340,24 @@ def at_knob(scene, knob: str, value: float):
     Parameters
     ----------
     scene : Scene
+        The scene (made steady by :func:`steady_scene`).
     knob : str
         ``"setting"`` (the gear's setting) or ``"throttle"`` (opening, 0..1).
     value : float
         The setting [-] or the opening [-].
+
+    Returns
+    -------
+    Scene
+        The steady scene with the knob at ``value``.
+
+    Raises
+    ------
+    InputError
+        A setting for a gear without one or outside its range; a throttle without the
+        ``steam_chest`` effect and a pipe, or an opening outside (0, 1].
+    ValueError
+        A knob not in :data:`KNOBS`.
     """
     sc = steady_scene(scene)
     if knob == "setting":

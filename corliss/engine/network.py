@@ -31,13 +31,80 @@ PORTMAP_EDGE, FIXED_EDGE = 0, 1
 
 
 def reservoir(r: int) -> int:
-    """Edge end code of reservoir ``r``."""
+    """Edge end code of reservoir ``r``.
+
+    An edge's ends are node indices (0 and up) or reservoir codes (negative).
+
+    Parameters
+    ----------
+    r : int
+        Index of the reservoir in :attr:`Network.reservoirs` (0 the supply, 1 the
+        exhaust).
+
+    Returns
+    -------
+    int
+        ``-1 - r``.
+    """
     return -1 - r
 
 
 @dataclass
 class Network:
-    """Nodes, reservoirs and edges of one engine (all SI)."""
+    """Nodes, reservoirs and edges of one engine (all SI).
+
+    Built empty of nodes and edges by the constructors below (:func:`single_cylinder`,
+    :func:`compound`) and filled by :meth:`add_node`, :meth:`add_edge` and the effects
+    (:func:`with_steam_chest`, :func:`with_leakage`, :func:`with_wall_heat`).  The
+    per-node and per-edge lists are parallel, indexed by node or edge.
+
+    Parameters
+    ----------
+    omega : float
+        Shaft speed [rad/s].
+    band : float
+        The port flow's regularisation band [-] (:func:`corliss.thermo.orifice.port_flow`).
+    geometries : list of CylinderGeometry
+        Each cylinder's geometry.
+    phases : list of float
+        Each cylinder's crank angle less the shaft's [rad]: a cylinder's own angle is
+        ``theta + phases[c]``.
+    portmaps : list of PortMap
+        Each cylinder's port areas against its own crank angle.
+    reservoirs : list of State
+        Fixed states: 0 the supply (boiler), 1 the exhaust.
+    node_names : list of str
+        Each node's name (``head``, ``crank``, ``lp_head``, ``chest``, ``receiver`` ...).
+    node_kind : list of int
+        :data:`PISTON` (a cylinder end) or :data:`FIXED` (a vessel).
+    node_cyl, node_end : list of int
+        A cylinder end's cylinder and end (0 head, 1 crank); -1 for a vessel.
+    node_V : list of float
+        A vessel's volume [m3] (0 for a cylinder end).
+    node_init : list of State
+        The state each node starts from.
+    edge_names : list of str
+        Each edge's name (``head_steam``, ``crank_exhaust``, ``steam_pipe`` ...).
+    e_a, e_b : list of int
+        Each edge's two ends: a node index, or a reservoir's code (:func:`reservoir`);
+        flow from ``a`` to ``b`` is positive.
+    e_kind : list of int
+        :data:`PORTMAP_EDGE` (a cylinder's port) or :data:`FIXED_EDGE` (an orifice).
+    e_cyl, e_port : list of int
+        A port edge's cylinder and port (0 head steam, 1 head exhaust, 2 crank steam,
+        3 crank exhaust); -1 for a fixed orifice.
+    e_area : list of float
+        A fixed orifice's area [m2].
+    e_cd : list of float
+        Each edge's discharge coefficient [-].
+    node_heat : list of tuple
+        Each node's wall-heat row, :data:`HEAT_COLUMNS` floats (see the field's
+        comment and :func:`with_wall_heat`).
+    wall_T : ndarray or None
+        Each node's wall temperature [K], shape (nodes,) (for the skin model, the deep
+        wall's under the skin); set to the mean of supply and exhaust temperatures by
+        :meth:`arrays` when None or of another length.
+    """
 
     omega: float
     band: float
@@ -68,6 +135,26 @@ class Network:
 
     # --- building -----------------------------------------------------------------
     def add_node(self, name, kind, init, cyl=-1, end=-1, volume=0.0) -> int:
+        """Add a control volume, without wall heat.
+
+        Parameters
+        ----------
+        name : str
+            The node's name (unique; columns of the results are named after it).
+        kind : int
+            :data:`PISTON` or :data:`FIXED`.
+        init : State
+            The state it starts from.
+        cyl, end : int
+            A cylinder end's cylinder and end (0 head, 1 crank); -1 for a vessel.
+        volume : float
+            A vessel's volume [m3].
+
+        Returns
+        -------
+        int
+            The new node's index.
+        """
         self.node_names.append(name)
         self.node_kind.append(kind)
         self.node_cyl.append(cyl)
@@ -78,6 +165,31 @@ class Network:
         return len(self.node_names) - 1
 
     def add_edge(self, name, a, b, cd, kind=FIXED_EDGE, cyl=-1, port=-1, area=0.0) -> int:
+        """Add an orifice between two nodes or a node and a reservoir.
+
+        Parameters
+        ----------
+        name : str
+            The edge's name (unique).
+        a, b : int
+            Its ends: node indices or reservoir codes (:func:`reservoir`); flow from
+            ``a`` to ``b`` is positive.
+        cd : float
+            Discharge coefficient [-].
+        kind : int
+            :data:`FIXED_EDGE` (area ``area``) or :data:`PORTMAP_EDGE` (port ``port``
+            of cylinder ``cyl``).
+        cyl, port : int
+            A port edge's cylinder and port (0 head steam, 1 head exhaust, 2 crank
+            steam, 3 crank exhaust).
+        area : float
+            A fixed orifice's area [m2].
+
+        Returns
+        -------
+        int
+            The new edge's index.
+        """
         self.edge_names.append(name)
         self.e_a.append(a)
         self.e_b.append(b)
@@ -91,14 +203,18 @@ class Network:
     # --- layout of the state vector -------------------------------------------------
     @property
     def n_nodes(self) -> int:
+        """Number of nodes (control volumes)."""
         return len(self.node_names)
 
     @property
     def n_edges(self) -> int:
+        """Number of edges (orifices)."""
         return len(self.edge_names)
 
     @property
     def n_dyn(self) -> int:
+        """Number of dynamic states: mass [kg] and internal energy [J] of each node,
+        interleaved (``y[2 i]``, ``y[2 i + 1]``)."""
         return 2 * self.n_nodes
 
     #: Quadratures of each node: work p dV, net heat into the steam, heat from the steam
@@ -123,39 +239,165 @@ class Network:
 
     @property
     def n_state(self) -> int:
+        """Length of the state vector: the dynamic states, then mass [kg] and enthalpy
+        [J] through each edge, then :data:`NODE_QUADS` of each node, then
+        :data:`WALL_STATES` of each skin-model wall."""
         return self.n_quad_end + len(self.WALL_STATES) * len(self.wall_nodes)
 
     def i_wall(self, node: int, what: str = "surface") -> int:
-        """Index of one of node's wall states (WALL_STATES)."""
+        """Index in the state vector of one of a skin-model wall's states.
+
+        Parameters
+        ----------
+        node : int
+            A node in :attr:`wall_nodes`.
+        what : str
+            One of :data:`WALL_STATES`.
+
+        Returns
+        -------
+        int
+            The index.
+        """
         return (self.n_quad_end + len(self.WALL_STATES) * self.wall_nodes.index(node)
                 + self.WALL_STATES.index(what))
 
     def i_film(self, node: int) -> int:
-        """Index of the mass of the water film on node's wall [kg]."""
+        """Index in the state vector of the mass of the water film on a node's wall.
+
+        Parameters
+        ----------
+        node : int
+            A node in :attr:`wall_nodes`.
+
+        Returns
+        -------
+        int
+            The index of the film's mass [kg].
+        """
         return self.i_wall(node, "film")
 
     def i_edge_mass(self, e: int) -> int:
+        """Index in the state vector of the mass through an edge.
+
+        Parameters
+        ----------
+        e : int
+            The edge.
+
+        Returns
+        -------
+        int
+            The index of the mass that has flowed from its end ``a`` to ``b`` [kg].
+        """
         return self.n_dyn + 2 * e
 
     def i_edge_enthalpy(self, e: int) -> int:
+        """Index in the state vector of the enthalpy through an edge.
+
+        Parameters
+        ----------
+        e : int
+            The edge.
+
+        Returns
+        -------
+        int
+            The index of the enthalpy carried from its end ``a`` to ``b`` [J].
+        """
         return self.n_dyn + 2 * e + 1
 
     def i_node_quad(self, node: int, what: str) -> int:
+        """Index in the state vector of one of a node's quadratures.
+
+        Parameters
+        ----------
+        node : int
+            The node.
+        what : str
+            One of :data:`NODE_QUADS`: ``work`` (``p dV`` [J]), ``heat`` (into the steam
+            [J]), ``heat_to_wall`` [J], ``hA`` [J/K] and ``hAT`` [J] (integrals over
+            time of ``h A`` and ``h A T``).
+
+        Returns
+        -------
+        int
+            The index.
+        """
         return (self.n_dyn + 2 * self.n_edges + len(self.NODE_QUADS) * node
                 + self.NODE_QUADS.index(what))
 
     def i_work(self, node: int) -> int:
+        """Index in the state vector of a node's work ``p dV`` [J].
+
+        Parameters
+        ----------
+        node : int
+            The node.
+
+        Returns
+        -------
+        int
+            The index.
+        """
         return self.i_node_quad(node, "work")
 
     def node(self, name: str) -> int:
+        """Index of a node by name.
+
+        Parameters
+        ----------
+        name : str
+            One of :attr:`node_names`.
+
+        Returns
+        -------
+        int
+            The node's index.
+
+        Raises
+        ------
+        ValueError
+            No node of that name.
+        """
         return self.node_names.index(name)
 
     def edge(self, name: str) -> int:
+        """Index of an edge by name.
+
+        Parameters
+        ----------
+        name : str
+            One of :attr:`edge_names`.
+
+        Returns
+        -------
+        int
+            The edge's index.
+
+        Raises
+        ------
+        ValueError
+            No edge of that name.
+        """
         return self.edge_names.index(name)
 
     def boundary_totals(self, y: np.ndarray) -> dict:
-        """Mass and enthalpy into the engine over a cycle from the supply (reservoir 0)
-        and from the exhaust (reservoir 1; negative when, as usual, it goes out)."""
+        """Mass and enthalpy into the engine over a cycle across its boundary.
+
+        Parameters
+        ----------
+        y : ndarray
+            The state at the end of a cycle whose quadratures started from zero; shape
+            (:attr:`n_state`,).
+
+        Returns
+        -------
+        dict of str to float
+            ``m_supply_kg`` [kg] and ``H_supply_J`` [J] in from the supply (reservoir
+            0); ``m_exhaust_kg`` [kg] and ``H_exhaust_J`` [J] in from the exhaust
+            (reservoir 1; negative when, as usual, it goes out).
+        """
         out = {"m_supply_kg": 0.0, "H_supply_J": 0.0, "m_exhaust_kg": 0.0, "H_exhaust_J": 0.0}
         for e, (a, b) in enumerate(zip(self.e_a, self.e_b)):
             for end, sign in ((a, 1.0), (b, -1.0)):
@@ -166,18 +408,45 @@ class Network:
         return out
 
     def leak_edges(self) -> list[tuple[str, int]]:
-        """(name, index) of the leakage paths."""
+        """The leakage paths (edges whose name holds ``leak``).
+
+        Returns
+        -------
+        list of (str, int)
+            The name and index of each.
+        """
         return [(n, e) for e, n in enumerate(self.edge_names) if "leak" in n]
 
     # --- volumes --------------------------------------------------------------------
     def volume(self, node: int, theta: np.ndarray) -> np.ndarray:
-        """Volume of a node [m3] at shaft crank angles ``theta`` [rad]."""
+        """Volume of a node at shaft crank angles.
+
+        Parameters
+        ----------
+        node : int
+            The node.
+        theta : ndarray
+            Shaft crank angles [rad] (a cylinder's own angle leads by its phase).
+
+        Returns
+        -------
+        ndarray
+            The volume [m3], of ``theta``'s shape.
+        """
         if self.node_kind[node] == FIXED:
             return np.full(np.shape(theta), self.node_V[node])
         c = self.node_cyl[node]
         return self.geometries[c].volumes_m3(np.asarray(theta) + self.phases[c])[self.node_end[node]]
 
     def initial_state(self) -> np.ndarray:
+        """The state vector at crank angle 0: each node holding its initial state.
+
+        Returns
+        -------
+        ndarray
+            Shape (:attr:`n_state`,): mass [kg] and internal energy [J] of each node
+            at its volume at 0 rad; quadratures and wall states zero.
+        """
         y = np.zeros(self.n_state)
         for i, st in enumerate(self.node_init):
             V = float(self.volume(i, np.array(0.0)))
@@ -186,7 +455,21 @@ class Network:
         return y
 
     def stops(self, theta0: float) -> list[float]:
-        """Crank angles over one turn from ``theta0`` where any port area has a kink."""
+        """Crank angles over one turn where any port area has a kink.
+
+        The integrators restart at each, so that no port opens inside a step.
+
+        Parameters
+        ----------
+        theta0 : float
+            The shaft angle the turn starts from [rad].
+
+        Returns
+        -------
+        list of float
+            Increasing shaft angles [rad] from ``theta0`` to ``theta0 + 2 pi``, both
+            included, with every breakpoint of every cylinder's PortMap between.
+        """
         two_pi = 2.0 * math.pi
         pts = []
         for pm, ph in zip(self.portmaps, self.phases):
@@ -196,7 +479,18 @@ class Network:
         return [theta0] + stops + [theta0 + two_pi]
 
     def scales(self) -> np.ndarray:
-        """Magnitude of every state component, for absolute tolerances."""
+        """Magnitude of every state component, for absolute tolerances.
+
+        Masses scale with the largest reservoir density filling every node at its
+        largest volume, energies and enthalpies with that mass's, work and heat with
+        ``p V``; the ``hA`` and ``hAT`` quadratures get huge scales (kept out of the step
+        control) and a skin wall's temperature the supply's less the exhaust's.
+
+        Returns
+        -------
+        ndarray
+            One scale per state component, in its unit; shape (:attr:`n_state`,).
+        """
         ref = max(self.reservoirs, key=lambda s: s.p)
         vmax = sum(float(np.max(self.volume(i, np.linspace(0, 2 * math.pi, 73))))
                    for i in range(self.n_nodes))
@@ -223,8 +517,15 @@ class Network:
 
         Perturbing node i moves the derivatives of i, of its neighbours through an
         edge, and of the quadratures of those edges; nodes whose such rows do not
-        overlap share a colour.  Returns ``(color of each dynamic column, owner)``,
-        ``owner[c, row]`` = the column of colour c that moves ``row``, or -1.
+        overlap share a colour.
+
+        Returns
+        -------
+        color : ndarray of int64
+            The colour of each dynamic column; shape (:attr:`n_dyn`,).
+        owner : ndarray of int64
+            ``owner[c, row]``: the column of colour ``c`` that moves ``row``, or -1;
+            shape (colours, :attr:`n_state`).
         """
         nv = self.n_nodes
         nbr = [set() for _ in range(nv)]
@@ -263,7 +564,25 @@ class Network:
 
     # --- arrays for the kernel ------------------------------------------------------
     def arrays(self) -> tuple:
-        """The tuple the compiled right-hand side reads (see kernel.derivatives)."""
+        """The tuple of plain arrays the compiled right-hand side reads.
+
+        Sets :attr:`wall_T` to the mean of supply and exhaust temperatures when it is
+        unset (or of another length than the nodes).
+
+        Returns
+        -------
+        tuple
+            21 entries, read by index in :mod:`corliss.engine.kernel`: 0 ``[omega]``
+            [rad/s]; 1 band [-]; 2 geometry (cylinders, 8): crank radius, rod, stroke
+            [m], head and crank piston areas [m2], head and crank clearances [m3],
+            rod angularity (1 or 0); 3 phases [rad]; 4-7 node kind, cylinder, end,
+            vessel volume [m3]; 8 reservoirs (reservoirs, 4): p [Pa], rho [kg/m3],
+            h [J/kg], the port-flow exponent [-]; 9-15 edge ends a and b, kind,
+            cylinder, port, area [m2], discharge coefficient [-]; 16 the PortMaps'
+            angle grids (cylinders, points) [rad]; 17 their lengths; 18 their areas
+            (cylinders, 4, points) [m2]; 19 the wall-heat rows (nodes,
+            :data:`HEAT_COLUMNS`); 20 :attr:`wall_T` [K].
+        """
         from corliss.thermo.steam_table import kappa_at, load_table
         tab = load_table().arrays()
         ncyl = len(self.geometries)
@@ -302,7 +621,18 @@ def _band(band: float | None) -> float:
 
 
 def cylinder_prefix(c: int) -> str:
-    """Column prefix of cylinder ``c``: "" for the first, "c2_", "c3_" ... after it."""
+    """Column prefix of an identical cylinder's ends and columns.
+
+    Parameters
+    ----------
+    c : int
+        The cylinder's index, 0 first.
+
+    Returns
+    -------
+    str
+        ``""`` for the first, ``"c2_"``, ``"c3_"`` ... after it.
+    """
     return "" if c == 0 else f"c{c + 1}_"
 
 
@@ -311,9 +641,34 @@ def single_cylinder(geometry, portmap, chest, exhaust, omega: float, band: float
     """Identical double-acting cylinders fed straight from the chest at supply state.
 
     One cylinder by default; with ``crank_angles``, one cylinder per entry, its crank
-    following the first by that angle [rad] (Marks Arts. 54-59).  ``band``: the port
-    flow's regularisation band [-], :data:`corliss.thermo.orifice.PORT_BAND` unless
-    given.
+    following the first by that angle (Marks Arts. 54-59).  Each end is a node
+    (``head``, ``crank``, prefixed by :func:`cylinder_prefix`) with a steam edge from
+    reservoir 0 and an exhaust edge from reservoir 1; the head end starts at the chest's
+    state, the crank end at the exhaust's.
+
+    Parameters
+    ----------
+    geometry : CylinderGeometry
+        Every cylinder's geometry.
+    portmap : PortMap
+        Every cylinder's port areas and discharge coefficients.
+    chest : State
+        The supply steam at the chest (reservoir 0).
+    exhaust : State
+        The steam at back pressure (reservoir 1).
+    omega : float
+        Shaft speed [rad/s].
+    band : float, optional
+        The port flow's regularisation band [-]
+        (:data:`corliss.thermo.orifice.PORT_BAND` unless given).
+    crank_angles : tuple of float
+        The angle each cylinder's crank follows the first's [rad], the first's (0)
+        included.
+
+    Returns
+    -------
+    Network
+        The network, without effects.
     """
     band = _band(band)
     n = len(crank_angles)
@@ -339,6 +694,17 @@ def throttle_area_m2(supply) -> float:
     drops add, each ~ (mdot/A)^2).  A_throttle = A_pipe x opening (``linear``) or
     A_pipe (1 - cos(90 deg x opening)) (``butterfly``); wide open, the valve's own
     loss remains (A = A_pipe / sqrt 2).
+
+    Parameters
+    ----------
+    supply : Supply
+        The scene's supply: ``pipe_diameter_m`` [m], ``throttle`` (the opening [-], 0
+        to 1) and ``throttle_law`` (``linear`` or ``butterfly``).
+
+    Returns
+    -------
+    float
+        The effective area [m2].
     """
     a_pipe = math.pi / 4.0 * supply.pipe_diameter_m ** 2
     x = supply.throttle
@@ -348,7 +714,25 @@ def throttle_area_m2(supply) -> float:
 
 
 def with_steam_chest(net: Network, supply) -> Network:
-    """Put a chest of finite volume between the boiler (reservoir 0) and the ports."""
+    """Put a chest of finite volume between the boiler (reservoir 0) and the ports.
+
+    The chest is a fixed node ``chest`` starting at the boiler's state; every edge that
+    took steam from reservoir 0 takes it from the chest, and a ``steam_pipe`` edge of
+    :func:`throttle_area_m2` joins the boiler to the chest.
+
+    Parameters
+    ----------
+    net : Network
+        The network, changed in place.
+    supply : Supply
+        The scene's supply: ``chest_volume_m3`` [m3], ``pipe_discharge_coefficient``
+        [-] and what :func:`throttle_area_m2` reads.
+
+    Returns
+    -------
+    Network
+        ``net``.
+    """
     boiler = net.reservoirs[0]
     chest = net.add_node("chest", FIXED, boiler, volume=supply.chest_volume_m3)
     for e, a in enumerate(net.e_a):
@@ -361,10 +745,29 @@ def with_steam_chest(net: Network, supply) -> Network:
 
 def with_leakage(net: Network, valve_area_m2: float, piston_area_m2: float,
                  cd: float = 0.7) -> Network:
-    """Leakage as orifices of equivalent area: past the valve, from the steam side
-    (chest, or the supply) into each end; past the piston, between the two ends; for
+    """Leakage as orifices of equivalent area.
+
+    Past the valve, from the steam side (chest, or the supply) into each end (edges
+    ``valve_leak_<end>``); past the piston, between the two ends (``piston_leak``); for
     every cylinder fed from the chest (a compound's LP, fed from the receiver, is left
-    tight: its leak areas are not given)."""
+    tight: its leak areas are not given).  A zero area adds no edge.
+
+    Parameters
+    ----------
+    net : Network
+        The network, changed in place.
+    valve_area_m2 : float
+        Equivalent area of the leak past the valve into each end [m2].
+    piston_area_m2 : float
+        Equivalent area of the leak past the piston [m2].
+    cd : float
+        Discharge coefficient of every leak [-].
+
+    Returns
+    -------
+    Network
+        ``net``.
+    """
     src = net.node("chest") if "chest" in net.node_names else reservoir(0)
     for c in range(len(net.geometries)):
         pre = cylinder_prefix(c)
@@ -420,6 +823,34 @@ def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
       evaporation (``condensing_W_m2K``) and Adair's convection, over a deep wall found
       cycle by cycle; with ``jacket_T_K``, the barrel's outer face (``wall_thickness_m``
       of iron away) is held at that temperature.  Every cylinder has its own wall.
+
+    Every cylinder end gets the model's row in :attr:`Network.node_heat`; vessels
+    (chest, receiver) exchange no heat.
+
+    Parameters
+    ----------
+    net : Network
+        The network, changed in place.
+    model : str
+        One of :data:`WALL_MODELS`: ``marks``, ``conductance``, ``adair`` or ``skin``.
+    h_marks : float
+        Marks's constant as a surface conductance [W/(m2 K)] (the ``conductance``
+        model's coefficient).
+    steam_props : tuple of float
+        Transport properties of the supply steam: conductivity [W/(m K)], viscosity
+        [Pa s] and Prandtl number [-].
+    condensing_W_m2K : float, optional
+        The skin model's coefficient of condensation and evaporation [W/(m2 K)]
+        (default :data:`corliss.engine.wall.CONDENSING_W_M2K`).
+    jacket_T_K : float, optional
+        A jacket's temperature [K] (skin model; None: no jacket).
+    wall_thickness_m : float
+        The barrel's iron between bore and jacket [m] (skin model, with a jacket).
+
+    Returns
+    -------
+    Network
+        ``net``.
     """
     from corliss.engine import wall
     from corliss.thermo.wall_properties import film_enthalpies
@@ -448,6 +879,33 @@ def compound(hp_geometry, hp_portmap, lp_geometry, lp_portmap, lp_phase: float, 
 
     Nodes: ``head``, ``crank`` (HP), ``receiver``, ``lp_head``, ``lp_crank``; edges
     named ``<end>_steam`` and ``<end>_exhaust`` as for one cylinder.
+
+    Parameters
+    ----------
+    hp_geometry, lp_geometry : CylinderGeometry
+        The high- and low-pressure cylinders.
+    hp_portmap, lp_portmap : PortMap
+        Their port areas and discharge coefficients.
+    lp_phase : float
+        The LP crank's angle less the HP's [rad].
+    receiver_m3 : float
+        The receiver's volume [m3].
+    chest : State
+        The supply steam at the chest (reservoir 0).
+    exhaust : State
+        The steam at back pressure (reservoir 1).
+    receiver_init : State
+        The state the receiver, the HP crank end and the LP head end start from.
+    omega : float
+        Shaft speed [rad/s].
+    band : float, optional
+        The port flow's regularisation band [-]
+        (:data:`corliss.thermo.orifice.PORT_BAND` unless given).
+
+    Returns
+    -------
+    Network
+        The network, without effects.
     """
     band = _band(band)
     net = Network(omega, band, [hp_geometry, lp_geometry], [0.0, lp_phase],
@@ -468,5 +926,16 @@ def compound(hp_geometry, hp_portmap, lp_geometry, lp_portmap, lp_phase: float, 
 
 
 def piston_ends(net: Network) -> list[str]:
-    """Names of the nodes that are cylinder ends, in order."""
+    """Names of the nodes that are cylinder ends.
+
+    Parameters
+    ----------
+    net : Network
+        The network.
+
+    Returns
+    -------
+    list of str
+        The names, in node order.
+    """
     return [n for n, k in zip(net.node_names, net.node_kind) if k == PISTON]
