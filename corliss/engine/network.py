@@ -697,7 +697,7 @@ def throttle_area_m2(supply) -> float:
 
     Parameters
     ----------
-    supply : Supply
+    supply : SupplySpec
         The scene's supply: ``pipe_diameter_m`` [m], ``throttle`` (the opening [-], 0
         to 1) and ``throttle_law`` (``linear`` or ``butterfly``).
 
@@ -724,7 +724,7 @@ def with_steam_chest(net: Network, supply) -> Network:
     ----------
     net : Network
         The network, changed in place.
-    supply : Supply
+    supply : SupplySpec
         The scene's supply: ``chest_volume_m3`` [m3], ``pipe_discharge_coefficient``
         [-] and what :func:`throttle_area_m2` reads.
 

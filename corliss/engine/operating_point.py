@@ -43,7 +43,7 @@ BALANCED, LOAD_TOO_HEAVY, LOAD_TOO_LIGHT = "balanced", "load_too_heavy", "load_t
 class OperatingPoint:
     """The state a governed run starts from.
 
-    Attributes
+    Parameters
     ----------
     speed_rad_s : float
         Shaft speed [rad/s].
@@ -68,15 +68,46 @@ class OperatingPoint:
 
 
 def characteristic_speed(mech, z: float) -> float:
-    """Shaft speed [rad/s] at which the tabulated governor ``mech`` balances at ``z``
-    (no friction): omega = sqrt(R / G) / ratio, interpolated on its z grid."""
+    """The governor's static characteristic: the shaft speed at which it balances at ``z``.
+
+    Without friction, ``G(z) (ratio omega)^2 = R(z)``, so ``omega = sqrt(R / G) /
+    ratio`` (Marks Art. 70), interpolated linearly on the governor's z grid.
+
+    Parameters
+    ----------
+    mech : GovernorMechanism
+        The governor, tabulated: ``z``, ``G``, ``R`` on its grid and the ``ratio`` of
+        governor to shaft speed.
+    z : float
+        Governor coordinate [-], 0 at the bottom stop, 1 at the top.
+
+    Returns
+    -------
+    float
+        The shaft speed [rad/s].
+    """
     w = np.sqrt(np.asarray(mech.R) / np.asarray(mech.G)) / mech.ratio
     return float(np.interp(z, mech.z, w))
 
 
 def working_travel(mech) -> tuple[float, float]:
-    """The governor's travel in which it governs [-]: above its safety range, if it has
-    one (there the cams hold the steam valves shut), up to the top stop."""
+    """The governor's travel in which it governs.
+
+    Above its safety range, if it has one (there the cams hold the steam valves shut),
+    up to the top stop.
+
+    Parameters
+    ----------
+    mech : GovernorMechanism
+        The governor, tabulated (``safety_z`` and ``actuator_safety``).
+
+    Returns
+    -------
+    z_lo : float
+        The bottom of the working travel [-]: the top of the safety range, or 0.
+    z_hi : float
+        The top stop, 1 [-].
+    """
     lo = mech.safety_z if mech.safety_z > 0.0 and math.isfinite(mech.actuator_safety) else 0.0
     return float(lo), 1.0
 

@@ -56,22 +56,25 @@ METHODS = SCIPY_METHODS + COMPILED_METHODS
 class Fidelity:
     """One set of accuracy knobs.
 
-    Attributes
+    Parameters
     ----------
     name : str
         Preset it came from (or ``"custom"``).
     properties : str
-        Steam-property tier.
+        Steam-property tier (``heos``, ``table`` or ``perfect``).
     method : str
-        Integrator: a ``scipy.integrate.solve_ivp`` method, or the compiled
-        ``"dopri5"`` (adaptive) or ``"rk4"`` (fixed step).
+        Integrator: a ``scipy.integrate.solve_ivp`` method (:data:`SCIPY_METHODS`), or
+        the compiled ``"dopri5"`` (adaptive), ``"rk4"`` (fixed step) or
+        ``"rosenbrock"`` (adaptive, L-stable).
     rtol : float
         Relative tolerance of the adaptive integrators [-].
     portmap_points : int
         Uniform crank-angle intervals of the PortMap (kinks are added) [-].
     convergence_tolerance : float
-        Stop when the cycle-to-cycle change of indicated work is below this
-        fraction [-].
+        A steady run is periodic when its distance from periodic is below this
+        fraction [-]: the cycle-to-cycle change of indicated work, and crank-resolved
+        also of the masses, energies, mass balance and wall temperatures, each against
+        its own scale (``SteadyResult.periodicity``).
     max_cycles : int
         Give up (with a warning in the summary) after this many cycles.
     output_step_deg : float
@@ -115,10 +118,23 @@ RECORD_DEGREE_MAX_TURNS = 300
 
 
 def record_of(run) -> str:
-    """What a transient run's time series records (``"step"``, ``"degree"`` or
-    ``"cycle"``): the scene's ``[run] record``, or by default ``"degree"`` for a duration
-    of up to :data:`RECORD_DEGREE_MAX_TURNS` turns at ``run.speed`` and ``"cycle"``
-    beyond (a run ``until_settled`` follows its duration's choice)."""
+    """What a transient run's time series records.
+
+    The scene's ``[run] record``, or by default ``"degree"`` for a duration of up to
+    :data:`RECORD_DEGREE_MAX_TURNS` turns at ``run.speed`` and ``"cycle"`` beyond (a
+    run ``until_settled`` follows its duration's choice).
+
+    Parameters
+    ----------
+    run : RunSpec
+        The scene's ``[run]``: ``record``, ``duration_s`` [s] and ``speed_rad_s``
+        [rad/s].
+
+    Returns
+    -------
+    str
+        ``"step"``, ``"degree"`` or ``"cycle"``.
+    """
     if run.record is not None:
         return run.record
     turns = (run.duration_s or 0.0) * run.speed_rad_s / (2.0 * math.pi)

@@ -41,7 +41,7 @@ class SteadyStart:
     conditions, walls midway between them): a study that walks a knob, or refines on a
     finer tier, pays for the walls' slow settling once.
 
-    Attributes
+    Parameters
     ----------
     y : ndarray
         The kernel's state at the end of the last cycle (masses [kg], energies [J],
@@ -76,6 +76,8 @@ def run_steady(scene, *, portmap_scale: float = 1.0,
     Returns
     -------
     SteadyResult
+        The run: every cycle's time series and balances, the last cycle's cards,
+        valve events and summary.
     """
     t0 = time.perf_counter()
     eng = scene.engine
