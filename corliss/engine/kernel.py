@@ -92,14 +92,48 @@ MAX_RHS_PER_CYCLE = 2_000_000
 
 @njit(cache=True, inline="always")
 def admissible(rho, u):
-    """Density and internal energy clamped to where steam properties exist."""
+    """Density and internal energy clamped to where steam properties exist.
+
+    Parameters
+    ----------
+    rho : float
+        Density [kg/m3].
+    u : float
+        Specific internal energy [J/kg].
+
+    Returns
+    -------
+    rho : float
+        Within [:data:`RHO_MIN`, :data:`RHO_MAX`] [kg/m3].
+    u : float
+        Within [:data:`U_MIN`, :data:`U_MAX`] [J/kg].
+    """
     rho, u, _ = admissible_flagged(rho, u)
     return rho, u
 
 
 @njit(cache=True, inline="always")
 def admissible_flagged(rho, u):
-    """:func:`admissible` and its clamp code (0: nothing clamped)."""
+    """:func:`admissible` and its clamp code.
+
+    Parameters
+    ----------
+    rho : float
+        Density [kg/m3] (NaN counts as below the range).
+    u : float
+        Specific internal energy [J/kg] (NaN counts as below the range).
+
+    Returns
+    -------
+    rho : float
+        The clamped density [kg/m3].
+    u : float
+        The clamped internal energy [J/kg].
+    code : int
+        0 when nothing was clamped; else the bits of
+        :data:`corliss.thermo.steam_table.CLAMP_CODES` (1 density low, 2 high, 4
+        energy low, 8 high).
+    """
     code = 0
     if not rho > RHO_MIN:
         rho = RHO_MIN
@@ -118,7 +152,36 @@ def admissible_flagged(rho, u):
 
 @njit(cache=True, inline="always")
 def props(tier, tab, perf, rho, u):
-    """(p, T, dryness, superheated, clamp code) from the compiled tier, inputs clamped."""
+    """Properties of a state on a compiled tier, its inputs clamped first.
+
+    Parameters
+    ----------
+    tier : int
+        The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.
+    tab : tuple
+        The steam table's arrays (:meth:`corliss.thermo.steam_table.SteamTable.arrays`).
+    perf : ndarray
+        The perfect tier's gas constant [J/(kg K)], ``cv`` [J/(kg K)] and ``u_ref``
+        [J/kg]; shape (3,) (unused on the table tier).
+    rho : float
+        Density [kg/m3].
+    u : float
+        Specific internal energy [J/kg].
+
+    Returns
+    -------
+    p : float
+        Pressure [Pa].
+    T : float
+        Temperature [K] (at least 1 K on the perfect tier).
+    x : float
+        Dryness [-] (1 on the perfect tier).
+    superheated : bool
+        Whether the state is superheated (always on the perfect tier).
+    code : int
+        The clamp code (:func:`admissible_flagged`; 16 for a perfect-gas state below
+        1 K), ORed with the table's own.
+    """
     rho, u, code = admissible_flagged(rho, u)
     if tier == TIER_PERFECT:
         R, cv, u_ref = perf[0], perf[1], perf[2]
@@ -133,7 +196,27 @@ def props(tier, tab, perf, rho, u):
 
 @njit(cache=True, inline="always")
 def node_volume(th, net, i):
-    """(V, dV/dtheta) of node ``i`` at shaft angle ``th`` [m3, m3/rad]."""
+    """Volume of a node and its derivative with crank angle.
+
+    The slider crank of :mod:`corliss.engine.geometry`, at the cylinder's own angle
+    ``th + phase``; a vessel's volume is fixed.
+
+    Parameters
+    ----------
+    th : float
+        Shaft crank angle [rad].
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    i : int
+        The node.
+
+    Returns
+    -------
+    V : float
+        Volume [m3].
+    dV : float
+        dV/dtheta [m3/rad].
+    """
     geo, phase, kind, cyl, end, fixedV = net[2], net[3], net[4], net[5], net[6], net[7]
     if kind[i] == 1:
         return fixedV[i], 0.0
@@ -156,8 +239,20 @@ def node_volume(th, net, i):
 
 @njit(cache=True, inline="always")
 def port_areas(th, net, pa):
-    """Open area of every port of every cylinder at shaft angle ``th`` [m2], written into
-    ``pa`` (shape (cylinders, 4)) from the PortMap tables: one search per cylinder."""
+    """Open area of every port of every cylinder, from the PortMap tables.
+
+    Linear interpolation at the cylinder's own angle, one search per cylinder.
+
+    Parameters
+    ----------
+    th : float
+        Shaft crank angle [rad].
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    pa : ndarray
+        Written: the areas [m2], shape (cylinders, 4), ports in PortMap order (head
+        steam, head exhaust, crank steam, crank exhaust).
+    """
     phase, grid, npts, area = net[3], net[16], net[17], net[18]
     for c in range(npts.shape[0]):
         n = npts[c]
@@ -175,7 +270,22 @@ def port_areas(th, net, pa):
 
 @njit(cache=True, inline="always")
 def edge_area(net, e, pa):
-    """Open area of edge ``e`` [m2]: a fixed orifice's, or its port's from ``pa``."""
+    """Open area of an edge: a fixed orifice's, or its port's.
+
+    Parameters
+    ----------
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    e : int
+        The edge.
+    pa : ndarray
+        The port areas [m2], shape (cylinders, 4) (:func:`port_areas`).
+
+    Returns
+    -------
+    float
+        The area [m2].
+    """
     ekind, ecyl, eport, earea = net[11], net[12], net[13], net[14]
     if ekind[e] == 1:
         return earea[e]
@@ -184,9 +294,33 @@ def edge_area(net, e, pa):
 
 @njit(cache=True, inline="always")
 def derivatives(th, y, pr, dy, net, pa):
-    """Derivatives with respect to crank angle, written into ``dy``, given each node's
-    pressure, density, enthalpy, isentropic exponent, dV/dtheta, volume, temperature
-    and wetted-wall temperature (saturation at its pressure) in the rows of ``pr``; ``pa`` is scratch of shape (cylinders, 4)."""
+    """Derivatives with respect to crank angle, given each node's properties.
+
+    The port areas (:func:`port_areas`) and then the balances (:func:`balances`); the
+    reference path (HEOS, from Python) fills ``pr`` itself, the compiled tiers through
+    :func:`node_states`.
+
+    Parameters
+    ----------
+    th : float
+        Shaft crank angle [rad].
+    y : ndarray
+        The state, shape (n_state,), laid out as
+        :class:`~corliss.engine.network.Network` says (masses [kg] and internal
+        energies [J] of the nodes first).
+    pr : ndarray
+        Node properties, shape (:data:`PR_ROWS`, nodes): rows pressure [Pa], density
+        [kg/m3], enthalpy [J/kg], port-flow exponent [-], dV/dtheta [m3/rad], volume
+        [m3], temperature [K], wetted-wall temperature [K], clamp code
+        (:data:`PR_CLAMP`) and dryness [-] (:data:`PR_X`).
+    dy : ndarray
+        Written: the derivatives with respect to crank angle (per radian), shape
+        (n_state,).
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    pa : ndarray
+        Scratch for the port areas [m2], shape (cylinders, 4).
+    """
     port_areas(th, net, pa)
     balances(th, y, pr, dy, net, pa)
 
@@ -201,17 +335,56 @@ WET_BAND = 0.02
 
 @njit(cache=True, inline="always")
 def wetted_share(x):
-    """Share of a wall wet steam wets [-], from the mixture's dryness ``x`` [-] (1 when
-    dry or superheated): 1 while the mixture holds more than WET_BAND of water, falling
-    smoothly (a cubic step) to 0 at dry steam."""
+    """Share of a wall that wet steam wets.
+
+    1 while the mixture holds more than :data:`WET_BAND` of water, falling smoothly (a
+    cubic step) to 0 at dry steam.
+
+    Parameters
+    ----------
+    x : float
+        The mixture's dryness [-] (1 when dry or superheated).
+
+    Returns
+    -------
+    float
+        The wetted share [-], 0 to 1.
+    """
     w = min(max((1.0 - x) / WET_BAND, 0.0), 1.0)
     return w * w * (3.0 - 2.0 * w)
 
 
 @njit(cache=True, inline="always")
 def balances(th, y, pr, dy, net, areas):
-    """Mass and energy balances of every node per radian of crank angle, with the
-    port areas given in ``areas`` [m2] and the shaft speed in ``net[0][0]`` [rad/s]."""
+    """Mass and energy balances of every node per radian of crank angle.
+
+    The first law for each node (``- p dV``, the wall heat of its model, the flows
+    through its edges from :func:`corliss.thermo.orifice.port_flow` carrying the
+    enthalpy of the side they leave), the quadratures of every edge and node, the skin
+    model's wall states, and the film swept out (:func:`sweep_films`).  The shaft
+    speed is read from ``net[0][0]`` [rad/s].
+
+    Parameters
+    ----------
+    th : float
+        Shaft crank angle [rad].
+    y : ndarray
+        The state, shape (n_state,), laid out as
+        :class:`~corliss.engine.network.Network` says (masses [kg] and internal
+        energies [J] of the nodes first).
+    pr : ndarray
+        Node properties, shape (:data:`PR_ROWS`, nodes): rows pressure [Pa], density
+        [kg/m3], enthalpy [J/kg], port-flow exponent [-], dV/dtheta [m3/rad], volume
+        [m3], temperature [K], wetted-wall temperature [K], clamp code
+        (:data:`PR_CLAMP`) and dryness [-] (:data:`PR_X`).
+    dy : ndarray
+        Written: the derivatives with respect to crank angle (per radian), shape
+        (n_state,).
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    areas : ndarray
+        The port areas [m2], shape (cylinders, 4).
+    """
     omega, band, res = net[0][0], net[1], net[8]
     P, RHO, H, K = pr[0], pr[1], pr[2], pr[3]
     geo, ncyl_, end_, heat, wallT = net[2], net[5], net[6], net[19], net[20]
@@ -351,9 +524,29 @@ def balances(th, y, pr, dy, net, areas):
 
 @njit(cache=True, inline="always")
 def sweep_films(y, pr, dy, net):
-    """The skin model's film swept out with the steam (corliss.engine.wall): while an
-    end's steam flows out, the film beyond FILM_WET goes with it in the proportion
-    of the steam leaving, into the steam as water of the film's enthalpy."""
+    """The skin model's film swept out with the steam (:mod:`corliss.engine.wall`).
+
+    While an end's steam flows out, the film beyond :data:`FILM_WET` goes with it in
+    the proportion of the steam leaving, into the steam as water of the film's
+    enthalpy.
+
+    Parameters
+    ----------
+    y : ndarray
+        The state, shape (n_state,), laid out as
+        :class:`~corliss.engine.network.Network` says (masses [kg] and internal
+        energies [J] of the nodes first).
+    pr : ndarray
+        Node properties, shape (:data:`PR_ROWS`, nodes): rows pressure [Pa], density
+        [kg/m3], enthalpy [J/kg], port-flow exponent [-], dV/dtheta [m3/rad], volume
+        [m3], temperature [K], wetted-wall temperature [K], clamp code
+        (:data:`PR_CLAMP`) and dryness [-] (:data:`PR_X`).
+    dy : ndarray
+        The derivatives with respect to crank angle (per radian), shape (n_state,),
+        updated in place.
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    """
     heat = net[19]
     for i in range(heat.shape[0]):
         if heat[i, 0] != 4.0 or not dy[2 * i] < 0.0:
@@ -370,11 +563,37 @@ def sweep_films(y, pr, dy, net):
 
 @njit(cache=True, inline="always")
 def node_states(th, y, net, tier, tab, perf, pr):
-    """Each node's pressure, density, enthalpy, isentropic exponent of its port flow,
-    dV/dtheta, volume, temperature, (with wall heat) wetted-wall temperature and clamp
-    code into the rows of ``pr``, on a compiled property tier.  The exponent is the
-    real fluid's (:func:`corliss.thermo.steam_table.kappa_at`), or the perfect tier's
-    own 1 + R/cv (then also the reservoirs')."""
+    """Each node's properties into the rows of ``pr``, on a compiled property tier.
+
+    Pressure, density, enthalpy, isentropic exponent of its port flow, dV/dtheta,
+    volume, temperature, (with wall heat) wetted-wall temperature, clamp code and
+    dryness.  The exponent is the real fluid's
+    (:func:`corliss.thermo.steam_table.kappa_at`), or the perfect tier's own
+    ``1 + R/cv`` (then also written into the reservoirs' row of ``net``).
+
+    Parameters
+    ----------
+    th : float
+        Shaft crank angle [rad].
+    y : ndarray
+        The state, shape (n_state,), laid out as
+        :class:`~corliss.engine.network.Network` says (masses [kg] and internal
+        energies [J] of the nodes first).
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    tier : int
+        The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.
+    tab : tuple
+        The steam table's arrays (:meth:`corliss.thermo.steam_table.SteamTable.arrays`).
+    perf : ndarray
+        The perfect tier's gas constant [J/(kg K)], ``cv`` [J/(kg K)] and ``u_ref``
+        [J/kg]; shape (3,) (unused on the table tier).
+    pr : ndarray
+        Written: node properties, shape (:data:`PR_ROWS`, nodes): rows
+        pressure [Pa], density [kg/m3], enthalpy [J/kg], port-flow exponent [-],
+        dV/dtheta [m3/rad], volume [m3], temperature [K], wetted-wall temperature
+        [K], clamp code (:data:`PR_CLAMP`) and dryness [-] (:data:`PR_X`).
+    """
     nv = net[4].shape[0]
     if tier == TIER_PERFECT:
         res = net[8]
@@ -402,16 +621,57 @@ def node_states(th, y, net, tier, tab, perf, pr):
 
 @njit(cache=True)
 def rhs(th, y, dy, net, tier, tab, perf, pr, cell):
-    """Derivatives on a compiled property tier (``pr``, ``cell``: scratch arrays)."""
+    """Derivatives with respect to crank angle on a compiled property tier.
+
+    :func:`node_states` then :func:`derivatives`: the one compiled right-hand side
+    the integrators call.
+
+    Parameters
+    ----------
+    th : float
+        Shaft crank angle [rad].
+    y : ndarray
+        The state, shape (n_state,), laid out as
+        :class:`~corliss.engine.network.Network` says (masses [kg] and internal
+        energies [J] of the nodes first).
+    dy : ndarray
+        Written: the derivatives with respect to crank angle (per radian), shape
+        (n_state,).
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    tier : int
+        The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.
+    tab : tuple
+        The steam table's arrays (:meth:`corliss.thermo.steam_table.SteamTable.arrays`).
+    perf : ndarray
+        The perfect tier's gas constant [J/(kg K)], ``cv`` [J/(kg K)] and ``u_ref``
+        [J/kg]; shape (3,) (unused on the table tier).
+    pr : ndarray
+        Scratch, written: node properties, shape (:data:`PR_ROWS`, nodes): rows
+        pressure [Pa], density [kg/m3], enthalpy [J/kg], port-flow exponent [-],
+        dV/dtheta [m3/rad], volume [m3], temperature [K], wetted-wall temperature
+        [K], clamp code (:data:`PR_CLAMP`) and dryness [-] (:data:`PR_X`).
+    cell : ndarray
+        Scratch for the port areas [m2], shape (cylinders, 4).
+    """
     node_states(th, y, net, tier, tab, perf, pr)
     derivatives(th, y, pr, dy, net, cell)
 
 
 @njit(cache=True)
 def tally_clamps(pr, t, att):
-    """Add the latest evaluation's clamps (row ``PR_CLAMP`` of ``pr``) to a step
-    attempt's tally ``att``: (clamped evaluations, OR of their codes, shaft angle [rad]
-    and node of the first)."""
+    """Add the latest evaluation's clamps to a step attempt's tally.
+
+    Parameters
+    ----------
+    pr : ndarray
+        The node properties of the latest evaluation; row :data:`PR_CLAMP` is read.
+    t : float
+        The shaft angle of that evaluation [rad].
+    att : ndarray
+        Updated: a step attempt's clamp tally, shape (4,): clamped evaluations,
+        the OR of their codes, shaft angle [rad] and node of the first.
+    """
     c = 0
     first = -1
     for i in range(pr.shape[1]):
@@ -429,8 +689,16 @@ def tally_clamps(pr, t, att):
 
 @njit(cache=True)
 def settle_visited(att, clamps):
-    """Move a step attempt's tally ``att`` into the cycle's ``clamps`` as evaluations
-    at visited states, and clear it."""
+    """Move a step attempt's tally into the cycle's as evaluations at visited states.
+
+    Parameters
+    ----------
+    att : ndarray
+        A step attempt's clamp tally, shape (4,), cleared: clamped evaluations,
+        the OR of their codes, shaft angle [rad] and node of the first.
+    clamps : ndarray
+        The cycle's clamp counts, shape (6,), updated, indexed by ``CL_*``.
+    """
     if att[0] > 0.0:
         if clamps[CL_ACCEPTED] == 0.0:
             clamps[CL_THETA] = att[2]
@@ -443,8 +711,16 @@ def settle_visited(att, clamps):
 
 @njit(cache=True)
 def settle_trial(att, clamps):
-    """Move a step attempt's tally ``att`` into the cycle's ``clamps`` as evaluations
-    at trial states, and clear it."""
+    """Move a step attempt's tally into the cycle's as evaluations at trial states.
+
+    Parameters
+    ----------
+    att : ndarray
+        A step attempt's clamp tally, shape (4,), cleared: clamped evaluations,
+        the OR of their codes, shaft angle [rad] and node of the first.
+    clamps : ndarray
+        The cycle's clamp counts, shape (6,), updated, indexed by ``CL_*``.
+    """
     if att[0] > 0.0:
         clamps[CL_REJECTED] += att[0]
         clamps[CL_REJECTED_CODE] = float(int(clamps[CL_REJECTED_CODE]) | int(att[1]))
@@ -454,9 +730,21 @@ def settle_trial(att, clamps):
 
 @njit(cache=True)
 def settle_clamps(att, accepted, clamps):
-    """Move a step attempt's tally into the cycle's ``clamps`` (accepted or rejected)
-    and clear it (``accepted`` a run-time flag: constant callers use
-    :func:`settle_visited` or :func:`settle_trial`, one compiled version each)."""
+    """Move a step attempt's tally into the cycle's, as visited or trial states.
+
+    For a run-time flag; callers that know which use :func:`settle_visited` or
+    :func:`settle_trial` (one compiled version each).
+
+    Parameters
+    ----------
+    att : ndarray
+        A step attempt's clamp tally, shape (4,), cleared: clamped evaluations,
+        the OR of their codes, shaft angle [rad] and node of the first.
+    accepted : bool
+        Whether the step was accepted (its end a visited state).
+    clamps : ndarray
+        The cycle's clamp counts, shape (6,), updated, indexed by ``CL_*``.
+    """
     if accepted:
         settle_visited(att, clamps)
     else:
@@ -465,15 +753,35 @@ def settle_clamps(att, accepted, clamps):
 
 @njit(cache=True)
 def copy_into(dst, src):
-    """``dst[:] = src`` for 1-d arrays of one length (without the shape check's error
-    path, which numba would compile into every caller)."""
+    """``dst[:] = src`` for 1-d arrays of one length.
+
+    Without the shape check's error path, which numba would compile into every
+    caller.
+
+    Parameters
+    ----------
+    dst : ndarray
+        Written; shape (n,).
+    src : ndarray
+        Shape (n,).
+    """
     for i in range(dst.shape[0]):
         dst[i] = src[i]
 
 
 @njit(cache=True)
 def put_column(samples, k, y):
-    """``samples[:, k] = y``, as :func:`copy_into`."""
+    """``samples[:, k] = y``, as :func:`copy_into`.
+
+    Parameters
+    ----------
+    samples : ndarray
+        Written at column ``k``; shape (n, outputs).
+    k : int
+        The column.
+    y : ndarray
+        Shape (n,).
+    """
     for i in range(y.shape[0]):
         samples[i, k] = y[i]
 
@@ -495,6 +803,21 @@ _E = np.array([71 / 57600, 0, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525,
 
 @njit(cache=True)
 def hermite(t0, y0, f0, t1, y1, f1, t, out):
+    """Cubic Hermite interpolation on a step from its end states and derivatives.
+
+    Parameters
+    ----------
+    t0, t1 : float
+        The step's ends [rad].
+    y0, y1 : ndarray
+        The states there; shape (n,).
+    f0, f1 : ndarray
+        Their derivatives (per radian); shape (n,).
+    t : float
+        Where to interpolate [rad], between ``t0`` and ``t1``.
+    out : ndarray
+        Written: the interpolated state; shape (n,).
+    """
     h = t1 - t0
     s = (t - t0) / h
     h00 = 2 * s ** 3 - 3 * s ** 2 + 1
@@ -507,7 +830,21 @@ def hermite(t0, y0, f0, t1, y1, f1, t, out):
 
 @njit(cache=True)
 def dopri_stage(y, K, s_, h, ytmp):
-    """The state at Dormand-Prince stage ``s_``: y + h sum_j a_sj K_j, into ``ytmp``."""
+    """The state at a Dormand-Prince stage: ``y + h sum_j a_sj K_j``.
+
+    Parameters
+    ----------
+    y : ndarray
+        The state at the step's start; shape (n,).
+    K : ndarray
+        The stages' derivatives so far; shape (7, n).
+    s_ : int
+        The stage, 1 to 6.
+    h : float
+        The step [rad].
+    ytmp : ndarray
+        Written: the stage's state; shape (n,).
+    """
     for i in range(y.shape[0]):
         acc = 0.0
         for j in range(s_):
@@ -517,7 +854,31 @@ def dopri_stage(y, K, s_, h, ytmp):
 
 @njit(cache=True)
 def dopri_error(y, ynew, K, h, atol, rtol):
-    """The 5(4) pair's error, max |err_i| / (atol_i + rtol max(|y_i|, |ynew_i|))."""
+    """The 5(4) pair's scaled error.
+
+    ``max_i |err_i| / (atol_i + rtol max(|y_i|, |ynew_i|))``, the error ``err`` being
+    the difference of the fifth- and fourth-order results.
+
+    Parameters
+    ----------
+    y : ndarray
+        The state at the step's start; shape (n,).
+    ynew : ndarray
+        The fifth-order state at its end; shape (n,).
+    K : ndarray
+        The seven stages' derivatives; shape (7, n).
+    h : float
+        The step [rad].
+    atol : ndarray
+        Absolute tolerances, in each component's unit; shape (n,).
+    rtol : float
+        Relative tolerance [-].
+
+    Returns
+    -------
+    float
+        The error [-]: the step is accurate enough at 1 or less.
+    """
     err = 0.0
     for i in range(y.shape[0]):
         e = 0.0
@@ -622,9 +983,30 @@ _E32 = 6.0 + math.sqrt(2.0)
 
 @njit(cache=True)
 def emit_samples(io, out_theta, t0, y0, f0, t1, y1, f1, samples, tmp):
-    """Write the states at the output angles ``out_theta[io:]`` up to ``t1`` into
-    ``samples`` (cubic Hermite on the step from ``t0`` to ``t1``); returns the index of
-    the next output angle."""
+    """Write the states at the output angles a step passed (cubic Hermite on the step).
+
+    Parameters
+    ----------
+    io : int
+        The next output angle not yet written.
+    out_theta : ndarray
+        The output angles [rad], increasing; shape (outputs,).
+    t0, t1 : float
+        The step's ends [rad].
+    y0, y1 : ndarray
+        The states there; shape (n,).
+    f0, f1 : ndarray
+        Their derivatives (per radian); shape (n,).
+    samples : ndarray
+        Written at the columns of ``out_theta[io:]`` up to ``t1``; shape (n, outputs).
+    tmp : ndarray
+        Scratch; shape (n,).
+
+    Returns
+    -------
+    int
+        The index of the next output angle not written.
+    """
     while io < out_theta.shape[0] and out_theta[io] <= t1:
         hermite(t0, y0, f0, t1, y1, f1, out_theta[io], tmp)
         put_column(samples, io, tmp)
@@ -634,8 +1016,28 @@ def emit_samples(io, out_theta, t0, y0, f0, t1, y1, f1, samples, tmp):
 
 @njit(cache=True)
 def initial_step(f0, y, atol, rtol, span):
-    """A first step [rad] from the derivative's scale, 0.01 rtol^(1/5) / max
-    |f_i| / (atol_i + rtol |y_i|), kept within (1e-9, ``span``]."""
+    """A first step from the derivative's scale.
+
+    ``0.01 rtol^(1/5) / max_i (|f_i| / (atol_i + rtol |y_i|))``.
+
+    Parameters
+    ----------
+    f0 : ndarray
+        The derivative at the start (per radian); shape (n,).
+    y : ndarray
+        The state at the start; shape (n,).
+    atol : ndarray
+        Absolute tolerances, in each component's unit; shape (n,).
+    rtol : float
+        Relative tolerance [-].
+    span : float
+        The segment's length [rad].
+
+    Returns
+    -------
+    float
+        The step [rad], within [1e-9, ``span``] (``span`` when nothing changes).
+    """
     scale = 0.0
     for i in range(y.shape[0]):
         v = abs(f0[i]) / (atol[i] + rtol * abs(y[i]))
@@ -647,7 +1049,22 @@ def initial_step(f0, y, atol, rtol, span):
 
 @njit(cache=True)
 def step_factor(err, safety, expo):
-    """The next step over this one after an accepted step of scaled error ``err``."""
+    """The ratio of the next step to this one after an accepted step.
+
+    Parameters
+    ----------
+    err : float
+        The step's scaled error [-].
+    safety : float
+        The safety factor [-] (0.9 for dopri5, 0.8 for the Rosenbrock pair).
+    expo : float
+        The exponent, ``-1 / (order + 1)`` of the error estimate [-].
+
+    Returns
+    -------
+    float
+        ``safety err^expo`` kept within [0.2, 5] (5 for an error of zero).
+    """
     if err == 0.0:
         return 5.0
     return min(5.0, max(0.2, safety * err ** expo))
@@ -655,8 +1072,21 @@ def step_factor(err, safety, expo):
 
 @njit(cache=True)
 def visited_clamp_off(att_end):
-    """The clamp bits of a step's end that make it no step of the physical path (every
-    clamp but steam overheated by the walls, code 8, which is not the step's doing)."""
+    """The clamp bits of a step's end that make it no step of the physical path.
+
+    Every clamp but steam overheated by the walls (code 8), which is not the step's
+    doing.
+
+    Parameters
+    ----------
+    att_end : ndarray
+        The clamp tally of the evaluation at the step's end; shape (4,).
+
+    Returns
+    -------
+    int
+        The bits (0: the end is a physical state).
+    """
     if att_end[0] > 0.0:
         return int(att_end[1]) & ~CLAMP_HIGH_ENERGY
     return 0
@@ -664,7 +1094,42 @@ def visited_clamp_off(att_end):
 
 @njit(cache=True)
 def segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att):
-    """The derivative at the start of a segment between kinks, a visited state."""
+    """The derivative at the start of a segment between kinks, a visited state.
+
+    Its clamps are settled as a visited state's.
+
+    Parameters
+    ----------
+    t : float
+        The segment's start [rad].
+    y : ndarray
+        The state, shape (n_state,), laid out as
+        :class:`~corliss.engine.network.Network` says (masses [kg] and internal
+        energies [J] of the nodes first).
+    f0 : ndarray
+        Written: the derivative there (per radian); shape (n_state,).
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    tier : int
+        The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.
+    tab : tuple
+        The steam table's arrays (:meth:`corliss.thermo.steam_table.SteamTable.arrays`).
+    perf : ndarray
+        The perfect tier's gas constant [J/(kg K)], ``cv`` [J/(kg K)] and ``u_ref``
+        [J/kg]; shape (3,) (unused on the table tier).
+    pr : ndarray
+        Scratch, written: node properties, shape (:data:`PR_ROWS`, nodes): rows
+        pressure [Pa], density [kg/m3], enthalpy [J/kg], port-flow exponent [-],
+        dV/dtheta [m3/rad], volume [m3], temperature [K], wetted-wall temperature
+        [K], clamp code (:data:`PR_CLAMP`) and dryness [-] (:data:`PR_X`).
+    cell : ndarray
+        Scratch for the port areas [m2], shape (cylinders, 4).
+    clamps : ndarray
+        The cycle's clamp counts, shape (6,), updated, indexed by ``CL_*``.
+    att : ndarray
+        A step attempt's clamp tally, shape (4,), used and cleared: clamped
+        evaluations, the OR of their codes, shaft angle [rad] and node of the first.
+    """
     rhs(t, y, f0, net, tier, tab, perf, pr, cell)
     tally_clamps(pr, t, att)
     settle_visited(att, clamps)
@@ -672,7 +1137,49 @@ def segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att):
 
 @njit(cache=True)
 def cycle_dopri5(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, max_rhs):
-    """:func:`integrate_cycle` with Dormand-Prince 5(4) (see the module docstring)."""
+    """:func:`integrate_cycle` with Dormand-Prince 5(4) (see the module docstring).
+
+    Parameters
+    ----------
+    y0 : ndarray
+        The state at ``stops[0]``; shape (n_state,).
+    stops : ndarray
+        Shaft angles [rad], increasing: the segments between them are integrated
+        with a restart at each (:meth:`corliss.engine.network.Network.stops`).
+    out_theta : ndarray
+        Shaft angles [rad] where the state is sampled, increasing.
+    rtol : float
+        Relative tolerance [-].
+    atol : ndarray
+        Absolute tolerances, in each component's unit; shape (n_state,).
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    tier : int
+        The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.
+    tab : tuple
+        The steam table's arrays (:meth:`corliss.thermo.steam_table.SteamTable.arrays`).
+    perf : ndarray
+        The perfect tier's gas constant [J/(kg K)], ``cv`` [J/(kg K)] and ``u_ref``
+        [J/kg]; shape (3,) (unused on the table tier).
+    max_rhs : int
+        The run-time budget: most right-hand-side evaluations.
+
+    Returns
+    -------
+    y_end : ndarray
+        The state at ``stops[-1]``; shape (n_state,).
+    samples : ndarray
+        ``samples[:, k]`` the state at ``out_theta[k]``; shape (n_state, outputs).
+    nfev : int
+        Right-hand-side evaluations spent.
+    ok : bool
+        False when the step size collapsed, the state went non-finite or more than
+        ``max_rhs`` evaluations were spent.
+    clamps : ndarray
+        Evaluations that clamped a state, shape (6,), indexed by ``CL_*``: at visited
+        states (the ends of accepted steps) and at trial states (stages, probes,
+        rejected steps) apart.
+    """
     n = y0.shape[0]
     y = y0.copy()
     samples = np.full((n, out_theta.shape[0]), np.nan)
@@ -740,7 +1247,49 @@ def cycle_dopri5(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, max_rhs
 
 @njit(cache=True)
 def cycle_rk4(y0, stops, out_theta, step, net, tier, tab, perf, max_rhs):
-    """:func:`integrate_cycle` with the classical Runge-Kutta method at a fixed step."""
+    """:func:`integrate_cycle` with the classical Runge-Kutta method at a fixed step.
+
+    Each segment between stops is divided into equal steps no longer than ``step``.
+
+    Parameters
+    ----------
+    y0 : ndarray
+        The state at ``stops[0]``; shape (n_state,).
+    stops : ndarray
+        Shaft angles [rad], increasing: the segments between them are integrated
+        with a restart at each (:meth:`corliss.engine.network.Network.stops`).
+    out_theta : ndarray
+        Shaft angles [rad] where the state is sampled, increasing.
+    step : float
+        The largest fixed step [rad].
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    tier : int
+        The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.
+    tab : tuple
+        The steam table's arrays (:meth:`corliss.thermo.steam_table.SteamTable.arrays`).
+    perf : ndarray
+        The perfect tier's gas constant [J/(kg K)], ``cv`` [J/(kg K)] and ``u_ref``
+        [J/kg]; shape (3,) (unused on the table tier).
+    max_rhs : int
+        The run-time budget: most right-hand-side evaluations.
+
+    Returns
+    -------
+    y_end : ndarray
+        The state at ``stops[-1]``; shape (n_state,).
+    samples : ndarray
+        ``samples[:, k]`` the state at ``out_theta[k]``; shape (n_state, outputs).
+    nfev : int
+        Right-hand-side evaluations spent.
+    ok : bool
+        False when the step size collapsed, the state went non-finite or more than
+        ``max_rhs`` evaluations were spent.
+    clamps : ndarray
+        Evaluations that clamped a state, shape (6,), indexed by ``CL_*``: at visited
+        states (the ends of accepted steps) and at trial states (stages, probes,
+        rejected steps) apart.
+    """
     n = y0.shape[0]
     y = y0.copy()
     samples = np.full((n, out_theta.shape[0]), np.nan)
@@ -809,7 +1358,54 @@ def cycle_rk4(y0, stops, out_theta, step, net, tier, tab, perf, max_rhs):
 @njit(cache=True)
 def cycle_rosenbrock(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, owner,
                      max_rhs):
-    """:func:`integrate_cycle` with the Rosenbrock 2(3) pair of ode23s (module docstring)."""
+    """:func:`integrate_cycle` with the Rosenbrock 2(3) pair of ode23s (module docstring).
+
+    Parameters
+    ----------
+    y0 : ndarray
+        The state at ``stops[0]``; shape (n_state,).
+    stops : ndarray
+        Shaft angles [rad], increasing: the segments between them are integrated
+        with a restart at each (:meth:`corliss.engine.network.Network.stops`).
+    out_theta : ndarray
+        Shaft angles [rad] where the state is sampled, increasing.
+    rtol : float
+        Relative tolerance [-].
+    atol : ndarray
+        Absolute tolerances, in each component's unit; shape (n_state,).
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    tier : int
+        The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.
+    tab : tuple
+        The steam table's arrays (:meth:`corliss.thermo.steam_table.SteamTable.arrays`).
+    perf : ndarray
+        The perfect tier's gas constant [J/(kg K)], ``cv`` [J/(kg K)] and ``u_ref``
+        [J/kg]; shape (3,) (unused on the table tier).
+    color : ndarray of int64
+        The colour of each dynamic column
+        (:meth:`corliss.engine.network.Network.column_colors`).
+    owner : ndarray of int64
+        Which column of each colour moves each row; shape (colours, n_state).
+    max_rhs : int
+        The run-time budget: most right-hand-side evaluations.
+
+    Returns
+    -------
+    y_end : ndarray
+        The state at ``stops[-1]``; shape (n_state,).
+    samples : ndarray
+        ``samples[:, k]`` the state at ``out_theta[k]``; shape (n_state, outputs).
+    nfev : int
+        Right-hand-side evaluations spent.
+    ok : bool
+        False when the step size collapsed, the state went non-finite or more than
+        ``max_rhs`` evaluations were spent.
+    clamps : ndarray
+        Evaluations that clamped a state, shape (6,), indexed by ``CL_*``: at visited
+        states (the ends of accepted steps) and at trial states (stages, probes,
+        rejected steps) apart.
+    """
     n = y0.shape[0]
     ndyn = color.shape[0]
     y = y0.copy()
@@ -914,12 +1510,57 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
                     color, owner, max_rhs):
     """Integrate from ``stops[0]`` to ``stops[-1]``, restarting at every stop.
 
-    ``method``: 0 dopri5, 1 rk4, 2 Rosenbrock ode23s.  Returns
-    ``(y_end, samples, nfev, ok, clamps)``; ``samples[:, k]`` is the state at
-    ``out_theta[k]``; ``ok`` is False when the step size collapsed or more than
-    ``max_rhs`` evaluations were spent (the run-time budget); ``clamps`` counts the
-    evaluations that clamped a state (indices ``CL_*``): at visited states (the ends of
-    accepted steps) and at trial states (stages, probes, rejected steps) apart.
+    Hands over to the compiled integrator of ``method`` (:data:`CYCLE_KERNELS`).
+
+    Parameters
+    ----------
+    y0 : ndarray
+        The state at ``stops[0]``; shape (n_state,).
+    stops : ndarray
+        Shaft angles [rad], increasing: the segments between them are integrated
+        with a restart at each (:meth:`corliss.engine.network.Network.stops`).
+    out_theta : ndarray
+        Shaft angles [rad] where the state is sampled, increasing.
+    method : int
+        0 dopri5, 1 rk4, 2 Rosenbrock ode23s.
+    rtol : float
+        Relative tolerance [-] (the adaptive methods).
+    atol : ndarray
+        Absolute tolerances, in each component's unit; shape (n_state,).
+    step : float
+        The largest step of rk4 [rad].
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    tier : int
+        The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.
+    tab : tuple
+        The steam table's arrays (:meth:`corliss.thermo.steam_table.SteamTable.arrays`).
+    perf : ndarray
+        The perfect tier's gas constant [J/(kg K)], ``cv`` [J/(kg K)] and ``u_ref``
+        [J/kg]; shape (3,) (unused on the table tier).
+    color : ndarray of int64
+        The colour of each dynamic column (Rosenbrock;
+        :meth:`corliss.engine.network.Network.column_colors`).
+    owner : ndarray of int64
+        Which column of each colour moves each row; shape (colours, n_state).
+    max_rhs : int
+        The run-time budget: most right-hand-side evaluations.
+
+    Returns
+    -------
+    y_end : ndarray
+        The state at ``stops[-1]``; shape (n_state,).
+    samples : ndarray
+        ``samples[:, k]`` the state at ``out_theta[k]``; shape (n_state, outputs).
+    nfev : int
+        Right-hand-side evaluations spent.
+    ok : bool
+        False when the step size collapsed, the state went non-finite or more than
+        ``max_rhs`` evaluations were spent.
+    clamps : ndarray
+        Evaluations that clamped a state, shape (6,), indexed by ``CL_*``: at visited
+        states (the ends of accepted steps) and at trial states (stages, probes,
+        rejected steps) apart.
     """
     if method == 0:
         return cycle_dopri5(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, max_rhs)
@@ -930,9 +1571,19 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
 
 
 def uncached(dispatcher) -> bool | None:
-    """True when the compiled function is neither compiled in this process nor in
-    numba's disk cache (its first call will compile it); None when this numba does not
-    show its cache (internals this reads are gone)."""
+    """Whether a compiled function's first call will compile it.
+
+    Parameters
+    ----------
+    dispatcher : numba Dispatcher
+        The compiled function (``@njit(cache=True)``).
+
+    Returns
+    -------
+    bool or None
+        True when it is neither compiled in this process nor in numba's disk cache;
+        None when this numba does not show its cache (internals this reads are gone).
+    """
     try:
         return (not dispatcher.signatures
                 and not os.path.exists(dispatcher._cache._cache_file._index_path))
@@ -941,8 +1592,17 @@ def uncached(dispatcher) -> bool | None:
 
 
 def announce_compile(*dispatchers) -> None:
-    """Say so, once, before compiled functions that are not yet in numba's disk cache
-    are first called: the first run on a machine spends a minute compiling them."""
+    """Say so before compiled functions not yet in numba's disk cache are first called.
+
+    The first run on a machine spends some seconds compiling them; a NOTICE names the
+    functions to be compiled (nothing when all are cached, or this numba does not show
+    its cache).
+
+    Parameters
+    ----------
+    *dispatchers : numba Dispatcher
+        The compiled functions about to be called.
+    """
     state = [uncached(d) for d in dispatchers]
     if None in state:          # a numba without these internals: say nothing
         return

@@ -26,7 +26,7 @@ log = logging.getLogger(__name__)
 
 
 def geometry_of(scene) -> CylinderGeometry:
-    """The cylinder's geometry, with the connecting rod only if ``rod_angularity`` is named.
+    """The cylinder's geometry; the rod's angularity only with ``rod_angularity``.
 
     Parameters
     ----------
