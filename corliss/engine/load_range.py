@@ -45,6 +45,11 @@ def load_range(scene, knob: str, values, *,
         Its ``points`` table: ``knob_frac``, ``indicated_power_W``,
         ``steam_rate_kg_per_h``, ``water_rate_kg_per_kWh``, ``cutoff_head_frac``, and
         ``brake_power_W`` when ``friction`` is named.
+
+    Raises
+    ------
+    InputError
+        A value :func:`corliss.engine.model.at_knob` refuses, before any run.
     """
     t0 = time.perf_counter()
     values = [float(v) for v in values]
@@ -77,6 +82,7 @@ def load_ranges(scene, values_by_knob: dict, *,
     Parameters
     ----------
     scene : Scene
+        Any scene (a transient one is run steady at its initial speed).
     values_by_knob : dict
         ``{"setting": [...], "throttle": [...]}`` (either or both); every value is
         checked before any run.
@@ -88,6 +94,11 @@ def load_ranges(scene, values_by_knob: dict, *,
     SweepResult
         ``knob`` is ``"both"`` when both knobs ran; its ``points`` carry the ``knob``
         of each row.
+
+    Raises
+    ------
+    InputError
+        A value :func:`corliss.engine.model.at_knob` refuses, before any run.
     """
     for knob, values in values_by_knob.items():
         for v in values:

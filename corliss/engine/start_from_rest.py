@@ -50,11 +50,12 @@ def start_from_rest(y0: np.ndarray, theta0: float, omega_run: float, net, tier, 
     omega_run : float
         The scene's run speed [rad/s] (sets the handover and the creep floor).
     net, tier, tab, perf, tr
-        The compiled loop's arrays (see :func:`transient_kernel.integrate_turn`).
+        The compiled loop's arrays (see
+        :func:`corliss.engine.transient_kernel.integrate_turn`).
     rtol : float
-        Relative tolerance of the time integration.
+        Relative tolerance of the time integration [-].
     atol : ndarray
-        Absolute tolerances of the loop's states.
+        Absolute tolerances of the loop's states, in each one's unit.
     t_max : float
         The run's duration [s]: an engine not up to the handover speed by then has not
         started (it stalled, or is still starting).

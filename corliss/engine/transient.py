@@ -61,7 +61,33 @@ SETTLE_CHECK_TURNS = 10
 
 @dataclass
 class LoopTables:
-    """Everything the compiled loop reads besides the network (see transient_kernel)."""
+    """Everything the compiled loop reads besides the network.
+
+    Parameters
+    ----------
+    tr : tuple
+        The loop's parameter tuple (:mod:`corliss.engine.transient_kernel`):
+        ``(sc, lt, lf, sgrid, area_s, governed, gov, trip, thr)``: the scalars
+        (indices ``S_*``: inertia [kg m2], reciprocating mass [kg], friction [N m],
+        [N m s/rad], the governor's constants, the load's law, torque [N m] and
+        reference speed [rad/s], ...), the load's times [s] and fractions [-], the
+        setting grid [-], port areas over (cylinder, port, setting, crank angle) [m2],
+        which cylinders the governor moves, the governor's M, M', G, R, J on a uniform z
+        grid, the trip gear's tables, and the throttle's area over a uniform grid of
+        opening [m2].
+    governed_gear : object or None
+        The valve gear the governor sets (None: it works the throttle, or there is no
+        governor).
+    setting_grid : ndarray or None
+        The settings tabulated [-], with a governed gear.
+    cutoff_table : ndarray or None
+        Head and crank cut-off at each setting, fractions of the stroke [-]; shape
+        (2, settings).
+    z0 : float
+        The governor's equilibrium coordinate at the run's speed [-] (0 without one).
+    mechanism : GovernorMechanism or None
+        The governor in its common form.
+    """
 
     tr: tuple
     governed_gear: object | None
@@ -132,8 +158,31 @@ def _trip_tables(gear, grid: np.ndarray, nth: int):
 
 
 def build_tables(scene, net, gear, geo) -> LoopTables:
-    """The loop's parameter tuple from the scene, its network, its valve gear (built
-    once, by the caller) and the cylinder geometry."""
+    """The loop's tables from the scene.
+
+    Parameters
+    ----------
+    scene : Scene
+        The transient scene (flywheel, load, governor, effects, fidelity).
+    net : Network
+        Its network (the throttle's edge is ``steam_pipe``).
+    gear : object
+        Its valve gear, built once by the caller.
+    geo : CylinderGeometry
+        The (first or high-pressure) cylinder, for the cut-off at each setting.
+
+    Returns
+    -------
+    LoopTables
+        The tables; a gear governor's port areas over :data:`SETTING_POINTS` settings
+        of its actuator range (a compound's LP gear is not governed).
+
+    Raises
+    ------
+    ValueError
+        A governor not tabulated on a uniform grid of z from 0 to 1, or a trip gear
+        whose latched steam valve does not open and close once a turn.
+    """
     fid = scene.run.fidelity
     omega0 = scene.run.speed_rad_s
     ncyl = len(net.geometries)
@@ -223,6 +272,8 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
     Returns
     -------
     TransientResult
+        The speed and governor histories, the per-turn table, the cards before the
+        step and at the end, and the load-step metrics.
     """
     t_wall = time.perf_counter()
     run = scene.run

@@ -79,7 +79,27 @@ N_REC = 7
 
 @njit(cache=True)
 def piston_kinematics(th, net, c):
-    """(ds/dtheta, d2s/dtheta2) of cylinder ``c``'s piston [m/rad, m/rad2]."""
+    """Piston velocity and acceleration per crank angle of one cylinder.
+
+    The slider crank of :mod:`corliss.engine.geometry` at the cylinder's own angle
+    (an infinite rod without rod angularity).
+
+    Parameters
+    ----------
+    th : float
+        Shaft crank angle [rad].
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    c : int
+        The cylinder.
+
+    Returns
+    -------
+    ds : float
+        ``ds/dtheta`` [m/rad].
+    d2s : float
+        ``d2s/dtheta2`` [m/rad2].
+    """
     geo, phase = net[2], net[3]
     R, L, ang = geo[c, 0], geo[c, 1], geo[c, 7]
     a = th + phase[c]
@@ -110,8 +130,24 @@ def _lin(grid0, dgrid, table, x):
 
 @njit(cache=True)
 def uniform_cell(x, x0, x1, n):
-    """(k, w): the cell of ``x`` on n uniform points from x0 to x1 and the weight of
-    point k + 1, clamped to the grid (a single point gives (0, 0))."""
+    """The cell of a value on a uniform grid, and its weight, clamped to the grid.
+
+    Parameters
+    ----------
+    x : float
+        The value.
+    x0, x1 : float
+        The grid's first and last points (``x1 > x0`` when ``n >= 2``).
+    n : int
+        Points of the grid.
+
+    Returns
+    -------
+    k : int
+        The cell: ``x`` lies between points ``k`` and ``k + 1``.
+    w : float
+        The weight of point ``k + 1`` [-], 0 to 1 ((0, 0) for a single point).
+    """
     if n < 2:
         return 0, 0.0
     f = (x - x0) / (x1 - x0) * (n - 1)
@@ -127,7 +163,24 @@ def uniform_cell(x, x0, x1, n):
 
 @njit(cache=True)
 def load_factor(t, lt, lf):
-    """The load schedule f(t): piecewise linear, constant beyond its ends."""
+    """The load schedule ``f(t)``: piecewise linear, constant beyond its ends.
+
+    At a step (two points at one time) the value after it.
+
+    Parameters
+    ----------
+    t : float
+        Time [s].
+    lt : ndarray
+        The schedule's times [s], non-decreasing.
+    lf : ndarray
+        The load fractions at those times [-].
+
+    Returns
+    -------
+    float
+        ``f(t)`` [-].
+    """
     n = lt.shape[0]
     if t <= lt[0]:
         return lf[0]
@@ -142,9 +195,31 @@ def load_factor(t, lt, lf):
 
 @njit(cache=True)
 def governed_areas(th, s, omega, net, tr, pa):
-    """Port areas of the governed cylinders at gear setting ``s``, bilinear in the
-    (setting, crank angle) table; with a trip gear, the steam valves released at the
-    setting's cam and closed by the dash-pot in its own time."""
+    """Port areas of the governed cylinders at a gear setting.
+
+    Bilinear in the (setting, crank angle) table; with a trip gear, the steam valves
+    released at the setting's cam and closed by the dash-pot in its own time
+    (:func:`trip_areas`).
+
+    Parameters
+    ----------
+    th : float
+        Shaft crank angle [rad].
+    s : float
+        The gear's setting [-] (the governor's actuator value).
+    omega : float
+        Shaft speed [rad/s] (the dash-pot closes in time, not angle).
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    tr : tuple
+        The loop's tables (:attr:`corliss.engine.transient.LoopTables.tr`): scalars
+        ``sc`` (indices ``S_*``), load times [s] and fractions [-], setting grid [-],
+        port areas over (setting, crank angle) [m2], governed cylinders, governor
+        tables (M, M', G, R, J on a uniform z grid), trip tables, throttle areas [m2].
+    pa : ndarray
+        The port areas [m2], shape (cylinders, 4), overwritten for the governed
+        cylinders.
+    """
     sc, sgrid, area_s, governed = tr[0], tr[3], tr[4], tr[5]
     phase = net[3]
     ns = sgrid.shape[0]
@@ -170,10 +245,30 @@ def governed_areas(th, s, omega, net, tr, pa):
 
 @njit(cache=True)
 def trip_areas(t, s, omega, tr, c, pa):
-    """A trip gear's steam ports (0: head, 2: crank): the latched opening (as tabulated)
-    until the cam releases the valve at its release angle, then at most the opening at
-    release times the dash-pot's closing fraction of the time since release, until the
-    latched valve would have closed anyway."""
+    """A trip gear's steam ports (0: head, 2: crank) after the release.
+
+    The latched opening (as tabulated) until the cam releases the valve at its release
+    angle, then at most the opening at release times the dash-pot's closing fraction
+    of the time since release, until the latched valve would have closed anyway.
+
+    Parameters
+    ----------
+    t : float
+        The cylinder's own crank angle, within one turn [rad].
+    s : float
+        The gear's setting [-].
+    omega : float
+        Shaft speed [rad/s].
+    tr : tuple
+        The loop's tables (:attr:`corliss.engine.transient.LoopTables.tr`): scalars
+        ``sc`` (indices ``S_*``), load times [s] and fractions [-], setting grid [-],
+        port areas over (setting, crank angle) [m2], governed cylinders, governor
+        tables (M, M', G, R, J on a uniform z grid), trip tables, throttle areas [m2].
+    c : int
+        The cylinder.
+    pa : ndarray
+        The port areas [m2], shape (cylinders, 4), the steam ports' reduced in place.
+    """
     trip = tr[7]
     # trip rows: 0 setting grid, 1/2 head/crank release angle per setting (nan: none),
     # 3/4 head/crank latched opening area at release, 5 closing-fraction table over
@@ -213,8 +308,47 @@ def trip_areas(t, s, omega, tr, c, pa):
 
 @njit(cache=True)
 def transient_rhs(th, y, dy, net, tier, tab, perf, pr, pa, tr, out):
-    """Derivatives with respect to crank angle of the whole loop, into ``dy``;
-    ``out`` receives (T_gas, T_load, actuator, domega/dt) for recording."""
+    """Derivatives with respect to crank angle of the whole loop.
+
+    The network's balances at the state's speed (written into ``net[0][0]``), the
+    governor's actuator applied to the throttle's area or the gear's ports, the shaft
+    and the governor as in the module's docstring, and the work quadratures.
+
+    Parameters
+    ----------
+    th : float
+        Shaft crank angle [rad].
+    y : ndarray
+        The state: the network's (:class:`~corliss.engine.network.Network`), then the
+        :data:`N_EXTRA` loop states (``X_*``: speed [rad/s], z [-], dz/dt [1/s], time
+        [s], load, friction and gas work [J], integrals of z and actuator over time
+        [s]).
+    dy : ndarray
+        Written: the derivatives per radian, of ``y``'s shape.
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    tier : int
+        The compiled property tier (:data:`corliss.engine.kernel.TIER_TABLE` or
+        ``TIER_PERFECT``).
+    tab : tuple
+        The steam table's arrays (:meth:`corliss.thermo.steam_table.SteamTable.arrays`).
+    perf : ndarray
+        The perfect tier's gas constant [J/(kg K)], ``cv`` [J/(kg K)] and ``u_ref``
+        [J/kg]; shape (3,).
+    pr : ndarray
+        Scratch, written: the node properties (rows as in
+        :func:`corliss.engine.kernel.node_states`), shape (PR_ROWS, nodes).
+    pa : ndarray
+        Scratch for the port areas [m2], shape (cylinders, 4).
+    tr : tuple
+        The loop's tables (:attr:`corliss.engine.transient.LoopTables.tr`): scalars
+        ``sc`` (indices ``S_*``), load times [s] and fractions [-], setting grid [-],
+        port areas over (setting, crank angle) [m2], governed cylinders, governor
+        tables (M, M', G, R, J on a uniform z grid), trip tables, throttle areas [m2].
+    out : ndarray
+        Written, for recording: indicated torque ``T_gas`` [N m], load torque [N m],
+        actuator value [-] and ``domega/dt`` [rad/s2]; shape (4,).
+    """
     sc, lt, lf, gov = tr[0], tr[1], tr[2], tr[6]
     nv = net[4].shape[0]
     nn = y.shape[0] - N_EXTRA
@@ -318,17 +452,66 @@ def _project(y, nn):
 def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, record, t_end):
     """Integrate one turn, from ``th0`` to ``th0 + 2 pi`` (dopri5, dense Hermite output).
 
-    Returns ``(y_end, samples, rec, n_rec, nfev, status)``: ``samples[:, k]`` the state at
-    ``out_theta[k]``; ``rec`` rows (theta, omega, z, actuator, t, T_gas, T_load) of
-    every accepted step when ``record``; ``status`` 0 ok, 1 step size collapsed,
-    2 the engine stalled (omega below the floor), 3 time ``t_end`` passed (the turn was
-    finished anyway), 4 the turn exceeded the run-time budget (``sc[S_MAX_RHS]`` evaluations).
-
     Evaluations that clamped a state to the range of the steam properties are counted:
     at trial states (stages, rejected steps) into ``sc[S_CLAMPED_TRIALS]``; at a state
     the run visits (an accepted step's end) they stop the run
     (:class:`~corliss.errors.RunError`, naming the scene quantity to look at), but for
     steam heated beyond the greatest energy (into ``sc[S_CLAMPED_HOT]``).
+
+    Parameters
+    ----------
+    y0 : ndarray
+        The state at ``th0`` (see :func:`transient_rhs`).
+    th0 : float
+        Shaft angle at the turn's start [rad].
+    out_theta : ndarray
+        Shaft angles [rad] where the state is sampled, increasing.
+    rtol : float
+        Relative tolerance [-].
+    atol : ndarray
+        Absolute tolerances, in each component's unit, of ``y0``'s shape.
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    tier : int
+        The compiled property tier.
+    tab : tuple
+        The steam table's arrays.
+    perf : ndarray
+        The perfect tier's parameters, shape (3,).
+    tr : tuple
+        The loop's tables (:attr:`corliss.engine.transient.LoopTables.tr`): scalars
+        ``sc`` (indices ``S_*``; the clamp counts
+        written), load times [s] and fractions [-], setting grid [-],
+        port areas over (setting, crank angle) [m2], governed cylinders, governor
+        tables (M, M', G, R, J on a uniform z grid), trip tables, throttle areas [m2].
+    record : bool
+        Whether to record every accepted step.
+    t_end : float
+        The run's end time [s].
+
+    Returns
+    -------
+    y_end : ndarray
+        The state at the turn's end (or where it stopped).
+    samples : ndarray
+        ``samples[:, k]`` the state at ``out_theta[k]``; shape (n, outputs).
+    rec : ndarray
+        Shape (:data:`N_REC`, at most 40000): per accepted step (and the start), shaft
+        angle [rad], speed [rad/s], z [-], actuator [-], time [s], indicated torque
+        [N m] and load torque [N m]; filled up to ``n_rec`` when ``record``.
+    n_rec : int
+        Columns of ``rec`` filled.
+    nfev : int
+        Right-hand-side evaluations.
+    status : int
+        0 ok; 1 the step size collapsed; 2 the engine stalled (speed below
+        ``sc[S_WMIN]``); 3 time ``t_end`` passed (the turn was finished anyway); 4 the
+        turn exceeded the run-time budget (``sc[S_MAX_RHS]`` evaluations).
+
+    Raises
+    ------
+    RunError
+        A visited state needed a clamp other than the greatest energy's.
     """
     n = y0.shape[0]
     nn = n - N_EXTRA
