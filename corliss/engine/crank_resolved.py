@@ -51,13 +51,21 @@ class CrankResolved:
     Parameters
     ----------
     network : Network
+        The engine's control volumes and ports (its wall temperatures are updated by
+        :meth:`update_wall`).
     steam : Steam
+        The property tier.
     method : str
         A scipy method or a compiled one (which needs a compiled tier).
     rtol : float
         Relative tolerance [-]; absolute tolerances follow from the network's scales.
     step_deg : float
         Step of the fixed-step ``rk4`` [deg].
+
+    Raises
+    ------
+    ValueError
+        A compiled method on a tier without a compiled form (``heos``).
     """
 
     def __init__(self, network: Network, steam: Steam, method: str = "LSODA",
@@ -91,7 +99,24 @@ class CrankResolved:
         self._cell = np.empty((len(network.geometries), 4))
 
     def rhs(self, th: float, y: np.ndarray) -> np.ndarray:
-        """Derivatives with respect to crank angle [per rad] (Python entry)."""
+        """Derivatives with respect to crank angle (the Python entry, for scipy).
+
+        On a compiled tier the compiled :func:`~corliss.engine.kernel.rhs`; otherwise
+        each node's properties from the tier in Python (a clamped evaluation counted as
+        a trial) handed to the compiled :func:`~corliss.engine.kernel.derivatives`.
+
+        Parameters
+        ----------
+        th : float
+            Shaft crank angle [rad].
+        y : ndarray
+            The state, shape (n_state,) (layout of :class:`Network`).
+
+        Returns
+        -------
+        ndarray
+            The derivatives per radian, of ``y``'s shape.
+        """
         self.nfev += 1
         dy = np.empty_like(y)
         if self._tier >= 0:
@@ -136,11 +161,28 @@ class CrankResolved:
         the same cycle), so the runner takes a step only once the cycle at the present
         deep temperature is periodic, ``apply``; otherwise the step is only measured.
 
-        Returns the largest step of a skin model's deep wall [K] and the largest
-        imbalance of a skin model's wall over the cycle, ``|r|`` against
-        ``heat_scale`` [J] (the enthalpy supplied, so that it reads as an error of the
-        engine's energy balance) or, without it, the heat the steam gave the wall
-        (0, 0 without one).
+        Walls of the other models are set to their mean at once, whatever ``apply``.
+
+        Parameters
+        ----------
+        y_end : ndarray
+            The state at the end of the cycle just run (its quadratures the cycle's
+            totals); shape (n_state,).
+        apply : bool
+            Whether a skin model's deep wall takes its step (else it is only
+            measured).
+        heat_scale : float
+            The scale of the imbalance [J]: the enthalpy supplied over the cycle; 0 for
+            the heat the steam gave the wall.
+
+        Returns
+        -------
+        step : float
+            The largest step of a skin model's deep wall [K] (0 without one).
+        imbalance : float
+            The largest imbalance of a skin model's wall over the cycle, ``|r|``
+            against ``heat_scale`` (so that it reads as an error of the engine's
+            energy balance) [-] (0 without one).
         """
         net = self.network
         hist = self.__dict__.setdefault("_wall_history", {})
@@ -171,14 +213,47 @@ class CrankResolved:
         return largest, imbalance
 
     def initial_state(self) -> np.ndarray:
+        """The cold start: :meth:`Network.initial_state`.
+
+        Returns
+        -------
+        ndarray
+            The state at crank angle 0, shape (n_state,).
+        """
         return self.network.initial_state()
 
     def cycle(self, y0: np.ndarray, theta0: float, out_theta: np.ndarray):
-        """Integrate one cycle from ``theta0``; quadratures restart from zero (the skin
-        model's wall states carry on from ``y0``).
+        """Integrate one cycle from ``theta0``, restarting at every kink of the ports.
 
-        Returns the state at the end (quadratures = cycle totals) and the states at
-        ``out_theta``, shape ``(n_state, len(out_theta))``.
+        The quadratures restart from zero (the skin model's wall states carry on from
+        ``y0``, their heat quadratures restart).
+
+        Parameters
+        ----------
+        y0 : ndarray
+            The state at ``theta0``; shape (n_state,).
+        theta0 : float
+            The shaft angle the cycle starts from [rad].
+        out_theta : ndarray
+            Shaft angles [rad] at which to sample the state, within the cycle,
+            increasing.
+
+        Returns
+        -------
+        y_end : ndarray
+            The state at the cycle's end, its quadratures the cycle's totals; shape
+            (n_state,).
+        samples : ndarray
+            The states at ``out_theta``; shape (n_state, len(out_theta)).
+
+        Raises
+        ------
+        RunError
+            A visited state needed clamping to the range of the steam properties
+            (:func:`clamp_message`), or the cycle ran out of its budget
+            (:func:`budget_message`).
+        RuntimeError
+            The integrator failed (its step size collapsed).
         """
         y = np.array(y0, dtype=float)
         y[self.network.n_dyn:self.network.n_quad_end] = 0.0   # the wall states carry on
@@ -276,8 +351,29 @@ CLAMP_CAUSES = {
 
 
 def clamp_message(network, code: int, node: int, theta: float, count: int) -> str:
-    """Why a run stopped: a state it visited needed clamping to the range of the steam
-    properties; names the scene quantity that most likely caused it."""
+    """Why a run stopped: a state it visited needed clamping to the steam properties.
+
+    Names the scene quantity that most likely caused it (:data:`CLAMP_CAUSES`; the
+    wall-heat model for steam overheated by the walls).
+
+    Parameters
+    ----------
+    network : Network
+        The network run (node names and wall-heat rows).
+    code : int
+        The clamp code: bits of :data:`corliss.thermo.steam_table.CLAMP_CODES`.
+    node : int
+        The node whose state was clamped first (-1 or out of range: unknown).
+    theta : float
+        The shaft angle of the first clamped state [rad].
+    count : int
+        Clamped evaluations at visited states.
+
+    Returns
+    -------
+    str
+        The message, ending with the scene key to check.
+    """
     what = "; ".join(text for bit, text in CLAMP_CODES.items() if code & bit)
     bit = next((b for b in CLAMP_CAUSES if code & b), 32)
     key, why = CLAMP_CAUSES[bit]
@@ -293,8 +389,20 @@ def clamp_message(network, code: int, node: int, theta: float, count: int) -> st
 
 
 def budget_message(network, max_rhs: int) -> str:
-    """Why a cycle ran out of its budget of ``max_rhs`` evaluations, with the scene
-    quantities that usually cause it."""
+    """Why a cycle ran out of its budget, with the scene quantities that usually cause it.
+
+    Parameters
+    ----------
+    network : Network
+        The network run (its first cylinder's stroke and bore are quoted).
+    max_rhs : int
+        The budget: right-hand-side evaluations allowed in one cycle.
+
+    Returns
+    -------
+    str
+        The message.
+    """
     spec = network.geometries[0].spec
     return (f"one cycle needed more than {int(max_rhs):,} evaluations of the model and was "
             f"stopped: the run is stepping through something no engine "

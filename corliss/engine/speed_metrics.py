@@ -75,6 +75,15 @@ def settled(t_mid_s: np.ndarray, speed_rpm: np.ndarray, since_s: float) -> tuple
         Turn-mean speeds [rpm].
     since_s : float
         The last change of load [s] (0 without one).
+
+    Returns
+    -------
+    settled : bool
+        Whether the swing is at most :data:`SETTLED_SWING` (False with fewer than
+        :data:`SETTLE_MIN_TURNS` turns after ``since_s``).
+    swing : float
+        The swing of the turn-mean speed over the settling window, a fraction of its
+        mean [-] (NaN with too few turns).
     """
     after = t_mid_s > since_s
     if after.sum() < SETTLE_MIN_TURNS:
@@ -86,8 +95,28 @@ def settled(t_mid_s: np.ndarray, speed_rpm: np.ndarray, since_s: float) -> tuple
 
 
 def hunting(cycles: pd.DataFrame, since_s: float = 0.0) -> dict:
-    """Whether the governor hunts at the end of the run, its period and swing (over the
-    last half of the time after ``since_s`` [s])."""
+    """Whether the governor hunts at the end of the run, its period and swing.
+
+    Over the last half of the time after ``since_s`` (at least 12 turns), by the test
+    of the module's docstring.
+
+    Parameters
+    ----------
+    cycles : DataFrame
+        The per-turn table of a transient run (``t_start_s``, ``t_end_s``,
+        ``governor_z_frac``).
+    since_s : float
+        The last change of load [s] (0 without one; the whole run when fewer than 12
+        turns follow it).
+
+    Returns
+    -------
+    dict
+        ``hunting`` (bool), ``hunting_period_s`` (twice the mean spacing of the
+        crossings of the mean [s], None unless hunting) and ``governor_swing`` (the
+        swing of the governor's position [-], a fraction of its travel); no hunting
+        without a governor or with fewer than 12 turns.
+    """
     t = _mid_times(cycles)
     if "governor_z_frac" not in cycles or len(cycles) < 12:
         return {"hunting": False, "hunting_period_s": None, "governor_swing": 0.0}
@@ -171,6 +200,17 @@ def load_step_metrics(cycles: pd.DataFrame, step_time_s: float | None, band: flo
 
 
 def step_time_of(load) -> float | None:
-    """The first time the load schedule changes [s], or None for a constant load."""
+    """The first time the load schedule changes.
+
+    Parameters
+    ----------
+    load : LoadSpec
+        The scene's load.
+
+    Returns
+    -------
+    float or None
+        The time [s], or None for a constant load.
+    """
     times = load.change_times_s()
     return times[0] if times else None
