@@ -147,8 +147,10 @@ class CrankResolved:
 
     def update_wall(self, y_end: np.ndarray, apply: bool = True,
                     heat_scale: float = 0.0) -> tuple[float, float]:
-        """Set each wall to the h A-weighted mean steam temperature of the cycle just run,
-        the temperature at which it neither gains nor loses heat over a cycle.
+        """Set each wall to the mean steam temperature of the cycle just run.
+
+        The mean weighted by ``h A``: the temperature at which the wall neither gains
+        nor loses heat over a cycle.
 
         The skin model's deep wall (:mod:`corliss.engine.wall`) takes a secant step on
         its balance over the cycle, ``r(T) = -Q + G_j A_j P (T_j - T) = 0`` (heat the

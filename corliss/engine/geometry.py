@@ -123,7 +123,7 @@ class CylinderGeometry:
         return (self.spec.clearance[0] * sh, self.spec.clearance[1] * sc)
 
     def piston_m(self, theta):
-        """Piston displacement from head-end dead centre (Marks Art. 96 III, eq. 239).
+        """Piston displacement from head-end dead centre (Marks Art. 96 III, eqs. 239-241).
 
         Parameters
         ----------
@@ -134,7 +134,7 @@ class CylinderGeometry:
         -------
         ndarray
             ``s = R (1 - cos theta) + L - sqrt(L^2 - R^2 sin^2 theta)`` [m] (without
-            rod angularity, ``R (1 - cos theta)``), of ``theta``'s shape.
+            rod angularity, ``R (1 - cos theta)``, eq. 239), of ``theta``'s shape.
         """
         R = self.crank_m
         th = np.asarray(theta, dtype=float)
