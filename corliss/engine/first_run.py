@@ -51,8 +51,9 @@ def _wanted(scene) -> bool:
 
 
 def prepare(scene) -> None:
-    """Build the steam table in a second process while the kernels compile here, when
-    both are missing (see the module's text); otherwise do nothing.
+    """Build the steam table in a second process while the kernels compile here.
+
+    Only when both are missing (see the module's text); otherwise do nothing.
 
     Parameters
     ----------

@@ -64,8 +64,13 @@ def hyperbolic_card(V_clear: float, V_swept: float, f_cut: float, f_rel: float,
 
     Returns
     -------
-    frac, V, p : ndarray
-        Stroke fraction [-], volume [m3] and pressure [Pa] around the card.
+    frac : ndarray
+        Stroke fraction from this end's dead centre [-] around the card (admission,
+        expansion, release, exhaust, compression; 2000 points each).
+    V : ndarray
+        Volume [m3] at those points.
+    p : ndarray
+        Absolute pressure [Pa] at those points.
     """
     f_rel = max(f_rel, f_cut)
     f_comp = min(max(f_comp, 0.0), f_rel)

@@ -213,8 +213,11 @@ class Network:
 
     @property
     def n_dyn(self) -> int:
-        """Number of dynamic states: mass [kg] and internal energy [J] of each node,
-        interleaved (``y[2 i]``, ``y[2 i + 1]``)."""
+        """Number of dynamic states.
+
+        Mass [kg] and internal energy [J] of each node, interleaved (``y[2 i]``,
+        ``y[2 i + 1]``).
+        """
         return 2 * self.n_nodes
 
     #: Quadratures of each node: work p dV, net heat into the steam, heat from the steam
@@ -239,9 +242,12 @@ class Network:
 
     @property
     def n_state(self) -> int:
-        """Length of the state vector: the dynamic states, then mass [kg] and enthalpy
-        [J] through each edge, then :data:`NODE_QUADS` of each node, then
-        :data:`WALL_STATES` of each skin-model wall."""
+        """Length of the state vector.
+
+        The dynamic states, then mass [kg] and enthalpy [J] through each edge, then
+        :data:`NODE_QUADS` of each node, then :data:`WALL_STATES` of each skin-model
+        wall.
+        """
         return self.n_quad_end + len(self.WALL_STATES) * len(self.wall_nodes)
 
     def i_wall(self, node: int, what: str = "surface") -> int:
@@ -874,8 +880,10 @@ def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
 
 def compound(hp_geometry, hp_portmap, lp_geometry, lp_portmap, lp_phase: float, receiver_m3: float,
              chest, exhaust, receiver_init, omega: float, band: float | None = None) -> Network:
-    """A compound engine (Marks Arts. 87-92): the high-pressure cylinder exhausts into a
-    receiver of fixed volume, from which the low-pressure cylinder takes its steam.
+    """A compound engine (Marks Arts. 87-92).
+
+    The high-pressure cylinder exhausts into a receiver of fixed volume, from which the
+    low-pressure cylinder takes its steam.
 
     Nodes: ``head``, ``crank`` (HP), ``receiver``, ``lp_head``, ``lp_crank``; edges
     named ``<end>_steam`` and ``<end>_exhaust`` as for one cylinder.

@@ -355,10 +355,13 @@ class SteadyResult(Result):
 
     @property
     def cards(self) -> dict[str, pd.DataFrame]:
-        """Card of each end over the last cycle: ``piston_frac`` (the piston's position as
-        a fraction of the stroke from head-end dead centre, the card's abscissa),
-        ``V_m3``, ``p_Pa``, and the cylinder's own ``crank_angle_deg``; keyed by end
-        (``head``, ``crank``, ``lp_head``, ...)."""
+        """Card of each end over the last cycle, keyed by end.
+
+        Keys ``head``, ``crank``, ``lp_head``, ...; each frame has ``piston_frac`` (the
+        piston's position as a fraction of the stroke from head-end dead centre, the
+        card's abscissa), ``V_m3``, ``p_Pa``, and the cylinder's own
+        ``crank_angle_deg`` (not for the hyperbolic ideal card).
+        """
         if self.ideal_cards is not None:
             out = {}
             for end, df in self.ideal_cards.items():
@@ -387,10 +390,15 @@ class SteadyResult(Result):
 
     @property
     def crank_effort(self) -> pd.DataFrame:
-        """Torque on the shaft over the last cycle (SI): crank angle, steam force on the
-        piston, the inertia force of the reciprocating masses (``inertia`` effect), the
-        indicated torque they make, the friction torque (``friction`` effect) and the net
-        torque left for the load."""
+        """Torque on the shaft over the last cycle (SI).
+
+        Columns: ``crank_angle_deg``, the steam force on each cylinder's piston
+        (``steam_force_N``, prefixed per cylinder), the inertia force of the
+        reciprocating masses (``inertia_force_N``, ``inertia`` effect), the indicated
+        torque they make (``torque_N_m``), the friction torque
+        (``friction_torque_N_m``, ``friction`` effect) and the net torque left for the
+        load (``net_torque_N_m``).
+        """
         ts = _last(self.timeseries)
         th = np.radians(ts["crank_angle_deg"].to_numpy())
         run, spec = self.scene.run, self.geometry.spec
@@ -751,8 +759,7 @@ class TransientResult(Result):
 
 @dataclass
 class SweepResult(Result):
-    """Steady runs across the load range at a series of gear settings or throttle
-    openings.
+    """Steady runs across the load range at a series of gear settings or throttle openings.
 
     Parameters
     ----------

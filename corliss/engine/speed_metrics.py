@@ -64,8 +64,11 @@ def _window(t: np.ndarray, since: float, fraction: float, min_turns: int) -> np.
 
 
 def settled(t_mid_s: np.ndarray, speed_rpm: np.ndarray, since_s: float) -> tuple[bool, float]:
-    """Whether the turn-mean speed has settled after ``since_s``, and its swing over the
-    settling window as a fraction of its mean [-].
+    """Whether the turn-mean speed has settled after a change of load, and its swing.
+
+    Settled: over the last third of the time after ``since_s`` (at least
+    :data:`SETTLE_MIN_TURNS` turns), the speed swings by no more than
+    :data:`SETTLED_SWING` of its mean.
 
     Parameters
     ----------

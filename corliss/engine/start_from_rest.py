@@ -37,8 +37,10 @@ CREEP_FRACTION = 1e-6
 
 def start_from_rest(y0: np.ndarray, theta0: float, omega_run: float, net, tier, tab, perf,
                     tr, rtol: float, atol: np.ndarray, t_max: float):
-    """Integrate from rest at crank angle ``theta0`` [rad] to the first head-end dead
-    centre after the speed passes the handover speed.
+    """Integrate in time from rest to the crank-angle loop's handover.
+
+    From crank angle ``theta0`` to the first head-end dead centre after the speed
+    passes :data:`HANDOVER_FRACTION` of the run speed.
 
     Parameters
     ----------
