@@ -381,9 +381,9 @@ def droop_speeds(scene, loads) -> dict[float, float] | None:
 
     Returns
     -------
-    dict of float to float or None
-        The speed at each load [rad/s], keyed by the load; None when the scene has no
-        governor.
+    dict or None
+        The speed at each load [rad/s], keyed by the load (float to float); None when
+        the scene has no governor.
     """
     if scene.governor is None or scene.governor_type is None:
         return None
