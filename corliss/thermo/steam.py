@@ -413,7 +413,7 @@ def make_steam(name: str = "heos") -> Steam:
     Parameters
     ----------
     name : str, optional
-        One of :data:`BACKENDS`: ``"heos"`` (CoolProp IAPWS-95, the reference),
+        One of :data:`~corliss.thermo.steam.BACKENDS`: ``"heos"`` (CoolProp IAPWS-95, the reference),
         ``"table"`` or ``"perfect"``.
 
     Returns

@@ -324,7 +324,7 @@ class CorlissGear(ValveGear):
         The eccentric, wrist plate, valve chains, laps, ports and dash-pot.
     _geom : dict or None, optional
         Internal: the geometry of the same gear already found (passed by
-        :meth:`with_setting` and :meth:`with_speed`); None to find it.
+        :meth:`~corliss.valves.gear.ValveGear.with_setting` and :meth:`with_speed`); None to find it.
 
     Raises
     ------

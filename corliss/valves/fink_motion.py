@@ -69,6 +69,7 @@ from corliss.tables import DISCHARGE_COEFFICIENT, Table
 from corliss.valves.gear import GearType, ValveGear, register
 from corliss.valves.slide_valve import LappedValve, pair, parse_ports
 
+#: The motions a Fink gear is computed by (see the module doc).
 MOTIONS = ("zeuner", "second_order", "exact")
 
 
@@ -92,7 +93,7 @@ class FinkLink:
         rho: radius of the link's arc [m]; g1 for constant lead (Art. 75), "slightly
         more" in the Porter-Allen (Art. 83).
     motion : str, optional
-        One of :data:`MOTIONS`: ``"zeuner"``, ``"second_order"`` (all of eq. (A),
+        One of :data:`~corliss.valves.fink_motion.MOTIONS`: ``"zeuner"``, ``"second_order"`` (all of eq. (A),
         Art. 77) or ``"exact"`` (see the module doc).
     """
 

@@ -20,6 +20,8 @@ import numpy as np
 
 from corliss.registry import Registry, RegistryEntry
 
+#: Names of the four ports of a double-acting cylinder, in the order of every array of
+#: openings, widths, lengths and areas.
 PORTS = ("head_steam", "head_exhaust", "crank_steam", "crank_exhaust")
 
 
@@ -81,7 +83,7 @@ class ValveGear:
         Returns
         -------
         ndarray
-            Signed openings [m], shape ``(4, n)``, in the order of :data:`PORTS`.
+            Signed openings [m], shape ``(4, n)``, in the order of :data:`~corliss.valves.gear.PORTS`.
         """
         raise NotImplementedError
 
@@ -92,7 +94,7 @@ class ValveGear:
         -------
         ndarray
             The most the valve can open each port [m], shape ``(4,)``, in the order
-            of :data:`PORTS`.
+            of :data:`~corliss.valves.gear.PORTS`.
         """
         raise NotImplementedError
 
@@ -103,7 +105,7 @@ class ValveGear:
         -------
         ndarray
             Effective port length [m], shape ``(4,)``: open area [m2] per metre of
-            opening, in the order of :data:`PORTS`.
+            opening, in the order of :data:`~corliss.valves.gear.PORTS`.
         """
         raise NotImplementedError
 
@@ -113,7 +115,7 @@ class ValveGear:
         Returns
         -------
         ndarray
-            Discharge coefficient [-], shape ``(4,)``, in the order of :data:`PORTS`.
+            Discharge coefficient [-], shape ``(4,)``, in the order of :data:`~corliss.valves.gear.PORTS`.
         """
         raise NotImplementedError
 
@@ -143,7 +145,7 @@ class ValveGear:
         Returns
         -------
         ndarray
-            Openings [m], shape ``(4, n)``, in the order of :data:`PORTS`.
+            Openings [m], shape ``(4, n)``, in the order of :data:`~corliss.valves.gear.PORTS`.
         """
         s = self.signed_openings(np.atleast_1d(theta))
         return np.clip(s, 0.0, self.port_widths()[:, None])
@@ -159,7 +161,7 @@ class ValveGear:
         Returns
         -------
         ndarray
-            Open areas [m2], shape ``(4, n)``, in the order of :data:`PORTS`.
+            Open areas [m2], shape ``(4, n)``, in the order of :data:`~corliss.valves.gear.PORTS`.
         """
         return self.openings(theta) * self.port_lengths()[:, None]
 

@@ -58,6 +58,7 @@ from corliss.valves.gear import GearType, register
 from corliss.valves.newton import newton2
 from corliss.valves.slide_valve import LappedValve, pair, parse_allen_passage, parse_ports
 
+#: The link motions, by the ``link`` key's values.
 KINDS = ("stephenson_open", "stephenson_crossed", "gooch", "allen")
 
 
@@ -68,7 +69,7 @@ class LinkMotionSpec:
     Parameters
     ----------
     kind : str
-        One of :data:`KINDS`: ``"stephenson_open"``, ``"stephenson_crossed"``,
+        One of :data:`~corliss.valves.link_motion.KINDS`: ``"stephenson_open"``, ``"stephenson_crossed"``,
         ``"gooch"`` or ``"allen"``.
     eccentricity_m : float
         Throw r of both eccentrics [m].

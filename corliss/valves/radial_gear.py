@@ -138,6 +138,7 @@ from corliss.valves.gear import GearType, register
 from corliss.valves.newton import newton2
 from corliss.valves.slide_valve import LappedValve, pair, parse_allen_passage, parse_ports
 
+#: The radial gears, by the ``kind`` key's values.
 KINDS = ("hackworth", "marshall", "angstrom", "joy", "walschaerts")
 SIMPLE = ("hackworth", "marshall", "angstrom")
 
@@ -149,7 +150,7 @@ class _RadialBase:
     Attributes
     ----------
     kind : str
-        One of :data:`KINDS`.
+        One of :data:`~corliss.valves.radial_gear.KINDS`.
     setting : float
         The reverse lever's position, -1 (full gear astern) .. 0 (mid gear) .. 1 (full
         gear ahead): the guide's inclination alpha / alpha_max, or the Walschaerts die's
@@ -186,7 +187,7 @@ class SimpleRadialSpec(_RadialBase):
     Parameters
     ----------
     kind : str
-        One of :data:`KINDS`.
+        One of :data:`~corliss.valves.radial_gear.KINDS`.
     lap_m : tuple of float
         Steam lap of the (head, crank) end [m].
     exhaust_lap_m : tuple of float
@@ -278,7 +279,7 @@ class JoySpec(_RadialBase):
     Parameters
     ----------
     kind : str
-        One of :data:`KINDS`.
+        One of :data:`~corliss.valves.radial_gear.KINDS`.
     lap_m : tuple of float
         Steam lap of the (head, crank) end [m].
     exhaust_lap_m : tuple of float
@@ -374,7 +375,7 @@ class WalschaertsSpec(_RadialBase):
     Parameters
     ----------
     kind : str
-        One of :data:`KINDS`.
+        One of :data:`~corliss.valves.radial_gear.KINDS`.
     lap_m : tuple of float
         Steam lap of the (head, crank) end [m].
     exhaust_lap_m : tuple of float
