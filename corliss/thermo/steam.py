@@ -413,8 +413,8 @@ def make_steam(name: str = "heos") -> Steam:
     Parameters
     ----------
     name : str, optional
-        One of :data:`~corliss.thermo.steam.BACKENDS`: ``"heos"`` (CoolProp IAPWS-95, the reference),
-        ``"table"`` or ``"perfect"``.
+        One of :data:`~corliss.thermo.steam.BACKENDS`: ``"heos"`` (CoolProp
+        IAPWS-95, the reference), ``"table"`` or ``"perfect"``.
 
     Returns
     -------

@@ -692,7 +692,8 @@ def kappa_of_flux_coefficient(c: float) -> float:
     Returns
     -------
     float
-        kappa [-] in [:data:`~corliss.thermo.steam_table.KAPPA_FLOOR`, 2], by Brent's method to 1e-12.
+        kappa [-] in [:data:`~corliss.thermo.steam_table.KAPPA_FLOOR`, 2], by
+        Brent's method to 1e-12.
     """
     from scipy.optimize import brentq
 

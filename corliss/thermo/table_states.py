@@ -102,8 +102,9 @@ def px(tab, p: float, x: float) -> tuple | None:
     -------
     tuple or None
         ``(p [Pa], T [K], rho [kg/m3], u [J/kg], h [J/kg], s [J/(kg K)], x [-],
-        superheated)``, the fields of :class:`corliss.thermo.steam.State`; None off the saturation table or for a dryness outside [0, 1]
-        (the caller then asks IAPWS-95).
+        superheated)``, the fields of :class:`corliss.thermo.steam.State`; None off
+        the saturation table or for a dryness outside [0, 1] (the caller then asks
+        IAPWS-95).
     """
     T = t_sat(tab, p)
     if T is None or not 0.0 <= x <= 1.0:      # IAPWS-95 says what is wrong with it
@@ -156,9 +157,9 @@ def pt(tab, p: float, T: float) -> tuple | None:
     -------
     tuple or None
         ``(p [Pa], T [K], rho [kg/m3], u [J/kg], h [J/kg], s [J/(kg K)], x [-],
-        superheated)``, the fields of :class:`corliss.thermo.steam.State`; None below saturation, off the vapour grid, or where the lookup would take
-        the state as wet
-        (the caller then asks IAPWS-95).
+        superheated)``, the fields of :class:`corliss.thermo.steam.State`; None
+        below saturation, off the vapour grid, or where the lookup would take the
+        state as wet (the caller then asks IAPWS-95).
     """
     ts = t_sat(tab, p)
     if ts is None or T < ts:

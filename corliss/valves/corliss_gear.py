@@ -20,7 +20,8 @@ line of stroke, the eccentric centre at r (sin, cos)(theta + delta).  The hook p
 at o + of (sin psi, -cos psi) with the plate's centre o at (X_o, of), so the rod is
 along X with the plate at mid position (psi = 0).  The rod's length fixes psi per crank
 angle in closed form: with ``d = o - E``,
-``d_x sin psi - d_y cos psi = (g^2 - |d|^2 - of^2) / (2 of)``.  X_o is set so the plate swings equally either side of its mid position
+``d_x sin psi - d_y cos psi = (g^2 - |d|^2 - of^2) / (2 of)``.  X_o is set so the
+plate swings equally either side of its mid position
 (Art. 157: "e swings equally above and below the line Oo").
 
 Each valve chain is a four-bar linkage: frame o-q (o the plate's centre, q the valve
@@ -324,7 +325,8 @@ class CorlissGear(ValveGear):
         The eccentric, wrist plate, valve chains, laps, ports and dash-pot.
     _geom : dict or None, optional
         Internal: the geometry of the same gear already found (passed by
-        :meth:`~corliss.valves.gear.ValveGear.with_setting` and :meth:`with_speed`); None to find it.
+        :meth:`~corliss.valves.gear.ValveGear.with_setting` and
+        :meth:`with_speed`); None to find it.
 
     Raises
     ------

@@ -247,7 +247,8 @@ def events(gear: ValveGear, piston_fraction: Callable[[float], float],
     Returns
     -------
     dict
-        ``{"head": ..., "crank": ...}``, each the dict :func:`~corliss.valves.events.end_events` returns.
+        ``{"head": ..., "crank": ...}``, each the dict
+        :func:`~corliss.valves.events.end_events` returns.
     """
     if table is None:
         table = crossing_table(gear, np.zeros((4, 1)))

@@ -93,8 +93,9 @@ class FinkLink:
         rho: radius of the link's arc [m]; g1 for constant lead (Art. 75), "slightly
         more" in the Porter-Allen (Art. 83).
     motion : str, optional
-        One of :data:`~corliss.valves.fink_motion.MOTIONS`: ``"zeuner"``, ``"second_order"`` (all of eq. (A),
-        Art. 77) or ``"exact"`` (see the module doc).
+        One of :data:`~corliss.valves.fink_motion.MOTIONS`: ``"zeuner"``,
+        ``"second_order"`` (all of eq. (A), Art. 77) or ``"exact"`` (see the module
+        doc).
     """
 
     eccentricity_m: float

@@ -83,7 +83,8 @@ class ValveGear:
         Returns
         -------
         ndarray
-            Signed openings [m], shape ``(4, n)``, in the order of :data:`~corliss.valves.gear.PORTS`.
+            Signed openings [m], shape ``(4, n)``,
+            in the order of :data:`~corliss.valves.gear.PORTS`.
         """
         raise NotImplementedError
 
@@ -105,7 +106,8 @@ class ValveGear:
         -------
         ndarray
             Effective port length [m], shape ``(4,)``: open area [m2] per metre of
-            opening, in the order of :data:`~corliss.valves.gear.PORTS`.
+            opening,
+            in the order of :data:`~corliss.valves.gear.PORTS`.
         """
         raise NotImplementedError
 
@@ -115,7 +117,8 @@ class ValveGear:
         Returns
         -------
         ndarray
-            Discharge coefficient [-], shape ``(4,)``, in the order of :data:`~corliss.valves.gear.PORTS`.
+            Discharge coefficient [-], shape ``(4,)``,
+            in the order of :data:`~corliss.valves.gear.PORTS`.
         """
         raise NotImplementedError
 
@@ -145,7 +148,8 @@ class ValveGear:
         Returns
         -------
         ndarray
-            Openings [m], shape ``(4, n)``, in the order of :data:`~corliss.valves.gear.PORTS`.
+            Openings [m], shape ``(4, n)``,
+            in the order of :data:`~corliss.valves.gear.PORTS`.
         """
         s = self.signed_openings(np.atleast_1d(theta))
         return np.clip(s, 0.0, self.port_widths()[:, None])
@@ -161,7 +165,8 @@ class ValveGear:
         Returns
         -------
         ndarray
-            Open areas [m2], shape ``(4, n)``, in the order of :data:`~corliss.valves.gear.PORTS`.
+            Open areas [m2], shape ``(4, n)``,
+            in the order of :data:`~corliss.valves.gear.PORTS`.
         """
         return self.openings(theta) * self.port_lengths()[:, None]
 

@@ -69,8 +69,8 @@ class LinkMotionSpec:
     Parameters
     ----------
     kind : str
-        One of :data:`~corliss.valves.link_motion.KINDS`: ``"stephenson_open"``, ``"stephenson_crossed"``,
-        ``"gooch"`` or ``"allen"``.
+        One of :data:`~corliss.valves.link_motion.KINDS`: ``"stephenson_open"``,
+        ``"stephenson_crossed"``, ``"gooch"`` or ``"allen"``.
     eccentricity_m : float
         Throw r of both eccentrics [m].
     angular_advance_rad : float
