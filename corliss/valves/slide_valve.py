@@ -151,8 +151,9 @@ class LappedValve(ValveGear):
     ``allen_passage_m`` (an Allen valve's passage, Spangler Art. 27: see the module doc)."""
 
     def travel(self, theta: np.ndarray) -> np.ndarray:  # pragma: no cover - interface
-        """Valve displacement from its mid position, in the sense that opens the head
-        steam port.
+        """Valve displacement in the sense that opens the head steam port, from the
+        valve's zero as its gear sets it (mid travel, or the mean of its dead-centre
+        positions for a valve set for equal lead).
 
         Parameters
         ----------
