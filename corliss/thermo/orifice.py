@@ -63,7 +63,20 @@ PORT_BAND = 3.5e-3
 
 @njit(cache=True)
 def kappa_of(x: float, superheated: bool) -> float:
-    """Isentropic exponent [-] of steam of dryness ``x`` (Zeuner's rule when wet)."""
+    """Isentropic exponent of steam by the classical rule (Zeuner's rule when wet).
+
+    Parameters
+    ----------
+    x : float
+        Dryness fraction [-] (ignored when superheated).
+    superheated : bool
+        True for superheated steam.
+
+    Returns
+    -------
+    float
+        kappa [-]: 1.3 superheated, ``1.035 + 0.1 x`` wet (1.135 dry saturated).
+    """
     if superheated:
         return KAPPA_SUPERHEATED
     return 1.035 + 0.1 * x
@@ -118,11 +131,16 @@ def mass_flux(p0: float, rho0: float, p_down: float, kappa: float,
         Downstream pressure [Pa]; must not exceed ``p0``.
     kappa : float
         Isentropic exponent [-] of the upstream steam.
-    band : float
+    band : float, optional
         Width of the regularised band of pressure ratio near 1 [-].
-    c1 : bool
+    c1 : bool, optional
         In the band, the quadratic that matches the flux and its slope at the band's
         edge (continuous slope, the engine's form) instead of the straight line.
+
+    Returns
+    -------
+    float
+        Mass flux per unit throat area [kg/(s m2)], >= 0; 0 when ``p_down >= p0``.
     """
     r = p_down / p0
     if r >= 1.0:
@@ -151,10 +169,16 @@ def port_flow(area: float, cd: float, p1: float, rho1: float, kappa1: float,
         Pressure [Pa], density [kg/m3] and isentropic exponent [-] of side 1.
     p2, rho2, kappa2 : float
         The same for side 2.
-    band : float
+    band : float, optional
         Regularisation band of pressure ratio [-], see :func:`mass_flux`.
-    c1 : bool
+    c1 : bool, optional
         The band's form, see :func:`mass_flux`.
+
+    Returns
+    -------
+    float
+        Mass flow [kg/s], ``cd * area * G`` with G the flux from the side of higher
+        pressure; positive from side 1 to side 2, 0 when the port is shut.
     """
     if area <= 0.0:
         return 0.0

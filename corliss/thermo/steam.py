@@ -24,7 +24,7 @@ from corliss.thermo import table_states
 class State(NamedTuple):
     """A thermodynamic state of steam (all SI, absolute pressure).
 
-    Attributes
+    Parameters
     ----------
     p : float
         Pressure [Pa].
@@ -70,38 +70,143 @@ class Steam:
     kernel_tier: int | None = None
 
     def du(self, rho: float, u: float) -> State:  # pragma: no cover - interface
-        """State from density [kg/m3] and specific internal energy [J/kg]."""
+        """State from density and specific internal energy (the control volume's own
+        variables).
+
+        Parameters
+        ----------
+        rho : float
+            Density [kg/m3].
+        u : float
+            Specific internal energy [J/kg].
+
+        Returns
+        -------
+        State
+            The state, all SI.
+        """
         raise NotImplementedError
 
     def ph(self, p: float, h: float) -> State:  # pragma: no cover - interface
-        """State from pressure [Pa] and specific enthalpy [J/kg]."""
+        """State from pressure and specific enthalpy.
+
+        Parameters
+        ----------
+        p : float
+            Absolute pressure [Pa].
+        h : float
+            Specific enthalpy [J/kg].
+
+        Returns
+        -------
+        State
+            The state, all SI.
+        """
         raise NotImplementedError
 
     def ps(self, p: float, s: float) -> State:  # pragma: no cover - interface
-        """State from pressure [Pa] and specific entropy [J/(kg K)]."""
+        """State from pressure and specific entropy.
+
+        Parameters
+        ----------
+        p : float
+            Absolute pressure [Pa].
+        s : float
+            Specific entropy [J/(kg K)].
+
+        Returns
+        -------
+        State
+            The state, all SI.
+        """
         raise NotImplementedError
 
     def ds(self, rho: float, s: float) -> State:  # pragma: no cover - interface
-        """State from density [kg/m3] and specific entropy [J/(kg K)]."""
+        """State from density and specific entropy.
+
+        Parameters
+        ----------
+        rho : float
+            Density [kg/m3].
+        s : float
+            Specific entropy [J/(kg K)].
+
+        Returns
+        -------
+        State
+            The state, all SI.
+        """
         raise NotImplementedError
 
     def pt(self, p: float, T: float) -> State:  # pragma: no cover - interface
-        """State from pressure [Pa] and temperature [K] (single phase only)."""
+        """State from pressure and temperature (single phase only: on the saturation
+        line the two do not fix the state).
+
+        Parameters
+        ----------
+        p : float
+            Absolute pressure [Pa].
+        T : float
+            Temperature [K].
+
+        Returns
+        -------
+        State
+            The state, all SI.
+        """
         raise NotImplementedError
 
     def px(self, p: float, x: float) -> State:  # pragma: no cover - interface
-        """Saturated state from pressure [Pa] and dryness [-]."""
+        """Saturated state from pressure and dryness.
+
+        Parameters
+        ----------
+        p : float
+            Absolute pressure [Pa].
+        x : float
+            Dryness fraction [-]: 0 saturated liquid, 1 dry saturated vapour.
+
+        Returns
+        -------
+        State
+            The state, all SI.
+        """
         raise NotImplementedError
 
     def states(self, rho: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Pressure [Pa], temperature [K] and dryness [-] arrays from density [kg/m3] and
-        internal energy [J/kg] arrays (for output; a compiled tier answers in one call)."""
+        """Pressure, temperature and dryness of many states at once (for output; a
+        compiled tier answers in one call, this default calls :meth:`du` per state).
+
+        Parameters
+        ----------
+        rho : ndarray
+            Densities [kg/m3], shape ``(n,)``.
+        u : ndarray
+            Specific internal energies [J/kg], shape ``(n,)``.
+
+        Returns
+        -------
+        p, T, x : ndarray
+            Absolute pressure [Pa], temperature [K] and dryness [-], each shape
+            ``(n,)``.
+        """
         st = [self.du(r, e) for r, e in zip(np.asarray(rho, float), np.asarray(u, float))]
         return (np.array([x.p for x in st]), np.array([x.T for x in st]),
                 np.array([x.x for x in st]))
 
     def t_sat(self, p: float) -> float:  # pragma: no cover - interface
-        """Saturation temperature [K] at pressure ``p`` [Pa]."""
+        """Saturation temperature at a pressure.
+
+        Parameters
+        ----------
+        p : float
+            Absolute pressure [Pa].
+
+        Returns
+        -------
+        float
+            Saturation temperature [K].
+        """
         raise NotImplementedError
 
 
@@ -285,7 +390,15 @@ class PerfectSteam(Steam):
         return self._heos.t_sat(p)
 
     def perfect_params(self):
-        """(R, cv, u_ref) for the compiled kernel."""
+        """The perfect gas's constants, for the compiled kernel.
+
+        Returns
+        -------
+        tuple of float
+            ``(R, cv, u_ref)``: gas constant [J/(kg K)], specific heat at constant
+            volume [J/(kg K)] and the internal energy extrapolated to 0 K [J/kg]
+            (``u = u_ref + cv T``, matching dry saturated steam at 100 degC).
+        """
         return (self.R, self.CV, self.U_REF)
 
 
@@ -295,7 +408,24 @@ BACKENDS: dict[str, type[Steam]] = {"heos": HEOSSteam, "table": TableSteam,
 
 
 def make_steam(name: str = "heos") -> Steam:
-    """Build a property backend by tier name."""
+    """Build a property backend by tier name.
+
+    Parameters
+    ----------
+    name : str, optional
+        One of :data:`~corliss.thermo.steam.BACKENDS`: ``"heos"`` (CoolProp
+        IAPWS-95, the reference), ``"table"`` or ``"perfect"``.
+
+    Returns
+    -------
+    Steam
+        A new backend of that tier.
+
+    Raises
+    ------
+    InputError
+        Naming ``run.properties``, for an unknown tier.
+    """
     try:
         return BACKENDS[name]()
     except KeyError:
@@ -304,15 +434,31 @@ def make_steam(name: str = "heos") -> Steam:
 
 
 def latent_heat(T_K: float) -> float:
-    """Latent heat of evaporation h_g - h_f [J/kg] at saturation temperature ``T_K`` [K]
-    (IAPWS-95 through CoolProp)."""
+    """Latent heat of evaporation ``h_g - h_f`` (IAPWS-95 through CoolProp).
+
+    Parameters
+    ----------
+    T_K : float
+        Saturation temperature [K], below the critical point.
+
+    Returns
+    -------
+    float
+        Latent heat [J/kg].
+    """
     import CoolProp.CoolProp as CP
     return (CP.PropsSI("H", "T", T_K, "Q", 1.0, "Water")
             - CP.PropsSI("H", "T", T_K, "Q", 0.0, "Water"))
 
 
 def coolprop_version() -> str:
-    """CoolProp version and git revision, for result metadata."""
+    """CoolProp version and git revision, for result metadata.
+
+    Returns
+    -------
+    str
+        ``"<version> (<first 10 characters of the git revision>)"``.
+    """
     import CoolProp
     import CoolProp.CoolProp as CP
     return f"{CoolProp.__version__} ({CP.get_global_param_string('gitrevision')[:10]})"

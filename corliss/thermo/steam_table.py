@@ -77,6 +77,7 @@ PARAMS = {
 #: than 273.16 K: no steam there).  The kernel adds its own clamps with the same bits.
 CLAMP_LOW_DENSITY, CLAMP_HIGH_DENSITY, CLAMP_LOW_ENERGY, CLAMP_HIGH_ENERGY = 1, 2, 4, 8
 CLAMP_TRIPLE_POINT, CLAMP_NO_STATE = 16, 32
+#: What each clamp bit means, by bit.
 CLAMP_CODES = {CLAMP_LOW_DENSITY: "density below the properties' range",
                CLAMP_HIGH_DENSITY: "density above the properties' range",
                CLAMP_LOW_ENERGY: "internal energy below the properties' range (very wet)",
@@ -86,17 +87,88 @@ CLAMP_CODES = {CLAMP_LOW_DENSITY: "density below the properties' range",
 
 
 def covers(rho: float, u: float) -> bool:
-    """True when the table spans density ``rho`` [kg/m3] and internal energy ``u``
-    [J/kg] as a supply (its build parameters, :data:`PARAMS`: the vapour grid's
-    energies).  Wetter states, down to water at the triple point, are answered by the
-    lever rule without a clamp (:func:`lookup_flagged`), for the cylinder's steam."""
+    """Whether the table spans a state as a supply.
+
+    The span is the table's build parameters, :data:`PARAMS`: the vapour grid's
+    densities and energies.  Wetter states, down to water at the triple point, are
+    answered by the lever rule without a clamp (:func:`lookup_flagged`), for the
+    cylinder's steam.
+
+    Parameters
+    ----------
+    rho : float
+        Density [kg/m3].
+    u : float
+        Specific internal energy [J/kg].
+
+    Returns
+    -------
+    bool
+        True when ``rho`` and ``u`` lie within the vapour grid's ranges.
+    """
     return (PARAMS["rho_min"] <= rho <= PARAMS["rho_max"]
             and PARAMS["u_min"] <= u <= PARAMS["u_max"])
 
 
 @dataclass(frozen=True)
 class SteamTable:
-    """Arrays of the table (all SI).  Build with :func:`load_table`."""
+    """Arrays of the table (all SI).  Build with :func:`load_table`.
+
+    The vapour grid's rows are uniform in ln rho, its columns uniform in u; the
+    saturation table is uniform in T; the port-flow exponent's grid is uniform in
+    ln rho and u.
+
+    Parameters
+    ----------
+    lnrho0 : float
+        ln of the vapour grid's first row density [ln(kg/m3)].
+    dlnrho : float
+        Step of the rows in ln density [-].
+    u0 : float
+        The vapour grid's first column energy [J/kg].
+    du : float
+        Step of the columns in energy [J/kg].
+    q : ndarray
+        ``p / rho`` on the vapour grid [J/kg], shape ``(n_rho, n_u)``.
+    T : ndarray
+        Temperature on the vapour grid [K], shape ``(n_rho, n_u)``.
+    ug_row : ndarray
+        Saturated-vapour energy at each row's density [J/kg], shape ``(n_rho,)``;
+        NaN above the critical density, -1 below the triple point's vapour density
+        (all vapour there).
+    Tg_row : ndarray
+        Saturation temperature at each row's density [K], shape ``(n_rho,)``; NaN
+        above the critical density.
+    sT0 : float
+        The saturation table's first temperature [K].
+    sdT : float
+        Its step in temperature [K].
+    s_lnp : ndarray
+        ln of the saturation pressure [ln Pa], shape ``(n_sat,)``.
+    s_vf : ndarray
+        Specific volume of saturated liquid [m3/kg], shape ``(n_sat,)``.
+    s_lnvg : ndarray
+        ln of the specific volume of saturated vapour [ln(m3/kg)], shape
+        ``(n_sat,)``.
+    s_uf : ndarray
+        Internal energy of saturated liquid [J/kg], shape ``(n_sat,)``.
+    s_ug : ndarray
+        Internal energy of saturated vapour [J/kg], shape ``(n_sat,)``.
+    k_lnrho0 : float
+        ln of the port-flow exponent's first row density [ln(kg/m3)].
+    k_dlnrho : float
+        Its step in ln density [-].
+    k_u0 : float
+        Its first column energy [J/kg].
+    k_du : float
+        Its step in energy [J/kg].
+    kappa : ndarray
+        Isentropic exponent of the choked flux [-], shape ``(kappa_n_rho,
+        kappa_n_u)`` (see the module doc).
+    error : dict
+        The table's measured error against HEOS (:func:`measure_error`), with its
+        build time, parameters and CoolProp version.
+    """
 
     lnrho0: float
     dlnrho: float
@@ -121,7 +193,13 @@ class SteamTable:
     error: dict          # measured error against HEOS
 
     def arrays(self):
-        """The tuple the compiled lookup takes."""
+        """The tuple the compiled lookup takes.
+
+        Returns
+        -------
+        tuple
+            The fields in their order above, ``error`` left out (20 items).
+        """
         return (self.lnrho0, self.dlnrho, self.u0, self.du, self.q, self.T, self.ug_row,
                 self.Tg_row, self.sT0, self.sdT, self.s_lnp, self.s_vf, self.s_lnvg, self.s_uf,
                 self.s_ug, self.k_lnrho0, self.k_dlnrho, self.k_u0, self.k_du, self.kappa)
@@ -175,10 +253,30 @@ def _lever(T, u, v, sT0, sdT, s_vf, s_lnvg, s_uf, s_ug):
 
 @njit(cache=True)
 def lookup(tab, rho, u):
-    """(p [Pa], T [K], dryness [-], superheated) at density ``rho`` and energy ``u``.
+    """Pressure, temperature and dryness from density and internal energy (compiled).
 
-    ``tab`` is :meth:`SteamTable.arrays`.  Inputs off the table are clamped to it
-    (:func:`lookup_flagged` says when).
+    Inputs off the table are clamped to it (:func:`lookup_flagged` says when).
+
+    Parameters
+    ----------
+    tab : tuple
+        The table's arrays, :meth:`SteamTable.arrays`.
+    rho : float
+        Density [kg/m3].
+    u : float
+        Specific internal energy [J/kg].
+
+    Returns
+    -------
+    p : float
+        Absolute pressure [Pa].
+    T : float
+        Temperature [K].
+    x : float
+        Dryness [-], 1 for vapour.
+    superheated : bool
+        True where the vapour grid answered (``u`` at or above the saturated
+        vapour's at that density).
     """
     p, T, x, sup, _ = lookup_flagged(tab, rho, u)
     return p, T, x, sup
@@ -186,8 +284,24 @@ def lookup(tab, rho, u):
 
 @njit(cache=True, inline="always")
 def lookup_flagged(tab, rho, u):
-    """:func:`lookup` and a code: 0 when the state is inside the table, else the bits
-    of :data:`CLAMP_CODES` saying how it was clamped."""
+    """:func:`lookup` and a code saying whether, and how, the state was clamped.
+
+    Parameters
+    ----------
+    tab : tuple
+        The table's arrays, :meth:`SteamTable.arrays`.
+    rho : float
+        Density [kg/m3].
+    u : float
+        Specific internal energy [J/kg].
+
+    Returns
+    -------
+    p, T, x, superheated : float, float, float, bool
+        As :func:`lookup`: pressure [Pa], temperature [K], dryness [-], vapour.
+    code : int
+        0 when the state is inside the table, else the bits of :data:`CLAMP_CODES`.
+    """
     lnrho0, dlnrho, u0, du, q, TT, ug_row, Tg_row = (tab[0], tab[1], tab[2], tab[3], tab[4],
                                                      tab[5], tab[6], tab[7])
     sT0, sdT, s_lnp, s_vf, s_lnvg, s_uf, s_ug = (tab[8], tab[9], tab[10], tab[11], tab[12],
@@ -290,10 +404,26 @@ def lookup_flagged(tab, rho, u):
 
 @njit(cache=True, inline="always")
 def kappa_at(tab, rho, u):
-    """Isentropic exponent [-] of the port flow from the upstream state at density
-    ``rho`` [kg/m3] and internal energy ``u`` [J/kg]: bilinear on the table's grid of
-    exponents fitted to HEOS's choked nozzle (module docstring), clamped to the grid
-    (whose edges are the property range's: a state off it is flagged by the lookup)."""
+    """Isentropic exponent of the port flow from an upstream state (compiled).
+
+    Bilinear on the table's grid of exponents fitted to HEOS's choked nozzle (module
+    docstring), clamped to the grid (whose edges are the property range's: a state off
+    it is flagged by the lookup).
+
+    Parameters
+    ----------
+    tab : tuple
+        The table's arrays, :meth:`SteamTable.arrays`.
+    rho : float
+        Upstream density [kg/m3].
+    u : float
+        Upstream specific internal energy [J/kg].
+
+    Returns
+    -------
+    float
+        kappa [-], for :func:`corliss.thermo.orifice.mass_flux`.
+    """
     k_lnrho0, k_dlnrho, k_u0, k_du, kap = tab[15], tab[16], tab[17], tab[18], tab[19]
     nr, nu = kap.shape
     fr = (math.log(rho) - k_lnrho0) / k_dlnrho if rho > 0.0 else 0.0
@@ -320,7 +450,23 @@ def kappa_at(tab, rho, u):
 
 @njit(cache=True)
 def lookup_many(tab, rho, u):
-    """Vectorised :func:`lookup`: arrays of p, T, dryness."""
+    """Vectorised :func:`lookup` (compiled).
+
+    Parameters
+    ----------
+    tab : tuple
+        The table's arrays, :meth:`SteamTable.arrays`.
+    rho : ndarray
+        Densities [kg/m3], shape ``(n,)``.
+    u : ndarray
+        Specific internal energies [J/kg], shape ``(n,)``.
+
+    Returns
+    -------
+    p, T, x : ndarray
+        Absolute pressure [Pa], temperature [K] and dryness [-], each shape
+        ``(n,)``.
+    """
     n = rho.shape[0]
     p = np.empty(n)
     T = np.empty(n)
@@ -398,11 +544,25 @@ def _build(params: dict) -> dict:
 #: quarters of the table's: a nozzle maximisation per cell), with the parameters it
 #: was built for; :func:`write_kappa_grid` remakes it.
 KAPPA_FILE = Path(__file__).with_name("kappa_grid.npz")
+#: The build parameters the shipped exponent grid must have been built for.
 KAPPA_KEYS = ("rho_min", "rho_max", "kappa_n_rho", "kappa_u_min", "u_max", "kappa_n_u")
 
 
 def kappa_axes(params: dict) -> tuple[np.ndarray, np.ndarray]:
-    """The port-flow exponent's grid: ln density [ln(kg/m3)] and internal energy [J/kg]."""
+    """The port-flow exponent's grid axes.
+
+    Parameters
+    ----------
+    params : dict
+        Build parameters, as :data:`PARAMS`.
+
+    Returns
+    -------
+    k_lnrho : ndarray
+        ln density [ln(kg/m3)], shape ``(kappa_n_rho,)``, uniform.
+    k_u : ndarray
+        Internal energy [J/kg], shape ``(kappa_n_u,)``, uniform.
+    """
     k_lnrho = np.linspace(math.log(params["rho_min"]), math.log(params["rho_max"]),
                           params["kappa_n_rho"])
     k_u = np.linspace(params["kappa_u_min"], params["u_max"], params["kappa_n_u"])
@@ -410,8 +570,22 @@ def kappa_axes(params: dict) -> tuple[np.ndarray, np.ndarray]:
 
 
 def shipped_kappa(params: dict, path: Path = KAPPA_FILE) -> np.ndarray | None:
-    """The shipped grid of the port-flow exponent [-] when it was built for ``params``
-    (the keys of :data:`KAPPA_KEYS`), else None (then it is computed)."""
+    """The shipped grid of the port-flow exponent, when it was built for ``params``.
+
+    Parameters
+    ----------
+    params : dict
+        Build parameters, as :data:`PARAMS`; the keys of :data:`KAPPA_KEYS` must
+        match the grid's.
+    path : Path, optional
+        The grid's file.
+
+    Returns
+    -------
+    ndarray or None
+        kappa [-], shape ``(kappa_n_rho, kappa_n_u)``; None when the file is missing,
+        unreadable or built for other parameters (then it is computed).
+    """
     try:
         with np.load(path, allow_pickle=False) as z:
             built_for = json.loads(str(z["params"]))
@@ -426,10 +600,24 @@ def shipped_kappa(params: dict, path: Path = KAPPA_FILE) -> np.ndarray | None:
 
 
 def write_kappa_grid(path: Path = KAPPA_FILE, params: dict | None = None) -> Path:
-    """Compute the port-flow exponent's grid from HEOS (about 15 s) and write it to
-    ``path`` with the parameters and the CoolProp version it was built with::
+    """Compute the port-flow exponent's grid from HEOS (about 15 s) and write it.
+
+    The file holds the grid, the parameters and the CoolProp version it was built
+    with.  To remake the shipped grid::
 
         python -c "from corliss.thermo.steam_table import write_kappa_grid; write_kappa_grid()"
+
+    Parameters
+    ----------
+    path : Path, optional
+        File to write (``.npz``).
+    params : dict or None, optional
+        Build parameters; None for :data:`PARAMS`.
+
+    Returns
+    -------
+    Path
+        The file written.
     """
     params = params or PARAMS
     kappa = _kappa_grid(*kappa_axes(params))
@@ -489,12 +677,23 @@ def choked_flux_coefficient(flash, rho0: float, u0: float) -> tuple[float, float
 
 
 def kappa_of_flux_coefficient(c: float) -> float:
-    """The exponent kappa [-] whose Saint-Venant--Wantzel choked flux coefficient
+    """The exponent kappa whose Saint-Venant--Wantzel choked flux coefficient
     ``sqrt(kappa (2/(kappa+1))^((kappa+1)/(kappa-1)))`` is ``c`` (monotonic in kappa).
 
     The coefficient cannot fall below ``exp(-1/2) = 0.607`` (kappa -> 1); very wet steam
     (dryness under about 0.3, far wetter than a cylinder holds) chokes at less, and
     takes kappa = 1.001, the floor, whose flux is then too high.
+
+    Parameters
+    ----------
+    c : float
+        Choked flux coefficient ``G* / sqrt(p0 rho0)`` [-].
+
+    Returns
+    -------
+    float
+        kappa [-] in [:data:`~corliss.thermo.steam_table.KAPPA_FLOOR`, 2], by
+        Brent's method to 1e-12.
     """
     from scipy.optimize import brentq
 
@@ -505,6 +704,7 @@ def kappa_of_flux_coefficient(c: float) -> float:
     return brentq(psi, KAPPA_FLOOR, 2.0, xtol=1e-12)
 
 
+#: The least port-flow exponent [-] (see :func:`kappa_of_flux_coefficient`).
 KAPPA_FLOOR = 1.001
 
 
@@ -543,6 +743,21 @@ def measure_error(table: SteamTable, n: int = 4000, seed: int = 0) -> dict:
     States: dryness 0.5 to 1 and superheat 0 to 300 K, 0.007 to 25 bar (from just
     above the triple-point pressure: the deepest condenser), plus a band
     within 2 K of saturation on both sides, where the two parts of the table meet.
+
+    Parameters
+    ----------
+    table : SteamTable
+        The table to measure.
+    n : int, optional
+        Number of random states, a quarter of each kind.
+    seed : int, optional
+        Seed of the random generator (the same states each time).
+
+    Returns
+    -------
+    dict
+        ``states``; ``max_rel_error_p`` [-], ``max_rel_error_T`` [-],
+        ``max_abs_error_dryness`` [-]; ``range``: the states' description.
     """
     import CoolProp
     import CoolProp.CoolProp as CP
@@ -576,7 +791,14 @@ def measure_error(table: SteamTable, n: int = 4000, seed: int = 0) -> dict:
 
 
 def cache_dir() -> Path:
-    """Where the table is cached: ``$CORLISS_CACHE`` or the user's cache directory."""
+    """Where the table is cached.
+
+    Returns
+    -------
+    Path
+        ``$CORLISS_CACHE``, else ``$XDG_CACHE_HOME/corliss``, else
+        ``~/.cache/corliss``.
+    """
     base = os.environ.get("CORLISS_CACHE") or os.path.join(
         os.environ.get("XDG_CACHE_HOME") or os.path.expanduser("~/.cache"), "corliss")
     return Path(base)
@@ -607,7 +829,14 @@ def _coolprop_version() -> str:
 
 
 def table_path() -> Path:
-    """The disk cache's file of the steam table for :data:`PARAMS` and this CoolProp."""
+    """The disk cache's file of the steam table for :data:`PARAMS` and this CoolProp.
+
+    Returns
+    -------
+    Path
+        ``steam-table-<hash>.npz`` in :func:`cache_dir`, the hash of the parameters
+        and the CoolProp version.
+    """
     key = hashlib.sha1((json.dumps(PARAMS, sort_keys=True) + _coolprop_version())
                        .encode()).hexdigest()[:12]
     return cache_dir() / f"steam-table-{key}.npz"
@@ -629,9 +858,22 @@ def _table_of(arrays: dict, error: dict) -> SteamTable:
 
 
 def write_mini_table(path: Path = MINI_FILE) -> Path:
-    """Build the miniature table from HEOS and write it to ``path``::
+    """Build the miniature table from HEOS and write it (its port-flow exponent left
+    out: the shipped grid's is read with it).
+
+    To remake the shipped miniature table::
 
         python -c "from corliss.thermo.steam_table import write_mini_table; write_mini_table()"
+
+    Parameters
+    ----------
+    path : Path, optional
+        File to write (``.npz``).
+
+    Returns
+    -------
+    Path
+        The file written.
     """
     built = _build(MINI_PARAMS)
     built.pop("kappa")
@@ -641,8 +883,14 @@ def write_mini_table(path: Path = MINI_FILE) -> Path:
 
 
 def mini_table() -> SteamTable:
-    """A coarse table of :data:`MINI_PARAMS` (not cached, not measured): the shipped one,
-    or built from HEOS when it is missing or was made for other parameters."""
+    """A coarse table of :data:`MINI_PARAMS` (not cached, not measured).
+
+    Returns
+    -------
+    SteamTable
+        The shipped one, or built from HEOS when it is missing or was made for other
+        parameters; its ``error`` holds only its parameters.
+    """
     kappa = shipped_kappa(MINI_PARAMS)
     try:
         with np.load(MINI_FILE, allow_pickle=False) as z:
@@ -656,7 +904,18 @@ def mini_table() -> SteamTable:
 
 @contextlib.contextmanager
 def stand_in(table: SteamTable):
-    """Within the block, :func:`load_table` returns ``table``."""
+    """Within the block, :func:`load_table` returns ``table``.
+
+    Parameters
+    ----------
+    table : SteamTable
+        The table to stand in for the real one.
+
+    Yields
+    ------
+    SteamTable
+        ``table``.
+    """
     _STAND_IN.append(table)
     try:
         yield table
@@ -665,7 +924,17 @@ def stand_in(table: SteamTable):
 
 
 def load_table() -> SteamTable:
-    """The steam table: from memory, from the disk cache, or built from HEOS (and cached)."""
+    """The steam table: from memory, from the disk cache, or built from HEOS (and cached).
+
+    Building takes a few seconds, once a machine; a read-only cache directory keeps
+    the table in memory only, with a warning.
+
+    Returns
+    -------
+    SteamTable
+        The table of :data:`PARAMS`, with its measured error; the stand-in within
+        :func:`stand_in`.
+    """
     if _STAND_IN:
         return _STAND_IN[-1]
     path = table_path()
@@ -707,8 +976,21 @@ def load_table() -> SteamTable:
 
 @njit(cache=True, inline="always")
 def t_sat(tab, p):
-    """Saturation temperature [K] at pressure ``p`` [Pa]: bisection on the table's
-    ln p_sat over its uniform temperature grid, linear within the cell."""
+    """Saturation temperature at a pressure (compiled): bisection on the table's
+    ln p_sat over its uniform temperature grid, linear within the cell.
+
+    Parameters
+    ----------
+    tab : tuple
+        The table's arrays, :meth:`SteamTable.arrays`.
+    p : float
+        Absolute pressure [Pa].
+
+    Returns
+    -------
+    float
+        Saturation temperature [K], clamped to the saturation table's range.
+    """
     sT0, sdT, s_lnp = tab[8], tab[9], tab[10]
     lp = math.log(p)
     n = s_lnp.shape[0]

@@ -54,7 +54,22 @@ def _saturation_entropy(tab) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 def t_sat(tab, p: float) -> float | None:
-    """Saturation temperature [K] at pressure ``p`` [Pa]; None off the saturation table."""
+    """Saturation temperature at a pressure, inverting the table's ln p_sat linearly
+    in T.
+
+    Parameters
+    ----------
+    tab : SteamTable
+        The table (:func:`corliss.thermo.steam_table.load_table`).
+    p : float
+        Absolute pressure [Pa].
+
+    Returns
+    -------
+    float or None
+        Saturation temperature [K]; None off the saturation table (below the
+        triple point's pressure or above its 646 K).
+    """
     lp = math.log(p) if p > 0.0 else -math.inf
     if not tab.s_lnp[0] <= lp <= tab.s_lnp[-1]:
         return None
@@ -72,7 +87,25 @@ def _at(tab, T: float, arr: np.ndarray) -> float:
 
 
 def px(tab, p: float, x: float) -> tuple | None:
-    """Saturated steam of dryness ``x`` [-] at pressure ``p`` [Pa]."""
+    """Saturated steam of a dryness at a pressure, entropy included.
+
+    Parameters
+    ----------
+    tab : SteamTable
+        The table (:func:`corliss.thermo.steam_table.load_table`).
+    p : float
+        Absolute pressure [Pa].
+    x : float
+        Dryness fraction [-], in [0, 1].
+
+    Returns
+    -------
+    tuple or None
+        ``(p [Pa], T [K], rho [kg/m3], u [J/kg], h [J/kg], s [J/(kg K)], x [-],
+        superheated)``, the fields of :class:`corliss.thermo.steam.State`; None off
+        the saturation table or for a dryness outside [0, 1] (the caller then asks
+        IAPWS-95).
+    """
     T = t_sat(tab, p)
     if T is None or not 0.0 <= x <= 1.0:      # IAPWS-95 says what is wrong with it
         return None
@@ -108,8 +141,26 @@ def _row_entropy(tab, i: int, u: float) -> float:
 
 
 def pt(tab, p: float, T: float) -> tuple | None:
-    """Superheated steam at pressure ``p`` [Pa] and temperature ``T`` [K]: the (density,
-    energy) at which the vapour grid gives (p, T)."""
+    """Superheated steam at a pressure and temperature: the (density, energy) at which
+    the vapour grid gives (p, T), found by bisection on the grid's rows.
+
+    Parameters
+    ----------
+    tab : SteamTable
+        The table (:func:`corliss.thermo.steam_table.load_table`).
+    p : float
+        Absolute pressure [Pa].
+    T : float
+        Temperature [K], at or above the saturation temperature.
+
+    Returns
+    -------
+    tuple or None
+        ``(p [Pa], T [K], rho [kg/m3], u [J/kg], h [J/kg], s [J/(kg K)], x [-],
+        superheated)``, the fields of :class:`corliss.thermo.steam.State`; None
+        below saturation, off the vapour grid, or where the lookup would take the
+        state as wet (the caller then asks IAPWS-95).
+    """
     ts = t_sat(tab, p)
     if ts is None or T < ts:
         return None

@@ -68,9 +68,21 @@ def _film_coolprop(T_K: float) -> tuple[float, float]:
 
 
 def write_grid(path: Path = GRID_FILE) -> Path:
-    """Compute the grids from CoolProp (a few seconds) and write them to ``path``::
+    """Compute the grids from CoolProp (a few seconds) and write them.
+
+    To remake the shipped grid::
 
         python -c "from corliss.thermo.wall_properties import write_grid; write_grid()"
+
+    Parameters
+    ----------
+    path : Path, optional
+        File to write (``.npz``; the arrays are those of :data:`GRID_FILE`).
+
+    Returns
+    -------
+    Path
+        The file written.
     """
     import CoolProp
     lnp = np.linspace(math.log(P_RANGE_Pa[0]), math.log(P_RANGE_Pa[1]), N_P)
@@ -105,8 +117,15 @@ def _cell(axis: np.ndarray, x: float) -> tuple[int, float]:
 
 
 def transport_properties(p_Pa: float, T_K: float) -> tuple[float, float, float]:
-    """Transport properties of steam as vapour at pressure ``p_Pa`` [Pa] and 0.5 K above
-    the greater of ``T_K`` [K] and the saturation temperature (the vapour side).
+    """Transport properties of steam as vapour, 0.5 K above the greater of ``T_K`` and
+    the saturation temperature (the vapour side).
+
+    Parameters
+    ----------
+    p_Pa : float
+        Absolute pressure [Pa].
+    T_K : float
+        Temperature [K].
 
     Returns
     -------
@@ -133,8 +152,19 @@ def transport_properties(p_Pa: float, T_K: float) -> tuple[float, float, float]:
 
 
 def film_enthalpies(T_K: float) -> tuple[float, float]:
-    """(h_L, L) [J/kg]: saturated water's enthalpy and the latent heat at ``T_K`` [K]
-    (clamped to 280-640 K), the wall film's constants over a run (IAPWS-95)."""
+    """Saturated water's enthalpy and the latent heat, the wall film's constants over
+    a run (IAPWS-95; linear on the shipped grid, from CoolProp without it).
+
+    Parameters
+    ----------
+    T_K : float
+        Temperature [K], clamped to :data:`FILM_T_RANGE_K` (280-640 K).
+
+    Returns
+    -------
+    h_L, L : float
+        Enthalpy of saturated water and latent heat of evaporation [J/kg].
+    """
     T = min(max(T_K, FILM_T_RANGE_K[0]), FILM_T_RANGE_K[1])
     g = _grid()
     if g is None:

@@ -51,24 +51,37 @@ from corliss.valves.gear import GearType, register
 
 @dataclass(frozen=True)
 class BuckeyeSpec:
-    """A Buckeye gear (all SI).
+    """A Buckeye gear (all SI; Spangler Arts. 135-140).
 
-    Attributes
+    Parameters
     ----------
-    main, cutoff : MainValveSpec, CutoffSpec
-    eccentricity_m, angular_advance_rad : float
-        Main eccentric r, delta (keyed) [m, rad].
+    main : MainValveSpec
+        The main valve's laps and ports (it takes steam inside).
+    cutoff : CutoffSpec
+        The blocks' passages (``kind = "riding"``).
+    eccentricity_m : float
+        Main eccentric's throw r [m].
+    angular_advance_rad : float
+        Main eccentric's angular advance delta [rad] (keyed, Art. 140).
     cutoff_eccentricity_m : float
-        r1 [m] ("in the Buckeye engine these are equal", Art. 136).
+        Cut-off eccentric's throw r1 [m] ("in the Buckeye engine these are equal",
+        Art. 136).
     cutoff_angular_advance_rad : float
-        delta1 at rest (setting 0), in the sense of Arts. 138-139 [rad].
+        delta1 at rest (setting 0), in the sense of Arts. 138-139 (see the module
+        doc) [rad].
     governor_swing_rad : float
         How far the governor turns the cut-off eccentric forward from rest to full
         speed [rad].
-    setting : float
-        Governor position in [0, 1].
-    eccentric_rod_m, cutoff_eccentric_rod_m, rock_lever_m, floating_lever_m : float or None
-        The exact linkage: rods cd and gh, lever df (d to f) and floating lever hj [m].
+    setting : float, optional
+        Governor position in [0, 1] [-]: 0 at rest (latest cut-off), 1 at full speed.
+    motion : str, optional
+        ``"zeuner"`` or ``"exact"`` (the linkage solved; see the module doc).
+    eccentric_rod_m, cutoff_eccentric_rod_m : float or None, optional
+        The exact linkage's eccentric rods cd and gh [m]; None for Zeuner's motion.
+    rock_lever_m : float or None, optional
+        The exact linkage's lever df, d to f [m].
+    floating_lever_m : float or None, optional
+        The exact linkage's floating lever hj [m]; None for the rock lever's length.
     """
 
     main: dv.MainValveSpec
@@ -87,12 +100,27 @@ class BuckeyeSpec:
 
     @property
     def delta1(self) -> float:
-        """delta1 at the current setting [rad]."""
+        """delta1 at the current setting: the rest value turned forward by the
+        setting's share of the governor's swing.
+
+        Returns
+        -------
+        float
+            The cut-off eccentric's advance [rad], in the sense of Arts. 138-139.
+        """
         return self.cutoff_angular_advance_rad + self.setting * self.governor_swing_rad
 
 
 class BuckeyeGear(dv.DoubleValve):
-    """Buckeye gear: floating lever, cut-off blocks inside the main valve, shaft governor."""
+    """Buckeye gear: floating lever, cut-off blocks inside the main valve, shaft governor.
+
+    Its setting is the governor's position, 0 (at rest) to 1 (full speed).
+
+    Parameters
+    ----------
+    spec : BuckeyeSpec
+        The valves, eccentrics, governor swing and (for the exact motion) levers.
+    """
 
     name = "buckeye"
     summary = ("Buckeye gear: cut-off blocks inside a main valve taking steam inside, floating "
@@ -113,15 +141,39 @@ class BuckeyeGear(dv.DoubleValve):
         return dv.eccentric_travel(theta, s.eccentricity_m, s.angular_advance_rad)
 
     def closing_travel(self, theta):
-        """Relative displacement of the blocks on the main valve [m], + closing the head
-        passage: r1 sin(theta + delta1) in Zeuner's form (Art. 137)."""
+        """Relative displacement of the blocks on the main valve, + closing the head
+        passage: ``r1 sin(theta + delta1)`` in Zeuner's form (Art. 137), or the
+        solved linkage's with ``motion = "exact"``.
+
+        Parameters
+        ----------
+        theta : ndarray
+            Crank angles [rad] from head-end dead centre, shape ``(n,)``.
+
+        Returns
+        -------
+        ndarray
+            Relative displacement x_r [m], shape ``(n,)``.
+        """
         if self._exact is not None:
             return self._exact(theta)[1]
         s = self.spec
         return dv.eccentric_travel(theta, s.cutoff_eccentricity_m, s.delta1)
 
     def cutoff_travel(self, theta):
-        """The blocks' own displacement [m]: the main valve's plus the relative one."""
+        """The blocks' own displacement: the main valve's plus the relative one.
+
+        Parameters
+        ----------
+        theta : ndarray
+            Crank angles [rad] from head-end dead centre, shape ``(n,)``.
+
+        Returns
+        -------
+        ndarray
+            Displacement [m], shape ``(n,)``, in the sense that opens the head
+            steam port.
+        """
         return self.main_travel(theta) + self.closing_travel(theta)
 
     def zeuner_closing_coefficients(self):

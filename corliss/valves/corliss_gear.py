@@ -19,8 +19,9 @@ Exact motion (``motion = "exact"``, the default).  Shaft at the origin, X along 
 line of stroke, the eccentric centre at r (sin, cos)(theta + delta).  The hook pin is
 at o + of (sin psi, -cos psi) with the plate's centre o at (X_o, of), so the rod is
 along X with the plate at mid position (psi = 0).  The rod's length fixes psi per crank
-angle in closed form: with d = o - E, d_x sin psi - d_y cos psi = (g^2 - |d|^2 - of^2)
-/ (2 of).  X_o is set so the plate swings equally either side of its mid position
+angle in closed form: with ``d = o - E``,
+``d_x sin psi - d_y cos psi = (g^2 - |d|^2 - of^2) / (2 of)``.  X_o is set so the
+plate swings equally either side of its mid position
 (Art. 157: "e swings equally above and below the line Oo").
 
 Each valve chain is a four-bar linkage: frame o-q (o the plate's centre, q the valve
@@ -123,7 +124,7 @@ SETTING_RANGE = (-0.25, 1.25)
 class ValveChain:
     """One wrist-plate stud, valve rod and spindle arm (a four-bar chain), all SI.
 
-    Attributes
+    Parameters
     ----------
     stud_radius_m : float
         Radius of the stud on the wrist plate, oj or ok [m].
@@ -186,8 +187,24 @@ class ValveChain:
         raise AssertionError("mid position not on either branch")  # pragma: no cover
 
     def arm_angle(self, u) -> np.ndarray:
-        """Spindle arm angle gamma [rad] with the plate turned ``u`` [rad] in the sense
-        that opens the valve (the branch through the mid position)."""
+        """Spindle arm angle gamma, on the branch of the chain through the mid position.
+
+        Parameters
+        ----------
+        u : float or ndarray
+            Angle the wrist plate has turned from its mid position [rad], in the sense
+            that opens this valve.
+
+        Returns
+        -------
+        ndarray
+            gamma [rad], measured as ``arm_angle_rad``, of the shape of ``u``.
+
+        Raises
+        ------
+        ValueError
+            If the valve rod cannot reach the spindle arm (the chain locks).
+        """
         g0 = self.arm_angle_rad
         return g0 + np.remainder(self._branch(u, self._sign) - g0 + math.pi, TWO_PI) - math.pi
 
@@ -198,25 +215,55 @@ class ValveChain:
         return 1.0 if float(self.arm_angle(h) - self.arm_angle(-h)) > 0.0 else -1.0
 
     def valve_arc(self, u) -> np.ndarray:
-        """Arc the valve's face has moved from its mid position [m], positive towards
-        opening, with the plate turned ``u`` [rad] in the sense that opens it."""
+        """Arc the valve's face has moved from its mid position, ``R_v (gamma -
+        gamma0)``, positive towards opening.
+
+        Parameters
+        ----------
+        u : float or ndarray
+            Angle the wrist plate has turned from its mid position [rad], in the sense
+            that opens this valve.
+
+        Returns
+        -------
+        ndarray
+            Arc X [m] on the valve's face, of the shape of ``u``.
+        """
         return self.opening_sense * self.valve_radius_m * (self.arm_angle(u) - self.arm_angle_rad)
 
     def spindle_angle(self, u) -> np.ndarray:
-        """Spindle angle from its mid position [rad], positive towards opening."""
+        """Spindle angle from its mid position, positive towards opening.
+
+        Parameters
+        ----------
+        u : float or ndarray
+            Angle the wrist plate has turned from its mid position [rad], in the sense
+            that opens this valve.
+
+        Returns
+        -------
+        ndarray
+            Angle [rad], of the shape of ``u``.
+        """
         return self.opening_sense * (self.arm_angle(u) - self.arm_angle_rad)
 
     def ratio_at_mid(self) -> float:
-        """dX/du at mid position [m/rad]: valve arc per radian of the plate."""
+        """The chain's gear ratio at mid position, by central difference.
+
+        Returns
+        -------
+        float
+            dX/du [m/rad]: valve arc per radian of the plate.
+        """
         h = 1e-5
         return float(self.valve_arc(h) - self.valve_arc(-h)) / (2.0 * h)
 
 
 @dataclass(frozen=True)
 class CorlissSpec:
-    """A Corliss gear (all SI).
+    """A Corliss gear (all SI; Spangler Arts. 155-157).
 
-    Attributes
+    Parameters
     ----------
     eccentricity_m, angular_advance_rad : float
         Throw at the hook [m] and angular advance [rad].
@@ -233,12 +280,17 @@ class CorlissSpec:
         Port widths (arcs on the valve face) and the ports' length [m].
     dashpot_closing_time_s : float
         Time from release to the steam port closed [s].
-    setting : float
-        Cam position s (see the module doc).
-    motion : str
+    discharge_coefficient : float, optional
+        Of every port opening [-].
+    ports_per_end : int, optional
+        Number of openings each valve uncovers.
+    setting : float, optional
+        Cam position s [-] in :data:`SETTING_RANGE` (see the module doc).
+    motion : str, optional
         ``"exact"`` or ``"harmonic"``.
-    speed_rad_s : float or None
-        Shaft speed [rad/s], set by :meth:`CorlissGear.with_speed`.
+    speed_rad_s : float or None, optional
+        Shaft speed [rad/s], set by :meth:`CorlissGear.with_speed`; the gear's
+        openings need it once a steam valve trips.
     """
 
     eccentricity_m: float
@@ -261,7 +313,27 @@ class CorlissSpec:
 
 
 class CorlissGear(ValveGear):
-    """Corliss wrist plate, four rotary valves, trip and dash-pot (Spangler Ch. XX)."""
+    """Corliss wrist plate, four rotary valves, trip and dash-pot (Spangler Ch. XX).
+
+    Its setting is the knock-off cam's position s (see the module doc).  Building the
+    gear finds, once, the plate's centre and each steam valve's latched opening and
+    closing angles; the same gear at another setting or speed shares them.
+
+    Parameters
+    ----------
+    spec : CorlissSpec
+        The eccentric, wrist plate, valve chains, laps, ports and dash-pot.
+    _geom : dict or None, optional
+        Internal: the geometry of the same gear already found (passed by
+        :meth:`~corliss.valves.gear.ValveGear.with_setting` and
+        :meth:`with_speed`); None to find it.
+
+    Raises
+    ------
+    ValueError
+        If the hook rod or a valve rod cannot reach at some crank angle, or a steam
+        valve does not open and close once a turn.
+    """
 
     name = "corliss"
     summary = ("Corliss gear: wrist plate, four rotary valves, steam valves released by the "
@@ -282,8 +354,24 @@ class CorlissGear(ValveGear):
         return CorlissGear(dataclasses.replace(self.spec, setting=value), self._geom)
 
     def with_speed(self, speed_rad_s: float) -> "CorlissGear":
-        """The same gear at shaft speed ``speed_rad_s`` [rad/s] (the dash-pot's closing
-        angle is speed x closing time)."""
+        """The same gear at another shaft speed (the dash-pot's closing angle is speed
+        times closing time).
+
+        Parameters
+        ----------
+        speed_rad_s : float
+            Shaft speed [rad/s], positive.
+
+        Returns
+        -------
+        CorlissGear
+            The gear at that speed, its geometry shared.
+
+        Raises
+        ------
+        ValueError
+            If the speed is not positive.
+        """
         if not speed_rad_s > 0.0:
             raise ValueError(f"speed {speed_rad_s} rad/s must be positive")
         return CorlissGear(dataclasses.replace(self.spec, speed_rad_s=float(speed_rad_s)),
@@ -323,8 +411,20 @@ class CorlissGear(ValveGear):
         return mu + np.arcsin(arg)
 
     def plate_angle(self, theta) -> np.ndarray:
-        """Wrist plate angle psi from its mid position [rad], positive in the sense that
-        opens the head steam valve, at crank angles ``theta`` [rad]."""
+        """Wrist plate angle psi from its mid position: the hook rod's closed form
+        (module doc), or ``r sin(theta + delta) / of`` for the harmonic motion.
+
+        Parameters
+        ----------
+        theta : float or ndarray
+            Crank angles [rad] from head-end dead centre, shape ``(n,)``.
+
+        Returns
+        -------
+        ndarray
+            psi [rad], positive in the sense that opens the head steam valve, of the
+            shape of ``theta``.
+        """
         s = self.spec
         th = np.asarray(theta, dtype=float)
         if s.motion == "harmonic":
@@ -332,17 +432,40 @@ class CorlissGear(ValveGear):
         return self._psi_exact(th, self._geom["xo"])
 
     def zeuner_travels(self, theta) -> np.ndarray:
-        """Art. 156's valve motion x = k r sin(theta + delta) [m] of (steam, exhaust),
-        k = (1 / of) dX/du at mid position (Art. 156's (rad. valve / ql)(oj / of) when the
-        stud and the arm are square to the rod), shape (2, n)."""
+        """Art. 156's valve motion ``x = k r sin(theta + delta)``, with
+        ``k = (1 / of) dX/du`` at mid position (Art. 156's
+        ``(rad. valve / ql)(oj / of)`` when the stud and the arm are square to the rod).
+
+        Parameters
+        ----------
+        theta : float or ndarray
+            Crank angles [rad] from head-end dead centre, shape ``(n,)``.
+
+        Returns
+        -------
+        ndarray
+            Arc x [m] of the (steam, exhaust) valve of the head end, shape ``(2, n)``.
+        """
         s = self.spec
         base = s.eccentricity_m * np.sin(np.asarray(theta, dtype=float) + s.angular_advance_rad)
         base = base / s.wrist_plate_radius_m
         return np.vstack([self._geom["k_steam"] * base, self._geom["k_exhaust"] * base])
 
     def valve_arcs(self, theta) -> np.ndarray:
-        """Arc each valve's face has moved from mid position towards opening [m], in port
-        order (head steam, head exhaust, crank steam, crank exhaust), latched."""
+        """Arc each valve's face has moved from mid position towards opening, the steam
+        valves latched (never tripped).
+
+        Parameters
+        ----------
+        theta : float or ndarray
+            Crank angles [rad] from head-end dead centre, shape ``(n,)``.
+
+        Returns
+        -------
+        ndarray
+            Arcs [m], shape ``(4, n)``, in port order (head steam, head exhaust, crank
+            steam, crank exhaust).
+        """
         th = np.atleast_1d(np.asarray(theta, dtype=float))
         s = self.spec
         if s.motion == "harmonic":
@@ -353,12 +476,35 @@ class CorlissGear(ValveGear):
                           s.steam.valve_arc(-psi), s.exhaust.valve_arc(psi)])
 
     def spindle_angles(self, theta) -> np.ndarray:
-        """Spindle angle of each valve from mid position towards opening [rad], latched."""
+        """Spindle angle of each valve from mid position towards opening, the steam
+        valves latched.
+
+        Parameters
+        ----------
+        theta : float or ndarray
+            Crank angles [rad] from head-end dead centre, shape ``(n,)``.
+
+        Returns
+        -------
+        ndarray
+            Angles [rad], shape ``(4, n)``, in port order.
+        """
         radii = np.array([self.spec.steam.valve_radius_m, self.spec.exhaust.valve_radius_m] * 2)
         return self.valve_arcs(theta) / radii[:, None]
 
     def latched_signed_openings(self, theta) -> np.ndarray:
-        """Signed openings [m] as if the steam valves never tripped, shape (4, n)."""
+        """Signed openings as if the steam valves never tripped: arc less lap.
+
+        Parameters
+        ----------
+        theta : float or ndarray
+            Crank angles [rad] from head-end dead centre, shape ``(n,)``.
+
+        Returns
+        -------
+        ndarray
+            Signed openings [m], shape ``(4, n)``, in port order.
+        """
         s = self.spec
         laps = np.array([s.steam_lap_m[0], s.exhaust_lap_m[0], s.steam_lap_m[1],
                          s.exhaust_lap_m[1]])
@@ -407,10 +553,21 @@ class CorlissGear(ValveGear):
         return sh
 
     def release_angle_rad(self, setting: float | None = None):
-        """Crank angles of release (head, crank) [rad] in [0, 2 pi) at cam position
-        ``setting`` (default the gear's): None for an end whose cam cannot trip it
-        (setting > 1); the latched opening angle for setting <= 0 (safety: released
-        before the valve opens)."""
+        """Crank angles at which the steam valves are released.
+
+        Parameters
+        ----------
+        setting : float or None, optional
+            Cam position s [-]; None for the gear's own (then computed once and kept).
+
+        Returns
+        -------
+        tuple of (float or None)
+            Release angle of the (head, crank) valve [rad] in [0, 2 pi): where its
+            latched signed opening, rising, reaches s times its greatest; None for an
+            end whose cam cannot trip it (s > 1); the latched opening angle for
+            s <= 0 (safety: released before the valve opens).
+        """
         if setting is None:
             if not hasattr(self, "_release"):
                 self._release = self._release_at(self.spec.setting)
@@ -452,15 +609,39 @@ class CorlissGear(ValveGear):
         return tuple(out)
 
     def closing_fraction(self, t_s) -> np.ndarray:
-        """Fraction of the opening at release still open ``t_s`` [s] after release:
-        1 - (t/T)^2 (a valve let go from rest moving back like a falling weight), 0 from
-        the closing time T on; 1 before release."""
+        """Fraction of the opening at release still open a time after release.
+
+        ``1 - (t/T)^2``: a valve let go from rest moving back like a falling weight,
+        closed at the dash-pot's closing time T.
+
+        Parameters
+        ----------
+        t_s : float or ndarray
+            Time since release [s].
+
+        Returns
+        -------
+        ndarray
+            Fraction [-] in [0, 1], of the shape of ``t_s``: 1 before release, 0 from
+            T on.
+        """
         T = self.spec.dashpot_closing_time_s
         x = np.clip(np.asarray(t_s, dtype=float) / T, 0.0, 1.0)
         return 1.0 - x * x
 
     def closing_angle_rad(self) -> float:
-        """Crank angle swept while the dash-pot closes the valve, omega T [rad]."""
+        """Crank angle swept while the dash-pot closes the valve, ``omega T``.
+
+        Returns
+        -------
+        float
+            Angle [rad].
+
+        Raises
+        ------
+        ValueError
+            If the gear has no speed (see :meth:`with_speed`).
+        """
         return self._speed() * self.spec.dashpot_closing_time_s
 
     def _speed(self) -> float:

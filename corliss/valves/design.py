@@ -99,6 +99,12 @@ def crank_angle(piston_fraction: Callable[[float], float], frac: float, end: str
     stroke : str
         ``"out"``: the stroke away from that end (cut-off, release); ``"return"``: the
         stroke back towards it (compression).
+
+    Returns
+    -------
+    float
+        Crank angle [rad] from head-end dead centre, in [0, pi] on the head end's out
+        stroke and [pi, 2 pi] on the other; found by Brent's method to 1e-15 rad.
     """
     from scipy.optimize import brentq
 
@@ -122,20 +128,33 @@ def _unit_quantities(delta: np.ndarray, w_c: float) -> dict:
 
 
 def zeuner_valve(cutoff_rad: float, **known: float) -> tuple[float, float, float] | None:
-    """The plain valve of the Zeuner diagram (infinite rods) that cuts off at
-    ``cutoff_rad`` from its end's dead point, given two of ``lead``,
-    ``max_opening``, ``eccentricity``, ``lap`` [m], ``angular_advance`` and
-    ``lead_angle`` (the crank before the dead point at admission, Art. 21) [rad].
+    """The plain valve of the Zeuner diagram (infinite rods) that cuts off where asked,
+    given two more of its quantities.
 
     Spangler Arts. 19-22: ``l = r sin(w_c + delta)``, ``i = r sin(delta) - l``,
     ``p = r - l``.  Only valves with ``w_c + delta`` in (90, 180) deg (the port
     closes as the valve moves back, with a lap >= 0) and ``delta`` in (-90, 90) deg
     count.
 
+    Parameters
+    ----------
+    cutoff_rad : float
+        Crank angle of cut-off w_c from the end's own dead point [rad].
+    **known : float
+        Exactly two of ``lead``, ``max_opening``, ``eccentricity``, ``lap`` [m],
+        ``angular_advance`` and ``lead_angle`` (the crank before the dead point at
+        admission, Art. 21) [rad]; not both angles.
+
     Returns
     -------
-    (r [m], delta [rad], lap [m]) or None
-        None when no such valve exists; of several, the one of least throw.
+    tuple of float or None
+        ``(r, delta, lap)``: throw [m], angular advance [rad] and lap [m]; None when
+        no such valve exists; of several, the one of least throw.
+
+    Raises
+    ------
+    ValueError
+        If ``known`` is not two of the names above.
     """
     names = sorted(known)
     if len(names) != 2 or not set(names) <= set(KNOWN):
@@ -191,9 +210,10 @@ def zeuner_valve(cutoff_rad: float, **known: float) -> tuple[float, float, float
 # ---------------------------------------------------------------- slide valve
 @dataclass(frozen=True)
 class SlideValveDesign:
-    """A plain slide valve designed for the events asked (all SI).
+    """A plain slide valve designed for the events asked (all SI), as
+    :func:`design_slide_valve` returns it.
 
-    Attributes
+    Parameters
     ----------
     spec : SlideValveSpec
         The valve, ready to build (:class:`~corliss.valves.slide_valve.SlideValve`).
@@ -487,6 +507,8 @@ def design_slide_valve(base: SlideValveSpec, piston_fraction: Callable[[float], 
     Returns
     -------
     SlideValveDesign
+        The valve, checked on the forward events to :data:`CHECK_DEG`, with what was
+        asked and its events.
 
     Raises
     ------
@@ -619,14 +641,17 @@ def design_slide_valve(base: SlideValveSpec, piston_fraction: Callable[[float], 
 # ---------------------------------------------------------------- gears with a setting
 @dataclass(frozen=True)
 class SettingDesign:
-    """The setting of a gear that gives the cut-off asked.
+    """The setting of a gear that gives the cut-off asked, as :func:`design_setting`
+    returns it.
 
-    Attributes
+    Parameters
     ----------
     gear_name : str
+        The gear's registry name.
     setting : float
         In the gear's own normalised form (see ``setting_name``) [-].
     setting_name : str
+        What the setting moves, and its scale (the gear's ``setting_name``).
     end : str
         ``"head"``, ``"crank"`` or ``"mean"``: whose cut-off was asked.
     cutoff_frac : float
@@ -634,9 +659,10 @@ class SettingDesign:
     asked_deg : dict
         ``{end: {"cutoff_deg": ...}}`` for the end(s) asked [deg] (the mean: none).
     events : dict
-        The gear's events at the setting, each end.
+        The gear's events at the setting, each end, by
+        :func:`corliss.valves.events.events`.
     gear : ValveGear
-        The gear at the setting.
+        The gear at the setting (not compared, not shown in the repr).
     """
 
     gear_name: str
@@ -679,12 +705,22 @@ def design_setting(gear: ValveGear, piston_fraction: Callable[[float], float], c
     end : str
         ``"head"``, ``"crank"`` or ``"mean"`` (of the two ends' fractions).
     bounds : (float, float), optional
-        Settings to search between.
+        Settings to search between, within the gear's ``setting_range``.
+    samples : int, optional
+        Number of settings at which the cut-off is first found, evenly spaced over
+        ``bounds``; the first bracket of the value asked, from ``bounds[0]``, is
+        closed.
+
+    Returns
+    -------
+    SettingDesign
+        The setting, the gear at it and its events.
 
     Raises
     ------
     InputError
-        ``cutoff`` outside what the gear gives over its settings, with that range.
+        ``cutoff`` outside what the gear gives over its settings, with that range; a
+        gear without a setting; ``end`` or ``bounds`` not valid.
     """
     from scipy.optimize import brentq
 

@@ -64,16 +64,20 @@ _SAMPLES = 7200
 class MainValveSpec:
     """The main valve's laps and steam ports (all SI).
 
-    Attributes
+    Parameters
     ----------
-    lap_m, exhaust_lap_m : tuple of float
-        Steam and exhaust lap of the (head, crank) end [m].
-    port_width_m, port_length_m : float
-        Width of each cylinder port in the direction of travel, and its length [m].
-    discharge_coefficient : float
+    lap_m : tuple of float
+        Steam lap of the (head, crank) end [m].
+    exhaust_lap_m : tuple of float
+        Exhaust lap of the (head, crank) end [m]; negative = exhaust clearance.
+    port_width_m : float
+        Width of each cylinder port in the direction of travel [m].
+    port_length_m : float
+        Length of each cylinder port across the valve face [m].
+    discharge_coefficient : float, optional
         Of the steam and exhaust openings [-].
-    ports_per_end : int
-        Number of openings each edge uncovers.
+    ports_per_end : int, optional
+        Number of openings each edge uncovers (2 for a double-ported valve).
     """
 
     lap_m: tuple[float, float]
@@ -88,7 +92,7 @@ class MainValveSpec:
 class CutoffSpec:
     """The cut-off valve's passages (all SI).
 
-    Attributes
+    Parameters
     ----------
     kind : str
         ``"seat"`` (class 1, gridiron) or ``"riding"`` (class 2, on the main valve).
@@ -99,7 +103,7 @@ class CutoffSpec:
         ``e``: width of the port it covers [m] (Arts. 121, 134, 144).
     passage_length_m : float
         Length of that port times the number of openings [m].
-    block_length_m : float or None
+    block_length_m : float or None, optional
         ``d``: length of a riding block [m]; None for a block long enough never to
         uncover the passage from its far side.
     """
@@ -118,7 +122,26 @@ def eccentric_travel(theta, r: float, delta: float, rod: float | None = None,
     finite length ``g``, the rod end's shortfall ``g - sqrt(g^2 - r^2 cos^2(theta +
     delta))`` taken with ``sign`` (+1 directly connected, -1 through a reverse lever),
     measured from the valve's mean dead-point position (set for equal lead, as the
-    plain slide valve is; Marks Art. 96)."""
+    plain slide valve is; Marks Art. 96).
+
+    Parameters
+    ----------
+    theta : float or ndarray
+        Crank angles [rad] from head-end dead centre, any shape.
+    r : float
+        Eccentric's throw [m].
+    delta : float
+        Eccentric's angular advance [rad].
+    rod : float or None, optional
+        Eccentric rod length g [m]; None for Zeuner's motion (an infinite rod).
+    sign : int, optional
+        +1 directly connected, -1 through a reverse lever [-].
+
+    Returns
+    -------
+    ndarray
+        Valve displacement [m], of the shape of ``theta``.
+    """
     phase = np.asarray(theta, dtype=float) + delta
     x = r * np.sin(phase)
     if rod is not None:
@@ -141,33 +164,99 @@ class DoubleValve(ValveGear):
 
     # -- motions ---------------------------------------------------------------
     def main_travel(self, theta) -> np.ndarray:  # pragma: no cover - interface
-        """Main valve displacement [m], + opens the head steam port."""
+        """Main valve displacement, + opening the head steam port.
+
+        Parameters
+        ----------
+        theta : ndarray
+            Crank angles [rad] from head-end dead centre, shape ``(n,)``.
+
+        Returns
+        -------
+        ndarray
+            Displacement [m], shape ``(n,)``.
+        """
         raise NotImplementedError
 
     def cutoff_travel(self, theta) -> np.ndarray:  # pragma: no cover - interface
-        """Cut-off valve displacement [m] in the same sense."""
+        """Cut-off valve displacement, in the main valve's sense (+ toward opening the
+        head steam port).
+
+        Parameters
+        ----------
+        theta : ndarray
+            Crank angles [rad] from head-end dead centre, shape ``(n,)``.
+
+        Returns
+        -------
+        ndarray
+            Displacement [m], shape ``(n,)``.
+        """
         raise NotImplementedError
 
     def closing_travel(self, theta) -> np.ndarray:
-        """Relative displacement of a riding cut-off valve [m], + closing the head-end
-        passage: main minus cut-off (the distance ``ef`` of Art. 127)."""
+        """Relative displacement of a riding cut-off valve, + closing the head-end
+        passage: main minus cut-off (the distance ``ef`` of Art. 127).
+
+        Parameters
+        ----------
+        theta : ndarray
+            Crank angles [rad] from head-end dead centre, shape ``(n,)``.
+
+        Returns
+        -------
+        ndarray
+            Relative displacement x_r [m], shape ``(n,)``.
+        """
         return self.main_travel(theta) - self.cutoff_travel(theta)
 
     def zeuner_closing_coefficients(self) -> tuple[float, float] | None:
-        """(C, S) of the Zeuner relative motion C cos + S sin [m], or None."""
+        """The Zeuner relative motion ``C cos(theta) + S sin(theta)``, for the drawing.
+
+        Returns
+        -------
+        tuple of float or None
+            ``(C, S)`` [m] of a riding valve's relative valve circle (Art. 128); None
+            where the gear has none (the base class's answer).
+        """
         return None
 
     # -- openings --------------------------------------------------------------
     def main_signed(self, theta) -> np.ndarray:
-        """Signed openings of the main valve alone [m], shape (4, n)."""
+        """Signed openings of the main valve alone, the cut-off valve ignored.
+
+        Parameters
+        ----------
+        theta : ndarray
+            Crank angles [rad] from head-end dead centre, shape ``(n,)``.
+
+        Returns
+        -------
+        ndarray
+            Signed openings [m], shape ``(4, n)``, in the order of
+            :data:`corliss.valves.gear.PORTS`.
+        """
         x = self.main_travel(theta)
         m = self.spec.main
         (lh, lc), (eh, ec) = m.lap_m, m.exhaust_lap_m
         return np.vstack([x - lh, -x - eh, -x - lc, x - ec])
 
     def cutoff_signed(self, theta) -> np.ndarray:
-        """Signed opening [m] of the cut-off valve's passage to the (head, crank) end,
-        shape (2, n), in the cut-off valve's own widths (see the module doc)."""
+        """Signed opening of the cut-off valve's passage to each end (see the module
+        doc).
+
+        Parameters
+        ----------
+        theta : ndarray
+            Crank angles [rad] from head-end dead centre, shape ``(n,)``.
+
+        Returns
+        -------
+        ndarray
+            Signed openings [m] of the (head, crank) passages, shape ``(2, n)``, in
+            the cut-off valve's own widths (not yet converted to the main port's
+            length).
+        """
         c = self.spec.cutoff
         sh, sc = c.lap_m
         if c.kind == "seat":
@@ -207,11 +296,18 @@ class DoubleValve(ValveGear):
 
     # -- double admission ------------------------------------------------------
     def admission_runs(self) -> dict[str, list[tuple[float, float, list[tuple[float, float]]]]]:
-        """Per end, each interval in which the main valve's steam port is open, as
-        ``(open_rad, close_rad, [(start_rad, end_rad), ...])`` with the intervals inside
-        it in which both valves are open.  Angles unwrapped (an end may pass 2 pi); the
-        main valve's edges to a sample (1/20 deg), the combined opening's bisected to
-        1e-10 rad."""
+        """Each interval in which the main valve's steam port is open, with the
+        intervals inside it in which both valves are open.
+
+        Returns
+        -------
+        dict
+            ``{"head": runs, "crank": runs}``, each run
+            ``(open_rad, close_rad, [(start_rad, end_rad), ...])``.  Angles [rad]
+            unwrapped (an end may pass 2 pi); the main valve's edges to a sample
+            (1/20 deg), the combined opening's bisected to better than 1e-10 rad
+            (40 halvings of a sample).
+        """
         dt = TWO_PI / _SAMPLES
         th = np.arange(_SAMPLES) * dt
         main = self.main_signed(th)
@@ -250,10 +346,19 @@ class DoubleValve(ValveGear):
                 for end, runs in self.admission_runs().items()}
 
     def late_admissions(self) -> dict[str, list[tuple[float, float | None]]]:
-        """Per end, ``(main valve opens [deg], steam first admitted [deg] or None)`` for
-        each opening of the main valve that finds the cut-off valve closed: Art. 118,
-        "the cut-off valve must open between D and A in order that the steam may be
-        admitted as soon as the main valve opens".  None: no steam at all that stroke."""
+        """The openings of the main valve that find the cut-off valve closed.
+
+        Art. 118: "the cut-off valve must open between D and A in order that the steam
+        may be admitted as soon as the main valve opens".
+
+        Returns
+        -------
+        dict
+            ``{"head": [...], "crank": [...]}``, each item ``(opens_deg,
+            admitted_deg)``: the crank angle [deg] in [0, 360) where the main valve
+            opens, and where steam is first admitted, or None for no steam at all
+            that stroke.
+        """
         tol = 2.0 * TWO_PI / _SAMPLES
         out = {}
         for end, runs in self.admission_runs().items():
@@ -347,6 +452,18 @@ def check_setting(t: Table, key: str, lo: float, hi: float, what: str) -> float:
 
 
 def built(gear: DoubleValve) -> DoubleValve:
-    """A gear as a scene builds it: warn if its setting admits steam twice."""
+    """A gear as a scene builds it: warn if its setting admits steam twice.
+
+    Parameters
+    ----------
+    gear : DoubleValve
+        The gear just built from its spec.
+
+    Returns
+    -------
+    DoubleValve
+        The same gear, after :meth:`DoubleValve.warn_double_admission` has logged any
+        second or late admission.
+    """
     gear.warn_double_admission()
     return gear

@@ -32,6 +32,7 @@ def crossing_table(gear: ValveGear, levels: np.ndarray) -> list[list[list[tuple[
     Parameters
     ----------
     gear : ValveGear
+        The gear, at its present setting.
     levels : ndarray, shape (4, L)
         Levels [m] to cross for each port.
 
@@ -119,7 +120,26 @@ def _solve_crossings(gear: ValveGear, ports: np.ndarray, lev: np.ndarray, a: np.
 
 
 def crossings(gear: ValveGear, port: int, level: float = 0.0) -> list[tuple[float, bool]]:
-    """Crank angles [rad] in [0, 2 pi) where one port's signed opening crosses ``level``."""
+    """Crank angles where one port's signed opening crosses ``level``.
+
+    Parameters
+    ----------
+    gear : ValveGear
+        The gear, at its present setting.
+    port : int
+        Index of the port in :data:`corliss.valves.gear.PORTS` (0 head steam,
+        1 head exhaust, 2 crank steam, 3 crank exhaust).
+    level : float, optional
+        Signed opening [m] to cross: 0 for the port's opening and closing, the port
+        width for its full opening.
+
+    Returns
+    -------
+    list of (float, bool)
+        Sorted ``(angle [rad] in [0, 2 pi), rising)`` pairs, as
+        :func:`crossing_table` gives them; empty when the opening never reaches the
+        level.
+    """
     levels = np.zeros((4, 1))
     levels[port, 0] = level
     return crossing_table(gear, levels)[port][0]
@@ -145,14 +165,34 @@ def end_events(gear: ValveGear, end: str, piston_fraction: Callable[[float], flo
                table: list | None = None) -> dict:
     """Events of one end (``"head"`` or ``"crank"``) as the JSON contract names them.
 
+    Admission and cut-off are the opening and closing of the steam port nearest the
+    end's dead centre; release and compression those of the exhaust port nearest the
+    opposite dead centre (Spangler, *Valve-Gears*, Art. 17).
+
     Parameters
     ----------
     gear : ValveGear
+        The gear, at its present setting.
     end : str
         ``"head"`` or ``"crank"``.
     piston_fraction : callable
         Crank angle [rad] -> piston position as a fraction of the stroke from the
         head-end dead centre [-].
+    table : list or None, optional
+        A crossing table already found, whose first level is zero (a PortMap's
+        ``crossings``); found here when None.
+
+    Returns
+    -------
+    dict
+        ``admission_deg``, ``cutoff_deg``, ``release_deg``, ``compression_deg``:
+        crank angles [deg] in [0, 360) from head-end dead centre; ``cutoff_frac``,
+        ``release_frac``, ``compression_frac``: piston travel from this end's own dead
+        centre as a fraction of the stroke [-] (each None for an event that never
+        happens); ``lead_m``: signed opening of the steam port at the end's dead
+        centre [m]; ``max_port_opening_m``: largest physical opening of the steam port
+        [m]; ``overtravel_m``: how far the valve edge travels past full opening [m]
+        (0 when it never does).
     """
     steam, exhaust = (0, 1) if end == "head" else (2, 3)
     dead = 0.0 if end == "head" else math.pi
@@ -193,8 +233,22 @@ def events(gear: ValveGear, piston_fraction: Callable[[float], float],
            table: list | None = None) -> dict:
     """Events of both ends: ``{"head": {...}, "crank": {...}}``.
 
-    ``table`` may be a crossing table already found (a PortMap's ``crossings``),
-    whose first level is zero.
+    Parameters
+    ----------
+    gear : ValveGear
+        The gear, at its present setting.
+    piston_fraction : callable
+        Crank angle [rad] -> piston position as a fraction of the stroke from the
+        head-end dead centre [-].
+    table : list or None, optional
+        A crossing table already found, whose first level is zero (a PortMap's
+        ``crossings``); found here when None.
+
+    Returns
+    -------
+    dict
+        ``{"head": ..., "crank": ...}``, each the dict
+        :func:`~corliss.valves.events.end_events` returns.
     """
     if table is None:
         table = crossing_table(gear, np.zeros((4, 1)))

@@ -69,6 +69,7 @@ from corliss.tables import DISCHARGE_COEFFICIENT, Table
 from corliss.valves.gear import GearType, ValveGear, register
 from corliss.valves.slide_valve import LappedValve, pair, parse_ports
 
+#: The motions a Fink gear is computed by (see the module doc).
 MOTIONS = ("zeuner", "second_order", "exact")
 
 
@@ -76,7 +77,7 @@ MOTIONS = ("zeuner", "second_order", "exact")
 class FinkLink:
     """Dimensions of a Fink link motion (Spangler Art. 74, Fig. 51), all SI.
 
-    Attributes
+    Parameters
     ----------
     eccentricity_m : float
         Throw r of the eccentric [m].
@@ -91,8 +92,10 @@ class FinkLink:
     link_radius_m : float
         rho: radius of the link's arc [m]; g1 for constant lead (Art. 75), "slightly
         more" in the Porter-Allen (Art. 83).
-    motion : str
-        One of :data:`MOTIONS`.
+    motion : str, optional
+        One of :data:`~corliss.valves.fink_motion.MOTIONS`: ``"zeuner"``,
+        ``"second_order"`` (all of eq. (A), Art. 77) or ``"exact"`` (see the module
+        doc).
     """
 
     eccentricity_m: float
@@ -104,18 +107,56 @@ class FinkLink:
     motion: str = "zeuner"
 
     def coefficients(self, u: float) -> tuple[float, float]:
-        """(C, S) of Zeuner's form x = C cos(theta) + S sin(theta) for the block at
-        height u [m] (Spangler Arts. 77-78)."""
+        """Zeuner's form ``x = C cos(theta) + S sin(theta)``, the first line of eq. (A)
+        (Spangler Arts. 77-78).
+
+        Parameters
+        ----------
+        u : float
+            Height of the block above the line of stroke [m].
+
+        Returns
+        -------
+        C, S : float
+            Coefficients [m]: ``C = r`` at every u (Art. 78), ``S = (u r / a)(1 +
+            b / g1)``.
+        """
         r, a, b, g1 = self.eccentricity_m, self.rod_a_m, self.rod_b_m, self.radius_rod_m
         return r, u * r / a * (1.0 + b / g1)
 
     def sin2_coefficient(self, u: float) -> float:
-        """Coefficient of sin^2(theta) in Spangler's eq. (A), Art. 77 [m]."""
+        """Coefficient of ``sin^2(theta)`` in Spangler's eq. (A), Art. 77.
+
+        Parameters
+        ----------
+        u : float
+            Height of the block above the line of stroke [m].
+
+        Returns
+        -------
+        float
+            ``(r^2 / 2a^2)(b + b^2/g1 + 3u^2/(2 g1) - a)`` [m].
+        """
         r, a, b, g1 = self.eccentricity_m, self.rod_a_m, self.rod_b_m, self.radius_rod_m
         return r * r / (2 * a * a) * (b + b * b / g1 + 1.5 * u * u / g1 - a)
 
     def block_travel(self, u: float, theta) -> np.ndarray:
-        """Displacement of the valve-stem end of the radius rod [m], block at height u."""
+        """Displacement of the valve-stem end of the radius rod, by :attr:`motion`.
+
+        Parameters
+        ----------
+        u : float
+            Height of the block above the line of stroke [m].
+        theta : float or ndarray
+            Crank angles [rad] from head-end dead centre, any shape.
+
+        Returns
+        -------
+        ndarray
+            Displacement x [m] from the stem's central position (:meth:`stem_zero`
+            for the exact motion), + toward opening the head steam port, of the shape
+            of ``theta``.
+        """
         th = np.asarray(theta, dtype=float)
         if self.motion == "exact":
             return _stem_x(self, u, th) - self.stem_zero()
@@ -126,14 +167,35 @@ class FinkLink:
         return x
 
     def stem_zero(self) -> float:
-        """The valve stem's central position [m from the shaft]: the mean of its two
-        dead-point positions with the block at the end of the link (u = c)."""
+        """The valve stem's central position in the exact linkage: the mean of its two
+        dead-point positions with the block at the end of the link (u = c).
+
+        Returns
+        -------
+        float
+            Distance of the stem's end from the shaft [m]; the book's
+            ``a + b + g1`` when ``rho = g1`` (Art. 75).
+        """
         dead = _stem_x(self, self.half_link_m, np.array([0.0, math.pi]))
         return float(0.5 * (dead[0] + dead[1]))
 
     def point_travel(self, y: float, theta) -> np.ndarray:
-        """Displacement [m] of the point fixed on the link a distance y from the rod
-        (Art. 79), from the mean of its dead-point positions."""
+        """Displacement of the point fixed on the link a distance y from the rod
+        (Art. 79), from the mean of its dead-point positions:
+        ``r cos(theta) + (y r / a) sin(theta)`` unless the motion is exact.
+
+        Parameters
+        ----------
+        y : float
+            Distance of the point from the rod's line, along the link [m].
+        theta : float or ndarray
+            Crank angles [rad] from head-end dead centre, any shape.
+
+        Returns
+        -------
+        ndarray
+            Displacement [m], of the shape of ``theta``.
+        """
         th = np.asarray(theta, dtype=float)
         r, a = self.eccentricity_m, self.rod_a_m
         if self.motion != "exact":
@@ -179,8 +241,25 @@ def _link_point_x(link: FinkLink, y: float, theta: np.ndarray) -> np.ndarray:
 class FinkMotionSpec:
     """A Fink link motion driving a lapped slide valve (all SI).
 
-    ``link`` holds the linkage, ``block_m`` the block's height u (the setting, within
-    the half link); the rest are the valve's, as for the slide valve.
+    Parameters
+    ----------
+    link : FinkLink
+        The linkage.
+    block_m : float
+        The block's height u above the line of stroke [m], the setting, within
+        [-c, c].
+    lap_m : tuple of float
+        Steam lap of the (head, crank) end [m].
+    exhaust_lap_m : tuple of float
+        Exhaust lap of the (head, crank) end [m]; negative = exhaust clearance.
+    port_width_m : float
+        Width of each steam port in the direction of valve travel [m].
+    port_length_m : float
+        Length of each port across the valve face [m].
+    discharge_coefficient : float, optional
+        Of the port openings [-].
+    ports_per_end : int, optional
+        Number of openings each edge uncovers.
     """
 
     link: FinkLink
@@ -194,7 +273,15 @@ class FinkMotionSpec:
 
 
 class FinkMotion(LappedValve):
-    """A slide valve on the Fink link motion (Spangler Arts. 74-82)."""
+    """A slide valve on the Fink link motion (Spangler Arts. 74-82).
+
+    Its setting is the block's height as a fraction of the half link, ``u / c``.
+
+    Parameters
+    ----------
+    spec : FinkMotionSpec
+        The linkage, the block's height and the valve.
+    """
 
     name = "fink_motion"
     summary = ("Fink link motion: one eccentric, the link on its rod, the block's height the "
@@ -213,7 +300,18 @@ class FinkMotion(LappedValve):
         return self.spec.link.block_travel(self.spec.block_m, theta)
 
     def zeuner_travel(self, theta):
-        """Zeuner's form of the same setting [m] (Art. 77, eq. (A) less its last term)."""
+        """Zeuner's form of the same setting (Art. 77, eq. (A) less its last term).
+
+        Parameters
+        ----------
+        theta : float or ndarray
+            Crank angles [rad] from head-end dead centre, any shape.
+
+        Returns
+        -------
+        ndarray
+            Displacement x [m], of the shape of ``theta``.
+        """
         C, S = self.spec.link.coefficients(self.spec.block_m)
         th = np.asarray(theta, dtype=float)
         return C * np.cos(th) + S * np.sin(th)
@@ -267,14 +365,13 @@ register(GearType("fink_motion", FinkMotion.summary, parse_fink_motion, FinkMoti
 class PorterAllenSpec:
     """A Porter-Allen gear (Spangler Art. 83, Art. 30), all SI.
 
-    Attributes
+    Parameters
     ----------
     link : FinkLink
+        The Fink linkage.
     block_at_rest_m, block_at_top_m : float
         Block height u with the governor at rest (s = 0) and at the top of its lift
         (s = 1) [m].
-    setting : float
-        Governor position s in [0, 1].
     drive_arm_m : float
         R_d, the rock-shaft arm ji' the radius rod works [m].
     valve_arm_m : float
@@ -287,9 +384,14 @@ class PorterAllenSpec:
         k_e, exhaust-stem travel over the point g''s travel (the bell crank q'rs') [-].
     exhaust_lap_m : tuple of float
         Lap of the (head, crank) exhaust valve [m]; negative = clearance.
-    steam_port_width_m, steam_port_length_m, exhaust_port_width_m,
-    exhaust_port_length_m : float
-        Ports' widths along the valve's travel and lengths across it [m].
+    steam_port_width_m, steam_port_length_m : float
+        Steam ports' width along the valve's travel and length across it [m].
+    exhaust_port_width_m, exhaust_port_length_m : float
+        Exhaust ports' width along the valve's travel and length across it [m].
+    discharge_coefficient : float, optional
+        Of every port opening [-].
+    setting : float, optional
+        Governor position s in [0, 1] [-].
     """
 
     link: FinkLink
@@ -328,7 +430,16 @@ class PorterAllenSpec:
 
 
 class PorterAllenGear(ValveGear):
-    """Four valves on a Porter-Allen (Fink) gear with the governor moving the block."""
+    """Four valves on a Porter-Allen (Fink) gear with the governor moving the block.
+
+    Its setting is the governor's position s, 0 at rest (longest cut-off) to 1 at the
+    top of its lift.
+
+    Parameters
+    ----------
+    spec : PorterAllenSpec
+        The linkage, the arms, the four valves and their ports.
+    """
 
     name = "porter_allen"
     summary = ("Porter-Allen: Fink link, governor moves the steam radius rod; rock shaft with "
@@ -342,21 +453,67 @@ class PorterAllenGear(ValveGear):
 
     # -- the motions
     def steam_drive(self, theta) -> np.ndarray:
-        """x_s: travel of the steam radius rod's end i' [m] (Fink motion at the block)."""
+        """x_s: travel of the steam radius rod's end i' (Fink motion at the block).
+
+        Parameters
+        ----------
+        theta : float or ndarray
+            Crank angles [rad] from head-end dead centre, shape ``(n,)``.
+
+        Returns
+        -------
+        ndarray
+            Displacement [m], shape ``(n,)``.
+        """
         return self.spec.link.block_travel(self.spec.block_m, theta)
 
     def exhaust_drive(self, theta) -> np.ndarray:
-        """x_e: travel of the link point g' carrying the exhaust rod [m] (Art. 79)."""
+        """x_e: travel of the link point g' carrying the exhaust rod (Art. 79).
+
+        Parameters
+        ----------
+        theta : float or ndarray
+            Crank angles [rad] from head-end dead centre, shape ``(n,)``.
+
+        Returns
+        -------
+        ndarray
+            Displacement [m], shape ``(n,)``.
+        """
         return self.spec.link.point_travel(self.spec.exhaust_point_m, theta)
 
     def rock_angle(self, theta) -> np.ndarray:
-        """phi of the rock shaft [rad], 0 with the radius rod at mid travel."""
+        """phi of the rock shaft, ``asin(x_s / R_d)``, 0 with the radius rod at mid
+        travel.
+
+        Parameters
+        ----------
+        theta : float or ndarray
+            Crank angles [rad] from head-end dead centre, shape ``(n,)``.
+
+        Returns
+        -------
+        ndarray
+            Angle phi [rad], shape ``(n,)``.
+        """
         return np.arcsin(np.clip(self.steam_drive(theta) / self.spec.drive_arm_m, -1.0, 1.0))
 
     def valve_travels(self, theta) -> np.ndarray:
-        """Displacement from mid position [m] of the head steam, crank steam and
-        exhaust stems, each in the sense that opens its (head steam, crank steam,
-        head exhaust) port; shape (3, n)."""
+        """Displacement from mid position of the head steam, crank steam and exhaust
+        stems (see the module doc).
+
+        Parameters
+        ----------
+        theta : float or ndarray
+            Crank angles [rad] from head-end dead centre, shape ``(n,)``.
+
+        Returns
+        -------
+        ndarray
+            Displacements [m], shape ``(3, n)``: head steam, crank steam, exhaust,
+            each in the sense that opens its (head steam, crank steam, head exhaust)
+            port.
+        """
         s = self.spec
         phi = self.rock_angle(theta)
         bh, bc = s.arm_angles_rad

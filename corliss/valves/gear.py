@@ -20,6 +20,8 @@ import numpy as np
 
 from corliss.registry import Registry, RegistryEntry
 
+#: Names of the four ports of a double-acting cylinder, in the order of every array of
+#: openings, widths, lengths and areas.
 PORTS = ("head_steam", "head_exhaust", "crank_steam", "crank_exhaust")
 
 
@@ -37,8 +39,25 @@ class ValveGear:
     setting_range: ClassVar[tuple[float, float] | None] = None
 
     def with_setting(self, value: float) -> "ValveGear":
-        """The same gear at another setting (see ``setting_name``), which must lie in
-        ``setting_range``."""
+        """The same gear at another setting of its reverse lever or governor.
+
+        Parameters
+        ----------
+        value : float
+            The new setting, in the gear's own normalised units (see
+            ``setting_name``); must lie in ``setting_range``.
+
+        Returns
+        -------
+        ValveGear
+            A new gear of the same type, its spec changed only where the setting
+            moves it.
+
+        Raises
+        ------
+        ValueError
+            If the gear has no setting, or ``value`` lies outside ``setting_range``.
+        """
         if self.setting_range is None:
             raise ValueError(f"the {self.name} gear has no setting")
         lo, hi = self.setting_range
@@ -52,35 +71,103 @@ class ValveGear:
         return type(self)(dataclasses.replace(self.spec, setting=value))
 
     def signed_openings(self, theta: np.ndarray) -> np.ndarray:  # pragma: no cover
-        """Signed opening of each port [m], shape ``(4, len(theta))``."""
+        """Signed opening of each port: how far the controlling edge has passed the
+        port edge, positive open, negative covered (the lap still to travel).
+
+        Parameters
+        ----------
+        theta : ndarray
+            Crank angles [rad] from head-end dead centre in the direction of
+            rotation, shape ``(n,)``; any turn.
+
+        Returns
+        -------
+        ndarray
+            Signed openings [m], shape ``(4, n)``,
+            in the order of :data:`~corliss.valves.gear.PORTS`.
+        """
         raise NotImplementedError
 
     def port_widths(self) -> np.ndarray:  # pragma: no cover
-        """Width of each port [m] (the most the valve can open it), shape ``(4,)``."""
+        """Width of each port in the direction of valve travel.
+
+        Returns
+        -------
+        ndarray
+            The most the valve can open each port [m], shape ``(4,)``, in the order
+            of :data:`~corliss.valves.gear.PORTS`.
+        """
         raise NotImplementedError
 
     def port_lengths(self) -> np.ndarray:  # pragma: no cover
-        """Length of each port [m] times its number of openings, shape ``(4,)``."""
+        """Length of each port across the valve face, times its number of openings.
+
+        Returns
+        -------
+        ndarray
+            Effective port length [m], shape ``(4,)``: open area [m2] per metre of
+            opening,
+            in the order of :data:`~corliss.valves.gear.PORTS`.
+        """
         raise NotImplementedError
 
     def discharge_coefficients(self) -> np.ndarray:  # pragma: no cover
-        """Discharge coefficient of each port [-], shape ``(4,)``."""
+        """Discharge coefficient of each port opening.
+
+        Returns
+        -------
+        ndarray
+            Discharge coefficient [-], shape ``(4,)``,
+            in the order of :data:`~corliss.valves.gear.PORTS`.
+        """
         raise NotImplementedError
 
     def kink_levels(self) -> np.ndarray:
-        """Signed openings [m] at which each port's open area has a kink, shape (4, L):
-        column 0 where it opens (0), column 1 where it is full (the port width), and
-        any further columns a gear's own area law adds (the tabulated PortMap puts a
-        grid point at every crossing of every level)."""
+        """Signed openings at which each port's open area has a kink.
+
+        The tabulated :class:`~corliss.valves.portmap.PortMap` puts a grid point at
+        every crossing of every level, so its linear interpolation is exact there.
+
+        Returns
+        -------
+        ndarray
+            Levels [m], shape ``(4, L)``: column 0 where the port opens (0), column 1
+            where it is full (the port width), and any further columns a gear's own
+            area law adds.
+        """
         return np.column_stack([np.zeros(4), self.port_widths()])
 
     def openings(self, theta: np.ndarray) -> np.ndarray:
-        """Physical opening of each port [m], clipped to [0, port width]."""
+        """Physical opening of each port: the signed opening clipped to [0, port width].
+
+        Parameters
+        ----------
+        theta : float or ndarray
+            Crank angles [rad], shape ``(n,)`` (a scalar counts as ``n = 1``).
+
+        Returns
+        -------
+        ndarray
+            Openings [m], shape ``(4, n)``,
+            in the order of :data:`~corliss.valves.gear.PORTS`.
+        """
         s = self.signed_openings(np.atleast_1d(theta))
         return np.clip(s, 0.0, self.port_widths()[:, None])
 
     def areas(self, theta: np.ndarray) -> np.ndarray:
-        """Open area of each port [m2], shape ``(4, len(theta))``."""
+        """Open area of each port: the opening times the effective port length.
+
+        Parameters
+        ----------
+        theta : float or ndarray
+            Crank angles [rad], shape ``(n,)`` (a scalar counts as ``n = 1``).
+
+        Returns
+        -------
+        ndarray
+            Open areas [m2], shape ``(4, n)``,
+            in the order of :data:`~corliss.valves.gear.PORTS`.
+        """
         return self.openings(theta) * self.port_lengths()[:, None]
 
 

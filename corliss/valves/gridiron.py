@@ -42,23 +42,34 @@ from corliss.valves.gear import GearType, register
 
 @dataclass(frozen=True)
 class GridironSpec:
-    """A gridiron valve (all SI).
+    """A gridiron valve (all SI; Spangler Arts. 115-126).
 
-    Attributes
+    Parameters
     ----------
-    main, cutoff : MainValveSpec, CutoffSpec
-        ``cutoff.lap_m`` is s = (e + f)/2 for both ends, ``cutoff.passage_width_m`` is e.
-    eccentricity_m, angular_advance_rad : float
-        Main eccentric r, delta [m, rad].
-    cutoff_eccentricity_m, cutoff_angular_advance_rad : float
-        The cut-off eccentric's throw r1 [m] (before the reverse lever) and the cut-off
-        valve's advance delta1 [rad] as drawn in the diagram.
+    main : MainValveSpec
+        The main valve's laps and ports.
+    cutoff : CutoffSpec
+        The cut-off valve's seat ports (``kind = "seat"``): ``lap_m`` is
+        ``s = (e + f)/2`` for both ends, ``passage_width_m`` is e.
+    eccentricity_m : float
+        Main eccentric's throw r [m].
+    angular_advance_rad : float
+        Main eccentric's angular advance delta [rad].
+    cutoff_eccentricity_m : float
+        The cut-off eccentric's throw r1 [m], before the reverse lever.
+    cutoff_angular_advance_rad : float
+        The cut-off valve's advance delta1 [rad] as drawn in the diagram (the
+        reverse lever already accounted for).
     valve_port_width_m : float
-        f [m].
-    lever_ratio : tuple of float
-        ih/ij at setting 0 and at setting 1 [-].
-    setting : float
-        Position of h along its arc, 0..1.
+        f, the width of the ports in the cut-off valve [m].
+    lever_ratio : tuple of float, optional
+        ih/ij at setting 0 and at setting 1 [-] (Art. 124).
+    setting : float, optional
+        Position of h along its arc, 0..1 [-].
+    motion : str, optional
+        ``"zeuner"`` or ``"exact"`` (finite eccentric rods).
+    eccentric_rod_m, cutoff_eccentric_rod_m : float or None, optional
+        Rod lengths for ``motion = "exact"`` [m]; None for Zeuner's motion.
     """
 
     main: dv.MainValveSpec
@@ -76,17 +87,39 @@ class GridironSpec:
 
     @property
     def ratio(self) -> float:
+        """The reverse lever's ratio ih/ij at this setting, linear between the two
+        ends of ``lever_ratio`` (Art. 124).
+
+        Returns
+        -------
+        float
+            ih/ij [-].
+        """
         lo, hi = self.lever_ratio
         return lo + self.setting * (hi - lo)
 
     @property
     def cutoff_throw_m(self) -> float:
-        """The cut-off valve's half travel at this setting, r1 ih/ij [m] (Art. 124)."""
+        """The cut-off valve's half travel at this setting, ``r1 ih/ij`` (Art. 124).
+
+        Returns
+        -------
+        float
+            Half travel [m].
+        """
         return self.cutoff_eccentricity_m * self.ratio
 
 
 class GridironValve(dv.DoubleValve):
-    """Gridiron (Gonzenbach) valve: cut-off valve on its own seat over the main chest."""
+    """Gridiron (Gonzenbach) valve: cut-off valve on its own seat over the main chest.
+
+    Its setting is the position of h on the reverse lever's arc, 0..1.
+
+    Parameters
+    ----------
+    spec : GridironSpec
+        The valves, their eccentrics and the reverse lever.
+    """
 
     name = "gridiron"
     summary = ("gridiron (Gonzenbach) valve: cut-off valve on its own seat over the main "

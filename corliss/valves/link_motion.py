@@ -58,37 +58,58 @@ from corliss.valves.gear import GearType, register
 from corliss.valves.newton import newton2
 from corliss.valves.slide_valve import LappedValve, pair, parse_allen_passage, parse_ports
 
+#: The link motions, by the ``link`` key's values.
 KINDS = ("stephenson_open", "stephenson_crossed", "gooch", "allen")
 
 
 @dataclass(frozen=True)
 class LinkMotionSpec:
-    """A link motion in Zeuner's form (all SI).
+    """A link motion, in Zeuner's form or solved exactly (all SI).
 
-    Attributes
+    Parameters
     ----------
     kind : str
-        One of :data:`KINDS`.
-    eccentricity_m, angular_advance_rad : float
-        Throw r [m] and angular advance delta [rad] of both eccentrics.
+        One of :data:`~corliss.valves.link_motion.KINDS`: ``"stephenson_open"``,
+        ``"stephenson_crossed"``, ``"gooch"`` or ``"allen"``.
+    eccentricity_m : float
+        Throw r of both eccentrics [m].
+    angular_advance_rad : float
+        Angular advance delta of both eccentrics [rad].
     eccentric_rod_m : float
         Eccentric rod length g [m].
     half_link_m : float
         Half the chord of the link, c [m].
     block_m : float
-        Offset u of the block from the link's centre [m], the setting, in [-c, c].
-    allen_ratio : float
-        u1 / u for the Allen link [-].
-    motion : str
+        Offset u of the block from the link's centre [m], the setting, in [-c, c]
+        (c full gear ahead, 0 mid gear, -c full gear astern).
+    lap_m : tuple of float
+        Steam lap of the (head, crank) end [m].
+    exhaust_lap_m : tuple of float
+        Exhaust lap of the (head, crank) end [m]; negative = exhaust clearance.
+    port_width_m : float
+        Width of each steam port in the direction of valve travel [m].
+    port_length_m : float
+        Length of each port across the valve face [m].
+    discharge_coefficient : float, optional
+        Of the port openings [-].
+    ports_per_end : int, optional
+        Number of openings each edge uncovers (2 for a double-ported valve).
+    allen_ratio : float, optional
+        k = u1 / u, the link's own share of the block's offset, for the Allen link
+        [-] (Spangler Art. 73; see :func:`allen_book_ratio`).
+    motion : str, optional
         ``"zeuner"`` or ``"exact"`` (the linkage solved; see the module doc).
-    link_radius_m : float or None
-        Radius of the link's arc [m]: Stephenson's defaults to g, Gooch's to g1.
-    hanger_m : float or None
-        Length of the Stephenson link's hanger [m]; None for an infinitely long one.
-    radius_rod_m : float or None
+    link_radius_m : float or None, optional
+        Radius of the link's arc [m]; None for the default: g for the Stephenson,
+        g1 for the Gooch (the Allen link is straight).
+    hanger_m : float or None, optional
+        Length of the exact Stephenson link's hanger [m]; None for an infinitely
+        long one.
+    radius_rod_m : float or None, optional
         g1, the Gooch or Allen radius rod [m]; None for g.
-    lap_m, exhaust_lap_m, port_width_m, port_length_m, discharge_coefficient,
-    ports_per_end, allen_passage_m : as for the slide valve.
+    allen_passage_m : float or None, optional
+        Width of the mouth of an Allen (trick) valve's passage [m] (Spangler
+        Art. 27); None for a plain valve.
     """
 
     kind: str
@@ -111,7 +132,20 @@ class LinkMotionSpec:
     allen_passage_m: float | None = None
 
     def coefficients(self, u: float | None = None) -> tuple[float, float]:
-        """(C, S) of x = C cos(theta) + S sin(theta) [m] at block offset ``u`` [m]."""
+        """The virtual eccentric of Zeuner's form, ``x = C cos(theta) + S sin(theta)``
+        (Spangler Arts. 46, 55, 65, 73; the formulas are in the module doc).
+
+        Parameters
+        ----------
+        u : float or None, optional
+            Block offset from the link's centre [m]; None for the spec's ``block_m``.
+
+        Returns
+        -------
+        C, S : float
+            Coefficients [m]: ``C`` is the valve's displacement at head-end dead
+            centre (lap + lead), ``hypot(C, S)`` the virtual eccentric's throw.
+        """
         r, d, g, c = (self.eccentricity_m, self.angular_advance_rad, self.eccentric_rod_m,
                       self.half_link_m)
         u = self.block_m if u is None else u
@@ -133,7 +167,15 @@ class LinkMotionSpec:
 
 
 class LinkMotion(LappedValve):
-    """A link motion (Zeuner form) driving a lapped slide valve."""
+    """A link motion (Zeuner's form or the exact linkage) driving a lapped slide valve.
+
+    Its setting is the block offset as a fraction of the half link, ``u / c``.
+
+    Parameters
+    ----------
+    spec : LinkMotionSpec
+        The link, its eccentrics and rods, and the valve's laps and ports.
+    """
 
     name = "link_motion"
     summary = ("link motions, Zeuner's form or exact: Stephenson open or crossed rods, Gooch, "
@@ -160,7 +202,20 @@ class LinkMotion(LappedValve):
         return self.zeuner_travel(theta)
 
     def zeuner_travel(self, theta):
-        """Valve displacement of Zeuner's form [m]."""
+        """Valve displacement of Zeuner's form, ``C cos(theta) + S sin(theta)`` with
+        ``(C, S)`` from :meth:`LinkMotionSpec.coefficients`.
+
+        Parameters
+        ----------
+        theta : ndarray
+            Crank angles [rad] from head-end dead centre, any shape.
+
+        Returns
+        -------
+        ndarray
+            Displacement x [m] in the sense that opens the head steam port, of the
+            shape of ``theta``.
+        """
         C, S = self.spec.coefficients()
         th = np.asarray(theta, dtype=float)
         return C * np.cos(th) + S * np.sin(th)
@@ -335,6 +390,18 @@ def allen_book_ratio(g: float, g1: float) -> float:
     (u1^2 - 2 u u1)/(2 g) on average over a turn, dropping the radius rod's end u - u1
     pulls the stem by (u - u1)^2/(2 g1), and the two cancel when
     (1 - k)^2 g = k (2 - k) g1 (derived here; see tests/test_link_motion.py).
+
+    Parameters
+    ----------
+    g : float
+        Eccentric rod length de [m].
+    g1 : float
+        Radius rod length hj [m].
+
+    Returns
+    -------
+    float
+        k = u1 / u [-], from 0 (Gooch) to 1 (Stephenson's open rods).
     """
     q = g1 / g
     return 1.0 / (1.0 + q * (1.0 + math.sqrt(1.0 + 1.0 / q)))

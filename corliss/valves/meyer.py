@@ -46,29 +46,37 @@ from corliss.valves.slide_valve import pair
 
 @dataclass(frozen=True)
 class MeyerSpec:
-    """A Meyer valve (all SI).
+    """A Meyer valve (all SI; Spangler Arts. 141-145).
 
-    Attributes
+    Parameters
     ----------
     main : MainValveSpec
+        The main valve's laps and ports.
     cutoff : CutoffSpec
-        Its ``lap_m`` is s of each end at the current setting.
-    eccentricity_m, angular_advance_rad : float
-        Main eccentric r, delta [m, rad].
-    cutoff_eccentricity_m, cutoff_angular_advance_rad : float
-        Cut-off eccentric r1, delta1 [m, rad].
+        The blocks' passages (``kind = "riding"``); its ``lap_m`` is s of each end at
+        the current setting (:meth:`block_lap`).
+    eccentricity_m : float
+        Main eccentric's throw r [m].
+    angular_advance_rad : float
+        Main eccentric's angular advance delta [rad].
+    cutoff_eccentricity_m : float
+        Cut-off eccentric's throw r1 [m].
+    cutoff_angular_advance_rad : float
+        Cut-off eccentric's angular advance delta1 [rad].
     port_span_m : float
-        L, outside to outside of the ports in the valve top [m].
+        L, outside to outside of the ports in the main valve's top [m].
     block_length_m : float
-        d [m].
+        d, the length of a block [m].
     max_half_spacing_m : float
-        y at setting 1 [m].
-    block_offset_m : tuple of float
-        Fixed addition to y of the (head, crank) block [m].
-    setting : float
-        y / y_max [-].
-    eccentric_rod_m, cutoff_eccentric_rod_m : float or None
-        Rod lengths for ``motion = "exact"`` [m].
+        y at setting 1, the screw's widest [m].
+    block_offset_m : tuple of float, optional
+        Fixed addition to y of the (head, crank) block [m] (Q. 178).
+    setting : float, optional
+        y / y_max [-], from 0 (blocks together, latest cut-off) to 1.
+    motion : str, optional
+        ``"zeuner"`` or ``"exact"`` (finite eccentric rods).
+    eccentric_rod_m, cutoff_eccentric_rod_m : float or None, optional
+        Rod lengths for ``motion = "exact"`` [m]; None for Zeuner's motion.
     """
 
     main: dv.MainValveSpec
@@ -87,30 +95,74 @@ class MeyerSpec:
     cutoff_eccentric_rod_m: float | None = None
 
     def half_spacing(self, setting: float | None = None) -> tuple[float, float]:
-        """y of the (head, crank) block [m] at ``setting``."""
+        """Distance y of each block from the valve's centre.
+
+        Parameters
+        ----------
+        setting : float or None, optional
+            y / y_max [-]; None for the spec's own setting.
+
+        Returns
+        -------
+        tuple of float
+            y of the (head, crank) block [m], the block offsets included.
+        """
         y = (self.setting if setting is None else setting) * self.max_half_spacing_m
         return (y + self.block_offset_m[0], y + self.block_offset_m[1])
 
     @property
     def blocks_together_lap_m(self) -> float:
-        """L/2 - d [m]: the block lap s with the blocks together (y = 0), and the radius
-        of the Meyer diagram's circle about the origin, on which any cut-off line cuts
-        off be = L/2 - d = y + s (Art. 142)."""
+        """``L/2 - d`` [m]: the block lap s with the blocks together (y = 0), and the
+        radius of the Meyer diagram's circle about the origin, on which any cut-off
+        line cuts off ``be = L/2 - d = y + s`` (Art. 142).
+
+        Returns
+        -------
+        float
+            The lap [m].
+        """
         return self.port_span_m / 2 - self.block_length_m
 
     def block_lap(self, setting: float | None = None) -> tuple[float, float]:
-        """s = L/2 - d - y of each end [m] (Art. 142)."""
+        """Lap of each block over its passage, ``s = L/2 - d - y`` (Art. 142).
+
+        Parameters
+        ----------
+        setting : float or None, optional
+            y / y_max [-]; None for the spec's own setting.
+
+        Returns
+        -------
+        tuple of float
+            s of the (head, crank) end [m]; it may be zero or negative at wide
+            spacings, for the earliest cut-offs (Art. 142).
+        """
         return tuple(self.blocks_together_lap_m - y for y in self.half_spacing(setting))
 
     def relative_coefficients(self) -> tuple[float, float]:
-        """(C, S) of the relative valve circle, x_r = C cos + S sin [m] (Art. 128)."""
+        """The relative valve circle, ``x_r = C cos(theta) + S sin(theta)`` (Art. 128).
+
+        Returns
+        -------
+        C, S : float
+            Coefficients [m] of the main valve's displacement less the blocks', in
+            Zeuner's form (+ closing the head-end passage).
+        """
         r, d = self.eccentricity_m, self.angular_advance_rad
         r1, d1 = self.cutoff_eccentricity_m, self.cutoff_angular_advance_rad
         return r * math.sin(d) - r1 * math.sin(d1), r * math.cos(d) - r1 * math.cos(d1)
 
 
 class MeyerValve(dv.DoubleValve):
-    """Meyer valve: adjustable cut-off blocks on a right-and-left screw."""
+    """Meyer valve: adjustable cut-off blocks on a right-and-left screw.
+
+    Its setting is the blocks' half spacing ``y / y_max``.
+
+    Parameters
+    ----------
+    spec : MeyerSpec
+        The valves, their eccentrics and the blocks' geometry.
+    """
 
     name = "meyer"
     summary = ("Meyer valve: cut-off blocks on a right-and-left screw riding on the main "

@@ -54,14 +54,53 @@ from corliss.valves.gear import GearType, register
 
 
 def gooch(r: float, delta: float, g: float, c: float, u: float) -> tuple[float, float]:
-    """(C, S) of a Gooch link's valve at block offset u [m] (Spangler Art. 65)."""
+    """Zeuner's form of a Gooch link's valve, ``x = C cos(theta) + S sin(theta)``
+    (Spangler Art. 65).
+
+    Parameters
+    ----------
+    r : float
+        Eccentrics' throw [m].
+    delta : float
+        Eccentrics' angular advance [rad].
+    g : float
+        Eccentric rod length [m].
+    c : float
+        Half the link's chord [m].
+    u : float
+        Block (radius rod) offset from the link's centre [m], in [-c, c].
+
+    Returns
+    -------
+    C, S : float
+        Coefficients [m].
+    """
     sd, cd = math.sin(delta), math.cos(delta)
     return r * (sd + c / g * cd), u * r / c * (cd - c / g * sd)
 
 
 def guinotte(r1, d1, g1, c1, r2, d2, g2, c2, u) -> tuple[float, float]:
-    """(C, S) of the Guinotte cut-off valve at block offset u [m] (Spangler Art. 147:
-    C is the book's A, the coefficient of cos, S its B)."""
+    """Zeuner's form of the Guinotte cut-off valve, ``x = C cos(theta) + S sin(theta)``
+    (Spangler Art. 147: C is the book's A, the coefficient of cos, S its B).
+
+    Parameters
+    ----------
+    r1, r2 : float
+        Throw of the eccentric to the link's upper and lower end [m].
+    d1, d2 : float
+        Their angular advances [rad].
+    g1, g2 : float
+        Their rods' lengths [m].
+    c1, c2 : float
+        The link's parts above and below the suspension [m].
+    u : float
+        Block offset from the suspension [m], from ``-c2`` to ``c1``.
+
+    Returns
+    -------
+    C, S : float
+        Coefficients [m], both linear in ``u``.
+    """
     k1, k2 = (c2 + u) / (c1 + c2), (c1 - u) / (c1 + c2)
     A = (k1 * r1 * (math.sin(d1) + c1 / g1 * math.cos(d1))
          + k2 * r2 * (math.sin(d2) + c2 / g2 * math.cos(d2)))
@@ -96,8 +135,31 @@ class _HarmonicRiding(dv.DoubleValve):
 
 @dataclass(frozen=True)
 class PolonceauSpec:
-    """A Polonceau gear (all SI): Gooch link (r, delta, g, c), main valve's radius rod
-    at ``main_block_m`` (u), cut-off valve's at ``setting`` u1 / c."""
+    """A Polonceau gear (all SI; Spangler Arts. 127-134).
+
+    Parameters
+    ----------
+    main : MainValveSpec
+        The main valve's laps and ports.
+    cutoff : CutoffSpec
+        The cut-off block's passages (``kind = "riding"``).
+    eccentricity_m : float
+        The Gooch link's eccentrics' throw r [m].
+    angular_advance_rad : float
+        Their angular advance delta [rad].
+    eccentric_rod_m : float
+        Eccentric rod length g [m].
+    half_link_m : float
+        Half the link's chord c [m].
+    main_block_m : float
+        Offset u of the main valve's radius rod from the link's centre [m].
+    setting : float, optional
+        Offset of the cut-off valve's radius rod, u1 / c [-], in [-1, 1].
+    motion : str, optional
+        ``"zeuner"`` or ``"exact"`` (the Gooch link solved; see the module doc).
+    radius_rod_m : float or None, optional
+        Radius rod g1 of the exact motion [m]; None for the eccentric rods' length.
+    """
 
     main: dv.MainValveSpec
     cutoff: dv.CutoffSpec
@@ -112,7 +174,15 @@ class PolonceauSpec:
 
 
 class PolonceauGear(_HarmonicRiding):
-    """Polonceau valve on a Gooch link with two radius rods."""
+    """Polonceau valve on a Gooch link with two radius rods.
+
+    Its setting is the cut-off valve's radius rod on the link, ``u1 / c``.
+
+    Parameters
+    ----------
+    spec : PolonceauSpec
+        The link, both radius rods and the valves.
+    """
 
     name = "polonceau"
     summary = ("Polonceau valve: cut-off block on the main valve's back, both valves on one "
@@ -151,17 +221,49 @@ class PolonceauGear(_HarmonicRiding):
         return gooch(s.eccentricity_m, s.angular_advance_rad, s.eccentric_rod_m, s.half_link_m, u)
 
     def main_coefficients(self):
+        """The main valve's motion in Zeuner's form, a Gooch valve at ``u``.
+
+        Returns
+        -------
+        C, S : float
+            Coefficients [m] of ``C cos(theta) + S sin(theta)`` (Art. 65).
+        """
         return self._gooch(self.spec.main_block_m)
 
     def cutoff_coefficients(self):
+        """The cut-off valve's motion in Zeuner's form, a Gooch valve at ``u1``.
+
+        Returns
+        -------
+        C, S : float
+            Coefficients [m] of ``C cos(theta) + S sin(theta)`` (Art. 65).
+        """
         return self._gooch(self.spec.setting * self.spec.half_link_m)
 
 
 @dataclass(frozen=True)
 class GuinotteSpec:
-    """A Guinotte gear (all SI): main eccentric (r, delta); the cut-off valve's link
-    with upper (r1, d1, g1, c1) and lower (r2, d2, g2, c2) eccentrics, rods and link
-    parts; ``setting`` in [-1, 1] (u = setting c1 above the centre, setting c2 below)."""
+    """A Guinotte gear (all SI; Spangler Arts. 146-148).
+
+    Parameters
+    ----------
+    main : MainValveSpec
+        The main valve's laps and ports.
+    cutoff : CutoffSpec
+        The cut-off valve's passages (``kind = "riding"``).
+    eccentricity_m : float
+        Main eccentric's throw r [m].
+    angular_advance_rad : float
+        Main eccentric's angular advance delta [rad].
+    upper : tuple of float
+        ``(r1 [m], d1 [rad], g1 [m], c1 [m])``: the eccentric, its advance and rod
+        to the link's upper end, and the link's part above the suspension.
+    lower : tuple of float
+        ``(r2 [m], d2 [rad], g2 [m], c2 [m])``: the same for the lower end.
+    setting : float, optional
+        Block position in [-1, 1] [-]: u = setting c1 above the centre, setting c2
+        below.
+    """
 
     main: dv.MainValveSpec
     cutoff: dv.CutoffSpec
@@ -173,11 +275,27 @@ class GuinotteSpec:
 
     @property
     def block_m(self) -> float:
+        """Block offset u from the link's suspension at this setting.
+
+        Returns
+        -------
+        float
+            u [m]: ``setting * c1`` for a setting >= 0, ``setting * c2`` below.
+        """
         return self.setting * (self.upper[3] if self.setting >= 0 else self.lower[3])
 
 
 class GuinotteGear(_HarmonicRiding):
-    """Guinotte gear: main eccentric, cut-off valve on a Gooch link with unequal eccentrics."""
+    """Guinotte gear: main eccentric, cut-off valve on a Gooch link with unequal eccentrics.
+
+    Its setting is the block's position on the link, ``u / c1`` above the centre and
+    ``u / c2`` below.
+
+    Parameters
+    ----------
+    spec : GuinotteSpec
+        The main eccentric, the link's two eccentrics and rods, and the valves.
+    """
 
     name = "guinotte"
     summary = ("Guinotte gear: Polonceau-type valve, cut-off valve on a Gooch link with unequal "
@@ -189,11 +307,33 @@ class GuinotteGear(_HarmonicRiding):
         self.spec = spec
 
     def main_coefficients(self):
+        """The main valve's motion in Zeuner's form: its own eccentric,
+        ``r sin(theta + delta)``.
+
+        Returns
+        -------
+        C, S : float
+            Coefficients [m] of ``C cos(theta) + S sin(theta)``: ``r sin(delta)``,
+            ``r cos(delta)``.
+        """
         s = self.spec
         return (s.eccentricity_m * math.sin(s.angular_advance_rad),
                 s.eccentricity_m * math.cos(s.angular_advance_rad))
 
     def cutoff_coefficients(self, u: float | None = None):
+        """The cut-off valve's motion in Zeuner's form (Art. 147; see :func:`guinotte`).
+
+        Parameters
+        ----------
+        u : float or None, optional
+            Block offset from the suspension [m]; None for the spec's
+            :attr:`GuinotteSpec.block_m`.
+
+        Returns
+        -------
+        C, S : float
+            Coefficients [m] of ``C cos(theta) + S sin(theta)``.
+        """
         s = self.spec
         r1, d1, g1, c1 = s.upper
         r2, d2, g2, c2 = s.lower

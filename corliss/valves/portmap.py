@@ -23,10 +23,12 @@ TWO_PI = 2.0 * math.pi
 class PortMap:
     """Open area of the four ports against crank angle.
 
-    Attributes
+    Built by :func:`tabulate`; read by linear interpolation in angle.
+
+    Parameters
     ----------
     theta_rad : ndarray
-        Crank angles [rad], increasing, from 0 to 2 pi inclusive.
+        Crank angles [rad], increasing, from 0 to 2 pi inclusive, shape ``(n,)``.
     area_m2 : ndarray
         Open area [m2], shape ``(4, len(theta_rad))``, in the order of
         :data:`corliss.valves.gear.PORTS`.
@@ -34,10 +36,10 @@ class PortMap:
         Discharge coefficient of each port [-], shape ``(4,)``.
     breakpoints_rad : ndarray
         Angles in [0, 2 pi) where any port opens, closes or reaches full opening.
-    crossings : list
+    crossings : list or None, optional
         ``crossings[port][0]`` where the port opens or closes, ``[port][1]`` where it
         reaches full opening, as :func:`corliss.valves.events.crossing_table` gives
-        them (the events are read from the first).
+        them (the events are read from the first); None when not kept.
     """
 
     theta_rad: np.ndarray
@@ -47,27 +49,89 @@ class PortMap:
     crossings: list | None = None
 
     def areas(self, theta: float) -> np.ndarray:
-        """Open areas [m2] of the four ports at crank angle ``theta`` [rad] (any turn)."""
+        """Open areas of the four ports at one crank angle, interpolated linearly.
+
+        Parameters
+        ----------
+        theta : float
+            Crank angle [rad] from head-end dead centre; any turn (taken modulo
+            2 pi).
+
+        Returns
+        -------
+        ndarray
+            Open areas [m2], shape ``(4,)``, in the order of :attr:`ports`.
+        """
         t = theta % TWO_PI
         return np.array([np.interp(t, self.theta_rad, a) for a in self.area_m2])
 
     def open_mask(self, theta: np.ndarray) -> np.ndarray:
-        """Boolean ``(4, n)``: which ports are open at each angle [rad]."""
+        """Which ports are open at each crank angle.
+
+        Parameters
+        ----------
+        theta : ndarray
+            Crank angles [rad], shape ``(n,)``; any turn (taken modulo 2 pi).
+
+        Returns
+        -------
+        ndarray of bool
+            Shape ``(4, n)``: True where the interpolated area of the port is above
+            zero.
+        """
         t = np.asarray(theta) % TWO_PI
         return np.vstack([np.interp(t, self.theta_rad, a) > 0.0 for a in self.area_m2])
 
     def scaled(self, factor: float) -> "PortMap":
-        """The same map with every area multiplied by ``factor`` (a study device)."""
+        """The same map with every area multiplied by ``factor`` (a study device).
+
+        Parameters
+        ----------
+        factor : float
+            Multiplier of every open area [-].
+
+        Returns
+        -------
+        PortMap
+            A new map; angles, discharge coefficients, breakpoints and crossings
+            unchanged.
+        """
         return PortMap(self.theta_rad, self.area_m2 * factor, self.cd, self.breakpoints_rad,
                        self.crossings)
 
     @property
     def ports(self) -> tuple[str, ...]:
+        """Names of the four ports in the order of the area rows.
+
+        Returns
+        -------
+        tuple of str
+            :data:`corliss.valves.gear.PORTS`: head steam, head exhaust, crank steam,
+            crank exhaust.
+        """
         return PORTS
 
 
 def tabulate(gear: ValveGear, n: int = 1440) -> PortMap:
-    """Tabulate a gear to a :class:`PortMap` on ``n`` uniform intervals plus its kinks."""
+    """Tabulate a gear to a :class:`PortMap` on ``n`` uniform intervals plus its kinks.
+
+    The kinks are every angle where a port's signed opening crosses one of the gear's
+    :meth:`~corliss.valves.gear.ValveGear.kink_levels`; a uniform point within
+    1e-9 rad of a kink is dropped in favour of the kink.
+
+    Parameters
+    ----------
+    gear : ValveGear
+        The gear at the setting to tabulate.
+    n : int, optional
+        Number of uniform intervals over one turn (1440: a quarter degree).
+
+    Returns
+    -------
+    PortMap
+        Areas on the merged grid, with the gear's discharge coefficients, the kinks
+        as breakpoints and the crossing table (from which the events are read).
+    """
     table = crossing_table(gear, gear.kink_levels())
     kinks = [t for row in table for lst in row for t, _ in lst]
     kinks = np.unique(np.round(np.asarray(kinks, dtype=float) % TWO_PI, 12))
@@ -92,16 +156,17 @@ class SettingPortMap:
     the area bilinearly; the port kinks, which move with the setting, fall between grid
     points (at the default 1440 intervals a kink is smoothed over 1/4 deg).
 
-    Attributes
+    Parameters
     ----------
     settings : ndarray
-        Gear settings, uniform, increasing (the gear's own setting units).
+        Gear settings, uniform, increasing (the gear's own normalised setting units,
+        see :attr:`~corliss.valves.gear.ValveGear.setting_name`), shape ``(m,)``.
     theta_rad : ndarray
-        Crank angles [rad], uniform from 0 to 2 pi inclusive.
+        Crank angles [rad], uniform from 0 to 2 pi inclusive, shape ``(n,)``.
     area_m2 : ndarray
-        Open area [m2], shape ``(len(settings), 4, len(theta_rad))``.
+        Open area [m2], shape ``(m, 4, n)``.
     cd : ndarray
-        Discharge coefficient of each port [-].
+        Discharge coefficient of each port [-], shape ``(4,)``.
     """
 
     settings: np.ndarray
@@ -110,7 +175,21 @@ class SettingPortMap:
     cd: np.ndarray
 
     def areas(self, setting: float, theta: float) -> np.ndarray:
-        """Open areas [m2] of the four ports, bilinear in (setting, angle)."""
+        """Open areas of the four ports, bilinear in (setting, angle).
+
+        Parameters
+        ----------
+        setting : float
+            Gear setting (the gear's own units); clipped to the tabulated range.
+        theta : float
+            Crank angle [rad]; any turn (taken modulo 2 pi).
+
+        Returns
+        -------
+        ndarray
+            Open areas [m2], shape ``(4,)``, in the order of
+            :data:`corliss.valves.gear.PORTS`.
+        """
         s = np.clip(setting, self.settings[0], self.settings[-1])
         t = theta % TWO_PI
         per_setting = np.array([[np.interp(t, self.theta_rad, a) for a in row]
@@ -121,7 +200,26 @@ class SettingPortMap:
 def tabulate_settings(gear: ValveGear, lo: float, hi: float, n_settings: int = 21,
                       n: int = 1440) -> SettingPortMap:
     """Tabulate a gear over ``n_settings`` settings from ``lo`` to ``hi`` and ``n`` uniform
-    crank-angle intervals."""
+    crank-angle intervals.
+
+    Parameters
+    ----------
+    gear : ValveGear
+        A gear with a setting (``setting_range`` not None).
+    lo, hi : float
+        Lowest and highest setting to tabulate (the gear's own units), within its
+        ``setting_range``; one setting only when ``hi <= lo``.
+    n_settings : int, optional
+        Number of settings, evenly spaced from ``lo`` to ``hi``.
+    n : int, optional
+        Number of uniform crank-angle intervals over one turn (1440: a quarter
+        degree).
+
+    Returns
+    -------
+    SettingPortMap
+        Areas of the gear rebuilt at each setting, on the uniform grids.
+    """
     settings = np.linspace(lo, hi, n_settings) if hi > lo else np.array([lo])
     theta = np.linspace(0.0, TWO_PI, n + 1)
     area = np.stack([gear.with_setting(float(s)).areas(theta) for s in settings])

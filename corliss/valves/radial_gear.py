@@ -23,7 +23,7 @@ Hackworth (Arts. 93-97), Marshall (105-108), Angstrom (109-110)
     hd = -4.5 ac, Art. 107).  An outside attachment sends the valve the other way at the
     dead centre, so the valve is connected (steam inside, or through a rocker, Art.
     101) to put the lead on the right port; x is reckoned that way, and alpha is then
-    taken on the side that runs the engine ahead.  That is why C carries |l2|: with l2
+    taken on the side that runs the engine ahead.  That is why C carries ``|l2|``: with l2
     the outside distance written positive, the result is the book's Art. 102 formula
     x = (l2/l1) r cos + r ((l1 + l2)/l1) tan(alpha) sin, which is right for the
     reversed connection (the book's text, "l2 changes sign", would give -(l2/l1) r cos
@@ -138,6 +138,7 @@ from corliss.valves.gear import GearType, register
 from corliss.valves.newton import newton2
 from corliss.valves.slide_valve import LappedValve, pair, parse_allen_passage, parse_ports
 
+#: The radial gears, by the ``kind`` key's values.
 KINDS = ("hackworth", "marshall", "angstrom", "joy", "walschaerts")
 SIMPLE = ("hackworth", "marshall", "angstrom")
 
@@ -149,7 +150,7 @@ class _RadialBase:
     Attributes
     ----------
     kind : str
-        One of :data:`KINDS`.
+        One of :data:`~corliss.valves.radial_gear.KINDS`.
     setting : float
         The reverse lever's position, -1 (full gear astern) .. 0 (mid gear) .. 1 (full
         gear ahead): the guide's inclination alpha / alpha_max, or the Walschaerts die's
@@ -179,10 +180,37 @@ class _RadialBase:
 
 @dataclass(frozen=True, kw_only=True)
 class SimpleRadialSpec(_RadialBase):
-    """Hackworth, Marshall or Angstrom gear.
+    """Hackworth, Marshall or Angstrom gear (Spangler Arts. 93-110; all SI).
 
-    Attributes
+    All fields are keyword-only.
+
+    Parameters
     ----------
+    kind : str
+        One of :data:`~corliss.valves.radial_gear.KINDS`.
+    lap_m : tuple of float
+        Steam lap of the (head, crank) end [m].
+    exhaust_lap_m : tuple of float
+        Exhaust lap of the (head, crank) end [m]; negative = exhaust clearance.
+    port_width_m : float
+        Width of each steam port in the direction of valve travel [m].
+    port_length_m : float
+        Length of each port across the valve face [m].
+    discharge_coefficient : float, optional
+        Of the port openings [-].
+    ports_per_end : int, optional
+        Number of openings each edge uncovers (2 for a double-ported valve).
+    allen_passage_m : float or None, optional
+        Width of the mouth of an Allen (trick) valve's passage [m] (Spangler
+        Art. 27); None for a plain valve.
+    setting : float, optional
+        The reverse lever's position, -1 (full gear astern) .. 0 (mid gear) .. 1 (full
+        gear ahead) [-]: the guide's inclination alpha / alpha_max.
+    motion : str, optional
+        ``"zeuner"`` or ``"exact"`` (see the module doc).
+    valve_rod_m : float or None, optional
+        Length of the valve rod (the book's "valve connecting-rod") [m]; None for an
+        infinitely long one.
     eccentricity_m : float
         r, throw of the eccentric set opposite the crank [m].
     link_m : float
@@ -193,12 +221,12 @@ class SimpleRadialSpec(_RadialBase):
     max_inclination_rad : float
         The guide's inclination alpha at full gear [rad] (Bremme: never above 25 deg,
         Art. 107).
-    hand : str
+    hand : str, optional
         ``"right"`` or ``"left"`` rotation (Art. 98).
-    guide_radius_m : float or None
+    guide_radius_m : float or None, optional
         Marshall: radius gh = gi of h's arc [m], signed (positive: centre on the valve's
         side).  None for Hackworth's straight guide.
-    parallel_link_m, parallel_rod_m : float or None
+    parallel_link_m, parallel_rod_m : float or None, optional
         Angstrom: the parallel motion's radius links and the rod kl carrying h [m].
     """
 
@@ -217,7 +245,19 @@ class SimpleRadialSpec(_RadialBase):
         return self.setting * self.max_inclination_rad
 
     def coefficients(self, setting: float | None = None) -> tuple[float, float]:
-        """(C, S) of x = C cos(theta) + S sin(theta) [m] (Spangler Art. 95)."""
+        """Zeuner's form ``x = C cos(theta) + S sin(theta)`` (Spangler Art. 95).
+
+        Parameters
+        ----------
+        setting : float or None, optional
+            Reverse lever position alpha / alpha_max [-]; None for the spec's.
+
+        Returns
+        -------
+        C, S : float
+            Coefficients [m]: ``C = (|l2| / l1) r``, lap + lead, the same at every
+            setting; ``S = r ((l1 - l2) / l1) tan(alpha)``.
+        """
         s = self.setting if setting is None else setting
         r, l1, l2 = self.eccentricity_m, self.link_m, self.valve_arm_m
         return (abs(l2) / l1 * r,
@@ -232,10 +272,37 @@ class SimpleRadialSpec(_RadialBase):
 
 @dataclass(frozen=True, kw_only=True)
 class JoySpec(_RadialBase):
-    """Joy gear (Spangler Arts. 112-114; the book's letters).
+    """Joy gear (Spangler Arts. 112-114; the book's letters; all SI).
 
-    Attributes
+    All fields are keyword-only.
+
+    Parameters
     ----------
+    kind : str
+        One of :data:`~corliss.valves.radial_gear.KINDS`.
+    lap_m : tuple of float
+        Steam lap of the (head, crank) end [m].
+    exhaust_lap_m : tuple of float
+        Exhaust lap of the (head, crank) end [m]; negative = exhaust clearance.
+    port_width_m : float
+        Width of each steam port in the direction of valve travel [m].
+    port_length_m : float
+        Length of each port across the valve face [m].
+    discharge_coefficient : float, optional
+        Of the port openings [-].
+    ports_per_end : int, optional
+        Number of openings each edge uncovers (2 for a double-ported valve).
+    allen_passage_m : float or None, optional
+        Width of the mouth of an Allen (trick) valve's passage [m] (Spangler
+        Art. 27); None for a plain valve.
+    setting : float, optional
+        The reverse lever's position, -1 (full gear astern) .. 0 (mid gear) .. 1 (full
+        gear ahead) [-]: the curved guide's inclination alpha / alpha_max.
+    motion : str, optional
+        ``"zeuner"`` or ``"exact"`` (see the module doc).
+    valve_rod_m : float or None, optional
+        Length of the valve rod (the book's "valve connecting-rod") [m]; None for an
+        infinitely long one.
     crank_m, connecting_rod_m : float
         R and b = cb [m].
     rod_point_m : float
@@ -248,9 +315,9 @@ class JoySpec(_RadialBase):
         ef [m].
     max_inclination_rad : float
         alpha at full gear [rad].
-    hand : str
+    hand : str, optional
         ``"right"`` or ``"left"`` rotation (Art. 98).
-    guide_radius_m : float or None
+    guide_radius_m : float or None, optional
         Radius of the curved guide lkm [m], signed (positive: centre on the
         cylinder's side); None for a straight guide.
     """
@@ -269,10 +336,23 @@ class JoySpec(_RadialBase):
 
     @property
     def inclination_rad(self) -> float:
+        """The guide's inclination alpha at this setting [rad]."""
         return self.setting * self.max_inclination_rad
 
     def coefficients(self, setting: float | None = None) -> tuple[float, float]:
-        """(C, S) of x = C cos(theta) + S sin(theta) [m] (Spangler Art. 113)."""
+        """Zeuner's form ``x = C cos(theta) + S sin(theta)`` (Spangler Art. 113).
+
+        Parameters
+        ----------
+        setting : float or None, optional
+            Reverse lever position alpha / alpha_max [-]; None for the spec's.
+
+        Returns
+        -------
+        C, S : float
+            Coefficients [m]: ``C = ((l3 - l4)/l3) R (l2 / l1)``, lap + lead, the
+            same at every setting; ``S = R ((l1 + l2)/l1) tan(alpha) (c/b)``.
+        """
         s = self.setting if setting is None else setting
         R, b, c = self.crank_m, self.connecting_rod_m, self.rod_point_m
         l1, l2, l3, l4 = self.lever_m, self.valve_arm_m, self.jack_link_m, self.jack_point_m
@@ -288,10 +368,37 @@ class JoySpec(_RadialBase):
 
 @dataclass(frozen=True, kw_only=True)
 class WalschaertsSpec(_RadialBase):
-    """Walschaerts gear (see the module doc for the arrangement).
+    """Walschaerts gear (see the module doc for the arrangement; all SI).
 
-    Attributes
+    All fields are keyword-only.
+
+    Parameters
     ----------
+    kind : str
+        One of :data:`~corliss.valves.radial_gear.KINDS`.
+    lap_m : tuple of float
+        Steam lap of the (head, crank) end [m].
+    exhaust_lap_m : tuple of float
+        Exhaust lap of the (head, crank) end [m]; negative = exhaust clearance.
+    port_width_m : float
+        Width of each steam port in the direction of valve travel [m].
+    port_length_m : float
+        Length of each port across the valve face [m].
+    discharge_coefficient : float, optional
+        Of the port openings [-].
+    ports_per_end : int, optional
+        Number of openings each edge uncovers (2 for a double-ported valve).
+    allen_passage_m : float or None, optional
+        Width of the mouth of an Allen (trick) valve's passage [m] (Spangler
+        Art. 27); None for a plain valve.
+    setting : float, optional
+        The reverse lever's position, -1 (full gear astern) .. 0 (mid gear) .. 1 (full
+        gear ahead) [-]: the die's offset u / u_max.
+    motion : str, optional
+        ``"zeuner"`` or ``"exact"`` (see the module doc).
+    valve_rod_m : float or None, optional
+        Length of a valve rod [m]: not used, the Walschaerts valve stem being
+        guided straight.
     crank_m, connecting_rod_m : float
         Main crank R and connecting rod [m].
     return_crank_m : float
@@ -309,10 +416,11 @@ class WalschaertsSpec(_RadialBase):
     lever_crosshead_m : float
         l, along the lever from the radius rod's pin to the union link's [m].
     union_link_m : float
+        The union link, from the crosshead arm to the combination lever's lower pin
         [m].
     valve_height_m : float
         The valve stem's line above the line of stroke [m].
-    admission : str
+    admission : str, optional
         ``"outside"`` (D valve; valve pin above the radius rod's) or ``"inside"``
         (piston valve; valve pin between the radius rod's and the union link's).
     """
@@ -336,7 +444,20 @@ class WalschaertsSpec(_RadialBase):
         return self.setting * self.max_die_m
 
     def coefficients(self, setting: float | None = None) -> tuple[float, float]:
-        """(C, S) of x = C cos(theta) + S sin(theta) [m] (derived: module doc)."""
+        """Zeuner's form ``x = C cos(theta) + S sin(theta)`` (derived in the module
+        doc).
+
+        Parameters
+        ----------
+        setting : float or None, optional
+            Die offset u / u_max [-]; None for the spec's.
+
+        Returns
+        -------
+        C, S : float
+            Coefficients [m]: ``C = (a/l) R``, lap + lead, the same at every
+            setting; ``S = (1 +- a/l)(u/k) e`` (+ for outside admission).
+        """
         s = self.setting if setting is None else setting
         q = self.lever_valve_m / self.lever_crosshead_m
         gain = 1.0 + q if self.admission == "outside" else 1.0 - q
@@ -354,7 +475,23 @@ SETTING_NAMES = {
 
 
 class RadialGear(LappedValve):
-    """A radial valve gear (Zeuner's form or exact) driving a lapped slide valve."""
+    """A radial valve gear (Zeuner's form or exact) driving a lapped slide valve.
+
+    Its setting is the reverse lever's, -1 (full gear astern) to 1 (full gear ahead);
+    ``setting_name`` says what it moves for the spec's kind.  The exact motion is
+    tabulated at 1/2 deg when the gear is built.
+
+    Parameters
+    ----------
+    spec : SimpleRadialSpec or JoySpec or WalschaertsSpec
+        The gear's linkage and its valve.
+
+    Raises
+    ------
+    InputError
+        With ``motion = "exact"``, if the linkage cannot be assembled at some crank
+        angle.
+    """
 
     name = "radial_gear"
     summary = ("radial gears, Zeuner's form or exact: Hackworth, Marshall, Angstrom, Joy "
@@ -374,7 +511,19 @@ class RadialGear(LappedValve):
         return self.zeuner_travel(theta)
 
     def zeuner_travel(self, theta):
-        """Valve displacement of Zeuner's form [m]."""
+        """Valve displacement of Zeuner's form, ``C cos(theta) + S sin(theta)``.
+
+        Parameters
+        ----------
+        theta : float or ndarray
+            Crank angles [rad] from head-end dead centre, any shape.
+
+        Returns
+        -------
+        ndarray
+            Displacement x [m] in the sense that opens the head steam port, of the
+            shape of ``theta``.
+        """
         C, S = self.spec.coefficients()
         th = np.asarray(theta, dtype=float)
         return C * np.cos(th) + S * np.sin(th)
@@ -402,8 +551,23 @@ def _tabulate(spec):
 
 
 def exact_valve_position(spec, theta: np.ndarray) -> np.ndarray:
-    """The valve's position [m] in the sense that opens the head steam port, from an
-    arbitrary origin, of the exact linkage at crank angles ``theta`` [rad]."""
+    """The valve's position in the exact linkage, solved at each crank angle (see the
+    module doc for each gear's arrangement).
+
+    Parameters
+    ----------
+    spec : SimpleRadialSpec or JoySpec or WalschaertsSpec
+        The gear.
+    theta : float or ndarray
+        Crank angles [rad] from head-end dead centre, shape ``(n,)``.
+
+    Returns
+    -------
+    ndarray
+        Valve position [m] in the sense that opens the head steam port, from an
+        arbitrary origin (:class:`RadialGear` zeroes it for equal lead), shape
+        ``(n,)``; NaN where the linkage cannot be assembled.
+    """
     th = np.atleast_1d(np.asarray(theta, dtype=float))
     if spec.kind in SIMPLE:
         return _simple(spec, th)
@@ -538,11 +702,26 @@ def _joy(spec: JoySpec, th):
 
 
 def walschaerts_layout(spec: WalschaertsSpec) -> dict:
-    """The fixed points of the exact Walschaerts gear (see the module doc) [m]: the
-    radius rod's pin at the dead centres ``A0``, the trunnion ``T``, the link's foot at
-    the dead centres ``F0``, the return crank's pin at head dead centre ``Q0``, the
-    lever's swing at the dead centres ``gamma0`` [rad], the union link's height ``yL``
-    and the crosshead arm's offset ``arm`` from the crosshead."""
+    """The fixed points of the exact Walschaerts gear (see the module doc).
+
+    Coordinates: the axle at the origin, x towards the cylinder along the line of
+    stroke, y up.
+
+    Parameters
+    ----------
+    spec : WalschaertsSpec
+        The gear.
+
+    Returns
+    -------
+    dict
+        ``A0``: the radius rod's pin at the dead centres; ``T``: the link's trunnion;
+        ``F0``: the link's foot at the dead centres; ``Q0``: the return crank's pin at
+        head dead centre (each an ndarray ``(x, y)`` [m]); ``gamma0``: the lever's
+        swing at the dead centres [rad]; ``yL``: the union link's height [m];
+        ``arm``: the crosshead arm's offset from the crosshead [m].  The trunnion's x
+        is NaN when the eccentric rod cannot reach.
+    """
     R, b, e, er = spec.crank_m, spec.connecting_rod_m, spec.return_crank_m, spec.eccentric_rod_m
     k, rho, a, ell, ul = (spec.link_foot_m, spec.radius_rod_m, spec.lever_valve_m,
                           spec.lever_crosshead_m, spec.union_link_m)

@@ -61,29 +61,48 @@ from corliss.valves.slide_valve import LappedValve, pair, parse_ports
 
 @dataclass(frozen=True)
 class ShaftGovernorSpec:
-    """A governor-moved eccentric and its valve (all SI).
+    """A governor-moved eccentric and its valve (all SI; Spangler Ch. XII).
 
-    Attributes
+    Parameters
     ----------
     path : str
         ``"straight"`` (Erie, Armington & Sims) or ``"arc"`` (Ball).
-    eccentricity_m, angular_advance_rad : float
-        Throw and advance at rest (s = 0) [m, rad]; for the arc they fix the pin's
+    eccentricity_m : float
+        Throw at rest (s = 0) [m]; for the arc it fixes, with the advance, the pin's
         position at rest.
-    centre_travel_m : float
+    angular_advance_rad : float
+        Advance at rest (s = 0) [rad].
+    lap_m : tuple of float
+        Steam lap of the (head, crank) end [m].
+    exhaust_lap_m : tuple of float
+        Exhaust lap of the (head, crank) end [m]; negative = exhaust clearance.
+    port_width_m : float
+        Width of each steam port in the direction of valve travel [m].
+    port_length_m : float
+        Length of each port across the valve face [m].
+    discharge_coefficient : float, optional
+        Of the port openings [-].
+    ports_per_end : int, optional
+        Number of openings each edge uncovers.
+    centre_travel_m : float, optional
         Straight path: how far the centre moves across the shaft at s = 1 [m].
-    arc_radius_m, arc_swing_rad, arc_start_rad : float
-        Arc path: radius of the pin's arc [m], its swing from rest to full speed
-        [rad], and the direction of the pin from the arc's centre at rest, in the
+    arc_radius_m : float, optional
+        Arc path: radius a of the pin's arc [m].
+    arc_swing_rad : float, optional
+        Arc path: the pin's swing dphi from rest to full speed [rad].
+    arc_start_rad : float, optional
+        Arc path: direction phi0 of the pin from the arc's centre at rest, in the
         valve-diagram plane [rad].
-    setting : float
-        The governor's position s in [0, 1].
-    eccentric_rod_m : float or None
+    setting : float, optional
+        The governor's position s in [0, 1] [-].
+    eccentric_rod_m : float or None, optional
         Eccentric rod plus valve stem g [m]; None for Zeuner's form.  The valve is set
         for equal lead at s = 0.
-    connection, steam : str
-        ``"direct"`` or ``"reverse_lever"``; ``"outside"`` or ``"inside"``: the sign of
-        the rod's correction, as for the slide valve.
+    connection : str, optional
+        ``"direct"`` or ``"reverse_lever"``: with ``steam``, the sign of the rod's
+        correction, as for the slide valve.
+    steam : str, optional
+        ``"outside"`` or ``"inside"``.
     """
 
     path: str
@@ -106,12 +125,31 @@ class ShaftGovernorSpec:
 
     @property
     def sigma(self) -> int:
-        """Sign with which the rod end's shortfall moves the valve [-] (as the slide
-        valve's: +1 direct with steam outside, -1 for one reversal)."""
+        """Sign with which the rod end's shortfall moves the valve (as the slide
+        valve's).
+
+        Returns
+        -------
+        int
+            +1 direct with steam outside, -1 for one reversal, +1 for two [-].
+        """
         return (1 if self.steam == "outside" else -1) * (1 if self.connection == "direct" else -1)
 
     def coefficients(self, s: float | None = None) -> tuple[float, float]:
-        """(C, S) of the eccentric centre at governor setting ``s`` [m]."""
+        """The eccentric centre's position in the valve-diagram plane, at a governor
+        setting: ``C = r sin(delta)`` (lap + lead), ``S = r cos(delta)`` (module doc).
+
+        Parameters
+        ----------
+        s : float or None, optional
+            Governor position in [0, 1] [-]; None for the spec's ``setting``.
+
+        Returns
+        -------
+        C, S : float
+            Coefficients [m] of the valve's Zeuner motion
+            ``C cos(theta) + S sin(theta)``.
+        """
         s = self.setting if s is None else s
         c0 = self.eccentricity_m * math.sin(self.angular_advance_rad)
         s0 = self.eccentricity_m * math.cos(self.angular_advance_rad)
@@ -124,7 +162,16 @@ class ShaftGovernorSpec:
 
 
 class ShaftGovernorGear(LappedValve):
-    """A slide or piston valve on a governor-moved eccentric."""
+    """A slide or piston valve on a governor-moved eccentric.
+
+    Its setting is the governor's position s, 0 at rest (full throw) to 1 at full
+    speed.
+
+    Parameters
+    ----------
+    spec : ShaftGovernorSpec
+        The eccentric's path, the valve and its ports.
+    """
 
     name = "shaft_governor"
     summary = ("shaft-governor eccentric: Erie and Armington & Sims (straight path, constant "
@@ -136,14 +183,37 @@ class ShaftGovernorGear(LappedValve):
         self.spec = spec
 
     def zeuner_travel(self, theta):
-        """Zeuner's form x = C cos(theta) + S sin(theta) at this setting [m]."""
+        """Zeuner's form ``x = C cos(theta) + S sin(theta)`` at this setting.
+
+        Parameters
+        ----------
+        theta : ndarray
+            Crank angles [rad] from head-end dead centre, any shape.
+
+        Returns
+        -------
+        ndarray
+            Displacement x [m], of the shape of ``theta``.
+        """
         C, S = self.spec.coefficients()
         th = np.asarray(theta, dtype=float)
         return C * np.cos(th) + S * np.sin(th)
 
     def travel(self, theta):
-        """Valve displacement [m]: Zeuner's form, plus with a finite eccentric rod the
-        rod end's shortfall measured from the valve's setting at rest (module doc)."""
+        """Valve displacement: Zeuner's form, plus with a finite eccentric rod the
+        rod end's shortfall measured from the valve's setting at rest (module doc).
+
+        Parameters
+        ----------
+        theta : ndarray
+            Crank angles [rad] from head-end dead centre, any shape.
+
+        Returns
+        -------
+        ndarray
+            Displacement x [m] in the sense that opens the head steam port, of the
+            shape of ``theta``.
+        """
         sp = self.spec
         x = self.zeuner_travel(theta)
         g = sp.eccentric_rod_m

@@ -65,7 +65,7 @@ from corliss.tables import DISCHARGE_COEFFICIENT, Table
 class SlideValveSpec:
     """A plain slide valve and its eccentric (all SI).
 
-    Attributes
+    Parameters
     ----------
     eccentricity_m : float
         Eccentric throw r, half the valve travel [m].
@@ -78,19 +78,24 @@ class SlideValveSpec:
     port_width_m, port_length_m : float
         Width of each steam port in the direction of valve travel, and its length
         across the valve face [m].
-    discharge_coefficient : float
+    discharge_coefficient : float, optional
         Of the port opening [-].
-    eccentric_rod_m : float or None
-        Eccentric rod plus valve stem length [m]; None for the Zeuner motion.
-    connection : str
-        ``"direct"`` or ``"reverse_lever"``.
-    steam : str
-        ``"outside"`` (D valve) or ``"inside"`` (piston valve).
-    setting : str
-        ``"equal_lead"`` or ``"mid_travel"``.
-    ports_per_end : int
-        Number of openings each edge uncovers (2 for a double-ported valve).
-    allen_passage_m : float or None
+    eccentric_rod_m : float or None, optional
+        Eccentric rod plus valve stem length g [m]; None for the Zeuner motion
+        (an infinite rod).
+    connection : str, optional
+        ``"direct"`` or ``"reverse_lever"`` (which reverses the valve's motion:
+        Spangler Art. 24).
+    steam : str, optional
+        ``"outside"`` (D valve) or ``"inside"`` (piston valve, Spangler Art. 29).
+    setting : str, optional
+        ``"equal_lead"`` (the valve's zero at the mean of its two dead-point
+        positions) or ``"mid_travel"`` (equal extreme travels); matters only with a
+        finite rod (see the module doc).
+    ports_per_end : int, optional
+        Number of openings each edge uncovers (2 for a double-ported valve,
+        Spangler Art. 26).
+    allen_passage_m : float or None, optional
         Width of the mouth of an Allen (trick) valve's supplementary passage [m]
         (Spangler Art. 27); None for a plain valve.
     """
@@ -111,14 +116,28 @@ class SlideValveSpec:
 
     @property
     def sigma(self) -> int:
-        """Sign with which the rod-end shortfall moves the valve [-]."""
+        """Sign with which the rod-end shortfall moves the valve.
+
+        Returns
+        -------
+        int
+            +1 for a directly connected valve taking steam outside, -1 through a
+            reverse lever or with steam inside, +1 with both [-].
+        """
         a = 1 if self.steam == "outside" else -1
         b = 1 if self.connection == "direct" else -1
         return a * b
 
     @property
     def lead_m(self) -> tuple[float, float]:
-        """Zeuner lead of each end, r sin(delta) - lap [m] (Spangler Art. 14)."""
+        """Zeuner lead of each end, ``r sin(delta) - lap`` (Spangler Art. 14).
+
+        Returns
+        -------
+        tuple of float
+            Lead of the (head, crank) end [m], the steam port's opening at the end's
+            dead centre on an infinite rod.
+        """
         rs = self.eccentricity_m * math.sin(self.angular_advance_rad)
         return (rs - self.lap_m[0], rs - self.lap_m[1])
 
@@ -132,6 +151,20 @@ class LappedValve(ValveGear):
     ``allen_passage_m`` (an Allen valve's passage, Spangler Art. 27: see the module doc)."""
 
     def travel(self, theta: np.ndarray) -> np.ndarray:  # pragma: no cover - interface
+        """Valve displacement in the sense that opens the head steam port, from the
+        valve's zero as its gear sets it (mid travel, or the mean of its dead-centre
+        positions for a valve set for equal lead).
+
+        Parameters
+        ----------
+        theta : ndarray
+            Crank angles [rad] from head-end dead centre, shape ``(n,)``.
+
+        Returns
+        -------
+        ndarray
+            Displacement x [m], shape ``(n,)``.
+        """
         raise NotImplementedError
 
     def signed_openings(self, theta):
@@ -141,9 +174,21 @@ class LappedValve(ValveGear):
         return np.vstack([x - lh, -x - eh, -x - lc, x - ec])
 
     def openings(self, theta):
-        """Physical opening of each port [m]; an Allen valve's steam ports add the
-        passage's opening min(p, a) to the plain one, up to the port's width
-        (Spangler Art. 27)."""
+        """Physical opening of each port; an Allen valve's steam ports add the
+        passage's opening ``min(p, a)`` to the plain one, up to the port's width
+        (Spangler Art. 27).
+
+        Parameters
+        ----------
+        theta : float or ndarray
+            Crank angles [rad], shape ``(n,)`` (a scalar counts as ``n = 1``).
+
+        Returns
+        -------
+        ndarray
+            Openings [m], shape ``(4, n)``, each in [0, port width], in the order of
+            :data:`corliss.valves.gear.PORTS`.
+        """
         s = self.signed_openings(np.atleast_1d(theta))
         w = self.spec.port_width_m
         out = np.clip(s, 0.0, w)
@@ -154,9 +199,18 @@ class LappedValve(ValveGear):
         return out
 
     def kink_levels(self):
-        """With an Allen passage of width a, the steam ports' area also kinks where the
-        passage is full (plain opening a) and where the two together fill the port
-        (p + min(p, a) = w)."""
+        """Signed openings at which each port's open area has a kink.
+
+        With an Allen passage of width ``a``, the steam ports' area also kinks where
+        the passage is full (plain opening ``a``) and where the two together fill the
+        port (``p + min(p, a) = w``).
+
+        Returns
+        -------
+        ndarray
+            Levels [m], shape ``(4, 2)`` for a plain valve, ``(4, 4)`` with an Allen
+            passage (the exhaust ports' extra levels are 0, repeating their opening).
+        """
         base = super().kink_levels()
         a = getattr(self.spec, "allen_passage_m", None)
         if not a:
@@ -177,7 +231,17 @@ class LappedValve(ValveGear):
 
 
 class SlideValve(LappedValve):
-    """Plain D slide valve or piston valve on a single eccentric."""
+    """Plain D slide valve or piston valve on a single eccentric.
+
+    The travel is Zeuner's harmonic motion, corrected for a finite eccentric rod by
+    the rod end's shortfall (Spangler Art. 13; Marks, *Relative Proportions*,
+    Art. 96): see the module doc.
+
+    Parameters
+    ----------
+    spec : SlideValveSpec
+        The valve, its eccentric and its ports.
+    """
 
     name = "slide_valve"
     summary = "plain D slide valve or piston valve on one eccentric (Spangler Ch. I-IV)"
@@ -186,7 +250,20 @@ class SlideValve(LappedValve):
         self.spec = spec
 
     def travel(self, theta: np.ndarray) -> np.ndarray:
-        """Valve displacement x [m] in the sense that opens the head steam port."""
+        """Valve displacement in the sense that opens the head steam port, with the
+        finite rod's correction when the spec has a rod.
+
+        Parameters
+        ----------
+        theta : ndarray
+            Crank angles [rad] from head-end dead centre, any shape.
+
+        Returns
+        -------
+        ndarray
+            Displacement x [m] from the valve's zero (see ``setting``), of the shape
+            of ``theta``.
+        """
         s = self.spec
         phase = np.asarray(theta) + s.angular_advance_rad
         x = s.eccentricity_m * np.sin(phase)
@@ -200,7 +277,19 @@ class SlideValve(LappedValve):
         return x
 
     def zeuner_travel(self, theta: np.ndarray) -> np.ndarray:
-        """Valve displacement of the Zeuner (infinite rod) motion [m]."""
+        """Valve displacement of the Zeuner (infinite rod) motion,
+        ``r sin(theta + delta)`` (Spangler Art. 13, eq. 4).
+
+        Parameters
+        ----------
+        theta : ndarray
+            Crank angles [rad] from head-end dead centre, any shape.
+
+        Returns
+        -------
+        ndarray
+            Displacement x [m], of the shape of ``theta``.
+        """
         s = self.spec
         return s.eccentricity_m * np.sin(np.asarray(theta) + s.angular_advance_rad)
 
