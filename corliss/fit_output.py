@@ -125,10 +125,10 @@ def fit_json(fit_result: FitResult, units_system: str | None = None) -> dict:
     Returns
     -------
     dict
-        :attr:`corliss.fitting.solver.FitResult.summary` with the residual r.m.s. and noise estimate in the
-        pressure unit, the card's columns and SHA-256, the ranges as ``vary``
-        options, the versions, the creation time (UTC) and the scene's name, file,
-        SHA-256 and text; JSON values only.
+        :attr:`corliss.fitting.solver.FitResult.summary` with the residual r.m.s.
+        and noise estimate in the pressure unit, the card's columns and SHA-256, the
+        ranges as ``vary`` options, the versions, the creation time (UTC) and the
+        scene's name, file, SHA-256 and text; JSON values only.
     """
     s = fit_result.scene
     system = units_system or s.output.units
