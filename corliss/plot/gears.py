@@ -69,11 +69,12 @@ def plot_valve_travel(gear, ax=None, units_system: str = "US") -> dict:
 
 
 def plot_zeuner_diagram(gear, ax=None, units_system: str = "US") -> dict:
-    """Zeuner's valve diagram (Spangler Arts. 10-18): the valve's displacement laid off
-    along each crank position traces the valve circles, one for each end; the lap
-    circles cut them at admission and cut-off, the exhaust-lap circles at release and
-    compression.  Drawn with the crank rotating counter-clockwise from head-end dead
-    centre on the right.
+    """Zeuner's valve diagram (Spangler Arts. 10-18).
+
+    The valve's displacement laid off along each crank position traces the valve
+    circles, one for each end; the lap circles cut them at admission and cut-off, the
+    exhaust-lap circles at release and compression.  Drawn with the crank rotating
+    counter-clockwise from head-end dead centre on the right.
 
     Parameters
     ----------
@@ -206,12 +207,13 @@ def bilgram_events(gear) -> dict:
 
 
 def plot_bilgram_diagram(gear, ax=None, units_system: str = "US") -> dict:
-    """Bilgram's valve diagram (Spangler Arts. 149-150): the circle of the eccentric's
-    throw r about o, the Bilgram point d on it at the angular advance from the
-    dead-centre line, and the lap and exhaust-lap circles about d; the valve's
-    displacement at any crank position is the perpendicular from d on the crank line,
-    and the crank lines tangent to the lap circles are the events (see
-    :func:`bilgram_events`).  dk, from d square to the dead-centre line, is the lap
+    """Bilgram's valve diagram (Spangler Arts. 149-150).
+
+    The circle of the eccentric's throw r about o, the Bilgram point d on it at the
+    angular advance from the dead-centre line, and the lap and exhaust-lap circles
+    about d; the valve's displacement at any crank position is the perpendicular from d
+    on the crank line, and the crank lines tangent to the lap circles are the events
+    (see :func:`bilgram_events`).  dk, from d square to the dead-centre line, is the lap
     plus the lead.  Drawn from the gear's Zeuner form, with the crank turning
     counter-clockwise from head-end dead centre on the right, as the Zeuner diagram.
 
@@ -296,9 +298,10 @@ def plot_bilgram_diagram(gear, ax=None, units_system: str = "US") -> dict:
 
 
 def plot_lapped_valve(gear, fig=None, units_system: str = "US") -> dict:
-    """The three standard panels of a lapped valve, side by side: valve travel
-    (:func:`plot_valve_travel`), the Zeuner diagram (:func:`plot_zeuner_diagram`) and the
-    Bilgram diagram (:func:`plot_bilgram_diagram`).
+    """The three standard panels of a lapped valve, side by side.
+
+    Valve travel (:func:`plot_valve_travel`), the Zeuner diagram
+    (:func:`plot_zeuner_diagram`) and the Bilgram diagram (:func:`plot_bilgram_diagram`).
 
     Parameters
     ----------

@@ -326,8 +326,10 @@ def converted(frame: pd.DataFrame, responses, units_system: str | None,
 
 
 def scene_data_of(base_data: dict, varied: list[dict], row: dict) -> dict:
-    """A study row's scene as tables: the base scene with the row's varied keys set
-    (``with_keys(base, {key: value in its unit})``).
+    """A study row's scene as tables: the base scene with the row's varied keys set.
+
+    That is ``with_keys(base, {key: value in its unit})``
+    (:func:`corliss.scene_keys.with_keys`).
 
     Parameters
     ----------
