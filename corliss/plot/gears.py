@@ -177,12 +177,13 @@ def bilgram_events(gear) -> dict:
     head-end dead centre) ``d = (S, -C)``, and that perpendicular is
     ``d . (sin theta, -cos theta) = C cos theta + S sin theta = r sin(theta + delta)``.
     A port opens or closes where the crank line is tangent to the circle about d of
-    radius the lap (steam) or exhaust lap: the two tangents from o make the angles +-asin(lap / od) with od.  Of
-    each tangent line, the crank is on the ray on whose side d lies as the event needs
-    (x = +lap for the head end, -lap for the crank end), and the tangent point (the foot
-    of the perpendicular from d) lies on the crank's ray where the displacement is
-    growing (its rate is ``d . (cos theta, sin theta)``), behind o where it is falling:
-    so the two tangents tell opening from closing.
+    radius the lap (steam) or exhaust lap: the two tangents from o make the angles
+    ``+-asin(lap / od)`` with od.  Of each tangent line, the crank is on the ray on
+    whose side d lies as the event needs (``x = +lap`` for the head end, ``-lap`` for
+    the crank end), and the tangent point (the foot of the perpendicular from d) lies on
+    the crank's ray where the displacement is growing (its rate is
+    ``d . (cos theta, sin theta)``), behind o where it is falling: so the two tangents
+    tell opening from closing.
     """
     C, S = _bilgram_point(gear)
     dx, dy = S, -C
