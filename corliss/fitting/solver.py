@@ -34,8 +34,8 @@ deviation when every point's pressure carries an independent error of one unit (
 root of the sum of the squared trapezoid weights, :func:`area_weights`).  Weighted so,
 the area residual has the same noise as one point's residual, so the noise estimate
 ``s`` holds for every residual alike and the area is counted once, as the one
-observation it is (it is made of the same points).  Shape and area then both count, the area as a strong single
-observation: on the default engine's card of 180 points an end, an area wrong by a
+observation it is (it is made of the same points).  Shape and area then both count,
+the area as a strong single observation: on the default engine's card of 180 points an end, an area wrong by a
 fraction ``e`` gives a residual of 5.6 ``e`` times the pressure range, which costs as
 much as 32 of the 180 points each off by ``e`` of the range.  On a card the model can
 match (the tests' synthetic cards) the shape decides, and the fitted and measured
