@@ -30,22 +30,21 @@ Shape alone would let a loop slide along itself; the card's area, the indicated 
 (its area over its length is the mean effective pressure of Marks Art. 3), is added for
 each end as one more residual: the simulated area less the measured, both as the
 integral of pressure over the normalised abscissa, divided by the area's own standard
-deviation when every point's pressure carries an independent error of one unit (the
-root of the sum of the squared trapezoid weights, :func:`area_weights`).  Weighted so,
-the area residual has the same noise as one point's residual, so the noise estimate
-``s`` holds for every residual alike and the area is counted once, as the one
-observation it is (it is made of the same points).  Shape and area then both count,
-the area as a strong single observation: on the default engine's card of 180 points an end, an area wrong by a
-fraction ``e`` gives a residual of 5.6 ``e`` times the pressure range, which costs as
-much as 32 of the 180 points each off by ``e`` of the range.  On a card the model can
-match (the tests' synthetic cards) the shape decides, and the fitted and measured
-m.e.p. agree to 0.1 % with or without the area.  Where the shape cannot be matched the
-area pulls only a little: the default engine's noisy card fitted by the lap alone,
-with the clearance and discharge coefficient of the scene wrong (0.11 and 0.55 for
-0.08 and 0.7), ends with an m.e.p. 1.2 % short of the card's with the area residual
-and 1.3 % short without it (the lap 0.996 in against 1.015 in).  A heavier area
-weight would hold the work at the price of the shape, and of ``s`` as an estimate
-of the noise.
+deviation when every point's pressure carries an independent error of one unit (the root
+of the sum of the squared trapezoid weights, :func:`area_weights`).  Weighted so, the
+area residual has the same noise as one point's residual, so the noise estimate ``s``
+holds for every residual alike and the area is counted once, as the one observation it
+is (it is made of the same points).  Shape and area then both count, the area as a
+strong single observation: on the default engine's card of 180 points an end, an area
+wrong by a fraction ``e`` gives a residual of 5.6 ``e`` times the pressure range, which
+costs as much as 32 of the 180 points each off by ``e`` of the range.  On a card the
+model can match (the tests' synthetic cards) the shape decides, and the fitted and
+measured m.e.p. agree to 0.1 % with or without the area.  Where the shape cannot be
+matched the area pulls only a little: the default engine's noisy card fitted by the lap
+alone, with the clearance and discharge coefficient of the scene wrong (0.11 and 0.55
+for 0.08 and 0.7), ends with an m.e.p. 1.2 % short of the card's with the area residual
+and 1.3 % short without it (the lap 0.996 in against 1.015 in).  A heavier area weight
+would hold the work at the price of the shape, and of ``s`` as an estimate of the noise.
 
 The search
 ----------
