@@ -165,8 +165,8 @@ def convert_value(key: str, value: float, system: str) -> tuple[str, float, str]
     value : float
         The value in that unit.
     system : str
-        ``"US"`` or ``"SI"``, as for :func:`convert_frame` (gauge pressures at the
-        standard atmosphere).
+        ``"US"`` or ``"SI"``, as for :func:`convert_frame` (pressures come out
+        absolute).
 
     Returns
     -------
