@@ -1,5 +1,28 @@
 """corliss: a steam-engine cycle and governing simulator.
 
+The package's front door holds what a user calls: :func:`load_scene` (and
+:func:`scene_from_dict`, :func:`bundled_scenes`, :func:`default_scene_path`) to read a
+scene, :func:`simulate` to run it (a :class:`SteadyResult`, :class:`TransientResult`
+or :class:`SweepResult`), :func:`scene_events` for its valve events without a run,
+:func:`design` for a valve designed for the events asked, :func:`fit` for scene keys
+calibrated to a measured card, and :func:`study` for runs over a design of keys.  Bad
+input raises :class:`InputError`, naming the key, the value and what is valid.
+
+Its layers, bottom up (a module imports its own layer and those below, never above):
+
+- the vocabulary: :mod:`corliss.errors`, :mod:`corliss.units`, :mod:`corliss.columns`,
+  :mod:`corliss.scene_keys` and the small readers and writers beside them;
+- the physics, independent of each other: :mod:`corliss.thermo` (steam properties and
+  flow through ports), :mod:`corliss.valves` (valve gears) and
+  :mod:`corliss.governors`;
+- :mod:`corliss.engine`: the engine's model, its integration and its results;
+- :mod:`corliss.scene`, :mod:`corliss.studies`, :mod:`corliss.fitting`: scenes, studies
+  and fits;
+- :mod:`corliss.plot`: the figures;
+- the files: :mod:`corliss.results`, :mod:`corliss.study_output`,
+  :mod:`corliss.design_scene`, :mod:`corliss.fit_output`;
+- the command: :mod:`corliss.cli`.
+
 >>> import corliss
 >>> scene = corliss.load_scene(corliss.default_scene_path())
 >>> result = corliss.simulate(scene)          # doctest: +SKIP

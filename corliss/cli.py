@@ -79,7 +79,18 @@ def _fmt(v, unit, digits=4):
 
 
 def print_steady(result, files) -> None:
-    """The short account of a steady run."""
+    """Print the short account of a steady run to standard output.
+
+    Power, m.e.p., steam, condensation, each end's events, the cycles run and the
+    files written, in the scene's units.
+
+    Parameters
+    ----------
+    result : SteadyResult
+        The run.
+    files : dict of str to Path
+        ``{kind: path}`` of the files written, listed last.
+    """
     s = result.summary
     us = result.scene.output.units == "US"
     P = units.to_unit
@@ -137,7 +148,18 @@ def _print_walls(s: dict, us: bool) -> None:
 
 
 def print_transient(result, files) -> None:
-    """The short account of a transient run."""
+    """Print the short account of a transient run to standard output.
+
+    The governor, final speed and power, the start, the load step's regulation,
+    largest change and settling, and any hunting or stall, then the files written.
+
+    Parameters
+    ----------
+    result : TransientResult
+        The run.
+    files : dict of str to Path
+        ``{kind: path}`` of the files written, listed last.
+    """
     s = result.summary
     us = result.scene.output.units == "US"
     print(s["title"])
@@ -192,14 +214,28 @@ def _print_files(files) -> None:
 
 
 class ProgressBar:
-    """A progress line on stderr, shown on a terminal once a run has taken more than
-    ``delay_s`` (short runs and logs get nothing).
+    """A progress line on stderr, shown on a terminal once a run has taken a while.
 
-    ``kind`` says what the two numbers it is called with are: ``"time"`` (simulated
-    and total seconds), ``"runs"`` (runs done and in all) or ``"cycles"`` (the cycle
-    number and the relative change of work, the total unknown until the run is
-    periodic: no estimate is shown).  The time to go is shown only once a tenth of the
-    work is done, when the rate it is estimated from has settled.
+    Called as ``bar(done, total)`` (the ``progress`` callback of a run or a study);
+    short runs and logs (a stream that is not a terminal) get nothing.  The time to go
+    is shown only once a tenth of the work is done, when the rate it is estimated from
+    has settled.
+
+    Parameters
+    ----------
+    kind : str, optional
+        What the two numbers it is called with are: ``"time"`` (simulated and total
+        seconds), ``"runs"`` (runs done and in all) or ``"cycles"`` (the cycle number
+        and the relative change of work, the total unknown until the run is periodic:
+        no estimate is shown).
+    delay_s : float, optional
+        Nothing is shown before the run has taken this long [s].
+    width : int, optional
+        Characters of the bar.
+    stream : file-like, optional
+        Where to write (default ``sys.stderr``).
+    tolerance : float, optional
+        The periodicity tolerance shown beside a ``"cycles"`` line [-].
     """
 
     def __init__(self, kind: str = "time", delay_s: float = 2.0, width: int = 30,
@@ -232,12 +268,30 @@ class ProgressBar:
         self.shown = True
 
     def close(self) -> None:
+        """End the progress line (a newline) if one was shown."""
         if self.shown:
             self.stream.write("\n")
             self.stream.flush()
 
 
 def cmd_run(args) -> int:
+    """``corliss run``: simulate a scene, write its files and print its account.
+
+    A scene file or bundled name, or ``--from-meta``; ``--fidelity``, ``--cycles``,
+    ``--duration`` and ``--until-settled`` change the run before it starts, and
+    every option is checked before any simulation.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of the subcommand (:func:`build_parser`).
+
+    Returns
+    -------
+    int
+        The exit status: 0 (a user's mistake raises
+        :class:`~corliss.errors.InputError`, which :func:`main` turns into 2).
+    """
     if args.from_meta is not None:
         if args.scene is not None:
             raise InputError("--from-meta", args.from_meta, "either a scene or --from-meta, "
@@ -303,6 +357,22 @@ def _numbers(flag: str, text: str) -> list[float]:
 
 
 def cmd_events(args) -> int:
+    """``corliss events``: the valve events of each end, without simulating.
+
+    Printed as a list, or as JSON with ``--json`` or ``--settings`` (the events at
+    each gear setting given).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of the subcommand (:func:`build_parser`).
+
+    Returns
+    -------
+    int
+        The exit status: 0 (a user's mistake raises
+        :class:`~corliss.errors.InputError`, which :func:`main` turns into 2).
+    """
     scene = _load(args.scene)
     settings = None if args.settings is None else _numbers("--settings", args.settings)
     ev = scene_events(scene, settings)
@@ -317,6 +387,19 @@ def cmd_events(args) -> int:
 
 
 def cmd_gear(args) -> int:
+    """``corliss gear``: the panels of the scene's valve gear as ``<scene>.gear.png``.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of the subcommand (:func:`build_parser`).
+
+    Returns
+    -------
+    int
+        The exit status: 0 (a user's mistake raises
+        :class:`~corliss.errors.InputError`, which :func:`main` turns into 2).
+    """
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -338,6 +421,22 @@ def cmd_gear(args) -> int:
 
 
 def cmd_design(args) -> int:
+    """``corliss design``: a valve (or a gear's setting) for the events asked.
+
+    Writes ``design.toml`` and its diagrams (:func:`corliss.design_scene.design`),
+    then prints the design, or its summary as JSON with ``--json``.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of the subcommand (:func:`build_parser`).
+
+    Returns
+    -------
+    int
+        The exit status: 0 (a user's mistake raises
+        :class:`~corliss.errors.InputError`, which :func:`main` turns into 2).
+    """
     from corliss.design_scene import design
     scene = _load(args.scene, args.units)
     d = design(scene, cutoff=args.cutoff, cutoff_crank=args.cutoff_crank, lead=args.lead,
@@ -372,6 +471,22 @@ def cmd_design(args) -> int:
 
 
 def cmd_sweep(args) -> int:
+    """``corliss sweep``: steady runs across the load range at each setting or opening.
+
+    Writes the table and the Willans lines, then prints the table in the scene's
+    units (the summary as JSON with ``--json``).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of the subcommand (:func:`build_parser`).
+
+    Returns
+    -------
+    int
+        The exit status: 0 (a user's mistake raises
+        :class:`~corliss.errors.InputError`, which :func:`main` turns into 2).
+    """
     from corliss.columns import convert_frame
     scene = _load(args.scene, args.units)
     if args.fidelity:
@@ -431,7 +546,16 @@ def _loads(text: str) -> list[float]:
 
 
 def print_verdict(result) -> None:
-    """The study's verdict: per load and condensation, the steam of each governing."""
+    """Print the verdict of ``corliss compare`` to standard output.
+
+    Per load and condensation, the steam of each governing, the saving of cut-off
+    governing and the winner; the Willans line of each variant; the runs made.
+
+    Parameters
+    ----------
+    result : CompareResult
+        The throttling-versus-cut-off study (:func:`corliss.engine.compare.compare`).
+    """
     us = result.scene.output.units == "US"
     rate = (lambda v: v / units.POUND_kg) if us else (lambda v: v)
     unit = "lb/h" if us else "kg/h"
@@ -467,6 +591,22 @@ def print_verdict(result) -> None:
 
 
 def cmd_compare(args) -> int:
+    """``corliss compare``: throttling against cut-off governing across the load range.
+
+    Writes the study's files, then prints :func:`print_verdict` (the summary as
+    JSON with ``--json``).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of the subcommand (:func:`build_parser`).
+
+    Returns
+    -------
+    int
+        The exit status: 0 (a user's mistake raises
+        :class:`~corliss.errors.InputError`, which :func:`main` turns into 2).
+    """
     from corliss.engine.compare import DEFAULT_LOADS, compare
     scene = _load(args.scene, args.units)
     loads = _loads(args.loads) if args.loads else list(DEFAULT_LOADS)
@@ -481,6 +621,23 @@ def cmd_compare(args) -> int:
 
 
 def cmd_study(args) -> int:
+    """``corliss study``: steady runs over a design of scene keys.
+
+    Writes the study's files (:func:`corliss.studies.study`), then prints each
+    response's range over the runs (the summary as JSON with ``--json``).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of the subcommand (:func:`build_parser`).
+
+    Returns
+    -------
+    int or None
+        The exit status: 0 with ``--json``; None (exit status 0) after the printed
+        account (a user's mistake raises :class:`~corliss.errors.InputError`, which
+        :func:`main` turns into 2).
+    """
     from corliss.studies import study
     scene = _load(args.scene)
     result, files = _study(args, scene, lambda bar: study(
@@ -502,6 +659,22 @@ def cmd_study(args) -> int:
           f"({s['runs_per_s']:.1f} runs/s)")
     _print_files(files)
 def cmd_fit(args) -> int:
+    """``corliss fit``: calibrate scene keys to a measured card.
+
+    Writes ``fit.json``, ``fitted.toml`` and the figure, then prints
+    :func:`corliss.fit_output.print_fit` (the fit as JSON with ``--json``).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of the subcommand (:func:`build_parser`).
+
+    Returns
+    -------
+    int
+        The exit status: 0 (a user's mistake raises
+        :class:`~corliss.errors.InputError`, which :func:`main` turns into 2).
+    """
     from corliss.fit_output import fit, print_fit
     scene = _load(args.scene, args.units)
     result = fit(scene, args.card, args.vary, fidelity=args.fidelity, refine=args.refine,
@@ -516,6 +689,19 @@ def cmd_fit(args) -> int:
 
 
 def cmd_list(args) -> int:
+    """``corliss list``: the bundled scenes, or the gears, governors or effects known.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of the subcommand (:func:`build_parser`).
+
+    Returns
+    -------
+    int
+        The exit status: 0 (a user's mistake raises
+        :class:`~corliss.errors.InputError`, which :func:`main` turns into 2).
+    """
     if args.what == "scenes":
         for name, path in bundled_scenes().items():
             try:
@@ -541,6 +727,22 @@ def cmd_list(args) -> int:
 
 
 def cmd_bench(args) -> int:
+    """``corliss bench``: the accuracy-versus-time study of ``benchmarks/``.
+
+    Needs a source checkout (the study and its baseline live beside the
+    package).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of the subcommand (:func:`build_parser`).
+
+    Returns
+    -------
+    int
+        The exit status: 0 (a user's mistake raises
+        :class:`~corliss.errors.InputError`, which :func:`main` turns into 2).
+    """
     import importlib.util
     here = Path(__file__).resolve().parent.parent
     for root in (Path.cwd(), here):
@@ -558,6 +760,13 @@ def cmd_bench(args) -> int:
 
 
 def build_parser() -> argparse.ArgumentParser:
+    """The ``corliss`` command's argument parser, a subcommand per ``cmd_*`` function.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+        The parser; each subcommand's ``func`` default is its ``cmd_*`` function.
+    """
     p = argparse.ArgumentParser(prog="corliss", description="Steam-engine cycle and governing "
                                 "simulator: indicator cards, valve events, governing.")
     p.add_argument("--version", action="version", version=f"corliss {corliss.__version__}")
@@ -714,10 +923,22 @@ class _Handler(logging.StreamHandler):
 
 
 def configure_logging(verbose: bool) -> Heartbeat:
-    """The ``corliss`` logger to stderr: notices by default, debug with ``-v``; the root
-    logger (and with it every other library) untouched.  Returns the started
-    :class:`~corliss.heartbeat.Heartbeat`, which says what a slow once-per-machine step
-    is doing while it runs (stop it when the command ends)."""
+    """Send the ``corliss`` logger to stderr: notices by default, debug with ``-v``.
+
+    The root logger (and with it every other library) is left untouched.
+
+    Parameters
+    ----------
+    verbose : bool
+        Log everything (debug and up, with level and logger names), not only notices
+        and warnings.
+
+    Returns
+    -------
+    Heartbeat
+        The started :class:`~corliss.heartbeat.Heartbeat`, which says what a slow
+        once-per-machine step is doing while it runs (stop it when the command ends).
+    """
     handler = _Handler()
     handler.setLevel(logging.DEBUG if verbose else NOTICE)
     handler.setFormatter(logging.Formatter("corliss: %(message)s" if not verbose else
@@ -732,6 +953,21 @@ def configure_logging(verbose: bool) -> Heartbeat:
 
 
 def main(argv: list[str] | None = None) -> int:
+    """Run the ``corliss`` command.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments after the program's name (default ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        The exit status: the subcommand's (0), 2 for a user's mistake
+        (:class:`~corliss.errors.InputError`) or a run that cannot go on
+        (:class:`~corliss.errors.RunError`), each reported in one paragraph on stderr
+        with nothing written, and 0 when the output pipe closes early.
+    """
     args = build_parser().parse_args(argv)
     beat = configure_logging(args.verbose)
     try:

@@ -54,7 +54,20 @@ DIMENSIONLESS = "-"
 
 
 def split(column: str) -> tuple[str, str | None]:
-    """(base, suffix) of a column name; suffix None for an index column.
+    """A column name split into its base and its unit suffix.
+
+    Parameters
+    ----------
+    column : str
+        A column name or summary key (``p_head_Pa``, ``steam_rate_kg_per_h``).
+
+    Returns
+    -------
+    base : str
+        The name without its suffix (``p_head``); the whole name for an index column.
+    suffix : str or None
+        A key of :data:`SUFFIXES` (``"Pa"``, ``"kg_per_h"``); None for an index column
+        (:data:`INDEX_COLUMNS`).
 
     Raises
     ------
@@ -71,7 +84,23 @@ def split(column: str) -> tuple[str, str | None]:
 
 
 def unit_of(column: str) -> str:
-    """The SI unit of an internal column (``"-"`` for fractions and index columns)."""
+    """The SI unit of an internal column.
+
+    Parameters
+    ----------
+    column : str
+        A column name or summary key ending in a known unit suffix.
+
+    Returns
+    -------
+    str
+        The SI unit (``"Pa"``, ``"kg/h"``); ``"-"`` for fractions and index columns.
+
+    Raises
+    ------
+    KeyError
+        If the name ends in no known unit.
+    """
     _, sfx = split(column)
     return DIMENSIONLESS if sfx is None else SUFFIXES[sfx][0]
 
@@ -83,18 +112,27 @@ def convert_frame(df: pd.DataFrame, system: str,
 
     Parameters
     ----------
-    df : DataFrame
+    df : pandas.DataFrame
         Columns named by the vocabulary above, SI.
     system : str
         ``"US"`` (psia, ft3, degF, lb, ft lbf, hp) or ``"SI"`` (kPa absolute, m3, degC,
         kg, J, kW).
-    barometer_Pa : float
+    barometer_Pa : float, optional
         Atmospheric pressure [Pa] (only gauge units read it; outputs are absolute).
 
     Returns
     -------
-    (DataFrame, dict)
-        The converted frame (names carry the output unit) and ``{column: unit}``.
+    frame : pandas.DataFrame
+        The converted frame, each name carrying its output unit (``p_head_psia``).
+    units : dict of str to str
+        ``{column: unit}``, pressures marked absolute, index columns described.
+
+    Raises
+    ------
+    KeyError
+        If a column's name ends in no known unit.
+    ValueError
+        If ``system`` is neither ``"US"`` nor ``"SI"``.
     """
     if system not in ("US", "SI"):
         raise ValueError(f"units system {system!r}: 'US' or 'SI'")
@@ -118,7 +156,27 @@ def convert_frame(df: pd.DataFrame, system: str,
 
 
 def convert_value(key: str, value: float, system: str) -> tuple[str, float, str]:
-    """One summary value in ``system``: (key with the output unit, value, unit)."""
+    """One summary value converted into a system of units.
+
+    Parameters
+    ----------
+    key : str
+        The summary key, ending in its SI unit (``indicated_power_W``).
+    value : float
+        The value in that unit.
+    system : str
+        ``"US"`` or ``"SI"``, as for :func:`convert_frame` (pressures come out
+        absolute).
+
+    Returns
+    -------
+    key : str
+        The key with the output unit (``indicated_power_hp``).
+    value : float
+        The value in that unit.
+    unit : str
+        The output unit (``"hp"``).
+    """
     frame, col_units = convert_frame(pd.DataFrame({key: [value]}), system)
     name = frame.columns[0]
     return name, float(frame[name].iloc[0]), col_units[name]

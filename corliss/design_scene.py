@@ -42,9 +42,9 @@ SCENE_CHECK_DEG = 1e-4
 
 @dataclass(frozen=True)
 class Design:
-    """A designed scene.
+    """A designed scene (made by :func:`design`).
 
-    Attributes
+    Parameters
     ----------
     scene : Scene
         The scene with the designed gear, built from ``text``.
@@ -53,7 +53,8 @@ class Design:
     valve : SlideValveDesign or SettingDesign
         The design (SI).
     events : dict
-        The designed scene's events by :func:`corliss.engine.model.scene_events`.
+        The designed scene's events by :func:`corliss.engine.model.scene_events`
+        (per end, crank angles [deg] and fractions of the stroke [-]).
     base : str
         The scene designed from (name or path).
     """
@@ -65,11 +66,33 @@ class Design:
     base: str
 
     def write(self, out_dir) -> dict:
-        """Write ``design.toml`` and the diagrams into ``out_dir``, all or nothing."""
+        """Write ``design.toml`` and the diagrams into a folder, all or nothing.
+
+        Parameters
+        ----------
+        out_dir : str or Path
+            The output folder (made if missing).
+
+        Returns
+        -------
+        dict of str to Path
+            ``{kind: path}`` of the files written (see :func:`write_design`).
+        """
         return write_design(self, out_dir)
 
     def summary(self) -> dict:
-        """The design as plain JSON-able values (SI, unit in every name)."""
+        """The design as plain JSON-able values (SI, unit in every name).
+
+        Returns
+        -------
+        dict
+            ``base_scene``, ``gear`` and ``events``; for a slide valve its
+            ``eccentricity_m``, ``angular_advance_deg``, ``lap_m``, ``exhaust_lap_m``,
+            ``lead_m`` and ``max_opening_m`` (head, crank), ``equalise``,
+            ``reference_end``, its Zeuner (infinite-rod) equivalent and the events
+            asked (``asked_deg``); for a gear with a setting its ``setting``,
+            ``setting_name``, ``end``, ``cutoff_frac`` and ``asked_deg``.
+        """
         v = self.valve
         out = {"base_scene": self.base, "gear": self.scene.gear_type, "events": self.events}
         if isinstance(v, SlideValveDesign):
@@ -140,31 +163,39 @@ def design(scene=None, *, cutoff, cutoff_crank=None, lead=None, max_opening=None
     cutoff : float
         Cut-off, fraction of the stroke [-].
     cutoff_crank : float, optional
-        The crank end's, when it differs (slide valve).
+        The crank end's cut-off [-], when it differs (slide valve).
     lead, max_opening, eccentricity, lap : str or float, optional
-        Quantity strings (``"0.25 in"``) or SI floats [m]; with ``angular_advance``
-        and ``lead_angle`` (the crank before the dead point at admission, Art. 21)
-        (``"30 deg"`` or [rad]) exactly two of the six (slide valve; Spangler
-        Arts. 19-22).
+        Quantity strings (``"0.25 in"``) or SI floats [m].  Of these four and
+        ``angular_advance`` and ``lead_angle``, exactly two are given (slide valve;
+        Spangler Arts. 19-22).
+    angular_advance : str or float, optional
+        The eccentric's angular advance, ``"30 deg"`` or [rad] (slide valve).
+    lead_angle : str or float, optional
+        The crank's angle before the dead point at admission (Spangler Art. 21),
+        ``"2 deg"`` or [rad] (slide valve).
     overtravel : str or float, optional
-        Instead of ``max_opening``: the valve's travel past the port (the opening is
-        then the port width plus it, Art. 18).
+        Instead of ``max_opening``: the valve's travel past the port, a quantity
+        string or [m] (the opening is then the port width plus it, Art. 18).
     release, compression : float, (float, float) or str, optional
         Fractions of the stroke as ``corliss events`` gives them ("0.9" or "0.9,0.92"
         for head, crank) (slide valve).
     exhaust_lap : str, float or pair, optional
-        Instead of release or compression (slide valve).
-    equalise : str
+        Instead of release or compression, a quantity string or [m], or a pair
+        (head, crank) (slide valve).
+    equalise : str, optional
         ``"cutoff"`` (laps per end) or ``"laps"`` (equal laps) (slide valve).
-    reference_end : str
-        Where the lead and opening asked hold (slide valve).
-    end : str
+    reference_end : str, optional
+        ``"head"`` or ``"crank"``: where the lead and opening asked hold (slide valve).
+    end : str, optional
         Whose cut-off a gear's setting is found for: ``"head"``, ``"crank"``,
         ``"mean"`` (gears with a setting).
 
     Returns
     -------
     Design
+        The designed scene, its TOML text, the design and its events, checked to
+        :data:`SCENE_CHECK_DEG` against those asked after the round trip through
+        the text.
 
     Raises
     ------
@@ -291,15 +322,24 @@ def _mark_asked(ax, valve, radius: float, drawn_from: str) -> None:
 
 
 def write_design(design: Design, out_dir) -> dict:
-    """``design.toml`` and the diagrams with the asked events marked:
+    """Write ``design.toml`` and the diagrams with the asked events marked.
+
     ``design-zeuner.png`` and ``design-bilgram.png`` for a lapped valve (Spangler
     Arts. 10-18, 149), ``design-gear.png`` (the gear's own panels) for another.
     Staged and moved into place together; a failure leaves ``out_dir`` as it was.
 
+    Parameters
+    ----------
+    design : Design
+        The designed scene.
+    out_dir : str or Path
+        The output folder (made if missing).
+
     Returns
     -------
-    dict
-        ``{kind: path}`` of the files written.
+    dict of str to Path
+        ``{kind: path}`` of the files written: ``scene``, and ``zeuner`` and
+        ``bilgram`` or ``gear``.
     """
     import matplotlib
     matplotlib.use("Agg")

@@ -29,18 +29,28 @@ class InputError(ValueError):
             super().__init__(f"{key} = {value!r} is not valid: expected {expected}.")
 
     def with_prefix(self, prefix: str) -> "InputError":
-        """The same error with its key placed under ``prefix`` (a table name)."""
+        """The same error with its key placed under a table's name.
+
+        Parameters
+        ----------
+        prefix : str
+            The dotted name of the table the key belongs to (``"valve_gear"``).
+
+        Returns
+        -------
+        InputError
+            A new error whose key is ``prefix.key`` (unchanged if it already starts
+            with ``prefix.``), with the same value and expectation.
+        """
         key = self.key if self.key.startswith(prefix + ".") else f"{prefix}.{self.key}"
         return InputError(key, self.value, self.expected)
 
 
 class RunError(RuntimeError):
-    """A run that cannot go on, for a reason in the scene rather than in the code: the
-    run-time budget exhausted, a state outside the steam properties.  The CLI turns it
-    into a one-paragraph message and exit code 2, with no files written.
+    """A run that cannot go on, for a reason in the scene rather than in the code.
 
-    Parameters
-    ----------
-    message : str
-        What happened, with the scene quantities that likely caused it.
+    The run-time budget exhausted, a state outside the steam properties.  The CLI
+    turns it into a one-paragraph message and exit code 2, with no files written.
+    Raised as ``RunError(message)``, the message saying what happened, with the scene
+    quantities that likely caused it (the constructor is :class:`RuntimeError`'s).
     """

@@ -64,19 +64,19 @@ def fit(scene, card, vary, *, fidelity: str = "fast", refine: bool = False,
     vary : str or list
         ``KEY=LOW:HIGH`` ranges (or :class:`~corliss.scene_keys.KeyRange`), e.g.
         ``["engine.clearance=0.04:0.14", "valve_gear.lap=0.7:1.3in"]``.
-    fidelity : str
+    fidelity : str, optional
         Tier of the search (``fast``; ``standard``, ``reference``).
-    refine : bool
+    refine : bool, optional
         Repeat the search on the ``standard`` tier from the optimum.
-    bootstrap : int
+    bootstrap : int, optional
         Wild-bootstrap refits of the residuals (0: none).
-    seed : int
+    seed : int, optional
         The bootstrap's seed.
     out : str or Path, optional
         Write ``fit.json``, ``fitted.toml`` and ``fit-card.png`` into this folder.
     units_system : str, optional
         ``"US"`` or ``"SI"`` for the files and figure (default: the scene's).
-    plots : bool
+    plots : bool, optional
         Draw ``fit-card.png``.
     progress : callable, optional
         Called after each simulation with (simulations, residual r.m.s. [Pa]).
@@ -84,6 +84,8 @@ def fit(scene, card, vary, *, fidelity: str = "fast", refine: bool = False,
     Returns
     -------
     FitResult
+        The fit (:func:`corliss.fitting.solver.fit_card`), written into ``out``
+        first when it is given.
 
     Raises
     ------
@@ -110,7 +112,24 @@ def _pressure_unit(system: str) -> tuple[str, float]:
 
 
 def fit_json(fit_result: FitResult, units_system: str | None = None) -> dict:
-    """The fit's summary with what reruns it (the content of ``fit.json``)."""
+    """The fit's summary with what reruns it (the content of ``fit.json``).
+
+    Parameters
+    ----------
+    fit_result : FitResult
+        The fit.
+    units_system : str, optional
+        ``"US"`` (psi) or ``"SI"`` (kPa) for the residual and noise; default the
+        scene's.
+
+    Returns
+    -------
+    dict
+        :attr:`corliss.fitting.solver.FitResult.summary` with the residual r.m.s.
+        and noise estimate in the pressure unit, the card's columns and SHA-256, the
+        ranges as ``vary`` options, the versions, the creation time (UTC) and the
+        scene's name, file, SHA-256 and text; JSON values only.
+    """
     s = fit_result.scene
     system = units_system or s.output.units
     unit, size = _pressure_unit(system)
@@ -137,7 +156,19 @@ def fit_json(fit_result: FitResult, units_system: str | None = None) -> dict:
 
 
 def fitted_toml(fit_result: FitResult) -> str:
-    """The fitted scene as TOML text, its header saying what was fitted and how well."""
+    """The fitted scene as TOML text, its header saying what was fitted and how well.
+
+    Parameters
+    ----------
+    fit_result : FitResult
+        The fit.
+
+    Returns
+    -------
+    str
+        The text of ``fitted.toml``: comment lines with each key's fitted value and
+        standard error (or why it is not determined), then the fitted tables.
+    """
     lines = [f"{fit_result.scene.title}: fitted by corliss fit to {fit_result.card.source}"]
     for r in fit_result.ranges:
         k = r.key
@@ -151,7 +182,25 @@ def fitted_toml(fit_result: FitResult) -> str:
 
 def write(fit_result: FitResult, out_dir, plots: bool = True,
           units_system: str | None = None) -> dict[str, Path]:
-    """Write the fit's files into ``out_dir`` (all or none); ``{kind: path}``."""
+    """Write the fit's files into a folder, all or none.
+
+    Parameters
+    ----------
+    fit_result : FitResult
+        The fit.
+    out_dir : str or Path
+        The output folder (made if missing).
+    plots : bool, optional
+        Whether to draw ``fit-card.png``.
+    units_system : str, optional
+        ``"US"`` or ``"SI"`` for ``fit.json`` and the figure; default the scene's.
+
+    Returns
+    -------
+    dict of str to Path
+        ``{kind: path}`` of :data:`FILES` written: ``summary``, ``scene`` and
+        ``card`` (when drawn).
+    """
     files = {}
     toml_text = fitted_toml(fit_result)
     with OutputFiles(out_dir) as out:
@@ -177,7 +226,22 @@ def write(fit_result: FitResult, out_dir, plots: bool = True,
 
 def print_fit(fit_result: FitResult, files: dict | None = None,
               units_system: str | None = None) -> None:
-    """The short account of a fit, in the scene's units."""
+    """Print the short account of a fit to standard output (``corliss fit``).
+
+    Each key's start, fitted value, standard error and range (and bootstrap interval),
+    the keys not determined, the correlations, the residual r.m.s. and noise
+    estimate, each end's measured and fitted m.e.p., the simulations run, and the
+    files written.
+
+    Parameters
+    ----------
+    fit_result : FitResult
+        The fit.
+    files : dict of str to Path, optional
+        ``{kind: path}`` of the files written, listed last.
+    units_system : str, optional
+        ``"US"`` (psi) or ``"SI"`` (kPa) for the pressures; default the scene's.
+    """
     f = fit_result
     system = units_system or f.scene.output.units
     unit, size = _pressure_unit(system)

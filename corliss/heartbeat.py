@@ -30,8 +30,19 @@ EVERY_S = 10.0
 
 
 class Heartbeat(logging.Handler):
-    """Watches the ``corliss`` logger's records and numba's compiles, and reports steps
-    that take long to ``stream`` (the command's stderr) from a daemon thread."""
+    """Watches the ``corliss`` logger's records and numba's compiles, and reports slow steps.
+
+    A logging handler (add it to the ``corliss`` logger, then :meth:`start` it); the
+    reports are written from a daemon thread.
+
+    Parameters
+    ----------
+    stream_of : callable
+        Called with no arguments for the stream to write to, as it is at that moment
+        (``lambda: sys.stderr``, so a stream swapped later is followed).
+    prefix : str, optional
+        Put before every line written.
+    """
 
     def __init__(self, stream_of, prefix: str = "corliss: "):
         super().__init__(logging.DEBUG)
@@ -58,12 +69,22 @@ class Heartbeat(logging.Handler):
                 self._notice = None
 
     def compile_started(self, name: str) -> None:
+        """Open a compile step (numba's ``numba:compile`` start event).
+
+        Nested compiles count as one step, named after the outermost.
+
+        Parameters
+        ----------
+        name : str
+            The compiled function's name, for the report.
+        """
         with self._lock:
             self._depth += 1
             if self._depth == 1:
                 self._compile = (name, time.monotonic())
 
     def compile_ended(self) -> None:
+        """Close a compile step; the outermost's end also closes a notice logged before it."""
         with self._lock:
             self._depth = max(self._depth - 1, 0)
             if self._depth == 0 and self._compile is not None:
@@ -75,7 +96,13 @@ class Heartbeat(logging.Handler):
 
     # --- the thread ---------------------------------------------------------------------
     def start(self) -> "Heartbeat":
-        """Listen to numba's compiles and start reporting."""
+        """Listen to numba's compiles and start reporting.
+
+        Returns
+        -------
+        Heartbeat
+            This handler, started.
+        """
         self._listener = _CompileListener(self)
         event.register("numba:compile", self._listener)
         self._thread = threading.Thread(target=self._run, name="corliss-heartbeat",

@@ -49,7 +49,14 @@ PNG_OPTIONS = {"compress_level": 1}
 
 
 def package_version() -> str:
-    """The installed corliss version (``corliss.__version__`` from a source tree)."""
+    """The installed corliss version.
+
+    Returns
+    -------
+    str
+        The distribution's version from its metadata; ``corliss.__version__`` when
+        running from a source tree that is not installed.
+    """
     try:
         return version("corliss")
     except PackageNotFoundError:  # pragma: no cover - running from a source tree
@@ -58,7 +65,14 @@ def package_version() -> str:
 
 
 def dependency_versions() -> dict[str, str | None]:
-    """Versions of Python and the dependencies, from their metadata (nothing imported)."""
+    """Versions of Python and the dependencies, from their metadata (nothing imported).
+
+    Returns
+    -------
+    dict of str to (str or None)
+        ``{"python": ..., name: version}`` for each of :data:`DEPENDENCIES`; None for
+        one not installed.
+    """
     out: dict[str, str | None] = {"python": platform.python_version()}
     for name in DEPENDENCIES:
         try:
@@ -69,7 +83,19 @@ def dependency_versions() -> dict[str, str | None]:
 
 
 def jsonable(obj):
-    """Turn numpy scalars, tuples, dataclasses and NaN into plain JSON values."""
+    """Turn numpy scalars and arrays, tuples, dataclasses and NaN into plain JSON values.
+
+    Parameters
+    ----------
+    obj : object
+        Any value; containers are converted recursively.
+
+    Returns
+    -------
+    object
+        Dicts (keys as strings), lists, floats (NaN and infinities as None), ints,
+        bools and whatever else ``obj`` held, unchanged.
+    """
     if dataclasses.is_dataclass(obj) and not isinstance(obj, type):
         return jsonable(dataclasses.asdict(obj))
     if isinstance(obj, dict):
@@ -89,7 +115,18 @@ def jsonable(obj):
 
 
 def summary_json(summary: dict) -> str:
-    """The summary as the JSON text of ``corliss run --json``."""
+    """The summary as the JSON text of ``corliss run --json``.
+
+    Parameters
+    ----------
+    summary : dict
+        A result's summary.
+
+    Returns
+    -------
+    str
+        Indented JSON, NaN written as null.
+    """
     return json.dumps(jsonable(summary), indent=2)
 
 
@@ -97,7 +134,27 @@ def summary_json(summary: dict) -> str:
 
 def meta(result, column_units: dict | None = None, file: str | None = None,
          units_system: str | None = None) -> dict:
-    """The meta file of a table of ``result``: what reruns it and what its columns are."""
+    """The meta file of a table of a result: what reruns it and what its columns are.
+
+    Parameters
+    ----------
+    result : Result
+        The run.
+    column_units : dict of str to str, optional
+        ``{column: unit}`` of the table as written.
+    file : str, optional
+        The table file's name.
+    units_system : str, optional
+        The table's units, recorded as ``units_system``; default the scene's.
+
+    Returns
+    -------
+    dict
+        The file, kind, versions (corliss, CoolProp and the dependencies), property
+        backend, creation time (UTC), wall time [s], units, ``columns``, the scene
+        (name, file, SHA-256 and text, tables as read, resolved values), the run's
+        knobs and the summary, all JSON values.
+    """
     scene = result.scene
     text = scene.text
     versions = dependency_versions()
@@ -125,8 +182,21 @@ def meta(result, column_units: dict | None = None, file: str | None = None,
 
 
 def scene_from_meta(path: str | Path):
-    """The scene a meta file records, with the run's knobs as they were (fidelity,
-    cycles, duration and the rest): running it reproduces the result.
+    """The scene a meta file records, with the run's knobs as they were.
+
+    Fidelity, cycles, duration and the rest: running the scene reproduces the result
+    (``corliss run --from-meta``).
+
+    Parameters
+    ----------
+    path : str or Path
+        A ``.meta.json`` file written beside a result's table.
+
+    Returns
+    -------
+    Scene
+        The scene, loaded and checked from its recorded tables, with the recorded
+        run knobs and scene text.
 
     Raises
     ------
@@ -160,6 +230,11 @@ class OutputFiles:
     leaving the block without an exception moves every staged file into place (an
     earlier file of the same name is replaced only then); an exception leaves
     ``out_dir`` as it was, the folder itself removed if the run created it.
+
+    Parameters
+    ----------
+    out_dir : str or Path
+        The output folder (made, with any missing parents, on entering the block).
     """
 
     def __init__(self, out_dir: str | Path):
@@ -180,7 +255,19 @@ class OutputFiles:
         return self
 
     def stage(self, name: str) -> Path:
-        """Where to write the file ``name`` (a bare file name inside ``out_dir``)."""
+        """Where to write a file of the run, staged until the block ends.
+
+        Parameters
+        ----------
+        name : str
+            A bare file name; the file ends up as ``out_dir / name`` (recorded in
+            ``files``).
+
+        Returns
+        -------
+        Path
+            The staging path to write it to now.
+        """
         self.files[name] = self.out_dir / name
         return self._tmp / name
 
@@ -238,13 +325,20 @@ FLOAT_FORMAT = "%.9g"
 
 
 def write_csv(frame, path: Path) -> None:
-    """``frame`` as CSV at ``path``: no index, floats as :data:`FLOAT_FORMAT`, NaN as an
-    empty field, lines ended by ``\\n``: the text of pandas' ``to_csv(index=False,
-    float_format=FLOAT_FORMAT)``.
+    """Write a table as CSV, the text pandas' ``to_csv`` would write.
 
-    A table of numbers only (every result's time series and per-cycle table) is formatted
-    row by row with one %-format string, four times as fast as pandas' writer on a long
+    That is ``to_csv(index=False, float_format=FLOAT_FORMAT)``: no index, floats as
+    :data:`FLOAT_FORMAT`, NaN as an empty field, lines ended by ``\\n``.  A table of
+    numbers only (every result's time series and per-cycle table) is formatted row by
+    row with one %-format string, four times as fast as pandas' writer on a long
     transient; a table with text or other columns goes through pandas (its quoting).
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        The table.
+    path : Path
+        The file to write.
     """
     kinds = [frame[c].dtype.kind for c in frame.columns]
     names = [str(c) for c in frame.columns]
@@ -278,7 +372,25 @@ def _write_table(result, table: str, path: Path, name: str, units_system: str | 
 
 
 def to_csv(result, path, table: str, units_system: str | None = None) -> Path:
-    """Write ``result``'s ``table`` as CSV with its ``.meta.json``, both or neither."""
+    """Write a result's table as CSV with its ``.meta.json``, both or neither.
+
+    Parameters
+    ----------
+    result : Result
+        The run.
+    path : str or Path
+        The CSV file; the meta file is written beside it, ``.csv`` replaced by
+        ``.meta.json``.
+    table : str
+        One of the result's ``TABLES``.
+    units_system : str, optional
+        ``"US"`` or ``"SI"``; default the scene's ``output.units``.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
     path = Path(path)
     with OutputFiles(path.parent) as out:
         staged = out.stage(path.name)
@@ -288,7 +400,32 @@ def to_csv(result, path, table: str, units_system: str | None = None) -> Path:
 
 
 def plot_result(result, kind: str, ax=None, units_system: str | None = None) -> dict:
-    """Draw figure ``kind`` of ``result`` (one of its ``FIGURES``); returns what was drawn."""
+    """Draw one of a result's figures.
+
+    Parameters
+    ----------
+    result : Result
+        The run.
+    kind : str
+        One of its ``FIGURES``: ``"card"``, ``"effort"``, ``"lp_card"`` (a compound),
+        ``"loadstep"``, ``"compare"`` or ``"willans"``.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (ignored by the figures of several panels, ``loadstep`` and
+        ``compare``).
+    units_system : str, optional
+        ``"US"`` or ``"SI"``; default the scene's ``output.units``.
+
+    Returns
+    -------
+    dict
+        What the plotting function of :mod:`corliss.plot` returned (``ax`` or
+        ``figure``, and the lines).
+
+    Raises
+    ------
+    ValueError
+        If ``kind`` is not a figure of this result.
+    """
     if kind not in result.FIGURES or (kind == "lp_card" and result.scene.compound is None):
         raise ValueError(f"figure {kind!r}: one of {', '.join(result.FIGURES)} (lp_card for "
                          "a compound)")
@@ -324,6 +461,18 @@ def _figures(result) -> list[tuple[str, tuple[float, float]]]:
 
 def write(result, out_dir, plots: bool = True) -> dict[str, Path]:
     """Write every file of ``result`` into ``out_dir`` as one transaction.
+
+    Each table of :data:`TABLE_FILES` as CSV with its meta file, in the scene's units;
+    the figures as PNG; the summary as JSON.
+
+    Parameters
+    ----------
+    result : Result
+        The run.
+    out_dir : str or Path
+        The output folder (made if missing).
+    plots : bool, optional
+        Whether to draw the figures.
 
     Returns
     -------

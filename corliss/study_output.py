@@ -41,7 +41,13 @@ REBUILD = ("the scene of a row is the base scene (scene_data, or the .base.toml 
 
 
 def have_parquet() -> bool:
-    """Whether pyarrow is installed (the Parquet file needs it)."""
+    """Whether pyarrow is installed (the Parquet file needs it).
+
+    Returns
+    -------
+    bool
+        True when ``pyarrow`` imports.
+    """
     try:
         import pyarrow  # noqa: F401
     except ImportError:
@@ -51,9 +57,30 @@ def have_parquet() -> bool:
 
 def study_meta(result, name: str, frame=None, converted_units: dict | None = None,
                units_system: str | None = None) -> dict:
-    """The meta file of a study's table (``frame``, its responses converted into
-    ``units_system``, ``{column: unit}`` of those converted; by default the table as
-    made)."""
+    """The meta file of a study's table: what rebuilds each row's scene, and the units.
+
+    Parameters
+    ----------
+    result : StudyResult
+        The study.
+    name : str
+        The table file's name, recorded as ``file``.
+    frame : pandas.DataFrame, optional
+        The table as written; default the study's ``points`` as made.
+    converted_units : dict of str to str, optional
+        ``{column: unit}`` of the responses converted into ``units_system`` (from
+        :func:`corliss.studies.result.converted`).
+    units_system : str, optional
+        ``"US"`` or ``"SI"`` when the responses were converted; None when the table
+        is as made.
+
+    Returns
+    -------
+    dict
+        :func:`corliss.results.meta` of the study (scene, versions, ``columns`` with
+        every column's unit), with ``design``, ``seed``, ``varied``, ``responses``,
+        ``fidelity`` and ``rebuild_scene`` (:data:`REBUILD`).
+    """
     frame = result.points if frame is None else frame
     conv = converted_units or {}
     col_units = {c: conv[c] if c in conv else column_unit(c, result.varied)
@@ -80,13 +107,30 @@ def _write_parquet(frame, path: Path, m: dict) -> None:
 def write(result, out_dir, plots: bool = True, parquet: bool | None = None) -> dict[str, Path]:
     """Write every file of a study into ``out_dir`` as one transaction.
 
+    Parameters
+    ----------
+    result : StudyResult
+        The study.
+    out_dir : str or Path
+        The directory (made if missing).
+    plots : bool, optional
+        Whether to draw the figure.
+    parquet : bool or None, optional
+        Whether to write the Parquet file: None writes it when pyarrow is installed
+        (with a notice when it is not), True insists.
+
     Returns
     -------
     dict
         ``{kind: path}``: ``points`` (CSV, its meta beside it), ``parquet``, ``base``
         (the base scene's TOML: its file's text, or the tables written out),
-        ``study`` (figure),
-        ``summary``.
+        ``study`` (figure), ``summary``; ``parquet`` and ``study`` only when written.
+
+    Raises
+    ------
+    InputError
+        If ``parquet`` is True and pyarrow is not installed (before anything is
+        written).
     """
     if parquet and not have_parquet():
         raise InputError("parquet", True, "pyarrow installed to write Parquet: pip install "
@@ -134,7 +178,23 @@ def write(result, out_dir, plots: bool = True, parquet: bool | None = None) -> d
 
 
 def to_csv(result, path, units_system: str | None = None) -> Path:
-    """Write a study's table as CSV with its ``.meta.json``, both or neither."""
+    """Write a study's table as CSV with its ``.meta.json``, both or neither.
+
+    Parameters
+    ----------
+    result : StudyResult
+        The study.
+    path : str or Path
+        The CSV file; ``NAME.meta.json`` is written beside ``NAME.csv``.
+    units_system : str, optional
+        ``"US"`` or ``"SI"`` to convert the responses (the varied keys stay in their
+        own units); None writes the table as made.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
     path = Path(path)
     frame, renamed = converted(result.points, result.responses, units_system,
                                result.scene.supply.barometer_Pa)
@@ -148,7 +208,22 @@ def to_csv(result, path, units_system: str | None = None) -> Path:
 
 
 def plot(result, ax=None, units_system: str | None = None) -> dict:
-    """The study's figure: each response against each varied key."""
+    """The study's figure: each response against each varied key.
+
+    Parameters
+    ----------
+    result : StudyResult
+        The study.
+    ax : matplotlib.axes.Axes, optional
+        Ignored: the figure is a grid of axes of its own.
+    units_system : str, optional
+        ``"US"`` or ``"SI"`` for the responses' axes; default the scene's.
+
+    Returns
+    -------
+    dict
+        ``{"figure": fig, "axes": axes}`` (:func:`corliss.plot.plot_study`).
+    """
     from corliss.plot import plot_study
     return plot_study(result.points, result.varied, list(result.responses),
                       units_system=units_system or result.scene.output.units)
@@ -157,9 +232,23 @@ def plot(result, ax=None, units_system: str | None = None) -> dict:
 def read_study(path) -> tuple:
     """A study's table and meta from its CSV (the meta file beside it) or Parquet file.
 
+    Parameters
+    ----------
+    path : str or Path
+        A study's ``.csv`` (its ``.meta.json`` beside it) or ``.parquet`` file.
+
     Returns
     -------
-    (DataFrame, dict)
+    frame : pandas.DataFrame
+        The table as written.
+    meta : dict
+        Its meta (:func:`study_meta`): from the meta file, or from the Parquet
+        schema's metadata.
+
+    Raises
+    ------
+    InputError
+        If the file, or its meta, cannot be read as a study's.
     """
     import pandas as pd
     p = Path(path)
@@ -179,8 +268,25 @@ def read_study(path) -> tuple:
 
 
 def study_scene(path, run_id: int):
-    """The scene of run ``run_id`` of the study written at ``path`` (its CSV or Parquet
-    file), loaded and checked, at the study's fidelity: the scene that was run."""
+    """The scene of one run of a written study, loaded and checked: the scene that was run.
+
+    Parameters
+    ----------
+    path : str or Path
+        The study's ``.csv`` or ``.parquet`` file.
+    run_id : int
+        The run's number in the design (its ``run_id``).
+
+    Returns
+    -------
+    Scene
+        The base scene with the row's keys set, at the study's fidelity.
+
+    Raises
+    ------
+    InputError
+        If the file cannot be read as a study's, or it has no such run.
+    """
     frame, m = read_study(path)
     rows = frame[frame["run_id"] == int(run_id)]
     if rows.empty:

@@ -24,6 +24,11 @@ def read_text(path: str | Path, key: str, what: str) -> str:
     what : str
         What the file should be, e.g. ``"a scene file (.toml)"``.
 
+    Returns
+    -------
+    str
+        The file's text, a leading byte-order mark removed.
+
     Raises
     ------
     InputError

@@ -60,11 +60,25 @@ def _table(data: dict, path: list[str], lines: list[str]) -> None:
 
 
 def dumps(data: dict, header: str = "") -> str:
-    """TOML text of ``data`` (tables, arrays of tables, strings, numbers, booleans and
-    arrays), preceded by ``header`` as comment lines.
+    """TOML text of a scene's tables, checked by reading it back.
+
+    Parameters
+    ----------
+    data : dict
+        Tables, arrays of tables, strings, numbers (NaN and infinities included),
+        booleans and arrays, as :func:`tomllib.loads` gives them.
+    header : str, optional
+        Text written first as comment lines, one ``#`` line per line of it.
+
+    Returns
+    -------
+    str
+        The TOML text, plain keys before sub-tables, ending in a newline.
 
     Raises
     ------
+    TypeError
+        If a value has no TOML form (a date is not written either).
     ValueError
         If the text does not read back as ``data``.
     """

@@ -66,18 +66,18 @@ _BRACKET = re.compile(r"^(?P<name>.*?)\s*[\[(](?P<unit>[^\])]*)[\])]\s*$")
 class EndCard:
     """One end's measured loop, SI.
 
-    Attributes
+    Parameters
     ----------
     abscissa : str
         What ``x`` is: ``"piston_frac"`` (fraction of the stroke from head-end dead
         centre [-]), ``"piston_m"`` (the piston's distance from head-end dead centre
         [m]) or ``"V_m3"`` (the end's volume [m3]).
-    x : ndarray
-        The abscissa of each point, in the unit ``abscissa`` names.
-    p_Pa : ndarray
+    x : ndarray, shape (n,)
+        The abscissa of each point, in the unit ``abscissa`` names, in loop order.
+    p_Pa : ndarray, shape (n,)
         Absolute pressure of each point [Pa].
-    crank_angle_deg : ndarray or None
-        Crank angle of each point [deg], when the file gives it.
+    crank_angle_deg : ndarray, shape (n,), optional
+        Crank angle of each point [deg], when the file gives it (None otherwise).
     """
 
     abscissa: str
@@ -95,15 +95,15 @@ class EndCard:
 class MeasuredCard:
     """A card read from a file: the loop of each end it holds.
 
-    Attributes
+    Parameters
     ----------
-    ends : dict
+    ends : dict of str to EndCard
         ``{end: EndCard}``, in the order of :data:`ENDS`.
-    source : str
+    source : str, optional
         The file read (or ``"<data>"``).
-    columns : dict
+    columns : dict of str to str, optional
         ``{column as written: "quantity [unit]"}``, how each column was read.
-    barometer_Pa : float
+    barometer_Pa : float, optional
         The barometer gauge pressures were read against [Pa].
     """
 
@@ -202,10 +202,16 @@ def parse_card(text: str, *, barometer_Pa: float = units.STANDARD_ATMOSPHERE_Pa,
     ----------
     text : str
         The CSV text, a header line first.
-    barometer_Pa : float
+    barometer_Pa : float, optional
         Atmospheric pressure [Pa] that gauge pressures are read against (the scene's).
-    source : str
+    source : str, optional
         The file's name, for messages.
+
+    Returns
+    -------
+    MeasuredCard
+        Each end's loop in SI (absolute pressure [Pa]; position [m] or fraction of
+        the stroke [-], or volume [m3]), the points with an empty field dropped.
 
     Raises
     ------
@@ -323,7 +329,19 @@ def parse_card(text: str, *, barometer_Pa: float = units.STANDARD_ATMOSPHERE_Pa,
 
 
 def read_card(path, *, barometer_Pa: float = units.STANDARD_ATMOSPHERE_Pa) -> MeasuredCard:
-    """Read a card CSV (see :func:`parse_card`); ``barometer_Pa`` [Pa] for gauge units.
+    """Read a card CSV (its layouts in the module docstring).
+
+    Parameters
+    ----------
+    path : str or Path
+        The card file.
+    barometer_Pa : float, optional
+        Atmospheric pressure [Pa] that gauge pressures are read against (the scene's).
+
+    Returns
+    -------
+    MeasuredCard
+        The card, as :func:`parse_card` reads the file's text.
 
     Raises
     ------

@@ -30,22 +30,21 @@ Shape alone would let a loop slide along itself; the card's area, the indicated 
 (its area over its length is the mean effective pressure of Marks Art. 3), is added for
 each end as one more residual: the simulated area less the measured, both as the
 integral of pressure over the normalised abscissa, divided by the area's own standard
-deviation when every point's pressure carries an independent error of one unit (the
-root of the sum of the squared trapezoid weights, :func:`area_weights`).  Weighted so, the area residual has
-the same noise as one point's residual, so the noise estimate ``s`` holds for every
-residual alike and the area is counted once, as the one observation it is (it is
-made of the same points).  Shape and area then both count, the area as a strong single
-observation: on the default engine's card of 180 points an end, an area wrong by a
-fraction ``e`` gives a residual of 5.6 ``e`` times the pressure range, which costs as
-much as 32 of the 180 points each off by ``e`` of the range.  On a card the model can
-match (the tests' synthetic cards) the shape decides, and the fitted and measured
-m.e.p. agree to 0.1 % with or without the area.  Where the shape cannot be matched the
-area pulls only a little: the default engine's noisy card fitted by the lap alone,
-with the clearance and discharge coefficient of the scene wrong (0.11 and 0.55 for
-0.08 and 0.7), ends with an m.e.p. 1.2 % short of the card's with the area residual
-and 1.3 % short without it (the lap 0.996 in against 1.015 in).  A heavier area
-weight would hold the work at the price of the shape, and of ``s`` as an estimate
-of the noise.
+deviation when every point's pressure carries an independent error of one unit (the root
+of the sum of the squared trapezoid weights, :func:`area_weights`).  Weighted so, the
+area residual has the same noise as one point's residual, so the noise estimate ``s``
+holds for every residual alike and the area is counted once, as the one observation it
+is (it is made of the same points).  Shape and area then both count, the area as a
+strong single observation: on the default engine's card of 180 points an end, an area
+wrong by a fraction ``e`` gives a residual of 5.6 ``e`` times the pressure range, which
+costs as much as 32 of the 180 points each off by ``e`` of the range.  On a card the
+model can match (the tests' synthetic cards) the shape decides, and the fitted and
+measured m.e.p. agree to 0.1 % with or without the area.  Where the shape cannot be
+matched the area pulls only a little: the default engine's noisy card fitted by the lap
+alone, with the clearance and discharge coefficient of the scene wrong (0.11 and 0.55
+for 0.08 and 0.7), ends with an m.e.p. 1.2 % short of the card's with the area residual
+and 1.3 % short without it (the lap 0.996 in against 1.015 in).  A heavier area weight
+would hold the work at the price of the shape, and of ``s`` as an estimate of the noise.
 
 The search
 ----------
@@ -171,9 +170,17 @@ _exporter = None
 
 
 def register_exporter(exporter) -> None:
-    """Register the face's writer of fits: an object with ``write(fit, out_dir, plots,
-    units_system)`` and ``plot(fit, ax, units_system)`` (:mod:`corliss.fit_output`
-    registers itself on import, as the results' export layer does)."""
+    """Register the writer of fits, to which :class:`FitResult`'s export methods hand it.
+
+    :mod:`corliss.fit_output` registers itself on import, as the results' export
+    layer does.
+
+    Parameters
+    ----------
+    exporter : object
+        An object with ``write(fit, out_dir, plots, units_system)`` and
+        ``plot(fit, ax, units_system)``.
+    """
     global _exporter
     _exporter = exporter
 
@@ -186,10 +193,12 @@ def _export():
 
 @dataclass
 class FitResult:
-    """A fit's outcome.  Values are in each key's unit (:attr:`KeyRange.unit`);
+    """A fit's outcome (made by :func:`fit_card`).
+
+    Values are in each key's unit (:attr:`corliss.scene_keys.KeyRange.unit`);
     pressures SI unless named.
 
-    Attributes
+    Parameters
     ----------
     scene : Scene
         The scene fitted from (its values the start, unless outside the range).
@@ -200,19 +209,18 @@ class FitResult:
     card : MeasuredCard
         The measured card.
     ranges : list of KeyRange
+        The keys fitted and their bounds, in the order given.
     start, values : dict
         ``{key: value}`` at the start and at the optimum, in the key's unit.
     standard_errors : dict
         ``{key: s.e.}`` from the Jacobian (the sandwich estimate), in the key's unit;
         None for an unidentifiable key.
-    standard_errors_classic : dict
-        ``{key: s.e.}`` from ``s^2 (J^T J)^-1``, beside them (see the module's notes).
     unidentifiable : dict
         ``{key: why}`` of the keys the card does not determine.
-    correlation : ndarray
+    correlation : ndarray, shape (keys, keys)
         Correlation of the identifiable keys' estimates (NaN rows and columns for the
         others) [-].
-    sensitivity_cosine : ndarray
+    sensitivity_cosine : ndarray, shape (keys, keys)
         Cosine between the keys' columns of the Jacobian [-]: +-1 for two keys the card
         cannot tell apart.
     residual_rms_Pa : float
@@ -226,6 +234,7 @@ class FitResult:
     cycles : int
         Cycles every simulation ran [-].
     wall_time_s : float
+        Wall time of the fit [s].
     fidelity : str
         Tier of the final search (``fast``, or ``standard`` when refined).
     result : SteadyResult
@@ -233,11 +242,26 @@ class FitResult:
     end_work : dict
         Per end: the measured and fitted card's m.e.p. [Pa] (area over the stroke) and
         the fitted card's work as its area in volume [J] beside the summary's.
-    bootstrap : dict or None
-        ``{"samples": N, "seed": k, "standard_errors": {...}, "low": {...},
-        "high": {...}}`` (2.5 and 97.5 percentiles), keys' units.
     status : str
         The search's message.
+    standard_errors_classic : dict, optional
+        ``{key: s.e.}`` from ``s^2 (J^T J)^-1``, beside them (see the module's notes).
+    singular_values : list of float, optional
+        Singular values of the identifiable keys' Jacobian at the optimum [Pa per
+        unit of the scaled key].
+    noise_floor : float, optional
+        The largest of the Jacobian columns' noise floors [Pa per unit of the scaled
+        key].
+    bootstrap : dict or None, optional
+        ``{"samples": N, "seed": k, "standard_errors": {...}, "low": {...},
+        "high": {...}}`` (2.5 and 97.5 percentiles), keys' units; None without a
+        bootstrap.
+    start_from : dict, optional
+        ``{key: where its start came from}`` (``"scene"``, or why the middle of the
+        range).
+    at_bound : dict, optional
+        ``{key: "low", "high" or None}``: the end of its range the fitted value lies at
+        (within a thousandth of the range).
     """
 
     scene: object
@@ -270,12 +294,39 @@ class FitResult:
     at_bound: dict = field(default_factory=dict)
 
     def write(self, out_dir, *, plots: bool = True, units_system: str | None = None) -> dict:
-        """Write ``fit.json``, ``fitted.toml`` and (``plots``) ``fit-card.png`` into
-        ``out_dir``, all of them or none; returns ``{kind: path}``."""
+        """Write ``fit.json``, ``fitted.toml`` and ``fit-card.png``, all of them or none.
+
+        Parameters
+        ----------
+        out_dir : str or Path
+            The output folder (made if missing).
+        plots : bool, optional
+            Whether to draw ``fit-card.png``.
+        units_system : str, optional
+            ``"US"`` or ``"SI"`` for the files and figure (default: the scene's).
+
+        Returns
+        -------
+        dict of str to Path
+            ``{kind: path}``: ``summary``, ``scene`` and ``card`` (when drawn).
+        """
         return _export().write(self, out_dir, plots, units_system)
 
     def plot(self, ax=None, units_system: str | None = None) -> dict:
-        """The measured card over the fitted one; the matplotlib objects drawn."""
+        """The measured card over the fitted one.
+
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes, optional
+            Axes to draw on; a new figure when None.
+        units_system : str, optional
+            ``"US"`` (psig, inches) or ``"SI"`` (bar gauge, mm); default the scene's.
+
+        Returns
+        -------
+        dict
+            The matplotlib objects drawn (:func:`corliss.plot.fit_card.plot_fit_card`).
+        """
         return _export().plot(self, ax, units_system)
 
     @property
@@ -326,24 +377,62 @@ class FitResult:
 # --- geometry of loops -------------------------------------------------------------------
 
 def area_weights(x: np.ndarray) -> np.ndarray:
-    """Trapezoid weights of a closed loop: ``sum(w * p)`` is the loop integral of p dx
-    (the points in loop order, the last joined to the first) [unit of x]."""
+    """Trapezoid weights of a closed loop.
+
+    Parameters
+    ----------
+    x : ndarray, shape (n,)
+        The abscissa of the loop's points in loop order, the last joined to the first
+        (any unit).
+
+    Returns
+    -------
+    ndarray, shape (n,)
+        Weights ``w`` in the unit of ``x``: ``sum(w * p)`` is the loop integral of
+        ``p dx``, ``w[i] = (x[i+1] - x[i-1]) / 2``.
+    """
     return 0.5 * (np.roll(x, -1) - np.roll(x, 1))
 
 
 def loop_area(x: np.ndarray, p: np.ndarray) -> float:
-    """The loop integral of ``p dx`` round a closed polygon (points in order)."""
+    """The loop integral of ``p dx`` round a closed polygon, by trapezoids.
+
+    Parameters
+    ----------
+    x : ndarray, shape (n,)
+        The abscissa of the points, in loop order (any unit).
+    p : ndarray, shape (n,)
+        The ordinate (pressure, or any) at each point.
+
+    Returns
+    -------
+    float
+        The area in the unit of ``x`` times that of ``p`` (a card's work [J] for
+        ``x`` in [m3] and ``p`` in [Pa]); positive for a loop traced clockwise in
+        (x, p), counter-clockwise negative.
+    """
     return float(np.dot(area_weights(x), p))
 
 
 def loop_distance(px, py, cx, cy):
-    """Signed distance of each point (px, py) to the closed polyline (cx, cy).
+    """Signed distance of each point to a closed polyline, and the nearest point on it.
+
+    Parameters
+    ----------
+    px, py : ndarray, shape (m,)
+        The points (in the fit, the normalised abscissa and pressure).
+    cx, cy : array_like, shape (n,)
+        The polyline's vertices in order, the last joined to the first (repeated
+        vertices are skipped).
 
     Returns
     -------
-    (d, qx, qy, nx, ny)
-        The distance (positive on the left of the polyline's direction), the nearest
-        point of the polyline and the unit normal there (pointing to the left).
+    d : ndarray, shape (m,)
+        The distance, positive on the left of the polyline's direction.
+    qx, qy : ndarray, shape (m,)
+        The nearest point of the polyline.
+    nx, ny : ndarray, shape (m,)
+        The unit normal of the nearest segment, pointing to the left.
     """
     cx, cy = np.asarray(cx, float), np.asarray(cy, float)
     bx, by = np.roll(cx, -1), np.roll(cy, -1)
@@ -676,13 +765,13 @@ def fit_card(scene, card: MeasuredCard, ranges: list, *, fidelity: str = "fast",
         ends.
     ranges : list of KeyRange
         The keys to fit and their bounds (:func:`corliss.scene_keys.parse_range`).
-    fidelity : str
+    fidelity : str, optional
         Tier of the search: ``fast`` (default), ``standard`` or ``reference``.
-    refine : bool
+    refine : bool, optional
         Repeat a ``fast`` search from its optimum on the ``standard`` tier.
-    bootstrap : int
-        Wild-bootstrap refits of the residuals (0: none).
-    seed : int
+    bootstrap : int, optional
+        Wild-bootstrap refits of the residuals (0: none; at most 10000).
+    seed : int, optional
         Seed of the bootstrap's draws.
     progress : callable, optional
         Called after each simulation with (simulations so far, residual RMS [Pa]).
@@ -690,6 +779,8 @@ def fit_card(scene, card: MeasuredCard, ranges: list, *, fidelity: str = "fast",
     Returns
     -------
     FitResult
+        The fitted values with their standard errors (or why a key is not
+        determined), the fitted scene, and the simulation at the optimum.
 
     Raises
     ------

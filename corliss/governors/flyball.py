@@ -11,7 +11,7 @@ the spindle, the ball is at radius r = e + l sin(theta) and at h = l cos(theta) 
 the point of suspension; the sleeve at 2 h below it.  The coordinate z is the sleeve's
 lift over its travel, so cos(theta) is linear in z.
 
-Equilibrium (Lagrange, or moments about the suspension):
+Equilibrium (Lagrange, or moments about the suspension)::
 
     omega_g^2 = g (N m + 2 W) tan(theta) / (N m r)
 
@@ -30,7 +30,7 @@ vertical) lifts the sleeve against a spring of stiffness k and preload P (the sp
 force when the governor is at rest).  With phi the bell-crank's turn outward from the
 position where the ball arm is parallel to the spindle, the ball is at r = a + b sin(phi),
 b cos(phi) below the pivot, and the sleeve lifts by x = s (sin(phi) - sin(phi0)), linear
-in z.  Moments about the pivot for one bell-crank:
+in z.  Moments about the pivot for one bell-crank::
 
     m omega_g^2 r b cos(phi) = (P + k x + m_s g)/N s cos(phi) + m g b sin(phi)
 
@@ -57,42 +57,54 @@ from corliss.tables import Table
 
 
 class SleeveLosses:
-    """Friction and dash-pot given as they act on the sleeve, generalised to z: the
-    sleeve's lift is linear in z, so F_f = F x_travel and c = c_s x_travel^2 exactly."""
+    """Friction and dash-pot given as they act on the sleeve, generalised to z.
+
+    A mixin of the fly-ball specs, which carry ``sleeve_friction_N``,
+    ``sleeve_damping_N_s_m`` and ``sleeve_travel_m``: the sleeve's lift is linear in z,
+    so ``F_f = F x_travel`` and ``c = c_s x_travel^2`` exactly.  It takes no
+    constructor parameters of its own.
+    """
 
     @property
     def friction(self) -> float:
+        """Generalised Coulomb friction F_f, the sleeve's times its travel [J per unit z]."""
         return self.sleeve_friction_N * self.sleeve_travel_m
 
     @property
     def damping(self) -> float:
+        """Generalised dash-pot damping c, the sleeve's times its travel squared.
+
+        In [J s per unit z squared].
+        """
         return self.sleeve_damping_N_s_m * self.sleeve_travel_m ** 2
 
 
 @dataclass(frozen=True)
 class FlyBallSpec(SleeveLosses):
-    """Watt or Porter governor (all SI).
+    """Watt or Porter governor (all SI), as read from a ``[governor]`` table.
 
-    Attributes
+    Parameters
     ----------
     arm_length_m : float
         Arm length l, suspension pin to ball centre; the links are as long [m].
     ball_mass_kg : float
         Mass of one ball (with the part of its arm and link that moves with it) [kg].
     balls : int
-        Number of balls N.
+        Number of balls N (2 or more).
     load_mass_kg : float
         Central load W with the sleeve and what moves with it [kg] (0 for a bare Watt).
     arm_angle_at_rest_rad, arm_angle_at_top_rad : float
         Arm angle from the spindle at the two stops [rad].
-    suspension_offset_m : float
+    suspension_offset_m : float, optional
         Distance e of the arms' pins from the spindle axis [m].
-    ratio : float
-        Spindle rpm over engine rpm.
-    sleeve_friction_N, sleeve_damping_N_s_m : float
-        Friction force and dash-pot coefficient along the sleeve.
-    actuator : Actuator
-        What the sleeve moves.
+    ratio : float, optional
+        Spindle speed over engine speed [-].
+    sleeve_friction_N : float, optional
+        Coulomb friction force along the sleeve [N].
+    sleeve_damping_N_s_m : float, optional
+        Dash-pot coefficient along the sleeve [N s/m].
+    actuator : Actuator, optional
+        What the sleeve moves (default: a throttle wide open at rest, shut at the top).
     """
 
     arm_length_m: float
@@ -109,13 +121,19 @@ class FlyBallSpec(SleeveLosses):
 
     @property
     def sleeve_travel_m(self) -> float:
-        """Sleeve lift between the stops, 2 l (cos theta0 - cos theta1) [m]."""
+        """Sleeve lift between the stops, ``2 l (cos theta0 - cos theta1)`` [m]."""
         return 2.0 * self.arm_length_m * (math.cos(self.arm_angle_at_rest_rad)
                                           - math.cos(self.arm_angle_at_top_rad))
 
 
 class FlyBallGovernor(Governor):
-    """Watt's conical pendulum or Porter's loaded governor (Marks Art. 97)."""
+    """Watt's conical pendulum or Porter's loaded governor (Marks Ch. XVIII Art. 97).
+
+    Parameters
+    ----------
+    spec : FlyBallSpec
+        Its geometry, masses, losses and actuator.
+    """
 
     name = "flyball"
 
@@ -129,7 +147,20 @@ class FlyBallGovernor(Governor):
         return c, dc, np.sqrt(1.0 - c * c)
 
     def height_m(self, z) -> np.ndarray:
-        """h = l cos(theta): the suspension point's height above the balls' plane [m]."""
+        """The suspension point's height above the balls' plane, ``h = l cos(theta)``.
+
+        Watt's "height" of the conical pendulum (Marks Ch. XVIII Art. 97, eq. 254).
+
+        Parameters
+        ----------
+        z : float or array_like
+            The governor's coordinate [-].
+
+        Returns
+        -------
+        ndarray
+            h [m], shaped as ``z``.
+        """
         return self.spec.arm_length_m * self._cos(z)[0]
 
     def bodies(self, z):
@@ -268,10 +299,12 @@ def _with_safety(spec: FlyBallSpec, frac: float, t: Table) -> FlyBallSpec:
 class SpringSpec(SleeveLosses):
     """Spring-loaded fly-ball governor of the Hartnell form (all SI).
 
-    Attributes
+    Parameters
     ----------
-    ball_mass_kg, balls : float, int
-        Mass of one ball [kg] and the number of balls.
+    ball_mass_kg : float
+        Mass of one ball [kg].
+    balls : int
+        Number of balls (2 or more).
     pivot_radius_m : float
         Radius a of the bell-cranks' pivots from the spindle axis [m].
     ball_arm_m, sleeve_arm_m : float
@@ -279,10 +312,20 @@ class SpringSpec(SleeveLosses):
     arm_angle_at_rest_rad, arm_angle_at_top_rad : float
         Bell-crank turn phi from the position with the ball arm parallel to the spindle,
         outward positive, at the stops [rad].
-    spring_stiffness_N_m, spring_preload_N : float
-        The spring on the sleeve: stiffness and its force at rest.
-    sleeve_mass_kg : float
-        The sleeve and what it carries.
+    spring_stiffness_N_m : float
+        Stiffness of the spring on the sleeve [N/m].
+    spring_preload_N : float
+        The spring's force on the sleeve at rest [N].
+    sleeve_mass_kg : float, optional
+        The sleeve and what it carries [kg].
+    ratio : float, optional
+        Spindle speed over engine speed [-].
+    sleeve_friction_N : float, optional
+        Coulomb friction force along the sleeve [N].
+    sleeve_damping_N_s_m : float, optional
+        Dash-pot coefficient along the sleeve [N s/m].
+    actuator : Actuator, optional
+        What the sleeve moves (default: a throttle wide open at rest, shut at the top).
     """
 
     ball_mass_kg: float
@@ -302,12 +345,19 @@ class SpringSpec(SleeveLosses):
 
     @property
     def sleeve_travel_m(self) -> float:
+        """Sleeve lift between the stops, ``s (sin phi1 - sin phi0)`` [m]."""
         return self.sleeve_arm_m * (math.sin(self.arm_angle_at_top_rad)
                                     - math.sin(self.arm_angle_at_rest_rad))
 
 
 class SpringGovernor(Governor):
-    """Balls on bell-cranks against a spring on the sleeve (Hartnell form)."""
+    """Balls on bell-cranks against a spring on the sleeve (Hartnell form, Marks Art. 97).
+
+    Parameters
+    ----------
+    spec : SpringSpec
+        Its geometry, spring, masses, losses and actuator.
+    """
 
     name = "spring"
     summary = ("spring-loaded fly-balls on bell-cranks (Hartnell, Pickering, Waters; Marks "
@@ -323,7 +373,18 @@ class SpringGovernor(Governor):
         return s, ds, np.sqrt(1.0 - s * s)
 
     def sleeve_lift_m(self, z) -> np.ndarray:
-        """Sleeve lift above its rest [m], linear in z."""
+        """Sleeve lift above its rest, linear in z.
+
+        Parameters
+        ----------
+        z : float or array_like
+            The governor's coordinate [-].
+
+        Returns
+        -------
+        ndarray
+            The lift [m], shaped as ``z``.
+        """
         return self.spec.sleeve_travel_m * np.asarray(z, dtype=float)
 
     def bodies(self, z):

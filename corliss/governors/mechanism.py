@@ -3,17 +3,17 @@
 A governor is a mechanism of one degree of freedom, its coordinate z running from 0
 (at rest, on the lowest-speed stop) to 1 (the highest-speed stop).  Its parts turn with
 the spindle at omega_g = ratio x omega_shaft; in the frame turning with the spindle they
-move with z only.  Writing the kinetic energy of the parts in that frame,
+move with z only.  Writing the kinetic energy of the parts in that frame::
 
     T = 1/2 M(z) z'^2 + J(z) omega_g z' + 1/2 I_axis(z) omega_g^2,
 
-with the potential V(z) of gravity and springs, Lagrange's equation for z is
+with the potential V(z) of gravity and springs, Lagrange's equation for z is::
 
     M(z) z'' + 1/2 M'(z) z'^2 = G(z) omega_g^2 - R(z) - c z' - F_f sign(z') - J(z) d(omega_g)/dt
 
 where G = 1/2 dI_axis/dz (the generalised centrifugal coefficient) and R = dV/dz (the
 generalised restoring force).  For point masses m_i at (x_i, y_i, h_i) in the turning
-frame (x, y across the spin axis, h along it, upward for a vertical spindle):
+frame (x, y across the spin axis, h along it, upward for a vertical spindle)::
 
     M = sum m_i |dp_i/dz|^2 + sum I_i (dpsi_i/dz)^2
     G = sum m_i (x_i x_i' + y_i y_i')
@@ -60,7 +60,10 @@ CREEP_PER_S = 2e-3
 class PointMass:
     """A part of the governor as a point mass, positions as functions of z.
 
-    Attributes
+    The arrays are all shaped as the grid of z the governor's
+    :meth:`Governor.bodies` was called with (or are scalars where constant).
+
+    Parameters
     ----------
     mass_kg : float
         Its mass [kg] (times the number of identical parts it stands for, ``count``).
@@ -72,8 +75,9 @@ class PointMass:
     inertia_kg_m2 : float
         Moment of inertia of the part about its own centre of mass, about an axis
         parallel to the spin axis [kg m2] (0 for a ball).
-    psi_z, psi_zz : ndarray
-        Rate of turn of the part about that axis per unit z [rad], and its derivative.
+    psi_z, psi_zz : ndarray or float
+        Rate of turn of the part about that axis per unit z [rad], and its derivative
+        in z [rad] (0 for a part that does not turn).
     count : int
         Number of identical parts, placed symmetrically about the spin axis.
     """
@@ -98,16 +102,19 @@ class PointMass:
 class GovernorMechanism:
     """A governor in the common form, tabulated on a uniform grid of z.
 
-    Attributes
+    Built by :meth:`Governor.mechanism`; the speed loop integrates Lagrange's equation
+    of the module docstring with these tables.
+
+    Parameters
     ----------
-    z : ndarray
-        The grid, uniform from 0 to 1.
+    z : ndarray, shape (n,)
+        The grid, uniform from 0 to 1 [-]; every array below is shaped as it.
     M : ndarray
         Generalised mass [kg m2 per unit z squared].
     dM_dz : ndarray
-        Its derivative in z.
+        Its derivative in z [kg m2 per unit z cubed].
     G : ndarray
-        Generalised centrifugal coefficient [kg m2 per unit z]; G omega_g^2 is the
+        Generalised centrifugal coefficient [kg m2 per unit z]; ``G omega_g^2`` is the
         generalised centrifugal force [J per unit z].
     R : ndarray
         Generalised restoring force (gravity and springs) [J per unit z].
@@ -115,7 +122,7 @@ class GovernorMechanism:
         Inertia-action coefficient [kg m2 per unit z] (zero for fly-balls).
     I_axis : ndarray
         Moment of inertia of the governor's moving parts about the spin axis [kg m2]
-        (G = 1/2 dI_axis/dz); what the governor adds to the spindle's inertia.
+        (``G = 1/2 dI_axis/dz``); what the governor adds to the spindle's inertia.
     c : float
         Dash-pot damping, generalised [J s per unit z squared].
     F_f : float
@@ -126,14 +133,15 @@ class GovernorMechanism:
         ``"throttle"`` (opening of the throttle in the steam pipe, 0..1) or ``"gear"``
         (the valve gear's setting).
     actuator_at_rest, actuator_at_top : float
-        The actuator's value at z = 0 and z = 1; it is linear in z between them.
-    safety_z : float
-        Below this z the actuator is held at ``actuator_safety`` instead (the Corliss
+        The actuator's value at z = 0 and z = 1 [-] (throttle opening or gear
+        setting); it is linear in z between them.
+    safety_z : float, optional
+        Below this z [-] the actuator is held at ``actuator_safety`` instead (the Corliss
         governor's safety cams, Spangler Art. 155); 0 when the governor has none.
-    actuator_safety : float
-        The actuator's value in the safety range (NaN when there is none).
-    name : str
-        The governor type.
+    actuator_safety : float, optional
+        The actuator's value in the safety range [-] (NaN when there is none).
+    name : str, optional
+        The governor type (its registry name).
     """
 
     z: np.ndarray
@@ -154,7 +162,19 @@ class GovernorMechanism:
     name: str = ""
 
     def actuator(self, z):
-        """The actuator's value at z (linear, with the safety range below ``safety_z``)."""
+        """The actuator's value at ``z``, linear between the stops.
+
+        Parameters
+        ----------
+        z : float or array_like
+            The governor's coordinate [-], 0 at rest to 1 at the top stop.
+
+        Returns
+        -------
+        ndarray
+            Throttle opening or gear setting [-], shaped as ``z``; ``actuator_safety``
+            where ``z`` is below ``safety_z``.
+        """
         z = np.asarray(z, dtype=float)
         a = self.actuator_at_rest + (self.actuator_at_top - self.actuator_at_rest) * z
         if self.safety_z > 0.0:
@@ -162,17 +182,36 @@ class GovernorMechanism:
         return a
 
     def actuator_range(self) -> tuple[float, float]:
-        """The least and greatest actuator values the governor can set, its safety
-        setting included."""
+        """The least and greatest actuator values the governor can set.
+
+        Returns
+        -------
+        tuple of float
+            ``(least, greatest)`` throttle opening or gear setting [-], the safety
+            setting included when the governor has one.
+        """
         vals = [self.actuator_at_rest, self.actuator_at_top]
         if self.safety_z > 0.0 and np.isfinite(self.actuator_safety):
             vals.append(self.actuator_safety)
         return min(vals), max(vals)
 
     def equilibrium_z(self, omega_shaft: float) -> float:
-        """The coordinate z [-] at which the governor balances at shaft speed
-        ``omega_shaft`` [rad/s]: G(z) (ratio omega)^2 = R(z), found on the tabulated
-        grid; a stop (0 or 1) if it balances nowhere between them."""
+        """The coordinate at which the governor balances at a shaft speed, without friction.
+
+        Solves ``G(z) (ratio omega)^2 = R(z)`` (Marks Ch. XVIII Art. 97, eq. 251, in the
+        common form) by linear interpolation on the tabulated grid.
+
+        Parameters
+        ----------
+        omega_shaft : float
+            Shaft speed [rad/s].
+
+        Returns
+        -------
+        float
+            The balancing coordinate z [-]; 0 when the governor is held on its rest
+            stop at this speed, 1 when it is driven to its top stop.
+        """
         wg2 = (self.ratio * omega_shaft) ** 2
         f = self.G * wg2 - self.R
         if f[0] <= 0.0:
@@ -186,7 +225,19 @@ class GovernorMechanism:
 
 @dataclass(frozen=True)
 class Actuator:
-    """What a governor moves, linear in z (see :class:`GovernorMechanism`)."""
+    """What a governor moves, linear in z (see :class:`GovernorMechanism`).
+
+    Parameters
+    ----------
+    acts_on : str
+        ``"throttle"`` or ``"gear"`` (one of :data:`ACTS_ON`).
+    at_rest, at_top : float
+        The throttle opening (0 shut to 1 open) or gear setting [-] at z = 0 and z = 1.
+    safety_z : float, optional
+        Below this z [-] the actuator is held at ``safety_value`` (0: no safety range).
+    safety_value : float, optional
+        The actuator's value in the safety range [-] (NaN when there is none).
+    """
 
     acts_on: str
     at_rest: float
@@ -199,8 +250,10 @@ class Governor:
     """Base class of a governor: geometry and potential in, common form out.
 
     Subclasses set ``name``, ``summary`` and ``spec`` and implement :meth:`bodies`,
-    :meth:`potential` and :meth:`restoring`; ``spec`` must carry ``ratio``,
-    ``damping`` (generalised c), ``friction`` (generalised F_f) and ``actuator``.
+    :meth:`potential` and :meth:`restoring`; ``spec`` must carry ``ratio`` [-],
+    ``damping`` (generalised c [J s per unit z squared]), ``friction`` (generalised
+    F_f [J per unit z]) and ``actuator`` (an :class:`Actuator`).  The base class takes
+    no constructor parameters; each subclass documents its own.
     """
 
     name: ClassVar[str] = "abstract"
@@ -212,42 +265,107 @@ class Governor:
 
     # --- what a governor describes --------------------------------------------------
     def bodies(self, z: np.ndarray) -> list[PointMass]:  # pragma: no cover
-        """The moving parts at ``z``, with analytic derivatives."""
+        """The moving parts at ``z``, with analytic derivatives.
+
+        Parameters
+        ----------
+        z : ndarray, shape (n,)
+            The governor's coordinate [-], 0 at rest to 1 at the top stop.
+
+        Returns
+        -------
+        list of PointMass
+            One entry per kind of part (balls, arms, links, sleeve load, weights),
+            positions and derivatives shaped as ``z``.
+        """
         raise NotImplementedError
 
     def potential(self, z: np.ndarray) -> np.ndarray:  # pragma: no cover
-        """Potential energy of gravity and springs [J], zero at z = 0."""
+        """Potential energy of gravity and springs, zero at z = 0.
+
+        Parameters
+        ----------
+        z : ndarray, shape (n,)
+            The governor's coordinate [-].
+
+        Returns
+        -------
+        ndarray, shape (n,)
+            V(z) [J].
+        """
         raise NotImplementedError
 
     def restoring(self, z: np.ndarray) -> np.ndarray:  # pragma: no cover
-        """R = dV/dz [J per unit z], analytic."""
+        """The generalised restoring force ``R = dV/dz``, analytic.
+
+        Parameters
+        ----------
+        z : ndarray, shape (n,)
+            The governor's coordinate [-].
+
+        Returns
+        -------
+        ndarray, shape (n,)
+            R(z) [J per unit z].
+        """
         raise NotImplementedError
 
     # --- scalars ----------------------------------------------------------------------
     @property
     def ratio(self) -> float:
+        """Spindle speed over shaft speed [-]."""
         return self.spec.ratio
 
     @property
     def damping(self) -> float:
+        """Generalised dash-pot damping c [J s per unit z squared]."""
         return self.spec.damping
 
     @property
     def friction(self) -> float:
+        """Generalised Coulomb friction F_f [J per unit z]."""
         return self.spec.friction
 
     @property
     def actuator(self) -> Actuator:
+        """What the governor moves, and its values at the stops."""
         return self.spec.actuator
 
     # --- the common form --------------------------------------------------------------
     def centrifugal_energy_coefficient(self, z) -> np.ndarray:
-        """1/2 sum m r^2 [kg m2]: the centrifugal potential per omega_g^2, from positions."""
+        """Half the moment of inertia of the moving parts about the spin axis.
+
+        ``1/2 sum m r^2``, the centrifugal potential per ``omega_g^2``, computed from the
+        positions alone; its derivative in z is G (the tests check :meth:`terms` by it).
+
+        Parameters
+        ----------
+        z : float or array_like
+            The governor's coordinate [-].
+
+        Returns
+        -------
+        ndarray, shape (n,)
+            The coefficient [kg m2] at each z (``z`` taken as at least 1-d).
+        """
         z = np.atleast_1d(np.asarray(z, dtype=float))
         return sum(0.5 * b.count * b.mass_kg * (b.x ** 2 + b.y ** 2) for b in self.bodies(z))
 
     def terms(self, z) -> dict[str, np.ndarray]:
-        """M, dM_dz, G, R, J and I_axis at ``z`` (see the module docstring)."""
+        """The common form's coefficients at ``z`` (see the module docstring).
+
+        Parameters
+        ----------
+        z : float or array_like
+            The governor's coordinate [-].
+
+        Returns
+        -------
+        dict of str to ndarray
+            ``"M"`` [kg m2 per unit z squared], ``"dM_dz"``, ``"G"`` [kg m2 per unit z],
+            ``"R"`` [J per unit z], ``"J"`` [kg m2 per unit z] and ``"I_axis"`` [kg m2],
+            each shaped as ``z`` taken as at least 1-d.
+        """
         z = np.atleast_1d(np.asarray(z, dtype=float))
         zero = np.zeros_like(z)
         M, dM, G, J, I = zero.copy(), zero.copy(), zero.copy(), zero.copy(), zero.copy()
@@ -264,7 +382,24 @@ class Governor:
                 "I_axis": I}
 
     def mechanism(self, n: int = 201) -> GovernorMechanism:
-        """The common form on a uniform grid of ``n`` points from z = 0 to 1."""
+        """The common form tabulated for the speed loop.
+
+        Parameters
+        ----------
+        n : int, optional
+            Number of points of the uniform grid from z = 0 to 1 (at least 2).
+
+        Returns
+        -------
+        GovernorMechanism
+            The coefficients on the grid, with the spec's ratio, damping, friction and
+            actuator.
+
+        Raises
+        ------
+        ValueError
+            If ``n`` is less than 2.
+        """
         if n < 2:
             raise ValueError("a governor's mechanism needs at least 2 grid points")
         z = np.linspace(0.0, 1.0, n)
@@ -277,31 +412,98 @@ class Governor:
                                  actuator_safety=float(a.safety_value), name=self.name, **t)
 
     def equilibrium_speed_rad_s(self, z) -> np.ndarray:
-        """Shaft speed [rad/s] at which the governor balances at ``z`` (no friction),
-        shaped as ``z``."""
+        """Shaft speed at which the governor balances at ``z``, without friction.
+
+        ``omega_g^2 = R/G`` (Marks Ch. XVIII Art. 97, eq. 251, for the conical
+        pendulum), divided by the ratio.
+
+        Parameters
+        ----------
+        z : float or array_like
+            The governor's coordinate [-].
+
+        Returns
+        -------
+        ndarray
+            Shaft speed [rad/s], shaped as ``z``.
+        """
         t = self.terms(z)
         return (np.sqrt(t["R"] / t["G"]) / self.ratio).reshape(np.shape(z))
 
     def friction_band(self, z) -> tuple[np.ndarray, np.ndarray]:
-        """Lowest and highest shaft speeds [rad/s] at which friction holds z still."""
+        """Lowest and highest shaft speeds at which friction holds the governor still.
+
+        ``omega_g^2`` in ``[(R - F_f)/G, (R + F_f)/G]``, divided by the ratio.
+
+        Parameters
+        ----------
+        z : float or array_like
+            The governor's coordinate [-].
+
+        Returns
+        -------
+        lo, hi : ndarray
+            Shaft speeds [rad/s], shaped as ``z``; ``lo`` is 0 where friction alone
+            holds the governor up.
+        """
         t = self.terms(z)
         lo = np.sqrt(np.maximum(t["R"] - self.friction, 0.0) / t["G"]) / self.ratio
         hi = np.sqrt((t["R"] + self.friction) / t["G"]) / self.ratio
         return lo.reshape(np.shape(z)), hi.reshape(np.shape(z))
 
     def static_characteristic(self, n: int = 101) -> tuple[np.ndarray, np.ndarray]:
-        """(z, shaft speed [rad/s]) along the governor's travel."""
+        """The balancing speed along the governor's travel, without friction.
+
+        Parameters
+        ----------
+        n : int, optional
+            Number of evenly spaced points from z = 0 to 1.
+
+        Returns
+        -------
+        z : ndarray, shape (n,)
+            The coordinate [-].
+        omega : ndarray, shape (n,)
+            Shaft speed at which the governor balances there [rad/s].
+        """
         z = np.linspace(0.0, 1.0, n)
         return z, self.equilibrium_speed_rad_s(z)
 
     def droop(self) -> float:
-        """Fractional speed change between the stops, (w1 - w0) / ((w1 + w0) / 2)."""
+        """Fractional speed change between the stops.
+
+        Returns
+        -------
+        float
+            ``(w1 - w0) / ((w1 + w0) / 2)`` [-], w0 and w1 the balancing shaft speeds at
+            z = 0 and z = 1 (without friction).
+        """
         w0, w1 = self.equilibrium_speed_rad_s(np.array([0.0, 1.0]))
         return float((w1 - w0) / (0.5 * (w1 + w0)))
 
     def check(self, key: str, value: object, n: int = 201) -> None:
-        """Refuse a governor that cannot balance (G or R not positive somewhere), and
-        warn when its characteristic falls (an unstable governor)."""
+        """Refuse a governor that cannot balance, and warn when it is unstable.
+
+        Parameters
+        ----------
+        key : str
+            Scene key named in the error (the governor's table or the key that set
+            the offending geometry).
+        value : object
+            The value named in the error.
+        n : int, optional
+            Number of evenly spaced points from z = 0 to 1 at which to check.
+
+        Raises
+        ------
+        InputError
+            If G or R is not positive somewhere between the stops.
+
+        Notes
+        -----
+        A falling static characteristic (speed decreasing as z rises) is logged as a
+        warning: the governor hunts there.
+        """
         z = np.linspace(0.0, 1.0, n)
         t = self.terms(z)
         if not np.all(t["G"] > 0.0):

@@ -3,11 +3,11 @@ eccentric (Spangler Ch. XII Arts. 84-91: Erie, Armington & Sims, Ball; Ch. XVII 
 Buckeye; Marks Art. 97: Thompson's shaft governor, the inertia governors).
 
 Geometry (in the plane of the wheel, turning with it)
-----------------------------------------------------
+-----------------------------------------------------
 Each of N weights (the book's a, a of the Erie, j, j of the Ball, d, d of the Buckeye)
 is on an arm pivoted at radius a from the shaft's centre; its centre of mass is at
 distance b from the pivot.  With beta the angle at the pivot between the arm and the
-line from the pivot outward along the radius, the weight's centre is at
+line from the pivot outward along the radius, the weight's centre is at::
 
     x = a + b cos(beta),   y = +-b sin(beta)        r^2 = a^2 + b^2 + 2 a b cos(beta)
 
@@ -20,7 +20,7 @@ it is left out.
 The spring acts on each arm at lever d about the pivot, along the arc the arm's spring
 point describes (as through a chain on a quadrant, or a spring whose line of action
 stays square to the arm); its deflection is d (beta0 - beta) and its force
-P + k d (beta0 - beta), P the preload at rest.  Moments about the pivot:
+P + k d (beta0 - beta), P the preload at rest.  Moments about the pivot::
 
     m omega^2 a b sin(beta) = d (P + k d (beta0 - beta))
 
@@ -41,8 +41,8 @@ only as centrifugal) nor Marks gives an inertia bar's dimensions: the scene supp
 
 Friction and dash-pot are given as a torque about each arm's pivot and a damping torque
 per unit angular speed of the arm (the Ball governor's dash-pot, Art. 90);
-generalised, F_f = N T_f |dbeta/dz| and c = N c_t (dbeta/dz)^2, exact because beta is
-linear in z.
+generalised, ``F_f = N T_f |dbeta/dz|`` and ``c = N c_t (dbeta/dz)^2``, exact because
+beta is linear in z.
 """
 
 from __future__ import annotations
@@ -62,28 +62,40 @@ from corliss.tables import Table
 
 @dataclass(frozen=True)
 class ShaftSpec:
-    """A shaft governor (all SI).
+    """A shaft governor (all SI), as read from a ``[governor]`` table.
 
-    Attributes
+    Parameters
     ----------
     weight_mass_kg : float
         Mass of one weight with its arm [kg].
     weights : int
         Number of weights N.
-    pivot_radius_m, arm_length_m : float
-        Pivot's radius a from the shaft, pivot to the weight's centre of mass b [m].
+    pivot_radius_m : float
+        Radius a of the arm's pivot from the shaft's centre [m].
+    arm_length_m : float
+        Distance b from the pivot to the weight's centre of mass [m].
     weight_radius_at_rest_m, weight_radius_at_top_m : float
-        Radius of the weight's centre of mass at the two stops [m].
-    weight_inertia_kg_m2 : float
-        Moment of inertia of weight and arm about their own centre of mass [kg m2].
-    leading : bool
+        Radius of the weight's centre of mass at the two stops [m], strictly between
+        ``|a - b|`` and ``a + b``.
+    spring_arm_m : float
+        Lever d of each arm's spring about the pivot [m].
+    spring_stiffness_N_m : float
+        Stiffness of each arm's spring [N/m].
+    spring_preload_N : float
+        Each spring's force at rest [N].
+    weight_inertia_kg_m2 : float, optional
+        Moment of inertia of weight and arm about their own centre of mass [kg m2]
+        (the inertia bar; 0 for a plain centrifugal governor).
+    leading : bool, optional
         True when the weight leads its pivot in the direction of rotation.
-    spring_arm_m, spring_stiffness_N_m, spring_preload_N : float
-        The spring of each arm: lever about the pivot, stiffness, force at rest.
-    friction_torque_N_m, dashpot_N_m_s : float
-        Per arm, about its pivot.
-    actuator : Actuator
-        The valve gear's setting at the two stops.
+    friction_torque_N_m : float, optional
+        Coulomb friction torque per arm about its pivot [N m].
+    dashpot_N_m_s : float, optional
+        Dash-pot torque per arm per unit angular speed of the arm [N m s].
+    actuator : Actuator, optional
+        The valve gear's setting at the two stops (default 0 at rest, 1 at the top).
+    ratio : float, optional
+        Governor speed over shaft speed [-] (1: the governor turns with the wheel).
     """
 
     weight_mass_kg: float
@@ -103,30 +115,55 @@ class ShaftSpec:
     ratio: float = 1.0
 
     def beta(self, r: float) -> float:
-        """Arm angle beta [rad] at which the weight's centre is at radius r [m]."""
+        """Arm angle at which the weight's centre is at a given radius.
+
+        From ``r^2 = a^2 + b^2 + 2 a b cos(beta)`` (the module docstring).
+
+        Parameters
+        ----------
+        r : float
+            Radius of the weight's centre of mass from the shaft's centre [m].
+
+        Returns
+        -------
+        float
+            beta [rad], from 0 (arm along the radius, outward) to pi.
+        """
         a, b = self.pivot_radius_m, self.arm_length_m
         return math.acos((r * r - a * a - b * b) / (2.0 * a * b))
 
     @property
     def beta_rest(self) -> float:
+        """Arm angle beta0 at the rest stop [rad]."""
         return self.beta(self.weight_radius_at_rest_m)
 
     @property
     def beta_swing(self) -> float:
-        """beta0 - beta1 > 0, the arm's turn from rest to the top stop [rad]."""
+        """The arm's turn from rest to the top stop, ``beta0 - beta1 > 0`` [rad]."""
         return self.beta_rest - self.beta(self.weight_radius_at_top_m)
 
     @property
     def friction(self) -> float:
+        """Generalised Coulomb friction F_f, ``N T_f (beta0 - beta1)`` [J per unit z]."""
         return self.weights * self.friction_torque_N_m * self.beta_swing
 
     @property
     def damping(self) -> float:
+        """Generalised dash-pot damping c, ``N c_t (beta0 - beta1)^2``.
+
+        In [J s per unit z squared].
+        """
         return self.weights * self.dashpot_N_m_s * self.beta_swing ** 2
 
 
 class ShaftGovernor(Governor):
-    """Weights on pivoted arms in the flywheel against springs (Spangler Ch. XII)."""
+    """Weights on pivoted arms in the flywheel against springs (Spangler Ch. XII).
+
+    Parameters
+    ----------
+    spec : ShaftSpec
+        Its geometry, springs, losses and actuator.
+    """
 
     name = "shaft"
     vertical_spindle = False
@@ -135,6 +172,18 @@ class ShaftGovernor(Governor):
         self.spec = spec
 
     def beta(self, z) -> np.ndarray:
+        """The arm angle, linear in z from beta0 at rest to beta1 at the top stop.
+
+        Parameters
+        ----------
+        z : float or array_like
+            The governor's coordinate [-].
+
+        Returns
+        -------
+        ndarray
+            beta [rad], shaped as ``z``.
+        """
         return self.spec.beta_rest - self.spec.beta_swing * np.asarray(z, dtype=float)
 
     def bodies(self, z):
@@ -153,7 +202,18 @@ class ShaftGovernor(Governor):
         return [w]
 
     def spring_deflection_m(self, z) -> np.ndarray:
-        """Deflection of each arm's spring from its rest [m], d (beta0 - beta)."""
+        """Deflection of each arm's spring from its rest, ``d (beta0 - beta)``.
+
+        Parameters
+        ----------
+        z : float or array_like
+            The governor's coordinate [-].
+
+        Returns
+        -------
+        ndarray
+            The deflection [m], shaped as ``z``.
+        """
         return self.spec.spring_arm_m * self.spec.beta_swing * np.asarray(z, dtype=float)
 
     def potential(self, z):

@@ -18,21 +18,29 @@ _EVENT_MARK = {"cutoff": ("c/o", "v"), "release": ("rel", "s"), "compression": (
 def plot_card(result, ax=None, units_system: str | None = None, prefix: str = "") -> dict:
     """Indicator card of both ends of the last cycle.
 
+    Pressure (gauge, above the scene's barometer) against piston position from
+    head-end dead centre, the atmospheric and zero-pressure lines, and the events
+    (cut-off, release, compression, admission) marked on each end's card; the title
+    gives speed, indicated power and mean effective pressure.
+
     Parameters
     ----------
-    result : Result
-    ax : matplotlib Axes, optional
+    result : SteadyResult
+        A steady run (or any result with ``cards``, ``events`` and ``summary``).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; a new 9 x 5.5 in figure when None.
     units_system : str, optional
         ``"US"`` (psig, inches of stroke) or ``"SI"`` (bar gauge, mm); default from
-        the scene.
-    prefix : str
+        the scene's ``output.units``.
+    prefix : str, optional
         ``""`` for the (first or high-pressure) cylinder, ``"lp_"`` for the
         low-pressure cylinder of a compound.
 
     Returns
     -------
     dict
-        ``{"ax": ax, "lines": {...}, "markers": [...]}``.
+        ``{"ax": ax, "lines": {"head": Line2D, "crank": Line2D}, "markers": [Line2D,
+        ...]}``, the event markers in the order drawn.
     """
     import matplotlib.pyplot as plt
 
@@ -103,11 +111,27 @@ def plot_card(result, ax=None, units_system: str | None = None, prefix: str = ""
 
 
 def plot_crank_effort(result, ax=None, units_system: str | None = None) -> dict:
-    """Crank-effort diagram: shaft torque against crank angle over the last cycle, with
-    the mean torque (the uniform resistance of Marks Arts. 56-59) and the excess and
-    deficit shaded; the friction torque and net torque where ``friction`` is named.
+    """Crank-effort diagram: shaft torque against crank angle over the last cycle.
 
-    Returns ``{"ax": ax, "lines": {...}}``.
+    With the mean torque (the uniform resistance of Marks Arts. 56-59) and the excess
+    and deficit shaded; the net torque less friction where the scene names
+    ``friction``.  The title gives the coefficient of fluctuation of Marks Art. 57.
+
+    Parameters
+    ----------
+    result : SteadyResult
+        A steady run (its ``crank_effort`` table and ``summary``).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; a new 9 x 4.5 in figure when None.
+    units_system : str, optional
+        ``"US"`` (torque in lbf ft) or ``"SI"`` (N m); default from the scene's
+        ``output.units``.
+
+    Returns
+    -------
+    dict
+        ``{"ax": ax, "lines": {"torque": Line2D, "mean": Line2D}}``, with ``"net"``
+        when friction is named.
     """
     import matplotlib.pyplot as plt
 

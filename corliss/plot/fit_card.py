@@ -25,7 +25,8 @@ def plot_fit_card(fit, ax=None, units_system: str | None = None) -> dict:
     ----------
     fit : FitResult
         From :func:`corliss.fit`.
-    ax : matplotlib Axes, optional
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; a new 9 x 5.5 in figure when None.
     units_system : str, optional
         ``"US"`` (psig, inches) or ``"SI"`` (bar gauge, mm); default the scene's.
 

@@ -35,9 +35,24 @@ def _unit(units_system: str) -> str:
 
 
 def find_by_class(registry: dict, gear):
-    """The entry of ``registry`` (keyed on gear classes) for the nearest class of
-    ``gear`` along its method resolution order, so a subclass finds its parent's
-    entry; None if no class of ``gear`` has one."""
+    """The entry of a registry keyed on gear classes for the nearest class of a gear.
+
+    Classes are tried along the gear's method resolution order, so a subclass finds
+    its parent's entry.
+
+    Parameters
+    ----------
+    registry : dict
+        ``{gear class: entry}``, as :data:`DOUBLE_VALVE_DIAGRAMS` or
+        :data:`corliss.plot.gears.GEAR_PANELS`.
+    gear : object
+        The gear (any object; its type's MRO is searched).
+
+    Returns
+    -------
+    object or None
+        The entry of the nearest class; None if no class of ``gear`` has one.
+    """
     for cls in type(gear).__mro__:
         if cls in registry:
             return registry[cls]
@@ -57,9 +72,10 @@ def plot_double_valve(gear, fig=None, units_system: str = "US") -> dict:
     Parameters
     ----------
     gear : DoubleValve
-    fig : matplotlib Figure, optional
+        A double valve (riding cut-off, gridiron, Meyer or Buckeye).
+    fig : matplotlib.figure.Figure, optional
         Drawn on; a new one of :data:`FIGSIZE` when None.
-    units_system : str
+    units_system : str, optional
         ``"US"`` (inches) or ``"SI"`` (mm).
 
     Returns
@@ -128,12 +144,22 @@ def plot_double_valve(gear, fig=None, units_system: str = "US") -> dict:
 
 
 def plot_double_valve_diagram(gear, ax=None, units_system: str = "US") -> dict:
-    """The book's valve diagram of a double valve, chosen by its class from
-    :data:`DOUBLE_VALVE_DIAGRAMS`: the relative valve circle (Art. 128) for a riding
-    cut-off valve, the combined diagram (Arts. 118-119) for the gridiron, the Meyer
-    diagram (Art. 142), the Buckeye's cut-off valve circle on the main valve (Arts.
-    137-139).  Drawn with the crank turning counter-clockwise from head-end dead centre
-    on the right.
+    """The book's valve diagram of a double valve, chosen by its class.
+
+    From :data:`DOUBLE_VALVE_DIAGRAMS`: the relative valve circle (Spangler Art. 128)
+    for a riding cut-off valve, the combined diagram (Arts. 118-119) for the gridiron,
+    the Meyer diagram (Art. 142), the Buckeye's cut-off valve circle on the main valve
+    (Arts. 137-139).  Drawn with the crank turning counter-clockwise from head-end dead
+    centre on the right.
+
+    Parameters
+    ----------
+    gear : DoubleValve
+        A double valve (riding cut-off, gridiron, Meyer or Buckeye).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; a new 6 x 6 in figure when None.
+    units_system : str, optional
+        ``"US"`` (inches) or ``"SI"`` (mm).
 
     Returns
     -------
@@ -235,10 +261,21 @@ DOUBLE_VALVE_DIAGRAMS = {
 # -- Corliss gear -------------------------------------------------------------------
 
 def plot_corliss_gear(gear, fig=None, units_system: str = "US") -> dict:
-    """Wrist plate and spindle angles (Art. 156), and the four port openings (latched
-    dotted, tripped solid: Art. 155), against crank angle.  The tripped openings need
-    the gear's speed (:meth:`CorlissGear.with_speed`); without it the latched ones are
-    drawn.
+    """Wrist plate and spindle angles, and the four port openings, against crank angle.
+
+    The wrist plate and spindles as in Spangler Art. 156; the steam ports' openings
+    latched (dotted) and tripped (solid), Art. 155.  The tripped openings need the
+    gear's speed (:meth:`corliss.valves.corliss_gear.CorlissGear.with_speed`); without
+    it the latched ones are drawn as the actual ones.
+
+    Parameters
+    ----------
+    gear : CorlissGear
+        The Corliss gear, with its speed for the trip.
+    fig : matplotlib.figure.Figure, optional
+        Drawn on; a new one of :data:`FIGSIZE` when None.
+    units_system : str, optional
+        ``"US"`` (inches) or ``"SI"`` (mm).
 
     Returns
     -------
@@ -290,9 +327,20 @@ def plot_corliss_gear(gear, fig=None, units_system: str = "US") -> dict:
 # -- Porter-Allen gear --------------------------------------------------------------
 
 def plot_porter_allen(gear, fig=None, units_system: str = "US") -> dict:
-    """Three panels: the stems' travels, the four port openings against crank angle,
-    and the Zeuner diagram of the steam motion at the radius rod with the laps referred
-    to it (Spangler Arts. 30, 83).
+    """The Porter-Allen gear in three panels.
+
+    The stems' travels and the four port openings against crank angle, and the Zeuner
+    diagram of the steam motion at the radius rod with the laps referred to it
+    (Spangler Arts. 30, 83).
+
+    Parameters
+    ----------
+    gear : PorterAllenGear
+        The Porter-Allen gear at its setting.
+    fig : matplotlib.figure.Figure, optional
+        Drawn on; a new one of :data:`FIGSIZE` when None.
+    units_system : str, optional
+        ``"US"`` (inches) or ``"SI"`` (mm).
 
     Returns
     -------

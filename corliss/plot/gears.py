@@ -17,8 +17,26 @@ from corliss.valves.slide_valve import LappedValve
 
 
 def plot_valve_travel(gear, ax=None, units_system: str = "US") -> dict:
-    """Valve travel against crank angle, the exact motion over Zeuner's where the gear
-    has both, with the steam and exhaust laps of each end as horizontal lines."""
+    """Valve travel against crank angle, with the laps of each end as horizontal lines.
+
+    The exact motion, and Zeuner's (infinite eccentric rod) dashed over it where the
+    gear has both; displacement positive where it opens the head-end steam port.
+
+    Parameters
+    ----------
+    gear : ValveGear
+        A lapped valve gear (its ``travel``, ``spec.lap_m`` and ``spec.exhaust_lap_m``),
+        as :func:`corliss.engine.simulate.build_gear` builds it.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; a new 9 x 4 in figure when None.
+    units_system : str, optional
+        ``"US"`` (inches) or ``"SI"`` (mm).
+
+    Returns
+    -------
+    dict
+        ``{"ax": ax, "lines": {"travel": Line2D}}``, with ``"zeuner"`` when drawn.
+    """
     import matplotlib.pyplot as plt
 
     if ax is None:
@@ -51,11 +69,29 @@ def plot_valve_travel(gear, ax=None, units_system: str = "US") -> dict:
 
 
 def plot_zeuner_diagram(gear, ax=None, units_system: str = "US") -> dict:
-    """Zeuner's valve diagram (Spangler Arts. 10-18): the valve's displacement laid off
-    along each crank position traces the valve circles, one for each end; the lap
-    circles cut them at admission and cut-off, the exhaust-lap circles at release and
-    compression.  Drawn with the crank rotating counter-clockwise from head-end dead
-    centre on the right."""
+    """Zeuner's valve diagram (Spangler Arts. 10-18).
+
+    The valve's displacement laid off along each crank position traces the valve
+    circles, one for each end; the lap circles cut them at admission and cut-off, the
+    exhaust-lap circles at release and compression.  Drawn with the crank rotating
+    counter-clockwise from head-end dead centre on the right.
+
+    Parameters
+    ----------
+    gear : ValveGear
+        A lapped valve gear (its ``travel``, ``spec.lap_m`` and ``spec.exhaust_lap_m``),
+        as :func:`corliss.engine.simulate.build_gear` builds it.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; a new 6 x 6 in figure when None.
+    units_system : str, optional
+        ``"US"`` (inches) or ``"SI"`` (mm).
+
+    Returns
+    -------
+    dict
+        ``{"ax": ax, "lines": {"head": Line2D, "crank": Line2D}}``, the two valve
+        circles.
+    """
     import matplotlib.pyplot as plt
 
     if ax is None:
@@ -118,23 +154,36 @@ _BILGRAM_EVENTS = (
 def bilgram_events(gear) -> dict:
     """Crank angles of the events read off the Bilgram diagram (Spangler Art. 149).
 
+    Parameters
+    ----------
+    gear : ValveGear
+        A lapped valve gear; its Zeuner form (``zeuner_travel`` where it has one,
+        else ``travel``) places the Bilgram point.
+
+    Returns
+    -------
+    dict
+        ``{"head": {...}, "crank": {...}}``, each with ``admission_deg``,
+        ``cutoff_deg``, ``release_deg`` and ``compression_deg``, crank angles [deg] in
+        [0, 360) (None where the circle encloses o: the port never closes or never
+        opens), and ``lead_m``, ``dk - lap`` [m], dk being the distance of d from oa
+        (lap + lead, Art. 149).
+
+    Notes
+    -----
     The Bilgram point d lies at the throw r from o, at the angular advance from the
     dead-centre line oa, on the side that makes the perpendicular from d on the crank
     line the valve's displacement: with the crank at theta (counter-clockwise from
-    head-end dead centre) d = (S, -C), and that perpendicular is d . (sin theta, -cos
-    theta) = C cos theta + S sin theta = r sin(theta + delta).  A port opens or closes
-    where the crank line is tangent to the circle about d of radius the lap (steam) or
-    exhaust lap: the two tangents from o make the angles +-asin(lap / od) with od.  Of
-    each tangent line, the crank is on the ray on whose side d lies as the event needs
-    (x = +lap for the head end, -lap for the crank end), and the tangent point (the foot
-    of the perpendicular from d) lies on the crank's ray where the displacement is
-    growing (its rate is d . (cos theta, sin theta)), behind o where it is falling: so
-    the two tangents tell opening from closing.
-
-    Returns ``{"head": {...}, "crank": {...}}`` with ``admission_deg``, ``cutoff_deg``,
-    ``release_deg``, ``compression_deg`` in [0, 360) (None where the circle encloses o:
-    the port never closes or never opens), and ``lead_m`` = dk - lap, dk being the
-    distance of d from oa (lap + lead, Art. 149).
+    head-end dead centre) ``d = (S, -C)``, and that perpendicular is
+    ``d . (sin theta, -cos theta) = C cos theta + S sin theta = r sin(theta + delta)``.
+    A port opens or closes where the crank line is tangent to the circle about d of
+    radius the lap (steam) or exhaust lap: the two tangents from o make the angles
+    ``+-asin(lap / od)`` with od.  Of each tangent line, the crank is on the ray on
+    whose side d lies as the event needs (``x = +lap`` for the head end, ``-lap`` for
+    the crank end), and the tangent point (the foot of the perpendicular from d) lies on
+    the crank's ray where the displacement is growing (its rate is
+    ``d . (cos theta, sin theta)``), behind o where it is falling: so the two tangents
+    tell opening from closing.
     """
     C, S = _bilgram_point(gear)
     dx, dy = S, -C
@@ -159,14 +208,32 @@ def bilgram_events(gear) -> dict:
 
 
 def plot_bilgram_diagram(gear, ax=None, units_system: str = "US") -> dict:
-    """Bilgram's valve diagram (Spangler Arts. 149-150): the circle of the eccentric's
-    throw r about o, the Bilgram point d on it at the angular advance from the
-    dead-centre line, and the lap and exhaust-lap circles about d; the valve's
-    displacement at any crank position is the perpendicular from d on the crank line,
-    and the crank lines tangent to the lap circles are the events (see
-    :func:`bilgram_events`).  dk, from d square to the dead-centre line, is the lap
+    """Bilgram's valve diagram (Spangler Arts. 149-150).
+
+    The circle of the eccentric's throw r about o, the Bilgram point d on it at the
+    angular advance from the dead-centre line, and the lap and exhaust-lap circles
+    about d; the valve's displacement at any crank position is the perpendicular from d
+    on the crank line, and the crank lines tangent to the lap circles are the events
+    (see :func:`bilgram_events`).  dk, from d square to the dead-centre line, is the lap
     plus the lead.  Drawn from the gear's Zeuner form, with the crank turning
-    counter-clockwise from head-end dead centre on the right, as the Zeuner diagram."""
+    counter-clockwise from head-end dead centre on the right, as the Zeuner diagram.
+
+    Parameters
+    ----------
+    gear : ValveGear
+        A lapped valve gear (its ``travel``, ``spec.lap_m`` and ``spec.exhaust_lap_m``),
+        as :func:`corliss.engine.simulate.build_gear` builds it.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; a new 6 x 6 in figure when None.
+    units_system : str, optional
+        ``"US"`` (inches) or ``"SI"`` (mm).
+
+    Returns
+    -------
+    dict
+        ``{"ax": ax, "lines": {...}, "events": {...}}``: the valve circle, the point
+        d and the lap circles by label, and :func:`bilgram_events` of the gear.
+    """
     import matplotlib.pyplot as plt
 
     if ax is None:
@@ -232,9 +299,21 @@ def plot_bilgram_diagram(gear, ax=None, units_system: str = "US") -> dict:
 
 
 def plot_lapped_valve(gear, fig=None, units_system: str = "US") -> dict:
-    """The three standard panels of a lapped valve, side by side: valve travel
-    (:func:`plot_valve_travel`), the Zeuner diagram (:func:`plot_zeuner_diagram`) and the
-    Bilgram diagram (:func:`plot_bilgram_diagram`).
+    """The three standard panels of a lapped valve, side by side.
+
+    Valve travel (:func:`plot_valve_travel`), the Zeuner diagram
+    (:func:`plot_zeuner_diagram`) and the Bilgram diagram (:func:`plot_bilgram_diagram`).
+
+    Parameters
+    ----------
+    gear : ValveGear
+        A lapped valve gear (its ``travel``, ``spec.lap_m`` and ``spec.exhaust_lap_m``),
+        as :func:`corliss.engine.simulate.build_gear` builds it.
+    fig : matplotlib.figure.Figure, optional
+        Figure to draw on (three subplots are added); a new 19 x 5.5 in figure when
+        None.
+    units_system : str, optional
+        ``"US"`` (inches) or ``"SI"`` (mm).
 
     Returns
     -------
@@ -279,9 +358,9 @@ def plot_gear(gear, fig=None, units_system: str = "US") -> dict:
     gear : ValveGear
         As :func:`corliss.engine.simulate.build_gear` builds it (the Corliss gear with
         its speed, for the trip).
-    fig : matplotlib Figure, optional
+    fig : matplotlib.figure.Figure, optional
         Drawn on; when None, a new figure sized for the panels (the caller closes it).
-    units_system : str
+    units_system : str, optional
         ``"US"`` (inches) or ``"SI"`` (mm).
 
     Returns

@@ -27,19 +27,20 @@ def _axis(frame: pd.DataFrame, column: str, units_system: str | None):
 
 def plot_study(points: pd.DataFrame, varied: list[dict], responses: list[str], fig=None,
                units_system: str | None = "US") -> dict:
-    """Each response (a row of panels) against each varied key (a column), one dot a
-    run; failed runs are left out and counted in the title.
+    """Each response (a row of panels) against each varied key (a column).
+
+    One dot a run; failed runs are left out and counted in the title.
 
     Parameters
     ----------
-    points : DataFrame
-        A study's table (:attr:`corliss.StudyResult.points`).
+    points : pandas.DataFrame
+        A study's table (:attr:`corliss.studies.result.StudyResult.points`).
     varied : list of dict
-        The study's varied keys (``key``, ``unit``, ``column``).
+        The study's varied keys (``key``, ``unit``, ``column``), one panel column each.
     responses : list of str
         The response columns to draw.
-    fig : Figure, optional
-        Drawn into (made when None).
+    fig : matplotlib.figure.Figure, optional
+        Drawn into (made when None, sized for the panels).
     units_system : str, optional
         ``"US"`` or ``"SI"`` for the responses' axes; None keeps them as the summary
         names them.
@@ -47,7 +48,8 @@ def plot_study(points: pd.DataFrame, varied: list[dict], responses: list[str], f
     Returns
     -------
     dict
-        ``figure`` and ``axes`` (responses x keys).
+        ``{"figure": fig, "axes": axes}``, ``axes`` an ndarray of Axes shaped
+        (responses, varied keys).
     """
     import matplotlib.pyplot as plt
 

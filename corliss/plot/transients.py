@@ -9,11 +9,27 @@ from corliss import units
 
 
 def plot_load_step(result, units_system: str | None = None) -> dict:
-    """A load step on one sheet: speed (turn by turn and within the turn), the governor's
-    position and what it sets (cut-off or throttle opening) against time, the load, and
-    the head-end and crank-end cards of the turn before the step and of the last turn.
+    """A load step on one sheet.
 
-    Returns ``{"figure": fig, "axes": {...}}``.
+    Left, against time: speed (turn by turn and within the turn) with the settling
+    band, the governor's position and what it sets (cut-off or throttle opening), and
+    the indicated and load power.  Right: the head-end and crank-end cards of the turn
+    before the step and of the last turn, and the governor's static characteristic
+    with its mean position before the step and at the end.
+
+    Parameters
+    ----------
+    result : TransientResult
+        A transient run (its ``timeseries``, ``cycles``, ``metrics`` and cards).
+    units_system : str, optional
+        ``"US"`` (hp, psig, ft3) or ``"SI"`` (kW, bar gauge, L); default from the
+        scene's ``output.units``.
+
+    Returns
+    -------
+    dict
+        ``{"figure": fig, "axes": {...}}``, the axes keyed ``"speed"``, ``"governor"``,
+        ``"power"``, and ``"card_before"``, ``"card_after"`` and ``"static"`` when drawn.
     """
     import matplotlib.pyplot as plt
 
@@ -120,8 +136,25 @@ def plot_load_step(result, units_system: str | None = None) -> dict:
 
 
 def plot_static_characteristic(governor, ax=None, n: int = 101) -> dict:
-    """A governor's static characteristic: its position against the shaft speed at
-    which it balances, with the friction band where the mechanism has friction."""
+    """A governor's static characteristic: its position against its balancing speed.
+
+    The speed at which the governor balances without friction
+    (:meth:`corliss.governors.mechanism.Governor.static_characteristic`), in rev/min.
+
+    Parameters
+    ----------
+    governor : Governor
+        The governor (any registered type, built from its spec).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; a new 6 x 4.5 in figure when None.
+    n : int, optional
+        Number of evenly spaced positions z from 0 to 1.
+
+    Returns
+    -------
+    dict
+        ``{"ax": ax, "lines": {"static": Line2D}}``.
+    """
     import matplotlib.pyplot as plt
 
     if ax is None:

@@ -8,9 +8,27 @@ from corliss import units
 
 
 def plot_willans(sweeps: dict, ax=None, units_system: str = "US") -> dict:
-    """Willans lines: steam per hour against indicated power, one line per sweep of the
-    load range (``{label: frame}`` from :func:`corliss.engine.load_range.load_range`),
-    with the least-squares straight line of each drawn thin."""
+    """Willans lines: steam per hour against indicated power, one line per sweep.
+
+    Each sweep of the load range is drawn with markers, and the least-squares straight
+    line through it (:func:`corliss.engine.result.willans_fit`) drawn thin.
+
+    Parameters
+    ----------
+    sweeps : dict of str to pandas.DataFrame
+        ``{label: points}``, each the ``points`` table of a
+        :func:`corliss.engine.load_range.load_range` sweep (columns
+        ``indicated_power_W`` and ``steam_rate_kg_per_h``).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; a new 8 x 5.5 in figure when None.
+    units_system : str, optional
+        ``"US"`` (hp, lb/h) or ``"SI"`` (kW, kg/h).
+
+    Returns
+    -------
+    dict
+        ``{"ax": ax, "lines": {label: Line2D}}``.
+    """
     import matplotlib.pyplot as plt
 
     from corliss.engine.result import willans_fit
@@ -44,10 +62,26 @@ def plot_willans(sweeps: dict, ax=None, units_system: str = "US") -> dict:
 
 
 def plot_compare(result, units_system: str = "US") -> dict:
-    """The throttling-versus-cut-off study on one figure, period style: left, the
-    Willans line of each governing with and without condensation, the fitted intercept
-    and slope in its label; right, the steam per indicated horse-power-hour (or kWh)
-    against the load."""
+    """The throttling-versus-cut-off study on one figure, period style.
+
+    Left, the Willans line of each governing with and without condensation, the fitted
+    intercept and slope in its label; right, the steam per indicated horse-power-hour
+    (or kWh) against the load.  Only the points whose run found its load are drawn.
+
+    Parameters
+    ----------
+    result : CompareResult
+        The study (:func:`corliss.engine.compare.compare`): its ``points`` and
+        ``willans`` tables.
+    units_system : str, optional
+        ``"US"`` (hp, lb/h, lb per ihp-h) or ``"SI"`` (kW, kg/h, kg/kWh).
+
+    Returns
+    -------
+    dict
+        ``{"figure": Figure, "axes": (ax, ax2), "lines": {(variant, condensation):
+        Line2D}}``, the lines those of the Willans panel.
+    """
     import matplotlib.pyplot as plt
 
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=(13, 5.5))

@@ -45,26 +45,48 @@ _U_EDGE = 1e-12
 
 
 def quantize(x):
-    """``x`` rounded to :data:`SIGNIFICANT_DIGITS` significant digits (what the CSV
-    holds)."""
+    """Values rounded to :data:`SIGNIFICANT_DIGITS` significant digits (what the CSV holds).
+
+    Parameters
+    ----------
+    x : float or array_like
+        Values in any unit.
+
+    Returns
+    -------
+    ndarray
+        The rounded values as floats, shaped as ``x``.
+    """
     return np.array([float(f"{v:.{SIGNIFICANT_DIGITS}g}") for v in np.ravel(x)]).reshape(
         np.shape(x))
 
 
 def column_of(spec) -> str:
-    """The table's column for a varied key: its dotted name and its unit as the
-    package names columns (``valve_gear.lap_in``, ``run.speed_rpm``; ``_frac`` for a
-    dimensionless key, ``engine.clearance_frac``); characters other than letters,
-    digits and dots become ``_`` (``supply.pressure_psig``)."""
+    """The table's column for a varied key: its dotted name and its unit.
+
+    Named as the package names columns (``valve_gear.lap_in``, ``run.speed_rpm``;
+    ``_frac`` for a dimensionless key, ``engine.clearance_frac``); in the unit,
+    characters other than letters and digits become ``_`` (``supply.pressure_psig``).
+
+    Parameters
+    ----------
+    spec : KeyRange or KeyValues or KeyDistribution
+        The varied key (its ``key`` and ``unit``).
+
+    Returns
+    -------
+    str
+        The column's name.
+    """
     unit = re.sub(r"[^A-Za-z0-9]+", "_", spec.unit).strip("_") if spec.unit else "frac"
     return f"{spec.key}_{unit}"
 
 
 @dataclass(frozen=True)
 class Design:
-    """The runs of a study.
+    """The runs of a study (made by :func:`make_design`).
 
-    Attributes
+    Parameters
     ----------
     kind : str
         ``"grid"``, ``"lhs"`` or ``"monte_carlo"``.
@@ -72,8 +94,8 @@ class Design:
         The varied keys, each a :class:`~corliss.scene_keys.KeyRange`,
         :class:`~corliss.scene_keys.KeyValues` or
         :class:`~corliss.scene_keys.KeyDistribution`, in the order given.
-    values : ndarray
-        Runs x keys, each key's values in its spec's unit.
+    values : ndarray, shape (runs, keys)
+        Each key's values in its spec's unit, rounded by :func:`quantize`.
     seed : int or None
         The random designs' seed; None for a grid.
     """
@@ -94,11 +116,32 @@ class Design:
         return [column_of(s) for s in self.specs]
 
     def changes(self, i: int) -> dict:
-        """``{dotted key: scene value}`` of run ``i``: what it sets in the base scene."""
+        """What run ``i`` sets in the base scene.
+
+        Parameters
+        ----------
+        i : int
+            The run's number in the design, from 0.
+
+        Returns
+        -------
+        dict
+            ``{dotted key: scene value}``, each value a quantity string in its key's
+            unit (``"0.85 in"``), or a float for a dimensionless key, for
+            :func:`corliss.scene_keys.with_keys`.
+        """
         return {s.key: s.text(float(v)) for s, v in zip(self.specs, self.values[i])}
 
     def describe(self) -> list[dict]:
-        """Each varied key as plain data (for the meta file and the summary)."""
+        """Each varied key as plain data (for the meta file and the summary).
+
+        Returns
+        -------
+        list of dict
+            Per key, in order: ``key``, ``unit``, ``column`` and either ``kind =
+            "range"`` with ``low`` and ``high``, ``kind = "levels"`` with ``values``, or
+            the distribution's ``kind`` with its ``params`` (in the key's unit).
+        """
         out = []
         for s, col in zip(self.specs, self.columns):
             d = {"key": s.key, "unit": s.unit, "column": col}
@@ -135,15 +178,21 @@ def make_design(vary, *, grid: bool = False, levels: int = 3, lhs: int | None = 
     vary : sequence of str
         ``KEY=LOW:HIGH``, ``KEY=a,b,c`` (grid only) or ``KEY=normal(MEAN,SD)UNIT`` and
         ``KEY=triangular(LOW,MODE,HIGH)UNIT`` (random designs only), one per key.
-    grid : bool
+    grid : bool, optional
         The full factorial design.
-    levels : int
+    levels : int, optional
         Levels of every ``LOW:HIGH`` key of a grid [-], ends included (2 or more).
     lhs, monte_carlo : int, optional
         Runs of a Latin hypercube or of a Monte Carlo design [-].
     seed : int, optional
         Seed of the random designs (default 0: reproducible; None draws a fresh one,
         recorded in the design).
+
+    Returns
+    -------
+    Design
+        The design: its kind, the keys' specs, the runs' values (rounded to
+        :data:`SIGNIFICANT_DIGITS`) and the seed (None for a grid).
 
     Raises
     ------

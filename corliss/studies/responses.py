@@ -53,8 +53,23 @@ SKIN_KEYS = ("wall_surface_swing_{end}_K", "wall_surface_mean_{end}_K",
 
 
 def flatten(summary: dict, prefix: str = "") -> dict:
-    """The summary's numbers by dotted key (nested tables joined with dots; text,
-    lists and flags left out; a null number kept as None)."""
+    """The summary's numbers by dotted key.
+
+    Nested tables are joined with dots; text, lists and flags are left out; a null
+    number is kept as None; a numpy scalar becomes a Python number.
+
+    Parameters
+    ----------
+    summary : dict
+        A run's summary (nested dicts).
+    prefix : str, optional
+        Prepended to every key (the dotted path of ``summary`` in its parent).
+
+    Returns
+    -------
+    dict of str to (int, float or None)
+        ``{dotted key: number}``, in the summary's order.
+    """
     out = {}
     for k, v in summary.items():
         if isinstance(v, dict):
@@ -73,6 +88,11 @@ def response_keys(scene) -> tuple[str, ...]:
     ----------
     scene : Scene
         The study's base scene (run steady).
+
+    Returns
+    -------
+    tuple of str
+        The dotted summary keys whose values are numbers, without repeats.
     """
     run = scene.run
     keys = list(BASE_KEYS)
@@ -108,8 +128,20 @@ def response_keys(scene) -> tuple[str, ...]:
 
 
 def check_responses(responses, scene) -> tuple[str, ...]:
-    """``responses`` (default :data:`DEFAULT_RESPONSES`) if every one is a response of
-    ``scene``'s steady runs.
+    """The responses a study records, checked against the scene's steady summary.
+
+    Parameters
+    ----------
+    responses : sequence of str or str or None
+        Dotted summary keys; None or empty for :data:`DEFAULT_RESPONSES` (those of
+        them the scene gives).
+    scene : Scene
+        The study's base scene, made steady.
+
+    Returns
+    -------
+    tuple of str
+        The responses, in the order given, without repeats.
 
     Raises
     ------
@@ -132,7 +164,18 @@ def check_responses(responses, scene) -> tuple[str, ...]:
 
 
 def response_value(value) -> float:
-    """A response as a float (a null, such as a water rate with no power, as NaN)."""
+    """A response as a float.
+
+    Parameters
+    ----------
+    value : float or int or None
+        A number of a flattened summary.
+
+    Returns
+    -------
+    float
+        ``value`` as a float; NaN for a null (such as a water rate with no power).
+    """
     if value is None:
         return math.nan
     return float(value)

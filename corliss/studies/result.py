@@ -27,10 +27,17 @@ _exporter = None
 
 
 def register_study_exporter(exporter) -> None:
-    """Register the study's export layer: an object with ``write(result, out_dir,
-    plots, parquet)``, ``to_csv(result, path, units_system)`` and ``plot(result, ax,
-    units_system)``
-    (:mod:`corliss.study_output` registers itself when imported)."""
+    """Register the study's export layer, to which the export methods hand the result.
+
+    :mod:`corliss.study_output` registers itself when imported (the ``corliss``
+    package imports it), so the studies package need not import the export layer.
+
+    Parameters
+    ----------
+    exporter : object
+        An object with ``write(result, out_dir, plots, parquet)``,
+        ``to_csv(result, path, units_system)`` and ``plot(result, ax, units_system)``.
+    """
     global _exporter
     _exporter = exporter
 
@@ -42,7 +49,22 @@ def _export():
 
 
 def column_unit(column: str, varied: list[dict]) -> str:
-    """The unit of a study table's column (for its meta file and axes)."""
+    """The unit of a study table's column (for its meta file and axes).
+
+    Parameters
+    ----------
+    column : str
+        The column's name.
+    varied : list of dict
+        The study's varied keys (``column`` and ``unit`` of each).
+
+    Returns
+    -------
+    str
+        A varied key's unit as given (``"-"`` for a dimensionless one); for
+        ``run_id``, ``status`` and ``error`` a description; for a response the unit
+        its name ends in (:func:`corliss.columns.unit_of`), else ``"-"``.
+    """
     for v in varied:
         if v["column"] == column:
             return v["unit"] or "-"
@@ -60,8 +82,24 @@ def column_unit(column: str, varied: list[dict]) -> str:
 class StudyResult(Result):
     """Steady runs of one base scene with some of its keys changed, a row a run.
 
-    Attributes
+    Made by :func:`corliss.studies.runner.study`.  Its one table, ``points`` (also
+    held as ``timeseries`` and ``cycles``), has ``run_id``, one column per varied key
+    in its unit (``valve_gear.lap_in``), one per response in SI as the summary names
+    it (``indicated_power_W``, ``events.head.cutoff_frac``), ``status`` (``ok`` or
+    ``failed``) and ``error`` (why a run stopped; its responses are NaN).
+
+    Parameters
     ----------
+    scene : Scene
+        The base scene.
+    property_tier : str
+        The steam-property tier of the runs (``heos``, ``table``, ``perfect``).
+    timeseries, cycles : pandas.DataFrame
+        The study's table, both (a study has no time series of its own).
+    rhs_evaluations : int
+        Evaluations of the model's right-hand side over every run [-].
+    wall_time_s : float
+        Wall time of the study [s], checks and set-up included.
     design : str
         ``"grid"``, ``"lhs"`` or ``"monte_carlo"``.
     varied : list of dict
@@ -81,13 +119,6 @@ class StudyResult(Result):
         Processes (local) or Dask workers' threads that ran them [-].
     scheduler : str or None
         The Dask scheduler's address, or None for local processes.
-
-    Tables
-    ------
-    ``points``: ``run_id``, one column per varied key in its unit
-    (``valve_gear.lap_in``), one per response in SI as the summary names it
-    (``indicated_power_W``, ``events.head.cutoff_frac``), ``status`` (``ok`` or
-    ``failed``) and ``error`` (why a run stopped; its responses are NaN).
     """
 
     kind: ClassVar[str] = "study"
@@ -107,7 +138,7 @@ class StudyResult(Result):
 
     @property
     def points(self) -> pd.DataFrame:
-        """The study's table (see the class's tables)."""
+        """The study's table, a row a run (its columns in the class docstring)."""
         return self.cycles.reset_index(drop=True)
 
     def scene_data(self, row) -> dict:
@@ -118,12 +149,27 @@ class StudyResult(Result):
         row : int or Series or dict
             A ``run_id``, or a row of the table (from the result, or read back from
             its CSV or Parquet file).
+
+        Returns
+        -------
+        dict
+            The base scene's tables with the row's varied keys set.
         """
         return scene_data_of(self.base_data, self.varied, self._row(row))
 
     def scene_of(self, row):
-        """The scene of one run, loaded and checked: the scene that was run, with the
-        study's fidelity.  ``row`` as for :meth:`scene_data`."""
+        """The scene of one run, loaded and checked: the scene that was run.
+
+        Parameters
+        ----------
+        row : int or pandas.Series or dict
+            A ``run_id``, or a row of the table (as for :meth:`scene_data`).
+
+        Returns
+        -------
+        Scene
+            The run's scene, at the study's fidelity.
+        """
         from corliss.scene import scene_from_dict  # noqa: PLC0415  (same layer)
         sc = scene_from_dict(self.scene_data(row), name=self.scene.name)
         return sc.with_fidelity(self.fidelity) if self.fidelity else sc
@@ -154,39 +200,116 @@ class StudyResult(Result):
 
     def to_pandas(self, table: str | None = None, units_system: str | None = None
                   ) -> pd.DataFrame:
-        """The table as a DataFrame: as the study made it, or with ``units_system``
-        (``"US"`` or ``"SI"``) its responses whose names end in a unit converted and
-        renamed (``indicated_power_W`` to ``indicated_power_hp``); the varied keys
+        """The table as a DataFrame, as the study made it or converted.
+
+        With ``units_system`` the responses whose names end in a unit are converted
+        and renamed (``indicated_power_W`` to ``indicated_power_hp``); the varied keys
         stay in the units they were given (a row's scene is rebuilt from them), and a
-        response without a unit in its name (``fluctuation_coefficient_c``) as it is."""
+        response without a unit in its name (``fluctuation_coefficient_c``) as it is.
+
+        Parameters
+        ----------
+        table : str, optional
+            ``"points"``, the study's one table (the default).
+        units_system : str, optional
+            ``"US"`` or ``"SI"``; None keeps the table as made.
+
+        Returns
+        -------
+        pandas.DataFrame
+            A copy of the table.
+        """
         return converted(self.table(table), self.responses, units_system,
                          self.scene.supply.barometer_Pa)[0]
 
     def to_csv(self, path: str | Path, table: str | None = None,
                units_system: str | None = None) -> Path:
-        """Write the table as CSV with its ``.meta.json`` (both or neither); with
-        ``units_system`` its responses converted as in :meth:`to_pandas`."""
+        """Write the table as CSV with its ``.meta.json`` (both or neither).
+
+        Parameters
+        ----------
+        path : str or Path
+            The CSV file; the meta file is written beside it (``NAME.meta.json`` for
+            ``NAME.csv``).
+        table : str, optional
+            Ignored: a study has one table, ``points``.
+        units_system : str, optional
+            ``"US"`` or ``"SI"`` to convert the responses as :meth:`to_pandas` does;
+            None writes the table as made.
+
+        Returns
+        -------
+        Path
+            ``path``.
+        """
         return _export().to_csv(self, path, units_system)
 
     def write(self, out_dir: str | Path, *, plots: bool = True,
               parquet: bool | None = None) -> dict[str, Path]:
-        """Write the study into ``out_dir``: ``<scene>.study.csv`` with its meta file,
-        ``<scene>.study.parquet`` (with pyarrow; ``parquet=None`` writes it when
-        pyarrow is installed, ``True`` insists), the base scene
-        (``<scene>.study.base.toml``), the summary as JSON
-        and (``plots``) the figure; all together or none."""
+        """Write the study's files into a directory, all together or none.
+
+        ``<scene>.study.csv`` with its meta file, ``<scene>.study.parquet``, the base
+        scene (``<scene>.study.base.toml``), the summary as JSON and the figure.
+
+        Parameters
+        ----------
+        out_dir : str or Path
+            The directory (made if missing).
+        plots : bool, optional
+            Whether to draw the figure (``<scene>.study.png``).
+        parquet : bool or None, optional
+            Whether to write the Parquet file: None writes it when pyarrow is
+            installed, True insists (an InputError without pyarrow).
+
+        Returns
+        -------
+        dict of str to Path
+            ``{kind: path}`` (see :func:`corliss.study_output.write`).
+        """
         return _export().write(self, out_dir, plots, parquet)
 
     def plot(self, kind: str | None = None, ax=None, units_system: str | None = None) -> dict:
-        """Each response against each varied key, as scatter plots (a grid of axes;
-        ``ax`` is ignored)."""
+        """Each response against each varied key, as scatter plots.
+
+        Parameters
+        ----------
+        kind : str, optional
+            Ignored: a study has one figure, ``"study"``.
+        ax : matplotlib.axes.Axes, optional
+            Ignored: the figure is a grid of axes of its own.
+        units_system : str, optional
+            ``"US"`` or ``"SI"`` for the responses' axes; default the scene's.
+
+        Returns
+        -------
+        dict
+            ``{"figure": fig, "axes": axes}`` (:func:`corliss.plot.plot_study`).
+        """
         return _export().plot(self, ax, units_system)
 
 
 def converted(frame: pd.DataFrame, responses, units_system: str | None,
               barometer_Pa: float) -> tuple[pd.DataFrame, dict]:
-    """A study's table with its responses in ``units_system`` (None: as made) and the
-    columns that changed, ``{new name: its unit}``."""
+    """A study's table with its responses in a system of units.
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        The study's table.
+    responses : sequence of str
+        Its response columns (only these are converted).
+    units_system : str or None
+        ``"US"`` or ``"SI"``; None returns the table as made.
+    barometer_Pa : float
+        Barometric pressure [Pa], for gauge pressures.
+
+    Returns
+    -------
+    frame : pandas.DataFrame
+        A copy, each response whose name ends in a unit converted and renamed.
+    changed : dict of str to str
+        ``{new column name: its unit}`` of the columns converted.
+    """
     out = frame.copy()
     if units_system is None:
         return out, {}
@@ -203,8 +326,10 @@ def converted(frame: pd.DataFrame, responses, units_system: str | None,
 
 
 def scene_data_of(base_data: dict, varied: list[dict], row: dict) -> dict:
-    """A study row's scene as tables: the base scene with the row's varied keys set
-    (``with_keys(base, {key: value in its unit})``).
+    """A study row's scene as tables: the base scene with the row's varied keys set.
+
+    That is ``with_keys(base, {key: value in its unit})``
+    (:func:`corliss.scene_keys.with_keys`).
 
     Parameters
     ----------
@@ -215,6 +340,12 @@ def scene_data_of(base_data: dict, varied: list[dict], row: dict) -> dict:
         The meta file's ``varied``: ``key``, ``unit`` and ``column`` of each key.
     row : dict
         A row of the study's table, by column.
+
+    Returns
+    -------
+    dict
+        The base scene's tables with the row's keys set (a new dict; what
+        :func:`corliss.scene_from_dict` loads).
     """
     changes = {v["key"]: KeyValue(float(row[v["column"]]), v["unit"]).text()
                for v in varied}

@@ -88,9 +88,14 @@ def run_chunk(base: dict, name: str, fidelity: str | None, responses: tuple,
 
     Returns
     -------
-    (rows, rhs_evaluations, property_tier)
-        ``rows``: ``(run_id, status, error, *responses)`` per run; the evaluations of
-        the right-hand side over the chunk [-]; the property tier of its runs.
+    rows : list of tuple
+        ``(run_id, status, error, *responses)`` per run: status ``"ok"`` or
+        ``"failed"``, the error's type and message (empty when none) and each
+        response as a float (NaN for a failed run).
+    rhs_evaluations : int
+        Evaluations of the right-hand side over the chunk [-].
+    property_tier : str or None
+        The property tier of its runs (None when every run failed).
     """
     rows, nfev, tier = [], 0, None
     for run_id, vals in zip(run_ids, values):
@@ -181,8 +186,21 @@ def _run_local(args, chunks, jobs, progress, total):
 
 
 def dask_client(scheduler):
-    """A :class:`distributed.Client` for ``scheduler`` (an address, or a client, which
-    is returned as it is) and whether the caller owns it (must close it).
+    """A Dask client for a scheduler, and whether the caller owns it.
+
+    Parameters
+    ----------
+    scheduler : str or distributed.Client
+        A scheduler's address (``tcp://host:8786``), or a client, which is returned
+        as it is.
+
+    Returns
+    -------
+    client : distributed.Client
+        Connected to the scheduler.
+    own : bool
+        True when the client was made here (the caller must close it), False for a
+        client passed in.
 
     Raises
     ------
@@ -237,13 +255,13 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
         The base scene: a loaded scene (its tables are varied), its tables, a scene
         file or a bundled scene's name (default: the bundled default scene).  A
         transient scene runs steady at its speed.
-    vary : sequence of str
+    vary : sequence of str, optional
         One option per key: ``KEY=LOW:HIGH`` (in one unit, ``valve_gear.lap=0.8:1.2in``),
         for a grid also ``KEY=a,b,c``, for the random designs also
         ``KEY=normal(MEAN,SD)UNIT`` and ``KEY=triangular(LOW,MODE,HIGH)UNIT``.
-    grid : bool
+    grid : bool, optional
         Full factorial design, ``levels`` values of every ``LOW:HIGH`` key.
-    levels : int
+    levels : int, optional
         Levels of a grid's ranges [-] (ends included).
     lhs, monte_carlo : int, optional
         Runs of a Latin hypercube, or of a Monte Carlo design [-] (exactly one of
@@ -268,6 +286,8 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
     Returns
     -------
     StudyResult
+        The table of the runs, a row a run (a failed run's row has its error and NaN
+        responses), with the design and the base scene to rebuild any row's scene.
 
     Raises
     ------
