@@ -633,10 +633,9 @@ def cmd_study(args) -> int:
 
     Returns
     -------
-    int or None
-        The exit status: 0 with ``--json``; None (exit status 0) after the printed
-        account (a user's mistake raises :class:`~corliss.errors.InputError`, which
-        :func:`main` turns into 2).
+    int
+        The exit status, 0 (a user's mistake raises
+        :class:`~corliss.errors.InputError`, which :func:`main` turns into 2).
     """
     from corliss.studies import study
     scene = _load(args.scene)
@@ -658,6 +657,7 @@ def cmd_study(args) -> int:
     print(f"  {s['runs']} runs on {where} in {s['wall_time_s']:.1f} s "
           f"({s['runs_per_s']:.1f} runs/s)")
     _print_files(files)
+    return 0
 def cmd_fit(args) -> int:
     """``corliss fit``: calibrate scene keys to a measured card.
 
