@@ -365,8 +365,9 @@ class RadialGear(LappedValve):
         self.spec = spec
         self.setting_name = SETTING_NAMES[spec.kind]
         self._spline = None
+        self._zero = None
         if spec.motion == "exact":
-            self._spline = _tabulate(spec)
+            self._spline, self._zero = _tabulate(spec)
 
     def travel(self, theta):
         if self._spline is not None:
@@ -378,6 +379,30 @@ class RadialGear(LappedValve):
         C, S = self.spec.coefficients()
         th = np.asarray(theta, dtype=float)
         return C * np.cos(th) + S * np.sin(th)
+
+    def joints(self, theta: float) -> "WalschaertsJoints":
+        """The exact Walschaerts gear's joints at crank angle ``theta``, from the solve
+        whose valve positions, tabulated at 1/2 deg and splined, are :meth:`travel`.
+
+        Parameters
+        ----------
+        theta : float
+            Crank angle from head-end dead centre [rad].
+
+        Returns
+        -------
+        WalschaertsJoints
+            The joints [m] and the valve's displacement [m].
+
+        Raises
+        ------
+        ValueError
+            For a gear not solved as a linkage (Zeuner's form, or another kind).
+        """
+        if self.spec.kind != "walschaerts" or self._spline is None:
+            raise ValueError("joints are solved for the exact Walschaerts gear only "
+                             f"(this is {self.spec.kind}, motion {self.spec.motion})")
+        return walschaerts_joints(self.spec, theta, self._zero)
 
 
 # --------------------------------------------------------------------------- exact linkages
@@ -396,9 +421,10 @@ def _tabulate(spec):
         raise InputError("valve_gear.motion", "exact",
                          "a gear whose linkage can be assembled at every crank angle: with "
                          "these dimensions a rod or link is too short to reach")
-    x = raw - 0.5 * (raw[0] + raw[N_TABLE // 2])
+    zero = 0.5 * (raw[0] + raw[N_TABLE // 2])
+    x = raw - zero
     x[-1] = x[0]
-    return CubicSpline(th, x, bc_type="periodic")
+    return CubicSpline(th, x, bc_type="periodic"), float(zero)
 
 
 def exact_valve_position(spec, theta: np.ndarray) -> np.ndarray:
@@ -561,6 +587,13 @@ def walschaerts_layout(spec: WalschaertsSpec) -> dict:
 
 
 def _walschaerts(spec: WalschaertsSpec, th):
+    pts = _walschaerts_points(spec, th)
+    return -pts["valve_pin"][0] if spec.admission == "outside" else pts["valve_pin"][0]
+
+
+def _walschaerts_points(spec: WalschaertsSpec, th) -> dict:
+    """Every joint of the exact Walschaerts gear at crank angles ``th`` (arrays of shape
+    (2, n) [m]; see the module doc)."""
     R, b, e, er = spec.crank_m, spec.connecting_rod_m, spec.return_crank_m, spec.eccentric_rod_m
     k, rho, a, ell, ul = (spec.link_foot_m, spec.radius_rod_m, spec.lever_valve_m,
                           spec.lever_crosshead_m, spec.union_link_m)
@@ -576,10 +609,14 @@ def _walschaerts(spec: WalschaertsSpec, th):
     XH = np.array([Cx + lay["arm"], np.full(n, lay["yL"])])
     F = _circles(np.repeat(T[:, None], n, axis=1), k, Q, er, np.repeat(F0[:, None], n, axis=1))
     beta = np.arctan2(F[0] - T[0], -(F[1] - T[1]))
+
+    def on_link(s):
+        px, py = rho * (1.0 - math.cos(s / rho)), rho * math.sin(s / rho)
+        return np.array([T[0] + np.cos(beta) * px - np.sin(beta) * py,
+                         T[1] + np.sin(beta) * px + np.cos(beta) * py])
+
     s = (1.0 if outside else -1.0) * spec.die_m
-    px, py = rho * (1.0 - math.cos(s / rho)), rho * math.sin(s / rho)
-    Dd = np.array([T[0] + np.cos(beta) * px - np.sin(beta) * py,
-                   T[1] + np.sin(beta) * px + np.cos(beta) * py])
+    Dd = on_link(s)
     # the lever: unknowns the valve pin's x and the lever's angle gamma from the vertical
     if outside:
         da, dl = -a, -(a + ell)            # A = V + da w, L = V + dl w
@@ -599,7 +636,99 @@ def _walschaerts(spec: WalschaertsSpec, th):
     g = np.arcsin(np.clip((ax0 - lx0) / ell, -0.99, 0.99))
     vx = ax0 - da * np.sin(g)
     vx, g = newton2(residual, vx, g, 1e-7 * rho, 1e-8, 1e-13 * rho, 1e-13)
-    return -vx if outside else vx
+    w = np.array([np.sin(g), np.cos(g)])
+    V = np.array([vx, np.full(n, yv)])
+    umax = spec.max_die_m
+    return {"axle": np.zeros((2, n)), "crank_pin": np.array([Bx, By]),
+            "crosshead": np.array([Cx, np.zeros(n)]), "crosshead_arm": XH,
+            "return_crank_pin": Q, "link_foot": F, "trunnion": np.repeat(T[:, None], n, axis=1),
+            "link_top": on_link(umax), "link_bottom": on_link(-umax),
+            "link_centre": on_link(0.0) + rho * np.array([np.cos(beta), np.sin(beta)]),
+            "die": Dd, "radius_rod_pin": V + da * w, "valve_pin": V, "union_pin": V + dl * w}
+
+
+@dataclass(frozen=True)
+class WalschaertsJoints:
+    """The joints of the exact Walschaerts gear at one crank angle (all SI; see the
+    module doc): the axle at the origin, X along the line of stroke towards the
+    cylinder, Y up; each point an (x, y) pair [m].
+
+    Parameters
+    ----------
+    axle, crank_pin, crosshead : tuple of float
+        The driving axle, the main crank's pin and the crosshead [m].
+    crosshead_arm : tuple of float
+        The union link's pin on the crosshead's arm [m].
+    return_crank_pin, link_foot, trunnion : tuple of float
+        The return crank's pin, the eccentric rod's pin at the link's foot and the
+        link's fixed trunnion [m].
+    link_top, link_bottom, link_centre : tuple of float
+        The link's ends (the die's travel at full gear either way) and the centre of its
+        arc [m].
+    die : tuple of float
+        The die in the link, where the radius rod takes its motion [m].
+    radius_rod_pin, valve_pin, union_pin : tuple of float
+        The combination lever's pins: the radius rod's, the valve stem's and the union
+        link's [m].
+    rods_m : dict
+        Each rod's or arm's name and its length from the spec [m], with the pair of
+        joints it joins: ``{name: (length, joint, joint)}``.
+    valve_m : float
+        The valve's displacement in the sense that opens the head steam port [m] (the
+        valve pin's X, signed by admission, from its mean at the dead centres).
+    """
+
+    axle: tuple[float, float]
+    crank_pin: tuple[float, float]
+    crosshead: tuple[float, float]
+    crosshead_arm: tuple[float, float]
+    return_crank_pin: tuple[float, float]
+    link_foot: tuple[float, float]
+    trunnion: tuple[float, float]
+    link_top: tuple[float, float]
+    link_bottom: tuple[float, float]
+    link_centre: tuple[float, float]
+    die: tuple[float, float]
+    radius_rod_pin: tuple[float, float]
+    valve_pin: tuple[float, float]
+    union_pin: tuple[float, float]
+    rods_m: dict
+    valve_m: float
+
+
+def walschaerts_joints(spec: WalschaertsSpec, theta: float, zero_m: float) -> WalschaertsJoints:
+    """The exact Walschaerts gear's joints at crank angle ``theta``, from the solve that
+    gives its valve travel.
+
+    Parameters
+    ----------
+    spec : WalschaertsSpec
+        The gear.
+    theta : float
+        Crank angle from head-end dead centre [rad].
+    zero_m : float
+        The valve's zero, the mean of :func:`exact_valve_position` at the two dead
+        centres [m].
+
+    Returns
+    -------
+    WalschaertsJoints
+        The joints [m] and the valve's displacement [m].
+    """
+    pts = _walschaerts_points(spec, np.array([float(theta)]))
+    p = {name: (float(v[0, 0]), float(v[1, 0])) for name, v in pts.items()}
+    vx = p["valve_pin"][0]
+    x = (-vx if spec.admission == "outside" else vx) - zero_m
+    rods = {"main crank": (spec.crank_m, "axle", "crank_pin"),
+            "connecting rod": (spec.connecting_rod_m, "crank_pin", "crosshead"),
+            "return crank": (spec.return_crank_m, "axle", "return_crank_pin"),
+            "eccentric rod": (spec.eccentric_rod_m, "return_crank_pin", "link_foot"),
+            "link foot": (spec.link_foot_m, "trunnion", "link_foot"),
+            "radius rod": (spec.radius_rod_m, "die", "radius_rod_pin"),
+            "lever, valve": (spec.lever_valve_m, "radius_rod_pin", "valve_pin"),
+            "lever, crosshead": (spec.lever_crosshead_m, "radius_rod_pin", "union_pin"),
+            "union link": (spec.union_link_m, "union_pin", "crosshead_arm")}
+    return WalschaertsJoints(**p, rods_m=rods, valve_m=x)
 
 
 # --------------------------------------------------------------------------- scene table
