@@ -827,15 +827,22 @@ def _flatten(fig, moving) -> None:
 
 
 def _background_artist(rgba):
-    """An artist that puts the figure's pixels ``rgba`` back as they were, unresampled."""
+    """An artist that puts the figure's pixels ``rgba`` back as they were, unresampled
+    when the figure is drawn at the dpi it was captured at (resized, if a caller saves
+    it at another)."""
     from matplotlib.artist import Artist
 
     class _Background(Artist):
         zorder = -10
 
         def draw(self, renderer):
+            img = rgba
+            w, h = int(renderer.width), int(renderer.height)
+            if (h, w) != img.shape[:2]:
+                from PIL import Image
+                img = np.asarray(Image.fromarray(rgba).resize((w, h)))
             gc = renderer.new_gc()
-            renderer.draw_image(gc, 0, 0, rgba[::-1])
+            renderer.draw_image(gc, 0, 0, img[::-1])
             gc.restore()
 
     return _Background()
