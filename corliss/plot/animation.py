@@ -411,27 +411,47 @@ class _Walschaerts(_Linkage):
 
 
 class _Travel(_Linkage):
-    """A gear drawn from its travel alone: the crank and the valve's stem."""
+    """A gear drawn from its travel alone: the crank, the virtual eccentric (the travel's
+    first harmonic, A sin(theta + phi), drawn as the slide valve's eccentric is) and a
+    slotted yoke on the valve's spindle standing at the travel itself."""
 
     def __init__(self, ax, gear, scale, stroke_m):
         super().__init__(ax, gear, scale, stroke_m)
-        crank_r = 0.5 * (stroke_m or 0.1) * scale
+        th = np.linspace(0.0, 2 * math.pi, 720, endpoint=False)
+        x = gear.travel(th)
+        a1, b1 = 2 * np.mean(x * np.cos(th)), 2 * np.mean(x * np.sin(th))
+        self.amp, self.phi = math.hypot(a1, b1), math.atan2(a1, b1)
+        r = self.amp * scale
+        crank_r = 0.5 * (stroke_m or 0.0) * scale
+        big = max(r, crank_r)
+        self._circle((0, 0), self.amp, color=_FIXED, lw=0.6, ls=":")
         ax.plot([0], [0], "o", color=_FIXED, ms=5)
-        self.crank = _line(ax, lw=3.0, moving=self.moving)
-        self.stem = _line(ax, lw=2.4, moving=self.moving)
-        self.crank_r = crank_r
-        ax.set_xlim(-1.3 * crank_r, 4 * crank_r)
-        ax.set_ylim(-1.3 * crank_r, 1.3 * crank_r)
-        ax.text(0.5, 0.92, f"{gear.name} ({gear.spec.kind}, {gear.spec.motion}): linkage not "
-                "drawn, valve from its travel", transform=ax.transAxes, ha="center",
-                fontsize=7, color="0.4")
+        ax.axhline(0.0, color="0.85", lw=0.6, zorder=0)
+        mv = self.moving
+        self.crank = _line(ax, lw=3.0, moving=mv)
+        self.ecc = _line(ax, color=_FIXED, lw=2.0, moving=mv)
+        self.yoke = _line(ax, lw=2.0, moving=mv)
+        self.stem = _line(ax, lw=2.4, moving=mv)
+        ax.set_xlim(-1.3 * big, 1.3 * big + 4 * r)
+        ax.set_ylim(-1.3 * big, 1.3 * big)
+        what = ", ".join(str(v) for v in (getattr(gear.spec, "kind", None),
+                                          getattr(gear.spec, "motion", None)) if v)
+        ax.text(0.5, 0.97, f"{gear.name}{f' ({what})' if what else ''}: its linkage not drawn; "
+                "the virtual eccentric, and the valve at the gear's travel", transform=ax.transAxes,
+                ha="center", va="top", fontsize=7, color="0.4")
 
     def update(self, theta):
+        sc = self.scale
         c = self._crank(math.pi - theta)
         if c is not None:
             _set(self.crank, (0, 0), c)
-        x = float(self.gear.travel(np.array([theta]))[0]) * self.scale
-        _set(self.stem, (2 * self.crank_r + x, 0.0), (3.5 * self.crank_r + x, 0.0))
+        ph = theta + self.phi
+        e = (self.amp * math.sin(ph) * sc, self.amp * math.cos(ph) * sc)
+        _set(self.ecc, (0, 0), e)
+        x = float(self.gear.travel(np.array([theta]))[0]) * sc
+        r = self.amp * sc
+        _set(self.yoke, (x, -1.1 * r), (x, 1.1 * r))
+        _set(self.stem, (x, 0.0), (x + 4 * r, 0.0))
         return None
 
 
