@@ -106,6 +106,38 @@ def test_the_drawn_valve_stands_where_the_gears_travel_puts_it(name, frames):
         matplotlib.pyplot.close(drawn["figure"])
 
 
+def _overlap(a, b):
+    return max(0.0, min(a[1], b[1]) - max(a[0], b[0]))
+
+
+@pytest.mark.parametrize("name", ["default", "hinkley-stephenson-link",
+                                  "walschaerts-locomotive"])
+def test_the_ports_drawn_open_as_the_gear_opens_them(name):
+    """Read off the picture: each steam port is open where the drawn valve leaves it
+    uncovered, to the space outside the valve or to its cavity; which of the two holds
+    steam is the admission's (a D valve outside, Walschaerts' piston valve inside).
+    Those openings are the gear's own port openings at the frame's crank angle."""
+    scene, gear = _gear(name)
+    drawn = animate_gear(gear, None, frames=36, stroke_m=scene.engine.stroke_m)
+    seat = drawn["seat_m"]
+    assert seat["inside"] == (name == "walschaerts-locomotive")
+    far = 10.0
+    try:
+        for i in range(0, 36, 5):
+            drawn["update"](i)
+            xy = drawn["artists"]["valve"].get_xy()[:8] / drawn["scale"]
+            o_l, c_l, c_r, o_r = xy[0, 0], xy[1, 0], xy[4, 0], xy[5, 0]
+            left, cavity, right = (-far, o_l), (c_l, c_r), (o_r, far)
+            steam_h, exh_h = ((cavity, left) if seat["inside"] else (left, cavity))
+            steam_c, exh_c = ((cavity, right) if seat["inside"] else (right, cavity))
+            seen = [_overlap(seat["head"], steam_h), _overlap(seat["head"], exh_h),
+                    _overlap(seat["crank"], steam_c), _overlap(seat["crank"], exh_c)]
+            want = gear.openings(np.array([drawn["angles_rad"][i]]))[:, 0]
+            assert seen == pytest.approx(list(want), abs=VALVE_TOL_m), i
+    finally:
+        matplotlib.pyplot.close(drawn["figure"])
+
+
 @pytest.mark.parametrize("name", ["default", "hinkley-stephenson-link",
                                   "walschaerts-locomotive", "corliss-trip-gear"])
 def test_every_drawn_rod_has_the_scenes_length(name):

@@ -682,7 +682,9 @@ def animate_gear(gear, result=None, *, frames: int = 72, stroke_m: float | None 
         them to the metre; the Corliss valves' ``valve_edges``, each (Line2D from the
         spindle to the working edge, spindle, the edge's angle at mid position [rad],
         +1 or -1 the sense it turns to open)), and ``rods``, which gives the rods drawn
-        in the frame last drawn, ``{name: (Line2D, the spec's length [m])}``.
+        in the frame last drawn, ``{name: (Line2D, the spec's length [m])}``; a lapped
+        valve's ``seat_m``, the edges of its steam ports (``head``, ``crank``: (from, to)
+        [m]) and whether it takes steam ``inside``.
     """
     import matplotlib.pyplot as plt
     from matplotlib.animation import FuncAnimation
@@ -813,7 +815,10 @@ def animate_gear(gear, result=None, *, frames: int = 72, stroke_m: float | None 
             "kind": kind, "axes": {"linkage": ax_link, "valve": ax_valve, "openings": ax_open,
                                    "card": ax_card},
             "artists": artists, "valve_rest": valve_rest, "valve_sense": valve_sense,
-            "length_unit": u, "scale": scale, "rods": lambda: dict(drawer.rods)}
+            "length_unit": u, "scale": scale, "rods": lambda: dict(drawer.rods),
+            "seat_m": None if lay is None else {
+                "head": (-lay["outer"], -lay["inner"]), "crank": (lay["inner"], lay["outer"]),
+                "inside": lay["inside"]}}
 
 
 def _flatten(fig, moving) -> None:
