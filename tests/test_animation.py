@@ -26,6 +26,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 
+import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 from PIL import Image  # noqa: E402
@@ -103,7 +104,7 @@ def test_the_drawn_valve_stands_where_the_gears_travel_puts_it(name, frames):
         # the travel is not trivially zero: the valve moves more than its lap
         assert np.ptp(gear.travel(drawn["angles_rad"])) > 2 * max(gear.spec.lap_m)
     finally:
-        matplotlib.pyplot.close(drawn["figure"])
+        plt.close(drawn["figure"])
 
 
 def _overlap(a, b):
@@ -135,7 +136,7 @@ def test_the_ports_drawn_open_as_the_gear_opens_them(name):
             want = gear.openings(np.array([drawn["angles_rad"][i]]))[:, 0]
             assert seen == pytest.approx(list(want), abs=VALVE_TOL_m), i
     finally:
-        matplotlib.pyplot.close(drawn["figure"])
+        plt.close(drawn["figure"])
 
 
 @pytest.mark.parametrize("name", ["default", "hinkley-stephenson-link",
@@ -158,7 +159,7 @@ def test_every_drawn_rod_has_the_scenes_length(name):
             for rod, (between, spec) in rod_lengths(joints).items():
                 assert between == pytest.approx(spec, rel=ROD_REL_TOL), (rod, i)
     finally:
-        matplotlib.pyplot.close(drawn["figure"])
+        plt.close(drawn["figure"])
 
 
 def test_the_corliss_valves_turn_through_the_gears_own_angles_with_the_trip():
@@ -193,7 +194,7 @@ def test_the_corliss_valves_turn_through_the_gears_own_angles_with_the_trip():
                     closing_seen += 1
                     assert laps[p] / radii[p] < own[p] < latched[p]
     finally:
-        matplotlib.pyplot.close(drawn["figure"])
+        plt.close(drawn["figure"])
     assert closing_seen >= 2          # the dash-pot's 0.04 s at 80 rpm is 19 deg: 3 frames
 
 
@@ -231,3 +232,21 @@ def test_a_failure_while_writing_leaves_the_folder_as_it_was(tmp_path, monkeypat
         cli.main(["animate", "default", "--out", str(tmp_path), "--frames", "4",
                   "--no-card", "--format", "html"])
     assert _snapshot(tmp_path) == before
+
+
+def test_the_gallery_example_builds_the_four_animations(monkeypatch):
+    """examples/plot_moving_gears.py, which the documentation's gallery executes, runs
+    with the API as it is and leaves one animation of each gear for the page."""
+    import runpy
+
+    from matplotlib.animation import FuncAnimation
+
+    example = Path(__file__).resolve().parent.parent / "examples" / "plot_moving_gears.py"
+    monkeypatch.setattr(plt, "show", lambda *a, **k: None)
+    found = runpy.run_path(str(example))
+    anims = [v for v in found.values() if isinstance(v, FuncAnimation)]
+    try:
+        assert len(anims) == 4
+        assert len({id(a._fig) for a in anims}) == 4
+    finally:
+        plt.close("all")

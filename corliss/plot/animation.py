@@ -330,8 +330,8 @@ class _Stephenson(_Linkage):
         ax.set_xlim(-1.2 * max(r, crank_r), g + 3 * c)
         ax.set_ylim(-1.6 * max(c, crank_r), 1.6 * max(c, crank_r))
         self.g, self.c = g, c
-        ax.text(0.99, 0.03, "block drives the valve through a rocker", transform=ax.transAxes,
-                ha="right", fontsize=7, color="0.4")
+        ax.text(0.99, 0.03, "the valve moves opposite the block (through a rocker)",
+                transform=ax.transAxes, ha="right", fontsize=7, color="0.4")
 
     def update(self, theta):
         j = self.gear.joints(theta)
@@ -481,7 +481,7 @@ class _Corliss(_Linkage):
         ax_shaft.set_xlim(-lim, lim)
         ax_shaft.set_ylim(-lim, lim)
         ax_shaft.set_aspect("equal")
-        ax_shaft.set_title("eccentric and hook rod", fontsize=8)
+        ax_shaft.set_title("crank, and the eccentric as felt at the hook", fontsize=8)
         self.studs = [_line(ax, lw=1.0, color="0.3", moving=self.moving) for _ in range(4)]
         self.vrods = [_line(ax, lw=1.4, moving=self.moving) for _ in range(4)]
         self.arms = [_line(ax, lw=2.0, moving=self.moving) for _ in range(4)]
