@@ -341,6 +341,23 @@ def cmd_gear(args) -> int:
 
 
 def cmd_animate(args) -> int:
+    """``corliss animate``: the scene's gear in motion as ``<scene>.animation.gif`` (or
+    ``.html``): its linkage from the exact solve (a Zeuner-form Stephenson link or
+    Walschaerts gear, or a harmonic Corliss gear, solved as its linkage), the valve over
+    its ports, the port openings and, unless ``--no-card``, the card of a steady run
+    traced as the crank turns.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of the subcommand (:func:`build_parser`).
+
+    Returns
+    -------
+    int
+        The exit status: 0 (a user's mistake raises
+        :class:`~corliss.errors.InputError`, which :func:`main` turns into 2).
+    """
     if not 2 <= args.frames <= 720:
         raise InputError("--frames", args.frames, "a whole number of frames from 2 to 720")
     scene = _load(args.scene, args.units)
