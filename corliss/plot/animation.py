@@ -7,7 +7,8 @@ exactly gives its joints at a crank angle (``gear.joints(theta)``: the plain sli
 valve's eccentric and rod, the exact Stephenson link, the exact Walschaerts gear, the
 Corliss wrist plate with its four valves and trip), the same solve its valve travel and
 port openings come from; any other gear with one lapped valve is drawn from its travel
-alone (the crank and the valve over its ports, the linkage not drawn).  The valve
+alone (the crank, its virtual eccentric and the valve over its ports, the linkage not
+drawn).  A gear of two valves (the double valves, the Porter-Allen gear) is not drawn.  The valve
 section is schematic in its proportions (bridges and exhaust port) but exact in its
 edges: the laps, the port widths and the valve's displacement are the gear's.
 
@@ -18,13 +19,12 @@ draws frame ``i``; :func:`write_animation` writes it as GIF (Pillow) or HTML
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
 
 from corliss import units
-import dataclasses
-
 from corliss.valves.corliss_gear import CorlissGear, CorlissSpec
 from corliss.valves.link_motion import LinkMotion, LinkMotionSpec
 from corliss.valves.radial_gear import RadialGear, WalschaertsSpec
@@ -485,7 +485,7 @@ class _Corliss(_Linkage):
         self.studs = [_line(ax, lw=1.0, color="0.3", moving=self.moving) for _ in range(4)]
         self.vrods = [_line(ax, lw=1.4, moving=self.moving) for _ in range(4)]
         self.arms = [_line(ax, lw=2.0, moving=self.moving) for _ in range(4)]
-        self.edges, self.ports, self.text = [], [], []
+        self.edges, self.text = [], []
         self.radii = (s.steam.valve_radius_m, s.exhaust.valve_radius_m) * 2
         laps = (s.steam_lap_m[0], s.exhaust_lap_m[0], s.steam_lap_m[1], s.exhaust_lap_m[1])
         widths = (s.steam_port_width_m, s.exhaust_port_width_m) * 2
@@ -509,7 +509,6 @@ class _Corliss(_Linkage):
                     [q[1] + 0.9 * rv * math.sin(a0), q[1] + 1.3 * rv * math.sin(a0)],
                     color=col, lw=0.8)
             self.edges.append(_line(ax, lw=2.2, color=col, moving=self.moving))
-            self.ports.append(q)
             self.text.append(self._mv(ax.text(q[0], q[1] + (2.1 if p in (0, 2) else -2.4) * rv,
                                               "", ha="center", fontsize=7, color=_TRIP)))
             ax.text(q[0], q[1] + (1.45 if p in (0, 2) else -1.75) * rv,
