@@ -649,7 +649,10 @@ def animate_gear(gear, result=None, *, frames: int = 72, stroke_m: float | None 
     :func:`linkage_kind`), the valve in section over its ports (a lapped valve; the
     Corliss valves are drawn on their spindles), the four port openings against crank
     angle with a marker at the crank's angle, and, with a steady ``result``, the
-    indicator card of both ends traced as the crank turns.
+    indicator card of both ends traced as the crank turns.  What does not move is drawn
+    once, into an image behind the moving parts, at the figure's ``dpi``: frames saved at
+    that dpi are exact (at another, the image is resized), and ``bbox_inches="tight"``
+    would misplace it.
 
     Parameters
     ----------
