@@ -35,6 +35,7 @@ import corliss  # noqa: E402
 from corliss import cli  # noqa: E402
 from corliss.engine.model import build_gear  # noqa: E402
 from corliss.plot.animation import animate_gear, exact_linkage_spec, rod_lengths  # noqa: E402
+from corliss.valves.radial_gear import RadialGear, SimpleRadialSpec  # noqa: E402
 
 SCENES = Path(__file__).resolve().parent.parent / "scenes"
 FOUR = {"default": "eccentric", "hinkley-stephenson-link": "stephenson",
@@ -90,12 +91,12 @@ def _drawn_valve_m(drawn) -> float:
                                          ("joy-radial-gear", 30)])
 def test_the_drawn_valve_stands_where_the_gears_travel_puts_it(name, frames):
     """At several crank angles (100 frames: 3.6 deg apart, most between the exact gears'
-    table knots) the valve's outline is displaced by the gear's travel there.  The
-    Joy gear has no linkage drawing: it is drawn from its travel."""
+    table knots) the valve's outline is displaced by the gear's travel there; the Joy
+    gear too, as a fifth linkage."""
     scene, gear = _gear(name)
     drawn = animate_gear(gear, None, frames=frames, stroke_m=scene.engine.stroke_m)
     try:
-        assert drawn["kind"] == {**FOUR, "joy-radial-gear": "travel"}[name]
+        assert drawn["kind"] == {**FOUR, "joy-radial-gear": "radial"}[name]
         for i in (0, 7, frames // 3, frames // 2 + 1, frames - 5):
             drawn["update"](i)
             theta = drawn["angles_rad"][i]
@@ -139,19 +140,38 @@ def test_the_ports_drawn_open_as_the_gear_opens_them(name):
         plt.close(drawn["figure"])
 
 
-@pytest.mark.parametrize("name", ["default", "hinkley-stephenson-link",
-                                  "walschaerts-locomotive", "corliss-trip-gear"])
+def _marshall():
+    """Spangler's Problem 50 gear (r = 2 1/2 in, l1 = 23 1/8 in, valve rod pinned
+    16 5/8 in from the guided end, 60 in valve rod) with Problem 55's 18 1/2 in
+    reversing link, as tests/test_radial_gears.py builds it: no bundled scene has one."""
+    inch = 0.0254
+    spec = SimpleRadialSpec(kind="marshall", eccentricity_m=2.5 * inch, link_m=23.125 * inch,
+                            valve_arm_m=16.625 * inch, max_inclination_rad=math.atan(0.75),
+                            valve_rod_m=60 * inch, guide_radius_m=18.5 * inch,
+                            lap_m=(1.25 * inch,) * 2, exhaust_lap_m=(0.0, 0.0),
+                            port_width_m=6 * inch, port_length_m=10 * inch, motion="exact")
+    return RadialGear(spec), 0.3
+
+
+RODS_AT_LEAST = {"default": 1, "hinkley-stephenson-link": 2, "walschaerts-locomotive": 9,
+                 "corliss-trip-gear": 13, "joy-radial-gear": 9, "marshall": 5}
+
+
+@pytest.mark.parametrize("name", list(RODS_AT_LEAST))
 def test_every_drawn_rod_has_the_scenes_length(name):
     """A physics check that the picture is the linkage: the endpoints of each rod drawn
     are as far apart as the scene's rod is long, in every frame checked."""
-    scene, gear = _gear(name)
-    drawn = animate_gear(gear, None, frames=36, stroke_m=scene.engine.stroke_m)
+    if name == "marshall":
+        gear, stroke_m = _marshall()
+    else:
+        scene, gear = _gear(name)
+        stroke_m = scene.engine.stroke_m
+    drawn = animate_gear(gear, None, frames=36, stroke_m=stroke_m)
     try:
         for i in (0, 5, 13, 22, 31):
             joints = drawn["update"](i)
             rods = drawn["rods"]()
-            assert len(rods) >= {"default": 1, "hinkley-stephenson-link": 2,
-                                 "walschaerts-locomotive": 9, "corliss-trip-gear": 13}[name]
+            assert len(rods) >= RODS_AT_LEAST[name]
             for rod, (line, length_m) in rods.items():
                 x, y = line.get_xdata(), line.get_ydata()
                 drawn_m = math.hypot(x[1] - x[0], y[1] - y[0]) / drawn["scale"]

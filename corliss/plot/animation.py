@@ -4,8 +4,9 @@ crank turns.
 
 Every position drawn comes from the gear's own solve: a gear that solves its linkage
 exactly gives its joints at a crank angle (``gear.joints(theta)``: the plain slide
-valve's eccentric and rod, the exact Stephenson link, the exact Walschaerts gear, the
-Corliss wrist plate with its four valves and trip), the same solve its valve travel and
+valve's eccentric and rod, the exact Stephenson link, the exact radial gears
+(Walschaerts, Joy, Hackworth, Marshall, Angstrom), the Corliss wrist plate with its four
+valves and trip), the same solve its valve travel and
 port openings come from; any other gear with one lapped valve is drawn from its travel
 alone (the crank, its virtual eccentric and the valve over its ports, the linkage not
 drawn).  A gear of two valves (the double valves, the Porter-Allen gear) is not drawn.  The valve
@@ -27,7 +28,7 @@ import numpy as np
 from corliss import units
 from corliss.valves.corliss_gear import CorlissGear, CorlissSpec
 from corliss.valves.link_motion import LinkMotion, LinkMotionSpec
-from corliss.valves.radial_gear import RadialGear, WalschaertsSpec
+from corliss.valves.radial_gear import JoySpec, RadialGear, SimpleRadialSpec, WalschaertsSpec
 from corliss.valves.slide_valve import LappedValve, SlideValve
 
 #: Colours: the moving parts black, fixed parts grey, the steam edges and ports marked.
@@ -48,8 +49,9 @@ def linkage_kind(gear) -> str:
     -------
     str
         ``"eccentric"`` (a plain slide valve), ``"stephenson"`` (the exact Stephenson
-        link), ``"walschaerts"`` (the exact Walschaerts gear), ``"corliss"``, or
-        ``"travel"`` (a lapped valve drawn from its travel, the linkage not drawn).
+        link), ``"walschaerts"`` (the exact Walschaerts gear), ``"radial"`` (the exact
+        Hackworth, Marshall, Angstrom or Joy gear), ``"corliss"``, or ``"travel"`` (a
+        lapped valve drawn from its travel, the linkage not drawn).
 
     Raises
     ------
@@ -64,9 +66,8 @@ def linkage_kind(gear) -> str:
     if isinstance(gear, LinkMotion) and gear.spec.motion == "exact" \
             and gear.spec.kind.startswith("stephenson"):
         return "stephenson"
-    if isinstance(gear, RadialGear) and gear.spec.motion == "exact" \
-            and gear.spec.kind == "walschaerts":
-        return "walschaerts"
+    if isinstance(gear, RadialGear) and gear.spec.motion == "exact":
+        return "walschaerts" if gear.spec.kind == "walschaerts" else "radial"
     if isinstance(gear, LappedValve):
         return "travel"
     raise ValueError(f"the {gear.name} gear has no single valve to animate")
@@ -74,7 +75,7 @@ def linkage_kind(gear) -> str:
 
 def exact_linkage_spec(spec):
     """The spec of the gear solved as its linkage, so that it can be drawn: Zeuner's form
-    of a Stephenson link or a Walschaerts gear, or the harmonic Corliss gear, becomes
+    of a Stephenson link or a radial gear, or the harmonic Corliss gear, becomes
     ``motion = "exact"``; any other spec is returned as it is.
 
     Parameters
@@ -90,7 +91,7 @@ def exact_linkage_spec(spec):
     if isinstance(spec, LinkMotionSpec) and spec.kind.startswith("stephenson") \
             and spec.motion != "exact":
         return dataclasses.replace(spec, motion="exact"), True
-    if isinstance(spec, WalschaertsSpec) and spec.motion != "exact":
+    if isinstance(spec, (WalschaertsSpec, SimpleRadialSpec, JoySpec)) and spec.motion != "exact":
         return dataclasses.replace(spec, motion="exact"), True
     if isinstance(spec, CorlissSpec) and spec.motion != "exact":
         return dataclasses.replace(spec, motion="exact"), True
@@ -109,7 +110,8 @@ def _resolve(j, ref):
     """A joint of ``j`` by field name or (field, index)."""
     if isinstance(ref, tuple):
         return getattr(j, ref[0])[ref[1]]
-    return getattr(j, ref)
+    points = getattr(j, "points", None)
+    return points[ref] if points is not None else getattr(j, ref)
 
 
 def rod_lengths(joints) -> dict:
@@ -117,7 +119,7 @@ def rod_lengths(joints) -> dict:
 
     Parameters
     ----------
-    joints : EccentricJoints, StephensonJoints, WalschaertsJoints or CorlissJoints
+    joints : EccentricJoints, StephensonJoints, WalschaertsJoints, RadialJoints or CorlissJoints
         A gear's joints at one crank angle (each has ``rods_m``).
 
     Returns
@@ -410,6 +412,58 @@ class _Walschaerts(_Linkage):
         return j
 
 
+class _Radial(_Linkage):
+    """The exact Hackworth, Marshall, Angstrom (a vertical engine) or Joy gear: its rods
+    and links as the joints give them, the guide at its setting, and the crank."""
+
+    def __init__(self, ax, gear, scale, stroke_m):
+        super().__init__(ax, gear, scale, stroke_m)
+        self.joy = gear.spec.kind == "joy"
+        j0 = gear.joints(0.0)
+        gx, gy = zip(*(_xy(p, scale) for p in j0.guide))
+        ax.plot(gx, gy, color=_FIXED, lw=5.0, alpha=0.5, solid_capstyle="butt")
+        ax.plot([0], [0], "o", color=_FIXED, ms=5)
+        mv = self.moving
+        self.crank = None if self.joy else _line(ax, lw=3.0, moving=mv)
+        widths = {"crank": 3.0, "eccentric": 2.0, "connecting rod": 2.4}
+        self.lines = {n: _line(ax, lw=widths.get(n, 1.5), moving=mv,
+                               color=_FIXED if n in ("eccentric", "anchor link") else _ROD)
+                      for n in j0.rods_m}
+        self.pins = self._mv(ax.plot([], [], "o", color=_ROD, ms=3)[0])
+        self.valve = self._mv(ax.plot([], [], "s", color=_STEAM, ms=6)[0])
+        pts = []
+        for th in np.linspace(0.0, 2 * math.pi, 13):
+            pts += list(gear.joints(th).points.values())
+        pts = np.array(pts) * scale
+        crank_r = 0.5 * (stroke_m or 0.0) * scale
+        lo = np.minimum(pts.min(axis=0), [-crank_r, -crank_r])
+        hi = np.maximum(pts.max(axis=0), [crank_r, crank_r])
+        pad = 0.08 * float(np.max(hi - lo))
+        ax.set_xlim(lo[0] - pad, hi[0] + pad)
+        ax.set_ylim(lo[1] - pad, hi[1] + pad)
+        if not self.joy:
+            ax.text(0.01, 0.97, "a vertical engine: the stroke runs up the page",
+                    transform=ax.transAxes, va="top", fontsize=7, color="0.4")
+
+    def update(self, theta):
+        j = self.gear.joints(theta)
+        sc = self.scale
+        for n, (_, a, b) in j.rods_m.items():
+            _set(self.lines[n], _xy(j.points[a], sc), _xy(j.points[b], sc))
+        if self.crank is not None and self.stroke_m is not None:
+            # the eccentric is set opposite the crank (Spangler Art. 93)
+            e = j.points["eccentric"]
+            r = math.hypot(*e)
+            _set(self.crank, (0, 0), (-e[0] / r * 0.5 * self.stroke_m * sc,
+                                      -e[1] / r * 0.5 * self.stroke_m * sc))
+        xs, ys = zip(*(_xy(p, sc) for p in j.points.values()))
+        self.pins.set_data(xs, ys)
+        v = _xy(j.points.get("valve_rod_end", j.points["valve_pin"]), sc)
+        self.valve.set_data([v[0]], [v[1]])
+        self.rods = {n: (self.lines[n], j.rods_m[n][0]) for n in j.rods_m}
+        return j
+
+
 class _Travel(_Linkage):
     """A gear drawn from its travel alone: the crank, the virtual eccentric (the travel's
     first harmonic, A sin(theta + phi), drawn as the slide valve's eccentric is) and a
@@ -589,7 +643,8 @@ class _Corliss(_Linkage):
             body = np.column_stack([np.r_[c[0], c[0] + rv * np.cos(a)],
                                     np.r_[c[1], c[1] + rv * np.sin(a)]])
             self.v_bodies[p].set_xy(body)
-            _set(self.v_edges[p], c, (c[0] + 1.02 * rv * math.cos(e), c[1] + 1.02 * rv * math.sin(e)))
+            _set(self.v_edges[p], c, (c[0] + 1.02 * rv * math.cos(e),
+                                      c[1] + 1.02 * rv * math.sin(e)))
             # the drive arm, opposite the valve's middle, as the plate sets it
             d = self.base[p] + self.sense[p] * (j.latched_angles_rad[p] + math.radians(80.0)) \
                 + math.pi
@@ -718,7 +773,7 @@ def animate_gear(gear, result=None, *, frames: int = 72, stroke_m: float | None 
     ax_link.axis("off")
     artists = {}
     linkage = {"eccentric": _Eccentric, "stephenson": _Stephenson, "walschaerts": _Walschaerts,
-               "travel": _Travel}
+               "radial": _Radial, "travel": _Travel}
     if kind == "corliss":
         drawer = _Corliss(ax_link, gear, scale, stroke_m, ax_shaft, ax_valves)
         artists["valve_edges"] = [(line, c, b, sn) for line, c, b, sn in
