@@ -35,6 +35,7 @@ import corliss  # noqa: E402
 from corliss import cli  # noqa: E402
 from corliss.engine.model import build_gear  # noqa: E402
 from corliss.plot.animation import animate_gear, exact_linkage_spec, rod_lengths  # noqa: E402
+from corliss.valves.link_motion import LinkMotion  # noqa: E402
 from corliss.valves.radial_gear import RadialGear, SimpleRadialSpec  # noqa: E402
 
 SCENES = Path(__file__).resolve().parent.parent / "scenes"
@@ -88,15 +89,19 @@ def _drawn_valve_m(drawn) -> float:
 
 @pytest.mark.parametrize("name,frames", [("default", 24), ("hinkley-stephenson-link", 100),
                                          ("walschaerts-locomotive", 100),
-                                         ("joy-radial-gear", 30)])
+                                         ("joy-radial-gear", 30), ("gooch", 30)])
 def test_the_drawn_valve_stands_where_the_gears_travel_puts_it(name, frames):
     """At several crank angles (100 frames: 3.6 deg apart, most between the exact gears'
     table knots) the valve's outline is displaced by the gear's travel there; the Joy
-    gear too, as a fifth linkage."""
-    scene, gear = _gear(name)
-    drawn = animate_gear(gear, None, frames=frames, stroke_m=scene.engine.stroke_m)
+    gear and the Gooch link too."""
+    if name == "gooch":
+        gear, stroke_m = _link(name)
+    else:
+        scene, gear = _gear(name)
+        stroke_m = scene.engine.stroke_m
+    drawn = animate_gear(gear, None, frames=frames, stroke_m=stroke_m)
     try:
-        assert drawn["kind"] == {**FOUR, "joy-radial-gear": "radial"}[name]
+        assert drawn["kind"] == {**FOUR, "joy-radial-gear": "radial", "gooch": "gooch_allen"}[name]
         for i in (0, 7, frames // 3, frames // 2 + 1, frames - 5):
             drawn["update"](i)
             theta = drawn["angles_rad"][i]
@@ -153,8 +158,16 @@ def _marshall():
     return RadialGear(spec), 0.3
 
 
+def _link(kind):
+    """The Hinkley locomotive's link motion (Peabody's, the bundled scene) rebuilt as a
+    Gooch or an Allen link (no bundled scene has one), solved exactly."""
+    scene, gear = _gear("hinkley-stephenson-link")
+    return LinkMotion(dataclasses.replace(gear.spec, kind=kind)), scene.engine.stroke_m
+
+
 RODS_AT_LEAST = {"default": 1, "hinkley-stephenson-link": 2, "walschaerts-locomotive": 9,
-                 "corliss-trip-gear": 13, "joy-radial-gear": 9, "marshall": 5}
+                 "corliss-trip-gear": 13, "joy-radial-gear": 9, "marshall": 5, "gooch": 5,
+                 "allen": 5}
 
 
 @pytest.mark.parametrize("name", list(RODS_AT_LEAST))
@@ -163,6 +176,8 @@ def test_every_drawn_rod_has_the_scenes_length(name):
     are as far apart as the scene's rod is long, in every frame checked."""
     if name == "marshall":
         gear, stroke_m = _marshall()
+    elif name in ("gooch", "allen"):
+        gear, stroke_m = _link(name)
     else:
         scene, gear = _gear(name)
         stroke_m = scene.engine.stroke_m

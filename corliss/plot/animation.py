@@ -4,7 +4,8 @@ crank turns.
 
 Every position drawn comes from the gear's own solve: a gear that solves its linkage
 exactly gives its joints at a crank angle (``gear.joints(theta)``: the plain slide
-valve's eccentric and rod, the exact Stephenson link, the exact radial gears
+valve's eccentric and rod, the exact Stephenson, Gooch and Allen links, the exact radial
+gears
 (Walschaerts, Joy, Hackworth, Marshall, Angstrom), the Corliss wrist plate with its four
 valves and trip), the same solve its valve travel and
 port openings come from; any other gear with one lapped valve is drawn from its travel
@@ -49,9 +50,10 @@ def linkage_kind(gear) -> str:
     -------
     str
         ``"eccentric"`` (a plain slide valve), ``"stephenson"`` (the exact Stephenson
-        link), ``"walschaerts"`` (the exact Walschaerts gear), ``"radial"`` (the exact
-        Hackworth, Marshall, Angstrom or Joy gear), ``"corliss"``, or ``"travel"`` (a
-        lapped valve drawn from its travel, the linkage not drawn).
+        link), ``"gooch_allen"`` (the exact Gooch or Allen link), ``"walschaerts"`` (the
+        exact Walschaerts gear), ``"radial"`` (the exact Hackworth, Marshall, Angstrom or
+        Joy gear), ``"corliss"``, or ``"travel"`` (a lapped valve drawn from its travel,
+        the linkage not drawn).
 
     Raises
     ------
@@ -63,9 +65,8 @@ def linkage_kind(gear) -> str:
         return "corliss"
     if isinstance(gear, SlideValve):
         return "eccentric"
-    if isinstance(gear, LinkMotion) and gear.spec.motion == "exact" \
-            and gear.spec.kind.startswith("stephenson"):
-        return "stephenson"
+    if isinstance(gear, LinkMotion) and gear.spec.motion == "exact":
+        return "stephenson" if gear.spec.kind.startswith("stephenson") else "gooch_allen"
     if isinstance(gear, RadialGear) and gear.spec.motion == "exact":
         return "walschaerts" if gear.spec.kind == "walschaerts" else "radial"
     if isinstance(gear, LappedValve):
@@ -75,7 +76,7 @@ def linkage_kind(gear) -> str:
 
 def exact_linkage_spec(spec):
     """The spec of the gear solved as its linkage, so that it can be drawn: Zeuner's form
-    of a Stephenson link or a radial gear, or the harmonic Corliss gear, becomes
+    of a link motion or a radial gear, or the harmonic Corliss gear, becomes
     ``motion = "exact"``; any other spec is returned as it is.
 
     Parameters
@@ -88,8 +89,7 @@ def exact_linkage_spec(spec):
     tuple
         (the spec, True if its motion was changed to the exact linkage).
     """
-    if isinstance(spec, LinkMotionSpec) and spec.kind.startswith("stephenson") \
-            and spec.motion != "exact":
+    if isinstance(spec, LinkMotionSpec) and spec.motion != "exact":
         return dataclasses.replace(spec, motion="exact"), True
     if isinstance(spec, (WalschaertsSpec, SimpleRadialSpec, JoySpec)) and spec.motion != "exact":
         return dataclasses.replace(spec, motion="exact"), True
@@ -360,6 +360,57 @@ class _Stephenson(_Linkage):
         _set(self.stem, b, (b[0] + 1.5 * self.c, 0.0))
         self.rods = {"forward eccentric rod": (self.fwd_rod, j.eccentric_rod_m),
                      "backward eccentric rod": (self.back_rod, j.eccentric_rod_m)}
+        return j
+
+
+class _GoochAllen(_Linkage):
+    """The exact Gooch or Allen link: eccentrics, rods, the link (curved or straight),
+    the block and the radius rod to the valve stem."""
+
+    DRAWN = ("forward eccentric", "backward eccentric", "forward eccentric rod",
+             "backward eccentric rod", "radius rod")
+
+    def __init__(self, ax, gear, scale, stroke_m):
+        super().__init__(ax, gear, scale, stroke_m)
+        s = gear.spec
+        self._circle((0, 0), s.eccentricity_m, color=_FIXED, lw=0.6, ls=":")
+        ax.plot([0], [0], "o", color=_FIXED, ms=5)
+        ax.axhline(0.0, color="0.85", lw=0.6, zorder=0)
+        mv = self.moving
+        self.crank = _line(ax, lw=3.0, moving=mv)
+        self.lines = {n: _line(ax, lw=2.0 if n.endswith("eccentric") else 1.6,
+                               color=_FIXED if n.endswith("eccentric") else _ROD, moving=mv)
+                      for n in self.DRAWN}
+        self.link = _line(ax, lw=4.0, color="0.25", moving=mv)
+        self.block = self._mv(ax.plot([], [], "s", color=_STEAM, ms=6)[0])
+        self.stem = _line(ax, lw=2.4, moving=mv)
+        j0 = gear.joints(0.0)
+        c = s.half_link_m * scale
+        crank_r = 0.5 * (stroke_m or 0.0) * scale
+        r = s.eccentricity_m * scale
+        ax.set_xlim(-1.2 * max(r, crank_r), j0.points["stem"][0] * scale + 2.5 * c)
+        ax.set_ylim(-1.6 * max(c, crank_r), 1.6 * max(c, crank_r))
+        self.c = c
+        ax.text(0.99, 0.03, "the valve moves opposite the stem's end (through a rocker)",
+                transform=ax.transAxes, ha="right", fontsize=7, color="0.4")
+
+    def update(self, theta):
+        j = self.gear.joints(theta)
+        sc = self.scale
+        P = {k: _xy(v, sc) for k, v in j.points.items()}
+        c = self._crank(theta)             # counter-clockwise, towards the link at 0
+        if c is not None:
+            _set(self.crank, (0, 0), c)
+        for n in self.DRAWN:
+            _, a, b = j.rods_m[n]
+            _set(self.lines[n], P[a], P[b])
+        if "link_centre" in P:
+            self.link.set_data(*_arc(P["link_centre"], P["link_top"], P["link_bottom"]))
+        else:
+            _set(self.link, P["link_top"], P["link_bottom"])
+        self.block.set_data([P["block"][0]], [P["block"][1]])
+        _set(self.stem, P["stem"], (P["stem"][0] + 1.5 * self.c, 0.0))
+        self.rods = {n: (self.lines[n], j.rods_m[n][0]) for n in self.DRAWN}
         return j
 
 
@@ -773,7 +824,7 @@ def animate_gear(gear, result=None, *, frames: int = 72, stroke_m: float | None 
     ax_link.axis("off")
     artists = {}
     linkage = {"eccentric": _Eccentric, "stephenson": _Stephenson, "walschaerts": _Walschaerts,
-               "radial": _Radial, "travel": _Travel}
+               "gooch_allen": _GoochAllen, "radial": _Radial, "travel": _Travel}
     if kind == "corliss":
         drawer = _Corliss(ax_link, gear, scale, stroke_m, ax_shaft, ax_valves)
         artists["valve_edges"] = [(line, c, b, sn) for line, c, b, sn in

@@ -159,9 +159,9 @@ class LinkMotion(LappedValve):
             return self._exact(theta)
         return self.zeuner_travel(theta)
 
-    def joints(self, theta: float) -> StephensonJoints:
-        """The exact Stephenson link's joints at crank angle ``theta``, from the solve
-        that gives :meth:`travel` (which is its valve position splined from 1/2 deg).
+    def joints(self, theta: float) -> "StephensonJoints | GoochAllenJoints":
+        """The exact link's joints at crank angle ``theta``, from the solve that gives
+        :meth:`travel` (for Stephenson's, its valve positions splined from 1/2 deg).
 
         Parameters
         ----------
@@ -170,17 +170,17 @@ class LinkMotion(LappedValve):
 
         Returns
         -------
-        StephensonJoints
+        StephensonJoints or GoochAllenJoints
             The joints [m] and the valve's displacement [m].
 
         Raises
         ------
         ValueError
-            For a gear not solved as a linkage (Zeuner's form, or Gooch and Allen).
+            For a gear in Zeuner's form (not solved as a linkage).
         """
-        if not isinstance(self._exact, _ExactStephenson):
-            raise ValueError("joints are solved for the exact Stephenson link only "
-                             f"(this is {self.spec.kind}, motion {self.spec.motion})")
+        if self._exact is None:
+            raise ValueError(f"joints are solved for the exact links only (this is "
+                             f"{self.spec.kind} in Zeuner's form)")
         return self._exact.joints(theta)
 
     def zeuner_travel(self, theta):
@@ -317,10 +317,36 @@ class _ExactGoochAllen:
         t = np.asarray(theta, dtype=float)
         return -(_stem_x(self.spec, self.spec.block_m, t).reshape(np.shape(t)) - self._x_ref)
 
+    def joints(self, theta: float) -> GoochAllenJoints:
+        """The linkage at crank angle ``theta`` [rad] (see :class:`GoochAllenJoints`)."""
+        spec = self.spec
+        pts = _gooch_allen_points(spec, spec.block_m, np.array([float(theta)]))
+        p = {name: (float(v[0, 0]), float(v[1, 0])) for name, v in pts.items()}
+        g, r = spec.eccentric_rod_m, spec.eccentricity_m
+        rods = {"forward eccentric": (r, "shaft", "forward_eccentric"),
+                "backward eccentric": (r, "shaft", "backward_eccentric"),
+                "forward eccentric rod": (g, "forward_eccentric", "link_bottom"),
+                "backward eccentric rod": (g, "backward_eccentric", "link_top"),
+                "radius rod": (spec.radius_rod_m or g, "block", "stem")}
+        if "link_centre" in p:
+            rho = spec.link_radius_m or spec.radius_rod_m or g
+            for name in ("link_top", "link_bottom", "link_middle", "block"):
+                rods[f"{name.replace('_', ' ')}, radius"] = (rho, "link_centre", name)
+        else:
+            rods["half link, top"] = (spec.half_link_m, "link_middle", "link_top")
+            rods["half link, bottom"] = (spec.half_link_m, "link_middle", "link_bottom")
+        return GoochAllenJoints(points=p, rods_m=rods, valve_m=-(p["stem"][0] - self._x_ref))
+
 
 def _stem_x(spec: LinkMotionSpec, u: float, theta: np.ndarray) -> np.ndarray:
     """X of the valve stem's end of the radius rod (from the shaft, along the line of
     stroke) of the exact Gooch or Allen gear at crank angles ``theta``, block offset u."""
+    return _gooch_allen_points(spec, u, theta)["stem"][0]
+
+
+def _gooch_allen_points(spec: LinkMotionSpec, u: float, theta: np.ndarray) -> dict:
+    """Every joint of the exact Gooch or Allen gear at crank angles ``theta``, block
+    offset u (arrays of shape (2, n) [m]; ``link_centre`` only for Gooch's curved link)."""
     r, d, g, c = (spec.eccentricity_m, spec.angular_advance_rad, spec.eccentric_rod_m,
                   spec.half_link_m)
     g1 = spec.radius_rod_m or g
@@ -352,12 +378,48 @@ def _stem_x(spec: LinkMotionSpec, u: float, theta: np.ndarray) -> np.ndarray:
     xm = np.full(th.shape, math.sqrt(g * g - c * c))
     a = np.zeros(th.shape)
     xm, a = newton2(residual, xm, a, 1e-7 * g, 1e-7, 1e-14 * g, 1e-14)
+    out = {}
     if gooch:                       # the block: where the arc (shaft side) meets y = yb
         kx, ky = xm + rho * np.cos(a), ym + rho * np.sin(a)
         px = kx - np.sqrt(rho * rho - (yb - ky) ** 2)
+        out["link_centre"] = np.array([kx, ky])
     else:                           # where the straight link meets y = yb
         px = xm - (yb - ym) / np.cos(a) * np.sin(a)
-    return px + math.sqrt(g1 * g1 - yb * yb)
+    top, bottom = ends(xm, a)
+    n = th.size
+    out.update({"shaft": np.zeros((2, n)), "forward_eccentric": np.array([fx, fy]),
+                "backward_eccentric": np.array([bx, by]), "link_top": np.array(top),
+                "link_bottom": np.array(bottom), "link_middle": np.array([xm, np.full(n, ym)]),
+                "block": np.array([px, np.full(n, yb)]),
+                "stem": np.array([px + math.sqrt(g1 * g1 - yb * yb), np.zeros(n)])})
+    return out
+
+
+@dataclass(frozen=True)
+class GoochAllenJoints:
+    """The joints of the exact Gooch or Allen link at one crank angle (all SI; see the
+    module doc): shaft at the origin, the valve stem's line along X (y = 0), the link on
+    the cylinder's side; each point an (x, y) pair [m].
+
+    Parameters
+    ----------
+    points : dict
+        Each joint by name: ``shaft``, ``forward_eccentric``, ``backward_eccentric``,
+        ``link_top``, ``link_bottom`` (the rods' pins; the forward rod drives the
+        bottom), ``link_middle``, ``block`` (where the radius rod takes hold), ``stem``
+        (the radius rod's end on the stem's line) and, for Gooch's curved link,
+        ``link_centre`` [m].
+    rods_m : dict
+        Each rod, eccentric and the link's radius to its pins and block: ``{name:
+        (length [m], joint, joint)}``.
+    valve_m : float
+        The valve's displacement in the sense that opens the head steam port [m]: the
+        stem's X, reversed, from its mean in full forward gear.
+    """
+
+    points: dict
+    rods_m: dict
+    valve_m: float
 
 
 def _block_x(spec: LinkMotionSpec, u: float, theta: np.ndarray) -> np.ndarray:
