@@ -59,9 +59,10 @@ def linkage_kind(gear) -> str:
     ------
     ValueError
         For a gear with neither joints nor one valve's travel (the double valves, the
-        Porter-Allen gear).
+        Porter-Allen gear, the Corliss gear's harmonic motion: see
+        :func:`exact_linkage_spec`).
     """
-    if isinstance(gear, CorlissGear):
+    if isinstance(gear, CorlissGear) and gear.spec.motion == "exact":
         return "corliss"
     if isinstance(gear, SlideValve):
         return "eccentric"

@@ -520,14 +520,21 @@ class CorlissGear(ValveGear):
         -------
         CorlissJoints
             The joints [m], the plate's and the valves' angles [rad] and the trip's state.
+
+        Raises
+        ------
+        ValueError
+            For the harmonic motion, which solves no linkage.
         """
         s = self.spec
+        if s.motion != "exact":
+            raise ValueError("joints are solved for the exact motion only (this gear's "
+                             "motion is harmonic)")
         th = np.array([float(theta)])
         phase = float(th[0]) + s.angular_advance_rad
         R, r = s.wrist_plate_radius_m, s.eccentricity_m
         psi = float(self.plate_angle(th)[0])
-        xo = self._geom["xo"] if s.motion == "exact" else s.hook_rod_m
-        o = np.array([xo, R])
+        o = np.array([self._geom["xo"], R])
         ecc = (r * math.sin(phase), r * math.cos(phase))
         hook = o + R * np.array([math.sin(psi), -math.cos(psi)])
         frames = ((2 * math.pi / 3, 1.0, s.steam, psi), (-2 * math.pi / 3, -1.0, s.exhaust, -psi),
