@@ -9,6 +9,9 @@
     The valve events of each end, without simulating; at several gear settings.
 ``corliss gear SCENE [--out DIR]``
     Valve travel, port openings and the Zeuner diagram, as PNG.
+``corliss animate SCENE [--out DIR] [--frames N] [--format gif|html] [--no-card] [--fidelity F]``
+    The gear in motion (its linkage from the exact solve, the valve over its ports,
+    the port openings and the card traced as the crank turns), as GIF or HTML.
 ``corliss design [SCENE] --cutoff F [--lead Q --max-opening Q ...] [--release F | --compression F | --exhaust-lap Q] [--equalise cutoff|laps] [--out DIR] [--json]``
     A plain slide valve (eccentricity, advance, laps per end), or a gear's setting,
     for the events asked; writes ``design.toml`` (runnable) and its diagrams.
@@ -420,6 +423,64 @@ def cmd_gear(args) -> int:
     return 0
 
 
+def cmd_animate(args) -> int:
+    """``corliss animate``: the scene's gear in motion as ``<scene>.animation.gif`` (or
+    ``.html``): its linkage from the exact solve (a Zeuner-form Stephenson link or
+    Walschaerts gear, or a harmonic Corliss gear, solved as its linkage), the valve over
+    its ports, the port openings and, unless ``--no-card``, the card of a steady run
+    traced as the crank turns.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of the subcommand (:func:`build_parser`).
+
+    Returns
+    -------
+    int
+        The exit status: 0 (a user's mistake raises
+        :class:`~corliss.errors.InputError`, which :func:`main` turns into 2).
+    """
+    if not 2 <= args.frames <= 720:
+        raise InputError("--frames", args.frames, "a whole number of frames from 2 to 720")
+    scene = _load(args.scene, args.units)
+    if args.fidelity:
+        scene = scene.with_fidelity(args.fidelity)
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from corliss.engine.model import steady_scene
+    from corliss.plot.animation import (animate_gear, exact_linkage_spec, linkage_kind,
+                                        write_animation)
+    spec, changed = exact_linkage_spec(scene.gear)
+    scene = dataclasses.replace(scene, gear=spec)
+    gear = build_gear(scene)
+    try:
+        linkage_kind(gear)
+    except ValueError as exc:
+        raise InputError("valve_gear.type", scene.gear_type,
+                         f"a gear with one valve to animate ({exc})") from None
+    result = None
+    if not args.no_card:
+        run = steady_scene(scene)
+        if run.run.model == "mean_value":
+            run = run.replace_run(model="crank_resolved")
+        result = simulate(run)
+    title = f"{scene.title}: {scene.gear_type}" + (" (the exact linkage)" if changed else "")
+    out_dir = Path(args.out if args.out is not None else scene.output.dir)
+    name = f"{scene.name}.animation.{args.format}"
+    drawn = animate_gear(gear, result, frames=args.frames, units_system=scene.output.units,
+                         stroke_m=scene.engine.stroke_m, title=title)
+    try:
+        with OutputFiles(out_dir) as out:
+            write_animation(drawn, out.stage(name), args.format)
+    finally:
+        plt.close(drawn["figure"])
+    print(f"wrote {out_dir / name}")
+    return 0
+
+
 def cmd_design(args) -> int:
     """``corliss design``: a valve (or a gear's setting) for the events asked.
 
@@ -801,6 +862,19 @@ def build_parser() -> argparse.ArgumentParser:
     gp.add_argument("--out", help="output directory (default: the scene's [output] dir)")
     gp.add_argument("--units", choices=("US", "SI"), help=units_help)
     gp.set_defaults(func=cmd_gear)
+    an = sub.add_parser("animate", help="the gear in motion, its valve over the ports, "
+                        "the port openings and the card traced, as GIF or HTML")
+    an.add_argument("scene", help="scene TOML or a bundled scene's name")
+    an.add_argument("--out", help="output directory (default: the scene's [output] dir)")
+    an.add_argument("--frames", type=int, default=72, help="frames in one turn (default 72)")
+    an.add_argument("--format", choices=("gif", "html"), default="gif",
+                    help="a GIF (default) or an HTML page with a player")
+    an.add_argument("--no-card", action="store_true",
+                    help="no steady run, no indicator card")
+    an.add_argument("--fidelity", choices=("reference", "standard", "fast"), default="fast",
+                    help="fidelity of the steady run whose card is traced (default fast)")
+    an.add_argument("--units", choices=("US", "SI"), help=units_help)
+    an.set_defaults(func=cmd_animate)
     ds = sub.add_parser("design", help="a valve (or a gear's setting) for the events asked: "
                         "a runnable scene and its Zeuner and Bilgram diagrams")
     ds.add_argument("scene", nargs="?", help="scene TOML or a bundled scene's name whose "

@@ -650,28 +650,118 @@ class CorlissGear(ValveGear):
                              "call with_speed(speed_rad_s) first")
         return self.spec.speed_rad_s
 
-    def signed_openings(self, theta):
-        th = np.atleast_1d(np.asarray(theta, dtype=float))
-        out = self.latched_signed_openings(th)
+    def _trips(self, th):
+        """For each steam port (0, 2): None if never released, else (mask of ``th``
+        where the valve is released, the dash-pot's time since release there [s], the
+        opening at release [m])."""
         rel = self.release_angle_rad()
-        if all(r is None for r in rel):
-            return out
-        omega = self._speed()
-        for e, port in enumerate((0, 2)):
+        out = []
+        for e in range(2):
             if rel[e] is None:
+                out.append(None)
                 continue
             w = self._geom["windows"][e]
             window = (w["close"] - w["open"]) % TWO_PI
             rel_from_open = (rel[e] - w["open"]) % TWO_PI
             if self.spec.setting <= 0.0:
                 rel_from_open = 0.0
-            p_rel = self._released_opening[e]
             since_open = (th - w["open"]) % TWO_PI
             m = (since_open >= rel_from_open) & (since_open <= window)
-            if np.any(m):
-                tau = (since_open[m] - rel_from_open) / omega
+            tau = (since_open[m] - rel_from_open) / self._speed()
+            out.append((m, tau, self._released_opening[e]))
+        return out
+
+    def signed_openings(self, theta):
+        th = np.atleast_1d(np.asarray(theta, dtype=float))
+        out = self.latched_signed_openings(th)
+        if all(r is None for r in self.release_angle_rad()):
+            return out
+        for port, trip in zip((0, 2), self._trips(th)):
+            if trip is not None and np.any(trip[0]):
+                m, tau, p_rel = trip
                 out[port, m] = np.minimum(out[port, m], p_rel * self.closing_fraction(tau))
         return out
+
+    def joints(self, theta: float) -> "CorlissJoints":
+        """The wrist plate, its rods and the four valves at crank angle ``theta``, from
+        the same solve as :meth:`plate_angle` and :meth:`signed_openings`.
+
+        The spec fixes each valve chain's shape, not the direction from the plate's
+        centre to its spindle, which does not change the motion; the picture puts the
+        head-end valves on the left, the steam spindles at 120 deg and 60 deg from the
+        line of stroke, the exhaust spindles at 240 deg and 300 deg (each chain of the
+        crank end the mirror image of the head end's, as the module doc says).
+
+        Parameters
+        ----------
+        theta : float
+            Crank angle from head-end dead centre [rad].
+
+        Returns
+        -------
+        CorlissJoints
+            The joints [m], the plate's and the valves' angles [rad] and the trip's state.
+
+        Raises
+        ------
+        ValueError
+            For the harmonic motion, which solves no linkage.
+        """
+        s = self.spec
+        if s.motion != "exact":
+            raise ValueError("joints are solved for the exact motion only (this gear's "
+                             "motion is harmonic)")
+        th = np.array([float(theta)])
+        phase = float(th[0]) + s.angular_advance_rad
+        R, r = s.wrist_plate_radius_m, s.eccentricity_m
+        psi = float(self.plate_angle(th)[0])
+        o = np.array([self._geom["xo"], R])
+        ecc = (r * math.sin(phase), r * math.cos(phase))
+        hook = o + R * np.array([math.sin(psi), -math.cos(psi)])
+        frames = ((2 * math.pi / 3, 1.0, s.steam, psi), (-2 * math.pi / 3, -1.0, s.exhaust, -psi),
+                  (math.pi / 3, -1.0, s.steam, -psi), (-math.pi / 3, 1.0, s.exhaust, psi))
+        studs, arms, spindles, senses = [], [], [], []
+        rods = {"eccentric": (r, "shaft", "eccentric"), "hook rod": (s.hook_rod_m, "eccentric",
+                                                                      "hook_pin"),
+                "plate arm": (R, "plate_centre", "hook_pin")}
+        for i, (phi, m, ch, u) in enumerate(frames):
+            c, sn = math.cos(phi), math.sin(phi)
+
+            def place(lx, ly, c=c, sn=sn, m=m):
+                return (float(o[0] + c * lx - sn * m * ly), float(o[1] + sn * lx + c * m * ly))
+
+            a0 = ch.stud_angle_rad + u
+            gamma = float(ch.arm_angle(u))
+            studs.append(place(ch.stud_radius_m * math.cos(a0), ch.stud_radius_m * math.sin(a0)))
+            arms.append(place(ch.spindle_distance_m - ch.arm_m * math.cos(gamma),
+                              ch.arm_m * math.sin(gamma)))
+            spindles.append(place(ch.spindle_distance_m, 0.0))
+            # the arm's direction in the chain's frame is pi - gamma; the figure turns it
+            # m times that, so the valve turns -m x (its opening sense) as it opens
+            senses.append(-m * ch.opening_sense)
+            port = PORTS_OF_GEAR[i]
+            rods[f"{port} stud"] = (ch.stud_radius_m, "plate_centre", ("studs", i))
+            rods[f"{port} valve rod"] = (ch.rod_m, ("studs", i), ("arm_ends", i))
+            rods[f"{port} arm"] = (ch.arm_m, ("spindles", i), ("arm_ends", i))
+        laps = np.array([s.steam_lap_m[0], s.exhaust_lap_m[0], s.steam_lap_m[1],
+                         s.exhaust_lap_m[1]])
+        radii = np.array([s.steam.valve_radius_m, s.exhaust.valve_radius_m] * 2)
+        latched = self.spindle_angles(th)[:, 0]
+        actual = (self.signed_openings(th)[:, 0] + laps) / radii
+        released, held = [False, False], [1.0, 1.0]
+        if any(x is not None for x in self.release_angle_rad()):
+            for e, trip in enumerate(self._trips(th)):
+                if trip is not None and trip[0][0]:
+                    released[e] = True
+                    held[e] = float(self.closing_fraction(trip[1])[0])
+        return CorlissJoints(shaft=(0.0, 0.0), eccentric=ecc,
+                             hook_pin=(float(hook[0]), float(hook[1])),
+                             plate_centre=(float(o[0]), float(o[1])), studs=tuple(studs),
+                             arm_ends=tuple(arms), spindles=tuple(spindles),
+                             plate_angle_rad=psi, latched_angles_rad=tuple(map(float, latched)),
+                             valve_angles_rad=tuple(map(float, actual)),
+                             released=tuple(released), dashpot_held_frac=tuple(held),
+                             opening_sense=tuple(senses), rods_m=rods)
 
     # ------------------------------------------------------------------ ports
     def port_widths(self):
@@ -683,6 +773,62 @@ class CorlissGear(ValveGear):
 
     def discharge_coefficients(self):
         return np.full(4, self.spec.discharge_coefficient)
+
+
+#: The ports in the order of :data:`corliss.valves.gear.PORTS`, as the joints name them.
+PORTS_OF_GEAR = ("head steam", "head exhaust", "crank steam", "crank exhaust")
+
+
+@dataclass(frozen=True)
+class CorlissJoints:
+    """The Corliss gear at one crank angle (all SI): shaft at the origin, X along the
+    hook rod, Y up; each point an (x, y) pair [m], each tuple of four in port order
+    (head steam, head exhaust, crank steam, crank exhaust).
+
+    Parameters
+    ----------
+    shaft, eccentric, hook_pin, plate_centre : tuple of float
+        The shaft, the eccentric's centre, the hook rod's pin on the wrist plate and the
+        plate's centre [m].
+    studs, arm_ends, spindles : tuple of tuple of float
+        Each valve's stud on the plate, its rod's pin on the spindle arm, and its
+        spindle [m].
+    plate_angle_rad : float
+        The plate's turn from mid position, counter-clockwise [rad].
+    latched_angles_rad : tuple of float
+        Each spindle arm's angle from mid position towards opening, as the plate drives
+        it [rad].
+    valve_angles_rad : tuple of float
+        Each valve's angle from mid position towards opening [rad]: the arm's while
+        latched; a steam valve released by the trip closes on its dash-pot
+        ((signed opening + lap) / valve radius, from :meth:`CorlissGear.signed_openings`).
+    released : tuple of bool
+        Whether the (head, crank) steam valve is released from its hook.
+    dashpot_held_frac : tuple of float
+        The fraction of the opening at release the dash-pot still holds, (head, crank),
+        1 while latched [-].
+    opening_sense : tuple of float
+        +1 where a valve turns counter-clockwise in the figure as it opens, -1 where
+        clockwise.
+    rods_m : dict
+        Each rod or arm: ``{name: (length [m], joint, joint)}``, a joint named by its
+        field, or by ``(field, port index)`` in a tuple of four.
+    """
+
+    shaft: tuple[float, float]
+    eccentric: tuple[float, float]
+    hook_pin: tuple[float, float]
+    plate_centre: tuple[float, float]
+    studs: tuple
+    arm_ends: tuple
+    spindles: tuple
+    plate_angle_rad: float
+    latched_angles_rad: tuple
+    valve_angles_rad: tuple
+    released: tuple
+    dashpot_held_frac: tuple
+    opening_sense: tuple
+    rods_m: dict
 
 
 # ---------------------------------------------------------------------- parsing

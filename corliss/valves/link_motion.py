@@ -201,6 +201,30 @@ class LinkMotion(LappedValve):
             return self._exact(theta)
         return self.zeuner_travel(theta)
 
+    def joints(self, theta: float) -> "StephensonJoints | GoochAllenJoints":
+        """The exact link's joints at crank angle ``theta``, from the solve that gives
+        :meth:`travel` (for Stephenson's, its valve positions splined from 1/2 deg).
+
+        Parameters
+        ----------
+        theta : float
+            Crank angle from head-end dead centre [rad].
+
+        Returns
+        -------
+        StephensonJoints or GoochAllenJoints
+            The joints [m] and the valve's displacement [m].
+
+        Raises
+        ------
+        ValueError
+            For a gear in Zeuner's form (not solved as a linkage).
+        """
+        if self._exact is None:
+            raise ValueError(f"joints are solved for the exact links only (this is "
+                             f"{self.spec.kind} in Zeuner's form)")
+        return self._exact.joints(theta)
+
     def zeuner_travel(self, theta):
         """Valve displacement of Zeuner's form, ``C cos(theta) + S sin(theta)`` with
         ``(C, S)`` from :meth:`LinkMotionSpec.coefficients`.
@@ -231,14 +255,107 @@ class _ExactStephenson:
         self.spec = spec
         th = np.linspace(0.0, 2 * math.pi, self.N + 1)
         ref = _block_x(spec, spec.half_link_m, np.array([0.0, math.pi]))
-        x_ref = 0.5 * (ref[0] + ref[1])                 # equal lead in full forward gear
-        X = _block_x(spec, spec.block_m, th)
-        x = -(X - x_ref)
+        self.x_ref = 0.5 * (ref[0] + ref[1])            # equal lead in full forward gear
+        self.linkage = _StephensonLinkage(spec, spec.block_m)
+        self.poses = self.linkage.poses(th)
+        X = np.array([self.linkage.block(p)[0] for p in self.poses])
+        x = -(X - self.x_ref)
         x[-1] = x[0]
         self._spline = CubicSpline(th, x, bc_type="periodic")
 
     def __call__(self, theta):
         return self._spline(np.asarray(theta, dtype=float) % (2 * math.pi))
+
+    def joints(self, theta: float) -> "StephensonJoints":
+        """The linkage at crank angle ``theta`` [rad]: the pose solved from the table's
+        nearest pose, with the table's hanger (see :class:`StephensonJoints`)."""
+        lk, spec = self.linkage, self.spec
+        th = float(theta) % (2 * math.pi)
+        k = int(round(th / (2 * math.pi) * self.N)) % self.N
+        pose = lk.solve(self.poses[k].copy(), th)
+        f, b = lk.eccentrics(th)
+        top, bottom = lk.link_point(pose, lk.psi_c), lk.link_point(pose, -lk.psi_c)
+        n = np.array([math.cos(pose[2]), math.sin(pose[2])])
+        centre = pose[:2] - lk.rho * n
+        block = lk.block(pose)
+
+        def pt(v):
+            return (float(v[0]), float(v[1]))
+
+        return StephensonJoints(
+            shaft=(0.0, 0.0), forward_eccentric=pt(f), backward_eccentric=pt(b),
+            link_top=pt(top), link_bottom=pt(bottom), link_middle=pt(pose[:2]),
+            link_centre=pt(centre), block=pt(block),
+            hanger_top=None if lk.suspension is None else pt(lk.suspension),
+            top_is_forward=lk.top_is_forward, eccentric_rod_m=spec.eccentric_rod_m,
+            link_radius_m=lk.rho, hanger_m=lk.h, valve_m=float(-(block[0] - self.x_ref)),
+            rods_m=_stephenson_rods(spec, lk))
+
+
+def _stephenson_rods(spec: LinkMotionSpec, lk: _StephensonLinkage) -> dict:
+    fwd, back = ("link_top", "link_bottom") if lk.top_is_forward else ("link_bottom", "link_top")
+    rods = {"forward eccentric": (spec.eccentricity_m, "shaft", "forward_eccentric"),
+            "backward eccentric": (spec.eccentricity_m, "shaft", "backward_eccentric"),
+            "forward eccentric rod": (spec.eccentric_rod_m, "forward_eccentric", fwd),
+            "backward eccentric rod": (spec.eccentric_rod_m, "backward_eccentric", back),
+            "link top, radius": (lk.rho, "link_centre", "link_top"),
+            "link bottom, radius": (lk.rho, "link_centre", "link_bottom"),
+            "link middle, radius": (lk.rho, "link_centre", "link_middle"),
+            "block, radius": (lk.rho, "link_centre", "block")}
+    if lk.h is not None:
+        rods["hanger"] = (lk.h, "hanger_top", "link_middle")
+    return rods
+
+
+@dataclass(frozen=True)
+class StephensonJoints:
+    """The joints of the exact Stephenson link at one crank angle (all SI; see the
+    module doc): shaft at the origin, the valve spindle's line along X (y = 0), the link
+    on the cylinder's side (X > 0).
+
+    Parameters
+    ----------
+    shaft, forward_eccentric, backward_eccentric : tuple of float
+        The shaft's centre and the two eccentrics' centres (x, y) [m].
+    link_top, link_bottom : tuple of float
+        The rods' pins at the link's ends (x, y) [m]; the forward rod drives the bottom
+        one unless ``top_is_forward`` (crossed rods).
+    link_middle, link_centre : tuple of float
+        The link's middle (hung from the hanger) and the centre of its arc (x, y) [m].
+    block : tuple of float
+        The block, where the link's arc crosses the spindle's line (x, y) [m].
+    hanger_top : tuple of float or None
+        The hanger's top, held by the reversing lever (x, y) [m]; None for an
+        infinitely long hanger (the link's middle held at height -u).
+    top_is_forward : bool
+        Whether the forward eccentric's rod drives the link's top.
+    eccentric_rod_m, link_radius_m : float
+        The rods' length and the link's radius [m].
+    hanger_m : float or None
+        The hanger's length [m].
+    valve_m : float
+        The valve's displacement in the sense that opens the head steam port [m]: the
+        block's X, reversed through the rocker, from its mean in full forward gear.
+    rods_m : dict
+        Each rod, eccentric, hanger, and the link's radius to its pins, middle and block:
+        ``{name: (length [m], joint, joint)}``.
+    """
+
+    shaft: tuple[float, float]
+    forward_eccentric: tuple[float, float]
+    backward_eccentric: tuple[float, float]
+    link_top: tuple[float, float]
+    link_bottom: tuple[float, float]
+    link_middle: tuple[float, float]
+    link_centre: tuple[float, float]
+    block: tuple[float, float]
+    hanger_top: tuple[float, float] | None
+    top_is_forward: bool
+    eccentric_rod_m: float
+    link_radius_m: float
+    hanger_m: float | None
+    valve_m: float
+    rods_m: dict
 
 
 class _ExactGoochAllen:
@@ -255,10 +372,36 @@ class _ExactGoochAllen:
         t = np.asarray(theta, dtype=float)
         return -(_stem_x(self.spec, self.spec.block_m, t).reshape(np.shape(t)) - self._x_ref)
 
+    def joints(self, theta: float) -> GoochAllenJoints:
+        """The linkage at crank angle ``theta`` [rad] (see :class:`GoochAllenJoints`)."""
+        spec = self.spec
+        pts = _gooch_allen_points(spec, spec.block_m, np.array([float(theta)]))
+        p = {name: (float(v[0, 0]), float(v[1, 0])) for name, v in pts.items()}
+        g, r = spec.eccentric_rod_m, spec.eccentricity_m
+        rods = {"forward eccentric": (r, "shaft", "forward_eccentric"),
+                "backward eccentric": (r, "shaft", "backward_eccentric"),
+                "forward eccentric rod": (g, "forward_eccentric", "link_bottom"),
+                "backward eccentric rod": (g, "backward_eccentric", "link_top"),
+                "radius rod": (spec.radius_rod_m or g, "block", "stem")}
+        if "link_centre" in p:
+            rho = spec.link_radius_m or spec.radius_rod_m or g
+            for name in ("link_top", "link_bottom", "link_middle", "block"):
+                rods[f"{name.replace('_', ' ')}, radius"] = (rho, "link_centre", name)
+        else:
+            rods["half link, top"] = (spec.half_link_m, "link_middle", "link_top")
+            rods["half link, bottom"] = (spec.half_link_m, "link_middle", "link_bottom")
+        return GoochAllenJoints(points=p, rods_m=rods, valve_m=-(p["stem"][0] - self._x_ref))
+
 
 def _stem_x(spec: LinkMotionSpec, u: float, theta: np.ndarray) -> np.ndarray:
     """X of the valve stem's end of the radius rod (from the shaft, along the line of
     stroke) of the exact Gooch or Allen gear at crank angles ``theta``, block offset u."""
+    return _gooch_allen_points(spec, u, theta)["stem"][0]
+
+
+def _gooch_allen_points(spec: LinkMotionSpec, u: float, theta: np.ndarray) -> dict:
+    """Every joint of the exact Gooch or Allen gear at crank angles ``theta``, block
+    offset u (arrays of shape (2, n) [m]; ``link_centre`` only for Gooch's curved link)."""
     r, d, g, c = (spec.eccentricity_m, spec.angular_advance_rad, spec.eccentric_rod_m,
                   spec.half_link_m)
     g1 = spec.radius_rod_m or g
@@ -290,93 +433,151 @@ def _stem_x(spec: LinkMotionSpec, u: float, theta: np.ndarray) -> np.ndarray:
     xm = np.full(th.shape, math.sqrt(g * g - c * c))
     a = np.zeros(th.shape)
     xm, a = newton2(residual, xm, a, 1e-7 * g, 1e-7, 1e-14 * g, 1e-14)
+    out = {}
     if gooch:                       # the block: where the arc (shaft side) meets y = yb
         kx, ky = xm + rho * np.cos(a), ym + rho * np.sin(a)
         px = kx - np.sqrt(rho * rho - (yb - ky) ** 2)
+        out["link_centre"] = np.array([kx, ky])
     else:                           # where the straight link meets y = yb
         px = xm - (yb - ym) / np.cos(a) * np.sin(a)
-    return px + math.sqrt(g1 * g1 - yb * yb)
+    top, bottom = ends(xm, a)
+    n = th.size
+    out.update({"shaft": np.zeros((2, n)), "forward_eccentric": np.array([fx, fy]),
+                "backward_eccentric": np.array([bx, by]), "link_top": np.array(top),
+                "link_bottom": np.array(bottom), "link_middle": np.array([xm, np.full(n, ym)]),
+                "block": np.array([px, np.full(n, yb)]),
+                "stem": np.array([px + math.sqrt(g1 * g1 - yb * yb), np.zeros(n)])})
+    return out
+
+
+@dataclass(frozen=True)
+class GoochAllenJoints:
+    """The joints of the exact Gooch or Allen link at one crank angle (all SI; see the
+    module doc): shaft at the origin, the valve stem's line along X (y = 0), the link on
+    the cylinder's side; each point an (x, y) pair [m].
+
+    Parameters
+    ----------
+    points : dict
+        Each joint by name: ``shaft``, ``forward_eccentric``, ``backward_eccentric``,
+        ``link_top``, ``link_bottom`` (the rods' pins; the forward rod drives the
+        bottom), ``link_middle``, ``block`` (where the radius rod takes hold), ``stem``
+        (the radius rod's end on the stem's line) and, for Gooch's curved link,
+        ``link_centre`` [m].
+    rods_m : dict
+        Each rod, eccentric and the link's radius to its pins and block: ``{name:
+        (length [m], joint, joint)}``.
+    valve_m : float
+        The valve's displacement in the sense that opens the head steam port [m]: the
+        stem's X, reversed, from its mean in full forward gear.
+    """
+
+    points: dict
+    rods_m: dict
+    valve_m: float
 
 
 def _block_x(spec: LinkMotionSpec, u: float, theta: np.ndarray) -> np.ndarray:
     """X of the block (along the valve spindle's line, from the shaft) at crank angles
     ``theta`` with the reversing lever set for block offset ``u`` [m]."""
-    r, d, g, c = spec.eccentricity_m, spec.angular_advance_rad, spec.eccentric_rod_m, spec.half_link_m
-    rho = spec.link_radius_m or g
-    h = spec.hanger_m
-    psi_c = math.asin(c / rho)
-    # Open rods are uncrossed with the crank on the dead centre away from the link (the
-    # books' formula, with the lead rising toward mid gear, holds for that arrangement):
-    # here, with the link on the cylinder's side of the shaft, the forward eccentric
-    # then drives the lower end of the link.
-    # The books' open-rod formula (lead rising toward mid gear) holds when the rods are
-    # uncrossed with the crank on the dead centre away from the link; here, with the
-    # link on the cylinder's side of the shaft, the forward eccentric then drives the
-    # lower end of the link (the upper, with crossed rods).  The figure is the mirror
-    # of the books': a positive u (open rods, ahead) raises the link here.
-    top_is_forward = spec.kind == "stephenson_crossed"
-    lift = -u                               # the link's middle sits at y = -lift
+    linkage = _StephensonLinkage(spec, u)
+    return np.array([linkage.block(p)[0] for p in linkage.poses(theta)])
 
-    def link_point(pose, psi):
+
+class _StephensonLinkage:
+    """The exact Stephenson link at one block offset u: the link's pose (xm, ym, a), its
+    middle and the angle of its normal, solved by Newton's method per crank angle."""
+
+    def __init__(self, spec: LinkMotionSpec, u: float):
+        self.spec = spec
+        r, d, g, c = (spec.eccentricity_m, spec.angular_advance_rad, spec.eccentric_rod_m,
+                      spec.half_link_m)
+        self.rho = spec.link_radius_m or g
+        self.h = spec.hanger_m
+        self.psi_c = math.asin(c / self.rho)
+        # The books' open-rod formula (lead rising toward mid gear) holds when the rods are
+        # uncrossed with the crank on the dead centre away from the link; here, with the
+        # link on the cylinder's side of the shaft, the forward eccentric then drives the
+        # lower end of the link (the upper, with crossed rods).  The figure is the mirror
+        # of the books': a positive u (open rods, ahead) raises the link here.
+        self.top_is_forward = spec.kind == "stephenson_crossed"
+        self.lift = -u                          # the link's middle sits at y = -lift
+        self.x0 = math.sqrt(g * g - c * c) + self.rho * (1 - math.cos(self.psi_c))
+        # hanger top: over the link's mean position, at height h - u (infinite hanger: y = -u)
+        self.suspension = None
+
+    def eccentrics(self, th: float):
+        """Centres of the (forward, backward) eccentrics at crank angle ``th``."""
+        r, d = self.spec.eccentricity_m, self.spec.angular_advance_rad
+        f = np.array([math.cos(th + math.pi / 2 + d), math.sin(th + math.pi / 2 + d)]) * r
+        b = np.array([math.cos(th - math.pi / 2 - d), math.sin(th - math.pi / 2 - d)]) * r
+        return f, b
+
+    def link_point(self, pose, psi):
+        """The point of the link's arc at arc angle ``psi`` from its middle."""
         xm, ym, a = pose
         n = np.array([math.cos(a), math.sin(a)])
         t = np.array([-math.sin(a), math.cos(a)])
-        k = np.array([xm, ym]) - rho * n
-        return k + rho * (math.cos(psi) * n + math.sin(psi) * t)
+        k = np.array([xm, ym]) - self.rho * n
+        return k + self.rho * (math.cos(psi) * n + math.sin(psi) * t)
 
-    x0 = math.sqrt(g * g - c * c) + rho * (1 - math.cos(psi_c))
-    # hanger top: over the link's mean position, at height h - u (infinite hanger: y = -u)
-    suspension = None
-
-    def residual(pose, th):
-        f = np.array([math.cos(th + math.pi / 2 + d), math.sin(th + math.pi / 2 + d)]) * r
-        b = np.array([math.cos(th - math.pi / 2 - d), math.sin(th - math.pi / 2 - d)]) * r
-        top, bottom = (f, b) if top_is_forward else (b, f)
-        e1 = np.linalg.norm(link_point(pose, psi_c) - top) - g
-        e2 = np.linalg.norm(link_point(pose, -psi_c) - bottom) - g
-        if suspension is None:
-            e3 = pose[1] + lift
+    def residual(self, pose, th):
+        g = self.spec.eccentric_rod_m
+        f, b = self.eccentrics(th)
+        top, bottom = (f, b) if self.top_is_forward else (b, f)
+        e1 = np.linalg.norm(self.link_point(pose, self.psi_c) - top) - g
+        e2 = np.linalg.norm(self.link_point(pose, -self.psi_c) - bottom) - g
+        if self.suspension is None:
+            e3 = pose[1] + self.lift
         else:
-            e3 = math.hypot(pose[0] - suspension[0], pose[1] - suspension[1]) - h
+            e3 = math.hypot(pose[0] - self.suspension[0], pose[1] - self.suspension[1]) - self.h
         return np.array([e1, e2, e3])
 
-    def solve(pose, th):
+    def solve(self, pose, th):
+        """The link's pose at crank angle ``th`` by Newton's method from ``pose``."""
+        g = self.spec.eccentric_rod_m
         for _ in range(50):
-            res = residual(pose, th)
+            res = self.residual(pose, th)
             J = np.empty((3, 3))
             for j in range(3):
                 dp = np.zeros(3)
                 dp[j] = 1e-7 * (1.0 if j == 2 else max(g, 1.0))
-                J[:, j] = (residual(pose + dp, th) - res) / dp[j]
+                J[:, j] = (self.residual(pose + dp, th) - res) / dp[j]
             step = np.linalg.solve(J, -res)
             pose = pose + step
             if np.max(np.abs(step[:2])) < 1e-13 * g and abs(step[2]) < 1e-13:
                 break
         return pose
 
-    def block(pose):
-        lo, hi = -math.pi / 2, math.pi / 2      # the point of the arc on y = 0
+    def block(self, pose):
+        """The block: the point of the link's arc on the spindle's line y = 0."""
+        lo, hi = -math.pi / 2, math.pi / 2
         for _ in range(80):
             mid = 0.5 * (lo + hi)
-            if link_point(pose, mid)[1] < 0.0:
+            if self.link_point(pose, mid)[1] < 0.0:
                 lo = mid
             else:
                 hi = mid
-        return link_point(pose, 0.5 * (lo + hi))[0]
+        return self.link_point(pose, 0.5 * (lo + hi))
 
-    poses = []
-    pose = np.array([x0, -lift, 0.0])
-    for th in theta:
-        pose = solve(pose, th)
-        poses.append(pose)
-    if h is not None:   # second pass with the hanger hung over the link's mean position
-        suspension = (float(np.mean([p[0] for p in poses])), h - lift)
-        poses = []
-        pose = np.array([x0, -lift, 0.0])
+    def poses(self, theta):
+        """The link's pose at each crank angle of ``theta``, each solve started from the
+        last; with a hanger, a second pass with the hanger hung over the link's mean
+        position in the first."""
+        self.suspension = None
+        out = []
+        pose = np.array([self.x0, -self.lift, 0.0])
         for th in theta:
-            pose = solve(pose, th)
-            poses.append(pose)
-    return np.array([block(p) for p in poses])
+            pose = self.solve(pose, th)
+            out.append(pose)
+        if self.h is not None:
+            self.suspension = (float(np.mean([p[0] for p in out])), self.h - self.lift)
+            out = []
+            pose = np.array([self.x0, -self.lift, 0.0])
+            for th in theta:
+                pose = self.solve(pose, th)
+                out.append(pose)
+        return out
 
 
 def allen_book_ratio(g: float, g1: float) -> float:

@@ -502,8 +502,9 @@ class RadialGear(LappedValve):
         self.spec = spec
         self.setting_name = SETTING_NAMES[spec.kind]
         self._spline = None
+        self._zero = None
         if spec.motion == "exact":
-            self._spline = _tabulate(spec)
+            self._spline, self._zero = _tabulate(spec)
 
     def travel(self, theta):
         if self._spline is not None:
@@ -528,6 +529,32 @@ class RadialGear(LappedValve):
         th = np.asarray(theta, dtype=float)
         return C * np.cos(th) + S * np.sin(th)
 
+    def joints(self, theta: float) -> "WalschaertsJoints | RadialJoints":
+        """The exact gear's joints at crank angle ``theta``, from the solve whose valve
+        positions, tabulated at 1/2 deg and splined, are :meth:`travel`.
+
+        Parameters
+        ----------
+        theta : float
+            Crank angle from head-end dead centre [rad].
+
+        Returns
+        -------
+        WalschaertsJoints or RadialJoints
+            The joints [m] and the valve's displacement [m].
+
+        Raises
+        ------
+        ValueError
+            For a gear in Zeuner's form (not solved as a linkage).
+        """
+        if self._spline is None:
+            raise ValueError("joints are solved for the exact radial gears only "
+                             f"(this is {self.spec.kind} in Zeuner's form)")
+        if self.spec.kind == "walschaerts":
+            return walschaerts_joints(self.spec, theta, self._zero)
+        return radial_joints(self.spec, theta, self._zero)
+
 
 # --------------------------------------------------------------------------- exact linkages
 
@@ -545,9 +572,10 @@ def _tabulate(spec):
         raise InputError("valve_gear.motion", "exact",
                          "a gear whose linkage can be assembled at every crank angle: with "
                          "these dimensions a rod or link is too short to reach")
-    x = raw - 0.5 * (raw[0] + raw[N_TABLE // 2])
+    zero = 0.5 * (raw[0] + raw[N_TABLE // 2])
+    x = raw - zero
     x[-1] = x[0]
-    return CubicSpline(th, x, bc_type="periodic")
+    return CubicSpline(th, x, bc_type="periodic"), float(zero)
 
 
 def exact_valve_position(spec, theta: np.ndarray) -> np.ndarray:
@@ -611,6 +639,30 @@ def _on_guide(origin, t, nrm, radius, centre_of, reach, near):
 
 
 def _simple(spec: SimpleRadialSpec, th):
+    return _simple_points(spec, th)["x_raw"]
+
+
+def _guide_points(origin, t, nrm, radius, span):
+    """Points along a guide through ``origin`` (tangent t, normal nrm), straight for
+    radius None, else an arc of |radius| centred on the side sign(radius) of nrm;
+    ``span`` either way of ``origin``, shape (2, 21)."""
+    s = np.linspace(-span, span, 21)
+    if radius is None:
+        return np.array([origin[0] + s * t[0], origin[1] + s * t[1]])
+    rho = abs(radius)
+    k = math.copysign(1.0, radius)
+    cx, cy = origin[0] + k * rho * nrm[0], origin[1] + k * rho * nrm[1]
+    a0 = math.atan2(origin[1] - cy, origin[0] - cx)
+    # the arc's direction at origin is +t for one sense of the angle
+    sense = 1.0 if (-math.sin(a0) * t[0] + math.cos(a0) * t[1]) > 0 else -1.0
+    a = a0 + sense * s / rho
+    return np.array([cx + rho * np.cos(a), cy + rho * np.sin(a)])
+
+
+def _simple_points(spec: SimpleRadialSpec, th) -> dict:
+    """The joints of the exact Hackworth, Marshall or Angstrom gear at crank angles
+    ``th`` (arrays of shape (2, n) [m], X along the stroke towards the valve, Y across
+    it), the guide, and ``x_raw``, the valve's position from an arbitrary origin."""
     r, l1, l2 = spec.eccentricity_m, spec.link_m, spec.valve_arm_m
     eps = 1.0 if spec.hand == "right" else -1.0
     sgn = 1.0 if l2 > 0 else -1.0
@@ -630,12 +682,21 @@ def _simple(spec: SimpleRadialSpec, th):
         H = _on_guide(G[:, 0], t, nrm, spec.guide_radius_m, E, l1, near)
     K = H + (l2 / l1) * (E - H)
     X = K[0]
+    out = {"shaft": np.zeros((2, n)), "eccentric": E, "guided_end": H, "valve_pin": K}
+    yf = D * (1.0 - l2 / l1)                          # the valve rod's line
     if spec.valve_rod_m is not None:
         g2 = spec.valve_rod_m
-        yf = D * (1.0 - l2 / l1)                      # the valve rod's line
         with np.errstate(invalid="ignore"):
             X = X + np.sqrt(g2 * g2 - (K[1] - yf) ** 2)
-    return tau * X
+        out["valve_rod_end"] = np.array([X, np.full(n, yf)])
+    out["x_raw"] = tau * X
+    out["guide"] = _guide_points(G[:, 0], t, nrm, spec.guide_radius_m, 1.2 * r)
+    if spec.guide_radius_m is not None:             # Marshall: h swings on gh about g
+        k = math.copysign(1.0, spec.guide_radius_m)
+        rho = abs(spec.guide_radius_m)
+        out["guide_centre"] = np.repeat(np.array([[G[0, 0] + k * rho * nrm[0]],
+                                                  [G[1, 0] + k * rho * nrm[1]]]), n, axis=1)
+    return out
 
 
 def _watt(spec: SimpleRadialSpec, G, t, nrm, E, l1):
@@ -670,6 +731,13 @@ def _watt(spec: SimpleRadialSpec, G, t, nrm, E, l1):
 
 
 def _joy(spec: JoySpec, th):
+    return _joy_points(spec, th)["x_raw"]
+
+
+def _joy_points(spec: JoySpec, th) -> dict:
+    """The joints of the exact Joy gear at crank angles ``th`` (arrays of shape (2, n)
+    [m], X along the line of stroke towards the cylinder, Y up), the guide, and
+    ``x_raw``, the valve's position from an arbitrary origin."""
     R, b, c = spec.crank_m, spec.connecting_rod_m, spec.rod_point_m
     l1, l2, l3, l4 = spec.lever_m, spec.valve_arm_m, spec.jack_link_m, spec.jack_point_m
     eps = 1.0 if spec.hand == "right" else -1.0
@@ -693,12 +761,101 @@ def _joy(spec: JoySpec, th):
     H = _on_guide(k, t, nrm, spec.guide_radius_m, Gp, l1, np.repeat(k[:, None], n, axis=1))
     I = H + (l2 / l1) * (H - Gp)
     X = I[0]
+    out = {"shaft": np.zeros((2, n)), "crank_pin": B, "crosshead": np.array([Cx, np.zeros(n)]),
+           "rod_point": Dp, "anchor": np.repeat(f[:, None], n, axis=1), "jack_end": E,
+           "jack_point": Gp, "guided_point": H, "valve_pin": I}
     if spec.valve_rod_m is not None:
         g2 = spec.valve_rod_m
         iy0 = k[1] + l2 / l1 * (k[1] - g0y)
         with np.errstate(invalid="ignore"):
             X = X + np.sqrt(g2 * g2 - (I[1] - iy0) ** 2)
-    return -X                                   # head steam opens as the valve moves back
+        out["valve_rod_end"] = np.array([X, np.full(n, iy0)])
+    out["x_raw"] = -X                           # head steam opens as the valve moves back
+    out["guide"] = _guide_points(k, t, nrm, spec.guide_radius_m, 1.2 * half + 0.2 * l1)
+    return out
+
+
+@dataclass(frozen=True)
+class RadialJoints:
+    """The joints of an exact Hackworth, Marshall, Angstrom or Joy gear at one crank
+    angle (all SI; see the module doc), each an (x, y) pair [m] in the figure's frame:
+    for Hackworth, Marshall and Angstrom (a vertical engine) x across the stroke and y
+    along it, up towards the valve; for Joy x along the line of stroke towards the
+    cylinder and y up.  The shaft is at the origin.
+
+    Parameters
+    ----------
+    points : dict
+        Each joint by name (``shaft``, ``eccentric``, ``guided_end``, ``valve_pin``,
+        ``valve_rod_end``, Marshall's ``guide_centre``; Joy's ``crank_pin``, ``crosshead``, ``rod_point``, ``anchor``,
+        ``jack_end``, ``jack_point``, ``guided_point``) [m].
+    guide : tuple of tuple of float
+        Points along the guide the guided joint runs on, at this setting [m] (the
+        Angstrom gear's parallel motion, which stands in for it, is not given).
+    rods_m : dict
+        Each rod or link: ``{name: (length [m], joint, joint)}``, a joint named as in
+        ``points``.
+    valve_m : float
+        The valve's displacement in the sense that opens the head steam port [m], from
+        its equal-lead zero.
+    """
+
+    points: dict
+    guide: tuple
+    rods_m: dict
+    valve_m: float
+
+
+def radial_joints(spec, theta: float, zero_m: float) -> RadialJoints:
+    """The exact Hackworth, Marshall, Angstrom or Joy gear's joints at crank angle
+    ``theta``, from the solve that gives its valve travel.
+
+    Parameters
+    ----------
+    spec : SimpleRadialSpec or JoySpec
+        The gear.
+    theta : float
+        Crank angle from head-end dead centre [rad].
+    zero_m : float
+        The valve's zero, the mean of :func:`exact_valve_position` at the two dead
+        centres [m].
+
+    Returns
+    -------
+    RadialJoints
+        The joints [m] and the valve's displacement [m].
+    """
+    th = np.array([float(theta)])
+    if spec.kind == "joy":
+        pts = _joy_points(spec, th)
+        swap = False
+        rods = {"crank": (spec.crank_m, "shaft", "crank_pin"),
+                "connecting rod": (spec.connecting_rod_m, "crank_pin", "crosshead"),
+                "rod point": (spec.rod_point_m, "crosshead", "rod_point"),
+                "jack link": (spec.jack_link_m, "rod_point", "jack_end"),
+                "anchor link": (spec.anchor_link_m, "anchor", "jack_end"),
+                "jack point": (spec.jack_point_m, "rod_point", "jack_point"),
+                "lever": (spec.lever_m, "jack_point", "guided_point"),
+                "valve arm": (spec.valve_arm_m, "guided_point", "valve_pin")}
+    else:
+        pts = _simple_points(spec, th)
+        swap = True
+        rods = {"eccentric": (spec.eccentricity_m, "shaft", "eccentric"),
+                "link": (spec.link_m, "eccentric", "guided_end"),
+                "valve arm": (abs(spec.valve_arm_m), "guided_end", "valve_pin")}
+        if spec.guide_radius_m is not None:
+            rods["reversing link"] = (abs(spec.guide_radius_m), "guide_centre", "guided_end")
+    if spec.valve_rod_m is not None:
+        rods["valve rod"] = (spec.valve_rod_m, "valve_pin", "valve_rod_end")
+    x = float(pts.pop("x_raw")[0]) - zero_m
+    guide = pts.pop("guide")
+
+    def pt(v, i=0):
+        return (float(v[1, i]), float(v[0, i])) if swap else (float(v[0, i]), float(v[1, i]))
+
+    return RadialJoints(points={name: pt(v) for name, v in pts.items()},
+                        guide=tuple(pt(guide, i) for i in range(guide.shape[1])),
+                        rods_m=rods, valve_m=x)
 
 
 def walschaerts_layout(spec: WalschaertsSpec) -> dict:
@@ -740,6 +897,13 @@ def walschaerts_layout(spec: WalschaertsSpec) -> dict:
 
 
 def _walschaerts(spec: WalschaertsSpec, th):
+    pts = _walschaerts_points(spec, th)
+    return -pts["valve_pin"][0] if spec.admission == "outside" else pts["valve_pin"][0]
+
+
+def _walschaerts_points(spec: WalschaertsSpec, th) -> dict:
+    """Every joint of the exact Walschaerts gear at crank angles ``th`` (arrays of shape
+    (2, n) [m]; see the module doc)."""
     R, b, e, er = spec.crank_m, spec.connecting_rod_m, spec.return_crank_m, spec.eccentric_rod_m
     k, rho, a, ell, ul = (spec.link_foot_m, spec.radius_rod_m, spec.lever_valve_m,
                           spec.lever_crosshead_m, spec.union_link_m)
@@ -755,10 +919,14 @@ def _walschaerts(spec: WalschaertsSpec, th):
     XH = np.array([Cx + lay["arm"], np.full(n, lay["yL"])])
     F = _circles(np.repeat(T[:, None], n, axis=1), k, Q, er, np.repeat(F0[:, None], n, axis=1))
     beta = np.arctan2(F[0] - T[0], -(F[1] - T[1]))
+
+    def on_link(s):
+        px, py = rho * (1.0 - math.cos(s / rho)), rho * math.sin(s / rho)
+        return np.array([T[0] + np.cos(beta) * px - np.sin(beta) * py,
+                         T[1] + np.sin(beta) * px + np.cos(beta) * py])
+
     s = (1.0 if outside else -1.0) * spec.die_m
-    px, py = rho * (1.0 - math.cos(s / rho)), rho * math.sin(s / rho)
-    Dd = np.array([T[0] + np.cos(beta) * px - np.sin(beta) * py,
-                   T[1] + np.sin(beta) * px + np.cos(beta) * py])
+    Dd = on_link(s)
     # the lever: unknowns the valve pin's x and the lever's angle gamma from the vertical
     if outside:
         da, dl = -a, -(a + ell)            # A = V + da w, L = V + dl w
@@ -778,7 +946,99 @@ def _walschaerts(spec: WalschaertsSpec, th):
     g = np.arcsin(np.clip((ax0 - lx0) / ell, -0.99, 0.99))
     vx = ax0 - da * np.sin(g)
     vx, g = newton2(residual, vx, g, 1e-7 * rho, 1e-8, 1e-13 * rho, 1e-13)
-    return -vx if outside else vx
+    w = np.array([np.sin(g), np.cos(g)])
+    V = np.array([vx, np.full(n, yv)])
+    umax = spec.max_die_m
+    return {"axle": np.zeros((2, n)), "crank_pin": np.array([Bx, By]),
+            "crosshead": np.array([Cx, np.zeros(n)]), "crosshead_arm": XH,
+            "return_crank_pin": Q, "link_foot": F, "trunnion": np.repeat(T[:, None], n, axis=1),
+            "link_top": on_link(umax), "link_bottom": on_link(-umax),
+            "link_centre": on_link(0.0) + rho * np.array([np.cos(beta), np.sin(beta)]),
+            "die": Dd, "radius_rod_pin": V + da * w, "valve_pin": V, "union_pin": V + dl * w}
+
+
+@dataclass(frozen=True)
+class WalschaertsJoints:
+    """The joints of the exact Walschaerts gear at one crank angle (all SI; see the
+    module doc): the axle at the origin, X along the line of stroke towards the
+    cylinder, Y up; each point an (x, y) pair [m].
+
+    Parameters
+    ----------
+    axle, crank_pin, crosshead : tuple of float
+        The driving axle, the main crank's pin and the crosshead [m].
+    crosshead_arm : tuple of float
+        The union link's pin on the crosshead's arm [m].
+    return_crank_pin, link_foot, trunnion : tuple of float
+        The return crank's pin, the eccentric rod's pin at the link's foot and the
+        link's fixed trunnion [m].
+    link_top, link_bottom, link_centre : tuple of float
+        The link's ends (the die's travel at full gear either way) and the centre of its
+        arc [m].
+    die : tuple of float
+        The die in the link, where the radius rod takes its motion [m].
+    radius_rod_pin, valve_pin, union_pin : tuple of float
+        The combination lever's pins: the radius rod's, the valve stem's and the union
+        link's [m].
+    rods_m : dict
+        Each rod's or arm's name and its length from the spec [m], with the pair of
+        joints it joins: ``{name: (length, joint, joint)}``.
+    valve_m : float
+        The valve's displacement in the sense that opens the head steam port [m] (the
+        valve pin's X, signed by admission, from its mean at the dead centres).
+    """
+
+    axle: tuple[float, float]
+    crank_pin: tuple[float, float]
+    crosshead: tuple[float, float]
+    crosshead_arm: tuple[float, float]
+    return_crank_pin: tuple[float, float]
+    link_foot: tuple[float, float]
+    trunnion: tuple[float, float]
+    link_top: tuple[float, float]
+    link_bottom: tuple[float, float]
+    link_centre: tuple[float, float]
+    die: tuple[float, float]
+    radius_rod_pin: tuple[float, float]
+    valve_pin: tuple[float, float]
+    union_pin: tuple[float, float]
+    rods_m: dict
+    valve_m: float
+
+
+def walschaerts_joints(spec: WalschaertsSpec, theta: float, zero_m: float) -> WalschaertsJoints:
+    """The exact Walschaerts gear's joints at crank angle ``theta``, from the solve that
+    gives its valve travel.
+
+    Parameters
+    ----------
+    spec : WalschaertsSpec
+        The gear.
+    theta : float
+        Crank angle from head-end dead centre [rad].
+    zero_m : float
+        The valve's zero, the mean of :func:`exact_valve_position` at the two dead
+        centres [m].
+
+    Returns
+    -------
+    WalschaertsJoints
+        The joints [m] and the valve's displacement [m].
+    """
+    pts = _walschaerts_points(spec, np.array([float(theta)]))
+    p = {name: (float(v[0, 0]), float(v[1, 0])) for name, v in pts.items()}
+    vx = p["valve_pin"][0]
+    x = (-vx if spec.admission == "outside" else vx) - zero_m
+    rods = {"main crank": (spec.crank_m, "axle", "crank_pin"),
+            "connecting rod": (spec.connecting_rod_m, "crank_pin", "crosshead"),
+            "return crank": (spec.return_crank_m, "axle", "return_crank_pin"),
+            "eccentric rod": (spec.eccentric_rod_m, "return_crank_pin", "link_foot"),
+            "link foot": (spec.link_foot_m, "trunnion", "link_foot"),
+            "radius rod": (spec.radius_rod_m, "die", "radius_rod_pin"),
+            "lever, valve": (spec.lever_valve_m, "radius_rod_pin", "valve_pin"),
+            "lever, crosshead": (spec.lever_crosshead_m, "radius_rod_pin", "union_pin"),
+            "union link": (spec.union_link_m, "union_pin", "crosshead_arm")}
+    return WalschaertsJoints(**p, rods_m=rods, valve_m=x)
 
 
 # --------------------------------------------------------------------------- scene table

@@ -293,6 +293,99 @@ class SlideValve(LappedValve):
         s = self.spec
         return s.eccentricity_m * np.sin(np.asarray(theta) + s.angular_advance_rad)
 
+    def joints(self, theta: float) -> "EccentricJoints":
+        """The eccentric's linkage at crank angle ``theta``, from the same closed form as
+        :meth:`travel`.
+
+        Parameters
+        ----------
+        theta : float
+            Crank angle from head-end dead centre [rad].
+
+        Returns
+        -------
+        EccentricJoints
+            The shaft, the eccentric's centre and the rod's end [m], and the valve's
+            displacement [m].
+        """
+        return eccentric_joints(self.spec, float(theta))
+
+
+@dataclass(frozen=True)
+class EccentricJoints:
+    """The joints of a single eccentric driving a valve at one crank angle (all SI).
+
+    The shaft is at the origin, the line of stroke (and the valve spindle's line) along
+    X; the eccentric's centre is at r (sin, cos)(theta + delta), so that its projection
+    on X is Zeuner's r sin(theta + delta) (Spangler Art. 13).  With a finite rod the
+    rod's end runs on the spindle's line: on the side X < 0 for ``sigma`` = +1 (it
+    falls short towards the shaft as the valve moves towards +X) and X > 0 for
+    ``sigma`` = -1.  With an infinitely long rod the valve is driven as by a slotted
+    yoke: the rod's end is the eccentric's centre projected on the spindle's line,
+    which moves the valve exactly harmonically.
+
+    Parameters
+    ----------
+    shaft : tuple of float
+        The shaft's centre (x, y) [m].
+    eccentric : tuple of float
+        The eccentric's centre (x, y) [m].
+    rod_end : tuple of float
+        The eccentric rod's end on the valve spindle's line (x, y) [m].
+    rod_m : float or None
+        The eccentric rod's length [m]; None for the slotted yoke.
+    valve_m : float
+        The valve's displacement in the sense that opens the head steam port [m]:
+        the rod end's X less its X with the valve at its zero.
+    rods_m : dict
+        The eccentric's throw and the rod: ``{name: (length [m], joint, joint)}``.
+    """
+
+    shaft: tuple[float, float]
+    eccentric: tuple[float, float]
+    rod_end: tuple[float, float]
+    rod_m: float | None
+    valve_m: float
+    rods_m: dict
+
+
+def eccentric_joints(spec: SlideValveSpec, theta: float) -> EccentricJoints:
+    """The eccentric, rod and valve of a slide valve's gear at crank angle ``theta``.
+
+    The valve's displacement is the rod end's X from the rod end's X at the valve's
+    zero (the rod on the side X < 0 for sigma = +1, X > 0 for -1): for equal lead (Marks, Art. 96)
+    the zero is the mean of the two dead-point positions, sqrt(g^2 - r^2 cos^2 delta)
+    from the eccentric's projection, for equal travels g; this is the module's formula
+    for the valve's travel, term for term.
+
+    Parameters
+    ----------
+    spec : SlideValveSpec
+        The valve and its eccentric.
+    theta : float
+        Crank angle from head-end dead centre [rad].
+
+    Returns
+    -------
+    EccentricJoints
+        The joints [m] and the valve's displacement [m].
+    """
+    r, g = spec.eccentricity_m, spec.eccentric_rod_m
+    phase = theta + spec.angular_advance_rad
+    ex, ey = r * math.sin(phase), r * math.cos(phase)
+    if g is None:
+        return EccentricJoints((0.0, 0.0), (ex, ey), (ex, 0.0), None, ex,
+                               {"eccentric": (r, "shaft", "eccentric")})
+    sigma = spec.sigma
+    end_x = ex - sigma * math.sqrt(g * g - ey * ey)
+    if spec.setting == "equal_lead":
+        zero = -sigma * math.sqrt(g * g - (r * math.cos(spec.angular_advance_rad)) ** 2)
+    else:
+        zero = -sigma * g
+    return EccentricJoints((0.0, 0.0), (ex, ey), (end_x, 0.0), g, end_x - zero,
+                           {"eccentric": (r, "shaft", "eccentric"),
+                            "eccentric rod": (g, "eccentric", "rod_end")})
+
 
 def pair(t: Table, key: str, kind: str, default=None) -> tuple[float, float]:
     """A value given once for both ends, or as [head, crank]."""
