@@ -1,0 +1,134 @@
+"""Sphinx configuration of the corliss documentation.
+
+Build it (offline, nothing fetched) from the repository's root with::
+
+    sphinx-build -W --keep-going -b html docs docs/_build/html
+
+``tests/test_docs.py`` runs the same build and fails on any warning.  Generated
+sources (the API pages, the gallery, the notebooks copied from ``notebooks/``) are
+written under ``docs/`` at build time and are not committed.
+"""
+
+from __future__ import annotations
+
+import filecmp
+import re
+import shutil
+import sys
+from pathlib import Path
+
+DOCS = Path(__file__).resolve().parent
+ROOT = DOCS.parent
+sys.path.insert(0, str(ROOT))
+
+import corliss  # noqa: E402
+
+# -- project -----------------------------------------------------------------------
+project = "corliss"
+author = "the corliss developers"
+copyright = "the corliss developers, MIT licence"
+version = release = corliss.__version__
+
+# -- extensions ----------------------------------------------------------------------
+extensions = [
+    "myst_nb",                    # Markdown pages and the notebooks (MyST)
+    "sphinx.ext.autodoc",
+    "sphinx.ext.autosummary",
+    "sphinx.ext.mathjax",
+    "numpydoc",
+    "sphinx_gallery.gen_gallery",
+]
+
+source_suffix = {".rst": "restructuredtext", ".md": "myst-nb", ".ipynb": "myst-nb"}
+root_doc = "index"
+exclude_patterns = ["_build", "**.ipynb_checkpoints", "auto_examples/*.ipynb",
+                    "auto_examples/*.py", "auto_examples/*.zip", "auto_examples/*.md5",
+                    "auto_examples/*.codeobj.json", "validation/*.csv"]
+templates_path = ["_templates"]
+
+# -- MyST and the notebooks ------------------------------------------------------------
+# The notebooks are executed by tests/test_notebooks.py and stored with their figures;
+# the documentation shows what is stored and never runs them.
+nb_execution_mode = "off"
+myst_enable_extensions = ["dollarmath", "deflist", "colon_fence"]
+myst_heading_anchors = 3
+
+
+def _copy_notebooks() -> None:
+    """Copy ``notebooks/*.ipynb`` into ``docs/notebooks/`` (Sphinx reads only its own
+    folder); a notebook whose copy is already the same is left alone, so an
+    incremental build does not reread it."""
+    target = DOCS / "notebooks"
+    target.mkdir(exist_ok=True)
+    for src in sorted((ROOT / "notebooks").glob("*.ipynb")):
+        dst = target / src.name
+        if not dst.exists() or not filecmp.cmp(src, dst, shallow=False):
+            shutil.copyfile(src, dst)
+
+
+_copy_notebooks()
+
+# -- the API reference -------------------------------------------------------------------
+autosummary_generate = True
+autosummary_generate_overwrite = True
+autosummary_imported_members = False
+autodoc_default_options = {
+    "members": True,
+    "undoc-members": True,
+    "show-inheritance": True,
+    "member-order": "bysource",
+    "ignore-module-all": True,        # a package documents what it defines, once
+}
+autodoc_typehints = "none"            # numpydoc's Parameters carry the types and units
+autodoc_member_order = "bysource"
+autodoc_mock_imports: list[str] = []
+numpydoc_show_class_members = False   # members are documented by autodoc, once
+numpydoc_class_members_toctree = False
+numpydoc_attributes_as_param_list = True
+numpydoc_xref_param_type = False
+numpydoc_validation_checks: set[str] = set()   # tests/docstring_rules.py checks them
+
+# A module docstring is plain reStructuredText under autodoc (numpydoc parses only
+# callables), and its numpydoc-style headings ("Title" over a line of dashes) would be
+# section titles inside a directive, which docutils refuses.  They are shown as rubrics.
+_HEADING = re.compile(r"^([^\s].*)\n([-=~^\"'`#*+]{3,})\s*$", re.M)
+
+
+def _module_headings_as_rubrics(app, what, name, obj, options, lines):
+    if what != "module" or not lines:
+        return
+    text = "\n".join(lines)
+
+    def rubric(m: re.Match) -> str:
+        title, underline = m.group(1).rstrip(), m.group(2)
+        if len(underline) < len(title) - 2 or len(set(underline)) != 1:
+            return m.group(0)
+        return f".. rubric:: {title}\n"
+
+    new = _HEADING.sub(rubric, text)
+    if new != text:
+        lines[:] = new.split("\n")
+
+
+# -- the gallery --------------------------------------------------------------------------
+sphinx_gallery_conf = {
+    "examples_dirs": str(ROOT / "examples"),
+    "gallery_dirs": "auto_examples",
+    "filename_pattern": r"plot_",
+    "matplotlib_animations": True,
+    "download_all_examples": False,
+    "remove_config_comments": True,
+    "within_subsection_order": "FileNameSortKey",
+    "image_scrapers": ("matplotlib",),
+    "show_memory": False,
+    "plot_gallery": "True",
+}
+
+# -- HTML ---------------------------------------------------------------------------------
+html_theme = "furo"
+html_title = f"corliss {release}"
+html_static_path: list[str] = []
+
+
+def setup(app):
+    app.connect("autodoc-process-docstring", _module_headings_as_rubrics)
