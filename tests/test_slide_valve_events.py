@@ -93,7 +93,7 @@ def _shift(ev_rod, ev_z, end, key):
 
 
 def test_finite_rod_shifts_events_as_marks_describes():
-    """Marks Art. 96 (L13493-13522), for his model (the reverse sense in our terms,
+    """Marks Art. 96 (pp. 257-258), for his model (the reverse sense in our terms,
     see the test above): while the piston moves toward the shaft (the head-end stroke)
     the missing quantity delays pre-admission, increases over-travel, hastens cut-off,
     compression and release; moving away (the crank-end stroke) the reverse.  The
