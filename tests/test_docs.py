@@ -79,11 +79,14 @@ def test_the_notebooks_are_shown_with_their_stored_figures(site):
 
 
 def test_every_gallery_example_ran_and_drew_its_figure(site):
+    """A still figure (sphinx-gallery's ``sphx_glr_<example>_001`` image) or an
+    animation embedded in the page (``matplotlib_animations``)."""
     examples = sorted((ROOT / "examples").glob("plot_*.py"))
     assert examples
     for ex in examples:
         page = (site / "auto_examples" / f"{ex.stem}.html").read_text("utf-8")
-        assert f"sphx_glr_{ex.stem}_001" in page, f"{ex.name} drew no figure"
+        drawn = f"sphx_glr_{ex.stem}_001" in page or 'class="animation"' in page
+        assert drawn, f"{ex.name} drew no figure"
 
 
 def test_the_pages_are_all_there(site):
