@@ -10,10 +10,12 @@ coordinate, and the cut-off follows the governor. Shortened here to 6 s with the
 position and cut-off against time, with the cards before the step and at the end.
 """
 
+import copy
+
 import corliss
 
 path = corliss.bundled_scenes()["porter-allen-governor"]
-data = corliss.scene.load_scene(path).data
+data = copy.deepcopy(corliss.load_scene(path).data)     # the scene's tables, as read
 data["run"]["duration"] = "6 s"
 data["load"]["step_time"] = "2 s"
 scene = corliss.scene_from_dict(data, name="porter-allen-governor").with_fidelity("fast")
