@@ -12,7 +12,6 @@ written under ``docs/`` at build time and are not committed.
 from __future__ import annotations
 
 import filecmp
-import re
 import shutil
 import sys
 from pathlib import Path
@@ -81,34 +80,11 @@ autodoc_default_options = {
 }
 autodoc_typehints = "none"            # numpydoc's Parameters carry the types and units
 autodoc_member_order = "bysource"
-autodoc_mock_imports: list[str] = []
 numpydoc_show_class_members = False   # members are documented by autodoc, once
 numpydoc_class_members_toctree = False
 numpydoc_attributes_as_param_list = True
 numpydoc_xref_param_type = False
 numpydoc_validation_checks: set[str] = set()   # tests/docstring_rules.py checks them
-
-# A module docstring is plain reStructuredText under autodoc (numpydoc parses only
-# callables), and its numpydoc-style headings ("Title" over a line of dashes) would be
-# section titles inside a directive, which docutils refuses.  They are shown as rubrics.
-_HEADING = re.compile(r"^([^\s].*)\n([-=~^\"'`#*+]{3,})\s*$", re.M)
-
-
-def _module_headings_as_rubrics(app, what, name, obj, options, lines):
-    if what != "module" or not lines:
-        return
-    text = "\n".join(lines)
-
-    def rubric(m: re.Match) -> str:
-        title, underline = m.group(1).rstrip(), m.group(2)
-        if len(underline) < len(title) - 2 or len(set(underline)) != 1:
-            return m.group(0)
-        return f".. rubric:: {title}\n"
-
-    new = _HEADING.sub(rubric, text)
-    if new != text:
-        lines[:] = new.split("\n")
-
 
 # -- the gallery --------------------------------------------------------------------------
 sphinx_gallery_conf = {
@@ -121,14 +97,9 @@ sphinx_gallery_conf = {
     "within_subsection_order": "FileNameSortKey",
     "image_scrapers": ("matplotlib",),
     "show_memory": False,
-    "plot_gallery": "True",
 }
 
 # -- HTML ---------------------------------------------------------------------------------
 html_theme = "furo"
 html_title = f"corliss {release}"
 html_static_path: list[str] = []
-
-
-def setup(app):
-    app.connect("autodoc-process-docstring", _module_headings_as_rubrics)

@@ -97,13 +97,14 @@ def test_the_pages_are_all_there(site):
         assert (site / f"{page}.html").is_file(), page
 
 
-#: A citation of a line of a private text copy: the letter L and the line's number.
-PRIVATE_LINE = re.compile(r"\bL\d{3,5}\b")
+#: A citation of a line of a private text copy (the letter L and the line's number), or
+#: of a section of someone's private reading notes.
+PRIVATE_LINE = re.compile(r"\bL\d{3,5}\b|\bnotes,? §|\bof the notes\b")
 
 
 def test_no_citation_points_at_a_private_line_number():
     """Books are cited by article and page (the bibliography's editions); a line number
-    of someone's OCR file helps no reader."""
+    of someone's OCR file, or a section of their notes, helps no reader."""
     found = []
     for folder, pattern in (("corliss", "*.py"), ("tests", "*.py"), ("scenes", "*.toml"),
                             ("docs", "*.md"), ("examples", "*.py"), ("benchmarks", "*.py")):
