@@ -59,15 +59,21 @@ def _copy_notebooks() -> None:
     incremental build does not reread it."""
     target = DOCS / "notebooks"
     target.mkdir(exist_ok=True)
-    for src in sorted((ROOT / "notebooks").glob("*.ipynb")):
+    sources = sorted((ROOT / "notebooks").glob("*.ipynb"))
+    for src in sources:
         dst = target / src.name
         if not dst.exists() or not filecmp.cmp(src, dst, shallow=False):
             shutil.copyfile(src, dst)
+    for stale in set(target.glob("*.ipynb")) - {target / s.name for s in sources}:
+        stale.unlink()          # a notebook since removed from notebooks/
 
 
 _copy_notebooks()
 
 # -- the API reference -------------------------------------------------------------------
+# docs/api/ is generated afresh by autosummary at every build, so that a module since
+# removed or renamed leaves no stale page behind.
+shutil.rmtree(DOCS / "api", ignore_errors=True)
 autosummary_generate = True
 autosummary_generate_overwrite = True
 autosummary_imported_members = False
