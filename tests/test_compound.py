@@ -19,7 +19,7 @@ def compound(lp_bore="14 in", speed="60 rpm"):
 
 
 def marks_receiver_pressure(result):
-    """Marks Art. 87 (L11638-11652), perfect steam at constant temperature: the steam
+    """Marks Art. 87 (p. 219), perfect steam at constant temperature: the steam
     the HP holds at its cut-off fills the LP at its cut-off, e Pb Vn = e1 Pr Vc, so
     Pr = e Pb / (R e1), with e, e1 true cut-offs (volumes with one clearance) and R the
     ratio of the cylinders' volumes."""

@@ -55,7 +55,7 @@ def test_hutte_table_iv_with_the_connecting_rod(n):
 
 
 def test_inertia_of_marks_worked_example():
-    """Marks Art. 35, eqs. 96-98 and the example of L4383-4413: a 12 in piston, 200
+    """Marks Art. 35, eqs. 96-98 and the example of pp. 83-84: a 12 in piston, 200
     strokes a minute, r = 6 in, initial 125 and final 25 lb/in2.  Reciprocating parts of
     G = 4612.3 d^2 (Pb - Pf)/(N^2 r) = 3321 lb make the inertia resistance at the dead
     points y = (Pb - Pf)/2 = 50 lb/in2: taken from the force at the start of the stroke,

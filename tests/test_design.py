@@ -42,7 +42,7 @@ def zeuner_base(port_in=2.0) -> SlideValveSpec:
 
 def slider_crank(R, L):
     """s(theta)/S = [R (1 - cos) + L - sqrt(L^2 - R^2 sin^2)] / 2R (Spangler Art. 6 by
-    drawing; the closed form, notes §0)."""
+    drawing; the closed form, Marks Art. 96, eqs. 239-241)."""
     return lambda t: (R * (1 - math.cos(t)) + L - math.sqrt(L * L - (R * math.sin(t)) ** 2)) / (2 * R)
 
 

@@ -80,7 +80,7 @@ def test_link_motion_scene_runs_and_checks_its_block():
                                "connection": None, "steam": None})
 
 
-# Peabody, Link Motion (thesis, 1877), Table of Results (L348-395), Zeuner's solution for a
+# Peabody, Link Motion (thesis, 1877), its Table of Results, Zeuner's solution for a
 # Hinkley Locomotive Works link: r = 2 3/4 in, eccentric rods 54 in, half link 6 in, lap
 # 7/8 in, full-gear lead 1/16 in, no inside lap.  Per grade w = (grade/10) c: outside lead
 # [in] (col. 3), crank angle at cut-off (col. 8), piston at cut-off as a harmonic fraction

@@ -23,7 +23,7 @@ def zeuner_scene(**gear):
 
 
 def test_events_equal_zeuner_closed_forms():
-    """Spangler Arts. 12-18 (notes §2.3): with x = r sin(theta + delta), the head end
+    """Spangler Arts. 12-18, pp. 10-19: with x = r sin(theta + delta), the head end
     admits at asin(l/r) - delta, cuts off at 180 - asin(l/r) - delta, releases at
     180 + asin(e/r) - delta and compresses at 360 - asin(e/r) - delta; the crank end's
     port opens on -x, so its events are the same forms shifted by 180 deg.  Lead
@@ -93,7 +93,7 @@ def _shift(ev_rod, ev_z, end, key):
 
 
 def test_finite_rod_shifts_events_as_marks_describes():
-    """Marks Art. 96 (L13493-13522), for his model (the reverse sense in our terms,
+    """Marks Art. 96 (pp. 257-258), for his model (the reverse sense in our terms,
     see the test above): while the piston moves toward the shaft (the head-end stroke)
     the missing quantity delays pre-admission, increases over-travel, hastens cut-off,
     compression and release; moving away (the crank-end stroke) the reverse.  The

@@ -10,7 +10,7 @@ cast-iron surface exposed, and to the time it was exposed to the exhaust (Art. 7
 with d the bore and s the stroke, N strokes per unit time, e the true cut-off (a
 fraction of the volume with one clearance), T_b the steam temperature at cut-off and
 T_e the exhaust temperature.  C = 0.02047 lb of steam per ft2, degF and minute, the
-mean of his concordant experiments (Art. 82, L11126).
+mean of his concordant experiments (Art. 82, p. 209).
 """
 
 from __future__ import annotations

@@ -21,7 +21,7 @@ dead-point positions, so the correction vanishes at both dead centres::
 A valve set for equal extreme travels (``setting = "mid_travel"``) keeps the whole
 correction instead.
 
-Port openings (Spangler Art. 15 and Art. 2.3 of the notes): head steam ``x - l_h``,
+Port openings (Spangler Arts. 15-17, pp. 13-14): head steam ``x - l_h``,
 head exhaust ``-x - e_h``, crank steam ``-x - l_c``, crank exhaust ``x - e_c``, with
 ``l`` the steam lap and ``e`` the exhaust lap of each end (negative for clearance).
 
