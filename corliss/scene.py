@@ -39,7 +39,7 @@ SECTIONS = ("title", "engine", "supply", "exhaust", "valve_gear", "run", "output
 class SupplySpec:
     """Steam at the chest (all SI).
 
-    Attributes
+    Parameters
     ----------
     pressure_Pa : float
         Absolute pressure [Pa].
@@ -78,7 +78,7 @@ class SupplySpec:
 class ExhaustSpec:
     """Back pressure: atmosphere, condenser or receiver, held constant.
 
-    Attributes
+    Parameters
     ----------
     pressure_Pa : float
         Absolute back pressure [Pa].
@@ -91,7 +91,7 @@ class ExhaustSpec:
 class RunSpec:
     """What to simulate and how accurately.
 
-    Attributes
+    Parameters
     ----------
     mode : str
         ``"steady"`` (constant speed) or ``"transient"`` (speed a state, with the
@@ -156,10 +156,28 @@ class RunSpec:
 
     @property
     def speed_rpm(self) -> float:
+        """Crank speed in revolutions a minute.
+
+        Returns
+        -------
+        float
+            The speed [rpm].
+        """
         return self.speed_rad_s / units.RPM_RAD_S
 
     def has(self, effect: str) -> bool:
-        """True when the scene names ``effect``."""
+        """True when the scene names ``effect``.
+
+        Parameters
+        ----------
+        effect : str
+            An effect's name.
+
+        Returns
+        -------
+        bool
+            Whether ``run.effects`` holds it.
+        """
         return effect in self.effects
 
 
@@ -167,7 +185,7 @@ class RunSpec:
 class OutputSpec:
     """Where and how results are written.
 
-    Attributes
+    Parameters
     ----------
     units : str
         ``"US"`` or ``"SI"`` in CSV and plots.
@@ -183,7 +201,7 @@ class OutputSpec:
 class CompoundSpec:
     """The low-pressure cylinder of a compound engine and its receiver (all SI).
 
-    Attributes
+    Parameters
     ----------
     lp_engine : EngineSpec
         The LP cylinder (bore, stroke, rod, clearance); other [engine] data as the HP's.
@@ -210,7 +228,7 @@ class CompareSpec:
     """The ``[compare]`` section: how `corliss compare` governs the engine both ways
     (every field None: the study's default, see :mod:`corliss.engine.compare`).
 
-    Attributes
+    Parameters
     ----------
     throttled_setting : float or None
         The gear setting the throttled variant keeps [-].
@@ -251,7 +269,41 @@ def _compare(t: Table, swept_m3: float, gear) -> CompareSpec:
 
 @dataclass(frozen=True)
 class Scene:
-    """A validated scene, all SI.  Build it with :func:`load_scene`."""
+    """A validated scene, all SI.  Build it with :func:`load_scene`.
+
+    Parameters
+    ----------
+    title : str
+        The scene's title.
+    engine : EngineSpec
+        The cylinder(s).
+    supply, exhaust : SupplySpec, ExhaustSpec
+        Steam in and out.
+    gear_type : str
+        The valve gear's registry name.
+    gear : object
+        Its spec.
+    run, output : RunSpec, OutputSpec
+        What to simulate; where results go.
+    name : str
+        The scene's name (its file's stem).
+    source : str or None
+        Its file's path.
+    compound : CompoundSpec or None
+        The LP cylinder of a compound.
+    governor_type : str or None
+        The governor's registry name.
+    governor : object or None
+        Its spec.
+    flywheel, load : object or None
+        A transient run's flywheel and load specs.
+    compare : CompareSpec or None
+        The ``[compare]`` section.
+    data : dict or None
+        The scene's tables as read.
+    text : str or None
+        The scene file's text.
+    """
 
     title: str
     engine: EngineSpec
@@ -275,18 +327,46 @@ class Scene:
     text: str | None = dataclasses.field(default=None, compare=False, repr=False)
 
     def resolved(self) -> dict:
-        """The scene as resolved SI values (for result metadata)."""
+        """The scene as resolved SI values (for result metadata).
+
+        Returns
+        -------
+        dict
+            Its fields, nested, without the raw tables and text.
+        """
         out = dataclasses.asdict(self)
         for raw in ("data", "text"):
             out.pop(raw)
         return out
 
     def replace_run(self, **changes) -> "Scene":
-        """A copy with fields of ``run`` changed (e.g. ``cycles=3``)."""
+        """A copy with fields of ``run`` changed (e.g. ``cycles=3``).
+
+        Parameters
+        ----------
+        **changes
+            Fields of :class:`RunSpec` and their new values.
+
+        Returns
+        -------
+        Scene
+            The copy.
+        """
         return dataclasses.replace(self, run=dataclasses.replace(self.run, **changes))
 
     def with_fidelity(self, name: str) -> "Scene":
-        """A copy at another fidelity preset."""
+        """A copy at another fidelity preset.
+
+        Parameters
+        ----------
+        name : str
+            A preset of :data:`corliss.engine.options.PRESETS`.
+
+        Returns
+        -------
+        Scene
+            The copy.
+        """
         if name not in PRESETS:
             raise InputError("run.fidelity", name, "one of " + ", ".join(PRESETS))
         return self.replace_run(fidelity=PRESETS[name])
@@ -615,6 +695,20 @@ def _run(t: Table) -> RunSpec:
 def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) -> Scene:
     """Validate a parsed TOML document into a :class:`Scene`.
 
+    Parameters
+    ----------
+    data : dict
+        The scene's tables, as TOML reads them.
+    name : str
+        The scene's name.
+    source : str, optional
+        The path it was read from (a load schedule is found beside it).
+
+    Returns
+    -------
+    Scene
+        The validated scene, all SI.
+
     Raises
     ------
     InputError
@@ -786,6 +880,11 @@ def load_scene(path: str | Path) -> Scene:
     path : str or Path
         A TOML scene.
 
+    Returns
+    -------
+    Scene
+        The validated scene, with the file's text.
+
     Raises
     ------
     InputError
@@ -801,12 +900,24 @@ def load_scene(path: str | Path) -> Scene:
 
 
 def default_scene_path() -> Path:
-    """The bundled default scene (a 12 x 24 in slide-valve engine)."""
+    """The bundled default scene (a 12 x 24 in slide-valve engine).
+
+    Returns
+    -------
+    Path
+        Its file.
+    """
     return bundled_scenes()["default"]
 
 
 def bundled_scenes() -> dict[str, Path]:
-    """The scenes that come with the package: ``{name: path}``, sorted by name."""
+    """The scenes that come with the package.
+
+    Returns
+    -------
+    dict
+        ``{name: path}``, sorted by name.
+    """
     from importlib.resources import files
     root = Path(str(files("corliss.scenes")))
     return {p.stem: p for p in sorted(root.glob("*.toml"))}
@@ -814,6 +925,16 @@ def bundled_scenes() -> dict[str, Path]:
 
 def find_scene(name_or_path: str | Path) -> Path:
     """A scene file by path, or a bundled scene by name (``"default"``, ...).
+
+    Parameters
+    ----------
+    name_or_path : str or Path
+        A path, or a bundled scene's name (with or without ``.toml``).
+
+    Returns
+    -------
+    Path
+        The scene file.
 
     Raises
     ------

@@ -236,7 +236,25 @@ class Table:
     def quantity(self, key: str, kind: str, default=_MISSING, *,
                  within: tuple[float, float] | None = None) -> float:
         """A quantity string in SI, inside its kind's physical range
-        (:data:`corliss.units.RANGES`) narrowed to ``within`` [SI] if given."""
+        (:data:`corliss.units.RANGES`) narrowed to ``within`` [SI] if given.
+
+        Parameters
+        ----------
+        key : str
+            The key.
+        default : object, optional
+            The value of an absent key, as a scene writes it; without one, the declared
+            default, or the key is required.
+        kind : str
+            A kind of :mod:`corliss.units` (the declared one).
+        within : (float, float), optional
+            The key's own range [SI]; without one, the declared range.
+
+        Returns
+        -------
+        float
+            The value [SI].
+        """
         default = self._default(key, default, kind)
         within = self._within(key, within)
         raw = self.raw(key, default)
@@ -245,7 +263,25 @@ class Table:
 
     def length(self, key: str, default=_MISSING, *, positive: bool = False,
                within: tuple[float, float] | None = None) -> float:
-        """A length [m]; ``positive``: at least a micron (a part that exists)."""
+        """A length [m]; ``positive``: at least a micron (a part that exists).
+
+        Parameters
+        ----------
+        key : str
+            The key.
+        default : object, optional
+            The value of an absent key, as a scene writes it; without one, the declared
+            default, or the key is required.
+        positive : bool
+            At least a micron.
+        within : (float, float), optional
+            The key's own range [SI]; without one, the declared range.
+
+        Returns
+        -------
+        float
+            The length [m].
+        """
         if positive and within is None:
             within = (MICRON_m, math.inf)
         return self.quantity(key, "length", default, within=within)
@@ -275,12 +311,44 @@ class Table:
 
     def angle(self, key: str, default=_MISSING, *,
               within: tuple[float, float] | None = None) -> float:
-        """An angle [rad], narrowed to ``within`` [rad] if given."""
+        """An angle [rad], narrowed to ``within`` [rad] if given.
+
+        Parameters
+        ----------
+        key : str
+            The key.
+        default : object, optional
+            The value of an absent key, as a scene writes it; without one, the declared
+            default, or the key is required.
+        within : (float, float), optional
+            The key's own range [SI]; without one, the declared range.
+
+        Returns
+        -------
+        float
+            The angle [rad].
+        """
         return self.quantity(key, "angle", default, within=within)
 
     def number(self, key: str, default=_MISSING, *,
                within: tuple[float, float] | None = None) -> float:
-        """A plain finite number (a fraction, a ratio), inside ``within`` if given."""
+        """A plain finite number (a fraction, a ratio), inside ``within`` if given.
+
+        Parameters
+        ----------
+        key : str
+            The key.
+        default : object, optional
+            The value of an absent key, as a scene writes it; without one, the declared
+            default, or the key is required.
+        within : (float, float), optional
+            Its range; without one, the declared range.
+
+        Returns
+        -------
+        float
+            The number.
+        """
         default = self._default(key, default, "number")
         within = self._within(key, within)
         v = self.raw(key, default)
@@ -292,7 +360,23 @@ class Table:
 
     def integer(self, key: str, default=_MISSING, *, within: tuple[int, int] | None = None
                 ) -> int:
-        """A whole number within ``within`` (by default 0 to 10,000: a count)."""
+        """A whole number within ``within`` (by default 0 to 10,000: a count).
+
+        Parameters
+        ----------
+        key : str
+            The key.
+        default : object, optional
+            The value of an absent key, as a scene writes it; without one, the declared
+            default, or the key is required.
+        within : (int, int), optional
+            Its range; without one, the declared range, else 0 to 10,000.
+
+        Returns
+        -------
+        int
+            The number.
+        """
         default = self._default(key, default, "integer")
         within = self._within(key, within) or (0, 10_000)
         v = self.raw(key, default)

@@ -134,7 +134,26 @@ def _show(value_si: float, unit: str) -> str:
 def check_range(value_si: float, kind: str, key: str, text: object,
                 within: tuple[float, float] | None = None) -> float:
     """``value_si`` if it lies in the physical range of ``kind`` (narrowed to ``within``,
-    SI, when given), else an InputError naming the key, the value and the range."""
+    SI, when given), else an InputError naming the key, the value and the range.
+
+    Parameters
+    ----------
+    value_si : float
+        The value [SI].
+    kind : str
+        One of :data:`KINDS`.
+    key : str
+        The scene key, for the message.
+    text : object
+        The value as written, for the message.
+    within : (float, float), optional
+        The key's own range [SI].
+
+    Returns
+    -------
+    float
+        ``value_si``.
+    """
     lo, hi, unit = RANGES[kind]
     if within is not None:
         lo, hi = max(lo, within[0]), min(hi, within[1])
@@ -160,7 +179,15 @@ MAX_TEXT = 80
 
 @dataclass(frozen=True)
 class Quantity:
-    """A parsed quantity string: the number as written and its unit text."""
+    """A parsed quantity string: the number as written and its unit text.
+
+    Parameters
+    ----------
+    value : float
+        The number.
+    unit : str
+        The unit's text.
+    """
 
     value: float
     unit: str
@@ -198,7 +225,18 @@ def _parse_text(text: object, key: str) -> Quantity:
 
 
 def units_of(kind: str) -> tuple[str, ...]:
-    """Unit names accepted for a kind of quantity."""
+    """Unit names accepted for a kind of quantity.
+
+    Parameters
+    ----------
+    kind : str
+        One of :data:`KINDS`.
+
+    Returns
+    -------
+    tuple of str
+        The spellings accepted.
+    """
     if kind == "pressure":
         return tuple(_ABS_INPUT) + tuple(_GAUGE_INPUT) + tuple(_VACUUM)
     if kind == "temperature":
@@ -280,6 +318,20 @@ def pressure_to_si(values, unit: str, *, barometer_Pa: float = STANDARD_ATMOSPHE
     spelling a scene may use (:func:`units_of` ``("pressure")``; gauge and vacuum
     against ``barometer_Pa`` [Pa]).
 
+    Parameters
+    ----------
+    values : float or numpy.ndarray
+        Readings in ``unit``.
+    unit : str
+        A pressure unit a scene may use.
+    barometer_Pa : float
+        Atmospheric pressure [Pa] for gauge readings.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Absolute pressures [Pa].
+
     Raises
     ------
     ValueError
@@ -299,6 +351,20 @@ def to_unit(value_si: float, unit: str, *, barometer_Pa: float = STANDARD_ATMOSP
 
     Pressure units with a gauge sense subtract the barometer; ``degF`` and
     ``degC`` apply their offsets.
+
+    Parameters
+    ----------
+    value_si : float or numpy.ndarray
+        The value [SI].
+    unit : str
+        The unit wanted.
+    barometer_Pa : float
+        Atmospheric pressure [Pa] for gauge readings.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        The value in ``unit``.
     """
     if unit in _ABS_PRESSURE:
         return value_si / _ABS_PRESSURE[unit]
@@ -317,7 +383,22 @@ def to_unit(value_si: float, unit: str, *, barometer_Pa: float = STANDARD_ATMOSP
 
 
 def from_unit(value: float, unit: str, *, barometer_Pa: float = STANDARD_ATMOSPHERE_Pa):
-    """Convert ``value`` in ``unit`` to SI (the inverse of :func:`to_unit`)."""
+    """Convert ``value`` in ``unit`` to SI (the inverse of :func:`to_unit`).
+
+    Parameters
+    ----------
+    value : float or numpy.ndarray
+        The value in ``unit``.
+    unit : str
+        Its unit.
+    barometer_Pa : float
+        Atmospheric pressure [Pa] for gauge readings.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        The value [SI].
+    """
     if unit in _ABS_PRESSURE:
         return value * _ABS_PRESSURE[unit]
     if unit in _GAUGE_PRESSURE:
