@@ -193,6 +193,50 @@ class Quantity:
     unit: str
 
 
+#: The SI unit of each kind, in the spelling of unit libraries such as pint, for a
+#: quantity object passed through the Python API (:func:`parse`).
+SI_UNIT_TEXT = {
+    "length": "m", "area": "m**2", "volume": "m**3", "speed": "rad/s", "time": "s",
+    "torque": "N*m", "torque_per_speed": "N*m*s", "heat_transfer": "W/(m**2*K)",
+    "power": "W", "mass": "kg", "inertia": "kg*m**2", "angle": "rad", "mass_flow": "kg/s",
+    "force": "N", "stiffness": "N/m", "damping": "N*s/m", "specific_energy": "J/kg",
+    "energy": "J", "specific_steam_consumption": "kg/J", "temperature": "K",
+}
+
+
+def is_quantity_object(value: object) -> bool:
+    """Whether ``value`` is a quantity object of a unit library (pint's ``Quantity``, or
+    anything with ``.to(unit)`` and ``.magnitude``), not a scene's string.
+
+    Parameters
+    ----------
+    value : object
+        A value from a scene's tables.
+
+    Returns
+    -------
+    bool
+        True for a quantity object.
+    """
+    return (not isinstance(value, (str, int, float, bool)) and hasattr(value, "to")
+            and hasattr(value, "magnitude"))
+
+
+def _from_object(q: object, kind: str, key: str, within) -> float:
+    """A quantity object in SI, converted by ``kind``; the library is never imported
+    here: the object converts itself."""
+    if kind == "pressure":
+        raise InputError(key, q, "a pressure as a string that says absolute or gauge "
+                         "(\"100 psia\", \"85 psig\"): a quantity object does not say which")
+    try:
+        v = float(q.to(SI_UNIT_TEXT[kind]).magnitude)
+    except (TypeError, ValueError, AttributeError) as exc:
+        raise InputError(key, q, f"a {kind.replace('_', ' ')} ({exc})") from None
+    if not math.isfinite(v):
+        raise InputError(key, q, "a finite quantity")
+    return check_range(v, kind, key, q, within)
+
+
 def _parse_text(text: object, key: str) -> Quantity:
     if isinstance(text, bool) or not isinstance(text, (str, int, float)):
         raise InputError(key, text, "a quantity string with a unit, such as \"12 in\"")
@@ -251,8 +295,11 @@ def parse(text: object, kind: str, key: str = "value", *,
 
     Parameters
     ----------
-    text : str
-        The quantity, e.g. ``"100 psig"``.
+    text : str or quantity object
+        The quantity, e.g. ``"100 psig"``; or, through the Python API, a quantity of a
+        unit library (a pint ``Quantity``: anything with ``.to`` and ``.magnitude``),
+        converted to the kind's SI unit (:data:`SI_UNIT_TEXT`).  A pressure must be a
+        string, which says absolute or gauge.
     kind : str
         One of :data:`KINDS`.
     key : str
@@ -273,6 +320,8 @@ def parse(text: object, kind: str, key: str = "value", *,
         If the text has no unit, an unknown unit, or a unit of another kind, or the value
         lies outside the physical range of its kind (or ``within``).
     """
+    if is_quantity_object(text):
+        return _from_object(text, kind, key, within)
     q = _parse_text(text, key)
     if q.unit == "":
         raise InputError(key, text, f"a {kind} with its unit; one of "

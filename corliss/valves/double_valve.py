@@ -464,6 +464,17 @@ def check_setting(t: Table, key: str, lo: float, hi: float, what: str) -> float:
 
 
 def built(gear: DoubleValve) -> DoubleValve:
-    """A gear as a scene builds it: warn if its setting admits steam twice."""
+    """A gear as a scene builds it: warn if its setting admits steam twice.
+
+    Parameters
+    ----------
+    gear : DoubleValve
+        The gear built from its spec.
+
+    Returns
+    -------
+    DoubleValve
+        The same gear.
+    """
     gear.warn_double_admission()
     return gear
