@@ -469,12 +469,13 @@ def built(gear: DoubleValve) -> DoubleValve:
     Parameters
     ----------
     gear : DoubleValve
-        The gear built from its spec.
+        The gear just built from its spec.
 
     Returns
     -------
     DoubleValve
-        The same gear.
+        The same gear, after :meth:`DoubleValve.warn_double_admission` has logged any
+        second or late admission.
     """
     gear.warn_double_admission()
     return gear
