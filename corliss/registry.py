@@ -23,9 +23,9 @@ class RegistryEntry:
         :class:`corliss.tables.Table` -> spec.
     build : callable
         Spec -> gear or governor.
-    keys : KeyGroup or None
+    keys : KeyGroup
         The keys its table takes (the registry adds ``type``); the table is read
-        through them.
+        through them, and the scene reference is printed from them.
     """
 
     name: str
@@ -64,7 +64,10 @@ class Registry(dict):
         RegistryEntry
             The entry as registered.
         """
-        if entry.keys is not None and "type" not in entry.keys:
+        if entry.keys is None:
+            raise TypeError(f"{self.noun} {entry.name!r}: register it with the key group "
+                            "its parser reads (corliss.keyspec)")
+        if "type" not in entry.keys:
             kind = Key("type", "string", f"The {self.noun}'s registry name, "
                        f"\"{entry.name}\" (corliss list {self.noun}s).")
             entry = replace(entry, keys=group(entry.keys.name, entry.keys.doc, kind,

@@ -29,11 +29,11 @@ TYPED = {"valve_gear": GEARS, "lp_valve_gear": GEARS, "governor": GOVERNORS}
 _SECTION_DOC = {
     "title": "A string naming the scene (default: the scene file's name).",
     "valve_gear": "The valve gear: `type` names it, the other keys are its own "
-                  "(see [Valve gears](#valve-gears)).",
+                  "(corliss list keys GEAR; below, Valve gears).",
     "lp_valve_gear": "A compound's LP valve gear, keys as [valve_gear] (default: the HP "
                      "gear with its port lengths scaled to the LP bore).",
     "governor": "The governor of a transient run: `type` names it, the other keys are its "
-                "own (see [Governors](#governors)).",
+                "own (corliss list keys GOVERNOR; below, Governors).",
 }
 
 

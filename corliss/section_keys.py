@@ -39,7 +39,7 @@ ENGINE = group(
         "(0.005 to 0.5), once or [head, crank].", ends=True),
     Key("piston_rod_diameter", "length", "Piston rod diameter (takes area from the crank-end "
         "piston face); less than the bore.", default="0 in", unit="in"),
-    Key("cylinders", "integer", "Identical cylinders on one shaft, 1 to 6.", default=1),
+    Key("cylinders", "integer", "Identical cylinders on one shaft.", default=1, within=(1, 6)),
     Key("crank_angles", "angle_list", "How far each crank follows the first, the first \"0 deg\" "
         "(default evenly spaced; 0 and 90 deg for two).",
         default=Derived("evenly spaced; [\"0 deg\", \"90 deg\"] for two")),
@@ -111,8 +111,8 @@ RUN = group(
     Key("method", "choice", "Integrator (overrides the preset's); the compiled ones need "
         "properties \"table\" or \"perfect\".", default=Derived("the fidelity preset's"),
         choices=METHODS),
-    Key("rtol", "number", "Relative tolerance of the integrator, 1e-13 to 1e-2.",
-        default=Derived("the fidelity preset's")),
+    Key("rtol", "number", "Relative tolerance of the integrator.",
+        default=Derived("the fidelity preset's"), within=(1e-13, 1e-2)),
     Key("convergence_tolerance", "number", "Cycle-to-cycle change taken as periodic, a "
         "fraction in (0, 0.5).", default=Derived("the fidelity preset's")),
     Key("max_cycles", "integer", "Most cycles run to reach a periodic state.",
@@ -133,7 +133,7 @@ RUN = group(
     Key("settling_band", "number", "Speed band, as a fraction of the final mean speed, the "
         "settling time is measured to; in (0, 0.5).", default=0.002),
     Key("warmup_cycles", "integer", "Turns at the initial speed, governor held, before "
-        "t = 0; 0 to 100.", default=3),
+        "t = 0.", default=3, within=(0, 100)),
     Key("start", "choice", "How a transient run starts.", default="equilibrium",
         choices=START_CHOICES),
     Key("start_angle", "angle", "Crank angle of a start from rest.", default=None, unit="deg",
@@ -207,12 +207,12 @@ LOAD = group(
     Key("kind", "choice", "The schedule of the load fraction.", default="constant",
         choices=("constant", "step", "ramp", "schedule")),
     Key("step_time", "time", "When the step comes (zero or more).", when="with kind = \"step\""),
-    Key("step_fraction", "number", "Load after the step, a fraction 0 to 5 of the reference.",
-        when="with kind = \"step\""),
+    Key("step_fraction", "number", "Load after the step, a fraction of the reference load.",
+        within=(0.0, 5.0), when="with kind = \"step\""),
     Key("ramp_start", "time", "When the ramp starts (zero or more).", when="with kind = \"ramp\""),
     Key("ramp_end", "time", "When the ramp ends, after its start.", when="with kind = \"ramp\""),
-    Key("ramp_fraction", "number", "Load at the ramp's end, a fraction 0 to 5.",
-        when="with kind = \"ramp\""),
+    Key("ramp_fraction", "number", "Load at the ramp's end, a fraction of the reference "
+        "load.", within=(0.0, 5.0), when="with kind = \"ramp\""),
     Key("schedule", "string", "CSV file (relative to the scene) with columns time_s and "
         "load_fraction.", when="with kind = \"schedule\""),
 )

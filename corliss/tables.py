@@ -92,6 +92,12 @@ class Table:
                                      f"{getter}: read it with Table.get")
         return k
 
+    def _what(self, key: str) -> str:
+        """`` (what the key is)`` from its declaration, for a message; empty unbound."""
+        if self.keys is None:
+            return ""
+        return f" ({self.keys[key].doc.rstrip('.')})"
+
     def _default(self, key: str, default, getter: str):
         """``default`` if given, else the declared one (when it is a value)."""
         k = self._declared(key, getter)
@@ -355,7 +361,8 @@ class Table:
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
             raise InputError(self.key(key), v, "a plain number")
         if within is not None and not within[0] <= v <= within[1]:
-            raise InputError(self.key(key), v, f"a number from {within[0]:g} to {within[1]:g}")
+            raise InputError(self.key(key), v, f"a number from {within[0]:g} to {within[1]:g}"
+                             + self._what(key))
         return float(v)
 
     def integer(self, key: str, default=_MISSING, *, within: tuple[int, int] | None = None
@@ -383,7 +390,8 @@ class Table:
         if isinstance(v, bool) or not isinstance(v, int):
             raise InputError(self.key(key), v, "a whole number")
         if not within[0] <= v <= within[1]:
-            raise InputError(self.key(key), v, f"a whole number from {within[0]} to {within[1]}")
+            raise InputError(self.key(key), v, f"a whole number from {within[0]} to {within[1]}"
+                             + self._what(key))
         return v
 
     def string(self, key: str, default=_MISSING) -> str:

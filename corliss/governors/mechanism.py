@@ -347,9 +347,9 @@ RATIO_KEY = Key("ratio", "number", "Governor spindle speed over shaft speed (bel
 THROTTLE_KEYS = group(
     "throttle_actuator", "The throttle the governor moves.",
     Key("opening_at_rest", "number", "Throttle opening with the governor at rest, 0 (shut) "
-        "to 1 (open).", default=1.0),
-    Key("opening_at_top", "number", "Throttle opening at the governor's top stop, 0 to 1.",
-        default=0.0),
+        "to 1 (open).", default=1.0, within=(0.0, 1.0)),
+    Key("opening_at_top", "number", "Throttle opening at the governor's top stop, 0 (shut) "
+        "to 1 (open).", default=0.0, within=(0.0, 1.0)),
 )
 #: What a gear-setting governor moves: the gear's setting, linear in z.
 GEAR_SETTING_KEYS = group(
@@ -401,8 +401,5 @@ def parse_actuator(t, acts_on: str) -> Actuator:
     if acts_on == "throttle":
         a0 = t.get("opening_at_rest")
         a1 = t.get("opening_at_top")
-        for k, v in (("opening_at_rest", a0), ("opening_at_top", a1)):
-            if not 0.0 <= v <= 1.0:
-                raise InputError(t.key(k), v, "a throttle opening from 0 (shut) to 1 (open)")
         return Actuator("throttle", a0, a1)
     return Actuator("gear", t.get("setting_at_rest"), t.get("setting_at_top"))

@@ -360,8 +360,8 @@ def setting_key(lo: float, hi: float, what: str) -> Key:
     Key
         The declaration.
     """
-    return Key("setting", "number", f"The gear's setting, {what}, from {lo:g} to {hi:g}.",
-               default=lo)
+    return Key("setting", "number", f"The gear's setting: {what}.", default=lo,
+               within=(lo, hi))
 
 
 def parse_main(t: Table) -> MainValveSpec:
@@ -439,7 +439,8 @@ def rod(t: Table, key: str, throw: float, motion: str) -> float | None:
 
 
 def check_setting(t: Table, key: str, lo: float, hi: float, what: str) -> float:
-    """The gear's setting (:func:`setting_key`), from ``lo`` to ``hi``.
+    """The gear's setting (:func:`setting_key`, which holds its range), from ``lo`` to
+    ``hi``.
 
     Parameters
     ----------

@@ -447,7 +447,8 @@ PORTER_ALLEN_KEYS = group(
         "(setting 1), within the half link.", unit="in"),
     Key("exhaust_point", "length", "Height of the link point carrying the exhaust rod, "
         "within the half link.", unit="in"),
-    Key("setting", "number", "Governor position, 0 (at rest) to 1 (top).", default=0.0),
+    Key("setting", "number", "Governor position, 0 (at rest) to 1 (top).", default=0.0,
+        within=(0.0, 1.0)),
     Key("drive_arm", "length", "R_d: the rock-shaft arm the radius rod works.",
         within=POSITIVE_LENGTH, unit="in"),
     Key("valve_arm", "length", "R_v: the arms to the steam-valve stems.",
@@ -495,8 +496,6 @@ def parse_porter_allen(t: Table) -> PorterAllenSpec:
                              "(the half link)")
         blocks.append(v)
     setting = t.get("setting")
-    if not 0.0 <= setting <= 1.0:
-        raise InputError(t.key("setting"), setting, "a governor position from 0 to 1")
     rd = t.get("drive_arm")
     rv = t.get("valve_arm")
     lap = t.get("steam_lap")

@@ -624,7 +624,7 @@ RADIAL_GEAR_KEYS = group(
     Key("kind", "choice", "Which radial gear.", choices=KINDS),
     LAP_KEYS,
     Key("setting", "number", "The reverse lever: -1 (full gear astern) through 0 (mid gear) "
-        "to 1 (full gear ahead).", default=1.0),
+        "to 1 (full gear ahead).", default=1.0, within=(-1.0, 1.0)),
     Key("motion", "choice", "Zeuner's motion or the exact linkage.", default="zeuner",
         choices=("zeuner", "exact")),
     ALLEN_KEYS, PORT_KEYS,
@@ -691,11 +691,7 @@ def _inclination(t: Table) -> float:
 
 
 def _setting(t: Table) -> float:
-    s = t.get("setting")
-    if not -1.0 <= s <= 1.0:
-        raise InputError(t.key("setting"), s, "a number from -1 (full gear astern) through 0 "
-                         "(mid gear) to 1 (full gear ahead)")
-    return s
+    return t.get("setting")
 
 
 def _longer(t: Table, key: str, value: float, than: float, what: str) -> None:

@@ -172,7 +172,8 @@ SHAFT_GOVERNOR_GEAR_KEYS = group(
         when="with path = \"arc\" (required there)"),
     Key("arc_start", "angle", "Direction of the pin from the arc's centre at rest.",
         unit="deg", when="with path = \"arc\" (required there)"),
-    Key("setting", "number", "Governor position s, 0 (at rest) to 1.", default=0.0),
+    Key("setting", "number", "Governor position s, 0 (at rest) to 1.", default=0.0,
+        within=(0.0, 1.0)),
     LAP_KEYS,
     Key("connection", "choice", "The valve driven directly or through a reversing rocker.",
         default="direct", choices=("direct", "reverse_lever")),
@@ -206,8 +207,6 @@ def parse_shaft_governor(t: Table) -> ShaftGovernorSpec:
         kw["arc_swing_rad"] = t.get("arc_swing")
         kw["arc_start_rad"] = t.get("arc_start")
     setting = t.get("setting")
-    if not 0.0 <= setting <= 1.0:
-        raise InputError(t.key("setting"), setting, "a governor position from 0 to 1")
     spec = ShaftGovernorSpec(path, t.get("eccentricity"), t.get("angular_advance"),
                              t.get("lap"), t.get("exhaust_lap"), setting=setting,
                              connection=t.get("connection"), steam=t.get("steam"),
