@@ -564,8 +564,9 @@ CORLISS_KEYS = group(
         "twice the throw plus the plate's radius.", within=POSITIVE_LENGTH, unit="in"),
     Key("dashpot_closing_time", "time", "Time from release to the steam port closed "
         "(above zero).", unit="s"),
-    Key("setting", "number", "Cam position s (see the module doc).", default=0.5,
-        within=SETTING_RANGE),
+    Key("setting", "number", "Cam position s: 0 trips the steam valve at admission, 1 at "
+        "the end of the hook's travel; above 1 no trip, below 0 the safety cam admits no "
+        "steam.", default=0.5, within=SETTING_RANGE),
     Key("discharge_coefficient", "number", "Discharge coefficient of a port opening.",
         default=0.7, within=DISCHARGE_COEFFICIENT),
     Key("ports_per_end", "integer", "Openings each valve uncovers.", default=1,
