@@ -441,7 +441,11 @@ class Table:
         return v
 
     def finish(self) -> None:
-        """Refuse keys that no getter read (misspellings, keys of another gear)."""
+        """Refuse keys that no getter read (misspellings, keys of another gear).
+
+        A key the bound group declares but these settings did not read is refused
+        saying when it is read; any other names the closest declared key.
+        """
         unknown = sorted(set(self.data) - self._read)
         if unknown:
             k = unknown[0]
@@ -450,8 +454,13 @@ class Table:
                 raise InputError(self.key(k), self.data[k], f"no {k} here: {self.keys.name} "
                                  f"reads it only {when or 'with other settings'} (corliss "
                                  f"explain {self.name}.{k})")
-            known = ", ".join(sorted(self._read))
-            near = _closest(k, self._read)
+            names = self.keys.names if self.keys is not None else self._read
+            known = ", ".join(sorted(names))
+            near = _closest(k, names)
             hint = f"{self.key(near)}? " if near else ""
+            who = self.name or "the scene"
+            if self.keys is not None and self.name in ("valve_gear", "lp_valve_gear",
+                                                        "governor"):
+                who = f"{self.name} of type {self.keys.name}"
             raise InputError(self.key(k), self.data[k],
-                             f"a known key; {hint}{self.name or 'the scene'} takes: {known}")
+                             f"a known key; {hint}{who} takes: {known}")
