@@ -400,7 +400,7 @@ def _pair_fraction(t: Table, key: str) -> tuple[float, float]:
 def _vessel(t: Table, key: str, swept_m3: float, what: str) -> float:
     """A steam chest's or receiver's volume [m3], at least
     :data:`VESSEL_LEAST_OF_SWEPT` of the swept volume of the cylinder it feeds."""
-    v = t.get(key, None)
+    v = t.get(key, REQUIRED)
     least = VESSEL_LEAST_OF_SWEPT * swept_m3
     if not v >= least:
         raise InputError(t.key(key), t.raw(key), f"a volume of at least "

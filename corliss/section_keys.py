@@ -74,7 +74,8 @@ SUPPLY = group(
         "taken against.", default="14.696 psia", unit="psia"),
     Key("temperature", "temperature", "Superheated steam temperature (at or above "
         "saturation), or \"saturated\".", default="saturated", choices=("saturated",)),
-    Key("dryness", "number", "Dryness fraction of saturated steam, in (0, 1].", default=1.0),
+    Key("dryness", "number", "Dryness fraction of saturated steam, in (0, 1].", default=1.0,
+        when="with saturated steam (no temperature)"),
     Key("chest_volume", "volume", "Steam chest volume, at least 0.05 of the swept volume.",
         default=None, unit="ft3", effect="steam_chest"),
     Key("pipe_diameter", "length", "Bore of the steam pipe from the boiler.", default=None,

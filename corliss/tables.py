@@ -66,7 +66,8 @@ class Table:
         Parameters
         ----------
         keys : KeyGroup
-            The declared keys; ``type`` and any key read so far must be among them.
+            The declared keys; any key read so far must be among them, but ``type``
+            (read to choose the group: the registry declares it).
 
         Returns
         -------
@@ -74,9 +75,25 @@ class Table:
             This table.
         """
         self.keys = keys
-        for k in self._read:
+        for k in self._read - {"type"}:
             keys[k]
         return self
+
+    def bound(self, keys: KeyGroup) -> "Table":
+        """This table bound to ``keys`` if it is not bound yet (a parser called with a
+        bare table, outside the loader), else as it is.
+
+        Parameters
+        ----------
+        keys : KeyGroup
+            The parser's key group.
+
+        Returns
+        -------
+        Table
+            This table.
+        """
+        return self.bind(keys) if self.keys is None else self
 
     def _declared(self, key: str, getter: str | None = None):
         """The declaration of ``key`` (None for an unbound table); reading a key the
@@ -151,8 +168,9 @@ class Table:
         key : str
             A key the bound group declares.
         default : object, optional
-            For a key whose declared default is :class:`~corliss.keyspec.Derived`: the
-            value computed, as a scene would write it; :data:`~corliss.keyspec.REQUIRED`
+            For an absent key whose declared default is
+            :class:`~corliss.keyspec.Derived`: the value computed, as a scene would write
+            it; :data:`~corliss.keyspec.REQUIRED`
             where the settings read make an optional key required.
         within : (float, float), optional
             A range [SI] found from other keys, narrowing the declared one.
@@ -171,7 +189,7 @@ class Table:
         if default is REQUIRED:
             default = _MISSING
         elif default is _MISSING:
-            if isinstance(k.default, Derived):
+            if isinstance(k.default, Derived) and key not in self.data:
                 raise UndeclaredKeyError(f"{self.key(key)}: its default is derived "
                                          f"({k.default.text}); pass it to Table.get")
             default = _MISSING if k.default is REQUIRED else k.default

@@ -110,6 +110,32 @@ def test_every_declared_key_is_read(scene, section, keys):
                 assert k.when, f"{section}.{k.name} is declared as always read: {msg}"
 
 
+@pytest.mark.parametrize("scene,section,keys", _cases(),
+                         ids=lambda v: getattr(v, "name", v))
+def test_a_declared_default_is_the_loaders(scene, section, keys):
+    """The scene without a key loads as the scene with the key set to its declared
+    default (or both are refused alike): the default the reference shows is the one the
+    loader takes, for every key read whatever the settings."""
+    base = SCENES[scene]
+    for k in keys.keys:
+        if k.required or k.default is None or isinstance(k.default, Derived) or k.when:
+            continue
+        without, written = copy.deepcopy(base), copy.deepcopy(base)
+        without.setdefault(section, {}).pop(k.name, None)
+        written.setdefault(section, {})[k.name] = k.default
+        assert _outcome(without) == _outcome(written), \
+            f"{section}.{k.name}: the loader's default is not {k.default_text()}"
+
+
+def _outcome(data: dict) -> str:
+    """The scene loaded (its repr: NaN equals NaN there), or that it was refused (the
+    key named may differ: a default can make another key the culprit)."""
+    try:
+        return repr(scene_from_dict(data))
+    except InputError:
+        return "refused"
+
+
 def test_reading_an_undeclared_key_is_a_programming_error():
     t = Table({"lap": "1 in"}, "valve_gear",
               keys=group("g", "A group.", Key("lap", "length", "Lap.", unit="in")))

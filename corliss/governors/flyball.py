@@ -221,8 +221,10 @@ def _flyball_parse(loaded: str, acts_on: str, corliss: bool = False):
 
     loaded : "none" (Watt, optional sleeve mass), "required" (Porter), "optional".
     """
+    keys = _flyball_keys("flyball", loaded, acts_on, corliss)
 
     def parse(t: Table):
+        t = t.bound(keys)
         l = t.get("arm_length")
         m = t.get("ball_mass")
         if not m > 0.0:
@@ -439,6 +441,7 @@ def parse_spring(t: Table) -> SpringSpec:
     SpringSpec
         The governor's spec.
     """
+    t = t.bound(SPRING_KEYS)
     m = t.get("ball_mass")
     if not m > 0.0:
         raise InputError(t.key("ball_mass"), t.raw("ball_mass"), "a mass above zero")

@@ -213,6 +213,7 @@ def parse_shaft(t: Table) -> ShaftSpec:
     ShaftSpec
         The governor's spec.
     """
+    t = t.bound(SHAFT_KEYS)
     m = t.get("weight_mass")
     if not m > 0.0:
         raise InputError(t.key("weight_mass"), t.raw("weight_mass"), "a mass above zero")

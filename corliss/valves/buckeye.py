@@ -217,6 +217,7 @@ def parse_buckeye(t: Table) -> BuckeyeSpec:
     BuckeyeSpec
         The gear's spec.
     """
+    t = t.bound(BUCKEYE_KEYS)
     main = dv.parse_main(t)
     cut = dv.parse_riding(t, main)
     r = t.get("eccentricity")

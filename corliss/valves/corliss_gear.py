@@ -506,9 +506,10 @@ class CorlissGear(ValveGear):
 
 
 # ---------------------------------------------------------------------- parsing
-def _arc(t: Table, key: str, radius: float, default=None) -> tuple[float, float]:
-    """A lap given as an arc (length) or as a spindle angle, once or as [head, crank]."""
-    raw = t.raw(key, default)
+def _arc(t: Table, key: str, radius: float) -> tuple[float, float]:
+    """A lap given as an arc (length) or as a spindle angle, once or as [head, crank]
+    (its default the declared one)."""
+    raw = t.raw(key)
     vals = raw if isinstance(raw, list) else [raw, raw]
     if len(vals) != 2:
         raise InputError(t.key(key), raw, "one value, or a list [head, crank] of two")
@@ -599,6 +600,7 @@ def parse_corliss(t: Table) -> CorlissSpec:
     CorlissSpec
         The gear's spec.
     """
+    t = t.bound(CORLISS_KEYS)
     steam, exhaust = _chain(t, "steam"), _chain(t, "exhaust")
     r = t.get("eccentricity")
     R = t.get("wrist_plate_radius")

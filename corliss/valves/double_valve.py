@@ -403,7 +403,8 @@ def parse_riding(t: Table, main: MainValveSpec, lap: tuple[float, float] | None 
     if lap is None:
         lap = t.get("cutoff_lap")
     e = t.get("passage_width")
-    length = t.get("passage_length", f"{main.port_length_m * main.ports_per_end!r} m")
+    length = (t.get("passage_length") if t.has("passage_length")
+              else main.port_length_m * main.ports_per_end)
     d = t.get("block_length")
     if d is not None and d < e:
         raise InputError(t.key("block_length"), t.raw("block_length"),

@@ -260,7 +260,7 @@ def parse_fink_link(t: Table) -> FinkLink:
         raise InputError(t.key("rod_b"), t.raw("rod_b"), "a length of zero or more")
     g1 = t.get("radius_rod")
     c = t.get("half_link")
-    rho = t.get("link_radius", f"{g1!r} m")
+    rho = t.get("link_radius") if t.has("link_radius") else g1
     if a <= r:
         raise InputError(t.key("rod_a"), t.raw("rod_a"),
                          f"a rod longer than the eccentricity ({r / units.INCH_m:.4g} in)")
@@ -293,6 +293,7 @@ def parse_fink_motion(t: Table) -> FinkMotionSpec:
     FinkMotionSpec
         The gear's spec.
     """
+    t = t.bound(FINK_MOTION_KEYS)
     link = parse_fink_link(t)
     u = t.get("block")
     c = link.half_link_m
@@ -485,6 +486,7 @@ def parse_porter_allen(t: Table) -> PorterAllenSpec:
     PorterAllenSpec
         The gear's spec.
     """
+    t = t.bound(PORTER_ALLEN_KEYS)
     link = parse_fink_link(t)
     c = link.half_link_m
     blocks = []

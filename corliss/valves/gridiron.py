@@ -146,6 +146,7 @@ def parse_gridiron(t: Table) -> GridironSpec:
     GridironSpec
         The gear's spec.
     """
+    t = t.bound(GRIDIRON_KEYS)
     main = dv.parse_main(t)
     r = t.get("eccentricity")
     r1 = t.get("cutoff_eccentricity")
@@ -155,7 +156,8 @@ def parse_gridiron(t: Table) -> GridironSpec:
         raise InputError(t.key("valve_port_width"), t.raw("valve_port_width"),
                          "a valve port at least as wide as the seat port e (Art. 121: "
                          "the opening in the cut-off valve is usually greater)")
-    length = t.get("passage_length", f"{main.port_length_m * main.ports_per_end!r} m")
+    length = (t.get("passage_length") if t.has("passage_length")
+              else main.port_length_m * main.ports_per_end)
     raw = t.get("lever_ratio")
     if (not isinstance(raw, list) or len(raw) != 2
             or not all(isinstance(v, (int, float)) and not isinstance(v, bool)

@@ -382,6 +382,7 @@ def parse_link_motion(t: Table) -> LinkMotionSpec:
     LinkMotionSpec
         The gear's spec.
     """
+    t = t.bound(LINK_MOTION_KEYS)
     kind = t.get("link")
     r = t.get("eccentricity")
     delta = t.get("angular_advance")

@@ -176,6 +176,7 @@ def parse_meyer(t: Table) -> MeyerSpec:
     MeyerSpec
         The gear's spec.
     """
+    t = t.bound(MEYER_KEYS)
     main = dv.parse_main(t)
     r = t.get("eccentricity")
     r1 = t.get("cutoff_eccentricity")
@@ -188,7 +189,8 @@ def parse_meyer(t: Table) -> MeyerSpec:
     setting = dv.check_setting(t, "setting", 0.0, 1.0, "y / y_max")
     motion = t.get("motion")
     e = t.get("passage_width")
-    length = t.get("passage_length", f"{main.port_length_m * main.ports_per_end!r} m")
+    length = (t.get("passage_length") if t.has("passage_length")
+              else main.port_length_m * main.ports_per_end)
     offset = t.get("block_offset")
     spec = MeyerSpec(main, dv.CutoffSpec("riding", (0.0, 0.0), e, length, d), r,
                      t.get("angular_advance"), r1, t.get("cutoff_angular_advance"), span, d,

@@ -244,6 +244,7 @@ def parse_polonceau(t: Table) -> PolonceauSpec:
     PolonceauSpec
         The gear's spec.
     """
+    t = t.bound(POLONCEAU_KEYS)
     main = dv.parse_main(t)
     c = t.get("half_link")
     u = t.get("main_block", t.raw("half_link"))
@@ -270,6 +271,7 @@ def parse_guinotte(t: Table) -> GuinotteSpec:
     GuinotteSpec
         The gear's spec.
     """
+    t = t.bound(GUINOTTE_KEYS)
     main = dv.parse_main(t)
     ends = []
     for k in ("1", "2"):

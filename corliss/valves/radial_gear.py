@@ -723,6 +723,7 @@ def parse_radial_gear(t: Table):
     SimpleRadialSpec or JoySpec or WalschaertsSpec
         The gear's spec, by ``kind``.
     """
+    t = t.bound(RADIAL_GEAR_KEYS)
     kind = t.get("kind")
     common = dict(kind=kind, lap_m=t.get("lap"), exhaust_lap_m=t.get("exhaust_lap"),
                   setting=_setting(t), motion=t.get("motion"),

@@ -198,6 +198,7 @@ def parse_shaft_governor(t: Table) -> ShaftGovernorSpec:
     ShaftGovernorSpec
         The gear's spec.
     """
+    t = t.bound(SHAFT_GOVERNOR_GEAR_KEYS)
     path = t.get("path")
     kw = {}
     if path == "straight":

@@ -293,6 +293,7 @@ def parse_slide_valve(t: Table) -> SlideValveSpec:
     SlideValveSpec
         The valve's spec.
     """
+    t = t.bound(SLIDE_VALVE_KEYS)
     r = t.get("eccentricity")
     lap = t.get("lap")
     exhaust_lap = t.get("exhaust_lap")
