@@ -520,37 +520,8 @@ def cmd_fit(args) -> int:
     return 0
 
 
-def cmd_explain(args) -> int:
-    """``corliss explain KEY``: print what a scene key (section, gear, governor, effect)
-    is, from the loader's declarations.
-
-    Parameters
-    ----------
-    args : argparse.Namespace
-        ``key``: the name asked about.
-
-    Returns
-    -------
-    int
-        0 (an unknown name is an InputError: exit 2).
-    """
-    from corliss.scene_reference import explain
-    print(explain(args.key), end="")
-    return 0
-
-
 def cmd_list(args) -> int:
-    if args.what == "keys":
-        from corliss.scene_reference import type_keys
-        if args.name is None:
-            raise InputError("list keys", None, "a gear or governor after it, e.g. "
-                             "corliss list keys slide_valve (corliss list gears, corliss "
-                             "list governors)")
-        print(type_keys(args.name), end="")
-    elif args.name is not None:
-        raise InputError(f"list {args.what}", args.name, f"nothing after {args.what} (a "
-                         "name follows only list keys)")
-    elif args.what == "scenes":
+    if args.what == "scenes":
         for name, path in bundled_scenes().items():
             try:
                 title = tomllib.loads(path.read_text(encoding="utf-8")).get("title", "")
@@ -589,6 +560,52 @@ def cmd_bench(args) -> int:
     spec.loader.exec_module(module)
     argv = ["--repeats", str(args.repeats)] + (["--out", args.out] if args.out else [])
     return module.main(argv)
+
+
+def cmd_explain(args) -> int:
+    """``corliss explain KEY``: print what a scene key (section, gear, governor, effect)
+    is, from the loader's declarations.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        ``key``: the name asked about.
+
+    Returns
+    -------
+    int
+        0 (an unknown name is an InputError: exit 2).
+    """
+    from corliss.scene_reference import explain
+    print(explain(args.key), end="")
+    return 0
+
+
+def cmd_list_keys(args) -> int:
+    """``corliss list keys GEAR_OR_GOVERNOR``: a type's scene keys; any other ``list``
+    goes to :func:`cmd_list`.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        ``what`` and, for keys, ``name``: the gear or governor.
+
+    Returns
+    -------
+    int
+        0 (a missing or unknown name is an InputError: exit 2).
+    """
+    if args.what != "keys":
+        if args.name is not None:
+            raise InputError(f"list {args.what}", args.name, f"nothing after {args.what} (a "
+                             "name follows only list keys)")
+        return cmd_list(args)
+    from corliss.scene_reference import type_keys
+    if args.name is None:
+        raise InputError("list keys", None, "a gear or governor after it, e.g. corliss list "
+                         "keys slide_valve (corliss list gears, corliss list governors)")
+    print(type_keys(args.name), end="")
+    return 0
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -736,7 +753,7 @@ def build_parser() -> argparse.ArgumentParser:
     ls = sub.add_parser("list", help="list bundled scenes and the registries")
     ls.add_argument("what", choices=("scenes", "gears", "effects", "governors", "keys"))
     ls.add_argument("name", nargs="?", help="with keys: the gear or governor")
-    ls.set_defaults(func=cmd_list)
+    ls.set_defaults(func=cmd_list_keys)
     ex = sub.add_parser("explain", help="what a scene key, section, gear, governor or "
                         "effect is: kind, units, default, range, who reads it")
     ex.add_argument("key", help="e.g. valve_gear.lap, governor.ball_mass, run.effects, "
