@@ -111,7 +111,8 @@ def reference_markdown() -> str:
         out += [f"## {title}", "",
                 f"The keys of `[{section}]` by its `type`; every {noun} also takes `type`.", ""]
         for e in es[section]:
-            out += [f"### {e.name}", "", _md(e.summary), "", e.keys.doc, ""]
+            out += [f"### {noun.capitalize()}: {e.name}", "", _md(e.summary), "",
+                    e.keys.doc, ""]
             out += _table(_without_type(e.keys)) + [""]
         out += [f"### Which {noun} reads which key", ""] + _index(section, es[section]) + [""]
     out += ["## Effects", "", "Named in `run.effects`; each key listed is read with it.", "",
