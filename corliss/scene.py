@@ -502,7 +502,7 @@ def _compound(t: Table, hp: EngineSpec, lp_gear_data, hp_gear_type, hp_gear,
         gt = _registered(vg, GEARS)
         vg.bind(gt.keys)
         lp_gear = gt.parse(vg)
-        vg.finish()
+        vg.finish({n: e.keys for n, e in GEARS.items()})
         name = gt.name
     else:
         name = hp_gear_type.name
@@ -731,7 +731,7 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
     gt = _registered(vg, GEARS)
     vg.bind(gt.keys)
     gear = gt.parse(vg)
-    vg.finish()
+    vg.finish({n: e.keys for n, e in GEARS.items()})
     run = _run(Table(data["run"], "run", barometer, RUN))
     _check_states(data, supply, exhaust, run)
     for effect, keys in EFFECT_KEYS.items():
@@ -806,7 +806,7 @@ def _speed_loop(data: dict, run: RunSpec, supply: SupplySpec, gt, gear, baromete
         gov_t = _registered(g, GOVERNORS)
         g.bind(gov_t.keys)
         spec = gov_t.parse(g)
-        g.finish()
+        g.finish({n: e.keys for n, e in GOVERNORS.items()})
         governor = gov_t.build(spec)
         mech = governor.mechanism(11)
         lo_hi = mech.actuator_range()

@@ -458,11 +458,18 @@ class Table:
             raise InputError(self.key(key), v, "one of " + ", ".join(repr(c) for c in choices))
         return v
 
-    def finish(self) -> None:
+    def finish(self, elsewhere: dict | None = None) -> None:
         """Refuse keys that no getter read (misspellings, keys of another gear).
 
         A key the bound group declares but these settings did not read is refused
-        saying when it is read; any other names the closest declared key.
+        saying when it is read; any other names the closest declared key, and the types
+        in ``elsewhere`` that do take it.
+
+        Parameters
+        ----------
+        elsewhere : dict, optional
+            ``{type name: KeyGroup}`` of the other types this table could be (the
+            other gears of a ``[valve_gear]``), to say which take an unknown key.
         """
         unknown = sorted(set(self.data) - self._read)
         if unknown:
@@ -480,5 +487,8 @@ class Table:
             if self.keys is not None and self.name in ("valve_gear", "lp_valve_gear",
                                                         "governor"):
                 who = f"{self.name} of type {self.keys.name}"
+            takers = sorted(n for n, g in (elsewhere or {}).items()
+                            if g is not self.keys and k in g)
+            other = f" ({k} is a key of {', '.join(takers)})" if takers else ""
             raise InputError(self.key(k), self.data[k],
-                             f"a known key; {hint}{who} takes: {known}")
+                             f"a known key; {hint}{who} takes: {known}{other}")

@@ -166,6 +166,17 @@ def test_a_declared_key_another_setting_reads_says_so():
     assert "valve_gear.radius_rod" in str(e.value) and "motion" in str(e.value)
 
 
+def test_another_gears_key_is_named_as_such():
+    """Issue 16's Stephenson locomotive: ``lead`` is the slide valve's, not the link's."""
+    data = copy.deepcopy(SCENES["hinkley-stephenson-link"])
+    data["valve_gear"]["lead"] = "0.25 in"
+    with pytest.raises(InputError) as e:
+        scene_from_dict(data)
+    msg = str(e.value)
+    assert "valve_gear.lead" in msg and "angular_advance" in msg, msg
+    assert "lead is a key of slide_valve" in msg, msg
+
+
 def test_explain_prints_a_key_as_declared(capsys):
     assert cli.main(["explain", "valve_gear.lap"]) == 0
     out = capsys.readouterr().out
