@@ -33,6 +33,11 @@
     The accuracy-versus-time study of ``benchmarks/`` (from a source checkout).
 ``corliss list scenes|gears|effects|governors``
     What the package holds.
+``corliss list keys GEAR_OR_GOVERNOR``
+    A gear's or governor's scene keys: kind, units, default, range, what each is.
+``corliss explain KEY``
+    A scene key (``valve_gear.lap``, ``governor.ball_mass``, ``run.effects``), section,
+    gear, governor or effect, as the scene reference (``docs/scene-reference.md``) has it.
 
 A user's mistake exits with code 2 and a one-paragraph message, no traceback, and
 writes nothing.  Messages go through the ``corliss`` logger: once-per-machine notices
@@ -820,6 +825,52 @@ def cmd_bench(args) -> int:
     return module.main(argv)
 
 
+def cmd_explain(args) -> int:
+    """``corliss explain KEY``: print what a scene key (section, gear, governor, effect)
+    is, from the loader's declarations.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        ``key``: the name asked about.
+
+    Returns
+    -------
+    int
+        0 (an unknown name is an InputError: exit 2).
+    """
+    from corliss.scene_reference import explain
+    print(explain(args.key), end="")
+    return 0
+
+
+def cmd_list_keys(args) -> int:
+    """``corliss list keys GEAR_OR_GOVERNOR``: a type's scene keys; any other ``list``
+    goes to :func:`cmd_list`.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        ``what`` and, for keys, ``name``: the gear or governor.
+
+    Returns
+    -------
+    int
+        0 (a missing or unknown name is an InputError: exit 2).
+    """
+    if args.what != "keys":
+        if args.name is not None:
+            raise InputError(f"list {args.what}", args.name, f"nothing after {args.what} (a "
+                             "name follows only list keys)")
+        return cmd_list(args)
+    from corliss.scene_reference import type_keys
+    if args.name is None:
+        raise InputError("list keys", None, "a gear or governor after it, e.g. corliss list "
+                         "keys slide_valve (corliss list gears, corliss list governors)")
+    print(type_keys(args.name), end="")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The ``corliss`` command's argument parser, a subcommand per ``cmd_*`` function.
 
@@ -983,8 +1034,14 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--out", help="directory for the CSV and plot (default benchmarks/results)")
     b.set_defaults(func=cmd_bench)
     ls = sub.add_parser("list", help="list bundled scenes and the registries")
-    ls.add_argument("what", choices=("scenes", "gears", "effects", "governors"))
-    ls.set_defaults(func=cmd_list)
+    ls.add_argument("what", choices=("scenes", "gears", "effects", "governors", "keys"))
+    ls.add_argument("name", nargs="?", help="with keys: the gear or governor")
+    ls.set_defaults(func=cmd_list_keys)
+    ex = sub.add_parser("explain", help="what a scene key, section, gear, governor or "
+                        "effect is: kind, units, default, range, who reads it")
+    ex.add_argument("key", help="e.g. valve_gear.lap, governor.ball_mass, run.effects, "
+                    "slide_valve, engine")
+    ex.set_defaults(func=cmd_explain)
     return p
 
 

@@ -20,24 +20,26 @@ import numpy as np
 from corliss import units
 from corliss.engine.geometry import EngineSpec
 from corliss.engine.operating_point import working_travel
-from corliss.engine.options import (COMPILED_METHODS, EFFECT_KEYS, EFFECTS, EXPANSION_LAWS,
-                                    METHODS, MODELS, PLANNED_EFFECTS, PRESETS, SCIPY_METHODS, Fidelity)
+from corliss.engine.options import (COMPILED_METHODS, EFFECT_KEYS, EFFECTS, PLANNED_EFFECTS,
+                                    PRESETS, SCIPY_METHODS, Fidelity)
 from corliss.errors import InputError
-from corliss.tables import DISCHARGE_COEFFICIENT, Table
+from corliss.keyspec import REQUIRED
+from corliss.section_keys import (COMPARE, COMPOUND, ENGINE, EXHAUST, FLYWHEEL, LOAD, OUTPUT,
+                                  RECORD_CHOICES, RUN, START_CHOICES, SUPPLY)  # noqa: F401
+from corliss.tables import Table
 from corliss.textfiles import read_text
 from corliss.thermo.steam import BACKENDS, HEOSSteam, TableSteam
 from corliss.valves import GEARS
 
 SECTIONS = ("title", "engine", "supply", "exhaust", "valve_gear", "run", "output", "compound",
             "lp_valve_gear", "governor", "flywheel", "load", "compare")
-RECORD_CHOICES = ("step", "degree", "cycle")
 
 
 @dataclass(frozen=True)
 class SupplySpec:
     """Steam at the chest (all SI).
 
-    Attributes
+    Parameters
     ----------
     pressure_Pa : float
         Absolute pressure [Pa].
@@ -76,7 +78,7 @@ class SupplySpec:
 class ExhaustSpec:
     """Back pressure: atmosphere, condenser or receiver, held constant.
 
-    Attributes
+    Parameters
     ----------
     pressure_Pa : float
         Absolute back pressure [Pa].
@@ -89,7 +91,7 @@ class ExhaustSpec:
 class RunSpec:
     """What to simulate and how accurately.
 
-    Attributes
+    Parameters
     ----------
     mode : str
         ``"steady"`` (constant speed) or ``"transient"`` (speed a state, with the
@@ -154,10 +156,28 @@ class RunSpec:
 
     @property
     def speed_rpm(self) -> float:
+        """Crank speed in revolutions a minute.
+
+        Returns
+        -------
+        float
+            The speed [rpm].
+        """
         return self.speed_rad_s / units.RPM_RAD_S
 
     def has(self, effect: str) -> bool:
-        """True when the scene names ``effect``."""
+        """True when the scene names ``effect``.
+
+        Parameters
+        ----------
+        effect : str
+            An effect's name.
+
+        Returns
+        -------
+        bool
+            Whether ``run.effects`` holds it.
+        """
         return effect in self.effects
 
 
@@ -165,7 +185,7 @@ class RunSpec:
 class OutputSpec:
     """Where and how results are written.
 
-    Attributes
+    Parameters
     ----------
     units : str
         ``"US"`` or ``"SI"`` in CSV and plots.
@@ -181,7 +201,7 @@ class OutputSpec:
 class CompoundSpec:
     """The low-pressure cylinder of a compound engine and its receiver (all SI).
 
-    Attributes
+    Parameters
     ----------
     lp_engine : EngineSpec
         The LP cylinder (bore, stroke, rod, clearance); other [engine] data as the HP's.
@@ -208,7 +228,7 @@ class CompareSpec:
     """The ``[compare]`` section: how `corliss compare` governs the engine both ways
     (every field None: the study's default, see :mod:`corliss.engine.compare`).
 
-    Attributes
+    Parameters
     ----------
     throttled_setting : float or None
         The gear setting the throttled variant keeps [-].
@@ -231,7 +251,7 @@ def _compare(t: Table, swept_m3: float, gear) -> CompareSpec:
         if lo is None:
             raise InputError(t.key("throttled_setting"), t.raw("throttled_setting"),
                              "no setting: the gear has none")
-        fixed = t.number("throttled_setting", within=(lo, hi))
+        fixed = t.get("throttled_setting", None, within=(lo, hi))
     if t.has("setting_range"):
         raw = t.raw("setting_range")
         ok = (lo is not None and isinstance(raw, list) and len(raw) == 2
@@ -242,14 +262,48 @@ def _compare(t: Table, swept_m3: float, gear) -> CompareSpec:
                              f"[least, greatest] settings within the gear's {lo} to {hi}")
         rng = (float(min(raw)), float(max(raw)))
     chest = _vessel(t, "chest_volume", swept_m3, "a cylinder") if t.has("chest_volume") else None
-    pipe = t.length("pipe_diameter", positive=True) if t.has("pipe_diameter") else None
+    pipe = t.get("pipe_diameter", None)
     t.finish()
     return CompareSpec(fixed, rng, chest, pipe)
 
 
 @dataclass(frozen=True)
 class Scene:
-    """A validated scene, all SI.  Build it with :func:`load_scene`."""
+    """A validated scene, all SI.  Build it with :func:`load_scene`.
+
+    Parameters
+    ----------
+    title : str
+        The scene's title.
+    engine : EngineSpec
+        The cylinder(s).
+    supply, exhaust : SupplySpec, ExhaustSpec
+        Steam in and out.
+    gear_type : str
+        The valve gear's registry name.
+    gear : object
+        Its spec.
+    run, output : RunSpec, OutputSpec
+        What to simulate; where results go.
+    name : str
+        The scene's name (its file's stem).
+    source : str or None
+        Its file's path.
+    compound : CompoundSpec or None
+        The LP cylinder of a compound.
+    governor_type : str or None
+        The governor's registry name.
+    governor : object or None
+        Its spec.
+    flywheel, load : object or None
+        A transient run's flywheel and load specs.
+    compare : CompareSpec or None
+        The ``[compare]`` section.
+    data : dict or None
+        The scene's tables as read.
+    text : str or None
+        The scene file's text.
+    """
 
     title: str
     engine: EngineSpec
@@ -273,18 +327,46 @@ class Scene:
     text: str | None = dataclasses.field(default=None, compare=False, repr=False)
 
     def resolved(self) -> dict:
-        """The scene as resolved SI values (for result metadata)."""
+        """The scene as resolved SI values (for result metadata).
+
+        Returns
+        -------
+        dict
+            Its fields, nested, without the raw tables and text.
+        """
         out = dataclasses.asdict(self)
         for raw in ("data", "text"):
             out.pop(raw)
         return out
 
     def replace_run(self, **changes) -> "Scene":
-        """A copy with fields of ``run`` changed (e.g. ``cycles=3``)."""
+        """A copy with fields of ``run`` changed (e.g. ``cycles=3``).
+
+        Parameters
+        ----------
+        **changes
+            Fields of :class:`RunSpec` and their new values.
+
+        Returns
+        -------
+        Scene
+            The copy.
+        """
         return dataclasses.replace(self, run=dataclasses.replace(self.run, **changes))
 
     def with_fidelity(self, name: str) -> "Scene":
-        """A copy at another fidelity preset."""
+        """A copy at another fidelity preset.
+
+        Parameters
+        ----------
+        name : str
+            A preset of :data:`corliss.engine.options.PRESETS`.
+
+        Returns
+        -------
+        Scene
+            The copy.
+        """
         if name not in PRESETS:
             raise InputError("run.fidelity", name, "one of " + ", ".join(PRESETS))
         return self.replace_run(fidelity=PRESETS[name])
@@ -318,7 +400,7 @@ def _pair_fraction(t: Table, key: str) -> tuple[float, float]:
 def _vessel(t: Table, key: str, swept_m3: float, what: str) -> float:
     """A steam chest's or receiver's volume [m3], at least
     :data:`VESSEL_LEAST_OF_SWEPT` of the swept volume of the cylinder it feeds."""
-    v = t.quantity(key, "volume")
+    v = t.get(key, REQUIRED)
     least = VESSEL_LEAST_OF_SWEPT * swept_m3
     if not v >= least:
         raise InputError(t.key(key), t.raw(key), f"a volume of at least "
@@ -330,37 +412,35 @@ def _vessel(t: Table, key: str, swept_m3: float, what: str) -> float:
 
 def _engine(t: Table) -> EngineSpec:
     # from a model's half-inch cylinder to the largest engines built (about 5 m of stroke)
-    bore = t.length("bore", within=(1e-3, 5.0))
-    stroke = t.length("stroke", within=(1e-3, 5.0))
-    rod = t.length("connecting_rod", within=(1e-3, 25.0))
+    bore = t.get("bore")
+    stroke = t.get("stroke")
+    rod = t.get("connecting_rod")
     if rod <= stroke / 2.0:
         raise InputError(t.key("connecting_rod"), t.raw("connecting_rod"),
                          f"a connecting rod longer than the crank (half the stroke, "
                          f"{stroke / 2 / units.INCH_m:.4g} in)")
-    prd = t.length("piston_rod_diameter", "0 in")
+    prd = t.get("piston_rod_diameter")
     if not 0.0 <= prd < bore:
         raise InputError(t.key("piston_rod_diameter"), t.raw("piston_rod_diameter"),
                          "a piston rod diameter from zero up to less than the bore")
-    mass = t.quantity("reciprocating_mass", "mass") if t.has("reciprocating_mass") else None
+    mass = t.get("reciprocating_mass")
     if mass is not None and not mass > 0.0:
         raise InputError(t.key("reciprocating_mass"), t.raw("reciprocating_mass"),
                          "a mass greater than zero")
-    f0 = t.quantity("friction_torque", "torque", "0 N m")
-    f1 = t.quantity("friction_torque_per_speed", "torque_per_speed", "0 N m s")
+    f0 = t.get("friction_torque")
+    f1 = t.get("friction_torque_per_speed")
     if f0 < 0.0 or f1 < 0.0:
         raise InputError(t.key("friction_torque"), t.raw("friction_torque", None),
                          "friction torques of zero or more (they oppose the motion)")
     leaks = []
     for k in ("valve_leakage_area", "piston_leakage_area"):
-        a = t.quantity(k, "area", "0 in2")
+        a = t.get(k)
         if a < 0.0 or a > 0.05 * math.pi / 4 * bore ** 2:
             raise InputError(t.key(k), t.raw(k), "an equivalent leak area from zero to 5 % of "
                              "the piston area")
         leaks.append(a)
-    n_cyl = t.integer("cylinders", 1)
-    if not 1 <= n_cyl <= 6:
-        raise InputError(t.key("cylinders"), n_cyl, "a number of identical cylinders, 1 to 6")
-    angles = t.raw("crank_angles", [f"{360.0 * k / n_cyl} deg" for k in range(n_cyl)]
+    n_cyl = t.get("cylinders")
+    angles = t.get("crank_angles", [f"{360.0 * k / n_cyl} deg" for k in range(n_cyl)]
                    if n_cyl != 2 else ["0 deg", "90 deg"])
     if not isinstance(angles, list) or len(angles) != n_cyl:
         raise InputError(t.key("crank_angles"), angles, f"a list of {n_cyl} crank angles, the "
@@ -368,18 +448,18 @@ def _engine(t: Table) -> EngineSpec:
     crank_angles = tuple(units.parse(a, "angle", t.key("crank_angles")) for a in angles)
     if abs(crank_angles[0]) > 1e-12:
         raise InputError(t.key("crank_angles"), angles, "a list whose first angle is \"0 deg\"")
-    model = t.choice("wall_heat_model", ("skin", "marks", "conductance", "adair"), "skin")
-    marks = t.quantity("marks_constant", "heat_transfer", "18.13 Btu/ft2 degF min")
+    model = t.get("wall_heat_model")
+    marks = t.get("marks_constant")
     if not marks > 0.0:
         raise InputError(t.key("marks_constant"), t.raw("marks_constant"), "a conductance above 0")
     condensing = None     # "marks": set by Marks's eq. 221 (corliss.engine.calibration)
     if t.raw("condensing_coefficient", None) != "marks":
-        condensing = t.quantity("condensing_coefficient", "heat_transfer", "300 kW/m2 K")
+        condensing = t.get("condensing_coefficient")
         if not condensing > 0.0:
             raise InputError(t.key("condensing_coefficient"), t.raw("condensing_coefficient"),
                              "a coefficient above 0, or \"marks\"")
-    jacket = t.choice("jacket", ("none", "barrel"), "none")
-    thickness = t.length("wall_thickness", "1 in", within=(1e-3, 0.5 * bore))
+    jacket = t.get("jacket")
+    thickness = t.get("wall_thickness", within=(1e-3, 0.5 * bore))
     spec = EngineSpec(bore, stroke, rod, prd, _pair_fraction(t, "clearance"), mass, f0, f1,
                       *leaks, model, marks, crank_angles, condensing, jacket, thickness)
     t.finish()
@@ -401,27 +481,28 @@ def _compound(t: Table, hp: EngineSpec, lp_gear_data, hp_gear_type, hp_gear,
               barometer: float) -> CompoundSpec:
     """The [compound] section: LP cylinder, its crank, the receiver; [lp_valve_gear] or,
     without it, the HP's gear with its port lengths scaled to the LP bore."""
-    bore = t.length("lp_bore", positive=True)
-    stroke = t.length("lp_stroke", f"{hp.stroke_m} m", positive=True)
-    rod = t.length("lp_connecting_rod", f"{hp.connecting_rod_m} m", positive=True)
+    bore = t.get("lp_bore")
+    stroke = t.get("lp_stroke", f"{hp.stroke_m} m")
+    rod = t.get("lp_connecting_rod", f"{hp.connecting_rod_m} m")
     if rod <= stroke / 2.0:
         raise InputError(t.key("lp_connecting_rod"), t.raw("lp_connecting_rod", None),
                          "a connecting rod longer than the LP crank")
-    prd = t.length("lp_piston_rod_diameter", f"{hp.piston_rod_diameter_m} m")
+    prd = t.get("lp_piston_rod_diameter", f"{hp.piston_rod_diameter_m} m")
     clearance = _pair_fraction(t, "lp_clearance") if t.has("lp_clearance") else hp.clearance
     lp = dataclasses.replace(hp, bore_m=bore, stroke_m=stroke, connecting_rod_m=rod,
                              piston_rod_diameter_m=prd, clearance=clearance,
                              valve_leakage_area_m2=0.0, piston_leakage_area_m2=0.0,
                              crank_angles_rad=(0.0,))
-    follows = t.angle("lp_crank_angle", "90 deg")
+    follows = t.get("lp_crank_angle")
     receiver = _vessel(t, "receiver_volume", math.pi / 4.0 * hp.bore_m ** 2 * hp.stroke_m,
                        "the HP cylinder")
     t.finish()
     if lp_gear_data is not None:
         vg = Table(lp_gear_data, "lp_valve_gear", barometer)
         gt = _registered(vg, GEARS)
+        vg.bind(gt.keys)
         lp_gear = gt.parse(vg)
-        vg.finish()
+        vg.finish({n: e.keys for n, e in GEARS.items()})
         name = gt.name
     else:
         name = hp_gear_type.name
@@ -477,19 +558,19 @@ def _check_states(data: dict, supply: SupplySpec, exhaust: ExhaustSpec, run: Run
 
 def _supply(t: Table, swept_m3: float) -> SupplySpec:
     """The [supply] table; ``swept_m3``: one cylinder's swept volume (the least chest)."""
-    p = t.pressure("pressure")
-    temp_raw = t.raw("temperature", "saturated")
+    p = t.get("pressure")
+    temp_raw = t.raw("temperature")
     dryness = 1.0
     temperature = None
     if t.has("dryness"):
-        dryness = t.number("dryness")
+        dryness = t.get("dryness")
         if not 0.0 < dryness <= 1.0:
             raise InputError(t.key("dryness"), dryness, "a dryness fraction in (0, 1]")
         if temp_raw != "saturated":
             raise InputError(t.key("dryness"), dryness,
                              "dryness only with saturated (wet) steam, not with a temperature")
     if temp_raw != "saturated":
-        temperature = t.quantity("temperature", "temperature")
+        temperature = t.get("temperature")
         if p >= 22.064e6:
             raise InputError(t.key("pressure"), t.raw("pressure"), "a subcritical pressure")
         t_sat = HEOSSteam().t_sat(p)
@@ -501,27 +582,23 @@ def _supply(t: Table, swept_m3: float) -> SupplySpec:
             temperature = None
     chest = (_vessel(t, "chest_volume", swept_m3, "a cylinder") if t.has("chest_volume")
              else None)
-    pipe = t.length("pipe_diameter", positive=True) if t.has("pipe_diameter") else None
-    cd = t.number("pipe_discharge_coefficient", 0.8, within=DISCHARGE_COEFFICIENT)
-    throttle = t.number("throttle", 1.0)
+    pipe = t.get("pipe_diameter")
+    cd = t.get("pipe_discharge_coefficient")
+    throttle = t.get("throttle")
     if not 0.0 < throttle <= 1.0:
         raise InputError(t.key("throttle"), throttle,
                          "an opening above 0 (shut) and up to 1 (wide open)")
-    law = t.choice("throttle_law", ("linear", "butterfly"), "linear")
+    law = t.get("throttle_law")
     t.finish()
     return SupplySpec(p, temperature, dryness, t.barometer_Pa, chest, pipe, cd, throttle, law)
 
 
-#: How a governed transient run starts (see :class:`RunSpec`).
-START_CHOICES = ("equilibrium", "run_speed", "rest")
-
-
 def _run(t: Table) -> RunSpec:
-    mode = t.choice("mode", ("steady", "transient"), "steady")
-    model = t.choice("model", MODELS, "crank_resolved")
+    mode = t.get("mode")
+    model = t.get("model")
     # a tenth of a turn a minute (a museum engine turned over slowly) to 5000 rpm
-    speed = t.quantity("speed", "speed", within=(0.1 * units.RPM_RAD_S, math.inf))
-    effects = t.raw("effects", ["port_flow", "rod_angularity"])
+    speed = t.get("speed")
+    effects = t.get("effects")
     if not isinstance(effects, list) or not all(isinstance(e, str) for e in effects):
         raise InputError(t.key("effects"), effects, "a list of effect names")
     for e in effects:
@@ -530,30 +607,28 @@ def _run(t: Table) -> RunSpec:
                              + ", ".join(EFFECTS) + f"); {e!r} is planned but not built yet")
         if e not in EFFECTS:
             raise InputError(t.key("effects"), e, "one of " + ", ".join(EFFECTS))
-    preset = t.choice("fidelity", tuple(PRESETS), "standard")
+    preset = t.get("fidelity")
     fid = PRESETS[preset]
     changes = {}
     if t.has("properties"):
-        changes["properties"] = t.choice("properties", tuple(BACKENDS))
+        changes["properties"] = t.get("properties", None)
     if t.has("method"):
-        changes["method"] = t.choice("method", METHODS)
+        changes["method"] = t.get("method", None)
     if t.has("rtol"):
-        changes["rtol"] = t.number("rtol")
-        if not 1e-13 <= changes["rtol"] <= 1e-2:
-            raise InputError(t.key("rtol"), changes["rtol"], "a tolerance between 1e-13 and 1e-2")
+        changes["rtol"] = t.get("rtol", None)
     if t.has("convergence_tolerance"):
-        changes["convergence_tolerance"] = t.number("convergence_tolerance")
+        changes["convergence_tolerance"] = t.get("convergence_tolerance", None)
         if not 0.0 < changes["convergence_tolerance"] < 0.5:
             raise InputError(t.key("convergence_tolerance"), changes["convergence_tolerance"],
                              "a fraction between 0 and 0.5")
     if t.has("max_cycles"):
-        changes["max_cycles"] = t.integer("max_cycles", within=(2, 1000))
+        changes["max_cycles"] = t.get("max_cycles", None)
     if t.has("step"):
-        changes["step_deg"] = math.degrees(t.angle("step"))
+        changes["step_deg"] = math.degrees(t.get("step", None))
         if not 0.01 <= changes["step_deg"] <= 10.0:
             raise InputError(t.key("step"), t.raw("step"), "a crank-angle step from 0.01 to 10 deg")
     if t.has("portmap_points"):
-        changes["portmap_points"] = t.integer("portmap_points", within=(90, 100_000))
+        changes["portmap_points"] = t.get("portmap_points", None)
     if changes:
         fid = dataclasses.replace(fid, name="custom", **changes)
     if fid.method in COMPILED_METHODS and BACKENDS[fid.properties].kernel_tier is None:
@@ -566,13 +641,13 @@ def _run(t: Table) -> RunSpec:
         cycles = t.integer("cycles")
         if cycles < 1:
             raise InputError(t.key("cycles"), cycles, "a whole number of cycles >= 1")
-    expansion = t.choice("expansion", EXPANSION_LAWS, "hyperbolic")
+    expansion = t.get("expansion")
     if model == "mean_value" and mode != "transient":
         raise InputError(t.key("model"), model, "\"crank_resolved\" or \"ideal\" in a steady "
                          "run: the mean-value model steps a transient turn by turn")
     duration = None
     if mode == "transient":
-        duration = t.quantity("duration", "time")
+        duration = t.get("duration", REQUIRED)
         if not 0.0 < duration <= 3600.0:
             raise InputError(t.key("duration"), t.raw("duration"), "a time above 0, up to 1 h")
         if cycles is not None:
@@ -581,24 +656,22 @@ def _run(t: Table) -> RunSpec:
     elif t.has("duration"):
         raise InputError(t.key("duration"), t.raw("duration"), "no duration in a steady run "
                          "(it runs until periodic, or run.cycles); or mode = \"transient\"")
-    record = t.choice("record", RECORD_CHOICES) if t.has("record") else None
-    band = t.number("settling_band", 0.002)
+    record = t.get("record", None)
+    band = t.get("settling_band")
     if not 0.0 < band < 0.5:
         raise InputError(t.key("settling_band"), band, "a fraction of the speed between 0 and 0.5")
-    warm = t.integer("warmup_cycles", 3)
-    if not 0 <= warm <= 100:
-        raise InputError(t.key("warmup_cycles"), warm, "a number of turns from 0 to 100")
-    start = t.choice("start", START_CHOICES, "equilibrium")
+    warm = t.get("warmup_cycles")
+    start = t.get("start")
     start_angle = 0.0
     if start == "rest" or t.has("start_angle"):
         if start != "rest" or mode != "transient":
             raise InputError(t.key("start_angle"), t.raw("start_angle", None), "no start_angle "
                              "unless start = \"rest\" in a transient run")
-        start_angle = t.angle("start_angle") % (2.0 * math.pi)
+        start_angle = t.get("start_angle", REQUIRED) % (2.0 * math.pi)
         if model == "mean_value":
             raise InputError(t.key("start"), start, "\"equilibrium\" or \"run_speed\" with "
                              "the mean-value model: its maps hold running speeds only")
-    until = t.raw("until_settled", False)
+    until = t.raw("until_settled")
     if not isinstance(until, bool):
         raise InputError(t.key("until_settled"), until, "true or false")
     longest = None
@@ -606,8 +679,8 @@ def _run(t: Table) -> RunSpec:
         if mode != "transient":
             raise InputError(t.key("until_settled"), until, "a transient run (mode = "
                              "\"transient\"): a steady run always runs until periodic")
-        longest = t.quantity("max_duration", "time", f"{min(10.0 * duration, 3600.0)} s",
-                             within=(duration, 3600.0))
+        longest = t.get("max_duration", f"{min(10.0 * duration, 3600.0)} s",
+                        within=(duration, 3600.0))
     t.finish()
     return RunSpec(mode, model, speed, tuple(dict.fromkeys(effects)), fid, cycles, expansion,
                    duration, record, band, warm, start, until, longest, start_angle)
@@ -615,6 +688,20 @@ def _run(t: Table) -> RunSpec:
 
 def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) -> Scene:
     """Validate a parsed TOML document into a :class:`Scene`.
+
+    Parameters
+    ----------
+    data : dict
+        The scene's tables, as TOML reads them.
+    name : str
+        The scene's name.
+    source : str, optional
+        The path it was read from (a load schedule is found beside it).
+
+    Returns
+    -------
+    Scene
+        The validated scene, all SI.
 
     Raises
     ------
@@ -627,13 +714,13 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
     for key in SECTIONS[1:6]:
         if key not in data:
             raise InputError(key, None, f"a [{key}] section: it is required")
-    sup = Table(data["supply"], "supply")
-    barometer = sup.pressure("barometer", "14.696 psia")
+    sup = Table(data["supply"], "supply", keys=SUPPLY)
+    barometer = sup.get("barometer")
     sup.barometer_Pa = barometer
-    engine = _engine(Table(data["engine"], "engine", barometer))
+    engine = _engine(Table(data["engine"], "engine", barometer, ENGINE))
     supply = _supply(sup, math.pi / 4.0 * engine.bore_m ** 2 * engine.stroke_m)
-    ex = Table(data["exhaust"], "exhaust", barometer)
-    exhaust = ExhaustSpec(ex.pressure("pressure"))
+    ex = Table(data["exhaust"], "exhaust", barometer, EXHAUST)
+    exhaust = ExhaustSpec(ex.get("pressure"))
     ex.finish()
     if not supply.pressure_Pa > exhaust.pressure_Pa:
         raise InputError("supply.pressure", data["supply"].get("pressure"),
@@ -642,9 +729,10 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
                          f"{exhaust.pressure_Pa / units.PSI_Pa:.4g} psia)")
     vg = Table(data["valve_gear"], "valve_gear", barometer)
     gt = _registered(vg, GEARS)
+    vg.bind(gt.keys)
     gear = gt.parse(vg)
-    vg.finish()
-    run = _run(Table(data["run"], "run", barometer))
+    vg.finish({n: e.keys for n, e in GEARS.items()})
+    run = _run(Table(data["run"], "run", barometer, RUN))
     _check_states(data, supply, exhaust, run)
     for effect, keys in EFFECT_KEYS.items():
         for k in keys:
@@ -668,15 +756,15 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
         if len(engine.crank_angles_rad) > 1:
             raise InputError("engine.cylinders", len(engine.crank_angles_rad),
                              "1 in a compound: its second cylinder is the [compound] LP")
-        compound = _compound(Table(data["compound"], "compound", barometer), engine,
+        compound = _compound(Table(data["compound"], "compound", barometer, COMPOUND), engine,
                              data.get("lp_valve_gear"), gt, gear, barometer)
         if run.model != "crank_resolved" or not run.has("port_flow"):
             raise InputError("compound", "[...]", "run.model = \"crank_resolved\" with "
                              "\"port_flow\": the receiver fills and empties through ports")
     elif "lp_valve_gear" in data:
         raise InputError("lp_valve_gear", "[...]", "a [compound] section beside it")
-    out = Table(data.get("output", {}), "output", barometer)
-    output = OutputSpec(out.choice("units", ("US", "SI"), "US"), out.string("dir", "out"))
+    out = Table(data.get("output", {}), "output", barometer, OUTPUT)
+    output = OutputSpec(out.get("units"), out.get("dir"))
     out.finish()
     title = data.get("title", name)
     if not isinstance(title, str):
@@ -685,7 +773,7 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
                        Path(source).parent if source else None)
     cmp = None
     if "compare" in data:
-        cmp = _compare(Table(data["compare"], "compare", barometer),
+        cmp = _compare(Table(data["compare"], "compare", barometer, COMPARE),
                        math.pi / 4.0 * engine.bore_m ** 2 * engine.stroke_m, gt.build(gear))
     return Scene(title, engine, supply, exhaust, gt.name, gear, run, output, name, source, compound,
                  **loop, compare=cmp, data=data)
@@ -709,15 +797,16 @@ def _speed_loop(data: dict, run: RunSpec, supply: SupplySpec, gt, gear, baromete
     if run.model not in ("crank_resolved", "mean_value") or not run.has("port_flow"):
         raise InputError("run.model", run.model, "\"crank_resolved\" or \"mean_value\" (maps "
                          "from crank-resolved cards) with \"port_flow\" in a transient run")
-    flywheel = parse_flywheel(Table(data["flywheel"], "flywheel", barometer))
-    load = parse_load(Table(data["load"], "load", barometer), run.speed_rad_s, scene_dir)
+    flywheel = parse_flywheel(Table(data["flywheel"], "flywheel", barometer, FLYWHEEL))
+    load = parse_load(Table(data["load"], "load", barometer, LOAD), run.speed_rad_s, scene_dir)
     out = {"flywheel": flywheel, "load": load}
     if "governor" in data:
         from corliss.governors import GOVERNORS
         g = Table(data["governor"], "governor", barometer)
         gov_t = _registered(g, GOVERNORS)
+        g.bind(gov_t.keys)
         spec = gov_t.parse(g)
-        g.finish()
+        g.finish({n: e.keys for n, e in GOVERNORS.items()})
         governor = gov_t.build(spec)
         mech = governor.mechanism(11)
         lo_hi = mech.actuator_range()
@@ -785,6 +874,11 @@ def load_scene(path: str | Path) -> Scene:
     path : str or Path
         A TOML scene.
 
+    Returns
+    -------
+    Scene
+        The validated scene, with the file's text.
+
     Raises
     ------
     InputError
@@ -800,12 +894,24 @@ def load_scene(path: str | Path) -> Scene:
 
 
 def default_scene_path() -> Path:
-    """The bundled default scene (a 12 x 24 in slide-valve engine)."""
+    """The bundled default scene (a 12 x 24 in slide-valve engine).
+
+    Returns
+    -------
+    Path
+        Its file.
+    """
     return bundled_scenes()["default"]
 
 
 def bundled_scenes() -> dict[str, Path]:
-    """The scenes that come with the package: ``{name: path}``, sorted by name."""
+    """The scenes that come with the package.
+
+    Returns
+    -------
+    dict
+        ``{name: path}``, sorted by name.
+    """
     from importlib.resources import files
     root = Path(str(files("corliss.scenes")))
     return {p.stem: p for p in sorted(root.glob("*.toml"))}
@@ -813,6 +919,16 @@ def bundled_scenes() -> dict[str, Path]:
 
 def find_scene(name_or_path: str | Path) -> Path:
     """A scene file by path, or a bundled scene by name (``"default"``, ...).
+
+    Parameters
+    ----------
+    name_or_path : str or Path
+        A path, or a bundled scene's name (with or without ``.toml``).
+
+    Returns
+    -------
+    Path
+        The scene file.
 
     Raises
     ------

@@ -29,7 +29,7 @@ _VALUE = re.compile(r"^\s*(?P<num>[-+]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][-+]?\d+)?)
 class KeyValue:
     """A number in a unit, as a scene writes it.
 
-    Attributes
+    Parameters
     ----------
     number : float
         The number as written, in ``unit``.
@@ -41,8 +41,18 @@ class KeyValue:
     unit: str
 
     def text(self, number: float | None = None):
-        """The scene value for ``number`` (default: this one) in this unit: a quantity
-        string, or a float for a dimensionless key."""
+        """The scene value for ``number`` (default: this one) in this unit.
+
+        Parameters
+        ----------
+        number : float, optional
+            A number in :attr:`unit`; default this value's.
+
+        Returns
+        -------
+        str or float
+            A quantity string, or a float for a dimensionless key.
+        """
         x = self.number if number is None else float(number)
         return x if self.unit == "" else f"{x:.12g} {self.unit}"
 
@@ -67,7 +77,7 @@ class _KeyInUnit:
 class KeyRange(_KeyInUnit):
     """A scene key and the range it may take, both ends in one unit.
 
-    Attributes
+    Parameters
     ----------
     key : str
         Dotted scene key, e.g. ``"valve_gear.lap"``.
@@ -84,7 +94,20 @@ class KeyRange(_KeyInUnit):
 
 
 def check_key(key: str, where: str) -> str:
-    """``key`` if it is a dotted scene key (``section.name``), else an InputError."""
+    """``key`` if it is a dotted scene key (``section.name``), else an InputError.
+
+    Parameters
+    ----------
+    key : str
+        The key.
+    where : str
+        What the option is, for the message (``"--vary"``).
+
+    Returns
+    -------
+    str
+        ``key``.
+    """
     if not isinstance(key, str) or not _KEY.match(key):
         raise InputError(where, key, "a dotted scene key such as engine.clearance, "
                          "valve_gear.lap or run.speed")
@@ -92,7 +115,20 @@ def check_key(key: str, where: str) -> str:
 
 
 def parse_value(text: str, where: str) -> KeyValue:
-    """A number and its unit from ``"0.9 in"``, ``"0.9in"`` or ``"0.08"``."""
+    """A number and its unit from ``"0.9 in"``, ``"0.9in"`` or ``"0.08"``.
+
+    Parameters
+    ----------
+    text : str
+        The value as written.
+    where : str
+        What the option is, for the message (``"--vary"``).
+
+    Returns
+    -------
+    KeyValue
+        Its number and unit.
+    """
     m = _VALUE.match(str(text))
     if not m:
         raise InputError(where, text, "a number and its unit, e.g. 0.9in, 100psig or 0.08")
@@ -104,6 +140,18 @@ def parse_value(text: str, where: str) -> KeyValue:
 
 def parse_range(spec: str, where: str = "--vary") -> KeyRange:
     """A ``KEY=LOW:HIGH`` option as a :class:`KeyRange`.
+
+    Parameters
+    ----------
+    spec : str
+        The option's text.
+    where : str
+        What the option is, for the message (``"--vary"``).
+
+    Returns
+    -------
+    KeyRange
+        The key and its range.
 
     Raises
     ------
@@ -129,7 +177,20 @@ def parse_range(spec: str, where: str = "--vary") -> KeyRange:
 
 
 def get_key(data: dict, key: str):
-    """The value of dotted ``key`` in a scene's raw tables, or None if it is absent."""
+    """The value of dotted ``key`` in a scene's raw tables, or None if it is absent.
+
+    Parameters
+    ----------
+    data : dict
+        The scene's tables.
+    key : str
+        A dotted key.
+
+    Returns
+    -------
+    object
+        The value as written, or None.
+    """
     node = data
     for part in key.split("."):
         if not isinstance(node, dict) or part not in node:
@@ -147,6 +208,11 @@ def with_keys(data: dict, values: dict) -> dict:
         The scene as read from its TOML file; not changed.
     values : dict
         ``{dotted key: value}``, each value as the scene writes it.
+
+    Returns
+    -------
+    dict
+        The edited copy.
 
     Raises
     ------
@@ -183,7 +249,7 @@ class KeyValues(_KeyInUnit):
     """A scene key and an explicit list of its values, all in one unit (a grid's
     levels: ``KEY=a,b,c`` with the unit once at the end or on every value).
 
-    Attributes
+    Parameters
     ----------
     key : str
         Dotted scene key.
@@ -202,7 +268,7 @@ class KeyValues(_KeyInUnit):
 class KeyDistribution(_KeyInUnit):
     """A scene key and the distribution it is drawn from, its parameters in one unit.
 
-    Attributes
+    Parameters
     ----------
     key : str
         Dotted scene key.
@@ -222,9 +288,20 @@ class KeyDistribution(_KeyInUnit):
 
 
     def ppf(self, u):
-        """The values at the cumulative probabilities ``u`` (in (0, 1)) [unit]: the
-        inverse of the distribution function, so uniform samples of ``u`` (random or
-        stratified) become samples of the distribution."""
+        """The values at the cumulative probabilities ``u``: the inverse of the
+        distribution function, so uniform samples of ``u`` (random or stratified) become
+        samples of the distribution.
+
+        Parameters
+        ----------
+        u : array_like
+            Cumulative probabilities in (0, 1) [-].
+
+        Returns
+        -------
+        numpy.ndarray
+            The values [unit].
+        """
         import numpy as np
         u = np.asarray(u, dtype=float)
         if self.kind == "uniform":
@@ -252,6 +329,18 @@ def _one_unit(values: list, where: str, text: str) -> tuple[list[float], str]:
 def parse_values(spec: str, where: str = "--vary") -> KeyValues:
     """A ``KEY=a,b,c`` option (a grid's explicit levels) as a :class:`KeyValues`.
 
+    Parameters
+    ----------
+    spec : str
+        The option's text.
+    where : str
+        What the option is, for the message (``"--vary"``).
+
+    Returns
+    -------
+    KeyValues
+        The key and its levels.
+
     Raises
     ------
     InputError
@@ -276,6 +365,18 @@ def parse_distribution(spec: str, where: str = "--vary") -> KeyDistribution:
     """A ``KEY=LOW:HIGH`` (uniform), ``KEY=uniform(LOW,HIGH)UNIT``,
     ``KEY=normal(MEAN,SD)UNIT`` or ``KEY=triangular(LOW,MODE,HIGH)UNIT`` option as a
     :class:`KeyDistribution` (the unit at the end, or on every parameter).
+
+    Parameters
+    ----------
+    spec : str
+        The option's text.
+    where : str
+        What the option is, for the message (``"--vary"``).
+
+    Returns
+    -------
+    KeyDistribution
+        The key and its distribution.
 
     Raises
     ------

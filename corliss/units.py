@@ -134,7 +134,26 @@ def _show(value_si: float, unit: str) -> str:
 def check_range(value_si: float, kind: str, key: str, text: object,
                 within: tuple[float, float] | None = None) -> float:
     """``value_si`` if it lies in the physical range of ``kind`` (narrowed to ``within``,
-    SI, when given), else an InputError naming the key, the value and the range."""
+    SI, when given), else an InputError naming the key, the value and the range.
+
+    Parameters
+    ----------
+    value_si : float
+        The value [SI].
+    kind : str
+        One of :data:`KINDS`.
+    key : str
+        The scene key, for the message.
+    text : object
+        The value as written, for the message.
+    within : (float, float), optional
+        The key's own range [SI].
+
+    Returns
+    -------
+    float
+        ``value_si``.
+    """
     lo, hi, unit = RANGES[kind]
     if within is not None:
         lo, hi = max(lo, within[0]), min(hi, within[1])
@@ -160,10 +179,62 @@ MAX_TEXT = 80
 
 @dataclass(frozen=True)
 class Quantity:
-    """A parsed quantity string: the number as written and its unit text."""
+    """A parsed quantity string: the number as written and its unit text.
+
+    Parameters
+    ----------
+    value : float
+        The number.
+    unit : str
+        The unit's text.
+    """
 
     value: float
     unit: str
+
+
+#: The SI unit of each kind, in the spelling of unit libraries such as pint, for a
+#: quantity object passed through the Python API (:func:`parse`).
+SI_UNIT_TEXT = {
+    "length": "m", "area": "m**2", "volume": "m**3", "speed": "rad/s", "time": "s",
+    "torque": "N*m", "torque_per_speed": "N*m*s", "heat_transfer": "W/(m**2*K)",
+    "power": "W", "mass": "kg", "inertia": "kg*m**2", "angle": "rad", "mass_flow": "kg/s",
+    "force": "N", "stiffness": "N/m", "damping": "N*s/m", "specific_energy": "J/kg",
+    "energy": "J", "specific_steam_consumption": "kg/J", "temperature": "K",
+}
+
+
+def is_quantity_object(value: object) -> bool:
+    """Whether ``value`` is a quantity object of a unit library (pint's ``Quantity``, or
+    anything with ``.to(unit)`` and ``.magnitude``), not a scene's string.
+
+    Parameters
+    ----------
+    value : object
+        A value from a scene's tables.
+
+    Returns
+    -------
+    bool
+        True for a quantity object.
+    """
+    return (not isinstance(value, (str, int, float, bool)) and hasattr(value, "to")
+            and hasattr(value, "magnitude"))
+
+
+def _from_object(q: object, kind: str, key: str, within) -> float:
+    """A quantity object in SI, converted by ``kind``; the library is never imported
+    here: the object converts itself."""
+    if kind == "pressure":
+        raise InputError(key, q, "a pressure as a string that says absolute or gauge "
+                         "(\"100 psia\", \"85 psig\"): a quantity object does not say which")
+    try:
+        v = float(q.to(SI_UNIT_TEXT[kind]).magnitude)
+    except (TypeError, ValueError, AttributeError) as exc:
+        raise InputError(key, q, f"a {kind.replace('_', ' ')} ({exc})") from None
+    if not math.isfinite(v):
+        raise InputError(key, q, "a finite quantity")
+    return check_range(v, kind, key, q, within)
 
 
 def _parse_text(text: object, key: str) -> Quantity:
@@ -198,7 +269,18 @@ def _parse_text(text: object, key: str) -> Quantity:
 
 
 def units_of(kind: str) -> tuple[str, ...]:
-    """Unit names accepted for a kind of quantity."""
+    """Unit names accepted for a kind of quantity.
+
+    Parameters
+    ----------
+    kind : str
+        One of :data:`KINDS`.
+
+    Returns
+    -------
+    tuple of str
+        The spellings accepted.
+    """
     if kind == "pressure":
         return tuple(_ABS_INPUT) + tuple(_GAUGE_INPUT) + tuple(_VACUUM)
     if kind == "temperature":
@@ -213,8 +295,11 @@ def parse(text: object, kind: str, key: str = "value", *,
 
     Parameters
     ----------
-    text : str
-        The quantity, e.g. ``"100 psig"``.
+    text : str or quantity object
+        The quantity, e.g. ``"100 psig"``; or, through the Python API, a quantity of a
+        unit library (a pint ``Quantity``: anything with ``.to`` and ``.magnitude``),
+        converted to the kind's SI unit (:data:`SI_UNIT_TEXT`).  A pressure must be a
+        string, which says absolute or gauge.
     kind : str
         One of :data:`KINDS`.
     key : str
@@ -235,6 +320,8 @@ def parse(text: object, kind: str, key: str = "value", *,
         If the text has no unit, an unknown unit, or a unit of another kind, or the value
         lies outside the physical range of its kind (or ``within``).
     """
+    if is_quantity_object(text):
+        return _from_object(text, kind, key, within)
     q = _parse_text(text, key)
     if q.unit == "":
         raise InputError(key, text, f"a {kind} with its unit; one of "
@@ -280,6 +367,20 @@ def pressure_to_si(values, unit: str, *, barometer_Pa: float = STANDARD_ATMOSPHE
     spelling a scene may use (:func:`units_of` ``("pressure")``; gauge and vacuum
     against ``barometer_Pa`` [Pa]).
 
+    Parameters
+    ----------
+    values : float or numpy.ndarray
+        Readings in ``unit``.
+    unit : str
+        A pressure unit a scene may use.
+    barometer_Pa : float
+        Atmospheric pressure [Pa] for gauge readings.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Absolute pressures [Pa].
+
     Raises
     ------
     ValueError
@@ -299,6 +400,20 @@ def to_unit(value_si: float, unit: str, *, barometer_Pa: float = STANDARD_ATMOSP
 
     Pressure units with a gauge sense subtract the barometer; ``degF`` and
     ``degC`` apply their offsets.
+
+    Parameters
+    ----------
+    value_si : float or numpy.ndarray
+        The value [SI].
+    unit : str
+        The unit wanted.
+    barometer_Pa : float
+        Atmospheric pressure [Pa] for gauge readings.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        The value in ``unit``.
     """
     if unit in _ABS_PRESSURE:
         return value_si / _ABS_PRESSURE[unit]
@@ -317,7 +432,22 @@ def to_unit(value_si: float, unit: str, *, barometer_Pa: float = STANDARD_ATMOSP
 
 
 def from_unit(value: float, unit: str, *, barometer_Pa: float = STANDARD_ATMOSPHERE_Pa):
-    """Convert ``value`` in ``unit`` to SI (the inverse of :func:`to_unit`)."""
+    """Convert ``value`` in ``unit`` to SI (the inverse of :func:`to_unit`).
+
+    Parameters
+    ----------
+    value : float or numpy.ndarray
+        The value in ``unit``.
+    unit : str
+        Its unit.
+    barometer_Pa : float
+        Atmospheric pressure [Pa] for gauge readings.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        The value [SI].
+    """
     if unit in _ABS_PRESSURE:
         return value * _ABS_PRESSURE[unit]
     if unit in _GAUGE_PRESSURE:

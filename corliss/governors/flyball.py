@@ -49,10 +49,11 @@ import numpy as np
 
 from corliss import units
 from corliss.errors import InputError
-from corliss.governors import quantities
-from corliss.governors.mechanism import (GRAVITY_M_S2, Actuator, Governor, GovernorType,
+from corliss.governors.mechanism import (GEAR_SETTING_KEYS, GRAVITY_M_S2, RATIO_KEY,
+                                         THROTTLE_KEYS, Actuator, Governor, GovernorType,
                                          PointMass, WEIGHT_MASS_KG, parse_actuator,
                                          parse_ratio, register)
+from corliss.keyspec import POSITIVE_LENGTH, REQUIRED, Key, KeyGroup, group
 from corliss.tables import Table
 
 
@@ -195,30 +196,79 @@ class FlyBallGovernor(Governor):
 ARM_ANGLE_RAD = (math.radians(1.0), math.radians(89.0))
 
 
+#: Keys every fly-ball governor shares: its balls, arms, stops and losses.
+_BALLS = group(
+    "balls", "The balls and their arms.",
+    Key("ball_mass", "mass", "Mass of each ball.", within=WEIGHT_MASS_KG, unit="lb"),
+    Key("balls", "integer", "Number of balls, 2 or more.", default=2),
+)
+_TOP_STOP = group(
+    "top_stop", "The top stop: an arm angle or a sleeve lift (one of them).",
+    Key("arm_angle_at_top", "angle", "Arm angle at the top stop, above the rest angle and "
+        "below 90 deg; or give sleeve_lift.", default=None, within=None, unit="deg"),
+    Key("sleeve_lift", "length", "The sleeve's lift from rest to the top stop; or give "
+        "arm_angle_at_top.", default=None, within=POSITIVE_LENGTH, unit="in"),
+)
+_LOSSES = group(
+    "losses", "Friction and dashpot at the sleeve.",
+    Key("friction", "force", "Coulomb friction at the sleeve (zero or more).", default="0 N",
+        unit="lbf"),
+    Key("dashpot", "damping", "Dashpot at the sleeve (zero or more).", default="0 N s/m"),
+)
+
+
+def _flyball_keys(name: str, loaded: str, acts_on: str, corliss: bool = False) -> KeyGroup:
+    """The keys of a fly-ball governor read by ``_flyball_parse(loaded, acts_on, corliss)``."""
+    if loaded == "none":
+        load = Key("sleeve_mass", "mass", "Mass of the sleeve (zero or more).", default="0 kg",
+                   unit="lb")
+    else:
+        req = loaded == "required"
+        load = Key("load_mass", "mass", "The central load on the sleeve (Porter's), "
+                   + ("above zero." if req else "zero or more (none: Watt's)."),
+                   default=REQUIRED if req else "0 kg", unit="lb")
+    safety = () if not corliss else (
+        Key("safety_lift", "length", "How far above rest the sleeve must be before the trip "
+            "cams work; below it the safety cam holds the hooks off (Spangler Art. 155). Zero: "
+            "no safety range.", unit="in"),
+        Key("safety_setting", "number", "The gear's setting of no admission, held in the "
+            "safety range.", when="with safety_lift above zero (required there)"))
+    return group(
+        name, "A fly-ball governor.",
+        Key("arm_length", "length", "Length of each arm, suspension to ball centre.",
+            within=POSITIVE_LENGTH, unit="in"),
+        _BALLS, load,
+        Key("arm_angle_at_rest", "angle", "Arm angle from the spindle at rest, between 0 and "
+            "90 deg.", within=ARM_ANGLE_RAD, unit="deg"),
+        _TOP_STOP,
+        Key("suspension_offset", "length", "Offset of the arms' suspension from the spindle "
+            "(zero or more).", default="0 in", unit="in"),
+        _LOSSES, THROTTLE_KEYS if acts_on == "throttle" else GEAR_SETTING_KEYS, *safety,
+        RATIO_KEY)
+
+
 def _flyball_parse(loaded: str, acts_on: str, corliss: bool = False):
     """A parser for a fly-ball governor table.
 
     loaded : "none" (Watt, optional sleeve mass), "required" (Porter), "optional".
     """
+    keys = _flyball_keys("flyball", loaded, acts_on, corliss)
 
     def parse(t: Table):
-        l = t.length("arm_length", positive=True)
-        m = t.quantity("ball_mass", "mass", within=WEIGHT_MASS_KG)
+        t = t.bound(keys)
+        l = t.get("arm_length")
+        m = t.get("ball_mass")
         if not m > 0.0:
             raise InputError(t.key("ball_mass"), t.raw("ball_mass"), "a mass above zero")
-        balls = t.integer("balls", 2)
+        balls = t.get("balls")
         if balls < 2:
             raise InputError(t.key("balls"), balls, "2 or more balls")
-        if loaded == "none":
-            key, W = "sleeve_mass", t.quantity("sleeve_mass", "mass", "0 kg")
-        elif loaded == "required":
-            key, W = "load_mass", t.quantity("load_mass", "mass")
-        else:
-            key, W = "load_mass", t.quantity("load_mass", "mass", "0 kg")
+        key = "sleeve_mass" if loaded == "none" else "load_mass"
+        W = t.get(key)
         if W < 0.0 or (loaded == "required" and not W > 0.0):
             raise InputError(t.key(key), t.raw(key), "a mass above zero" if loaded == "required"
                              else "a mass of zero or more")
-        th0 = t.angle("arm_angle_at_rest", within=ARM_ANGLE_RAD)
+        th0 = t.get("arm_angle_at_rest")
         if not 0.0 < th0 < 0.5 * math.pi:
             raise InputError(t.key("arm_angle_at_rest"), t.raw("arm_angle_at_rest"),
                              "an arm angle from the spindle between 0 and 90 deg (the balls "
@@ -228,13 +278,13 @@ def _flyball_parse(loaded: str, acts_on: str, corliss: bool = False):
                              "either arm_angle_at_top or sleeve_lift (one of them) for the top "
                              "stop")
         if t.has("arm_angle_at_top"):
-            th1 = t.angle("arm_angle_at_top", within=ARM_ANGLE_RAD)
+            th1 = t.get("arm_angle_at_top", within=ARM_ANGLE_RAD)
             if not th0 < th1 < 0.5 * math.pi:
                 raise InputError(t.key("arm_angle_at_top"), t.raw("arm_angle_at_top"),
                                  f"an arm angle above the rest angle "
                                  f"({math.degrees(th0):.4g} deg) and below 90 deg")
         else:
-            lift = t.length("sleeve_lift", positive=True)
+            lift = t.get("sleeve_lift")
             c1 = math.cos(th0) - lift / (2.0 * l)
             if not c1 > 0.0:
                 raise InputError(t.key("sleeve_lift"), t.raw("sleeve_lift"),
@@ -242,12 +292,12 @@ def _flyball_parse(loaded: str, acts_on: str, corliss: bool = False):
                                  f"{2 * l * math.cos(th0) / units.INCH_m:.4g} in (beyond it the "
                                  "arms would pass the horizontal)")
             th1 = math.acos(c1)
-        e = t.length("suspension_offset", "0 in")
+        e = t.get("suspension_offset")
         if e < 0.0:
             raise InputError(t.key("suspension_offset"), t.raw("suspension_offset"),
                              "an offset of zero or more")
-        friction = quantities.quantity(t, "friction", "force", "0 N")
-        damping = quantities.quantity(t, "dashpot", "damping", "0 N s/m")
+        friction = t.get("friction")
+        damping = t.get("dashpot")
         if friction < 0.0 or damping < 0.0:
             raise InputError(t.key("friction" if friction < 0 else "dashpot"),
                              t.raw("friction" if friction < 0 else "dashpot"), "zero or more")
@@ -280,10 +330,10 @@ def _corliss_actuator(t: Table) -> Actuator:
     gear's setting of no admission).  Returned with ``safety_z`` still as a lift [m].
     """
     a = parse_actuator(t, "gear")
-    lift = t.length("safety_lift")
+    lift = t.get("safety_lift")
     if lift < 0.0:
         raise InputError(t.key("safety_lift"), t.raw("safety_lift"), "a lift of zero or more")
-    safety = t.number("safety_setting") if lift > 0.0 else float("nan")
+    safety = t.get("safety_setting") if lift > 0.0 else float("nan")
     return Actuator("gear", a.at_rest, a.at_top, lift, safety)
 
 
@@ -419,18 +469,50 @@ class SpringGovernor(Governor):
         return GRAVITY_M_S2 * sp.balls * sp.ball_mass_kg * sp.ball_arm_m * s * ds / c + spring
 
 
+SPRING_KEYS = group(
+    "spring", "A spring-loaded fly-ball governor of the Hartnell form.",
+    _BALLS,
+    Key("pivot_radius", "length", "Radius of the bell-crank pivots from the spindle.",
+        within=POSITIVE_LENGTH, unit="in"),
+    Key("ball_arm", "length", "The bell-crank's ball arm.", within=POSITIVE_LENGTH, unit="in"),
+    Key("sleeve_arm", "length", "The bell-crank's sleeve arm.", within=POSITIVE_LENGTH,
+        unit="in"),
+    Key("arm_angle_at_rest", "angle", "Bell-crank angle at rest, between -90 and 90 deg, the "
+        "ball outside the spindle axis.", unit="deg"),
+    _TOP_STOP,
+    Key("spring_stiffness", "stiffness", "Stiffness of the spring on the sleeve (zero or "
+        "more).", unit="lbf/in"),
+    Key("spring_preload", "force", "The spring's load on the sleeve at rest (zero or more).",
+        unit="lbf"),
+    Key("sleeve_mass", "mass", "Mass of the sleeve (zero or more).", default="0 kg", unit="lb"),
+    _LOSSES, THROTTLE_KEYS, RATIO_KEY,
+)
+
+
 def parse_spring(t: Table) -> SpringSpec:
-    """Read a ``[governor] type = "spring"`` table."""
-    m = t.quantity("ball_mass", "mass", within=WEIGHT_MASS_KG)
+    """Read a ``[governor] type = "spring"`` table.
+
+    Parameters
+    ----------
+    t : Table
+        The table, bound to :data:`SPRING_KEYS`.
+
+    Returns
+    -------
+    SpringSpec
+        The governor's spec.
+    """
+    t = t.bound(SPRING_KEYS)
+    m = t.get("ball_mass")
     if not m > 0.0:
         raise InputError(t.key("ball_mass"), t.raw("ball_mass"), "a mass above zero")
-    balls = t.integer("balls", 2)
+    balls = t.get("balls")
     if balls < 2:
         raise InputError(t.key("balls"), balls, "2 or more balls")
-    a = t.length("pivot_radius", positive=True)
-    b = t.length("ball_arm", positive=True)
-    arm = t.length("sleeve_arm", positive=True)
-    ph0 = t.angle("arm_angle_at_rest")
+    a = t.get("pivot_radius")
+    b = t.get("ball_arm")
+    arm = t.get("sleeve_arm")
+    ph0 = t.get("arm_angle_at_rest")
     if not -0.5 * math.pi < ph0 < 0.5 * math.pi or a + b * math.sin(ph0) <= 0.0:
         raise InputError(t.key("arm_angle_at_rest"), t.raw("arm_angle_at_rest"),
                          "a bell-crank angle between -90 and 90 deg that keeps the ball "
@@ -439,13 +521,13 @@ def parse_spring(t: Table) -> SpringSpec:
         raise InputError(t.key("arm_angle_at_top"), t.raw("arm_angle_at_top", None),
                          "either arm_angle_at_top or sleeve_lift (one of them) for the top stop")
     if t.has("arm_angle_at_top"):
-        ph1 = t.angle("arm_angle_at_top")
+        ph1 = t.get("arm_angle_at_top")
         if not ph0 < ph1 < 0.5 * math.pi:
             raise InputError(t.key("arm_angle_at_top"), t.raw("arm_angle_at_top"),
                              f"a bell-crank angle above the rest angle "
                              f"({math.degrees(ph0):.4g} deg) and below 90 deg")
     else:
-        lift = t.length("sleeve_lift", positive=True)
+        lift = t.get("sleeve_lift")
         s1 = math.sin(ph0) + lift / arm
         if not s1 < 1.0:
             raise InputError(t.key("sleeve_lift"), t.raw("sleeve_lift"),
@@ -453,19 +535,19 @@ def parse_spring(t: Table) -> SpringSpec:
                              f"{arm * (1 - math.sin(ph0)) / units.INCH_m:.4g} in, what the "
                              "bell-crank can give")
         ph1 = math.asin(s1)
-    k = quantities.quantity(t, "spring_stiffness", "stiffness")
-    p = quantities.quantity(t, "spring_preload", "force")
+    k = t.get("spring_stiffness")
+    p = t.get("spring_preload")
     if k < 0.0:
         raise InputError(t.key("spring_stiffness"), t.raw("spring_stiffness"),
                          "a stiffness of zero or more")
     if p < 0.0:
         raise InputError(t.key("spring_preload"), t.raw("spring_preload"),
                          "a preload of zero or more (the spring pushes the sleeve down)")
-    ms = t.quantity("sleeve_mass", "mass", "0 kg")
+    ms = t.get("sleeve_mass")
     if ms < 0.0:
         raise InputError(t.key("sleeve_mass"), t.raw("sleeve_mass"), "a mass of zero or more")
-    friction = quantities.quantity(t, "friction", "force", "0 N")
-    damping = quantities.quantity(t, "dashpot", "damping", "0 N s/m")
+    friction = t.get("friction")
+    damping = t.get("dashpot")
     if friction < 0.0 or damping < 0.0:
         raise InputError(t.key("friction" if friction < 0 else "dashpot"),
                          t.raw("friction" if friction < 0 else "dashpot"), "zero or more")
@@ -476,21 +558,23 @@ def parse_spring(t: Table) -> SpringSpec:
 
 
 # --- registry ---------------------------------------------------------------------------
-def _flyball_type(name: str, summary: str, parse) -> GovernorType:
+def _flyball_type(name: str, summary: str, *how) -> GovernorType:
     cls = type(f"{name.title().replace('_', '')}Governor", (FlyBallGovernor,),
                {"name": name, "summary": summary})
-    return register(GovernorType(name, summary, parse, cls))
+    return register(GovernorType(name, summary, _flyball_parse(*how), cls,
+                                 _flyball_keys(name, *how)))
 
 
 WATT = _flyball_type("watt", "Watt's conical pendulum: h = g/omega^2, Marks eq. (254); moves "
-                     "the throttle", _flyball_parse("none", "throttle"))
+                     "the throttle", "none", "throttle")
 PORTER = _flyball_type("porter", "Porter's loaded governor: small fast balls under a heavy "
                        "central load (Marks Art. 97); moves the throttle",
-                       _flyball_parse("required", "throttle"))
+                       "required", "throttle")
 PORTER_ALLEN = _flyball_type("porter_allen", "Porter governor moving the radius rod in the "
                              "Fink link of the Porter-Allen gear (Spangler Art. 83)",
-                             _flyball_parse("required", "gear"))
+                             "required", "gear")
 CORLISS = _flyball_type("corliss", "fly-ball (Porter, or Watt with no load) placing the "
                         "Corliss trip cams, safety cams at its lowest (Spangler Art. 155)",
-                        _flyball_parse("optional", "gear", corliss=True))
-SPRING = register(GovernorType("spring", SpringGovernor.summary, parse_spring, SpringGovernor))
+                        "optional", "gear", True)
+SPRING = register(GovernorType("spring", SpringGovernor.summary, parse_spring, SpringGovernor,
+                               SPRING_KEYS))

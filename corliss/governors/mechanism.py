@@ -42,6 +42,7 @@ from typing import ClassVar
 import numpy as np
 
 from corliss.errors import InputError
+from corliss.keyspec import Key, group
 from corliss.registry import Registry, RegistryEntry
 
 log = logging.getLogger(__name__)
@@ -541,10 +542,42 @@ RATIO_RANGE = (0.05, 20.0)
 WEIGHT_MASS_KG = (0.01, 1000.0)
 
 
+#: The drive ratio every governor takes.
+RATIO_KEY = Key("ratio", "number", "Governor spindle speed over shaft speed (belt or "
+                "gearing).", default=1.0, within=RATIO_RANGE)
+#: What a throttling governor moves: the throttle's opening, linear in z.
+THROTTLE_KEYS = group(
+    "throttle_actuator", "The throttle the governor moves.",
+    Key("opening_at_rest", "number", "Throttle opening with the governor at rest, 0 (shut) "
+        "to 1 (open).", default=1.0, within=(0.0, 1.0)),
+    Key("opening_at_top", "number", "Throttle opening at the governor's top stop, 0 (shut) "
+        "to 1 (open).", default=0.0, within=(0.0, 1.0)),
+)
+#: What a gear-setting governor moves: the gear's setting, linear in z.
+GEAR_SETTING_KEYS = group(
+    "gear_actuator", "The gear setting the governor moves.",
+    Key("setting_at_rest", "number", "The gear's setting with the governor at rest, within "
+        "the gear's setting range.", default=0.0),
+    Key("setting_at_top", "number", "The gear's setting at the governor's top stop, within "
+        "the gear's setting range.", default=1.0),
+)
+
+
 def parse_ratio(t) -> float:
-    """``ratio``: governor spindle speed over shaft speed (belt or gearing), default 1,
-    within :data:`RATIO_RANGE`."""
-    return t.number("ratio", 1.0, within=RATIO_RANGE)
+    """``ratio`` (:data:`RATIO_KEY`): governor spindle speed over shaft speed (belt or
+    gearing), default 1, within :data:`RATIO_RANGE`.
+
+    Parameters
+    ----------
+    t : corliss.tables.Table
+        The governor's table.
+
+    Returns
+    -------
+    float
+        The ratio [-].
+    """
+    return t.get("ratio")
 
 
 def parse_actuator(t, acts_on: str) -> Actuator:
@@ -554,12 +587,21 @@ def parse_actuator(t, acts_on: str) -> Actuator:
     (default 0, shut), each from 0 to 1.  Gear: ``setting_at_rest`` (default 0) and
     ``setting_at_top`` (default 1), plain numbers in the gear's own setting (the
     shaft-governor gear's runs from 0 at rest to 1 at full speed).
+
+    Parameters
+    ----------
+    t : corliss.tables.Table
+        The governor's table, with :data:`THROTTLE_KEYS` or :data:`GEAR_SETTING_KEYS`.
+    acts_on : str
+        ``"throttle"`` or ``"gear"``.
+
+    Returns
+    -------
+    Actuator
+        What the governor moves, at rest and at the top stop.
     """
     if acts_on == "throttle":
-        a0 = t.number("opening_at_rest", 1.0)
-        a1 = t.number("opening_at_top", 0.0)
-        for k, v in (("opening_at_rest", a0), ("opening_at_top", a1)):
-            if not 0.0 <= v <= 1.0:
-                raise InputError(t.key(k), v, "a throttle opening from 0 (shut) to 1 (open)")
+        a0 = t.get("opening_at_rest")
+        a1 = t.get("opening_at_top")
         return Actuator("throttle", a0, a1)
-    return Actuator("gear", t.number("setting_at_rest", 0.0), t.number("setting_at_top", 1.0))
+    return Actuator("gear", t.get("setting_at_rest"), t.get("setting_at_top"))

@@ -54,9 +54,9 @@ import numpy as np
 
 from corliss import units
 from corliss.errors import InputError
-from corliss.governors import quantities
-from corliss.governors.mechanism import (Actuator, Governor, GovernorType, PointMass,
-                                         WEIGHT_MASS_KG, parse_actuator, register)
+from corliss.governors.mechanism import (GEAR_SETTING_KEYS, Actuator, Governor, GovernorType,
+                                         PointMass, WEIGHT_MASS_KG, parse_actuator, register)
+from corliss.keyspec import POSITIVE_LENGTH, Key, group
 from corliss.tables import Table
 
 
@@ -228,20 +228,63 @@ class ShaftGovernor(Governor):
             * sp.spring_arm_m * sp.beta_swing
 
 
+SHAFT_KEYS = group(
+    "shaft", "A shaft governor: weights on arms in the flywheel or a disc, held in by "
+    "springs, set the gear.",
+    Key("weight_mass", "mass", "Mass of each weight.", within=WEIGHT_MASS_KG, unit="lb"),
+    Key("weights", "integer", "Number of weights, 1 or more.", default=2),
+    Key("pivot_radius", "length", "a: radius of the arms' pivots from the shaft.",
+        within=POSITIVE_LENGTH, unit="in"),
+    Key("arm_length", "length", "b: from the pivot to the weight's centre.",
+        within=POSITIVE_LENGTH, unit="in"),
+    Key("weight_radius_at_rest", "length", "The weight's radius from the shaft at rest, "
+        "between |a - b| and a + b.", within=POSITIVE_LENGTH, unit="in"),
+    Key("weight_radius_at_top", "length", "The weight's radius at the top stop, above the "
+        "radius at rest and below a + b.", within=POSITIVE_LENGTH, unit="in"),
+    Key("weight_inertia", "inertia", "Each weight's moment of inertia about its pivot (inertia "
+        "action; zero or more).", default="0 kg m2"),
+    Key("weight_position", "choice", "The weights lead or trail their pivots in the sense of "
+        "rotation.", default="leading", choices=("leading", "trailing")),
+    Key("spring_arm", "length", "The spring's arm about the pivot.", within=POSITIVE_LENGTH,
+        unit="in"),
+    Key("spring_stiffness", "stiffness", "Stiffness of each spring (zero or more).",
+        unit="lbf/in"),
+    Key("spring_preload", "force", "Each spring's load with the weights at rest (zero or "
+        "more).", unit="lbf"),
+    Key("friction_torque", "torque", "Coulomb friction torque at the pivots (zero or more).",
+        default="0 N m"),
+    Key("dashpot", "torque_per_speed", "Dashpot torque per speed of swing (zero or more).",
+        default="0 N m s"),
+    GEAR_SETTING_KEYS,
+)
+
+
 def parse_shaft(t: Table) -> ShaftSpec:
     """Read a ``[governor]`` table of a shaft governor (erie, armington_sims, ball,
-    buckeye, thompson)."""
-    m = t.quantity("weight_mass", "mass", within=WEIGHT_MASS_KG)
+    buckeye, thompson).
+
+    Parameters
+    ----------
+    t : Table
+        The table, bound to :data:`SHAFT_KEYS`.
+
+    Returns
+    -------
+    ShaftSpec
+        The governor's spec.
+    """
+    t = t.bound(SHAFT_KEYS)
+    m = t.get("weight_mass")
     if not m > 0.0:
         raise InputError(t.key("weight_mass"), t.raw("weight_mass"), "a mass above zero")
-    n = t.integer("weights", 2)
+    n = t.get("weights")
     if n < 1:
         raise InputError(t.key("weights"), n, "1 or more weights")
-    a = t.length("pivot_radius", positive=True)
-    b = t.length("arm_length", positive=True)
+    a = t.get("pivot_radius")
+    b = t.get("arm_length")
     lo, hi = abs(a - b), a + b
-    r0 = t.length("weight_radius_at_rest", positive=True)
-    r1 = t.length("weight_radius_at_top", positive=True)
+    r0 = t.get("weight_radius_at_rest")
+    r1 = t.get("weight_radius_at_top")
     for key, r in (("weight_radius_at_rest", r0), ("weight_radius_at_top", r1)):
         if not lo < r < hi:
             raise InputError(t.key(key), t.raw(key),
@@ -253,22 +296,22 @@ def parse_shaft(t: Table) -> ShaftSpec:
         raise InputError(t.key("weight_radius_at_top"), t.raw("weight_radius_at_top"),
                          f"a radius above the radius at rest ({r0 / units.INCH_m:.4g} in): the "
                          "weights fly outward as the speed rises")
-    inertia = t.quantity("weight_inertia", "inertia", "0 kg m2")
+    inertia = t.get("weight_inertia")
     if inertia < 0.0:
         raise InputError(t.key("weight_inertia"), t.raw("weight_inertia"),
                          "a moment of inertia of zero or more")
-    leading = t.choice("weight_position", ("leading", "trailing"), "leading") == "leading"
-    d = t.length("spring_arm", positive=True)
-    k = quantities.quantity(t, "spring_stiffness", "stiffness")
-    p = quantities.quantity(t, "spring_preload", "force")
+    leading = t.get("weight_position") == "leading"
+    d = t.get("spring_arm")
+    k = t.get("spring_stiffness")
+    p = t.get("spring_preload")
     if k < 0.0:
         raise InputError(t.key("spring_stiffness"), t.raw("spring_stiffness"),
                          "a stiffness of zero or more")
     if p < 0.0:
         raise InputError(t.key("spring_preload"), t.raw("spring_preload"),
                          "a preload of zero or more (the spring holds the weights in)")
-    tf = t.quantity("friction_torque", "torque", "0 N m")
-    ct = t.quantity("dashpot", "torque_per_speed", "0 N m s")
+    tf = t.get("friction_torque")
+    ct = t.get("dashpot")
     if tf < 0.0 or ct < 0.0:
         raise InputError(t.key("friction_torque" if tf < 0 else "dashpot"),
                          t.raw("friction_torque" if tf < 0 else "dashpot"), "zero or more")
@@ -281,7 +324,7 @@ def parse_shaft(t: Table) -> ShaftSpec:
 def _shaft_type(name: str, summary: str) -> GovernorType:
     cls = type(f"{name.title().replace('_', '')}Governor", (ShaftGovernor,),
                {"name": name, "summary": summary})
-    return register(GovernorType(name, summary, parse_shaft, cls))
+    return register(GovernorType(name, summary, parse_shaft, cls, SHAFT_KEYS))
 
 
 ERIE = _shaft_type("erie", "Erie shaft governor: weights on bell-cranks slide the eccentric "

@@ -44,9 +44,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from corliss.errors import InputError
+from corliss.keyspec import POSITIVE_LENGTH, Key, group
 from corliss.tables import Table
 from corliss.valves import double_valve as dv
 from corliss.valves.gear import GearType, register
+from corliss.valves.slide_valve import ANGULAR_ADVANCE, ECCENTRICITY
 
 
 @dataclass(frozen=True)
@@ -239,27 +241,53 @@ def _intersect(p, rp, q, rq, upper: bool):
     return np.vstack([np.where(pick1, x1, x2), np.where(pick1, y1, y2)])
 
 
+BUCKEYE_KEYS = group(
+    "buckeye", "The Buckeye gear: main valve on a rocker, riding cut-off valve on a "
+    "governed eccentric.",
+    ECCENTRICITY, ANGULAR_ADVANCE, dv.CUTOFF_ECCENTRIC_KEYS, dv.MAIN_KEYS, dv.RIDING_KEYS,
+    Key("governor_swing", "angle", "How far the governor turns the cut-off eccentric "
+        "between settings 0 and 1.", default="0 deg", unit="deg"),
+    dv.setting_key(0.0, 1.0, "governor position"), dv.MOTION_KEYS,
+    Key("rock_lever", "length", "Rocker arm, more than four times the eccentric's throw.",
+        within=POSITIVE_LENGTH, unit="in", when="with motion = \"exact\" (required there)"),
+    Key("floating_lever", "length", "Floating lever of the cut-off, more than four times the "
+        "throw; absent: none.", default=None, within=POSITIVE_LENGTH, unit="in",
+        when="with motion = \"exact\""),
+)
+
+
 def parse_buckeye(t: Table) -> BuckeyeSpec:
-    """Read a ``[valve_gear] type = "buckeye"`` table."""
+    """Read a ``[valve_gear] type = "buckeye"`` table.
+
+    Parameters
+    ----------
+    t : Table
+        The table, bound to :data:`BUCKEYE_KEYS`.
+
+    Returns
+    -------
+    BuckeyeSpec
+        The gear's spec.
+    """
+    t = t.bound(BUCKEYE_KEYS)
     main = dv.parse_main(t)
     cut = dv.parse_riding(t, main)
-    r = t.length("eccentricity", positive=True)
-    r1 = t.length("cutoff_eccentricity", positive=True)
-    motion = t.choice("motion", ("zeuner", "exact"), "zeuner")
+    r = t.get("eccentricity")
+    r1 = t.get("cutoff_eccentricity")
+    motion = t.get("motion")
     kw = {}
     if motion == "exact":
         kw = {"eccentric_rod_m": dv.rod(t, "eccentric_rod", r, motion),
               "cutoff_eccentric_rod_m": dv.rod(t, "cutoff_eccentric_rod", r1, motion),
-              "rock_lever_m": t.length("rock_lever", positive=True),
-              "floating_lever_m": (t.length("floating_lever", positive=True)
-                                   if t.has("floating_lever") else None)}
+              "rock_lever_m": t.get("rock_lever"),
+              "floating_lever_m": t.get("floating_lever")}
         for key, v in (("rock_lever", kw["rock_lever_m"]),
                        ("floating_lever", kw["floating_lever_m"])):
             if v is not None and v <= 4 * max(r, r1):
                 raise InputError(t.key(key), t.raw(key), "a lever more than four times the "
                                  "eccentric's throw (its arc must stay near its line)")
-    spec = BuckeyeSpec(main, cut, r, t.angle("angular_advance"), r1,
-                       t.angle("cutoff_angular_advance"), t.angle("governor_swing", "0 deg"),
+    spec = BuckeyeSpec(main, cut, r, t.get("angular_advance"), r1,
+                       t.get("cutoff_angular_advance"), t.get("governor_swing"),
                        dv.check_setting(t, "setting", 0.0, 1.0, "governor position"),
                        motion, **kw)
     if motion == "exact":
@@ -271,4 +299,4 @@ def parse_buckeye(t: Table) -> BuckeyeSpec:
 
 
 register(GearType("buckeye", BuckeyeGear.summary, parse_buckeye,
-                  lambda spec: dv.built(BuckeyeGear(spec))))
+                  lambda spec: dv.built(BuckeyeGear(spec)), BUCKEYE_KEYS))

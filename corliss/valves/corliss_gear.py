@@ -106,6 +106,7 @@ import numpy as np
 
 from corliss import units
 from corliss.errors import InputError
+from corliss.keyspec import POSITIVE_LENGTH, Key, group
 from corliss.tables import DISCHARGE_COEFFICIENT, Table
 from corliss.valves.gear import GearType, ValveGear, register
 
@@ -832,9 +833,10 @@ class CorlissJoints:
 
 
 # ---------------------------------------------------------------------- parsing
-def _arc(t: Table, key: str, radius: float, default=None) -> tuple[float, float]:
-    """A lap given as an arc (length) or as a spindle angle, once or as [head, crank]."""
-    raw = t.raw(key, default)
+def _arc(t: Table, key: str, radius: float) -> tuple[float, float]:
+    """A lap given as an arc (length) or as a spindle angle, once or as [head, crank]
+    (its default the declared one)."""
+    raw = t.raw(key)
     vals = raw if isinstance(raw, list) else [raw, raw]
     if len(vals) != 2:
         raise InputError(t.key(key), raw, "one value, or a list [head, crank] of two")
@@ -852,50 +854,106 @@ def _arc(t: Table, key: str, radius: float, default=None) -> tuple[float, float]
 
 
 def _chain(t: Table, kind: str) -> ValveChain:
-    ch = ValveChain(t.length(f"{kind}_stud_radius", positive=True),
-                    t.angle(f"{kind}_stud_angle"),
-                    t.length(f"{kind}_arm", positive=True),
-                    t.angle(f"{kind}_arm_angle"),
-                    t.length(f"{kind}_spindle_distance", positive=True),
-                    t.length(f"{kind}_valve_radius", positive=True))
+    ch = ValveChain(t.get(f"{kind}_stud_radius"), t.get(f"{kind}_stud_angle"),
+                    t.get(f"{kind}_arm"), t.get(f"{kind}_arm_angle"),
+                    t.get(f"{kind}_spindle_distance"), t.get(f"{kind}_valve_radius"))
     if ch.rod_m <= 0.0:
         raise InputError(t.key(f"{kind}_arm_angle"), t.raw(f"{kind}_arm_angle"),
                          "an arm placed apart from the stud")
     return ch
 
 
+def _chain_keys(kind: str) -> list:
+    """The keys of the head-end ``kind`` (steam or exhaust) valve's chain."""
+    return [Key(f"{kind}_{name}", k, f"{what} of the {kind} valve's chain (head end; the "
+                "crank end mirrors).", within=POSITIVE_LENGTH if k == "length" else None,
+                unit="in" if k == "length" else "deg")
+            for name, k, what in (
+                ("stud_radius", "length", "Radius of the wrist-plate stud"),
+                ("stud_angle", "angle", "Angle of the stud from the line of centres at the "
+                 "plate's mid position"),
+                ("arm", "length", "Spindle arm"),
+                ("arm_angle", "angle", "Angle of the spindle arm at mid position"),
+                ("spindle_distance", "length", "Distance from the plate's centre to the "
+                 "spindle"),
+                ("valve_radius", "length", "Radius of the valve's face"))]
+
+
+CORLISS_KEYS = group(
+    "corliss", "Corliss's trip gear: a wrist plate rocks four rotary valves; the steam "
+    "valves are tripped by the cams and closed by dashpots.",
+    *_chain_keys("steam"), *_chain_keys("exhaust"),
+    Key("eccentricity", "length", "Throw of the eccentric at the hook, less than the "
+        "wrist-plate radius.", within=POSITIVE_LENGTH, unit="in"),
+    Key("angular_advance", "angle", "Angular advance of the eccentric.", unit="deg"),
+    Key("wrist_plate_radius", "length", "Radius of the hook pin on the wrist plate.",
+        within=POSITIVE_LENGTH, unit="in"),
+    Key("hook_rod", "length", "Rod from the eccentric to the wrist-plate pin, longer than "
+        "twice the throw plus the plate's radius.", within=POSITIVE_LENGTH, unit="in"),
+    Key("dashpot_closing_time", "time", "Time from release to the steam port closed "
+        "(above zero).", unit="s"),
+    Key("setting", "number", "Cam position s: 0 trips the steam valve at admission, 1 at "
+        "the end of the hook's travel; above 1 no trip, below 0 the safety cam admits no "
+        "steam.", default=0.5, within=SETTING_RANGE),
+    Key("discharge_coefficient", "number", "Discharge coefficient of a port opening.",
+        default=0.7, within=DISCHARGE_COEFFICIENT),
+    Key("ports_per_end", "integer", "Openings each valve uncovers.", default=1,
+        within=(1, 8)),
+    Key("steam_lap", "arc", "Steam valves' lap at the plate's mid position: an arc on the "
+        "valve face or a spindle angle.", ends=True),
+    Key("exhaust_lap", "arc", "Exhaust valves' lap at mid position (negative: open there).",
+        default="0 in", ends=True),
+    Key("steam_port_width", "length", "Steam ports' width, an arc on the valve face.",
+        within=POSITIVE_LENGTH, unit="in"),
+    Key("exhaust_port_width", "length", "Exhaust ports' width, an arc on the valve face.",
+        within=POSITIVE_LENGTH, unit="in"),
+    Key("port_length", "length", "The ports' length along the valve.",
+        within=POSITIVE_LENGTH, unit="in"),
+    Key("motion", "choice", "The exact four-bar linkage, or harmonic motion.",
+        default="exact", choices=("exact", "harmonic")),
+)
+
+
 def parse_corliss(t: Table) -> CorlissSpec:
-    """Read a ``[valve_gear] type = "corliss"`` table."""
+    """Read a ``[valve_gear] type = "corliss"`` table.
+
+    Parameters
+    ----------
+    t : Table
+        The table, bound to :data:`CORLISS_KEYS`.
+
+    Returns
+    -------
+    CorlissSpec
+        The gear's spec.
+    """
+    t = t.bound(CORLISS_KEYS)
     steam, exhaust = _chain(t, "steam"), _chain(t, "exhaust")
-    r = t.length("eccentricity", positive=True)
-    R = t.length("wrist_plate_radius", positive=True)
+    r = t.get("eccentricity")
+    R = t.get("wrist_plate_radius")
     if r >= R:
         raise InputError(t.key("eccentricity"), t.raw("eccentricity"),
                          f"a throw less than the wrist-plate radius ({R / units.INCH_m:.4g} in)")
-    g = t.length("hook_rod", positive=True)
+    g = t.get("hook_rod")
     if g <= 2.0 * (r + R):
         raise InputError(t.key("hook_rod"), t.raw("hook_rod"),
                          "a hook rod longer than twice the throw plus the wrist-plate radius")
-    closing = t.quantity("dashpot_closing_time", "time")
+    closing = t.get("dashpot_closing_time")
     if not closing > 0.0:
         raise InputError(t.key("dashpot_closing_time"), t.raw("dashpot_closing_time"),
                          "a time greater than zero")
-    setting = t.number("setting", 0.5)
-    lo, hi = SETTING_RANGE
-    if not lo <= setting <= hi:
-        raise InputError(t.key("setting"), setting, f"a cam position from {lo} to {hi}")
-    cd = t.number("discharge_coefficient", 0.7, within=DISCHARGE_COEFFICIENT)
-    ports = t.integer("ports_per_end", 1, within=(1, 8))   # double- and multi-ported valves
+    setting = t.get("setting")
+    cd = t.get("discharge_coefficient")
+    ports = t.get("ports_per_end")   # double- and multi-ported valves
     spec = CorlissSpec(
-        eccentricity_m=r, angular_advance_rad=t.angle("angular_advance"), hook_rod_m=g,
+        eccentricity_m=r, angular_advance_rad=t.get("angular_advance"), hook_rod_m=g,
         wrist_plate_radius_m=R, steam=steam, exhaust=exhaust,
         steam_lap_m=_arc(t, "steam_lap", steam.valve_radius_m),
-        exhaust_lap_m=_arc(t, "exhaust_lap", exhaust.valve_radius_m, "0 in"),
-        steam_port_width_m=t.length("steam_port_width", positive=True),
-        exhaust_port_width_m=t.length("exhaust_port_width", positive=True),
-        port_length_m=t.length("port_length", positive=True),
+        exhaust_lap_m=_arc(t, "exhaust_lap", exhaust.valve_radius_m),
+        steam_port_width_m=t.get("steam_port_width"),
+        exhaust_port_width_m=t.get("exhaust_port_width"), port_length_m=t.get("port_length"),
         dashpot_closing_time_s=closing, discharge_coefficient=cd, ports_per_end=ports,
-        setting=setting, motion=t.choice("motion", ("exact", "harmonic"), "exact"))
+        setting=setting, motion=t.get("motion"))
     try:
         CorlissGear(spec)
     except ValueError as exc:
@@ -905,4 +963,4 @@ def parse_corliss(t: Table) -> CorlissSpec:
     return spec
 
 
-register(GearType("corliss", CorlissGear.summary, parse_corliss, CorlissGear))
+register(GearType("corliss", CorlissGear.summary, parse_corliss, CorlissGear, CORLISS_KEYS))

@@ -51,9 +51,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from corliss.errors import InputError
+from corliss.keyspec import POSITIVE_LENGTH, Derived, Key, group
 from corliss.tables import Table
 from corliss.valves.gear import ValveGear
-from corliss.valves.slide_valve import pair, parse_ports
+from corliss.valves.slide_valve import LAP_KEYS, PORT_KEYS, parse_ports
 
 log = logging.getLogger(__name__)
 TWO_PI = 2.0 * math.pi
@@ -412,22 +413,104 @@ def _circular_runs(mask: np.ndarray) -> list[tuple[int, int]]:
 
 # -- reading scenes -------------------------------------------------------------
 
+#: The main valve's keys: its laps and ports.
+MAIN_KEYS = group("main_valve", "The main valve of a double-valve gear.", LAP_KEYS, PORT_KEYS)
+#: A riding cut-off valve's keys.
+RIDING_KEYS = group(
+    "riding", "A riding cut-off valve on the back of the main valve.",
+    Key("cutoff_lap", "length", "Lap of the cut-off valve over the main valve's passage.",
+        ends=True, unit="in"),
+    Key("passage_width", "length", "Width of the passage through the main valve.",
+        within=POSITIVE_LENGTH, unit="in"),
+    Key("passage_length", "length", "Length of the passage across the valve face.",
+        default=Derived("the port length times ports_per_end"), within=POSITIVE_LENGTH,
+        unit="in"),
+    Key("block_length", "length", "Length of the cut-off block, at least the passage width; "
+        "absent: long enough never to uncover the far side.", default=None,
+        within=POSITIVE_LENGTH, unit="in"),
+)
+#: The cut-off valve's own eccentric.
+CUTOFF_ECCENTRIC_KEYS = group(
+    "cutoff_eccentric", "The cut-off valve's eccentric.",
+    Key("cutoff_eccentricity", "length", "Throw of the cut-off eccentric.",
+        within=POSITIVE_LENGTH, unit="in"),
+    Key("cutoff_angular_advance", "angle", "Angular advance of the cut-off eccentric.",
+        unit="deg"),
+)
+#: The motion the double-valve gears solve, and their rods for the exact one.
+MOTION_KEYS = group(
+    "motion", "Zeuner's (infinite rods) or the exact motion.",
+    Key("motion", "choice", "Zeuner's motion (infinite rods) or the exact linkage.",
+        default="zeuner", choices=("zeuner", "exact")),
+    Key("eccentric_rod", "length", "Main eccentric rod, longer than its throw.",
+        within=POSITIVE_LENGTH, unit="in", when="with motion = \"exact\" (required there)"),
+    Key("cutoff_eccentric_rod", "length", "Cut-off eccentric rod, longer than its throw.",
+        within=POSITIVE_LENGTH, unit="in", when="with motion = \"exact\" (required there)"),
+)
+
+
+def setting_key(lo: float, hi: float, what: str) -> Key:
+    """The ``setting`` key of a double-valve gear: a plain number from ``lo`` (its
+    default) to ``hi``.
+
+    Parameters
+    ----------
+    lo, hi : float
+        The setting's range [-].
+    what : str
+        What the setting is (``"governor position"``).
+
+    Returns
+    -------
+    Key
+        The declaration.
+    """
+    return Key("setting", "number", f"The gear's setting: {what}.", default=lo,
+               within=(lo, hi))
+
+
 def parse_main(t: Table) -> MainValveSpec:
-    """The main valve's keys: ``lap``, ``exhaust_lap`` and the port keys."""
-    return MainValveSpec(pair(t, "lap", "length"), pair(t, "exhaust_lap", "length", "0 in"),
-                         **parse_ports(t))
+    """The main valve's keys (:data:`MAIN_KEYS`): ``lap``, ``exhaust_lap`` and the port
+    keys.
+
+    Parameters
+    ----------
+    t : Table
+        The gear's table.
+
+    Returns
+    -------
+    MainValveSpec
+        The main valve.
+    """
+    return MainValveSpec(t.get("lap"), t.get("exhaust_lap"), **parse_ports(t))
 
 
 def parse_riding(t: Table, main: MainValveSpec, lap: tuple[float, float] | None = None) -> CutoffSpec:
-    """A riding cut-off valve's keys: ``cutoff_lap`` (s, once or [head, crank]; unless
-    the gear finds it), ``passage_width`` (e), optional ``passage_length`` and
-    ``block_length`` (d)."""
+    """A riding cut-off valve's keys (:data:`RIDING_KEYS`): ``cutoff_lap`` (s, once or
+    [head, crank]; unless the gear finds it), ``passage_width`` (e), optional
+    ``passage_length`` and ``block_length`` (d).
+
+    Parameters
+    ----------
+    t : Table
+        The gear's table.
+    main : MainValveSpec
+        The main valve (its ports give the default passage length).
+    lap : (float, float), optional
+        The cut-off lap [m] when the gear finds it; None: read ``cutoff_lap``.
+
+    Returns
+    -------
+    CutoffSpec
+        The cut-off valve.
+    """
     if lap is None:
-        lap = pair(t, "cutoff_lap", "length")
-    e = t.length("passage_width", positive=True)
-    length = (t.length("passage_length", positive=True) if t.has("passage_length")
+        lap = t.get("cutoff_lap")
+    e = t.get("passage_width")
+    length = (t.get("passage_length") if t.has("passage_length")
               else main.port_length_m * main.ports_per_end)
-    d = t.length("block_length", positive=True) if t.has("block_length") else None
+    d = t.get("block_length")
     if d is not None and d < e:
         raise InputError(t.key("block_length"), t.raw("block_length"),
                          "a block at least as long as the passage is wide (it must cover it)")
@@ -435,17 +518,53 @@ def parse_riding(t: Table, main: MainValveSpec, lap: tuple[float, float] | None 
 
 
 def rod(t: Table, key: str, throw: float, motion: str) -> float | None:
-    """An eccentric rod's length for the exact motion (None for Zeuner's)."""
+    """An eccentric rod's length for the exact motion (None for Zeuner's).
+
+    Parameters
+    ----------
+    t : Table
+        The gear's table.
+    key : str
+        The rod's key.
+    throw : float
+        Its eccentric's throw [m].
+    motion : str
+        ``"exact"`` reads the rod; any other motion has none.
+
+    Returns
+    -------
+    float or None
+        The rod's length [m].
+    """
     if motion != "exact":
         return None
-    g = t.length(key, positive=True)
+    g = t.get(key)
     if g <= throw:
         raise InputError(t.key(key), t.raw(key), "a rod longer than its eccentric's throw")
     return g
 
 
 def check_setting(t: Table, key: str, lo: float, hi: float, what: str) -> float:
-    v = t.number(key, lo)
+    """The gear's setting (:func:`setting_key`, which holds its range), from ``lo`` to
+    ``hi``.
+
+    Parameters
+    ----------
+    t : Table
+        The gear's table.
+    key : str
+        The setting's key.
+    lo, hi : float
+        Its range [-].
+    what : str
+        What it is, for the message.
+
+    Returns
+    -------
+    float
+        The setting [-].
+    """
+    v = t.get(key)
     if not lo <= v <= hi:
         raise InputError(t.key(key), v, f"a setting from {lo} to {hi} ({what})")
     return v

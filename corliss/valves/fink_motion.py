@@ -65,9 +65,10 @@ import numpy as np
 
 from corliss import units
 from corliss.errors import InputError
+from corliss.keyspec import POSITIVE_LENGTH, Derived, Key, group
 from corliss.tables import DISCHARGE_COEFFICIENT, Table
 from corliss.valves.gear import GearType, ValveGear, register
-from corliss.valves.slide_valve import LappedValve, pair, parse_ports
+from corliss.valves.slide_valve import ECCENTRICITY, LAP_KEYS, PORT_KEYS, LappedValve, parse_ports
 
 #: The motions a Fink gear is computed by (see the module doc).
 MOTIONS = ("zeuner", "second_order", "exact")
@@ -317,37 +318,88 @@ class FinkMotion(LappedValve):
         return C * np.cos(th) + S * np.sin(th)
 
 
+#: The linkage keys shared by the Fink and Porter-Allen gears.
+FINK_LINK_KEYS = group(
+    "fink_link", "Fink's link on the eccentric strap.",
+    ECCENTRICITY,
+    Key("rod_a", "length", "a: eccentric centre to the point held on the line of stroke, "
+        "longer than the eccentricity.", within=POSITIVE_LENGTH, unit="in"),
+    Key("rod_b", "length", "b: from that point to the link's middle (zero or more; often 0, "
+        "Art. 78).", default="0 in", unit="in"),
+    Key("radius_rod", "length", "g1: radius rod, block to valve stem.", within=POSITIVE_LENGTH,
+        unit="in"),
+    Key("half_link", "length", "c: the most the block may stand off the line of stroke; "
+        "shorter than the radius rod and the link's radius.", within=POSITIVE_LENGTH,
+        unit="in"),
+    Key("link_radius", "length", "Radius of the link's arc.", default=Derived("the radius rod"),
+        within=POSITIVE_LENGTH, unit="in"),
+    Key("motion", "choice", "Zeuner's motion, the second-order one, or the exact linkage.",
+        default="zeuner", choices=MOTIONS),
+)
+
+
 def parse_fink_link(t: Table) -> FinkLink:
-    """The linkage keys shared by the Fink and Porter-Allen gears."""
-    r = t.length("eccentricity", positive=True)
-    a = t.length("rod_a", positive=True)
-    b = t.length("rod_b", "0 in")
+    """The linkage keys shared by the Fink and Porter-Allen gears (:data:`FINK_LINK_KEYS`).
+
+    Parameters
+    ----------
+    t : Table
+        The table, bound to :data:`FINK_LINK_KEYS`.
+
+    Returns
+    -------
+    FinkLink
+        The link.
+    """
+    r = t.get("eccentricity")
+    a = t.get("rod_a")
+    b = t.get("rod_b")
     if b < 0.0:
         raise InputError(t.key("rod_b"), t.raw("rod_b"), "a length of zero or more")
-    g1 = t.length("radius_rod", positive=True)
-    c = t.length("half_link", positive=True)
-    rho = t.length("link_radius", positive=True) if t.has("link_radius") else g1
+    g1 = t.get("radius_rod")
+    c = t.get("half_link")
+    rho = t.get("link_radius") if t.has("link_radius") else g1
     if a <= r:
         raise InputError(t.key("rod_a"), t.raw("rod_a"),
                          f"a rod longer than the eccentricity ({r / units.INCH_m:.4g} in)")
     if c >= min(g1, rho):
         raise InputError(t.key("half_link"), t.raw("half_link"),
                          "a half link shorter than the radius rod and the link's radius")
-    motion = t.choice("motion", MOTIONS, "zeuner")
+    motion = t.get("motion")
     return FinkLink(r, a, b, g1, c, rho, motion)
 
 
+FINK_MOTION_KEYS = group(
+    "fink_motion", "Fink's link motion driving a lapped slide valve.",
+    FINK_LINK_KEYS,
+    Key("block", "length", "Height u of the block in the link, within the half link "
+        "(its sign reverses the engine).", unit="in"),
+    LAP_KEYS, PORT_KEYS,
+)
+
+
 def parse_fink_motion(t: Table) -> FinkMotionSpec:
-    """Read a ``[valve_gear] type = "fink_motion"`` table."""
+    """Read a ``[valve_gear] type = "fink_motion"`` table.
+
+    Parameters
+    ----------
+    t : Table
+        The table, bound to :data:`FINK_MOTION_KEYS`.
+
+    Returns
+    -------
+    FinkMotionSpec
+        The gear's spec.
+    """
+    t = t.bound(FINK_MOTION_KEYS)
     link = parse_fink_link(t)
-    u = t.length("block")
+    u = t.get("block")
     c = link.half_link_m
     if abs(u) > c:
         raise InputError(t.key("block"), t.raw("block"),
                          f"a block height within the link, -{c / units.INCH_m:.4g} in to "
                          f"{c / units.INCH_m:.4g} in (the half link)")
-    spec = FinkMotionSpec(link, u, pair(t, "lap", "length"),
-                          pair(t, "exhaust_lap", "length", "0 in"), **parse_ports(t))
+    spec = FinkMotionSpec(link, u, t.get("lap"), t.get("exhaust_lap"), **parse_ports(t))
     reach = float(np.max(np.abs(link.block_travel(u, np.linspace(0, 2 * math.pi, 721)))))
     if max(spec.lap_m) >= reach:
         raise InputError(t.key("lap"), t.raw("lap"),
@@ -356,7 +408,8 @@ def parse_fink_motion(t: Table) -> FinkMotionSpec:
     return spec
 
 
-register(GearType("fink_motion", FinkMotion.summary, parse_fink_motion, FinkMotion))
+register(GearType("fink_motion", FinkMotion.summary, parse_fink_motion, FinkMotion,
+                  FINK_MOTION_KEYS))
 
 
 # ---------------------------------------------------------------------- Porter-Allen gear
@@ -542,36 +595,79 @@ class PorterAllenGear(ValveGear):
         return np.full(4, self.spec.discharge_coefficient)
 
 
+PORTER_ALLEN_KEYS = group(
+    "porter_allen", "The Porter-Allen gear: Fink's link works four valves through a rock "
+    "shaft; the governor moves the block.",
+    FINK_LINK_KEYS,
+    Key("block_at_rest", "length", "Block height u with the governor at rest (setting 0), "
+        "within the half link.", unit="in"),
+    Key("block_at_top", "length", "Block height u with the governor at the top of its lift "
+        "(setting 1), within the half link.", unit="in"),
+    Key("exhaust_point", "length", "Height of the link point carrying the exhaust rod, "
+        "within the half link.", unit="in"),
+    Key("setting", "number", "Governor position, 0 (at rest) to 1 (top).", default=0.0,
+        within=(0.0, 1.0)),
+    Key("drive_arm", "length", "R_d: the rock-shaft arm the radius rod works.",
+        within=POSITIVE_LENGTH, unit="in"),
+    Key("valve_arm", "length", "R_v: the arms to the steam-valve stems.",
+        within=POSITIVE_LENGTH, unit="in"),
+    Key("steam_lap", "length", "Lap of the steam valves, zero or more and shorter than the "
+        "valve arm.", ends=True, unit="in"),
+    Key("exhaust_ratio", "number", "k_e: the exhaust stem's travel over the exhaust point's "
+        "(the bell crank).", default=1.0, within=(0.05, 20.0)),
+    Key("exhaust_lap", "length", "Lap of the exhaust valves; negative: clearance.",
+        default="0 in", ends=True, unit="in"),
+    Key("steam_port_width", "length", "Steam ports' width along the valve's travel.",
+        within=POSITIVE_LENGTH, unit="in"),
+    Key("steam_port_length", "length", "Steam ports' length across the valve.",
+        within=POSITIVE_LENGTH, unit="in"),
+    Key("exhaust_port_width", "length", "Exhaust ports' width along the valve's travel.",
+        within=POSITIVE_LENGTH, unit="in"),
+    Key("exhaust_port_length", "length", "Exhaust ports' length across the valve.",
+        within=POSITIVE_LENGTH, unit="in"),
+    Key("discharge_coefficient", "number", "Discharge coefficient of a port opening.",
+        default=0.7, within=DISCHARGE_COEFFICIENT),
+)
+
+
 def parse_porter_allen(t: Table) -> PorterAllenSpec:
-    """Read a ``[valve_gear] type = "porter_allen"`` table."""
+    """Read a ``[valve_gear] type = "porter_allen"`` table.
+
+    Parameters
+    ----------
+    t : Table
+        The table, bound to :data:`PORTER_ALLEN_KEYS`.
+
+    Returns
+    -------
+    PorterAllenSpec
+        The gear's spec.
+    """
+    t = t.bound(PORTER_ALLEN_KEYS)
     link = parse_fink_link(t)
     c = link.half_link_m
     blocks = []
     for key in ("block_at_rest", "block_at_top", "exhaust_point"):
-        v = t.length(key)
+        v = t.get(key)
         if abs(v) > c:
             raise InputError(t.key(key), t.raw(key), "a height within the link, "
                              f"-{c / units.INCH_m:.4g} in to {c / units.INCH_m:.4g} in "
                              "(the half link)")
         blocks.append(v)
-    setting = t.number("setting", 0.0)
-    if not 0.0 <= setting <= 1.0:
-        raise InputError(t.key("setting"), setting, "a governor position from 0 to 1")
-    rd = t.length("drive_arm", positive=True)
-    rv = t.length("valve_arm", positive=True)
-    lap = pair(t, "steam_lap", "length")
+    setting = t.get("setting")
+    rd = t.get("drive_arm")
+    rv = t.get("valve_arm")
+    lap = t.get("steam_lap")
     if not all(0.0 <= lam < rv for lam in lap):
         raise InputError(t.key("steam_lap"), t.raw("steam_lap"),
                          "laps of zero or more, shorter than the valve arm")
     # k_e, a bell crank's proportion: a few times either way, never orders of magnitude
-    ratio = t.number("exhaust_ratio", 1.0, within=(0.05, 20.0))
-    cd = t.number("discharge_coefficient", 0.7, within=DISCHARGE_COEFFICIENT)
+    ratio = t.get("exhaust_ratio")
+    cd = t.get("discharge_coefficient")
     spec = PorterAllenSpec(
-        link, blocks[0], blocks[1], rd, rv, lap, blocks[2], ratio,
-        pair(t, "exhaust_lap", "length", "0 in"),
-        t.length("steam_port_width", positive=True), t.length("steam_port_length", positive=True),
-        t.length("exhaust_port_width", positive=True),
-        t.length("exhaust_port_length", positive=True), cd, setting)
+        link, blocks[0], blocks[1], rd, rv, lap, blocks[2], ratio, t.get("exhaust_lap"),
+        t.get("steam_port_width"), t.get("steam_port_length"), t.get("exhaust_port_width"),
+        t.get("exhaust_port_length"), cd, setting)
     th = np.linspace(0, 2 * math.pi, 721)
     reach = max(float(np.max(np.abs(link.block_travel(u, th)))) for u in blocks[:2])
     beta = max(spec.arm_angles_rad)
@@ -586,4 +682,5 @@ def parse_porter_allen(t: Table) -> PorterAllenSpec:
     return spec
 
 
-register(GearType("porter_allen", PorterAllenGear.summary, parse_porter_allen, PorterAllenGear))
+register(GearType("porter_allen", PorterAllenGear.summary, parse_porter_allen, PorterAllenGear,
+                  PORTER_ALLEN_KEYS))

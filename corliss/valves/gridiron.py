@@ -35,9 +35,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from corliss.errors import InputError
+from corliss.keyspec import POSITIVE_LENGTH, Derived, Key, group
 from corliss.tables import Table
 from corliss.valves import double_valve as dv
 from corliss.valves.gear import GearType, register
+from corliss.valves.slide_valve import ANGULAR_ADVANCE, ECCENTRICITY
 
 
 @dataclass(frozen=True)
@@ -148,30 +150,58 @@ class GridironValve(dv.DoubleValve):
 LEVER_RATIO = (0.05, 20.0)
 
 
+GRIDIRON_KEYS = group(
+    "gridiron", "A gridiron cut-off valve on a seat on the back of the main valve.",
+    ECCENTRICITY, ANGULAR_ADVANCE, dv.CUTOFF_ECCENTRIC_KEYS, dv.MAIN_KEYS,
+    Key("seat_port_width", "length", "Width e of each port of the cut-off valve's seat.",
+        within=POSITIVE_LENGTH, unit="in"),
+    Key("valve_port_width", "length", "Width f of each port of the cut-off valve, at least "
+        "e (Spangler Art. 121).", within=POSITIVE_LENGTH, unit="in"),
+    Key("passage_length", "length", "Length of the seat's ports across the face.",
+        default=Derived("the port length times ports_per_end"), within=POSITIVE_LENGTH,
+        unit="in"),
+    Key("lever_ratio", "number_pair", "[lo, hi]: the reverse lever's ratio ih/ij at the two "
+        f"ends of h's arc, {LEVER_RATIO[0]:g} to {LEVER_RATIO[1]:g}.", default=[1.0, 1.0]),
+    dv.setting_key(0.0, 1.0, "lever position"), dv.MOTION_KEYS,
+)
+
+
 def parse_gridiron(t: Table) -> GridironSpec:
-    """Read a ``[valve_gear] type = "gridiron"`` table."""
+    """Read a ``[valve_gear] type = "gridiron"`` table.
+
+    Parameters
+    ----------
+    t : Table
+        The table, bound to :data:`GRIDIRON_KEYS`.
+
+    Returns
+    -------
+    GridironSpec
+        The gear's spec.
+    """
+    t = t.bound(GRIDIRON_KEYS)
     main = dv.parse_main(t)
-    r = t.length("eccentricity", positive=True)
-    r1 = t.length("cutoff_eccentricity", positive=True)
-    e = t.length("seat_port_width", positive=True)
-    f = t.length("valve_port_width", positive=True)
+    r = t.get("eccentricity")
+    r1 = t.get("cutoff_eccentricity")
+    e = t.get("seat_port_width")
+    f = t.get("valve_port_width")
     if f < e:
         raise InputError(t.key("valve_port_width"), t.raw("valve_port_width"),
                          "a valve port at least as wide as the seat port e (Art. 121: "
                          "the opening in the cut-off valve is usually greater)")
-    length = (t.length("passage_length", positive=True) if t.has("passage_length")
+    length = (t.get("passage_length") if t.has("passage_length")
               else main.port_length_m * main.ports_per_end)
-    raw = t.raw("lever_ratio", [1.0, 1.0])
+    raw = t.get("lever_ratio")
     if (not isinstance(raw, list) or len(raw) != 2
             or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
                        and LEVER_RATIO[0] <= v <= LEVER_RATIO[1] for v in raw)):
         raise InputError(t.key("lever_ratio"), raw, "[lo, hi]: the reverse lever's ratio ih/ij "
                          f"at the two ends of h's arc, numbers from {LEVER_RATIO[0]:g} to "
                          f"{LEVER_RATIO[1]:g}")
-    motion = t.choice("motion", ("zeuner", "exact"), "zeuner")
+    motion = t.get("motion")
     s = 0.5 * (e + f)
     return GridironSpec(main, dv.CutoffSpec("seat", (s, s), e, length), r,
-                        t.angle("angular_advance"), r1, t.angle("cutoff_angular_advance"), f,
+                        t.get("angular_advance"), r1, t.get("cutoff_angular_advance"), f,
                         (float(raw[0]), float(raw[1])),
                         dv.check_setting(t, "setting", 0.0, 1.0, "lever position"), motion,
                         dv.rod(t, "eccentric_rod", r, motion),
@@ -179,4 +209,4 @@ def parse_gridiron(t: Table) -> GridironSpec:
 
 
 register(GearType("gridiron", GridironValve.summary, parse_gridiron,
-                  lambda spec: dv.built(GridironValve(spec))))
+                  lambda spec: dv.built(GridironValve(spec)), GRIDIRON_KEYS))

@@ -53,10 +53,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from corliss.errors import InputError
+from corliss.keyspec import POSITIVE_LENGTH, Derived, Key, group
 from corliss.tables import Table
 from corliss.valves.gear import GearType, register
 from corliss.valves.newton import newton2
-from corliss.valves.slide_valve import LappedValve, pair, parse_allen_passage, parse_ports
+from corliss.valves.slide_valve import (ALLEN_KEYS, ANGULAR_ADVANCE, ECCENTRICITY, LAP_KEYS,
+                                        PORT_KEYS, LappedValve, parse_allen_passage,
+                                        parse_ports)
 
 #: The link motions, by the ``link`` key's values.
 KINDS = ("stephenson_open", "stephenson_crossed", "gooch", "allen")
@@ -608,30 +611,68 @@ def allen_book_ratio(g: float, g1: float) -> float:
     return 1.0 / (1.0 + q * (1.0 + math.sqrt(1.0 + 1.0 / q)))
 
 
+LINK_MOTION_KEYS = group(
+    "link_motion", "A reversing link motion (Stephenson's, Gooch's, Allen's) driving a "
+    "lapped slide valve.",
+    Key("link", "choice", "The kind of link.", choices=KINDS),
+    ECCENTRICITY, ANGULAR_ADVANCE,
+    Key("eccentric_rod", "length", "Each eccentric rod.", within=POSITIVE_LENGTH, unit="in"),
+    Key("half_link", "length", "Half the link's chord c.", within=POSITIVE_LENGTH, unit="in"),
+    Key("block", "length", "Offset u of the block from the link's middle, within the half "
+        "link (its sign reverses the engine).", unit="in"),
+    Key("radius_rod", "length", "Radius rod, longer than the half link; absent: infinitely "
+        "long.", default=None, within=POSITIVE_LENGTH, unit="in",
+        when="with link = \"gooch\" or \"allen\""),
+    Key("allen_ratio", "number", "Allen's ratio, 0 (Gooch) to 1 (Stephenson).",
+        default=Derived("the book's ratio from the rods"), when="with link = \"allen\""),
+    Key("motion", "choice", "Zeuner's motion (infinite rods) or the exact linkage.",
+        default="zeuner", choices=("zeuner", "exact")),
+    Key("link_radius", "length", "Radius of the link's arc, above the half link; absent: "
+        "the book's (Stephenson: the eccentric rod).", default=None, within=POSITIVE_LENGTH,
+        unit="in", when="except with link = \"allen\" (straight)"),
+    Key("hanger", "length", "The link's hanger (Stephenson links only); absent: an "
+        "infinitely long one.", default=None, within=POSITIVE_LENGTH, unit="in",
+        when="with a Stephenson link"),
+    LAP_KEYS, ALLEN_KEYS, PORT_KEYS,
+)
+
+
 def parse_link_motion(t: Table) -> LinkMotionSpec:
-    """Read a ``[valve_gear] type = "link_motion"`` table."""
-    kind = t.choice("link", KINDS)
-    r = t.length("eccentricity", positive=True)
-    delta = t.angle("angular_advance")
-    g = t.length("eccentric_rod", positive=True)
-    c = t.length("half_link", positive=True)
-    u = t.length("block")
+    """Read a ``[valve_gear] type = "link_motion"`` table.
+
+    Parameters
+    ----------
+    t : Table
+        The table, bound to :data:`LINK_MOTION_KEYS`.
+
+    Returns
+    -------
+    LinkMotionSpec
+        The gear's spec.
+    """
+    t = t.bound(LINK_MOTION_KEYS)
+    kind = t.get("link")
+    r = t.get("eccentricity")
+    delta = t.get("angular_advance")
+    g = t.get("eccentric_rod")
+    c = t.get("half_link")
+    u = t.get("block")
     if abs(u) > c:
         raise InputError(t.key("block"), t.raw("block"),
                          f"a block offset within the link, -{c / 0.0254:.4g} in to "
                          f"{c / 0.0254:.4g} in (the half chord)")
     g1 = None
     if kind in ("gooch", "allen") and t.has("radius_rod"):
-        g1 = t.length("radius_rod", positive=True)
+        g1 = t.get("radius_rod")
         if g1 <= c:
             raise InputError(t.key("radius_rod"), t.raw("radius_rod"),
                              "a radius rod longer than the half link")
-    k = t.number("allen_ratio", allen_book_ratio(g, g1 or g)) if kind == "allen" else 0.5
+    k = t.get("allen_ratio", allen_book_ratio(g, g1 or g)) if kind == "allen" else 0.5
     if not 0.0 <= k <= 1.0:
         raise InputError(t.key("allen_ratio"), k, "a ratio from 0 (Gooch) to 1 (Stephenson)")
-    motion = t.choice("motion", ("zeuner", "exact"), "zeuner")
-    rho = t.length("link_radius", positive=True) if t.has("link_radius") else None
-    hanger = t.length("hanger", positive=True) if t.has("hanger") else None
+    motion = t.get("motion")
+    rho = t.get("link_radius")
+    hanger = t.get("hanger")
     if rho is not None and rho <= c:
         raise InputError(t.key("link_radius"), t.raw("link_radius"), "a radius above the half link")
     if kind == "allen" and rho is not None:
@@ -640,8 +681,8 @@ def parse_link_motion(t: Table) -> LinkMotionSpec:
     if not kind.startswith("stephenson") and hanger is not None:
         raise InputError(t.key("hanger"), t.raw("hanger"), "no hanger: the exact Gooch and "
                          "Allen links are hung from infinitely long rods")
-    spec = LinkMotionSpec(kind, r, delta, g, c, u, pair(t, "lap", "length"),
-                          pair(t, "exhaust_lap", "length", "0 in"), allen_ratio=k,
+    spec = LinkMotionSpec(kind, r, delta, g, c, u, t.get("lap"), t.get("exhaust_lap"),
+                          allen_ratio=k,
                           motion=motion, link_radius_m=rho, hanger_m=hanger, radius_rod_m=g1,
                           allen_passage_m=parse_allen_passage(t), **parse_ports(t))
     C, S = spec.coefficients()
@@ -654,4 +695,5 @@ def parse_link_motion(t: Table) -> LinkMotionSpec:
     return spec
 
 
-register(GearType("link_motion", LinkMotion.summary, parse_link_motion, LinkMotion))
+register(GearType("link_motion", LinkMotion.summary, parse_link_motion, LinkMotion,
+                  LINK_MOTION_KEYS))

@@ -38,10 +38,11 @@ import math
 from dataclasses import dataclass
 
 from corliss.errors import InputError
+from corliss.keyspec import POSITIVE_LENGTH, Derived, Key, group
 from corliss.tables import Table
 from corliss.valves import double_valve as dv
 from corliss.valves.gear import GearType, register
-from corliss.valves.slide_valve import pair
+from corliss.valves.slide_valve import ANGULAR_ADVANCE, ECCENTRICITY
 
 
 @dataclass(frozen=True)
@@ -192,25 +193,59 @@ class MeyerValve(dv.DoubleValve):
         return self.spec.relative_coefficients()
 
 
+MEYER_KEYS = group(
+    "meyer", "Meyer's adjustable cut-off: two blocks on a right-and-left screw riding the "
+    "main valve.",
+    ECCENTRICITY, ANGULAR_ADVANCE, dv.CUTOFF_ECCENTRIC_KEYS, dv.MAIN_KEYS,
+    Key("port_span", "length", "Span L between the outer edges of the main valve's "
+        "passages, with L/2 above the block length (Art. 142).", within=POSITIVE_LENGTH,
+        unit="in"),
+    Key("block_length", "length", "Length d of each cut-off block.", within=POSITIVE_LENGTH,
+        unit="in"),
+    Key("max_half_spacing", "length", "The screw's greatest half spacing y_max of the blocks "
+        "(zero or more).", unit="in"),
+    Key("block_offset", "length", "Offset of each block on the screw, leaving the blocks "
+        "apart at y = 0.", default="0 in", ends=True, unit="in"),
+    Key("passage_width", "length", "Width of the passage through the main valve.",
+        within=POSITIVE_LENGTH, unit="in"),
+    Key("passage_length", "length", "Length of the passage across the valve face.",
+        default=Derived("the port length times ports_per_end"), within=POSITIVE_LENGTH,
+        unit="in"),
+    dv.setting_key(0.0, 1.0, "y / y_max"), dv.MOTION_KEYS,
+)
+
+
 def parse_meyer(t: Table) -> MeyerSpec:
-    """Read a ``[valve_gear] type = "meyer"`` table."""
+    """Read a ``[valve_gear] type = "meyer"`` table.
+
+    Parameters
+    ----------
+    t : Table
+        The table, bound to :data:`MEYER_KEYS`.
+
+    Returns
+    -------
+    MeyerSpec
+        The gear's spec.
+    """
+    t = t.bound(MEYER_KEYS)
     main = dv.parse_main(t)
-    r = t.length("eccentricity", positive=True)
-    r1 = t.length("cutoff_eccentricity", positive=True)
-    span = t.length("port_span", positive=True)
-    d = t.length("block_length", positive=True)
-    ymax = t.length("max_half_spacing")
+    r = t.get("eccentricity")
+    r1 = t.get("cutoff_eccentricity")
+    span = t.get("port_span")
+    d = t.get("block_length")
+    ymax = t.get("max_half_spacing")
     if ymax < 0.0:
         raise InputError(t.key("max_half_spacing"), t.raw("max_half_spacing"),
                          "a length >= 0 (the screw's greatest half spacing of the blocks)")
     setting = dv.check_setting(t, "setting", 0.0, 1.0, "y / y_max")
-    motion = t.choice("motion", ("zeuner", "exact"), "zeuner")
-    e = t.length("passage_width", positive=True)
-    length = (t.length("passage_length", positive=True) if t.has("passage_length")
+    motion = t.get("motion")
+    e = t.get("passage_width")
+    length = (t.get("passage_length") if t.has("passage_length")
               else main.port_length_m * main.ports_per_end)
-    offset = pair(t, "block_offset", "length", "0 in")
+    offset = t.get("block_offset")
     spec = MeyerSpec(main, dv.CutoffSpec("riding", (0.0, 0.0), e, length, d), r,
-                     t.angle("angular_advance"), r1, t.angle("cutoff_angular_advance"), span, d,
+                     t.get("angular_advance"), r1, t.get("cutoff_angular_advance"), span, d,
                      ymax, offset, setting, motion, dv.rod(t, "eccentric_rod", r, motion),
                      dv.rod(t, "cutoff_eccentric_rod", r1, motion))
     spec = dataclasses.replace(spec, cutoff=dataclasses.replace(spec.cutoff,
@@ -226,4 +261,4 @@ def parse_meyer(t: Table) -> MeyerSpec:
 
 
 register(GearType("meyer", MeyerValve.summary, parse_meyer,
-                  lambda spec: dv.built(MeyerValve(spec))))
+                  lambda spec: dv.built(MeyerValve(spec)), MEYER_KEYS))

@@ -48,9 +48,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from corliss.errors import InputError
+from corliss.keyspec import POSITIVE_LENGTH, Derived, Key, group
 from corliss.tables import Table
 from corliss.valves import double_valve as dv
 from corliss.valves.gear import GearType, register
+from corliss.valves.slide_valve import ANGULAR_ADVANCE, ECCENTRICITY
 
 
 def gooch(r: float, delta: float, g: float, c: float, u: float) -> tuple[float, float]:
@@ -340,37 +342,87 @@ class GuinotteGear(_HarmonicRiding):
         return guinotte(r1, d1, g1, c1, r2, d2, g2, c2, s.block_m if u is None else u)
 
 
+POLONCEAU_KEYS = group(
+    "polonceau", "Polonceau's gear: a riding cut-off valve driven from a Gooch link.",
+    ECCENTRICITY, ANGULAR_ADVANCE, dv.MAIN_KEYS, dv.RIDING_KEYS,
+    Key("eccentric_rod", "length", "The link's eccentric rod.", within=POSITIVE_LENGTH,
+        unit="in"),
+    Key("half_link", "length", "Half the link's length c.", within=POSITIVE_LENGTH, unit="in"),
+    Key("main_block", "length", "Offset of the main valve's block in the link, within the "
+        "half link.", default=Derived("the half link"), unit="in"),
+    dv.setting_key(-1.0, 1.0, "u1 / c"),
+    Key("motion", "choice", "Zeuner's motion (infinite rods) or the exact linkage.",
+        default="zeuner", choices=("zeuner", "exact")),
+    Key("radius_rod", "length", "Radius rod of the link; absent: infinitely long.",
+        default=None, within=POSITIVE_LENGTH, unit="in", when="with motion = \"exact\""),
+)
+GUINOTTE_KEYS = group(
+    "guinotte", "Guinotte's gear: the cut-off valve from a link between two eccentrics.",
+    ECCENTRICITY, ANGULAR_ADVANCE, dv.MAIN_KEYS, dv.RIDING_KEYS,
+    *[Key(f"{name}_{k}", kind, f"{what} of the link's eccentric {k}.",
+          within=POSITIVE_LENGTH if kind == "length" else None,
+          unit="in" if kind == "length" else "deg")
+      for k in ("1", "2")
+      for name, kind, what in (("cutoff_eccentricity", "length", "Throw"),
+                               ("cutoff_angular_advance", "angle", "Angular advance"),
+                               ("cutoff_eccentric_rod", "length", "Rod"),
+                               ("link_part", "length", "The link's part toward the end"))],
+    dv.setting_key(-1.0, 1.0, "u / c1 or u / c2"),
+)
+
+
 def parse_polonceau(t: Table) -> PolonceauSpec:
-    """Read a ``[valve_gear] type = "polonceau"`` table."""
+    """Read a ``[valve_gear] type = "polonceau"`` table.
+
+    Parameters
+    ----------
+    t : Table
+        The table, bound to :data:`POLONCEAU_KEYS`.
+
+    Returns
+    -------
+    PolonceauSpec
+        The gear's spec.
+    """
+    t = t.bound(POLONCEAU_KEYS)
     main = dv.parse_main(t)
-    c = t.length("half_link", positive=True)
-    u = t.length("main_block", t.raw("half_link"))
+    c = t.get("half_link")
+    u = t.get("main_block", t.raw("half_link"))
     if abs(u) > c:
         raise InputError(t.key("main_block"), t.raw("main_block"), "an offset within the half link")
-    r = t.length("eccentricity", positive=True)
-    motion = t.choice("motion", ("zeuner", "exact"), "zeuner")
-    g1 = (t.length("radius_rod", positive=True) if motion == "exact" and t.has("radius_rod")
-          else None)
-    return PolonceauSpec(main, dv.parse_riding(t, main), r, t.angle("angular_advance"),
-                         t.length("eccentric_rod", positive=True), c, u,
+    r = t.get("eccentricity")
+    motion = t.get("motion")
+    g1 = t.get("radius_rod") if motion == "exact" else None
+    return PolonceauSpec(main, dv.parse_riding(t, main), r, t.get("angular_advance"),
+                         t.get("eccentric_rod"), c, u,
                          dv.check_setting(t, "setting", -1.0, 1.0, "u1 / c"), motion, g1)
 
 
 def parse_guinotte(t: Table) -> GuinotteSpec:
-    """Read a ``[valve_gear] type = "guinotte"`` table."""
+    """Read a ``[valve_gear] type = "guinotte"`` table.
+
+    Parameters
+    ----------
+    t : Table
+        The table, bound to :data:`GUINOTTE_KEYS`.
+
+    Returns
+    -------
+    GuinotteSpec
+        The gear's spec.
+    """
+    t = t.bound(GUINOTTE_KEYS)
     main = dv.parse_main(t)
     ends = []
     for k in ("1", "2"):
-        ends.append((t.length(f"cutoff_eccentricity_{k}", positive=True),
-                     t.angle(f"cutoff_angular_advance_{k}"),
-                     t.length(f"cutoff_eccentric_rod_{k}", positive=True),
-                     t.length(f"link_part_{k}", positive=True)))
-    return GuinotteSpec(main, dv.parse_riding(t, main), t.length("eccentricity", positive=True),
-                        t.angle("angular_advance"), ends[0], ends[1],
+        ends.append((t.get(f"cutoff_eccentricity_{k}"), t.get(f"cutoff_angular_advance_{k}"),
+                     t.get(f"cutoff_eccentric_rod_{k}"), t.get(f"link_part_{k}")))
+    return GuinotteSpec(main, dv.parse_riding(t, main), t.get("eccentricity"),
+                        t.get("angular_advance"), ends[0], ends[1],
                         dv.check_setting(t, "setting", -1.0, 1.0, "u / c1 or u / c2"))
 
 
 register(GearType("polonceau", PolonceauGear.summary, parse_polonceau,
-                  lambda spec: dv.built(PolonceauGear(spec))))
+                  lambda spec: dv.built(PolonceauGear(spec)), POLONCEAU_KEYS))
 register(GearType("guinotte", GuinotteGear.summary, parse_guinotte,
-                  lambda spec: dv.built(GuinotteGear(spec))))
+                  lambda spec: dv.built(GuinotteGear(spec)), GUINOTTE_KEYS))

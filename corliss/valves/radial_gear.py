@@ -133,10 +133,12 @@ import numpy as np
 
 from corliss import units
 from corliss.errors import InputError
+from corliss.keyspec import POSITIVE_LENGTH, Key, group
 from corliss.tables import Table
 from corliss.valves.gear import GearType, register
 from corliss.valves.newton import newton2
-from corliss.valves.slide_valve import LappedValve, pair, parse_allen_passage, parse_ports
+from corliss.valves.slide_valve import (ALLEN_KEYS, LAP_KEYS, PORT_KEYS, LappedValve,
+                                        parse_allen_passage, parse_ports)
 
 #: The radial gears, by the ``kind`` key's values.
 KINDS = ("hackworth", "marshall", "angstrom", "joy", "walschaerts")
@@ -1043,12 +1045,83 @@ def walschaerts_joints(spec: WalschaertsSpec, theta: float, zero_m: float) -> Wa
 
 # --------------------------------------------------------------------------- scene table
 
+_SIMPLE = "with kind = \"hackworth\", \"marshall\" or \"angstrom\""
+_GUIDED = "with kind = \"hackworth\", \"marshall\", \"angstrom\" or \"joy\""
+_JOY_WALS = "with kind = \"joy\" or \"walschaerts\""
+_WALS = "with kind = \"walschaerts\""
+
+
+def _len(name: str, doc: str, when: str, positive: bool = True, **kw) -> Key:
+    """A length key of some kinds of radial gear."""
+    return Key(name, "length", doc, within=POSITIVE_LENGTH if positive else None, unit="in",
+               when=when, **kw)
+
+
+RADIAL_GEAR_KEYS = group(
+    "radial_gear", "Radial valve gears (Spangler Arts. 98-110): Hackworth, Marshall, "
+    "Angstrom, Joy and Walschaerts; the keys read depend on kind.",
+    Key("kind", "choice", "Which radial gear.", choices=KINDS),
+    LAP_KEYS,
+    Key("setting", "number", "The reverse lever: -1 (full gear astern) through 0 (mid gear) "
+        "to 1 (full gear ahead).", default=1.0, within=(-1.0, 1.0)),
+    Key("motion", "choice", "Zeuner's motion or the exact linkage.", default="zeuner",
+        choices=("zeuner", "exact")),
+    ALLEN_KEYS, PORT_KEYS,
+    Key("valve_rod", "length", "The valve rod (the book's valve connecting-rod); absent: "
+        "infinitely long.", default=None, within=POSITIVE_LENGTH, unit="in",
+        when="except with kind = \"walschaerts\""),
+    _len("eccentricity", "r: throw of the eccentric set opposite the crank.", _SIMPLE),
+    _len("link", "l1: the vibrating link from the eccentric's centre to the guided end, "
+         "longer than the throw.", _SIMPLE),
+    _len("valve_arm", "l2: the valve rod's pin from the guided end along the link (Joy: "
+         "along the lever); below the link's length, negative beyond the guided end.",
+         _GUIDED, positive=False),
+    Key("max_inclination", "angle", "The guide's inclination at full gear, above 0 and below "
+        "60 deg (Bremme: never above 25 deg, Art. 107).", unit="deg", when=_GUIDED),
+    Key("hand", "choice", "Right- or left-hand rotation (Art. 98).", default="right",
+        choices=("right", "left"), when=_GUIDED),
+    _len("guide_radius", "Radius of the guide's arc, signed (positive: centre on the valve's "
+         "side; Joy: on the cylinder's); absent: a straight guide.",
+         "with kind = \"marshall\" (required there) or \"joy\"", positive=False,
+         default=None),
+    _len("parallel_link", "Angstrom: the parallel motion's radius links.",
+         "with kind = \"angstrom\" (required there)"),
+    _len("parallel_rod", "Angstrom: the rod carrying the guided end.",
+         "with kind = \"angstrom\" (required there)"),
+    _len("stroke", "The engine's stroke (twice the main crank).", _JOY_WALS),
+    _len("connecting_rod", "The engine's connecting rod.", _JOY_WALS),
+    _len("rod_point", "c: from the crosshead to the point of the connecting rod the jack "
+         "link hangs from.", "with kind = \"joy\""),
+    _len("jack_link", "l3: the jack link, longer than the crank.", "with kind = \"joy\""),
+    _len("jack_point", "l4: the lever's point on the jack link, below its length.",
+         "with kind = \"joy\""),
+    _len("lever", "l1: the lever to the guide.", "with kind = \"joy\""),
+    _len("anchor_link", "The anchor link holding the jack link.", "with kind = \"joy\""),
+    _len("lever_crosshead", "l: along the combination lever from the radius rod's pin to "
+         "the union link's, longer than the crank.", _WALS),
+    _len("lever_valve", "a: along the combination lever from the radius rod's pin to the "
+         "valve stem's.", _WALS),
+    Key("admission", "choice", "Outside admission (D valve) or inside (piston valve).",
+        default="outside", choices=("outside", "inside"), when=_WALS),
+    _len("link_foot", "k: from the link's trunnion to the eccentric rod's pin, longer than "
+         "the return crank.", _WALS),
+    _len("radius_rod", "From the die to the combination lever (also the link's radius), "
+         "longer than max_die.", _WALS),
+    _len("max_die", "The die's greatest offset from the trunnion, full gear.", _WALS),
+    _len("return_crank", "e: throw of the return crank (or eccentric).", _WALS),
+    _len("eccentric_rod", "From the return crank's pin to the link's foot.", _WALS),
+    _len("union_link", "The union link from the crosshead to the combination lever.", _WALS),
+    _len("valve_height", "The valve stem's line above the line of stroke.", _WALS,
+         positive=False),
+)
+
+
 def _hand(t: Table) -> str:
-    return t.choice("hand", ("right", "left"), "right")
+    return t.get("hand")
 
 
 def _inclination(t: Table) -> float:
-    a = t.angle("max_inclination")
+    a = t.get("max_inclination")
     if not 0.0 < a < math.radians(60.0):
         raise InputError(t.key("max_inclination"), t.raw("max_inclination"),
                          "an angle above 0 and below 60 deg (Bremme: never above 25 deg, "
@@ -1057,11 +1130,7 @@ def _inclination(t: Table) -> float:
 
 
 def _setting(t: Table) -> float:
-    s = t.number("setting", 1.0)
-    if not -1.0 <= s <= 1.0:
-        raise InputError(t.key("setting"), s, "a number from -1 (full gear astern) through 0 "
-                         "(mid gear) to 1 (full gear ahead)")
-    return s
+    return t.get("setting")
 
 
 def _longer(t: Table, key: str, value: float, than: float, what: str) -> None:
@@ -1073,7 +1142,7 @@ def _longer(t: Table, key: str, value: float, than: float, what: str) -> None:
 def _signed_radius(t: Table) -> float | None:
     if not t.has("guide_radius"):
         return None
-    v = t.length("guide_radius")
+    v = t.get("guide_radius")
     if v == 0.0:
         raise InputError(t.key("guide_radius"), t.raw("guide_radius"),
                          "a nonzero radius (leave the key out for a straight guide)")
@@ -1081,19 +1150,30 @@ def _signed_radius(t: Table) -> float | None:
 
 
 def parse_radial_gear(t: Table):
-    """Read a ``[valve_gear] type = "radial_gear"`` table (keys per ``kind``)."""
-    kind = t.choice("kind", KINDS)
-    common = dict(kind=kind, lap_m=pair(t, "lap", "length"),
-                  exhaust_lap_m=pair(t, "exhaust_lap", "length", "0 in"),
-                  setting=_setting(t), motion=t.choice("motion", ("zeuner", "exact"), "zeuner"),
+    """Read a ``[valve_gear] type = "radial_gear"`` table (keys per ``kind``).
+
+    Parameters
+    ----------
+    t : Table
+        The table, bound to :data:`RADIAL_GEAR_KEYS`.
+
+    Returns
+    -------
+    SimpleRadialSpec or JoySpec or WalschaertsSpec
+        The gear's spec, by ``kind``.
+    """
+    t = t.bound(RADIAL_GEAR_KEYS)
+    kind = t.get("kind")
+    common = dict(kind=kind, lap_m=t.get("lap"), exhaust_lap_m=t.get("exhaust_lap"),
+                  setting=_setting(t), motion=t.get("motion"),
                   allen_passage_m=parse_allen_passage(t), **parse_ports(t))
     if kind != "walschaerts" and t.has("valve_rod"):
-        common["valve_rod_m"] = t.length("valve_rod", positive=True)
+        common["valve_rod_m"] = t.get("valve_rod")
     if kind in SIMPLE:
-        r = t.length("eccentricity", positive=True)
-        l1 = t.length("link", positive=True)
+        r = t.get("eccentricity")
+        l1 = t.get("link")
         _longer(t, "link", l1, r, "the vibrating link must reach past the eccentric's throw")
-        l2 = t.length("valve_arm")
+        l2 = t.get("valve_arm")
         if l2 == 0.0 or l2 >= l1:
             raise InputError(t.key("valve_arm"), t.raw("valve_arm"),
                              "a nonzero distance from the guided end, below the link's length "
@@ -1105,51 +1185,51 @@ def parse_radial_gear(t: Table):
                 raise InputError(t.key("guide_radius"), None, "the radius gh = gi of the arc h "
                                  "swings on (Spangler Art. 105; Bremme: 6 times the eccentricity)")
         if kind == "angstrom":
-            extra["parallel_link_m"] = t.length("parallel_link", positive=True)
-            extra["parallel_rod_m"] = t.length("parallel_rod", positive=True)
+            extra["parallel_link_m"] = t.get("parallel_link")
+            extra["parallel_rod_m"] = t.get("parallel_rod")
         spec = SimpleRadialSpec(eccentricity_m=r, link_m=l1, valve_arm_m=l2,
                                 max_inclination_rad=_inclination(t), hand=_hand(t),
                                 **extra, **common)
     elif kind == "joy":
-        R = t.length("stroke", positive=True) / 2
-        b = t.length("connecting_rod", positive=True)
-        c = t.length("rod_point", positive=True)
+        R = t.get("stroke") / 2
+        b = t.get("connecting_rod")
+        c = t.get("rod_point")
         _longer(t, "connecting_rod", b, c, "the rod point lies on the connecting rod")
-        l3 = t.length("jack_link", positive=True)
+        l3 = t.get("jack_link")
         _longer(t, "jack_link", l3, R, "the jack link must reach past the crank radius")
-        l4 = t.length("jack_point", positive=True)
+        l4 = t.get("jack_point")
         if not l4 < l3:
             raise InputError(t.key("jack_point"), t.raw("jack_point"),
                              "a point on the jack link, below its length")
-        l1 = t.length("lever", positive=True)
+        l1 = t.get("lever")
         _longer(t, "lever", l1, R * (1 - l4 / l3), "the lever must reach the guide from g")
         spec = JoySpec(crank_m=R, connecting_rod_m=b, rod_point_m=c, jack_link_m=l3,
-                       jack_point_m=l4, lever_m=l1, valve_arm_m=t.length("valve_arm", positive=True),
-                       anchor_link_m=t.length("anchor_link", positive=True),
+                       jack_point_m=l4, lever_m=l1,
+                       valve_arm_m=t.get("valve_arm", within=POSITIVE_LENGTH),
+                       anchor_link_m=t.get("anchor_link"),
                        max_inclination_rad=_inclination(t), hand=_hand(t),
                        guide_radius_m=_signed_radius(t), **common)
     else:
-        R = t.length("stroke", positive=True) / 2
-        ell = t.length("lever_crosshead", positive=True)
+        R = t.get("stroke") / 2
+        ell = t.get("lever_crosshead")
         _longer(t, "lever_crosshead", ell, R, "the lever must swing the crosshead's half stroke")
-        a = t.length("lever_valve", positive=True)
-        admission = t.choice("admission", ("outside", "inside"), "outside")
+        a = t.get("lever_valve")
+        admission = t.get("admission")
         if admission == "inside" and not a < ell:
             raise InputError(t.key("lever_valve"), t.raw("lever_valve"),
                              "with inside admission, a valve pin between the radius rod's and "
                              "the union link's (shorter than lever_crosshead)")
-        k = t.length("link_foot", positive=True)
-        rho = t.length("radius_rod", positive=True)
-        umax = t.length("max_die", positive=True)
+        k = t.get("link_foot")
+        rho = t.get("radius_rod")
+        umax = t.get("max_die")
         _longer(t, "radius_rod", rho, umax, "the link is curved to the radius rod")
-        e = t.length("return_crank", positive=True)
+        e = t.get("return_crank")
         _longer(t, "link_foot", k, e, "the link's foot must swing the return crank's throw")
-        spec = WalschaertsSpec(crank_m=R, connecting_rod_m=t.length("connecting_rod", positive=True),
-                               return_crank_m=e,
-                               eccentric_rod_m=t.length("eccentric_rod", positive=True),
+        spec = WalschaertsSpec(crank_m=R, connecting_rod_m=t.get("connecting_rod"),
+                               return_crank_m=e, eccentric_rod_m=t.get("eccentric_rod"),
                                link_foot_m=k, max_die_m=umax, radius_rod_m=rho, lever_valve_m=a,
-                               lever_crosshead_m=ell, union_link_m=t.length("union_link", positive=True),
-                               valve_height_m=t.length("valve_height"), admission=admission,
+                               lever_crosshead_m=ell, union_link_m=t.get("union_link"),
+                               valve_height_m=t.get("valve_height"), admission=admission,
                                **common)
         if not math.isfinite(walschaerts_layout(spec)["T"][0]):
             raise InputError(t.key("eccentric_rod"), t.raw("eccentric_rod"),
@@ -1164,4 +1244,5 @@ def parse_radial_gear(t: Table):
     return spec
 
 
-register(GearType("radial_gear", RadialGear.summary, parse_radial_gear, RadialGear))
+register(GearType("radial_gear", RadialGear.summary, parse_radial_gear, RadialGear,
+                  RADIAL_GEAR_KEYS))

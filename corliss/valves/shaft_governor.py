@@ -54,9 +54,11 @@ import numpy as np
 
 from corliss import units
 from corliss.errors import InputError
+from corliss.keyspec import POSITIVE_LENGTH, Key, group
 from corliss.tables import Table
 from corliss.valves.gear import GearType, register
-from corliss.valves.slide_valve import LappedValve, pair, parse_ports
+from corliss.valves.slide_valve import (ANGULAR_ADVANCE, ECCENTRICITY, LAP_KEYS, PORT_KEYS,
+                                        LappedValve, parse_ports)
 
 
 @dataclass(frozen=True)
@@ -226,28 +228,62 @@ class ShaftGovernorGear(LappedValve):
         return x + sp.sigma * (math.sqrt(g * g - S0 * S0) - np.sqrt(g * g - across * across))
 
 
+SHAFT_GOVERNOR_GEAR_KEYS = group(
+    "shaft_governor", "A slide valve on an eccentric that a shaft governor moves across the "
+    "shaft or swings on an arc.",
+    Key("path", "choice", "The eccentric's centre moves straight across the shaft (Erie, "
+        "Armington & Sims) or on an arc (Ball).", choices=("straight", "arc")),
+    ECCENTRICITY, ANGULAR_ADVANCE,
+    Key("centre_travel", "length", "How far the centre moves across the shaft at setting 1.",
+        within=POSITIVE_LENGTH, unit="in", when="with path = \"straight\" (required there)"),
+    Key("arc_radius", "length", "Radius of the pin's arc.", within=POSITIVE_LENGTH, unit="in",
+        when="with path = \"arc\" (required there)"),
+    Key("arc_swing", "angle", "The pin's swing from rest to full speed.", unit="deg",
+        when="with path = \"arc\" (required there)"),
+    Key("arc_start", "angle", "Direction of the pin from the arc's centre at rest.",
+        unit="deg", when="with path = \"arc\" (required there)"),
+    Key("setting", "number", "Governor position s, 0 (at rest) to 1.", default=0.0,
+        within=(0.0, 1.0)),
+    LAP_KEYS,
+    Key("connection", "choice", "The valve driven directly or through a reversing rocker.",
+        default="direct", choices=("direct", "reverse_lever")),
+    Key("steam", "choice", "Steam outside (D valve) or inside (piston valve) the valve.",
+        default="outside", choices=("outside", "inside")),
+    Key("eccentric_rod", "length", "Eccentric rod plus valve stem, longer than the greatest "
+        "throw; absent: Zeuner's form.", default=None, within=POSITIVE_LENGTH, unit="in"),
+    PORT_KEYS,
+)
+
+
 def parse_shaft_governor(t: Table) -> ShaftGovernorSpec:
-    """Read a ``[valve_gear] type = "shaft_governor"`` table."""
-    path = t.choice("path", ("straight", "arc"))
+    """Read a ``[valve_gear] type = "shaft_governor"`` table.
+
+    Parameters
+    ----------
+    t : Table
+        The table, bound to :data:`SHAFT_GOVERNOR_GEAR_KEYS`.
+
+    Returns
+    -------
+    ShaftGovernorSpec
+        The gear's spec.
+    """
+    t = t.bound(SHAFT_GOVERNOR_GEAR_KEYS)
+    path = t.get("path")
     kw = {}
     if path == "straight":
-        kw["centre_travel_m"] = t.length("centre_travel", positive=True)
+        kw["centre_travel_m"] = t.get("centre_travel")
     else:
-        kw["arc_radius_m"] = t.length("arc_radius", positive=True)
-        kw["arc_swing_rad"] = t.angle("arc_swing")
-        kw["arc_start_rad"] = t.angle("arc_start")
-    setting = t.number("setting", 0.0)
-    if not 0.0 <= setting <= 1.0:
-        raise InputError(t.key("setting"), setting, "a governor position from 0 to 1")
-    spec = ShaftGovernorSpec(path, t.length("eccentricity", positive=True),
-                             t.angle("angular_advance"), pair(t, "lap", "length"),
-                             pair(t, "exhaust_lap", "length", "0 in"), setting=setting,
-                             connection=t.choice("connection", ("direct", "reverse_lever"),
-                                                 "direct"),
-                             steam=t.choice("steam", ("outside", "inside"), "outside"),
+        kw["arc_radius_m"] = t.get("arc_radius")
+        kw["arc_swing_rad"] = t.get("arc_swing")
+        kw["arc_start_rad"] = t.get("arc_start")
+    setting = t.get("setting")
+    spec = ShaftGovernorSpec(path, t.get("eccentricity"), t.get("angular_advance"),
+                             t.get("lap"), t.get("exhaust_lap"), setting=setting,
+                             connection=t.get("connection"), steam=t.get("steam"),
                              **parse_ports(t), **kw)
     if t.has("eccentric_rod"):
-        g = t.length("eccentric_rod", positive=True)
+        g = t.get("eccentric_rod")
         reach = max(math.hypot(*spec.coefficients(v)) for v in np.linspace(0.0, 1.0, 101))
         if g <= reach:
             raise InputError(t.key("eccentric_rod"), t.raw("eccentric_rod"),
@@ -262,4 +298,4 @@ def parse_shaft_governor(t: Table) -> ShaftGovernorSpec:
 
 
 register(GearType("shaft_governor", ShaftGovernorGear.summary, parse_shaft_governor,
-                  ShaftGovernorGear))
+                  ShaftGovernorGear, SHAFT_GOVERNOR_GEAR_KEYS))

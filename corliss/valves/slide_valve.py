@@ -58,6 +58,7 @@ import numpy as np
 from corliss import units
 from corliss.errors import InputError
 from corliss.valves.gear import GearType, ValveGear, register
+from corliss.keyspec import POSITIVE_LENGTH, Key, group
 from corliss.tables import DISCHARGE_COEFFICIENT, Table
 
 
@@ -387,22 +388,97 @@ def eccentric_joints(spec: SlideValveSpec, theta: float) -> EccentricJoints:
                             "eccentric rod": (g, "eccentric", "rod_end")})
 
 
+#: Keys every lapped valve shares: its ports.
+PORT_KEYS = group(
+    "ports", "The steam ports a lapped valve uncovers.",
+    Key("port_width", "length", "Width of each steam port along the valve's travel.",
+        within=POSITIVE_LENGTH, unit="in"),
+    Key("port_length", "length", "Length of each port across the valve face.",
+        within=POSITIVE_LENGTH, unit="in"),
+    Key("discharge_coefficient", "number", "Discharge coefficient of a port opening.",
+        default=0.7, within=DISCHARGE_COEFFICIENT),
+    Key("ports_per_end", "integer", "Openings each edge uncovers (2 for a double-ported "
+        "valve).", default=1, within=(1, 8)),
+)
+#: The laps of a lapped valve.
+LAP_KEYS = group(
+    "laps", "A lapped valve's laps.",
+    Key("lap", "length", "Steam (outside) lap.", ends=True, unit="in"),
+    Key("exhaust_lap", "length", "Exhaust (inside) lap; negative: exhaust clearance.",
+        default="0 in", ends=True, unit="in"),
+)
+#: An Allen (trick) valve's passage.
+ALLEN_KEYS = group(
+    "allen", "An Allen valve's supplementary passage.",
+    Key("allen_passage", "length", "Width of the mouth of an Allen (trick) valve's "
+        "passage, no wider than the port (Spangler Art. 27); absent: a plain valve.",
+        default=None, within=POSITIVE_LENGTH, unit="in"),
+)
+#: The throw of a gear's (main) eccentric.
+ECCENTRICITY = Key("eccentricity", "length", "Throw of the (main) eccentric, half its travel.",
+                   within=POSITIVE_LENGTH, unit="in")
+#: The angular advance of a gear's (main) eccentric.
+ANGULAR_ADVANCE = Key("angular_advance", "angle", "Angular advance of the (main) eccentric.",
+                      unit="deg")
+SLIDE_VALVE_KEYS = group(
+    "slide_valve", "A plain slide valve (D or piston valve) on one eccentric.",
+    ECCENTRICITY, LAP_KEYS,
+    Key("angular_advance", "angle", "Angular advance, between -90 and 90 deg; or give lead "
+        "(exactly one of the two).", default=None, unit="deg"),
+    Key("lead", "length", "Lead at the head end, lap + lead no more than the eccentricity; "
+        "or give angular_advance (exactly one of the two).", default=None, unit="in"),
+    Key("eccentric_rod", "length", "Eccentric rod plus valve stem, longer than the "
+        "eccentricity; absent: the Zeuner (infinite rod) motion.", default=None,
+        within=POSITIVE_LENGTH, unit="in"),
+    Key("connection", "choice", "The valve driven directly or through a reversing rocker.",
+        default="direct", choices=("direct", "reverse_lever")),
+    Key("steam", "choice", "Steam outside (D valve) or inside (piston valve) the valve.",
+        default="outside", choices=("outside", "inside")),
+    Key("setting", "choice", "How the valve is set on its rod: equal leads or mid travel.",
+        default="equal_lead", choices=("equal_lead", "mid_travel")),
+    ALLEN_KEYS, PORT_KEYS,
+)
+
+
 def pair(t: Table, key: str, kind: str, default=None) -> tuple[float, float]:
-    """A value given once for both ends, or as [head, crank]."""
-    raw = t.raw(key, default)
-    if isinstance(raw, list):
-        if len(raw) != 2:
-            raise InputError(t.key(key), raw, "one value, or a list [head, crank] of two")
-        return (units.parse(raw[0], kind, t.key(key)), units.parse(raw[1], kind, t.key(key)))
-    v = units.parse(raw, kind, t.key(key))
-    return (v, v)
+    """A value given once for both ends, or as [head, crank].
+
+    Parameters
+    ----------
+    t : Table
+        The table, bound to a group declaring ``key`` once or per end.
+    key : str
+        The key.
+    kind : str
+        Its kind of quantity (as declared).
+    default : str, optional
+        Ignored: the declared default serves.
+
+    Returns
+    -------
+    (float, float)
+        The (head, crank) values [SI].
+    """
+    return t.get(key)
 
 
 def parse_slide_valve(t: Table) -> SlideValveSpec:
-    """Read a ``[valve_gear] type = "slide_valve"`` table (see the scene example)."""
-    r = t.length("eccentricity", positive=True)
-    lap = pair(t, "lap", "length")
-    exhaust_lap = pair(t, "exhaust_lap", "length", "0 in")
+    """Read a ``[valve_gear] type = "slide_valve"`` table (see the scene example).
+
+    Parameters
+    ----------
+    t : Table
+        The table, bound to :data:`SLIDE_VALVE_KEYS`.
+
+    Returns
+    -------
+    SlideValveSpec
+        The valve's spec.
+    """
+    t = t.bound(SLIDE_VALVE_KEYS)
+    r = t.get("eccentricity")
+    lap = t.get("lap")
+    exhaust_lap = t.get("exhaust_lap")
     for end, l in zip(("head", "crank"), lap):
         if l >= r:
             raise InputError(t.key("lap"), t.raw("lap"),
@@ -415,10 +491,10 @@ def parse_slide_valve(t: Table) -> SlideValveSpec:
                              f"{end}-end exhaust would never open")
     has_lead, has_adv = t.has("lead"), t.has("angular_advance")
     if has_lead == has_adv:
-        raise InputError(t.key("lead"), t.raw("lead"),
+        raise InputError(t.key("lead"), t.raw("lead", None),
                          "exactly one of lead or angular_advance (not both, not neither)")
     if has_lead:
-        lead = t.length("lead")
+        lead = t.get("lead")
         arg = (lap[0] + lead) / r
         if not -1.0 <= arg <= 1.0:
             raise InputError(t.key("lead"), t.raw("lead"),
@@ -426,31 +502,39 @@ def parse_slide_valve(t: Table) -> SlideValveSpec:
                              f"({r / units.INCH_m:.4g} in)")
         delta = math.asin(arg)
     else:
-        delta = t.angle("angular_advance")
+        delta = t.get("angular_advance")
         if not -math.pi / 2 < delta < math.pi / 2:
             raise InputError(t.key("angular_advance"), t.raw("angular_advance"),
                              "an angle between -90 deg and 90 deg")
-    g = t.length("eccentric_rod", positive=True) if t.has("eccentric_rod") else None
+    g = t.get("eccentric_rod")
     if g is not None and g <= r:
         raise InputError(t.key("eccentric_rod"), t.raw("eccentric_rod"),
                          "an eccentric rod longer than the eccentricity")
     return SlideValveSpec(
         eccentricity_m=r, lap_m=lap, exhaust_lap_m=exhaust_lap, angular_advance_rad=delta,
-        eccentric_rod_m=g,
-        connection=t.choice("connection", ("direct", "reverse_lever"), "direct"),
-        steam=t.choice("steam", ("outside", "inside"), "outside"),
-        setting=t.choice("setting", ("equal_lead", "mid_travel"), "equal_lead"),
-        allen_passage_m=parse_allen_passage(t), **parse_ports(t),
+        eccentric_rod_m=g, connection=t.get("connection"), steam=t.get("steam"),
+        setting=t.get("setting"), allen_passage_m=parse_allen_passage(t), **parse_ports(t),
     )
 
 
 def parse_allen_passage(t: Table) -> float | None:
     """The ``allen_passage`` key: width of an Allen valve's passage mouth, no wider
-    than the steam port it delivers into (Spangler Art. 27), or None."""
-    if not t.has("allen_passage"):
+    than the steam port it delivers into (Spangler Art. 27), or None.
+
+    Parameters
+    ----------
+    t : Table
+        The table, bound to a group with :data:`ALLEN_KEYS` and :data:`PORT_KEYS`.
+
+    Returns
+    -------
+    float or None
+        The passage's width [m], or None for a plain valve.
+    """
+    a = t.get("allen_passage")
+    if a is None:
         return None
-    a = t.length("allen_passage", positive=True)
-    w = t.length("port_width", positive=True)
+    w = t.get("port_width")
     if a > w:
         raise InputError(t.key("allen_passage"), t.raw("allen_passage"),
                          f"a passage no wider than the steam port ({w / units.INCH_m:.4g} in): "
@@ -459,12 +543,24 @@ def parse_allen_passage(t: Table) -> float | None:
 
 
 def parse_ports(t: Table) -> dict:
-    """The port keys every lapped valve shares: widths, lengths, openings, discharge."""
-    cd = t.number("discharge_coefficient", 0.7, within=DISCHARGE_COEFFICIENT)
-    ports = t.integer("ports_per_end", 1, within=(1, 8))   # double- and multi-ported valves
-    return {"port_width_m": t.length("port_width", positive=True),
-            "port_length_m": t.length("port_length", positive=True),
-            "discharge_coefficient": cd, "ports_per_end": ports}
+    """The port keys every lapped valve shares (:data:`PORT_KEYS`): widths, lengths,
+    openings, discharge.
+
+    Parameters
+    ----------
+    t : Table
+        The table, bound to a group with :data:`PORT_KEYS`.
+
+    Returns
+    -------
+    dict
+        ``port_width_m`` [m], ``port_length_m`` [m], ``discharge_coefficient`` [-] and
+        ``ports_per_end``, as a lapped valve's spec takes them.
+    """
+    return {"port_width_m": t.get("port_width"), "port_length_m": t.get("port_length"),
+            "discharge_coefficient": t.get("discharge_coefficient"),
+            "ports_per_end": t.get("ports_per_end")}
 
 
-register(GearType("slide_valve", SlideValve.summary, parse_slide_valve, SlideValve))
+register(GearType("slide_valve", SlideValve.summary, parse_slide_valve, SlideValve,
+                  SLIDE_VALVE_KEYS))
