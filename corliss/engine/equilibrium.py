@@ -32,7 +32,28 @@ CLOSED, STEAM, EXHAUST = 0, 1, 2
 
 @dataclass
 class EndTrace:
-    """One end over one cycle of the ideal-port stepping (arrays over the grid)."""
+    """One end over one cycle of the ideal-port stepping (arrays over the grid).
+
+    Parameters
+    ----------
+    theta_rad, V_m3, p_Pa, T_K, x, m_kg : ndarray
+        Crank angle [rad], volume [m3], pressure [Pa], temperature [K], dryness [-]
+        and mass [kg] at each point of the grid.
+    work_J : float
+        Indicated work over the cycle [J].
+    m_chest_kg, H_chest_J : float
+        Net mass [kg] and enthalpy [J] from the chest.
+    m_exhaust_kg, H_exhaust_J : float
+        Net mass [kg] and enthalpy [J] from the exhaust (negative: to it).
+    wall : dict or None
+        With the skin wall, its totals over the cycle: ``Q_J`` the heat into the
+        steam [J], ``Q_to_wall_J`` the heat into the wall [J], ``T_deep_K`` the deep
+        wall's temperature [K].
+    wall_records : ndarray or None
+        With the skin wall, at each point of the grid: the surface's temperature [K],
+        the film [kg], and the heat into the steam so far, all of it, down T_w - T_sat
+        and by convection [J] (columns).
+    """
 
     theta_rad: np.ndarray
     V_m3: np.ndarray
@@ -45,6 +66,9 @@ class EndTrace:
     H_chest_J: float       # net enthalpy from the chest
     m_exhaust_kg: float    # net mass from the exhaust (negative: to it)
     H_exhaust_J: float
+    wall: dict | None = None    # the wall's totals over the cycle (heat into the steam,
+    #                             heat to the wall [J], the deep wall [K]), or None
+    wall_records: np.ndarray | None = None   # surface [K], film [kg], heats so far [J]
 
 
 def _fill(steam: Steam, st: State, m: float, V: float, res: State) -> tuple[State, float]:
@@ -86,11 +110,14 @@ def _open_step(steam: Steam, st: State, m: float, V1: float, res: State):
 
 
 def step_end(steam: Steam, theta: np.ndarray, V: np.ndarray, conn: np.ndarray,
-             st: State, m: float, chest: State, exhaust: State) -> tuple[EndTrace, State, float]:
+             st: State, m: float, chest: State, exhaust: State,
+             wall=None, omega: float = 1.0) -> tuple[EndTrace, State, float]:
     """Step one end through one cycle of the grid.
 
     Parameters
     ----------
+    steam : Steam
+        The property tier (with entropy).
     theta, V : ndarray
         Crank angles [rad] and end volumes [m3], ``n + 1`` points.
     conn : ndarray of int
@@ -99,6 +126,11 @@ def step_end(steam: Steam, theta: np.ndarray, V: np.ndarray, conn: np.ndarray,
         State and mass [kg] at ``theta[0]``.
     chest, exhaust : State
         Reservoir states.
+    wall : IdealPortWall, optional
+        The end's wall (:class:`corliss.engine.wall.IdealPortWall`): it exchanges heat
+        and water with the steam over each step before the ports act.
+    omega : float
+        Shaft speed [rad/s] (the wall's time).
 
     Returns
     -------
@@ -124,12 +156,18 @@ def step_end(steam: Steam, theta: np.ndarray, V: np.ndarray, conn: np.ndarray,
                 st2 = steam.ps(res.p, st.s)
                 m2 = V[i] * st2.rho
                 dm, dH = m2 - m, m2 * st2.u - m * st.u   # energy left = enthalpy carried out
+                if wall is not None:      # the film it sweeps: at the next exchange
+                    wall.outflow = (m - m2) / m
             else:
                 st2, m2, dm, dH = st, m, 0.0, 0.0
             flows[c] += (dm, dH)
             st, m = st2, m2
         prev = c
         p[i], T[i], x[i], mm[i] = st.p, st.T, st.x, m
+        if wall is not None:
+            wall.record()
+            st, m = wall.exchange(steam, st, m, V[i], (theta[i + 1] - theta[i]) / omega,
+                                  c != CLOSED)
         p0 = st.p
         if c == CLOSED:
             st = steam.ds(m / V[i + 1], st.s)
@@ -138,18 +176,54 @@ def step_end(steam: Steam, theta: np.ndarray, V: np.ndarray, conn: np.ndarray,
             res = chest if c == STEAM else exhaust
             st, m1, dm, dH = _open_step(steam, st, m, V[i + 1], res)
             work += res.p * (V[i + 1] - V[i])
-            m = m1
             flows[c] += (dm, dH)
+            if wall is not None and dm < 0.0:
+                wall.outflow = -dm / m
+            m = m1
     p[n], T[n], x[n], mm[n] = st.p, st.T, st.x, m
+    totals = recs = None
+    if wall is not None:
+        wall.record()
+        recs = np.array(wall.records)
+        totals = {"Q_J": wall.Q, "Q_to_wall_J": wall.Q_to_wall, "T_deep_K": wall.T_deep}
     trace = EndTrace(theta, V, p, T, x, mm, work, flows[STEAM, 0], flows[STEAM, 1],
-                     flows[EXHAUST, 0], flows[EXHAUST, 1])
+                     flows[EXHAUST, 0], flows[EXHAUST, 1], totals, recs)
     return trace, st, m
 
 
 def run_cycles(steam: Steam, theta: np.ndarray, volumes: tuple[np.ndarray, np.ndarray],
                conns: tuple[np.ndarray, np.ndarray], chest: State, exhaust: State,
-               tol: float, max_cycles: int, cycles: int | None = None):
+               tol: float, max_cycles: int, cycles: int | None = None, walls=None,
+               omega: float = 1.0):
     """Repeat the cycle until the indicated work is periodic.
+
+    With ``walls`` (an :class:`corliss.engine.wall.IdealPortWall` per end) the cycle is
+    periodic when the work, each surface's temperature (against the supply's less the
+    exhaust's temperature), each film (against the steam its end holds) and each deep
+    wall's heat balance over the cycle (against the enthalpy supplied) change by less
+    than ``tol``; the deep wall takes its step once the rest is periodic, as the
+    crank-resolved runner's (:func:`corliss.engine.steady.run_steady`).
+
+    Parameters
+    ----------
+    steam : Steam
+        The property tier (with entropy).
+    theta : ndarray
+        The stepping grid's crank angles [rad].
+    volumes, conns : tuple of ndarray
+        Each end's volumes [m3] at the grid's points and connections over its steps.
+    chest, exhaust : State
+        Reservoir states.
+    tol : float
+        Convergence tolerance [-].
+    max_cycles : int
+        Most cycles to run (three times as many with walls).
+    cycles : int, optional
+        Run exactly this many cycles.
+    walls : list of IdealPortWall, optional
+        Head and crank walls (skin model).
+    omega : float
+        Shaft speed [rad/s] (the walls' time).
 
     Returns
     -------
@@ -163,17 +237,35 @@ def run_cycles(steam: Steam, theta: np.ndarray, volumes: tuple[np.ndarray, np.nd
         states.append((exhaust, V[0] * exhaust.rho))
     traces = []
     w_prev = None
-    n_max = cycles if cycles is not None else max_cycles
+    n_max = cycles if cycles is not None else max_cycles * (3 if walls else 1)
     converged = None
+    dT_scale = max(chest.T - exhaust.T, 1.0)
     for k in range(1, n_max + 1):
         out = []
+        start = [(w.T_deep + w.dT, w.film) for w in walls] if walls else None
         for j in range(2):
-            tr, st, m = step_end(steam, theta, volumes[j], conns[j], *states[j], chest, exhaust)
+            if walls:
+                walls[j].begin_cycle()
+            tr, st, m = step_end(steam, theta, volumes[j], conns[j], *states[j], chest, exhaust,
+                                 walls[j] if walls else None, omega)
             states[j] = (st, m)
             out.append(tr)
         traces.append(tuple(out))
         w = out[0].work_J + out[1].work_J
-        if cycles is None and w_prev is not None and abs(w - w_prev) <= tol * max(abs(w), 1e-300):
+        change = abs(w - w_prev) / max(abs(w), 1e-300) if w_prev is not None else math.inf
+        if walls:
+            h_in = abs(out[0].H_chest_J + out[1].H_chest_J)
+            inner = change
+            for (t0, f0), wl, tr in zip(start, walls, out):
+                inner = max(inner, abs(wl.T_deep + wl.dT - t0) / dT_scale,
+                            abs(wl.film - f0) / max(float(np.max(tr.m_kg)), 1e-300))
+            steps = [wl.deep_step(False, h_in) for wl in walls]
+            settled = inner <= max(10.0 * tol, 0.1 * max(abs(s[0]) for s in steps) / dT_scale)
+            if settled:
+                for wl in walls:
+                    wl.deep_step(True, h_in)
+            change = max(inner, max(s[1] for s in steps))
+        if cycles is None and change <= tol:
             converged = k
             break
         w_prev = w
