@@ -659,6 +659,9 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
         if run.has(effect) and not run.has("port_flow"):
             raise InputError("run.effects", list(run.effects), f"\"port_flow\" beside "
                              f"\"{effect}\": it acts through finite ports")
+    if run.has("wall_heat") and run.model == "ideal":
+        raise InputError("run.model", run.model, "\"crank_resolved\" with \"wall_heat\": "
+                         "the ideal card is algebraic, without a wall")
     if (run.has("wall_heat") and not run.has("port_flow")
             and engine.wall_heat_model != "skin"):
         # ideal ports carry the skin wall (corliss.engine.wall.IdealPortWall) only
