@@ -111,7 +111,7 @@ def test_ideal_ports_are_the_limit_of_ever_larger_ports(ideal):
     without bound (corliss.engine.equilibrium): through the gear's ports made 4, 16
     and 64 times larger, the missing water at cut-off of each end comes nearer the
     ideal ports' at each step, and at 64 times is within 0.02 of it (the head end's
-    0.292, 0.263, 0.243 against 0.232 with ideal ports: with larger ports the
+    0.292, 0.263, 0.243 against 0.230 with ideal ports: with larger ports the
     admission's wire-drawing, which lowers the pressure at cut-off and so the steam
     the card shows, shrinks slowly, as the square root of the area or slower)."""
     s_ideal = ideal.summary

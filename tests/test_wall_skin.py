@@ -150,7 +150,7 @@ def test_missing_water_rises_as_the_exhaust_temperature_falls():
     steam supplied rises as the exhaust's temperature falls (on this engine and card
     eq. 221 gives 0.19, 0.22 and 0.26 at 16.7, 10 and 4 psia); Hill's Harris-Corliss
     engine condensed 66 % of its indicated steam running condensing, 56 %
-    non-condensing (Marks Art. 78, p. 198).  The model gives 0.345, 0.339 and 0.332
+    non-condensing (Marks Art. 78, p. 198).  The model gives 0.345, 0.340 and 0.332
     (head end): the water left on the wall at release (two thirds of what admission
     condensed) boils off in the exhaust while the surface is still 30-65 K above the
     exhaust's temperature, so the water, not the exhaust's temperature, sets how far

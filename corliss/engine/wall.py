@@ -111,6 +111,23 @@ Both flows carry heat down their own difference (the film's between surface and
 saturation, the convection's between surface and steam), so the wall never gives
 heat to what is hotter than it nor takes it from what is colder.
 
+How far the exhaust cools the wall
+----------------------------------
+The water the admission condenses is what cools the wall afterwards: at 0.42
+cut-off on the bundled Meyer engine 70 % of it is still on the wall at release and
+71 % of the heat comes back during the exhaust (as Spangler's Buckeye in Marks Art.
+86: 0.39 of the steam missing at 0.3 of the stroke, 0.30 at 0.9).  The film boils
+off before the surface reaches the exhaust's temperature (10 K above it at 16.7
+psia, 44 K at 4 psia), so the water, not the exhaust's temperature, sets the
+surface's lowest temperature, and the missing water is nearly flat against the
+exhaust's temperature where Marks's eq. 221 rises (docs/validation/condensation.md
+lists the changes to the film that were measured and not kept).
+
+With ideal ports
+----------------
+Without ``port_flow`` the same wall steps beside the ideal-port model
+(:class:`IdealPortWall`, :mod:`corliss.engine.equilibrium`).
+
 Jackets
 -------
 A jacket holds the outer face of the barrel at the supply's saturation temperature;
