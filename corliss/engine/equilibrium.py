@@ -89,24 +89,63 @@ def _fill(steam: Steam, st: State, m: float, V: float, res: State) -> tuple[Stat
     return steam.du(m2 / V, (U + (m2 - m) * res.h) / m2), m2
 
 
-def _open_step(steam: Steam, st: State, m: float, V1: float, res: State):
-    """One step open to a reservoir at its pressure: returns state, mass, inflow, enthalpy in."""
-    if V1 * st.rho <= m:                  # shrinking: outflow at own state
+def _open_step(steam: Steam, st: State, m: float, V1: float, res: State, dm_w: float = 0.0,
+               dH_w: float = 0.0):
+    """One step open to a reservoir at its pressure: returns state, mass, inflow, enthalpy
+    in (with a wall, its mass ``dm_w`` and enthalpy ``dH_w`` taken in at that pressure
+    too, :meth:`corliss.engine.wall.IdealPortWall.exchange`)."""
+    H = m * st.h + dH_w
+    m0 = m
+    m += dm_w
+    if dm_w != 0.0 or dH_w != 0.0:
+        # the wall's share at the reservoir's pressure (when it condensed half or more
+        # of what the end held, the port fills it whatever the rest's state: what
+        # condenses leaves the rest at its own enthalpy)
+        st = steam.ph(res.p, H / m) if m > 0.5 * m0 else None
+    if st is not None and V1 * st.rho <= m:    # shrinking: outflow at own state
         m1 = V1 * st.rho
         return st, m1, m1 - m, st.h * (m1 - m)
-    H = m * st.h
-    h1 = st.h
-    for _ in range(30):
-        s1 = steam.ph(res.p, h1)
-        m1 = V1 * s1.rho
-        h_new = (H + res.h * (m1 - m)) / m1
-        if abs(h_new - h1) < 1e-9 * abs(h1):
+    h1 = st.h if st is not None else res.h
+    try:
+        for _ in range(30):
+            s1 = steam.ph(res.p, h1)
+            m1 = V1 * s1.rho
+            h_new = (H + res.h * (m1 - m)) / m1
+            if abs(h_new - h1) < 1e-9 * abs(h1):
+                h1 = h_new
+                break
             h1 = h_new
-            break
-        h1 = h_new
+        else:
+            raise ValueError("the fixed point did not settle")
+    except ValueError:
+        h1 = _fill_at_pressure(steam, H, m, V1, res)
     s1 = steam.ph(res.p, h1)
     m1 = V1 * s1.rho
     return s1, m1, m1 - m, res.h * (m1 - m)
+
+
+def _fill_at_pressure(steam: Steam, H: float, m: float, V1: float, res: State) -> float:
+    """The enthalpy [J/kg] of an end filled to ``V1`` at the reservoir's pressure from
+    contents of mass ``m`` and enthalpy ``H`` (``m`` may be below nothing, when a wall
+    condensed more than the end held): the root of ``m1 = V1 rho(p, h1)``, ``m1 h1 = H
+    + h_res (m1 - m)``, bracketed, where the fixed point does not settle (very wet
+    contents: the density changes fast with the enthalpy)."""
+    from scipy.optimize import brentq
+    c = H - res.h * m                 # h1 = h_res + c / m1
+    h_f = steam.px(res.p, 0.0).h
+
+    def f(m1):
+        return m1 - V1 * steam.ph(res.p, res.h + c / m1).rho
+
+    if c < 0.0:
+        lo = c / (h_f - res.h) * (1.0 + 1e-9)      # h1 just above saturated water
+    else:
+        lo = max(m, 1e-9 * V1 * res.rho)
+    hi = max(2.0 * lo, V1 * res.rho)
+    while f(hi) < 0.0:
+        hi *= 2.0
+    m1 = brentq(f, lo, hi, rtol=1e-12)
+    return res.h + c / m1
 
 
 def step_end(steam: Steam, theta: np.ndarray, V: np.ndarray, conn: np.ndarray,
@@ -149,10 +188,12 @@ def step_end(steam: Steam, theta: np.ndarray, V: np.ndarray, conn: np.ndarray,
         c = int(conn[i])
         if c != CLOSED and (c != prev or i == 0):
             res = chest if c == STEAM else exhaust
-            if st.p < res.p * (1 - 1e-12):
+            # (1e-7: a state carried at the reservoir's pressure reads back within the
+            # property solvers' tolerance)
+            if st.p < res.p * (1 - 1e-7):
                 st2, m2 = _fill(steam, st, m, V[i], res)
                 dm, dH = m2 - m, res.h * (m2 - m)
-            elif st.p > res.p * (1 + 1e-12):
+            elif st.p > res.p * (1 + 1e-7):
                 st2 = steam.ps(res.p, st.s)
                 m2 = V[i] * st2.rho
                 dm, dH = m2 - m, m2 * st2.u - m * st.u   # energy left = enthalpy carried out
@@ -164,21 +205,22 @@ def step_end(steam: Steam, theta: np.ndarray, V: np.ndarray, conn: np.ndarray,
             st, m = st2, m2
         prev = c
         p[i], T[i], x[i], mm[i] = st.p, st.T, st.x, m
+        dm_w = dH_w = 0.0
         if wall is not None:
             wall.record()
-            st, m = wall.exchange(steam, st, m, V[i], (theta[i + 1] - theta[i]) / omega,
-                                  c != CLOSED)
+            st, m, dm_w, dH_w = wall.exchange(steam, st, m, V[i],
+                                              (theta[i + 1] - theta[i]) / omega, c != CLOSED)
         p0 = st.p
         if c == CLOSED:
             st = steam.ds(m / V[i + 1], st.s)
             work += 0.5 * (p0 + st.p) * (V[i + 1] - V[i])
         else:
             res = chest if c == STEAM else exhaust
-            st, m1, dm, dH = _open_step(steam, st, m, V[i + 1], res)
+            st, m1, dm, dH = _open_step(steam, st, m, V[i + 1], res, dm_w, dH_w)
             work += res.p * (V[i + 1] - V[i])
             flows[c] += (dm, dH)
             if wall is not None and dm < 0.0:
-                wall.outflow = -dm / m
+                wall.outflow = -dm / (m1 - dm)
             m = m1
     p[n], T[n], x[n], mm[n] = st.p, st.T, st.x, m
     totals = recs = None

@@ -324,24 +324,23 @@ class IdealPortWall:
 
     * the film: ``m_f' = m_f - q_f dt / lat`` with ``q_f = h_f (T_w' - T_sat) A``, and
       never below nothing (the evaporation is then what the film held, and the surface
-      is solved again with that heat);
+      is solved again with that heat); likewise the mixture's water ``q_m`` boils at
+      most what the steam holds, and while closed at most half the steam condenses in
+      a step (at 10 rpm a step is 4 ms, against the surface's few milliseconds);
     * the steam: its mass changes by the film's loss, ``dm = q_f dt / lat``, and its
       energy by ``dm h_L + (q_f + q_m + q_v) dt``, so that steam, film and wall close
       exactly (condensing, the steam gives up its own enthalpy, ``lat = h - h_L``;
       evaporating, the vapour has ``h_L + L``).  Closed, the steam's new state is found
-      from its density and internal energy; open, from its pressure (the reservoir's)
-      and enthalpy, ``d(m h) = dm h_L + Q`` at constant pressure, and the port then
-      fills or empties the end to its volume.
+      from its density and internal energy.  Open, the end stays at the reservoir's
+      pressure and the port's step takes the wall's mass and enthalpy with its own
+      flow: ``d(m h) = dm h_L + Q + h_res dm_port`` at constant pressure, the end
+      filled or emptied to its volume, so that the chest makes up at once whatever
+      the wall condenses, even more than the end held.
 
     Water beyond the film the wall holds (``FILM_MAX_KG_M2``) runs into the steam, and
     while the steam flows out the film beyond ``FILM_WET_KG_M2`` goes with it in the
-    proportion of the steam leaving (:meth:`sweep`), as in the kernel: taken at the
-    start of the step after the outflow (a blow-down's or an open step's), at the
-    pressure an open end holds or the volume a closed one does, so that the state the
-    port's step starts from fills the end at the reservoir's pressure (energy then
-    closes exactly: an open step's exchange at constant pressure, ``d(m h) = dm h_L +
-    Q``, and the port's filling to the volume, ``d(m h) = h_res dm``, add to ``dU =
-    dm h_L + Q + h_res dm - p dV``).
+    proportion of the steam leaving (:meth:`sweep`), as in the kernel, taken with the
+    exchange of the step after the outflow (a blow-down's or an open step's).
 
     Parameters
     ----------
@@ -398,24 +397,29 @@ class IdealPortWall:
         dt : float
             The step's time [s].
         open_ : bool
-            Open to a reservoir: the pressure is held (the state found from pressure
-            and enthalpy); closed, the volume (from density and internal energy).
+            Open to a reservoir: the pressure is held, and what the steam gains is
+            returned for the port's step to take with its own flow
+            (:func:`corliss.engine.equilibrium.step_end`); closed, the volume is held
+            and the steam's new state found from density and internal energy.
 
         Returns
         -------
         tuple
-            The steam's new state and mass [kg].
+            The steam's state and mass [kg] (closed: after the exchange; open: as
+            given), and the mass [kg] and enthalpy [J] the steam takes from the wall
+            and film that the port's step is still to add (zero when closed).
         """
+        dm_sw = 0.0
         if self.outflow > 0.0:
-            # the film swept by the last step's outflow, at the pressure an open end
-            # holds or the volume a closed one does (the state the port's step starts
-            # from must fill the end's volume)
-            st, m = self.sweep(steam, st, m, self.outflow, None if open_ else V)
+            # the film swept by the last step's outflow, into the steam as water of
+            # the film's enthalpy
+            dm_sw = self.sweep(self.outflow)
             self.outflow = 0.0
         A = 2.0 * self.a_p + math.pi * self.bore * V / self.a_p
         Aw = self.area_mean
         Tw = self.T_deep + self.dT
         T = st.T
+        x = 1.0 if st.superheated else st.x
         Tsat = steam.t_sat(st.p) if st.superheated else T
         de = 6.0 * V / A
         re_ = st.rho * (0.5 * self.omega * de) * de / self.mu
@@ -423,27 +427,42 @@ class IdealPortWall:
         hf, hm = self.h_c, 0.0
         if Tw > Tsat:
             wf = _smoothstep(self.film / (FILM_WET_KG_M2 * Aw))
-            hm = hf * (1.0 - wf) * _smoothstep((1.0 - (1.0 if st.superheated else st.x))
-                                               / WET_BAND)
+            hm = hf * (1.0 - wf) * _smoothstep((1.0 - x) / WET_BAND)
             hf *= wf
-        cA = self.cap * Aw / dt
-        gA = self.cond * Aw
-        Tw1 = ((cA * Tw + (hf + hm) * A * Tsat + hv * A * T + gA * self.T_deep)
-               / (cA + (hf + hm + hv) * A + gA))
-        qf = hf * (Tw1 - Tsat) * A
-        lat = self.L if qf >= 0.0 else max(st.h - self.h_L, 0.5 * self.L)
-        if qf * dt / lat > self.film:
-            # the film boils dry within the step: it gives what it holds
-            qf = self.film * lat / dt
-            Tw1 = ((cA * Tw - qf + hm * A * Tsat + hv * A * T + gA * self.T_deep)
-                   / (cA + (hm + hv) * A + gA))
-        qm = hm * (Tw1 - Tsat) * A
-        qc = hv * (Tw1 - T) * A
-        dm = qf * dt / lat
+        lat_c = max(st.h - self.h_L, 0.5 * self.L)     # condensing, per kg [J/kg]
+        # the surface, backward Euler; a flow that would take more than there is
+        # within the step (the film's water boiling off, the mixture's water, or,
+        # while closed, half the steam condensing) is held at that and the surface
+        # solved again with it fixed
+        cA, gA = self.cap * Aw / dt, self.cond * Aw
+        limits = {"f": (hf, Tsat, self.film * self.L / dt if Tw > Tsat
+                        else (-0.5 * m * lat_c / dt if not open_ else -math.inf)),
+                  "m": (hm, Tsat, (1.0 - x) * m * self.L / dt),
+                  "c": (hv, T, None)}
+        fixed = {}
+        for _ in range(3):
+            num, den = cA * Tw + gA * self.T_deep, cA + gA
+            for key, (h, t, _cap) in limits.items():
+                if key in fixed:
+                    num -= fixed[key]
+                else:
+                    num += h * A * t
+                    den += h * A
+            Tw1 = num / den
+            flows = {key: fixed.get(key, h * (Tw1 - t) * A)
+                     for key, (h, t, _cap) in limits.items()}
+            over = [key for key, (h, t, cap) in limits.items() if key not in fixed
+                    and cap is not None and (flows[key] > cap if cap >= 0.0 else flows[key] < cap)]
+            if not over:
+                break
+            for key in over:
+                fixed[key] = limits[key][2]
+        qf, qm, qc = flows["f"], flows["m"], flows["c"]
+        dm = qf * dt / (self.L if qf >= 0.0 else lat_c)
         self.film -= dm
         run = max(self.film - FILM_MAX_KG_M2 * Aw, 0.0)
         self.film -= run
-        dm += run
+        dm += run + dm_sw
         q = (qf + qm + qc) * dt
         self.dT = Tw1 - self.T_deep
         self.Q += q
@@ -451,43 +470,32 @@ class IdealPortWall:
         self.Q_sat += (qf + qm) * dt
         self.Q_conv += qc * dt
         self.hA += ((hf + hm + hv) * A + self.ga) * dt
-        m1 = m + dm
+        dH = dm * self.h_L + q
         if open_:
-            return steam.ph(st.p, (m * st.h + dm * self.h_L + q) / m1), m1
-        return steam.du(m1 / V, (m * st.u + dm * self.h_L + q) / m1), m1
+            return st, m, dm, dH
+        m1 = m + dm
+        return steam.du(m1 / V, (m * st.u + dH) / m1), m1, 0.0, 0.0
 
-    def sweep(self, steam, st, m: float, share: float, V: float | None = None):
-        """The film beyond the drops that cling swept into the steam while the share
-        ``share`` [-] of the steam leaves; ``V`` [m3] when the volume is held (a
-        blow-down, a closed step), else the pressure is.
+    def sweep(self, share: float) -> float:
+        """Sweep the film beyond the drops that cling while the share ``share`` [-] of
+        the end's steam leaves.
 
         Parameters
         ----------
-        steam : Steam
-            The property tier.
-        st : State
-            The steam's state.
-        m : float
-            The steam's mass [kg].
         share : float
             The share of the end's steam that left [-].
-        V : float, optional
-            The end's volume [m3] when the volume is held.
 
         Returns
         -------
-        tuple
-            The steam's state and mass [kg] with the swept water in it.
+        float
+            The water swept off the wall into the steam [kg].
         """
         extra = self.film - FILM_WET_KG_M2 * self.area_mean
         if not (extra > 0.0 and share > 0.0):
-            return st, m
+            return 0.0
         sw = extra * min(share, 1.0)
         self.film -= sw
-        m2 = m + sw
-        if V is None:
-            return steam.ph(st.p, (m * st.h + sw * self.h_L) / m2), m2
-        return steam.du(m2 / V, (m * st.u + sw * self.h_L) / m2), m2
+        return sw
 
     def deep_step(self, apply: bool, heat_scale: float) -> tuple[float, float]:
         """The deep wall's secant step on its balance over the cycle just run,
