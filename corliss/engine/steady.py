@@ -25,6 +25,7 @@ from corliss.engine.ideal_card import card_area, hyperbolic_card, indicated_stea
 from corliss.engine.model import assemble
 from corliss.engine.network import cylinder_prefix, piston_ends
 from corliss.engine.result import SteadyResult
+from corliss.engine.wall import IdealPortWall
 from corliss.thermo.steam import HEOSSteam
 
 log = logging.getLogger(__name__)
@@ -339,7 +340,6 @@ def _ideal_port_walls(scene, model):
     """The skin walls of the two ends for the ideal-port model, or None."""
     if not scene.run.has("wall_heat"):
         return None
-    from corliss.engine.wall import IdealPortWall
     net = model.network()
     return [IdealPortWall(net.node_heat[i], model.geometry, net.node_end[i],
                           scene.run.speed_rad_s, 0.5 * (model.chest.T + model.exhaust.T))
