@@ -32,19 +32,35 @@ CLOSED, STEAM, EXHAUST = 0, 1, 2
 
 @dataclass
 class EndTrace:
-    """One end over one cycle of the ideal-port stepping (arrays over the grid).
+    """One end over one cycle of the ideal-port stepping.
+
+    The arrays have one entry per point of the grid, ``n + 1`` of them; at a point where
+    a port opens, the state after the filling or blow-down.
 
     Parameters
     ----------
-    theta_rad, V_m3, p_Pa, T_K, x, m_kg : ndarray
-        Crank angle [rad], volume [m3], pressure [Pa], temperature [K], dryness [-]
-        and mass [kg] at each point of the grid.
+    theta_rad : ndarray
+        Crank angles of the grid [rad].
+    V_m3 : ndarray
+        Volume of the end [m3].
+    p_Pa : ndarray
+        Pressure [Pa].
+    T_K : ndarray
+        Temperature [K].
+    x : ndarray
+        Dryness [-] (as the steam state gives it).
+    m_kg : ndarray
+        Mass in the end [kg].
     work_J : float
-        Indicated work over the cycle [J].
-    m_chest_kg, H_chest_J : float
-        Net mass [kg] and enthalpy [J] from the chest.
-    m_exhaust_kg, H_exhaust_J : float
-        Net mass [kg] and enthalpy [J] from the exhaust (negative: to it).
+        Work of the steam on the piston over the cycle [J].
+    m_chest_kg : float
+        Net mass from the chest over the cycle [kg].
+    H_chest_J : float
+        Net enthalpy from the chest over the cycle [J].
+    m_exhaust_kg : float
+        Net mass from the exhaust over the cycle [kg] (negative: to it).
+    H_exhaust_J : float
+        Net enthalpy from the exhaust over the cycle [J] (negative: to it).
     wall : dict or None
         With the skin wall, its totals over the cycle: ``Q_J`` the heat into the
         steam [J], ``Q_to_wall_J`` the heat into the wall [J], ``T_deep_K`` the deep
@@ -156,7 +172,7 @@ def step_end(steam: Steam, theta: np.ndarray, V: np.ndarray, conn: np.ndarray,
     Parameters
     ----------
     steam : Steam
-        The property tier (with entropy).
+        The property tier.
     theta, V : ndarray
         Crank angles [rad] and end volumes [m3], ``n + 1`` points.
     conn : ndarray of int
@@ -173,8 +189,12 @@ def step_end(steam: Steam, theta: np.ndarray, V: np.ndarray, conn: np.ndarray,
 
     Returns
     -------
-    trace, state, mass
-        The cycle's trace, and the state and mass at its end.
+    trace : EndTrace
+        The cycle's trace.
+    state : State
+        The state at the cycle's end.
+    mass : float
+        The mass at the cycle's end [kg].
     """
     n = len(theta) - 1
     p = np.empty(n + 1)
@@ -239,6 +259,9 @@ def run_cycles(steam: Steam, theta: np.ndarray, volumes: tuple[np.ndarray, np.nd
                omega: float = 1.0):
     """Repeat the cycle until the indicated work is periodic.
 
+    Each end starts full of exhaust steam; the cycle is periodic when the work of both
+    ends changes by no more than ``tol`` of itself from one cycle to the next.
+
     With ``walls`` (an :class:`corliss.engine.wall.IdealPortWall` per end) the cycle is
     periodic when the work, each surface's temperature (against the supply's less the
     exhaust's temperature), each film (against the steam its end holds) and each deep
@@ -249,19 +272,22 @@ def run_cycles(steam: Steam, theta: np.ndarray, volumes: tuple[np.ndarray, np.nd
     Parameters
     ----------
     steam : Steam
-        The property tier (with entropy).
+        The property tier.
     theta : ndarray
-        The stepping grid's crank angles [rad].
-    volumes, conns : tuple of ndarray
-        Each end's volumes [m3] at the grid's points and connections over its steps.
+        The crank grid [rad], ``n + 1`` points (:func:`stepping_grid`).
+    volumes : (ndarray, ndarray)
+        Head- and crank-end volumes at the grid's points [m3].
+    conns : (ndarray, ndarray)
+        Head- and crank-end connections over the ``n`` intervals
+        (:func:`connection_from_areas`).
     chest, exhaust : State
         Reservoir states.
     tol : float
-        Convergence tolerance [-].
+        Relative change of the cycle's work that counts as periodic [-].
     max_cycles : int
-        Most cycles to run (three times as many with walls).
+        Most cycles run when ``cycles`` is None (three times as many with walls).
     cycles : int, optional
-        Run exactly this many cycles.
+        Run exactly this many cycles, without the test.
     walls : list of IdealPortWall, optional
         Head and crank walls (skin model).
     omega : float
@@ -315,7 +341,21 @@ def run_cycles(steam: Steam, theta: np.ndarray, volumes: tuple[np.ndarray, np.nd
 
 
 def connection_from_areas(open_steam: np.ndarray, open_exhaust: np.ndarray) -> np.ndarray:
-    """Connection code of each interval from port-open masks (steam wins a blow-through)."""
+    """Connection code of each interval from port-open masks.
+
+    Steam wins a blow-through (both ports open).
+
+    Parameters
+    ----------
+    open_steam, open_exhaust : ndarray of bool
+        Whether the steam port and the exhaust port are open over each interval; one
+        shape.
+
+    Returns
+    -------
+    ndarray of int8
+        :data:`STEAM`, :data:`EXHAUST` or :data:`CLOSED` for each interval.
+    """
     c = np.full(open_steam.shape, CLOSED, dtype=np.int8)
     c[open_exhaust] = EXHAUST
     c[open_steam] = STEAM
@@ -323,7 +363,21 @@ def connection_from_areas(open_steam: np.ndarray, open_exhaust: np.ndarray) -> n
 
 
 def stepping_grid(breakpoints: np.ndarray, step_rad: float) -> np.ndarray:
-    """A crank grid over [0, 2 pi] with at most ``step_rad`` spacing, through every kink."""
+    """A crank grid over one turn through every kink of the port areas.
+
+    Parameters
+    ----------
+    breakpoints : ndarray
+        Crank angles where a port area has a kink [rad] (taken modulo ``2 pi``).
+    step_rad : float
+        The largest spacing [rad] (at least 4 intervals a turn).
+
+    Returns
+    -------
+    ndarray
+        Increasing crank angles from 0 to ``2 pi`` [rad], both included, points closer
+        than 1e-10 rad merged.
+    """
     n = max(int(math.ceil(2 * math.pi / step_rad)), 4)
     g = np.union1d(np.linspace(0.0, 2 * math.pi, n + 1), np.asarray(breakpoints) % (2 * math.pi))
     g = g[np.concatenate([[True], np.diff(g) > 1e-10])]
