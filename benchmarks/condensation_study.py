@@ -10,7 +10,11 @@ missing water at cut-off read from the steam's state and from the card (dry satu
 steam at the card's pressure), Marks's eq. 221 for the same card, pV at mid-expansion
 over pV at cut-off, the surface's swing and the water rate.
 
-Run: ``python benchmarks/condensation_study.py`` (about a minute).
+The ``exhaust`` series holds the supply and cut-off and lowers the back pressure
+(16.7, 10 and 4 psia); ``ideal_ports`` is the small engine at 0.4 of the screw with
+ideal ports (no ``port_flow``: the wall of :class:`corliss.engine.wall.IdealPortWall`).
+
+Run: ``python benchmarks/condensation_study.py`` (two or three minutes).
 """
 
 from __future__ import annotations
@@ -56,6 +60,13 @@ def run_point(which: str, changes: dict, fidelity: str = "fast") -> dict:
             "pV_mid_over_cutoff_frac": float(np.interp(mid, ang, pv, period=360.0)
                                              / np.interp(c, ang, pv, period=360.0)),
             "wall_swing_K": s["wall_surface_swing_head_K"],
+            "wall_min_K": float(last["T_wall_head_K"].min()),
+            "exhaust_T_K": r.exhaust.T,
+            # where the wall gives its heat back: the heat into the steam from cut-off
+            # to release and from release to compression [J]
+            "heat_expansion_J": s["heat_into_steam_expansion_head_J"],
+            "heat_exhaust_J": s["heat_into_steam_exhaust_head_J"],
+            "missing_water_per_stroke_kg": s["missing_water_per_stroke_head_kg"],
             "water_rate_kg_per_kWh": s["water_rate_kg_per_kWh"],
             "periodic": s["cycles_to_converge"] is not None}
 
@@ -74,6 +85,11 @@ POINTS = (
        for d in (0, 50, 100, 150, 250)]
     + [("jacket", "small", {"valve_gear": {"setting": 0.4}, "engine": {"jacket": j}})
        for j in ("none", "barrel")]
+    + [("exhaust", e, {"valve_gear": {"setting": s}, "exhaust": {"pressure": f"{p} psia"}})
+       for e, s in (("small", 0.4), ("locomotive", 0.4)) for p in (16.7, 10, 4)]
+    # the skin wall with ideal ports (no port_flow), beside the port-flow point above
+    + [("ideal_ports", "small", {"valve_gear": {"setting": 0.4},
+                                 "run": {"effects": ["rod_angularity", "wall_heat"]}})]
 )
 
 

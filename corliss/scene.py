@@ -743,10 +743,18 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
     if run.has("leakage") and not (engine.valve_leakage_area_m2 or engine.piston_leakage_area_m2):
         raise InputError("engine.valve_leakage_area", None, "a leak area (or "
                          "engine.piston_leakage_area): the 'leakage' effect needs one")
-    for effect in ("wall_heat", "leakage", "steam_chest"):
+    for effect in ("leakage", "steam_chest"):
         if run.has(effect) and not run.has("port_flow"):
             raise InputError("run.effects", list(run.effects), f"\"port_flow\" beside "
                              f"\"{effect}\": it acts through finite ports")
+    if run.has("wall_heat") and run.model == "ideal":
+        raise InputError("run.model", run.model, "\"crank_resolved\" with \"wall_heat\": "
+                         "the ideal card is algebraic, without a wall")
+    if (run.has("wall_heat") and not run.has("port_flow")
+            and engine.wall_heat_model != "skin"):
+        # ideal ports carry the skin wall (corliss.engine.wall.IdealPortWall) only
+        raise InputError("engine.wall_heat_model", engine.wall_heat_model,
+                         "\"skin\" with ideal ports (or \"port_flow\" in run.effects)")
     compound = None
     if len(engine.crank_angles_rad) > 1 and (run.model != "crank_resolved"
                                              or not run.has("port_flow")):

@@ -24,7 +24,10 @@ from conftest import make_scene
     ({"valve_gear": {"port_width": None}}, "valve_gear.port_width", "required"),
     ({"supply": {"pressure": "100 psi"}}, "supply.pressure", "psig"),
     ({"supply": {"temperature": "250 degF"}}, "supply.temperature", "saturation"),
-    ({"run": {"effects": ["wall_heat"]}}, "run.effects", "port_flow"),
+    # ideal ports carry the skin wall only (issue 12)
+    ({"engine": {"wall_heat_model": "marks"}, "run": {"effects": ["wall_heat"]}},
+     "engine.wall_heat_model", "port_flow"),
+    ({"run": {"effects": ["wall_heat"], "model": "ideal"}}, "run.model", "crank_resolved"),
     ({"run": {"effects": ["port_flo"]}}, "run.effects", "port_flow"),
     ({"run": {"model": "exact"}}, "run.model", "crank_resolved"),
     ({"engine": {"clearance": 0}}, "engine.clearance", "between 0 and 1"),

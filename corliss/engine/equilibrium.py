@@ -61,6 +61,14 @@ class EndTrace:
         Net mass from the exhaust over the cycle [kg] (negative: to it).
     H_exhaust_J : float
         Net enthalpy from the exhaust over the cycle [J] (negative: to it).
+    wall : dict or None
+        With the skin wall, its totals over the cycle: ``Q_J`` the heat into the
+        steam [J], ``Q_to_wall_J`` the heat into the wall [J], ``T_deep_K`` the deep
+        wall's temperature [K].
+    wall_records : ndarray or None
+        With the skin wall, at each point of the grid: the surface's temperature [K],
+        the film [kg], and the heat into the steam so far, all of it, down T_w - T_sat
+        and by convection [J] (columns).
     """
 
     theta_rad: np.ndarray
@@ -74,6 +82,9 @@ class EndTrace:
     H_chest_J: float       # net enthalpy from the chest
     m_exhaust_kg: float    # net mass from the exhaust (negative: to it)
     H_exhaust_J: float
+    wall: dict | None = None    # the wall's totals over the cycle (heat into the steam,
+    #                             heat to the wall [J], the deep wall [K]), or None
+    wall_records: np.ndarray | None = None   # surface [K], film [kg], heats so far [J]
 
 
 def _fill(steam: Steam, st: State, m: float, V: float, res: State) -> tuple[State, float]:
@@ -94,28 +105,68 @@ def _fill(steam: Steam, st: State, m: float, V: float, res: State) -> tuple[Stat
     return steam.du(m2 / V, (U + (m2 - m) * res.h) / m2), m2
 
 
-def _open_step(steam: Steam, st: State, m: float, V1: float, res: State):
-    """One step open to a reservoir at its pressure: returns state, mass, inflow, enthalpy in."""
-    if V1 * st.rho <= m:                  # shrinking: outflow at own state
+def _open_step(steam: Steam, st: State, m: float, V1: float, res: State, dm_w: float = 0.0,
+               dH_w: float = 0.0):
+    """One step open to a reservoir at its pressure: returns state, mass, inflow, enthalpy
+    in (with a wall, its mass ``dm_w`` and enthalpy ``dH_w`` taken in at that pressure
+    too, :meth:`corliss.engine.wall.IdealPortWall.exchange`)."""
+    H = m * st.h + dH_w
+    m0 = m
+    m += dm_w
+    if dm_w != 0.0 or dH_w != 0.0:
+        # the wall's share at the reservoir's pressure (when it condensed half or more
+        # of what the end held, the port fills it whatever the rest's state: what
+        # condenses leaves the rest at its own enthalpy)
+        st = steam.ph(res.p, H / m) if m > 0.5 * m0 else None
+    if st is not None and V1 * st.rho <= m:    # shrinking: outflow at own state
         m1 = V1 * st.rho
         return st, m1, m1 - m, st.h * (m1 - m)
-    H = m * st.h
-    h1 = st.h
-    for _ in range(30):
-        s1 = steam.ph(res.p, h1)
-        m1 = V1 * s1.rho
-        h_new = (H + res.h * (m1 - m)) / m1
-        if abs(h_new - h1) < 1e-9 * abs(h1):
+    h1 = st.h if st is not None else res.h
+    try:
+        for _ in range(30):
+            s1 = steam.ph(res.p, h1)
+            m1 = V1 * s1.rho
+            h_new = (H + res.h * (m1 - m)) / m1
+            if abs(h_new - h1) < 1e-9 * abs(h1):
+                h1 = h_new
+                break
             h1 = h_new
-            break
-        h1 = h_new
+        else:
+            raise ValueError("the fixed point did not settle")
+    except ValueError:
+        h1 = _fill_at_pressure(steam, H, m, V1, res)
     s1 = steam.ph(res.p, h1)
     m1 = V1 * s1.rho
     return s1, m1, m1 - m, res.h * (m1 - m)
 
 
+def _fill_at_pressure(steam: Steam, H: float, m: float, V1: float, res: State) -> float:
+    """The enthalpy [J/kg] of an end filled to ``V1`` at the reservoir's pressure from
+    contents of mass ``m`` and enthalpy ``H`` (``m`` may be below nothing, when a wall
+    condensed more than the end held): the root of ``m1 = V1 rho(p, h1)``, ``m1 h1 = H
+    + h_res (m1 - m)``, bracketed, where the fixed point does not settle (very wet
+    contents: the density changes fast with the enthalpy)."""
+    from scipy.optimize import brentq
+    c = H - res.h * m                 # h1 = h_res + c / m1
+    h_f = steam.px(res.p, 0.0).h
+
+    def f(m1):
+        return m1 - V1 * steam.ph(res.p, res.h + c / m1).rho
+
+    if c < 0.0:
+        lo = c / (h_f - res.h) * (1.0 + 1e-9)      # h1 just above saturated water
+    else:
+        lo = max(m, 1e-9 * V1 * res.rho)
+    hi = max(2.0 * lo, V1 * res.rho)
+    while f(hi) < 0.0:
+        hi *= 2.0
+    m1 = brentq(f, lo, hi, rtol=1e-12)
+    return res.h + c / m1
+
+
 def step_end(steam: Steam, theta: np.ndarray, V: np.ndarray, conn: np.ndarray,
-             st: State, m: float, chest: State, exhaust: State) -> tuple[EndTrace, State, float]:
+             st: State, m: float, chest: State, exhaust: State,
+             wall=None, omega: float = 1.0) -> tuple[EndTrace, State, float]:
     """Step one end through one cycle of the grid.
 
     Parameters
@@ -130,6 +181,11 @@ def step_end(steam: Steam, theta: np.ndarray, V: np.ndarray, conn: np.ndarray,
         State and mass [kg] at ``theta[0]``.
     chest, exhaust : State
         Reservoir states.
+    wall : IdealPortWall, optional
+        The end's wall (:class:`corliss.engine.wall.IdealPortWall`): it exchanges heat
+        and water with the steam over each step before the ports act.
+    omega : float
+        Shaft speed [rad/s] (the wall's time).
 
     Returns
     -------
@@ -152,42 +208,66 @@ def step_end(steam: Steam, theta: np.ndarray, V: np.ndarray, conn: np.ndarray,
         c = int(conn[i])
         if c != CLOSED and (c != prev or i == 0):
             res = chest if c == STEAM else exhaust
-            if st.p < res.p * (1 - 1e-12):
+            # (1e-7: a state carried at the reservoir's pressure reads back within the
+            # property solvers' tolerance)
+            if st.p < res.p * (1 - 1e-7):
                 st2, m2 = _fill(steam, st, m, V[i], res)
                 dm, dH = m2 - m, res.h * (m2 - m)
-            elif st.p > res.p * (1 + 1e-12):
+            elif st.p > res.p * (1 + 1e-7):
                 st2 = steam.ps(res.p, st.s)
                 m2 = V[i] * st2.rho
                 dm, dH = m2 - m, m2 * st2.u - m * st.u   # energy left = enthalpy carried out
+                if wall is not None:      # the film it sweeps: at the next exchange
+                    wall.outflow = (m - m2) / m
             else:
                 st2, m2, dm, dH = st, m, 0.0, 0.0
             flows[c] += (dm, dH)
             st, m = st2, m2
         prev = c
         p[i], T[i], x[i], mm[i] = st.p, st.T, st.x, m
+        dm_w = dH_w = 0.0
+        if wall is not None:
+            wall.record()
+            st, m, dm_w, dH_w = wall.exchange(steam, st, m, V[i],
+                                              (theta[i + 1] - theta[i]) / omega, c != CLOSED)
         p0 = st.p
         if c == CLOSED:
             st = steam.ds(m / V[i + 1], st.s)
             work += 0.5 * (p0 + st.p) * (V[i + 1] - V[i])
         else:
             res = chest if c == STEAM else exhaust
-            st, m1, dm, dH = _open_step(steam, st, m, V[i + 1], res)
+            st, m1, dm, dH = _open_step(steam, st, m, V[i + 1], res, dm_w, dH_w)
             work += res.p * (V[i + 1] - V[i])
-            m = m1
             flows[c] += (dm, dH)
+            if wall is not None and dm < 0.0:
+                wall.outflow = -dm / (m1 - dm)
+            m = m1
     p[n], T[n], x[n], mm[n] = st.p, st.T, st.x, m
+    totals = recs = None
+    if wall is not None:
+        wall.record()
+        recs = np.array(wall.records)
+        totals = {"Q_J": wall.Q, "Q_to_wall_J": wall.Q_to_wall, "T_deep_K": wall.T_deep}
     trace = EndTrace(theta, V, p, T, x, mm, work, flows[STEAM, 0], flows[STEAM, 1],
-                     flows[EXHAUST, 0], flows[EXHAUST, 1])
+                     flows[EXHAUST, 0], flows[EXHAUST, 1], totals, recs)
     return trace, st, m
 
 
 def run_cycles(steam: Steam, theta: np.ndarray, volumes: tuple[np.ndarray, np.ndarray],
                conns: tuple[np.ndarray, np.ndarray], chest: State, exhaust: State,
-               tol: float, max_cycles: int, cycles: int | None = None):
+               tol: float, max_cycles: int, cycles: int | None = None, walls=None,
+               omega: float = 1.0):
     """Repeat the cycle until the indicated work is periodic.
 
     Each end starts full of exhaust steam; the cycle is periodic when the work of both
     ends changes by no more than ``tol`` of itself from one cycle to the next.
+
+    With ``walls`` (an :class:`corliss.engine.wall.IdealPortWall` per end) the cycle is
+    periodic when the work, each surface's temperature (against the supply's less the
+    exhaust's temperature), each film (against the steam its end holds) and each deep
+    wall's heat balance over the cycle (against the enthalpy supplied) change by less
+    than ``tol``; the deep wall takes its step once the rest is periodic, as the
+    crank-resolved runner's (:func:`corliss.engine.steady.run_steady`).
 
     Parameters
     ----------
@@ -205,9 +285,13 @@ def run_cycles(steam: Steam, theta: np.ndarray, volumes: tuple[np.ndarray, np.nd
     tol : float
         Relative change of the cycle's work that counts as periodic [-].
     max_cycles : int
-        Most cycles run when ``cycles`` is None.
+        Most cycles run when ``cycles`` is None (three times as many with walls).
     cycles : int, optional
         Run exactly this many cycles, without the test.
+    walls : list of IdealPortWall, optional
+        Head and crank walls (skin model).
+    omega : float
+        Shaft speed [rad/s] (the walls' time).
 
     Returns
     -------
@@ -221,17 +305,35 @@ def run_cycles(steam: Steam, theta: np.ndarray, volumes: tuple[np.ndarray, np.nd
         states.append((exhaust, V[0] * exhaust.rho))
     traces = []
     w_prev = None
-    n_max = cycles if cycles is not None else max_cycles
+    n_max = cycles if cycles is not None else max_cycles * (3 if walls else 1)
     converged = None
+    dT_scale = max(chest.T - exhaust.T, 1.0)
     for k in range(1, n_max + 1):
         out = []
+        start = [(w.T_deep + w.dT, w.film) for w in walls] if walls else None
         for j in range(2):
-            tr, st, m = step_end(steam, theta, volumes[j], conns[j], *states[j], chest, exhaust)
+            if walls:
+                walls[j].begin_cycle()
+            tr, st, m = step_end(steam, theta, volumes[j], conns[j], *states[j], chest, exhaust,
+                                 walls[j] if walls else None, omega)
             states[j] = (st, m)
             out.append(tr)
         traces.append(tuple(out))
         w = out[0].work_J + out[1].work_J
-        if cycles is None and w_prev is not None and abs(w - w_prev) <= tol * max(abs(w), 1e-300):
+        change = abs(w - w_prev) / max(abs(w), 1e-300) if w_prev is not None else math.inf
+        if walls:
+            h_in = abs(out[0].H_chest_J + out[1].H_chest_J)
+            inner = change
+            for (t0, f0), wl, tr in zip(start, walls, out):
+                inner = max(inner, abs(wl.T_deep + wl.dT - t0) / dT_scale,
+                            abs(wl.film - f0) / max(float(np.max(tr.m_kg)), 1e-300))
+            steps = [wl.deep_step(False, h_in) for wl in walls]
+            settled = inner <= max(10.0 * tol, 0.1 * max(abs(s[0]) for s in steps) / dT_scale)
+            if settled:
+                for wl in walls:
+                    wl.deep_step(True, h_in)
+            change = max(inner, max(s[1] for s in steps))
+        if cycles is None and change <= tol:
             converged = k
             break
         w_prev = w

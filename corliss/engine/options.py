@@ -30,7 +30,7 @@ EFFECTS: dict[str, str] = {
                  "difference; condensing_coefficient, jacket, wall_thickness), \"marks\" "
                  "(Marks's law of condensation as a schedule, Arts. 74-75), \"conductance\" "
                  "(his constant as a surface conductance, Art. 82) or \"adair\" (Adair et al. "
-                 "1972))",
+                 "1972); without port_flow, the skin wall only)",
     "friction": "engine friction torque ([engine] friction_torque, friction_torque_per_speed): "
                 "brake power and mechanical efficiency",
 }

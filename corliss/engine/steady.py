@@ -25,6 +25,7 @@ from corliss.engine.ideal_card import card_area, hyperbolic_card, indicated_stea
 from corliss.engine.model import assemble
 from corliss.engine.network import cylinder_prefix, piston_ends
 from corliss.engine.result import SteadyResult
+from corliss.engine.wall import IdealPortWall
 from corliss.thermo.steam import HEOSSteam
 
 log = logging.getLogger(__name__)
@@ -105,7 +106,7 @@ def run_steady(scene, *, portmap_scale: float = 1.0,
         data = _crank_resolved(scene, model, pm, progress, start)
     else:
         data = _equilibrium(scene, geo, steam_eq(), chest, exhaust, _portmap_schedule(pm), pm,
-                            progress)
+                            progress, _ideal_port_walls(scene, model))
     return SteadyResult(scene=scene, property_tier=steam.name,
                         rhs_evaluations=data.pop("nfev"),
                         wall_time_s=time.perf_counter() - t0, events=ev, geometry=geo,
@@ -337,16 +338,27 @@ def _ideal_schedule(ev, geo):
     return schedule, np.asarray(bps)
 
 
-def _equilibrium(scene, geo, steam, chest, exhaust, sched, pm=None, progress=None):
+def _ideal_port_walls(scene, model):
+    """The skin walls of the two ends for the ideal-port model, or None."""
+    if not scene.run.has("wall_heat"):
+        return None
+    net = model.network()
+    return [IdealPortWall(net.node_heat[i], model.geometry, net.node_end[i],
+                          scene.run.speed_rad_s, 0.5 * (model.chest.T + model.exhaust.T))
+            for i in (net.node("head"), net.node("crank"))]
+
+
+def _equilibrium(scene, geo, steam, chest, exhaust, sched, pm=None, progress=None, walls=None):
     schedule, bps = sched
     theta = eq.stepping_grid(bps, math.radians(EQUILIBRIUM_STEP_DEG))
     conns = schedule(theta)
     vols = geo.volumes_m3(theta)
     fid = scene.run.fidelity
-    traces, converged = eq.run_cycles(steam, theta, vols, conns, chest, exhaust,
-                                      fid.convergence_tolerance, fid.max_cycles, scene.run.cycles)
-    rows, ts = [], []
     omega = scene.run.speed_rad_s
+    traces, converged = eq.run_cycles(steam, theta, vols, conns, chest, exhaust,
+                                      fid.convergence_tolerance, fid.max_cycles, scene.run.cycles,
+                                      walls, omega)
+    rows, ts = [], []
     for k, (th_, tc_) in enumerate(traces):
         row = {"cycle": k + 1}
         for end, tr in (("head", th_), ("crank", tc_)):
@@ -355,10 +367,20 @@ def _equilibrium(scene, geo, steam, chest, exhaust, sched, pm=None, progress=Non
             row[f"m_exhaust_{end}_kg"] = tr.m_exhaust_kg
             row[f"H_exhaust_{end}_J"] = tr.H_exhaust_J
             row[f"work_{end}_J"] = tr.work_J
+            if tr.wall is not None:
+                row[f"Q_{end}_J"] = tr.wall["Q_J"]
+                row[f"Q_to_wall_{end}_J"] = tr.wall["Q_to_wall_J"]
+                row[f"T_wall_{end}_K"] = tr.wall["T_deep_K"]
         rows.append(_with_totals(row))
-        ts.append(_cycle_frame(k, theta, omega, {
+        frame = _cycle_frame(k, theta, omega, {
             end: (tr.p_Pa, tr.T_K, tr.x, tr.V_m3, tr.m_kg)
-            for end, tr in (("head", th_), ("crank", tc_))}))
+            for end, tr in (("head", th_), ("crank", tc_))})
+        for end, tr in (("head", th_), ("crank", tc_)):
+            if tr.wall_records is not None:
+                for n, col in enumerate(("T_wall_{}_K", "m_film_{}_kg", "Q_{}_J", "Q_sat_{}_J",
+                                         "Q_conv_{}_J")):
+                    frame[col.format(end)] = tr.wall_records[:, n]
+        ts.append(frame)
     if progress:      # the ideal-port cycles are algebraic: one report at the end
         progress(len(rows), 0.0)
     return {"timeseries": pd.concat(ts, ignore_index=True), "cycles": pd.DataFrame(rows),

@@ -111,6 +111,23 @@ Both flows carry heat down their own difference (the film's between surface and
 saturation, the convection's between surface and steam), so the wall never gives
 heat to what is hotter than it nor takes it from what is colder.
 
+How far the exhaust cools the wall
+----------------------------------
+The water the admission condenses is what cools the wall afterwards: at 0.42
+cut-off on the bundled Meyer engine 70 % of it is still on the wall at release and
+71 % of the heat comes back during the exhaust (as Spangler's Buckeye in Marks Art.
+86: 0.39 of the steam missing at 0.3 of the stroke, 0.30 at 0.9).  The film boils
+off before the surface reaches the exhaust's temperature (10 K above it at 16.7
+psia, 44 K at 4 psia), so the water, not the exhaust's temperature, sets the
+surface's lowest temperature, and the missing water is nearly flat against the
+exhaust's temperature where Marks's eq. 221 rises (docs/validation/condensation.md
+lists the changes to the film that were measured and not kept).
+
+With ideal ports
+----------------
+Without ``port_flow`` the same wall steps beside the ideal-port model
+(:class:`IdealPortWall`, :mod:`corliss.engine.equilibrium`).
+
 Jackets
 -------
 A jacket holds the outer face of the barrel at the supply's saturation temperature;
@@ -144,28 +161,89 @@ COL_CAPACITY, COL_CONDUCTANCE, COL_AREA, COL_STATE, COL_JACKET_GA, COL_JACKET_T 
 def skin_depth_m(omega_rad_s: float, k: float = CAST_IRON_K, c: float = CAST_IRON_C,
                  rho: float = CAST_IRON_RHO) -> float:
     """Depth [m] at which the cycle's temperature wave falls to 1/e,
-    sqrt(2 alpha / omega) (Carslaw & Jaeger sec. 2.6)."""
+    sqrt(2 alpha / omega) (Carslaw & Jaeger sec. 2.6).
+
+    Parameters
+    ----------
+    omega_rad_s : float
+        The wave's angular frequency [rad/s].
+    k, c, rho : float
+        The wall's conductivity [W/(m K)], specific heat [J/(kg K)] and density
+        [kg/m3] (grey cast iron by default).
+
+    Returns
+    -------
+    float
+        The skin depth [m].
+    """
     return math.sqrt(2.0 * k / (rho * c) / omega_rad_s)
 
 
 def surface_node(omega_rad_s: float) -> tuple[float, float]:
-    """(areal capacity [J/(m2 K)], conductance to the deep wall [W/(m2 K)]) of the lumped
-    surface node that has a semi-infinite cast-iron wall's impedance at omega."""
+    """The lumped surface node that has a semi-infinite cast-iron wall's impedance at
+    ``omega_rad_s``.
+
+    Parameters
+    ----------
+    omega_rad_s : float
+        The engine's angular speed [rad/s].
+
+    Returns
+    -------
+    tuple of float
+        Areal capacity [J/(m2 K)] and conductance to the deep wall [W/(m2 K)].
+    """
     d = skin_depth_m(omega_rad_s)
     return CAST_IRON_RHO * CAST_IRON_C * d / 2.0, CAST_IRON_K / d
 
 
 def nusselt_film_W_m2K(rho_l: float, rho_v: float, h_fg: float, k_l: float, mu_l: float,
                        height_m: float, dT_K: float, g: float = 9.80665) -> float:
-    """Nusselt's mean coefficient of laminar film condensation on a vertical surface of
-    height ``height_m`` [W/(m2 K)] (Z. VDI 60, 1916)."""
+    """Nusselt's mean coefficient of laminar film condensation on a vertical surface
+    (Z. VDI 60, 1916).
+
+    Parameters
+    ----------
+    rho_l, rho_v : float
+        Densities of the water and the vapour [kg/m3].
+    h_fg : float
+        Latent heat [J/kg].
+    k_l, mu_l : float
+        The water's conductivity [W/(m K)] and viscosity [Pa s].
+    height_m : float
+        The surface's height [m].
+    dT_K : float
+        Saturation less surface temperature [K].
+    g : float
+        Gravity [m/s2].
+
+    Returns
+    -------
+    float
+        The mean coefficient [W/(m2 K)].
+    """
     return 0.943 * (rho_l * (rho_l - rho_v) * g * h_fg * k_l ** 3
                     / (mu_l * height_m * dT_K)) ** 0.25
 
 
 def mean_exposed_area_m2(geometry, end: int, n: int = 361) -> float:
-    """The wall one end's steam touches, averaged over the cycle [m2] (the area of
-    :func:`corliss.engine.condensation.exposed_wall_m2`)."""
+    """The wall one end's steam touches, averaged over the cycle (the area of
+    :func:`corliss.engine.condensation.exposed_wall_m2`).
+
+    Parameters
+    ----------
+    geometry : CylinderGeometry
+        The cylinder's geometry.
+    end : int
+        0 head, 1 crank.
+    n : int
+        Points over the cycle.
+
+    Returns
+    -------
+    float
+        The mean area [m2].
+    """
     import numpy as np
 
     from corliss.engine.condensation import exposed_wall_m2
@@ -176,7 +254,33 @@ def mean_exposed_area_m2(geometry, end: int, n: int = 361) -> float:
 def skin_row(geometry, end: int, omega_rad_s: float, h_c: float, steam_props,
              state_index: int, jacket_T_K: float | None = None,
              wall_thickness_m: float = 0.025) -> tuple:
-    """A node's wall-heat row for the skin model (columns as HEAT_COLUMNS)."""
+    """A node's wall-heat row for the skin model (columns as
+    :data:`corliss.engine.network.HEAT_COLUMNS`, less the film's two).
+
+    Parameters
+    ----------
+    geometry : CylinderGeometry
+        The cylinder's geometry.
+    end : int
+        0 head, 1 crank.
+    omega_rad_s : float
+        Shaft speed [rad/s].
+    h_c : float
+        Coefficient of condensation and evaporation [W/(m2 K)].
+    steam_props : tuple of float
+        The vapour's conductivity [W/(m K)], viscosity [Pa s] and Prandtl number [-].
+    state_index : int
+        Index of the surface's state in the kernel's state vector.
+    jacket_T_K : float, optional
+        The jacket's temperature [K], or None.
+    wall_thickness_m : float
+        The barrel's wall between bore and jacket [m].
+
+    Returns
+    -------
+    tuple
+        The row's first eleven columns.
+    """
     import numpy as np
     k, mu, pr = steam_props
     cap, cond = surface_node(omega_rad_s)
@@ -188,3 +292,239 @@ def skin_row(geometry, end: int, omega_rad_s: float, h_c: float, steam_props,
         barrel = math.pi * geometry.spec.bore_m * float(np.mean(geometry.volumes_m3(th)[end])) / ap
         ga, tj = CAST_IRON_K / wall_thickness_m * barrel, jacket_T_K
     return (4.0, h_c, k, mu, pr, cap, cond, area, float(state_index), ga, tj)
+
+
+def _smoothstep(w: float) -> float:
+    w = min(max(w, 0.0), 1.0)
+    return w * w * (3.0 - 2.0 * w)
+
+
+class IdealPortWall:
+    """The skin wall of one cylinder end for the ideal-port model (no ``port_flow``).
+
+    With ideal ports (:mod:`corliss.engine.equilibrium`) an end open to the chest is at
+    chest pressure whatever the wall takes: the steam the wall condenses during
+    admission is made up from the chest, as the textbook's cylinder takes it (Marks
+    Art. 74: the steam condensed at admission is supplied steam that never shows on the
+    card).  The stepping splits each step of the grid in two: first the wall exchanges
+    heat and water with the steam over the step's time ``dt = d(theta) / omega`` (the
+    same flows as the compiled kernel's, :func:`corliss.engine.kernel.balances`), then
+    the ports act (isentropic while closed; at the reservoir's pressure while open).
+
+    The exchange over a step, per end (``A`` the wall the steam touches now, ``A_w``
+    its mean, ``C`` and ``G`` the surface node's areal capacity and conductance to the
+    deep wall at ``T_d``):
+
+    * the surface, backward Euler with the coefficients of the step's start (the
+      surface's own time constant, ``C / h_c``, is a few milliseconds against steps
+      of a tenth of one)::
+
+          C A_w (T_w' - T_w) / dt = -(h_f + h_m)(T_w' - T_sat) A - h_v (T_w' - T) A
+                                    + G A_w (T_d - T_w');
+
+    * the film: ``m_f' = m_f - q_f dt / lat`` with ``q_f = h_f (T_w' - T_sat) A``, and
+      never below nothing (the evaporation is then what the film held, and the surface
+      is solved again with that heat); likewise the mixture's water ``q_m`` boils at
+      most what the steam holds, and while closed at most half the steam condenses in
+      a step (at 10 rpm a step is 4 ms, against the surface's few milliseconds);
+    * the steam: its mass changes by the film's loss, ``dm = q_f dt / lat``, and its
+      energy by ``dm h_L + (q_f + q_m + q_v) dt``, so that steam, film and wall close
+      exactly (condensing, the steam gives up its own enthalpy, ``lat = h - h_L``;
+      evaporating, the vapour has ``h_L + L``).  Closed, the steam's new state is found
+      from its density and internal energy.  Open, the end stays at the reservoir's
+      pressure and the port's step takes the wall's mass and enthalpy with its own
+      flow: ``d(m h) = dm h_L + Q + h_res dm_port`` at constant pressure, the end
+      filled or emptied to its volume, so that the chest makes up at once whatever
+      the wall condenses, even more than the end held.
+
+    Water beyond the film the wall holds (``FILM_MAX_KG_M2``) runs into the steam, and
+    while the steam flows out the film beyond ``FILM_WET_KG_M2`` goes with it in the
+    proportion of the steam leaving (:meth:`sweep`), as in the kernel, taken with the
+    exchange of the step after the outflow (a blow-down's or an open step's).
+
+    Parameters
+    ----------
+    row : tuple
+        The end's skin row (:func:`skin_row` and the film's ``(h_L, L)``).
+    geometry : CylinderGeometry
+        The cylinder's geometry (the exposed wall from the volume).
+    end : int
+        0 head, 1 crank.
+    omega_rad_s : float
+        Shaft speed [rad/s].
+    T_deep_K : float
+        The deep wall's starting temperature [K].
+    """
+
+    def __init__(self, row, geometry, end: int, omega_rad_s: float, T_deep_K: float):
+        (_, self.h_c, self.k, self.mu, self.pr, self.cap, self.cond, self.area_mean,
+         _, self.ga, self.T_jacket, self.h_L, self.L) = row
+        self.a_p = geometry.area_head_m2 if end == 0 else geometry.area_crank_m2
+        self.bore = geometry.spec.bore_m
+        self.omega = omega_rad_s
+        self.T_deep = T_deep_K
+        self.dT = 0.0          # the surface less the deep wall [K]
+        self.film = 0.0        # the film's water [kg]
+        #: the share of the steam the last open step let out [-] (its sweep is taken at
+        #: the next step's start, :meth:`exchange`)
+        self.outflow = 0.0
+        self._hist = None
+        self.begin_cycle()
+
+    def begin_cycle(self) -> None:
+        """Restart the cycle's quadratures and records."""
+        self.Q = self.Q_to_wall = self.Q_sat = self.Q_conv = self.hA = 0.0
+        self.records = []
+
+    def record(self) -> None:
+        """Keep the surface temperature [K], the film [kg] and the heats so far [J]."""
+        self.records.append((self.T_deep + self.dT, self.film, self.Q, self.Q_sat,
+                             self.Q_conv))
+
+    def exchange(self, steam, st, m: float, V: float, dt: float, open_: bool):
+        """Exchange heat and water with the steam over ``dt`` [s].
+
+        Parameters
+        ----------
+        steam : Steam
+            The property tier.
+        st : State
+            The steam's state at the step's start.
+        m : float
+            The steam's mass [kg].
+        V : float
+            The end's volume [m3].
+        dt : float
+            The step's time [s].
+        open_ : bool
+            Open to a reservoir: the pressure is held, and what the steam gains is
+            returned for the port's step to take with its own flow
+            (:func:`corliss.engine.equilibrium.step_end`); closed, the volume is held
+            and the steam's new state found from density and internal energy.
+
+        Returns
+        -------
+        tuple
+            The steam's state and mass [kg] (closed: after the exchange; open: as
+            given), and the mass [kg] and enthalpy [J] the steam takes from the wall
+            and film that the port's step is still to add (zero when closed).
+        """
+        dm_sw = 0.0
+        if self.outflow > 0.0:
+            # the film swept by the last step's outflow, into the steam as water of
+            # the film's enthalpy
+            dm_sw = self.sweep(self.outflow)
+            self.outflow = 0.0
+        A = 2.0 * self.a_p + math.pi * self.bore * V / self.a_p
+        Aw = self.area_mean
+        Tw = self.T_deep + self.dT
+        T = st.T
+        x = 1.0 if st.superheated else st.x
+        Tsat = steam.t_sat(st.p) if st.superheated else T
+        de = 6.0 * V / A
+        re_ = st.rho * (0.5 * self.omega * de) * de / self.mu
+        hv = 0.053 * self.k / de * re_ ** 0.8 * self.pr ** 0.6
+        hf, hm = self.h_c, 0.0
+        if Tw > Tsat:
+            wf = _smoothstep(self.film / (FILM_WET_KG_M2 * Aw))
+            hm = hf * (1.0 - wf) * _smoothstep((1.0 - x) / WET_BAND)
+            hf *= wf
+        lat_c = max(st.h - self.h_L, 0.5 * self.L)     # condensing, per kg [J/kg]
+        # the surface, backward Euler; a flow that would take more than there is
+        # within the step (the film's water boiling off, the mixture's water, or,
+        # while closed, half the steam condensing) is held at that and the surface
+        # solved again with it fixed
+        cA, gA = self.cap * Aw / dt, self.cond * Aw
+        limits = {"f": (hf, Tsat, self.film * self.L / dt if Tw > Tsat
+                        else (-0.5 * m * lat_c / dt if not open_ else -math.inf)),
+                  "m": (hm, Tsat, (1.0 - x) * m * self.L / dt),
+                  "c": (hv, T, None)}
+        fixed = {}
+        for _ in range(3):
+            num, den = cA * Tw + gA * self.T_deep, cA + gA
+            for key, (h, t, _cap) in limits.items():
+                if key in fixed:
+                    num -= fixed[key]
+                else:
+                    num += h * A * t
+                    den += h * A
+            Tw1 = num / den
+            flows = {key: fixed.get(key, h * (Tw1 - t) * A)
+                     for key, (h, t, _cap) in limits.items()}
+            over = [key for key, (h, t, cap) in limits.items() if key not in fixed
+                    and cap is not None and (flows[key] > cap if cap >= 0.0 else flows[key] < cap)]
+            if not over:
+                break
+            for key in over:
+                fixed[key] = limits[key][2]
+        qf, qm, qc = flows["f"], flows["m"], flows["c"]
+        dm = qf * dt / (self.L if qf >= 0.0 else lat_c)
+        self.film -= dm
+        run = max(self.film - FILM_MAX_KG_M2 * Aw, 0.0)
+        self.film -= run
+        dm += run + dm_sw
+        q = (qf + qm + qc) * dt
+        self.dT = Tw1 - self.T_deep
+        self.Q += q
+        self.Q_to_wall += -q if q < 0.0 else 0.0
+        self.Q_sat += (qf + qm) * dt
+        self.Q_conv += qc * dt
+        self.hA += ((hf + hm + hv) * A + self.ga) * dt
+        dH = dm * self.h_L + q
+        if open_:
+            return st, m, dm, dH
+        m1 = m + dm
+        return steam.du(m1 / V, (m * st.u + dH) / m1), m1, 0.0, 0.0
+
+    def sweep(self, share: float) -> float:
+        """Sweep the film beyond the drops that cling while the share ``share`` [-] of
+        the end's steam leaves.
+
+        Parameters
+        ----------
+        share : float
+            The share of the end's steam that left [-].
+
+        Returns
+        -------
+        float
+            The water swept off the wall into the steam [kg].
+        """
+        extra = self.film - FILM_WET_KG_M2 * self.area_mean
+        if not (extra > 0.0 and share > 0.0):
+            return 0.0
+        sw = extra * min(share, 1.0)
+        self.film -= sw
+        return sw
+
+    def deep_step(self, apply: bool, heat_scale: float) -> tuple[float, float]:
+        """The deep wall's secant step on its balance over the cycle just run,
+        ``r = -Q + G_j A_j P (T_j - T_d)`` (as the crank-resolved runner's,
+        :meth:`corliss.engine.crank_resolved.CrankResolved.update_wall`).
+
+        Parameters
+        ----------
+        apply : bool
+            Take the step (else only measure it).
+        heat_scale : float
+            The enthalpy supplied over the cycle [J], the imbalance's scale.
+
+        Returns
+        -------
+        tuple of float
+            The step [K] and the imbalance over ``heat_scale`` [-].
+        """
+        gap = self.ga * 2.0 * math.pi / self.omega
+        d_full = self.hA - gap
+        r = -self.Q + gap * (self.T_jacket - self.T_deep)
+        slope = d_full
+        if self._hist is not None and abs(self.T_deep - self._hist[0]) > 1e-9:
+            slope = min(max((self.Q - self._hist[1]) / (self.T_deep - self._hist[0]),
+                            0.01 * d_full), d_full)
+        step = min(max(r / (slope + gap), -20.0), 20.0)
+        if apply:
+            self._hist = (self.T_deep, self.Q)
+            # the surface moves with the deep wall (its state is the difference, as
+            # the kernel's)
+            self.T_deep += step
+        return step, abs(r) / max(heat_scale, 1e-300)
