@@ -28,22 +28,75 @@ MARKS_C = 0.02047 * units.POUND_kg / (units.FOOT_m ** 2 * (5.0 / 9.0) * 60.0)
 
 
 def curve_of_condensation(e: float) -> float:
-    """Y(e) of Marks Art. 75 [-] for a true cut-off ``e`` in [0, 1]."""
+    """Marks's curve of condensation, Art. 75.
+
+    Parameters
+    ----------
+    e : float
+        The true cut-off: the volume at cut-off over the volume at the end of the
+        stroke, clearance included in both [-]; clipped to [0, 1].
+
+    Returns
+    -------
+    float
+        ``Y(e)`` [-]: the fraction of the stroke's barrel that counts as exposed, 0 at
+        ``e = 0`` and 1 at ``e = 1``.
+    """
     a = 2.0 * min(max(e, 0.0), 1.0) - 1.0
     return 1.0 - (math.sqrt(max(1.0 - a * a, 0.0)) - a * math.acos(a)) / math.pi
 
 
 def marks_condensation_kg(bore_m: float, stroke_m: float, strokes_per_s: float, e: float,
                           t_cutoff_K: float, t_exhaust_K: float, C: float = MARKS_C) -> float:
-    """Steam condensed per stroke [kg] by Marks's eq. 221 (SI throughout)."""
+    """Steam condensed per stroke by Marks's eq. 221 (Art. 75; SI throughout).
+
+    Parameters
+    ----------
+    bore_m : float
+        Cylinder bore ``d`` [m].
+    stroke_m : float
+        Stroke ``s`` [m].
+    strokes_per_s : float
+        Strokes per unit time ``N`` [1/s] (two a revolution).
+    e : float
+        True cut-off, clearance included [-] (:func:`curve_of_condensation`).
+    t_cutoff_K : float
+        Steam temperature at cut-off ``T_b`` [K].
+    t_exhaust_K : float
+        Exhaust temperature ``T_e`` [K]; a drop below zero counts as none.
+    C : float, optional
+        Constant of condensation [kg/(m2 K s)]; by default Marks's mean,
+        :data:`MARKS_C` (Art. 82, p. 209).
+
+    Returns
+    -------
+    float
+        The steam condensed on the walls at each stroke [kg].
+    """
     return (C * max(t_cutoff_K - t_exhaust_K, 0.0) * math.pi * bore_m / (2.0 * strokes_per_s)
             * (bore_m + curve_of_condensation(e) * stroke_m))
 
 
 def exposed_wall_m2(geometry, end: int, theta):
-    """The wall the steam of one end touches [m2]: piston face and cover, and the barrel
-    uncovered with the clearance as its equivalent length, 2 A_p + pi D V / A_p (the
-    area the compiled kernel uses)."""
+    """The wall the steam of one end touches.
+
+    Piston face and cover, and the barrel uncovered with the clearance as its
+    equivalent length, ``2 A_p + pi D V / A_p`` (the area the compiled kernel uses).
+
+    Parameters
+    ----------
+    geometry : corliss.engine.geometry.CylinderGeometry
+        The cylinder.
+    end : int
+        0 for the head end, 1 for the crank end.
+    theta : float or numpy.ndarray
+        Crank angle [rad].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        The exposed wall [m2], shaped as ``theta``.
+    """
     import numpy as np
     ap = geometry.area_head_m2 if end == 0 else geometry.area_crank_m2
     V = geometry.volumes_m3(np.asarray(theta, dtype=float))[end]
@@ -52,14 +105,40 @@ def exposed_wall_m2(geometry, end: int, theta):
 
 def marks_law_row(geometry, end: int, events: dict, strokes_per_s: float, t_cutoff_K: float,
                   t_exhaust_K: float, latent_J_kg: float, phase_rad: float = 0.0):
-    """Columns 5-10 of a node's wall-heat row for Marks's law (see
-    :func:`corliss.engine.network.with_wall_heat`): the heat of a cycle [J], the
-    admission, cut-off and compression angles [rad] of that end in its own crank angle,
-    and the exposed wall integrated over admission and over cut-off to compression
-    [m2 rad].  None when the end has no cut-off or compression (Marks's law needs both).
+    """Columns 5-10 of a node's wall-heat row for Marks's law.
 
     The heat is eq. 221's condensation times the latent heat at the cut-off pressure
-    (Art. 74: "multiply by the total heat less the heat of the liquid").
+    (Art. 74: "multiply by the total heat less the heat of the liquid"); see
+    :func:`corliss.engine.network.with_wall_heat` for the row.
+
+    Parameters
+    ----------
+    geometry : corliss.engine.geometry.CylinderGeometry
+        The cylinder.
+    end : int
+        0 for the head end, 1 for the crank end.
+    events : dict
+        That end's valve events (``admission_deg``, ``cutoff_deg``,
+        ``compression_deg`` [deg of its own crank angle] and ``cutoff_frac`` [-]).
+    strokes_per_s : float
+        Strokes per unit time [1/s].
+    t_cutoff_K : float
+        Steam temperature at cut-off [K].
+    t_exhaust_K : float
+        Exhaust temperature [K].
+    latent_J_kg : float
+        Latent heat at the cut-off temperature [J/kg].
+    phase_rad : float, optional
+        Phase of the cylinder's crank [rad]; unused (the events are in the end's own
+        crank angle).
+
+    Returns
+    -------
+    tuple of float or None
+        The heat of a cycle [J]; the admission, cut-off and compression angles [rad];
+        the exposed wall integrated over admission and over cut-off to compression
+        [m2 rad].  None when the end has no cut-off or compression (Marks's law needs
+        both).
     """
     import numpy as np
     ev = events
@@ -85,6 +164,22 @@ class MarksLaw:
     Each cycle's heat uses the steam temperature at cut-off of the cycle before (at
     first, the supply's saturation temperature) and the exhaust's saturation
     temperature (Marks's T_b and T_e, Art. 75).
+
+    Parameters
+    ----------
+    network : corliss.engine.network.Network
+        The compiled network; its piston ends whose wall-heat row is Marks's law
+        (model code 3) are kept.
+    geometry : corliss.engine.geometry.CylinderGeometry
+        The cylinder.
+    events : dict
+        Valve events by end (``"head"``, ``"crank"``), as :func:`marks_law_row` reads.
+    speed_rad_s : float
+        Crank speed [rad/s].
+    supply_T_K : float
+        The supply's saturation temperature [K], the first cycle's cut-off temperature.
+    exhaust_T_K : float
+        The exhaust's saturation temperature [K].
     """
 
     def __init__(self, network, geometry, events: dict, speed_rad_s: float, supply_T_K: float,
@@ -107,11 +202,29 @@ class MarksLaw:
 
     @staticmethod
     def latent(T: float) -> float:
-        """h_g - h_f at saturation temperature T [J/kg] (IAPWS-95)."""
+        """Latent heat ``h_g - h_f`` at a saturation temperature (IAPWS-95).
+
+        Parameters
+        ----------
+        T : float
+            Saturation temperature [K].
+
+        Returns
+        -------
+        float
+            The latent heat [J/kg].
+        """
         return latent_heat(T)
 
     def rows(self) -> dict:
-        """{node: columns 5-10} for the current cut-off temperatures."""
+        """The Marks's-law rows for the current cut-off temperatures.
+
+        Returns
+        -------
+        dict
+            Node index -> columns 5-10 of its wall-heat row (:func:`marks_law_row`;
+            zero heat for an end without cut-off or compression).
+        """
         out = {}
         for i, end in self.ends:
             ev = self.events["head" if end == 0 else "crank"]
@@ -121,12 +234,30 @@ class MarksLaw:
         return out
 
     def apply(self, heat_array) -> None:
-        """Write the rows into the compiled network's wall-heat array (in place)."""
+        """Write the rows into the compiled network's wall-heat array.
+
+        Parameters
+        ----------
+        heat_array : numpy.ndarray
+            The network's wall-heat array, shape ``(nodes, columns)``; columns 5-10 of
+            each kept node are overwritten in place.
+        """
         for i, row in self.rows().items():
             heat_array[i, 5:11] = row
 
     def update(self, steam, samples, out_theta) -> None:
-        """Take the cut-off temperatures from a cycle's samples (state at ``out_theta``)."""
+        """Take the cut-off temperatures from a cycle's samples.
+
+        Parameters
+        ----------
+        steam : corliss.thermo.steam.Steam
+            The run's steam properties.
+        samples : numpy.ndarray
+            The cycle's sampled state, shape ``(2 nodes, samples)``: each node's mass
+            [kg] and internal energy [J] in alternate rows.
+        out_theta : numpy.ndarray
+            Crank angles of the samples [rad].
+        """
         import numpy as np
         net = self.network
         for i, end in self.ends:
