@@ -679,7 +679,13 @@ def _save(path: Path, data: dict) -> None:
 
 
 def load_table() -> SteamTable:
-    """The steam table: from memory, from the disk cache, or built from HEOS (and cached)."""
+    """The steam table: from memory, from the disk cache, or built from HEOS (and cached).
+
+    Returns
+    -------
+    SteamTable
+        The table of :data:`PARAMS` (or the one :func:`stand_in` put in its place).
+    """
     if _STAND_IN:
         return _STAND_IN[-1]
     path = table_path()
