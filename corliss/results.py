@@ -27,7 +27,7 @@ import os
 import platform
 import shutil
 import tempfile
-from importlib.metadata import PackageNotFoundError, version
+from importlib.metadata import PackageNotFoundError
 from pathlib import Path
 
 import numpy as np
@@ -37,6 +37,7 @@ from corliss.engine import result as engine_result
 from corliss.engine.options import Fidelity
 from corliss.errors import InputError
 from corliss.scene import scene_from_dict
+from corliss.versions import installed_version
 
 #: Distributions whose versions a meta file records.
 DEPENDENCIES = ("numpy", "scipy", "pandas", "matplotlib", "numba", "CoolProp")
@@ -49,20 +50,32 @@ PNG_OPTIONS = {"compress_level": 1}
 
 
 def package_version() -> str:
-    """The installed corliss version (``corliss.__version__`` from a source tree)."""
+    """The installed corliss version (``corliss.__version__`` from a source tree).
+
+    Returns
+    -------
+    str
+        The version.
+    """
     try:
-        return version("corliss")
+        return installed_version("corliss")
     except PackageNotFoundError:  # pragma: no cover - running from a source tree
         import corliss
         return corliss.__version__
 
 
 def dependency_versions() -> dict[str, str | None]:
-    """Versions of Python and the dependencies, from their metadata (nothing imported)."""
+    """Versions of Python and the dependencies, from their metadata (nothing imported).
+
+    Returns
+    -------
+    dict
+        Name to version (None for one not installed).
+    """
     out: dict[str, str | None] = {"python": platform.python_version()}
     for name in DEPENDENCIES:
         try:
-            out[name] = version(name)
+            out[name] = installed_version(name)
         except PackageNotFoundError:  # pragma: no cover
             out[name] = None
     return out

@@ -59,6 +59,7 @@ import numpy as np
 from numba import njit
 
 from corliss.logs import NOTICE
+from corliss.versions import installed_version
 
 log = logging.getLogger(__name__)
 
@@ -599,9 +600,9 @@ def _coolprop_version() -> str:
     """CoolProp's version from its distribution's metadata (without importing it, which
     takes over a second); read once per process (reading the metadata takes 1.4 ms,
     and every run asks for the table several times)."""
-    from importlib.metadata import PackageNotFoundError, version
+    from importlib.metadata import PackageNotFoundError
     try:
-        return version("CoolProp")
+        return installed_version("CoolProp")
     except PackageNotFoundError:      # pragma: no cover - an unusual install
         import CoolProp
         return CoolProp.__version__
