@@ -177,8 +177,18 @@ class Result:
         raise NotImplementedError
 
     def table(self, name: str | None = None) -> pd.DataFrame:
-        """One of the result's tables, SI (names in :attr:`TABLES`; the first by
-        default)."""
+        """One of the result's tables, SI.
+
+        Parameters
+        ----------
+        name : str, optional
+            One of :attr:`TABLES` (the first by default).
+
+        Returns
+        -------
+        DataFrame
+            The table (columns named with their SI units).
+        """
         name = name or self.TABLES[0]
         if name not in self.TABLES:
             raise ValueError(f"table {name!r}: one of {', '.join(self.TABLES)}")
