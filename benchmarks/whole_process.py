@@ -2,7 +2,10 @@
 table built): from starting ``corliss`` to its exit, imports and writing included, as
 a user waits for it.
 
-Each command is run once to warm the caches (not counted), then ``--repeats`` times;
+Each command is run once to warm the caches (not counted), then ``--repeats`` times,
+with Python's bytecode cache on as on a user's machine (``PYTHONDONTWRITEBYTECODE`` is
+removed from the commands' environment: with it set, as some shells and tools do, every
+run compiles corliss's source again, about 0.2 s more);
 the median wall time is reported with the fastest and slowest, since a shared machine
 is noisy.  The commands:
 
@@ -15,7 +18,9 @@ Usage::
 
     python benchmarks/whole_process.py [--repeats 7] [--out benchmarks/results]
 
-Writes ``whole_process.csv`` in the output directory.  The same figures with the
+Writes ``whole_process.csv`` in the output directory, with the machine's load average
+(one minute) before and after each command's runs: on a shared machine the figures are
+upper bounds, and the load says how far to trust them.  The same figures with the
 shell's ``time``: ``time corliss run --out /tmp/x``.
 """
 
@@ -23,6 +28,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import os
 import shutil
 import statistics
 import subprocess
@@ -52,11 +58,14 @@ def commands(out: str) -> dict[str, list[str]]:
 
 def time_command(cmd: list[str], repeats: int) -> list[float]:
     """Wall times [s] of ``repeats`` runs of ``cmd`` after one warm-up run."""
-    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                   env=env)
     times = []
     for _ in range(repeats):
         t0 = time.perf_counter()
-        subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                       env=env)
         times.append(time.perf_counter() - t0)
     return times
 
@@ -69,12 +78,15 @@ def main(argv: list[str] | None = None) -> int:
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for name, cmd in commands(tmp).items():
+            load_before = os.getloadavg()[0]
             t = time_command(cmd, args.repeats)
             rows.append({"command": name, "median_s": round(statistics.median(t), 3),
                          "min_s": round(min(t), 3), "max_s": round(max(t), 3),
-                         "runs": len(t)})
+                         "runs": len(t), "load_before": round(load_before, 2),
+                         "load_after": round(os.getloadavg()[0], 2)})
             print(f"{name:45s} median {rows[-1]['median_s']:6.2f} s  (min {rows[-1]['min_s']:.2f}, "
-                  f"max {rows[-1]['max_s']:.2f}, {len(t)} runs)", flush=True)
+                  f"max {rows[-1]['max_s']:.2f}, {len(t)} runs; load {load_before:.1f} to "
+                  f"{rows[-1]['load_after']:.1f})", flush=True)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     with open(out / "whole_process.csv", "w", newline="") as f:

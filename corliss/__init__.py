@@ -33,7 +33,6 @@ __version__ = "0.2.0"
 
 from corliss import results as _export  # noqa: E402,F401  (registers the export layer)
 from corliss import study_output as _study_export  # noqa: E402,F401  (and the study's)
-from corliss.design_scene import Design, design  # noqa: E402
 from corliss.engine.model import scene_events  # noqa: E402
 from corliss.engine.result import Result, SteadyResult, SweepResult, TransientResult  # noqa: E402
 from corliss.engine.simulate import simulate  # noqa: E402
@@ -46,3 +45,39 @@ from corliss.studies import StudyResult, study  # noqa: E402
 __all__ = ["Design", "FitResult", "InputError", "Result", "Scene", "SteadyResult", "StudyResult",
            "SweepResult", "TransientResult", "__version__", "bundled_scenes", "default_scene_path",
            "design", "fit", "load_scene", "scene_events", "scene_from_dict", "simulate", "study"]
+
+#: Names of the front door loaded when first asked for (PEP 562): the valve design's
+#: module is not imported by a run, so ``corliss run`` does not pay for it.
+_ON_USE = {"Design": "corliss.design_scene", "design": "corliss.design_scene"}
+
+
+def __getattr__(name: str):
+    """Load a name of :data:`_ON_USE` from its module the first time it is asked for.
+
+    Parameters
+    ----------
+    name : str
+        The attribute asked for.
+
+    Returns
+    -------
+    object
+        The module's attribute of that name.
+    """
+    if name in _ON_USE:
+        import importlib
+        value = getattr(importlib.import_module(_ON_USE[name]), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'corliss' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    """The module's names, those loaded on use included.
+
+    Returns
+    -------
+    list of str
+        Sorted names.
+    """
+    return sorted(set(globals()) | set(_ON_USE))

@@ -62,7 +62,6 @@ from pathlib import Path
 
 import corliss
 from corliss import units
-from corliss.engine.load_range import load_ranges
 from corliss.engine.model import build_gear, scene_events
 from corliss.engine.simulate import simulate
 from corliss.errors import InputError, RunError
@@ -554,6 +553,7 @@ def cmd_sweep(args) -> int:
         :class:`~corliss.errors.InputError`, which :func:`main` turns into 2).
     """
     from corliss.columns import convert_frame
+    from corliss.engine.load_range import load_ranges
     scene = _load(args.scene, args.units)
     if args.fidelity:
         scene = scene.with_fidelity(args.fidelity)

@@ -15,9 +15,13 @@ work ``work_*_J`` is positive done by the steam on the piston.
 
 from __future__ import annotations
 
-import pandas as pd
+from typing import TYPE_CHECKING
 
 from corliss import units
+from corliss.frame import Frame
+
+if TYPE_CHECKING:      # convert_frame's DataFrame: pandas is imported when it is called
+    import pandas as pd
 
 #: Columns that name a row rather than measure something, with their meaning.
 INDEX_COLUMNS = {"cycle": "count (turn or cycle number, from 1)",
@@ -110,6 +114,9 @@ def convert_frame(df: pd.DataFrame, system: str,
                   ) -> tuple[pd.DataFrame, dict[str, str]]:
     """A copy of an SI frame in ``system`` and the unit of each of its columns.
 
+    :func:`convert_columns` does the work and hands back a
+    :class:`~corliss.frame.Frame`; this is the same as a DataFrame.
+
     Parameters
     ----------
     df : pandas.DataFrame
@@ -134,6 +141,29 @@ def convert_frame(df: pd.DataFrame, system: str,
     ValueError
         If ``system`` is neither ``"US"`` nor ``"SI"``.
     """
+    frame, col_units = convert_columns(df, system, barometer_Pa)
+    return frame.to_pandas(), col_units
+
+
+def convert_columns(df, system: str, barometer_Pa: float = units.STANDARD_ATMOSPHERE_Pa
+                    ) -> tuple[Frame, dict[str, str]]:
+    """An SI table in ``system`` as a :class:`~corliss.frame.Frame` (no pandas), and the
+    unit of each of its columns.
+
+    Parameters
+    ----------
+    df : Frame or DataFrame
+        Columns named by the vocabulary above, SI.
+    system : str
+        ``"US"`` or ``"SI"`` (see :func:`convert_frame`).
+    barometer_Pa : float
+        Atmospheric pressure [Pa] (only gauge units read it; outputs are absolute).
+
+    Returns
+    -------
+    (Frame, dict)
+        The converted table (names carry the output unit) and ``{column: unit}``.
+    """
     if system not in ("US", "SI"):
         raise ValueError(f"units system {system!r}: 'US' or 'SI'")
     out, col_units = {}, {}
@@ -152,7 +182,7 @@ def convert_frame(df: pd.DataFrame, system: str,
                                    barometer_Pa=barometer_Pa)
         out[name] = values
         col_units[name] = unit + (" absolute" if sfx == "Pa" else "")
-    return pd.DataFrame(out), col_units
+    return Frame(out), col_units
 
 
 def convert_value(key: str, value: float, system: str) -> tuple[str, float, str]:
@@ -177,6 +207,6 @@ def convert_value(key: str, value: float, system: str) -> tuple[str, float, str]
     unit : str
         The output unit (``"hp"``).
     """
-    frame, col_units = convert_frame(pd.DataFrame({key: [value]}), system)
+    frame, col_units = convert_columns(Frame({key: [value]}), system)
     name = frame.columns[0]
     return name, float(frame[name].iloc[0]), col_units[name]

@@ -27,7 +27,7 @@ import os
 import platform
 import shutil
 import tempfile
-from importlib.metadata import PackageNotFoundError, version
+from importlib.metadata import PackageNotFoundError
 from pathlib import Path
 
 import numpy as np
@@ -37,6 +37,7 @@ from corliss.engine import result as engine_result
 from corliss.engine.options import Fidelity
 from corliss.errors import InputError
 from corliss.scene import scene_from_dict
+from corliss.versions import installed_version
 
 #: Distributions whose versions a meta file records.
 DEPENDENCIES = ("numpy", "scipy", "pandas", "matplotlib", "numba", "CoolProp")
@@ -58,7 +59,7 @@ def package_version() -> str:
         running from a source tree that is not installed.
     """
     try:
-        return version("corliss")
+        return installed_version("corliss")
     except PackageNotFoundError:  # pragma: no cover - running from a source tree
         import corliss
         return corliss.__version__
@@ -76,7 +77,7 @@ def dependency_versions() -> dict[str, str | None]:
     out: dict[str, str | None] = {"python": platform.python_version()}
     for name in DEPENDENCIES:
         try:
-            out[name] = version(name)
+            out[name] = installed_version(name)
         except PackageNotFoundError:  # pragma: no cover
             out[name] = None
     return out
@@ -325,36 +326,47 @@ FLOAT_FORMAT = "%.9g"
 
 
 def write_csv(frame, path: Path) -> None:
-    """Write a table as CSV, the text pandas' ``to_csv`` would write.
+    """``frame`` (a DataFrame or a :class:`~corliss.frame.Frame`) as CSV at ``path``: no
+    index, floats as :data:`FLOAT_FORMAT`, NaN as an empty field, lines ended by
+    ``\\n``: the text of pandas' ``to_csv(index=False, float_format=FLOAT_FORMAT)``.
 
-    That is ``to_csv(index=False, float_format=FLOAT_FORMAT)``: no index, floats as
-    :data:`FLOAT_FORMAT`, NaN as an empty field, lines ended by ``\\n``.  A table of
-    numbers only (every result's time series and per-cycle table) is formatted row by
-    row with one %-format string, four times as fast as pandas' writer on a long
-    transient; a table with text or other columns goes through pandas (its quoting).
+    A table of numbers, and of text that needs no quoting (a card's ``end``), is
+    formatted row by row with one %-format string, four times as fast as pandas' writer
+    on a long transient and with no pandas imported; any other table goes through
+    pandas (its quoting).
 
     Parameters
     ----------
-    frame : pandas.DataFrame
-        The table.
+    frame : DataFrame or Frame
+        The table, its columns named with their units.
     path : Path
         The file to write.
     """
-    kinds = [frame[c].dtype.kind for c in frame.columns]
     names = [str(c) for c in frame.columns]
-    if not frame.columns.is_unique or not all(k in "fiu" for k in kinds) or any(
-            any(ch in n for ch in ',"\n\r') for n in names):
-        frame.to_csv(path, index=False, float_format=FLOAT_FORMAT)
-        return
+    kinds = [frame[c].dtype.kind for c in frame.columns]
+    plain = len(set(names)) == len(names) and not any(
+        any(ch in n for ch in ',"\n\r') for n in names)
     cols, fmts = [], []
     for c, k in zip(frame.columns, kinds):
+        if not plain:
+            break
         v = frame[c].to_numpy()
         if k == "f" and np.isnan(v).any():       # NaN as an empty field, as pandas
             cols.append(["" if x != x else FLOAT_FORMAT % x for x in v.tolist()])
             fmts.append("%s")
-        else:
+        elif k in "fiu":
             cols.append(v.tolist())
             fmts.append(FLOAT_FORMAT if k == "f" else "%d")
+        elif k == "O" and all(type(x) is str and x and not any(ch in x for ch in ',"\n\r')
+                              and x == x.strip() for x in v.tolist()):
+            cols.append(v.tolist())               # words pandas writes as they are
+            fmts.append("%s")
+        else:
+            plain = False
+    if not plain:
+        (frame if hasattr(frame, "to_csv") else frame.to_pandas()).to_csv(
+            path, index=False, float_format=FLOAT_FORMAT)
+        return
     fmt = ",".join(fmts) + "\n"
     with open(path, "w", encoding="utf-8", newline="") as f:
         f.write(",".join(names) + "\n")
@@ -364,8 +376,8 @@ def write_csv(frame, path: Path) -> None:
 def _write_table(result, table: str, path: Path, name: str, units_system: str | None) -> None:
     """Write one table as CSV and its meta file beside it (``path`` is the staged CSV)."""
     system = units_system or result.scene.output.units
-    frame, col_units = columns.convert_frame(result.table(table), system,
-                                             result.scene.supply.barometer_Pa)
+    frame, col_units = columns.convert_columns(result.frame(table), system,
+                                               result.scene.supply.barometer_Pa)
     write_csv(frame, path)
     m = meta(result, col_units, name, system)
     path.with_suffix(".meta.json").write_text(json.dumps(m, indent=2))

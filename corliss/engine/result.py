@@ -23,17 +23,20 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import ClassVar
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
-import pandas as pd
 
 from corliss import columns, units
 from corliss.engine import crank_effort as ce
 from corliss.engine.condensation import marks_condensation_kg
 from corliss.engine.options import record_of
 from corliss.engine.speed_metrics import load_step_metrics, step_time_of
+from corliss.frame import Frame
 from corliss.thermo.steam import HEOSSteam, TableSteam
+
+if TYPE_CHECKING:          # the tables are handed out as DataFrames; pandas is imported then
+    import pandas as pd
 
 TWO_PI = 2.0 * math.pi
 #: Why a card's fluctuation coefficient is undefined (the summary's value is null).
@@ -65,6 +68,29 @@ def _export():
     return _exporter
 
 
+class _Table:
+    """A table field of a result (``timeseries``, ``cycles``): held as the run built it,
+    a :class:`~corliss.frame.Frame` (a steady run: no pandas needed to compute the
+    summary and write the CSVs) or a DataFrame, and given out as a DataFrame, converted
+    once, on first access.  :meth:`Result.frame` reads it as held."""
+
+    def __set_name__(self, owner, name):
+        self.name = name
+
+    def __get__(self, obj, objtype=None):
+        if obj is None:     # no value on the class: the dataclass field has no default
+            raise AttributeError(self.name)
+        cache = obj.__dict__.setdefault("_pandas", {})
+        if self.name not in cache:
+            held = obj.__dict__["_held"][self.name]
+            cache[self.name] = held.to_pandas() if isinstance(held, Frame) else held
+        return cache[self.name]
+
+    def __set__(self, obj, value):
+        obj.__dict__.setdefault("_held", {})[self.name] = value
+        obj.__dict__.setdefault("_pandas", {}).pop(self.name, None)
+
+
 @dataclass
 class Result:
     """A run's outcome (base of every kind).
@@ -93,8 +119,8 @@ class Result:
 
     scene: object
     property_tier: str
-    timeseries: pd.DataFrame
-    cycles: pd.DataFrame
+    timeseries: pd.DataFrame = _Table()
+    cycles: pd.DataFrame = _Table()
     rhs_evaluations: int
     wall_time_s: float
     _summary: dict | None = field(default=None, init=False, repr=False)
@@ -182,6 +208,29 @@ class Result:
             raise ValueError(f"table {name!r}: one of {', '.join(self.TABLES)}")
         return getattr(self, f"_table_{name}")() if hasattr(self, f"_table_{name}") \
             else getattr(self, name)
+
+    def frame(self, name: str | None = None):
+        """One of the result's tables as the run holds it, SI: a
+        :class:`~corliss.frame.Frame` where the run built one (a steady run's tables:
+        read without importing pandas), else the DataFrame of :meth:`table`.
+
+        Parameters
+        ----------
+        name : str, optional
+            One of :attr:`TABLES` (the first by default).
+
+        Returns
+        -------
+        Frame or DataFrame
+            The table; both answer ``frame[column].to_numpy()`` and ``frame.columns``.
+        """
+        name = name or self.TABLES[0]
+        if name not in self.TABLES:
+            raise ValueError(f"table {name!r}: one of {', '.join(self.TABLES)}")
+        if hasattr(self, f"_frame_{name}"):
+            return getattr(self, f"_frame_{name}")()
+        held = self.__dict__.get("_held", {})
+        return held[name] if name in held else self.table(name)
 
     def to_pandas(self, table: str | None = None, units_system: str | None = None
                   ) -> pd.DataFrame:
@@ -271,7 +320,8 @@ class Result:
         return _export().write(self, out_dir, plots)
 
 
-def _last(ts: pd.DataFrame) -> pd.DataFrame:
+def _last(ts):
+    """The rows of the last cycle of a time series (a Frame or a DataFrame)."""
     return ts[ts["cycle"] == ts["cycle"].max()]
 
 
@@ -353,6 +403,10 @@ class SteadyResult(Result):
         """The per-cycle row of the last cycle."""
         return self.cycles.iloc[-1]
 
+    def _last_row(self):
+        """The last cycle's row as held (a Frame's row, or a Series)."""
+        return self.frame("cycles").iloc[-1]
+
     @property
     def cards(self) -> dict[str, pd.DataFrame]:
         """Card of each end over the last cycle, keyed by end.
@@ -362,21 +416,31 @@ class SteadyResult(Result):
         card's abscissa), ``V_m3``, ``p_Pa``, and the cylinder's own
         ``crank_angle_deg`` (not for the hyperbolic ideal card).
         """
+        return {end: f.to_pandas() for end, f in self.card_frames().items()}
+
+    def card_frames(self) -> dict[str, Frame]:
+        """The cards of :attr:`cards` as :class:`~corliss.frame.Frame` (no pandas).
+
+        Returns
+        -------
+        dict
+            End to its card.
+        """
         if self.ideal_cards is not None:
             out = {}
             for end, df in self.ideal_cards.items():
                 frac = df["frac"] if end == "head" else 1.0 - df["frac"]
-                out[end] = pd.DataFrame({"piston_frac": frac.to_numpy(),
-                                         "V_m3": df["V_m3"].to_numpy(),
-                                         "p_Pa": df["p_Pa"].to_numpy()})
+                out[end] = Frame({"piston_frac": frac.to_numpy(),
+                                  "V_m3": df["V_m3"].to_numpy(),
+                                  "p_Pa": df["p_Pa"].to_numpy()})
             return out
-        ts = _last(self.timeseries)
+        ts = _last(self.frame("timeseries"))
         th = np.radians(ts["crank_angle_deg"].to_numpy()) % TWO_PI
         out = {}
         for prefix, geo, phase in self.cylinder_list:
             frac = geo.fraction(th + phase)
             for end in ("head", "crank"):
-                out[prefix + end] = pd.DataFrame({
+                out[prefix + end] = Frame({
                     # the cylinder's own crank angle, in which its events are given
                     "crank_angle_deg": ts["crank_angle_deg"].to_numpy() + math.degrees(phase),
                     "piston_frac": frac,
@@ -384,9 +448,12 @@ class SteadyResult(Result):
                     "p_Pa": ts[f"p_{prefix}{end}_Pa"].to_numpy()})
         return out
 
+    def _frame_cards(self) -> Frame:
+        return Frame.concat([f.assign(end=end)[["end", *f.columns]]
+                             for end, f in self.card_frames().items()])
+
     def _table_cards(self) -> pd.DataFrame:
-        return pd.concat([df.assign(end=end)[["end", *df.columns]]
-                          for end, df in self.cards.items()], ignore_index=True)
+        return self._frame_cards().to_pandas()
 
     @property
     def crank_effort(self) -> pd.DataFrame:
@@ -399,7 +466,10 @@ class SteadyResult(Result):
         (``friction_torque_N_m``, ``friction`` effect) and the net torque left for the
         load (``net_torque_N_m``).
         """
-        ts = _last(self.timeseries)
+        return self._frame_crank_effort().to_pandas()
+
+    def _frame_crank_effort(self) -> Frame:
+        ts = _last(self.frame("timeseries"))
         th = np.radians(ts["crank_angle_deg"].to_numpy())
         run, spec = self.scene.run, self.geometry.spec
         cols = {"crank_angle_deg": ts["crank_angle_deg"].to_numpy()}
@@ -422,10 +492,10 @@ class SteadyResult(Result):
             cols["friction_torque_N_m"] = np.full(th.size, tf)
             net = net - tf
         cols["net_torque_N_m"] = net
-        return pd.DataFrame(cols)
+        return Frame(cols)
 
     def _effort_summary(self, work_J: float) -> dict:
-        eff = self.crank_effort
+        eff = self._frame_crank_effort()
         th = np.radians(eff["crank_angle_deg"].to_numpy())
         dE = ce.energy_fluctuation_J(th, eff["torque_N_m"].to_numpy())
         out = {"max_torque_N_m": float(eff["torque_N_m"].max()),
@@ -439,7 +509,7 @@ class SteadyResult(Result):
         if work_J <= 0:
             out["fluctuation_coefficient_note"] = NO_WORK_REASON
         run = self.scene.run
-        row = self.last_cycle
+        row = self._last_row()
         rev_per_h = run.speed_rad_s / TWO_PI * 3600.0
         valve_leaks = [k for k in row.index if k.startswith("m_valve_leak_")]
         if valve_leaks:
@@ -448,8 +518,8 @@ class SteadyResult(Result):
             out["piston_leakage_net_kg_per_cycle"] = float(row["m_piston_leak_kg"])
         if "Q_head_J" in row:
             out.update(self._condensation_summary(work_J))
-        if "p_chest_Pa" in self.timeseries:
-            last = _last(self.timeseries)
+        if "p_chest_Pa" in self.frame("timeseries"):
+            last = _last(self.frame("timeseries"))
             out["chest_pressure_mean_Pa"] = float(last["p_chest_Pa"].mean())
             out["chest_pressure_min_Pa"] = float(last["p_chest_Pa"].min())
         if run.has("friction"):
@@ -467,7 +537,7 @@ class SteadyResult(Result):
         """Power of each cylinder; for a compound, LP mean pressures and the receiver's."""
         if len(self.cylinder_list) < 2:
             return {}
-        row = self.last_cycle
+        row = self._last_row()
         rev_per_s = self.scene.run.speed_rad_s / TWO_PI
         if self.scene.compound is None:
             return {"cylinder_powers_W": [float(row[f"work_{p}head_J"] + row[f"work_{p}crank_J"])
@@ -475,7 +545,7 @@ class SteadyResult(Result):
         _, lp, _ = self.cylinder_list[1]
         w_lp = float(row["work_lp_head_J"] + row["work_lp_crank_J"])
         w_hp = float(row["work_head_J"] + row["work_crank_J"])
-        last = _last(self.timeseries)
+        last = _last(self.frame("timeseries"))
         return {"hp_power_W": w_hp * rev_per_s, "lp_power_W": w_lp * rev_per_s,
                 "lp_mep_head_Pa": float(row["work_lp_head_J"]) / lp.swept_m3[0],
                 "lp_mep_crank_Pa": float(row["work_lp_crank_J"]) / lp.swept_m3[1],
@@ -504,8 +574,8 @@ class SteadyResult(Result):
         """
         # saturation read on the run's own table (no CoolProp import) or else on HEOS
         sat = TableSteam() if self.property_tier == "table" else HEOSSteam()
-        row = self.last_cycle
-        ts = _last(self.timeseries)
+        row = self._last_row()
+        ts = _last(self.frame("timeseries"))
         ang = np.mod(ts["crank_angle_deg"].to_numpy(), 360.0)
         ang, idx = np.unique(ang, return_index=True)
         out = {}
@@ -548,7 +618,7 @@ class SteadyResult(Result):
 
     def _make_summary(self) -> dict:
         run = self.scene.run
-        row = self.last_cycle
+        row = self._last_row()
         w_h, w_c = float(row["work_head_J"]), float(row["work_crank_J"])
         w = float(row["work_J"]) if "work_J" in row else w_h + w_c
         rev_per_s = run.speed_rad_s / TWO_PI
@@ -561,7 +631,7 @@ class SteadyResult(Result):
         H_in = float(row["H_supply_J"])
         H_ex = float(row["H_exhaust_J"]) if "H_exhaust_J" in row else math.nan
         p_peak = float(np.nanmax(np.concatenate([c["p_Pa"].to_numpy()
-                                                 for c in self.cards.values()])))
+                                                 for c in self.card_frames().values()])))
         mass_err = abs(steam_cycle + m_exh) / abs(steam_cycle) if steam_cycle else None
         Q = sum(float(row[c]) for c in row.index if c.startswith("Q_") and "to_wall" not in c)
         energy_err = (abs(H_in + H_ex + Q - w) / abs(H_in) if math.isfinite(H_ex) and H_in
@@ -596,7 +666,7 @@ class SteadyResult(Result):
             "peak_pressure_Pa": p_peak,
             "supply_pressure_Pa": self.chest.p,
             "exhaust_pressure_Pa": self.exhaust.p,
-            "cycles_simulated": int(len(self.cycles)),
+            "cycles_simulated": int(len(self.frame("cycles"))),
             "cycles_to_converge": self.cycles_to_converge,
             "convergence_tolerance": run.fidelity.convergence_tolerance,
             "periodicity_residuals": dict(self.periodicity),
@@ -737,6 +807,7 @@ class TransientResult(Result):
             k_before = int(c.loc[c["t_end_s"] <= t_step, "cycle"].iloc[-1])
         else:
             k_before = int(c["cycle"].iloc[0])
+        import pandas as pd      # a transient's tables are DataFrames (imported on use)
         out = {}
         for label, k in (("before", k_before), ("after", k_last)):
             rows = ts[ts["cycle"] == k]
@@ -750,6 +821,7 @@ class TransientResult(Result):
         return out
 
     def _table_cards(self) -> pd.DataFrame:
+        import pandas as pd
         frames = [df.assign(phase=phase, end=end)[["phase", "end", "V_m3", "p_Pa"]]
                   for phase, d in self.cards().items()
                   for end, df in d.items() if end != "cycle"]
@@ -820,12 +892,12 @@ class SweepResult(Result):
         return out
 
 
-def willans_fit(frame: pd.DataFrame) -> tuple[float, float, float]:
+def willans_fit(frame) -> tuple[float, float, float]:
     """Least-squares Willans line ``steam = a + b * power`` through a sweep.
 
     Parameters
     ----------
-    frame : DataFrame
+    frame : pandas.DataFrame or corliss.frame.Frame
         At least two rows with ``indicated_power_W`` [W] and ``steam_rate_kg_per_h``
         [kg/h].
 

@@ -11,11 +11,9 @@ from __future__ import annotations
 from typing import Callable
 
 from corliss.engine import first_run
-from corliss.engine.mean_value import run_mean_value
 from corliss.engine.model import scene_events
 from corliss.engine.result import Result
 from corliss.engine.steady import run_steady
-from corliss.engine.transient import run_transient
 
 __all__ = ["scene_events", "simulate"]
 
@@ -42,7 +40,11 @@ def simulate(scene, *, portmap_scale: float = 1.0,
     """
     first_run.prepare(scene)
     if scene.run.mode == "transient":
+        # the transient runners (and the governors they import) are loaded by the runs
+        # that use them: a steady run's start is spared their import (no circle here)
         if scene.run.model == "mean_value":
+            from corliss.engine.mean_value import run_mean_value
             return run_mean_value(scene, progress=progress)
+        from corliss.engine.transient import run_transient
         return run_transient(scene, progress=progress)
     return run_steady(scene, portmap_scale=portmap_scale, progress=progress)

@@ -29,9 +29,12 @@ governor's doing.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
+
+if TYPE_CHECKING:      # annotations only: pandas is not imported by a run
+    import pandas as pd
 
 #: Turns averaged for a steady speed (before the step, and at the end).
 STEADY_TURNS = 5

@@ -15,7 +15,6 @@ import time
 from typing import Callable
 
 import numpy as np
-import pandas as pd
 
 from corliss.engine import equilibrium as eq
 from corliss.engine.calibration import marks_coefficient
@@ -26,6 +25,7 @@ from corliss.engine.model import assemble
 from corliss.engine.network import cylinder_prefix, piston_ends
 from corliss.engine.result import SteadyResult
 from corliss.engine.wall import IdealPortWall
+from corliss.frame import Frame
 from corliss.thermo.steam import HEOSSteam
 
 log = logging.getLogger(__name__)
@@ -122,7 +122,7 @@ def _with_totals(row: dict) -> dict:
     return row
 
 
-def _cycle_frame(k: int, theta: np.ndarray, omega: float, ends: dict) -> pd.DataFrame:
+def _cycle_frame(k: int, theta: np.ndarray, omega: float, ends: dict) -> Frame:
     """Time-series rows of cycle ``k`` (from 0): ``ends[end] = (p, T, x, V, m)`` arrays."""
     cols = {"cycle": np.full(theta.size, k + 1),
             "crank_angle_deg": np.degrees(theta + TWO_PI * k),
@@ -130,7 +130,7 @@ def _cycle_frame(k: int, theta: np.ndarray, omega: float, ends: dict) -> pd.Data
     for end, (p, T, x, V, m) in ends.items():
         cols[f"p_{end}_Pa"], cols[f"T_{end}_K"], cols[f"x_{end}_frac"] = p, T, x
         cols[f"V_{end}_m3"], cols[f"m_{end}_kg"] = V, m
-    return pd.DataFrame(cols)
+    return Frame(cols)
 
 
 # --- crank-resolved with port flow -------------------------------------------------
@@ -253,9 +253,9 @@ def _crank_resolved(scene, model, pm, progress, start=None):
                 V = net.volume(i, out_theta)
                 frame[f"p_{vessel}_Pa"] = steam.states(s[2 * i] / V, s[2 * i + 1] / s[2 * i])[0]
         ts.append(frame)
-    timeseries = pd.concat(ts, ignore_index=True)
+    timeseries = Frame.concat(ts)
     final = SteadyStart(y.copy(), None if net.wall_T is None else np.array(net.wall_T, dtype=float))
-    return {"timeseries": timeseries, "cycles": pd.DataFrame(rows), "final_state": final,
+    return {"timeseries": timeseries, "cycles": Frame.from_rows(rows), "final_state": final,
             "cycles_to_converge": converged, "periodicity": residuals, "portmap": pm, "nfev": crank.nfev,
             "clamped_trials": crank.clamped_trials, "clamped_hot": crank.clamped_hot,
             "cylinders": [(("lp_" if scene.compound and c else cylinder_prefix(c)), g, ph)
@@ -383,7 +383,7 @@ def _equilibrium(scene, geo, steam, chest, exhaust, sched, pm=None, progress=Non
         ts.append(frame)
     if progress:      # the ideal-port cycles are algebraic: one report at the end
         progress(len(rows), 0.0)
-    return {"timeseries": pd.concat(ts, ignore_index=True), "cycles": pd.DataFrame(rows),
+    return {"timeseries": Frame.concat(ts), "cycles": Frame.from_rows(rows),
             "cycles_to_converge": converged, "portmap": pm, "nfev": 0}
 
 
@@ -427,8 +427,8 @@ def _ideal_hyperbolic(scene, geo, ev, chest, exhaust):
         order = np.argsort(th, kind="stable")
         data[f"p_{end}_Pa"] = np.interp(grid, th[order], p[order])
         data[f"V_{end}_m3"] = np.interp(grid, th[order], V[order])
-    cards = {end: pd.DataFrame({"frac": (V - geo.clearance_m3[e]) / geo.swept_m3[e],
-                                "V_m3": V, "p_Pa": p})
+    cards = {end: Frame({"frac": (V - geo.clearance_m3[e]) / geo.swept_m3[e],
+                         "V_m3": V, "p_Pa": p})
              for e, (end, (th, V, p)) in enumerate(cols.items())}
-    return {"timeseries": pd.DataFrame(data), "cycles": pd.DataFrame([_with_totals(row)]),
+    return {"timeseries": Frame(data), "cycles": Frame.from_rows([_with_totals(row)]),
             "cycles_to_converge": 1, "portmap": None, "nfev": 0, "ideal_cards": cards}

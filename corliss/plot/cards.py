@@ -51,7 +51,8 @@ def plot_card(result, ax=None, units_system: str | None = None, prefix: str = ""
     p_unit, x_unit = ("psig", "in") if system == "US" else ("barg", "mm")
     geo = {p: g for p, g, _ in result.cylinder_list}[prefix]
     stroke = geo.spec.stroke_m
-    cards = {end: result.cards[prefix + end] for end in ("head", "crank")}
+    held = result.card_frames()            # the cards without pandas
+    cards = {end: held[prefix + end] for end in ("head", "crank")}
     lines = {}
     style = {"head": dict(color="k", lw=1.4, ls="-"), "crank": dict(color="0.25", lw=1.4, ls="--")}
     for end, card in cards.items():
@@ -139,7 +140,7 @@ def plot_crank_effort(result, ax=None, units_system: str | None = None) -> dict:
     if ax is None:
         _, ax = plt.subplots(figsize=(9, 4.5))
     t_unit = "lbf ft" if system == "US" else "N m"
-    ce = result.crank_effort
+    ce = result.frame("crank_effort")
     ang = ce["crank_angle_deg"].to_numpy()
     ang = ang - 360.0 * np.floor(ang[0] / 360.0)
     tq = units.to_unit(ce["torque_N_m"].to_numpy(), t_unit)

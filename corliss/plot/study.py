@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 import numpy as np
-import pandas as pd
 
 from corliss import columns
+from corliss.frame import Frame
 
 
-def _axis(frame: pd.DataFrame, column: str, units_system: str | None):
+def _axis(frame, column: str, units_system: str | None):
     """A response column's values and axis label, in ``units_system`` when its name
     ends in a unit :mod:`corliss.columns` converts."""
     values = frame[column].to_numpy(dtype=float)
@@ -18,14 +18,14 @@ def _axis(frame: pd.DataFrame, column: str, units_system: str | None):
         except KeyError:
             return values, column
     try:
-        conv, col_units = columns.convert_frame(pd.DataFrame({column: values}), units_system)
+        conv, col_units = columns.convert_columns(Frame({column: values}), units_system)
     except KeyError:
         return values, column
     name = conv.columns[0]
     return conv[name].to_numpy(), f"{name} [{col_units[name]}]"
 
 
-def plot_study(points: pd.DataFrame, varied: list[dict], responses: list[str], fig=None,
+def plot_study(points, varied: list[dict], responses: list[str], fig=None,
                units_system: str | None = "US") -> dict:
     """Each response (a row of panels) against each varied key (a column).
 

@@ -9,14 +9,16 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import ClassVar
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
-import pandas as pd
 
 from corliss import columns
 from corliss.engine.result import Result
 from corliss.scene_keys import KeyValue, with_keys
+
+if TYPE_CHECKING:      # annotations only: pandas is not imported by a run
+    import pandas as pd
 
 #: Columns every study table has besides the varied keys and the responses.
 RUN_ID = "run_id"

@@ -30,7 +30,6 @@ from pathlib import Path
 from typing import Callable
 
 import numpy as np
-import pandas as pd
 
 from corliss.engine.model import steady_scene
 from corliss.engine.steady import run_steady
@@ -337,6 +336,7 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
     rows = [row for rws, _, _ in parts for row in rws]
     nfev = sum(p[1] for p in parts)
     tier = next((p[2] for p in parts if p[2] is not None), probe.run.fidelity.properties)
+    import pandas as pd     # a study's table; not imported by the package (a run needs none)
     got = pd.DataFrame(rows, columns=[RUN_ID, STATUS, ERROR, *responses])
     table = pd.concat([got[[RUN_ID]],
                        pd.DataFrame(design.values, columns=columns),
