@@ -259,6 +259,13 @@ def lookup_flagged(tab, rho, u):
             else:
                 hi = T
             Tn = T - ft / dt if dt < 0.0 else lo
+            if dt < 0.0 and abs(Tn - T) < 1e-7:
+                # converged: the next step would be below 1e-12 K (quadratic).  Tested
+                # before the bracket, which the last step may graze by a rounding
+                # error (a bisection there sent it away again: 16 iterations on
+                # average, against 4)
+                T = min(max(Tn, lo), hi)
+                break
             if not Tn > lo:
                 if not lo_known:
                     flo, dlo = _lever(lo, u, v, sT0, sdT, s_vf, s_lnvg, s_uf, s_ug)
