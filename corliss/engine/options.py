@@ -111,7 +111,12 @@ class Fidelity:
 #: 0.13 % off at most against 0.24 %; ``standard``'s with ``ros4`` at 7e-6: 1,870
 #: against 4,022), but on ports 1000 times too large (tests/test_property_tiers.py)
 #: both ran out of the run-time budget, and ``ros4`` at rtol 1e-8 on a compound with
-#: every effect: the presets keep the methods that cope.
+#: every effect: the presets keep the methods that cope.  (Diagnosed on the ports:
+#: RODAS4's stages, whose coefficients reach 12.5, leave the steam table's range and
+#: are clamped in every step of the blow-down, which holds it to steps of 0.001 deg;
+#: ``ros4`` and RODAS3 clamp nothing there but reject every other step at about
+#: 0.01 deg, their error estimates failing as the flux through the huge ports turns
+#: nonlinear within a step.)
 PRESETS: dict[str, Fidelity] = {
     "reference": Fidelity("reference", "heos", "LSODA", 1e-9, 5760, 1e-6, 60, 0.25),
     "standard": Fidelity("standard", "table", "dopri5", 1e-6, 1440, 1e-4, 40, 1.0),
