@@ -14,8 +14,8 @@ Two parts, so that the saturation line is never smeared by interpolation:
   both, so bilinear interpolation is accurate on a modest grid.
 * **wet steam**: exact lever rule on a fine saturation table in T: the state is the
   saturation temperature at which the dryness from volume equals the dryness from
-  energy, ``(u - u_f)(v_g - v_f) = (v - v_f)(u_g - u_f)``, found by bracketed
-  regula falsi (Illinois).
+  energy, ``(u - u_f)(v_g - v_f) = (v - v_f)(u_g - u_f)``, found by Newton's method
+  from the saturated-vapour end, kept inside a bracket (about 4 steps).
 
 Which part applies is decided by the saturated-vapour energy ``u_g`` at the state's
 density.  Every index is clamped, so no input can read outside the arrays: a state
