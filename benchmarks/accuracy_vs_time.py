@@ -11,7 +11,7 @@ scene and reports the speed ratio.
 
 Usage::
 
-    python benchmarks/accuracy_vs_time.py [--repeats 3] [--out benchmarks/results]
+    python benchmarks/accuracy_vs_time.py [--repeats 5] [--out benchmarks/results]
 
 Writes ``accuracy_vs_time.csv`` and ``accuracy_vs_time.png`` in the output directory.
 """
@@ -21,6 +21,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import math
+import os
 import statistics
 import sys
 import time
@@ -50,6 +51,10 @@ def settings(scene):
     for rtol in (1e-3, 1e-4, 1e-5, 1e-6):
         fid = dataclasses.replace(base, name="custom", method="rosenbrock", rtol=rtol)
         out.append((f"table rosenbrock rtol {rtol:.0e}", scene.replace_run(fidelity=fid)))
+    for method, rtols in (("ros4", (1e-4, 1e-5, 7e-6)), ("rodas4", (1e-4, 1e-5, 3e-6))):
+        for rtol in rtols:
+            fid = dataclasses.replace(base, name="custom", method=method, rtol=rtol)
+            out.append((f"table {method} rtol {rtol:.0e}", scene.replace_run(fidelity=fid)))
     for step in (2.0, 1.0, 0.5, 0.25):
         fid = dataclasses.replace(base, name="custom", method="rk4", step_deg=step)
         out.append((f"table rk4 step {step:g} deg", scene.replace_run(fidelity=fid)))
@@ -80,16 +85,26 @@ def marginal_ms_per_cycle(scene, repeats):
 
     Separates the per-cycle price from the fixed set-up (gear tabulation, table load,
     output frames), which the plain wall time per cycle spreads over few cycles.
+    Returns the wall time and the process's CPU time (steadier on a shared machine,
+    where the wall time counts the other processes' turns), and the right-hand-side
+    evaluations of one more cycle.
     """
     if scene.run.model == "ideal":   # algebraic: no cycles to add
+        c0 = time.process_time()
         r = corliss.simulate(scene)
-        return 1e3 * r.summary["wall_time_s"]
-    t = []
+        return 1e3 * r.summary["wall_time_s"], 1e3 * (time.process_time() - c0), 0.0
+    t, c, n = [], [], []
     for _ in range(repeats):
-        t2 = corliss.simulate(scene.replace_run(cycles=2)).wall_time_s
-        t6 = corliss.simulate(scene.replace_run(cycles=6)).wall_time_s
-        t.append((t6 - t2) / 4.0)
-    return 1e3 * statistics.median(t)
+        c0 = time.process_time()
+        r2 = corliss.simulate(scene.replace_run(cycles=2))
+        c1 = time.process_time()
+        r6 = corliss.simulate(scene.replace_run(cycles=6))
+        c2 = time.process_time()
+        t.append((r6.wall_time_s - r2.wall_time_s) / 4.0)
+        c.append(((c2 - c1) - (c1 - c0)) / 4.0)
+        n.append((r6.summary.get("rhs_evaluations", 0) - r2.summary.get("rhs_evaluations", 0))
+                 / 4.0)
+    return 1e3 * statistics.median(t), 1e3 * statistics.median(c), statistics.median(n)
 
 
 def first_run_cost(scene_path) -> dict:
@@ -145,7 +160,7 @@ def errors(r, ref):
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--repeats", type=int, default=5)
     ap.add_argument("--out", default=str(HERE / "results"))
     args = ap.parse_args(argv)
     out = Path(args.out)
@@ -165,14 +180,17 @@ def main(argv=None) -> int:
             for _ in range(args.repeats):
                 r = corliss.simulate(sc)
                 times.append(r.summary["wall_time_s"] / r.summary["cycles_simulated"])
+            wall, cpu, nfev = marginal_ms_per_cycle(sc, args.repeats)
             row = {"scene": sname, "setting": label,
                    "reference_halving_change_pct": 100 * halving[sname],
                    "ms_per_cycle": 1e3 * statistics.median(times),
-                   "marginal_ms_per_cycle": marginal_ms_per_cycle(sc, args.repeats),
+                   "marginal_ms_per_cycle": wall, "marginal_cpu_ms_per_cycle": cpu,
+                   "marginal_rhs_per_cycle": nfev,
+                   "load_average_1min": os.getloadavg()[0],
                    "cycles": r.summary["cycles_simulated"], **errors(r, ref)}
             rows.append(row)
             print(f"  {label:28s} {row['ms_per_cycle']:8.2f} ms/cycle "
-                  f"({row['marginal_ms_per_cycle']:6.2f} marginal)  power err "
+                  f"({row['marginal_ms_per_cycle']:6.2f} marginal, {cpu:6.2f} CPU)  power err "
                   f"{row['err_power_pct']:.4f} %  steam err {row['err_steam_rate_pct']:.4f} %",
                   file=sys.stderr)
     sys.path.insert(0, str(HERE))

@@ -42,7 +42,7 @@ from corliss.thermo.steam_table import CLAMP_CODES, CLAMP_HIGH_ENERGY, kappa_at
 
 log = logging.getLogger(__name__)
 
-COMPILED_CODES = {"dopri5": 0, "rk4": 1, "rosenbrock": 2}
+COMPILED_CODES = {"dopri5": 0, "rk4": 1, "rosenbrock": 2, "ros4": 3, "rodas3": 4, "rodas4": 5}
 
 
 class CrankResolved:

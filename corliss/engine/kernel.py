@@ -5,7 +5,7 @@ ends, chest) joined by ports, each with a mass and energy balance.  The network 
 tuple of plain arrays (:meth:`corliss.engine.network.Network.arrays`); one call
 integrates a whole cycle.  :func:`derivatives` takes the properties of every node as
 given, so the reference path (HEOS, called from Python) and the compiled tiers share
-one implementation of the physics.  Three integrators:
+one implementation of the physics.  The integrators:
 
 * ``"dopri5"``: Dormand-Prince 5(4), adaptive, with the usual error norm
   ``max |err_i| / (atol_i + rtol |y_i|)``, step-size control with safety 0.9 and
@@ -19,7 +19,16 @@ one implementation of the physics.  Three integrators:
   (:meth:`Network.column_colors`; the quadratures do not feed back).  Pressure
   equalisation through an open port is stiff (an eigenvalue near -300 per radian on
   the default engine), which holds the explicit methods to steps of about 0.6 deg
-  whatever their tolerance; the Rosenbrock method steps over it.
+  whatever their tolerance; the Rosenbrock method steps over it;
+* ``"ros4"``, ``"rodas3"``, ``"rodas4"``: Rosenbrock methods of higher order from
+  their tableaus (:data:`ROS_TABLEAUS`, one compiled integrator :func:`cycle_ros`),
+  on the same Jacobian: Shampine's A-stable 4(3) pair, and the L-stable, stiffly
+  accurate RODAS3 (order 3) and RODAS4 (order 4).  On the accuracy study's three
+  scenes they reach either preset's accuracy for a half to two thirds of its
+  evaluations (the README's "Accuracy and time"), but on a very stiff network
+  (ports 1000 times too large) they ran out of the run-time budget where the
+  second-order method takes 5,000 evaluations a cycle, so they are offered, not
+  presets.
 
 Output samples between steps come from cubic Hermite interpolation on the states and
 derivatives at the step ends (third-order, well inside the step error).
@@ -55,7 +64,7 @@ from corliss.thermo.steam_table import (CLAMP_HIGH_ENERGY, PARAMS, kappa_at, loo
 
 log = logging.getLogger(__name__)
 #: Revision of the inlined property and port-flow code (see the module's docstring).
-DEPENDENCY_REVISION = 10
+DEPENDENCY_REVISION = 11
 TIER_TABLE, TIER_PERFECT = 0, 1
 TWO_PI = 2.0 * math.pi
 #: Clamps on trial states: integrators probe states with no steam (a negative mass in
@@ -1357,7 +1366,7 @@ def cycle_rk4(y0, stops, out_theta, step, net, tier, tab, perf, max_rhs):
 
 @njit(cache=True)
 def cycle_rosenbrock(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, owner,
-                     max_rhs):
+                     max_rhs, jac_age):
     """:func:`integrate_cycle` with the Rosenbrock 2(3) pair of ode23s (module docstring).
 
     Parameters
@@ -1389,6 +1398,10 @@ def cycle_rosenbrock(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, col
         Which column of each colour moves each row; shape (colours, n_state).
     max_rhs : int
         The run-time budget: most right-hand-side evaluations.
+    jac_age : int
+        Accepted steps a Jacobian serves (:data:`JACOBIAN_AGE`); it is computed
+        afresh at every segment's start and after a step rejected on a Jacobian
+        older than the step.
 
     Returns
     -------
@@ -1445,13 +1458,20 @@ def cycle_rosenbrock(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, col
         segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att)
         nfev += 1
         h = min(h_prev, b - a) if h_prev > 0.0 else initial_step(f0, y, atol, rtol, b - a)
+        age = jac_age          # steps the Jacobian has served: none yet in this segment
+        h_w = -1.0             # the step W was inverted for
         while t < b:
             if t + h > b or b - (t + h) < 1e-12:
                 h = b - t
-            nfev += _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr,
-                              cell, att, yp, fp, dl)
+            if age >= jac_age:
+                nfev += _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf,
+                                  pr, cell, att, yp, fp, dl)
+                age = 0
+                h_w = -1.0
             hd = h * _D
-            _w_inverse(J, hd, Winv, A)
+            if h != h_w:
+                _w_inverse(J, hd, Winv, A)
+                h_w = h
             for i in range(n):
                 x[i] = f0[i] + hd * T[i]
             _w_solve(J, Winv, hd, x, K[0])
@@ -1489,10 +1509,14 @@ def cycle_rosenbrock(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, col
                 copy_into(f0, f1)
                 h_prev = h * step_factor(err, 0.8, -1.0 / 3.0)
                 h = h_prev
-            elif err <= 1.0:
-                h = 0.5 * h      # accurate, but through a state the properties do not hold
+                age += 1
             else:
-                h = h * max(0.2, 0.8 * err ** (-1.0 / 3.0))
+                if age > 0:
+                    age = jac_age    # rejected on an old Jacobian: a fresh one
+                if err <= 1.0:
+                    h = 0.5 * h  # accurate, but through a state the properties do not hold
+                else:
+                    h = h * max(0.2, 0.8 * err ** (-1.0 / 3.0))
             if not (h > 0.0) or not math.isfinite(y[0]) or nfev > max_rhs:
                 return y, samples, nfev, False, clamps
     while io < out_theta.shape[0]:
@@ -1501,9 +1525,275 @@ def cycle_rosenbrock(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, col
     return y, samples, nfev, True, clamps
 
 
-#: The compiled integrators by code (0 dopri5, 1 rk4, 2 Rosenbrock ode23s): separate
+def _tableau(gamma, A, C, c, d, b, e, expo):
+    """A Rosenbrock tableau as the arrays :func:`cycle_ros` takes, in the form
+    ``(I/(gamma h) - J) u_i = f(t + c_i h, y + sum_j a_ij u_j) + sum_j c_ij u_j / h
+    + d_i h df/dt``, ``y1 = y + sum_i b_i u_i``, error ``sum_i e_i u_i`` (Hairer and
+    Wanner, *Solving ODEs II*, Sec. IV.7, eq. 7.25), with the step's exponent of the
+    error ``expo``.  ``same[i]`` says when stage i's argument is one already
+    evaluated: 1 the step's start (no evaluation), 2 the stage before."""
+    s_ = len(b)
+    At = np.zeros((s_, s_))
+    Ct = np.zeros((s_, s_))
+    for i in range(1, s_):
+        At[i, :i] = A[i - 1]
+        Ct[i, :i] = C[i - 1]
+    ct = np.array(c, dtype=float)
+    same = np.zeros(s_, dtype=np.int64)
+    for i in range(1, s_):
+        if ct[i] == 0.0 and not At[i].any():
+            same[i] = 1
+        elif ct[i] == ct[i - 1] and np.array_equal(At[i, :i - 1], At[i - 1, :i - 1]) \
+                and At[i, i - 1] == 0.0:
+            same[i] = 2
+    return (float(gamma), At, Ct, ct, np.array(d, dtype=float), np.array(b, dtype=float),
+            np.array(e, dtype=float), same, float(expo))
+
+
+#: Rosenbrock tableaus of :func:`cycle_ros` by method name.
+#: ``ros4``: Shampine's 4(3) pair (ACM Trans. Math. Softw. 8, 1982; Press et al.,
+#: *Numerical Recipes*, 2nd ed., Sec. 16.6): four stages, three evaluations, A-stable,
+#: its stability function 1/3 at infinity.
+#: ``rodas3``: Sandu et al.'s RODAS3 (Atmos. Environ. 31, 1997): four stages, two
+#: evaluations (the second stage's argument is the step's start), order 3, L-stable
+#: and stiffly accurate, its error the last stage.
+#: ``rodas4``: Hairer and Wanner's RODAS4 (*Solving ODEs II*, Sec. VI.4): six stages,
+#: five evaluations, order 4, L-stable and stiffly accurate.
+ROS_TABLEAUS = {
+    "ros4": _tableau(0.5, [[2.0], [48.0 / 25.0, 6.0 / 25.0], [48.0 / 25.0, 6.0 / 25.0, 0.0]],
+                     [[-8.0], [372.0 / 25.0, 12.0 / 5.0],
+                      [-112.0 / 125.0, -54.0 / 125.0, -2.0 / 5.0]],
+                     [0.0, 1.0, 0.6, 0.6], [0.5, -1.5, 121.0 / 50.0, 29.0 / 250.0],
+                     [19.0 / 9.0, 0.5, 25.0 / 108.0, 125.0 / 108.0],
+                     [17.0 / 54.0, 7.0 / 36.0, 0.0, 125.0 / 108.0], -0.25),
+    "rodas3": _tableau(0.5, [[0.0], [2.0, 0.0], [2.0, 0.0, 1.0]],
+                       [[4.0], [1.0, -1.0], [1.0, -1.0, -8.0 / 3.0]],
+                       [0.0, 0.0, 1.0, 1.0], [0.5, 1.5, 0.0, 0.0], [2.0, 0.0, 1.0, 1.0],
+                       [0.0, 0.0, 0.0, 1.0], -1.0 / 3.0),
+    "rodas4": _tableau(
+        0.25,
+        [[1.544],
+         [0.9466785280815826, 0.2557011698983284],
+         [3.314825187068521, 2.896124015972201, 0.9986419139977817],
+         [1.221224509226641, 6.019134481288629, 12.53708332932087, -0.687886036105895],
+         [1.221224509226641, 6.019134481288629, 12.53708332932087, -0.687886036105895, 1.0]],
+        [[-5.6688],
+         [-2.430093356833875, -0.2063599157091915],
+         [-0.1073529058151375, -9.594562251023355, -20.47028614809616],
+         [7.496443313967647, -10.24680431464352, -33.99990352819905, 11.7089089320616],
+         [8.083246795921522, -7.981132988064893, -31.52159432874371, 16.31930543123136,
+          -6.058818238834054]],
+        [0.0, 0.386, 0.21, 0.63, 1.0, 1.0], [0.25, -0.1043, 0.1035, -0.0362, 0.0, 0.0],
+        [1.221224509226641, 6.019134481288629, 12.53708332932087, -0.687886036105895,
+         1.0, 1.0],
+        [0.0, 0.0, 0.0, 0.0, 0.0, 1.0], -0.25),
+}
+
+
+@njit(cache=True)
+def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, owner,
+              max_rhs, jac_age, gam, tA, tC, tc, td, tb, te, same, expo):
+    """:func:`integrate_cycle` with a Rosenbrock method of a tableau (:data:`ROS_TABLEAUS`).
+
+    On the same finite-difference Jacobian as :func:`cycle_rosenbrock`; the
+    derivative at the step's end (for the next step and the output) is evaluated only
+    for a step whose error passes.
+
+    Parameters
+    ----------
+    y0 : ndarray
+        The state at ``stops[0]``; shape (n_state,).
+    stops : ndarray
+        Shaft angles [rad], increasing: the segments between them are integrated
+        with a restart at each (:meth:`corliss.engine.network.Network.stops`).
+    out_theta : ndarray
+        Shaft angles [rad] where the state is sampled, increasing.
+    rtol : float
+        Relative tolerance [-].
+    atol : ndarray
+        Absolute tolerances, in each component's unit; shape (n_state,).
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    tier : int
+        The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.
+    tab : tuple
+        The steam table's arrays (:meth:`corliss.thermo.steam_table.SteamTable.arrays`).
+    perf : ndarray
+        The perfect tier's gas constant [J/(kg K)], ``cv`` [J/(kg K)] and ``u_ref``
+        [J/kg]; shape (3,) (unused on the table tier).
+    color : ndarray of int64
+        The colour of each dynamic column
+        (:meth:`corliss.engine.network.Network.column_colors`).
+    owner : ndarray of int64
+        Which column of each colour moves each row; shape (colours, n_state).
+    max_rhs : int
+        The run-time budget: most right-hand-side evaluations.
+    jac_age : int
+        Accepted steps a Jacobian serves (:data:`JACOBIAN_AGE`), as
+        :func:`cycle_rosenbrock`.
+    gam : float
+        The tableau's diagonal gamma [-].
+    tA, tC : ndarray
+        Its stage coefficients a_ij and c_ij, shape (stages, stages), below the
+        diagonal [-].
+    tc, td, tb, te : ndarray
+        Its stage angles c_i (fractions of the step), the coefficients d_i of the time
+        derivative, the weights b_i of the solution and e_i of the error [-]; shape
+        (stages,).
+    same : ndarray of int64
+        Per stage: 0 evaluate, 1 its argument is the step's start, 2 the stage
+        before's; shape (stages,).
+    expo : float
+        The exponent of the step's ratio to its error, ``-1/(order + 1)`` of the
+        error estimate [-].
+
+    Returns
+    -------
+    y_end : ndarray
+        The state at ``stops[-1]``; shape (n_state,).
+    samples : ndarray
+        ``samples[:, k]`` the state at ``out_theta[k]``; shape (n_state, outputs).
+    nfev : int
+        Right-hand-side evaluations spent.
+    ok : bool
+        False when the step size collapsed, the state went non-finite or more than
+        ``max_rhs`` evaluations were spent.
+    clamps : ndarray
+        Evaluations that clamped a state, shape (6,), indexed by ``CL_*``: at visited
+        states (the ends of accepted steps) and at trial states (stages, probes,
+        rejected steps) apart.
+    """
+    n = y0.shape[0]
+    ndyn = color.shape[0]
+    ns = tb.shape[0]
+    y = y0.copy()
+    samples = np.full((n, out_theta.shape[0]), np.nan)
+    f0 = np.empty(n)
+    U = np.empty((ns, n))
+    f1 = np.empty(n)
+    ytmp = np.empty(n)
+    tmp = np.empty(n)
+    J = np.zeros((n, ndyn))
+    Winv = np.empty((ndyn, ndyn))
+    A = np.empty((ndyn, ndyn))
+    T = np.empty(n)
+    x = np.empty(n)
+    yscale = atol / rtol
+    yp = np.empty(n)
+    fp = np.empty(n)
+    dl = np.empty(ndyn)
+    pr = np.empty((PR_ROWS, net[4].shape[0]))
+    cell = np.empty((net[17].shape[0], 4))
+    nfev = 0
+    clamps = np.zeros(6)
+    clamps[CL_NODE] = -1.0
+    att = np.zeros(4)
+    att_end = np.zeros(4)
+    io = 0
+    while io < out_theta.shape[0] and out_theta[io] <= stops[0]:
+        put_column(samples, io, y)
+        io += 1
+    h_prev = 0.0
+    for seg in range(stops.shape[0] - 1):
+        a = stops[seg]
+        b = stops[seg + 1]
+        if b - a <= 0.0:
+            continue
+        t = a
+        segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att)
+        nfev += 1
+        h = min(h_prev, b - a) if h_prev > 0.0 else initial_step(f0, y, atol, rtol, b - a)
+        age = jac_age          # accepted steps since J and T were computed
+        h_w = -1.0             # the step W was inverted for
+        while t < b:
+            if t + h > b or b - (t + h) < 1e-12:
+                h = b - t
+            if age >= jac_age:
+                nfev += _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf,
+                                  pr, cell, att, yp, fp, dl)
+                age = 0
+                h_w = -1.0
+            hd = h * gam
+            if h != h_w:
+                _w_inverse(J, hd, Winv, A)
+                h_w = h
+            # u_i = hd W^-1 (...), W = I - hd J: the stages of I/(gamma h) - J
+            for st in range(ns):
+                if st == 0 or same[st] == 1:
+                    copy_into(fp, f0)
+                elif same[st] == 0:
+                    for i in range(n):
+                        acc = y[i]
+                        for j in range(st):
+                            acc += tA[st, j] * U[j, i]
+                        ytmp[i] = acc
+                    rhs(t + tc[st] * h, ytmp, fp, net, tier, tab, perf, pr, cell)
+                    tally_clamps(pr, t + tc[st] * h, att)
+                    nfev += 1
+                for i in range(n):
+                    acc = 0.0
+                    for j in range(st):
+                        acc += tC[st, j] * U[j, i]
+                    x[i] = fp[i] + h * td[st] * T[i] + acc / h
+                _w_solve(J, Winv, hd, x, U[st])
+                for i in range(n):
+                    U[st, i] *= hd
+            err = 0.0
+            for i in range(n):
+                acc = y[i]
+                e = 0.0
+                for j in range(ns):
+                    acc += tb[j] * U[j, i]
+                    e += te[j] * U[j, i]
+                ytmp[i] = acc
+                e = abs(e) / (atol[i] + rtol * max(abs(y[i]), abs(acc)))
+                if e > err:
+                    err = e
+            accepted = err <= 1.0 or h < 1e-12
+            if accepted:
+                rhs(t + h, ytmp, f1, net, tier, tab, perf, pr, cell)
+                tally_clamps(pr, t + h, att_end)
+                nfev += 1
+                # a step whose end needed the properties clamped is retried shorter
+                accepted = visited_clamp_off(att_end) == 0 or h < 1e-12
+            settle_trial(att, clamps)
+            settle_clamps(att_end, accepted, clamps)
+            if accepted:
+                t1 = t + h
+                io = emit_samples(io, out_theta, t, y, f0, t1, ytmp, f1, samples, tmp)
+                t = t1
+                copy_into(y, ytmp)
+                copy_into(f0, f1)
+                age += 1
+                h_prev = h * step_factor(err, 0.9, expo)
+                h = h_prev
+            else:
+                if age > 0:
+                    age = jac_age    # rejected on an old Jacobian: a fresh one
+                if err <= 1.0:
+                    h = 0.5 * h  # accurate, but through a state the properties do not hold
+                else:
+                    h = h * max(0.2, 0.9 * err ** expo)
+            if not (h > 0.0) or not math.isfinite(y[0]) or nfev > max_rhs:
+                return y, samples, nfev, False, clamps
+    while io < out_theta.shape[0]:
+        put_column(samples, io, y)
+        io += 1
+    return y, samples, nfev, True, clamps
+
+
+#: Accepted steps of the Rosenbrock methods one Jacobian serves (1: a fresh one every
+#: step; the retry of a rejected step reuses the one of its start, which is the same).
+#: Serving 2 or 4 steps cost more evaluations than it saved on the default card (more
+#: and shorter steps), at ``fast``'s tolerance and at ``standard``'s.
+JACOBIAN_AGE = 1
+
+#: The tableau methods of :func:`cycle_ros`, by code from 3.
+ROS_METHODS = ("ros4", "rodas3", "rodas4")
+#: The compiled integrators by code (0 dopri5, 1 rk4, 2 Rosenbrock ode23s, 3 and on
+#: :func:`cycle_ros` with the tableau of :data:`ROS_METHODS`): separate
 #: functions, so that a run compiles only the one it uses.
-CYCLE_KERNELS = (cycle_dopri5, cycle_rk4, cycle_rosenbrock)
+CYCLE_KERNELS = (cycle_dopri5, cycle_rk4, cycle_rosenbrock, cycle_ros, cycle_ros, cycle_ros)
 
 
 def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, tab, perf,
@@ -1522,7 +1812,8 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
     out_theta : ndarray
         Shaft angles [rad] where the state is sampled, increasing.
     method : int
-        0 dopri5, 1 rk4, 2 Rosenbrock ode23s.
+        0 dopri5, 1 rk4, 2 Rosenbrock ode23s, 3 and on the Rosenbrock tableaus of
+        :data:`ROS_METHODS` (``ros4``, ``rodas3``, ``rodas4``).
     rtol : float
         Relative tolerance [-] (the adaptive methods).
     atol : ndarray
@@ -1566,8 +1857,12 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
         return cycle_dopri5(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, max_rhs)
     if method == 1:
         return cycle_rk4(y0, stops, out_theta, step, net, tier, tab, perf, max_rhs)
+    if method >= 3:
+        gam, tA, tC, tc, td, tb, te, same, expo = ROS_TABLEAUS[ROS_METHODS[method - 3]]
+        return cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, owner,
+                         max_rhs, JACOBIAN_AGE, gam, tA, tC, tc, td, tb, te, same, expo)
     return cycle_rosenbrock(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color,
-                            owner, max_rhs)
+                            owner, max_rhs, JACOBIAN_AGE)
 
 
 def uncached(dispatcher) -> bool | None:

@@ -14,8 +14,8 @@ Two parts, so that the saturation line is never smeared by interpolation:
   both, so bilinear interpolation is accurate on a modest grid.
 * **wet steam**: exact lever rule on a fine saturation table in T: the state is the
   saturation temperature at which the dryness from volume equals the dryness from
-  energy, ``(u - u_f)(v_g - v_f) = (v - v_f)(u_g - u_f)``, found by bracketed
-  regula falsi (Illinois).
+  energy, ``(u - u_f)(v_g - v_f) = (v - v_f)(u_g - u_f)``, found by Newton's method
+  from the saturated-vapour end, kept inside a bracket (about 4 steps).
 
 Which part applies is decided by the saturated-vapour energy ``u_g`` at the state's
 density.  Every index is clamped, so no input can read outside the arrays: a state
@@ -375,6 +375,13 @@ def lookup_flagged(tab, rho, u):
             else:
                 hi = T
             Tn = T - ft / dt if dt < 0.0 else lo
+            if dt < 0.0 and abs(Tn - T) < 1e-7:
+                # converged: the next step would be below 1e-12 K (quadratic).  Tested
+                # before the bracket, which the last step may graze by a rounding
+                # error (a bisection there sent it away again: 16 iterations on
+                # average, against 4)
+                T = min(max(Tn, lo), hi)
+                break
             if not Tn > lo:
                 if not lo_known:
                     flo, dlo = _lever(lo, u, v, sT0, sdT, s_vf, s_lnvg, s_uf, s_ug)
