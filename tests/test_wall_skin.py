@@ -155,7 +155,10 @@ def test_missing_water_rises_as_the_exhaust_temperature_falls():
     (head end): the water left on the wall at release (two thirds of what admission
     condensed) boils off in the exhaust while the surface is still 30-65 K above the
     exhaust's temperature, so the water, not the exhaust's temperature, sets how far
-    the wall cools.  Strict: this fails once the model does what the period says."""
+    the wall cools.  A 1-D conduction grid under the surface (wall.ConductionGrid, with
+    ideal ports) leaves it so: the heat the exhaust takes is the latent heat of the film
+    left at release, and the surface the next admission meets is warmer the lower the
+    exhaust.  Strict: this fails once the model does what the period says."""
     m = [_missing(_run(key, valve_gear={"setting": 0.4}, exhaust=ex))
          for key, ex in (("cut0.4", {}), ("ex10", {"pressure": "10 psia"}),
                          ("ex4", {"pressure": "4 psia"}))]
