@@ -121,7 +121,8 @@ RUN = group(
     Key("max_cycles", "integer", "Most cycles run to reach a periodic state.",
         default=Derived("the fidelity preset's"), within=(2, 1000)),
     Key("step", "angle", "Crank-angle step of the output and of fixed-step integrators, "
-        "0.01 to 10 deg.", default=Derived("the fidelity preset's"), unit="deg"),
+        "0.01 to 10 deg.", default=Derived("the fidelity preset's"),
+        within=(math.radians(0.01), math.radians(10.0)), unit="deg"),
     Key("portmap_points", "integer", "Crank angles the port areas are tabulated at.",
         default=Derived("the fidelity preset's"), within=(90, 100_000)),
     Key("cycles", "integer", "Run exactly this many cycles (steady only); absent: until "

@@ -205,7 +205,8 @@ _BALLS = group(
 _TOP_STOP = group(
     "top_stop", "The top stop: an arm angle or a sleeve lift (one of them).",
     Key("arm_angle_at_top", "angle", "Arm angle at the top stop, above the rest angle and "
-        "below 90 deg; or give sleeve_lift.", default=None, within=None, unit="deg"),
+        "below 90 deg; or give sleeve_lift.", default=None,
+        within=(-0.5 * math.pi, 0.5 * math.pi), unit="deg"),
     Key("sleeve_lift", "length", "The sleeve's lift from rest to the top stop; or give "
         "arm_angle_at_top.", default=None, within=POSITIVE_LENGTH, unit="in"),
 )
@@ -231,7 +232,7 @@ def _flyball_keys(name: str, loaded: str, acts_on: str, corliss: bool = False) -
     safety = () if not corliss else (
         Key("safety_lift", "length", "How far above rest the sleeve must be before the trip "
             "cams work; below it the safety cam holds the hooks off (Spangler Art. 155). Zero: "
-            "no safety range.", unit="in"),
+            "no safety range.", within=ZERO_OR_MORE, unit="in"),
         Key("safety_setting", "number", "The gear's setting of no admission, held in the "
             "safety range.", when="with safety_lift above zero (required there)"))
     return group(
@@ -479,7 +480,7 @@ SPRING_KEYS = group(
     Key("sleeve_arm", "length", "The bell-crank's sleeve arm.", within=POSITIVE_LENGTH,
         unit="in"),
     Key("arm_angle_at_rest", "angle", "Bell-crank angle at rest, between -90 and 90 deg, the "
-        "ball outside the spindle axis.", unit="deg"),
+        "ball outside the spindle axis.", within=(-0.5 * math.pi, 0.5 * math.pi), unit="deg"),
     _TOP_STOP,
     Key("spring_stiffness", "stiffness", "Stiffness of the spring on the sleeve (zero or "
         "more).", unit="lbf/in", within=ZERO_OR_MORE),
