@@ -620,7 +620,7 @@ LINK_MOTION_KEYS = group(
     Key("half_link", "length", "Half the link's chord c.", within=POSITIVE_LENGTH, unit="in"),
     Key("block", "length", "Offset u of the block from the link's middle, the notch: from "
         "half_link (full gear ahead) through 0 (mid gear) to -half_link (full gear astern); "
-        "the cut-off follows from it (corliss design SCENE --cutoff F finds the u).",
+        "the cut-off follows from it (corliss design SCENE --cutoff F gives u / half_link).",
         unit="in"),
     Key("radius_rod", "length", "Radius rod, longer than the half link; absent: infinitely "
         "long.", default=None, within=POSITIVE_LENGTH, unit="in",
