@@ -213,6 +213,17 @@ def test_explain_an_unknown_key_suggests_the_closest(capsys):
     assert "valve_gear.lap" in err and "closest" in err
 
 
+def test_explain_a_key_without_its_section_explains_every_table_s(capsys):
+    """``corliss explain lap``: the key in every table that declares it, the gear's
+    ``[valve_gear]`` first, and nothing for a name no table has."""
+    assert cli.main(["explain", "lap"]) == 0
+    out = capsys.readouterr().out
+    assert out.index("valve_gear.lap") < out.index("lp_valve_gear.lap")
+    assert cli.main(["explain", "bore"]) == 0
+    assert capsys.readouterr().out.startswith("engine.bore")
+    assert cli.main(["explain", "xyzzy"]) == 2
+
+
 def test_list_keys_of_a_governor(capsys):
     assert cli.main(["list", "keys", "porter"]) == 0
     out = capsys.readouterr().out
