@@ -449,28 +449,6 @@ SLIDE_VALVE_KEYS = group(
 )
 
 
-def pair(t: Table, key: str, kind: str, default=None) -> tuple[float, float]:
-    """A value given once for both ends, or as [head, crank].
-
-    Parameters
-    ----------
-    t : Table
-        The table, bound to a group declaring ``key`` once or per end.
-    key : str
-        The key.
-    kind : str
-        Its kind of quantity (as declared).
-    default : str, optional
-        Ignored: the declared default serves.
-
-    Returns
-    -------
-    (float, float)
-        The (head, crank) values [SI].
-    """
-    return t.get(key)
-
-
 def parse_slide_valve(t: Table) -> SlideValveSpec:
     """Read a ``[valve_gear] type = "slide_valve"`` table (see the scene example).
 
