@@ -183,30 +183,3 @@ def convert_columns(df, system: str, barometer_Pa: float = units.STANDARD_ATMOSP
         out[name] = values
         col_units[name] = unit + (" absolute" if sfx == "Pa" else "")
     return Frame(out), col_units
-
-
-def convert_value(key: str, value: float, system: str) -> tuple[str, float, str]:
-    """One summary value converted into a system of units.
-
-    Parameters
-    ----------
-    key : str
-        The summary key, ending in its SI unit (``indicated_power_W``).
-    value : float
-        The value in that unit.
-    system : str
-        ``"US"`` or ``"SI"``, as for :func:`convert_frame` (pressures come out
-        absolute).
-
-    Returns
-    -------
-    key : str
-        The key with the output unit (``indicated_power_hp``).
-    value : float
-        The value in that unit.
-    unit : str
-        The output unit (``"hp"``).
-    """
-    frame, col_units = convert_columns(Frame({key: [value]}), system)
-    name = frame.columns[0]
-    return name, float(frame[name].iloc[0]), col_units[name]

@@ -488,6 +488,11 @@ def _compound(t: Table, hp: EngineSpec, lp_gear_data, hp_gear_type, hp_gear,
         raise InputError(t.key("lp_connecting_rod"), t.raw("lp_connecting_rod", None),
                          "a connecting rod longer than the LP crank")
     prd = t.get("lp_piston_rod_diameter", f"{hp.piston_rod_diameter_m} m")
+    if not prd < bore:
+        raise InputError(t.key("lp_piston_rod_diameter"),
+                         t.raw("lp_piston_rod_diameter", f"{hp.piston_rod_diameter_m} m"),
+                         f"an LP piston rod diameter less than the LP bore "
+                         f"({bore / units.INCH_m:.4g} in)")
     clearance = _pair_fraction(t, "lp_clearance") if t.has("lp_clearance") else hp.clearance
     lp = dataclasses.replace(hp, bore_m=bore, stroke_m=stroke, connecting_rod_m=rod,
                              piston_rod_diameter_m=prd, clearance=clearance,

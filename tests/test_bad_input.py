@@ -69,6 +69,16 @@ def test_a_quantity_string_is_read_by_a_grammar_that_only_refuses(value, why, tm
     assert why in err
 
 
+def test_an_lp_piston_rod_as_wide_as_the_lp_bore_is_refused(tmp_path, capsys):
+    """The LP rod takes its area from the LP crank end: one as wide as the 14 in LP
+    bore (or the HP's rod, inherited, on a smaller LP) leaves no piston there."""
+    path = _mutated(tmp_path, "marks-compound-9-14x14", "compound", "lp_piston_rod_diameter",
+                    '"14 in"')
+    err = _refused(["run", str(path)], tmp_path / "out", capsys,
+                   "compound.lp_piston_rod_diameter")
+    assert "less than the LP bore (14 in)" in err
+
+
 def test_an_infinite_radius_rod_is_refused(tmp_path, capsys):
     path = _mutated(tmp_path, "walschaerts-locomotive", "valve_gear", "radius_rod", '"1e999 in"')
     _refused(["run", str(path)], tmp_path / "out", capsys, "valve_gear.radius_rod")
