@@ -58,13 +58,13 @@ import numpy as np
 from numba import njit
 
 from corliss.logs import NOTICE
-from corliss.thermo.orifice import port_flow
-from corliss.thermo.steam_table import (CLAMP_HIGH_ENERGY, PARAMS, kappa_at, lookup_flagged,
-                                        t_sat)
+from corliss.thermo.orifice import port_flow, port_flow_partials
+from corliss.thermo.steam_table import (CLAMP_HIGH_ENERGY, PARAMS, kappa_at, kappa_partials,
+                                        lookup_flagged, lookup_partials, t_sat)
 
 log = logging.getLogger(__name__)
 #: Revision of the inlined property and port-flow code (see the module's docstring).
-DEPENDENCY_REVISION = 11
+DEPENDENCY_REVISION = 13
 TIER_TABLE, TIER_PERFECT = 0, 1
 TWO_PI = 2.0 * math.pi
 #: Clamps on trial states: integrators probe states with no steam (a negative mass in
@@ -900,35 +900,173 @@ def dopri_error(y, ynew, K, h, atol, rtol):
 
 
 @njit(cache=True)
-def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, cell, att,
-              yp, fp, dl):
-    """Finite-difference Jacobian of the dynamic columns, and the time derivative.
+def _exact_jacobian_holds(net):
+    """Whether :func:`_jacobian_exact` covers the network's right-hand side: no wall
+    heat that depends on the state (none, or Marks's schedule); the film and wall
+    temperature models are differentiated by finite differences."""
+    heat = net[19]
+    for i in range(heat.shape[0]):
+        if heat[i, 0] != 0.0 and heat[i, 0] != 3.0:
+            return False
+    return True
 
-    Columns of one colour are perturbed together (their rows do not overlap), so a
-    single cylinder costs two evaluations, plus one for the time derivative.  Clamped
-    evaluations go into the step's tally ``att``; ``yp``, ``fp`` (length of the state)
-    and ``dl`` (of the dynamic states) are scratch.
+
+@njit(cache=True)
+def _jacobian_exact(t, y, J, net, tier, tab, perf, pr, cell, jd):
+    """The Jacobian of :func:`rhs` over the dynamic columns from the derivatives of
+    its parts, for a network :func:`_exact_jacobian_holds` covers.
+
+    Each node's pressure, density, enthalpy and port-flow exponent depend on its own
+    mass m and energy E alone, through rho = m/V and u = E/m: their partials in
+    (rho, u) come from the table's own interpolation
+    (:func:`corliss.thermo.steam_table.lookup_partials`,
+    :func:`~corliss.thermo.steam_table.kappa_partials`) or the perfect gas's closed
+    form, and go to (m, E) by the chain rule (none in a coordinate the state's clamp
+    holds).  Each node's work term ``-p dV/dtheta`` then moves its energy row and work
+    quadrature; each edge's flow (:func:`corliss.thermo.orifice.port_flow_partials`)
+    and the enthalpy it carries (of the side it leaves) move the rows of its two ends
+    and its quadratures.  ``pr`` is written with the properties at ``y`` and ``jd``
+    (shape (8, nodes)) with their partials.
+    """
+    nv = net[4].shape[0]
+    n = y.shape[0]
+    ndyn = 2 * nv
+    for i in range(n):
+        for j in range(ndyn):
+            J[i, j] = 0.0
+    for i in range(nv):
+        V, dV = node_volume(t, net, i)
+        pr[4, i] = dV
+        pr[5, i] = V
+        m = y[2 * i]
+        if m > 0.0:
+            u = y[2 * i + 1] / m
+            u_m = -u / m
+            u_e = 1.0 / m
+        else:
+            u = 2.6e6
+            u_m = 0.0
+            u_e = 0.0
+        r_m = 1.0 / V
+        rho, u, code = admissible_flagged(m / V, u)
+        if code & 3:
+            r_m = 0.0
+        if code & 12:
+            u_m = 0.0
+            u_e = 0.0
+        if tier == TIER_PERFECT:
+            R, cv, u_ref = perf[0], perf[1], perf[2]
+            T = (u - u_ref) / cv
+            if T < 1.0:
+                T = 1.0
+                p_r, p_u = R * T, 0.0
+            else:
+                p_r, p_u = R * T, rho * R / cv
+            p = rho * R * T
+            k, k_r, k_u = 1.0 + R / cv, 0.0, 0.0
+        else:
+            p, T, x, sup, c2, p_r, p_u = lookup_partials(tab, rho, u)
+            k, k_r, k_u = kappa_partials(tab, rho, u)
+        h_r = p_r / rho - p / (rho * rho)
+        h_u = 1.0 + p_u / rho
+        pr[0, i] = p
+        pr[1, i] = rho
+        pr[2, i] = u + p / rho
+        pr[3, i] = k
+        jd[0, i] = p_r * r_m + p_u * u_m
+        jd[1, i] = p_u * u_e
+        jd[2, i] = r_m
+        jd[3, i] = 0.0
+        jd[4, i] = h_r * r_m + h_u * u_m
+        jd[5, i] = h_u * u_e
+        jd[6, i] = k_r * r_m + k_u * u_m
+        jd[7, i] = k_u * u_e
+        q0 = ndyn + 2 * net[9].shape[0] + 5 * i
+        for v in range(2):
+            J[2 * i + 1, 2 * i + v] = -jd[v, i] * dV
+            J[q0, 2 * i + v] = jd[v, i] * dV
+    omega, band, res = net[0][0], net[1], net[8]
+    ea, eb, ecd = net[9], net[10], net[15]
+    port_areas(t, net, cell)
+    P, RHO, H, K = pr[0], pr[1], pr[2], pr[3]
+    for e in range(ea.shape[0]):
+        a = ea[e]
+        b = eb[e]
+        if a >= 0:
+            pa, ra, ha, ka = P[a], RHO[a], H[a], K[a]
+        else:
+            r = -1 - a
+            pa, ra, ha, ka = res[r, 0], res[r, 1], res[r, 2], res[r, 3]
+        if b >= 0:
+            pb, rb, hb, kb = P[b], RHO[b], H[b], K[b]
+        else:
+            r = -1 - b
+            pb, rb, hb, kb = res[r, 0], res[r, 1], res[r, 2], res[r, 3]
+        md, d1p, d1r, d1k, d2p, d2r, d2k = port_flow_partials(
+            edge_area(net, e, cell), ecd[e], pa, ra, ka, pb, rb, kb, band, True)
+        h_up = ha if md > 0.0 else hb
+        for side in range(2):
+            nd = a if side == 0 else b
+            if nd < 0:
+                continue
+            dp, dr, dk = (d1p, d1r, d1k) if side == 0 else (d2p, d2r, d2k)
+            carries = (md > 0.0) == (side == 0)
+            for v in range(2):
+                col = 2 * nd + v
+                dmd = dp * jd[v, nd] + dr * jd[2 + v, nd] + dk * jd[6 + v, nd]
+                dhd = dmd * h_up
+                if carries:
+                    dhd += md * jd[4 + v, nd]
+                dmd /= omega
+                dhd /= omega
+                if a >= 0:
+                    J[2 * a, col] -= dmd
+                    J[2 * a + 1, col] -= dhd
+                if b >= 0:
+                    J[2 * b, col] += dmd
+                    J[2 * b + 1, col] += dhd
+                J[ndyn + 2 * e, col] += dmd
+                J[ndyn + 2 * e + 1, col] += dhd
+
+
+@njit(cache=True)
+def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, cell, att,
+              yp, fp, dl, jd):
+    """Jacobian of the dynamic columns, and the time derivative, for both Rosenbrock
+    integrators.
+
+    Analytic (:func:`_jacobian_exact`) where it covers the network, else by finite
+    differences: columns of one colour are perturbed together (their rows do not
+    overlap), so a single cylinder costs two evaluations.  The time derivative is a
+    forward difference (one evaluation).  Clamped evaluations go into the step's
+    tally ``att``; ``yp``, ``fp`` (length of the state), ``dl`` (of the dynamic
+    states) and ``jd`` (shape (8, nodes)) are scratch.  Returns the evaluations of
+    :func:`rhs` spent.
     """
     n = y.shape[0]
     ndyn = J.shape[1]
     ncol = owner.shape[0]
-    for j in range(ndyn):
-        dl[j] = 1e-7 * max(abs(y[j]), yscale[j])
-    for c in range(ncol):
-        copy_into(yp, y)
+    if _exact_jacobian_holds(net):
+        _jacobian_exact(t, y, J, net, tier, tab, perf, pr, cell, jd)
+        ncol = 0
+    else:
         for j in range(ndyn):
-            if color[j] == c:
-                yp[j] += dl[j]
-        rhs(t, yp, fp, net, tier, tab, perf, pr, cell)
-        tally_clamps(pr, t, att)
-        for j in range(ndyn):
-            if color[j] == c:
-                for i in range(n):
-                    J[i, j] = 0.0
-        for i in range(n):
-            j = owner[c, i]
-            if j >= 0:
-                J[i, j] = (fp[i] - f0[i]) / dl[j]
+            dl[j] = 1e-7 * max(abs(y[j]), yscale[j])
+        for c in range(ncol):
+            copy_into(yp, y)
+            for j in range(ndyn):
+                if color[j] == c:
+                    yp[j] += dl[j]
+            rhs(t, yp, fp, net, tier, tab, perf, pr, cell)
+            tally_clamps(pr, t, att)
+            for j in range(ndyn):
+                if color[j] == c:
+                    for i in range(n):
+                        J[i, j] = 0.0
+            for i in range(n):
+                j = owner[c, i]
+                if j >= 0:
+                    J[i, j] = (fp[i] - f0[i]) / dl[j]
     dt = 1e-7 * max(abs(t), 1.0)
     rhs(t + dt, y, fp, net, tier, tab, perf, pr, cell)
     tally_clamps(pr, t + dt, att)
@@ -1438,6 +1576,7 @@ def cycle_rosenbrock(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, col
     fp = np.empty(n)
     dl = np.empty(ndyn)
     pr = np.empty((PR_ROWS, net[4].shape[0]))
+    jd = np.empty((8, net[4].shape[0]))
     cell = np.empty((net[17].shape[0], 4))
     nfev = 0
     clamps = np.zeros(6)
@@ -1465,7 +1604,7 @@ def cycle_rosenbrock(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, col
                 h = b - t
             if age >= jac_age:
                 nfev += _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf,
-                                  pr, cell, att, yp, fp, dl)
+                                  pr, cell, att, yp, fp, dl, jd)
                 age = 0
                 h_w = -1.0
             hd = h * _D
@@ -1683,6 +1822,7 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
     fp = np.empty(n)
     dl = np.empty(ndyn)
     pr = np.empty((PR_ROWS, net[4].shape[0]))
+    jd = np.empty((8, net[4].shape[0]))
     cell = np.empty((net[17].shape[0], 4))
     nfev = 0
     clamps = np.zeros(6)
@@ -1710,7 +1850,7 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
                 h = b - t
             if age >= jac_age:
                 nfev += _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf,
-                                  pr, cell, att, yp, fp, dl)
+                                  pr, cell, att, yp, fp, dl, jd)
                 age = 0
                 h_w = -1.0
             hd = h * gam
