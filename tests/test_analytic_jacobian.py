@@ -1,11 +1,13 @@
-"""The Rosenbrock integrators' analytic Jacobian against central differences.
+"""The Rosenbrock integrators' analytic Jacobian against differences.
 
 ``kernel._jacobian_exact`` builds the Jacobian of the compiled right-hand side over
 the dynamic states (each node's mass and energy) from the derivatives of its parts:
 the steam table's own interpolation in (rho, u) for pressure, enthalpy and the
 port-flow exponent, the closed form of the orifice flow in its two sides' states,
-the chain rule through rho = m/V and u = E/m.  Here it is compared, at every 10 deg
-of a cycle, with differences of the same compiled right-hand side: central, or
+the chain rule through rho = m/V and u = E/m; and the right-hand side's derivative
+in crank angle at a fixed state (through the volumes, and the ports' areas on their
+PortMap tables).  Here they are compared, at 36 states 10 deg
+apart over a cycle, with differences of the same compiled right-hand side: central, or
 where the state sits on a kink, one-sided.  The kinks are real: the steam's
 pressure at constant energy changes its slope where the state crosses saturation (a
 cylinder end that has equalised with a dry saturated exhaust sits on that line, and
@@ -67,23 +69,28 @@ def _scene(name):
 @pytest.mark.parametrize("name", ["default", "steam chest", "perfect steam",
                                   "high-speed-condensing", "twin-90-degrees"])
 def test_analytic_jacobian_matches_central_differences(name):
-    """Every entry of the analytic Jacobian within 1e-5 of its row's scale of the
-    central or a one-sided difference, at 37 states of a cycle (module docstring)."""
+    """Every entry of the analytic Jacobian, and of the derivative in crank angle,
+    within 1e-5 of its row's scale of the central or a one-sided difference, at 36
+    states of a cycle (module docstring)."""
     scene = _scene(name)
     model = assemble(scene, tabulated=True)
     net = model.network(model.portmap)
     crank = CrankResolved(net, model.steam, "rosenbrock", 1e-5)
     assert kernel._exact_jacobian_holds(crank.net)
-    out = np.linspace(0.0, 2.0 * math.pi, 37)
+    # every 10 deg from 3.7 deg: off the PortMap tables' uniform grid of a quarter or
+    # half degree, whose nodes are kinks of the areas in crank angle: a sample on one
+    # would compare the ports' slopes of one side with differences of the other (a step
+    # of the integrators may start on one: any one-sided slope serves there)
+    out = np.radians(3.7 + 10.0 * np.arange(36))
     y, samples = crank.cycle(crank.initial_state(), 0.0, out)
     nd, n = net.n_dyn, y.size
-    J = np.zeros((n, nd))
-    jd = np.empty((8, net.n_nodes))
-    exact, diffs = [], []
+    J, T = np.zeros((n, nd)), np.zeros(n)
+    jd, slope = np.empty((12, net.n_nodes)), np.empty_like(crank._cell)
+    exact, diffs, exact_t, diffs_t = [], [], [], []
     for k, th in enumerate(out):
         yk = samples[:, k].copy()
-        kernel._jacobian_exact(th, yk, J, crank.net, crank._tier, crank._tab, crank._perf,
-                               crank._pr, crank._cell, jd)
+        kernel._jacobian_exact(th, yk, J, T, crank.net, crank._tier, crank._tab, crank._perf,
+                               crank._pr, crank._cell, jd, slope)
         f0 = crank.rhs(th, yk)
         Jf, Jb, Jc = np.zeros_like(J), np.zeros_like(J), np.zeros_like(J)
         for j in range(nd):
@@ -96,6 +103,12 @@ def test_analytic_jacobian_matches_central_differences(name):
             yp[j] += d
             ym[j] -= d
             Jc[:, j] = (crank.rhs(th, yp) - crank.rhs(th, ym)) / (2.0 * d)
+        # in crank angle: steps as the floats represent them (th + d - th)
+        tp1, tm1, tp, tm = th + STEP_ONE_SIDED, th - STEP_ONE_SIDED, th + STEP, th - STEP
+        diffs_t.append([(crank.rhs(tp1, yk) - f0) / (tp1 - th),
+                        (f0 - crank.rhs(tm1, yk)) / (th - tm1),
+                        (crank.rhs(tp, yk) - crank.rhs(tm, yk)) / (tp - tm)])
+        exact_t.append(T.copy())
         scale = np.abs(yk[:nd])
         exact.append(J * scale)
         diffs.append([Jf * scale, Jb * scale, Jc * scale])
@@ -104,6 +117,13 @@ def test_analytic_jacobian_matches_central_differences(name):
     row = np.abs(central).max(axis=(0, 2))            # each row's largest term, over the cycle
     row[row == 0.0] = 1.0                             # rows nothing moves (checked exactly)
     err = np.abs(exact[:, None] - diffs).min(axis=1) / row[None, :, None]
+    exact_t, diffs_t = np.array(exact_t), np.array(diffs_t)
+    row_t = np.abs(diffs_t[:, 2]).max(axis=0)
+    row_t[row_t == 0.0] = 1.0
+    err_t = np.abs(exact_t[:, None] - diffs_t).min(axis=1) / row_t[None, :]
+    kt, it = np.unravel_index(np.argmax(err_t), err_t.shape)
+    assert err_t.max() < TOL, (f"d/dtheta: {err_t.max():.2e} at {math.degrees(out[kt]):.0f} deg, "
+                               f"row {it}: {exact_t[kt, it]:.6e} against {diffs_t[kt, :, it]}")
     k, i, j = np.unravel_index(np.argmax(err), err.shape)
     assert err.max() < TOL, (f"{err.max():.2e} at {math.degrees(out[k]):.0f} deg, row {i}, "
                              f"column {j}: {exact[k, i, j]:.6e} against {diffs[k, :, i, j]}")
