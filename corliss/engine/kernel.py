@@ -64,7 +64,7 @@ from corliss.thermo.steam_table import (CLAMP_HIGH_ENERGY, PARAMS, kappa_at, kap
 
 log = logging.getLogger(__name__)
 #: Revision of the inlined property and port-flow code (see the module's docstring).
-DEPENDENCY_REVISION = 14
+DEPENDENCY_REVISION = 17
 TIER_TABLE, TIER_PERFECT = 0, 1
 TWO_PI = 2.0 * math.pi
 #: Clamps on trial states: integrators probe states with no steam (a negative mass in
@@ -301,7 +301,7 @@ def edge_area(net, e, pa):
     return pa[ecyl[e], eport[e]]
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _port_area_slopes(th, net, out):
     """d(area)/dtheta [m2/rad] of every port, shape (cylinders, 4), on the cell of the
     PortMap table that lies ahead of ``th`` (the side a forward step takes at a kink)."""
@@ -319,7 +319,7 @@ def _port_area_slopes(th, net, out):
             out[c, p] = (area[c, p, k + 1] - area[c, p, k]) / dg
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _volume_curvature(th, net, i):
     """d2V/dtheta2 of a node [m3/rad2]: the slider crank of :func:`node_volume`
     differentiated once more (0 for a vessel)."""
@@ -938,7 +938,7 @@ def dopri_error(y, ynew, K, h, atol, rtol):
     return err
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _exact_jacobian_holds(net):
     """Whether :func:`_jacobian_exact` covers the network's right-hand side: no wall
     heat that depends on the state (none, or Marks's schedule); the film and wall
