@@ -24,6 +24,8 @@ from corliss import units
 MICRON_m = 1e-6
 #: The range of a length that must exist (a part's size, a rod, a throw) [m].
 POSITIVE_LENGTH = (MICRON_m, math.inf)
+#: The range of a quantity that is zero or more (a friction, a preload, an offset) [SI].
+ZERO_OR_MORE = (0.0, math.inf)
 
 #: Kinds of value that are not quantities with units.
 PLAIN_KINDS = {

@@ -211,8 +211,9 @@ def explain(name: str) -> str:
     ----------
     name : str
         A dotted key (``"valve_gear.lap"``, ``"governor.ball_mass"``, ``"run.effects"``),
-        a section (``"engine"``), a gear or governor (``"slide_valve"``) or an effect
-        (``"wall_heat"``).
+        a section (``"engine"``), a gear or governor (``"slide_valve"``), an effect
+        (``"wall_heat"``), or a key without its section (``"lap"``: every table's key of
+        that name).
 
     Returns
     -------
@@ -226,6 +227,12 @@ def explain(name: str) -> str:
     """
     known = _known()
     what = known.get(name)
+    if what is None and "." not in name:
+        # a bare key (``lap``): the same key in every section and table that has it
+        full = sorted((k for k, w in known.items() if w == "key" and k.partition(".")[2] == name),
+                      key=lambda k: (k.startswith("lp_"), k))
+        if full:
+            return "\n".join(explain(k).rstrip("\n") for k in full) + "\n"
     if what is None:
         raise InputError("explain", name, "a scene key (section.key), a section, a gear, a "
                          "governor or an effect (corliss list keys TYPE lists a type's keys)"

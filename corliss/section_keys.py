@@ -15,7 +15,7 @@ from corliss import units
 from corliss.engine.flywheel import INERTIA_RANGE, RIM_MASS_RANGE, RIM_RADIUS_RANGE
 from corliss.engine.load import SPEED_LAWS
 from corliss.engine.options import EFFECTS, EXPANSION_LAWS, METHODS, MODELS, PRESETS
-from corliss.keyspec import POSITIVE_LENGTH, Derived, Key, group
+from corliss.keyspec import POSITIVE_LENGTH, ZERO_OR_MORE, Derived, Key, group
 from corliss.tables import DISCHARGE_COEFFICIENT
 from corliss.thermo.steam import BACKENDS
 
@@ -38,7 +38,8 @@ ENGINE = group(
     Key("clearance", "fraction", "Clearance volume as a fraction of the end's swept volume "
         "(0.005 to 0.5), once or [head, crank].", ends=True),
     Key("piston_rod_diameter", "length", "Piston rod diameter (takes area from the crank-end "
-        "piston face); less than the bore.", default="0 in", unit="in"),
+        "piston face); zero or more, less than the bore.", default="0 in", within=ZERO_OR_MORE,
+        unit="in"),
     Key("cylinders", "integer", "Identical cylinders on one shaft.", default=1, within=(1, 6)),
     Key("crank_angles", "angle_list", "How far each crank follows the first, the first \"0 deg\" "
         "(default evenly spaced; 0 and 90 deg for two).",
@@ -46,9 +47,10 @@ ENGINE = group(
     Key("reciprocating_mass", "mass", "Piston, rod and crosshead mass in the crank effort.",
         default=None, effect="inertia"),
     Key("friction_torque", "torque", "Engine friction torque, constant part (zero or more).",
-        default="0 N m", effect="friction"),
+        default="0 N m", within=ZERO_OR_MORE, effect="friction"),
     Key("friction_torque_per_speed", "torque_per_speed", "Engine friction torque growing "
-        "with speed (zero or more).", default="0 N m s", effect="friction"),
+        "with speed (zero or more).", default="0 N m s", within=ZERO_OR_MORE,
+        effect="friction"),
     Key("valve_leakage_area", "area", "Equivalent orifice of the leak past the valve into "
         "each end, up to 5 % of the piston area.", default="0 in2", effect="leakage"),
     Key("piston_leakage_area", "area", "Equivalent orifice of the leak past the piston, up "
@@ -75,7 +77,7 @@ SUPPLY = group(
     Key("temperature", "temperature", "Superheated steam temperature (at or above "
         "saturation), or \"saturated\".", default="saturated", choices=("saturated",)),
     Key("dryness", "number", "Dryness fraction of saturated steam, in (0, 1].", default=1.0,
-        when="with saturated steam (no temperature)"),
+        within=(0.0, 1.0), when="with saturated steam (no temperature)"),
     Key("chest_volume", "volume", "Steam chest volume, at least 0.05 of the swept volume.",
         default=None, unit="ft3", effect="steam_chest"),
     Key("pipe_diameter", "length", "Bore of the steam pipe from the boiler.", default=None,
@@ -83,7 +85,7 @@ SUPPLY = group(
     Key("pipe_discharge_coefficient", "number", "Discharge coefficient of the pipe taken as "
         "one orifice.", default=0.8, within=DISCHARGE_COEFFICIENT, effect="steam_chest"),
     Key("throttle", "number", "Throttle opening, above 0 (shut) up to 1 (wide open).",
-        default=1.0, effect="steam_chest"),
+        default=1.0, within=(0.0, 1.0), effect="steam_chest"),
     Key("throttle_law", "choice", "Open area against opening: a gate (linear) or a disc "
         "turned through 90 deg (butterfly).", default="linear", choices=("linear", "butterfly"),
         effect="steam_chest"),
@@ -115,11 +117,12 @@ RUN = group(
     Key("rtol", "number", "Relative tolerance of the integrator.",
         default=Derived("the fidelity preset's"), within=(1e-13, 1e-2)),
     Key("convergence_tolerance", "number", "Cycle-to-cycle change taken as periodic, a "
-        "fraction in (0, 0.5).", default=Derived("the fidelity preset's")),
+        "fraction in (0, 0.5).", default=Derived("the fidelity preset's"), within=(0.0, 0.5)),
     Key("max_cycles", "integer", "Most cycles run to reach a periodic state.",
         default=Derived("the fidelity preset's"), within=(2, 1000)),
     Key("step", "angle", "Crank-angle step of the output and of fixed-step integrators, "
-        "0.01 to 10 deg.", default=Derived("the fidelity preset's"), unit="deg"),
+        "0.01 to 10 deg.", default=Derived("the fidelity preset's"),
+        within=(math.radians(0.01), math.radians(10.0)), unit="deg"),
     Key("portmap_points", "integer", "Crank angles the port areas are tabulated at.",
         default=Derived("the fidelity preset's"), within=(90, 100_000)),
     Key("cycles", "integer", "Run exactly this many cycles (steady only); absent: until "
@@ -132,7 +135,7 @@ RUN = group(
         "angle, or once a turn.", default=Derived("by the run's length"),
         choices=RECORD_CHOICES),
     Key("settling_band", "number", "Speed band, as a fraction of the final mean speed, the "
-        "settling time is measured to; in (0, 0.5).", default=0.002),
+        "settling time is measured to; in (0, 0.5).", default=0.002, within=(0.0, 0.5)),
     Key("warmup_cycles", "integer", "Turns at the initial speed, governor held, before "
         "t = 0.", default=3, within=(0, 100)),
     Key("start", "choice", "How a transient run starts.", default="equilibrium",
@@ -161,8 +164,8 @@ COMPOUND = group(
         within=POSITIVE_LENGTH, unit="in"),
     Key("lp_connecting_rod", "length", "LP connecting rod, longer than the LP crank.",
         default=Derived("the HP connecting rod"), within=POSITIVE_LENGTH, unit="in"),
-    Key("lp_piston_rod_diameter", "length", "LP piston rod diameter.",
-        default=Derived("the HP piston rod diameter"), unit="in"),
+    Key("lp_piston_rod_diameter", "length", "LP piston rod diameter (zero or more).",
+        default=Derived("the HP piston rod diameter"), within=ZERO_OR_MORE, unit="in"),
     Key("lp_clearance", "fraction", "LP clearance fraction, once or [head, crank].",
         default=Derived("the HP clearance"), ends=True),
     Key("lp_crank_angle", "angle", "How far the LP crank follows the HP crank.",
@@ -200,17 +203,19 @@ LOAD = group(
     "load", "The shaft load of a transient run: a reference torque or power and its "
     "schedule.",
     Key("torque", "torque", "Reference load torque (zero or more).", default=None,
-        when="instead of power"),
+        within=ZERO_OR_MORE, when="instead of power"),
     Key("power", "power", "Reference load power at the run's speed (zero or more).",
-        default=None, unit="hp", when="instead of torque"),
+        default=None, within=ZERO_OR_MORE, unit="hp", when="instead of torque"),
     Key("speed_law", "choice", "How the load torque varies with speed (k = 0, 1, 2).",
         default="constant", choices=tuple(SPEED_LAWS)),
     Key("kind", "choice", "The schedule of the load fraction.", default="constant",
         choices=("constant", "step", "ramp", "schedule")),
-    Key("step_time", "time", "When the step comes (zero or more).", when="with kind = \"step\""),
+    Key("step_time", "time", "When the step comes (zero or more).", within=ZERO_OR_MORE,
+        when="with kind = \"step\""),
     Key("step_fraction", "number", "Load after the step, a fraction of the reference load.",
         within=(0.0, 5.0), when="with kind = \"step\""),
-    Key("ramp_start", "time", "When the ramp starts (zero or more).", when="with kind = \"ramp\""),
+    Key("ramp_start", "time", "When the ramp starts (zero or more).", within=ZERO_OR_MORE,
+        when="with kind = \"ramp\""),
     Key("ramp_end", "time", "When the ramp ends, after its start.", when="with kind = \"ramp\""),
     Key("ramp_fraction", "number", "Load at the ramp's end, a fraction of the reference "
         "load.", within=(0.0, 5.0), when="with kind = \"ramp\""),

@@ -254,6 +254,13 @@ class Table:
         if default is _MISSING:
             near = _closest(key, [k for k in self.data if k not in self._read])
             hint = f" (the scene has {self.key(near)}: a misspelling?)" if near else ""
+            if not near and self.keys is not None:
+                # a key given in its place that this table does not take (a slide
+                # valve's lead on a link motion, which takes only the advance)
+                stray = sorted(k for k in self.data if k not in self.keys)
+                if stray:
+                    hint = (f" (the scene has {', '.join(self.key(k) for k in stray)}, "
+                            f"which {self.keys.name} does not take)")
             raise InputError(self.key(key), None, f"a value: this key is required{hint}")
         return default
 

@@ -159,7 +159,9 @@ def check_range(value_si: float, kind: str, key: str, text: object,
         lo, hi = max(lo, within[0]), min(hi, within[1])
     if not (lo <= value_si <= hi):
         extra = " absolute" if kind == "pressure" else ""
-        raise InputError(key, text, f"a {kind.replace('_', ' ')} from {_show(lo, unit)} to "
+        name = kind.replace('_', ' ')
+        article = "an" if name[0] in "aeiou" else "a"
+        raise InputError(key, text, f"{article} {name} from {_show(lo, unit)} to "
                          f"{_show(hi, unit)}{extra}")
     return value_si
 

@@ -156,6 +156,20 @@ def test_a_misspelt_required_gear_key_is_missing_with_the_closest_named():
     assert "valve_gear.eccentricty" in msg, msg
 
 
+def test_a_required_key_given_under_another_gears_name_is_named():
+    """Issue 16's Stephenson locomotive: a user who writes the slide valve's ``lead``
+    for the link's ``angular_advance`` is told the advance is missing and that the
+    ``lead`` written instead is not a key of the link motion."""
+    data = copy.deepcopy(SCENES["hinkley-stephenson-link"])
+    data["valve_gear"].pop("angular_advance")
+    data["valve_gear"]["lead"] = "0.25 in"
+    with pytest.raises(InputError) as e:
+        scene_from_dict(data)
+    msg = str(e.value)
+    assert "valve_gear.angular_advance" in msg and "required" in msg, msg
+    assert "valve_gear.lead" in msg and "link_motion does not take" in msg, msg
+
+
 def test_a_declared_key_another_setting_reads_says_so():
     """``radius_rod`` of the Polonceau gear is read with the exact motion only."""
     data = copy.deepcopy(SCENES["polonceau-valve"])
@@ -197,6 +211,17 @@ def test_explain_an_unknown_key_suggests_the_closest(capsys):
     assert cli.main(["explain", "valve_gear.lapp"]) == 2
     err = capsys.readouterr().err
     assert "valve_gear.lap" in err and "closest" in err
+
+
+def test_explain_a_key_without_its_section_explains_every_table_s(capsys):
+    """``corliss explain lap``: the key in every table that declares it, the gear's
+    ``[valve_gear]`` first, and nothing for a name no table has."""
+    assert cli.main(["explain", "lap"]) == 0
+    out = capsys.readouterr().out
+    assert out.index("valve_gear.lap") < out.index("lp_valve_gear.lap")
+    assert cli.main(["explain", "bore"]) == 0
+    assert capsys.readouterr().out.startswith("engine.bore")
+    assert cli.main(["explain", "xyzzy"]) == 2
 
 
 def test_list_keys_of_a_governor(capsys):

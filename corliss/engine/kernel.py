@@ -1745,8 +1745,8 @@ def _tableau(gamma, A, C, c, d, b, e, expo):
     """A Rosenbrock tableau as the arrays :func:`cycle_ros` takes, in the form
     ``(I/(gamma h) - J) u_i = f(t + c_i h, y + sum_j a_ij u_j) + sum_j c_ij u_j / h
     + d_i h df/dt``, ``y1 = y + sum_i b_i u_i``, error ``sum_i e_i u_i`` (Hairer and
-    Wanner, *Solving ODEs II*, Sec. IV.7, eq. 7.25), with the step's exponent of the
-    error ``expo``.  ``same[i]`` says when stage i's argument is one already
+    Wanner, *Solving Ordinary Differential Equations II*, Sec. IV.7, eq. 7.25), with the
+    step's exponent of the error ``expo``.  ``same[i]`` says when stage i's argument is one already
     evaluated: 1 the step's start (no evaluation), 2 the stage before."""
     s_ = len(b)
     At = np.zeros((s_, s_))
@@ -1773,8 +1773,8 @@ def _tableau(gamma, A, C, c, d, b, e, expo):
 #: ``rodas3``: Sandu et al.'s RODAS3 (Atmos. Environ. 31, 1997): four stages, two
 #: evaluations (the second stage's argument is the step's start), order 3, L-stable
 #: and stiffly accurate, its error the last stage.
-#: ``rodas4``: Hairer and Wanner's RODAS4 (*Solving ODEs II*, Sec. VI.4): six stages,
-#: five evaluations, order 4, L-stable and stiffly accurate.
+#: ``rodas4``: Hairer and Wanner's RODAS4 (*Solving Ordinary Differential Equations II*,
+#: Sec. VI.4): six stages, five evaluations, order 4, L-stable and stiffly accurate.
 ROS_TABLEAUS = {
     "ros4": _tableau(0.5, [[2.0], [48.0 / 25.0, 6.0 / 25.0], [48.0 / 25.0, 6.0 / 25.0, 0.0]],
                      [[-8.0], [372.0 / 25.0, 12.0 / 5.0],

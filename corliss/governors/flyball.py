@@ -53,7 +53,7 @@ from corliss.governors.mechanism import (GEAR_SETTING_KEYS, GRAVITY_M_S2, RATIO_
                                          THROTTLE_KEYS, Actuator, Governor, GovernorType,
                                          PointMass, WEIGHT_MASS_KG, parse_actuator,
                                          parse_ratio, register)
-from corliss.keyspec import POSITIVE_LENGTH, REQUIRED, Key, KeyGroup, group
+from corliss.keyspec import POSITIVE_LENGTH, REQUIRED, ZERO_OR_MORE, Key, KeyGroup, group
 from corliss.tables import Table
 
 
@@ -205,15 +205,17 @@ _BALLS = group(
 _TOP_STOP = group(
     "top_stop", "The top stop: an arm angle or a sleeve lift (one of them).",
     Key("arm_angle_at_top", "angle", "Arm angle at the top stop, above the rest angle and "
-        "below 90 deg; or give sleeve_lift.", default=None, within=None, unit="deg"),
+        "below 90 deg; or give sleeve_lift.", default=None,
+        within=(-0.5 * math.pi, 0.5 * math.pi), unit="deg"),
     Key("sleeve_lift", "length", "The sleeve's lift from rest to the top stop; or give "
         "arm_angle_at_top.", default=None, within=POSITIVE_LENGTH, unit="in"),
 )
 _LOSSES = group(
     "losses", "Friction and dashpot at the sleeve.",
     Key("friction", "force", "Coulomb friction at the sleeve (zero or more).", default="0 N",
-        unit="lbf"),
-    Key("dashpot", "damping", "Dashpot at the sleeve (zero or more).", default="0 N s/m"),
+        unit="lbf", within=ZERO_OR_MORE),
+    Key("dashpot", "damping", "Dashpot at the sleeve (zero or more).", default="0 N s/m",
+        within=ZERO_OR_MORE),
 )
 
 
@@ -221,16 +223,16 @@ def _flyball_keys(name: str, loaded: str, acts_on: str, corliss: bool = False) -
     """The keys of a fly-ball governor read by ``_flyball_parse(loaded, acts_on, corliss)``."""
     if loaded == "none":
         load = Key("sleeve_mass", "mass", "Mass of the sleeve (zero or more).", default="0 kg",
-                   unit="lb")
+                   unit="lb", within=ZERO_OR_MORE)
     else:
         req = loaded == "required"
         load = Key("load_mass", "mass", "The central load on the sleeve (Porter's), "
                    + ("above zero." if req else "zero or more (none: Watt's)."),
-                   default=REQUIRED if req else "0 kg", unit="lb")
+                   default=REQUIRED if req else "0 kg", unit="lb", within=ZERO_OR_MORE)
     safety = () if not corliss else (
         Key("safety_lift", "length", "How far above rest the sleeve must be before the trip "
             "cams work; below it the safety cam holds the hooks off (Spangler Art. 155). Zero: "
-            "no safety range.", unit="in"),
+            "no safety range.", within=ZERO_OR_MORE, unit="in"),
         Key("safety_setting", "number", "The gear's setting of no admission, held in the "
             "safety range.", when="with safety_lift above zero (required there)"))
     return group(
@@ -242,7 +244,7 @@ def _flyball_keys(name: str, loaded: str, acts_on: str, corliss: bool = False) -
             "90 deg.", within=ARM_ANGLE_RAD, unit="deg"),
         _TOP_STOP,
         Key("suspension_offset", "length", "Offset of the arms' suspension from the spindle "
-            "(zero or more).", default="0 in", unit="in"),
+            "(zero or more).", default="0 in", unit="in", within=ZERO_OR_MORE),
         _LOSSES, THROTTLE_KEYS if acts_on == "throttle" else GEAR_SETTING_KEYS, *safety,
         RATIO_KEY)
 
@@ -478,13 +480,14 @@ SPRING_KEYS = group(
     Key("sleeve_arm", "length", "The bell-crank's sleeve arm.", within=POSITIVE_LENGTH,
         unit="in"),
     Key("arm_angle_at_rest", "angle", "Bell-crank angle at rest, between -90 and 90 deg, the "
-        "ball outside the spindle axis.", unit="deg"),
+        "ball outside the spindle axis.", within=(-0.5 * math.pi, 0.5 * math.pi), unit="deg"),
     _TOP_STOP,
     Key("spring_stiffness", "stiffness", "Stiffness of the spring on the sleeve (zero or "
-        "more).", unit="lbf/in"),
+        "more).", unit="lbf/in", within=ZERO_OR_MORE),
     Key("spring_preload", "force", "The spring's load on the sleeve at rest (zero or more).",
-        unit="lbf"),
-    Key("sleeve_mass", "mass", "Mass of the sleeve (zero or more).", default="0 kg", unit="lb"),
+        unit="lbf", within=ZERO_OR_MORE),
+    Key("sleeve_mass", "mass", "Mass of the sleeve (zero or more).", default="0 kg", unit="lb",
+        within=ZERO_OR_MORE),
     _LOSSES, THROTTLE_KEYS, RATIO_KEY,
 )
 

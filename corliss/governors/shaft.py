@@ -56,7 +56,7 @@ from corliss import units
 from corliss.errors import InputError
 from corliss.governors.mechanism import (GEAR_SETTING_KEYS, Actuator, Governor, GovernorType,
                                          PointMass, WEIGHT_MASS_KG, parse_actuator, register)
-from corliss.keyspec import POSITIVE_LENGTH, Key, group
+from corliss.keyspec import POSITIVE_LENGTH, ZERO_OR_MORE, Key, group
 from corliss.tables import Table
 
 
@@ -242,19 +242,19 @@ SHAFT_KEYS = group(
     Key("weight_radius_at_top", "length", "The weight's radius at the top stop, above the "
         "radius at rest and below a + b.", within=POSITIVE_LENGTH, unit="in"),
     Key("weight_inertia", "inertia", "Each weight's moment of inertia about its pivot (inertia "
-        "action; zero or more).", default="0 kg m2"),
+        "action; zero or more).", default="0 kg m2", within=ZERO_OR_MORE),
     Key("weight_position", "choice", "The weights lead or trail their pivots in the sense of "
         "rotation.", default="leading", choices=("leading", "trailing")),
     Key("spring_arm", "length", "The spring's arm about the pivot.", within=POSITIVE_LENGTH,
         unit="in"),
     Key("spring_stiffness", "stiffness", "Stiffness of each spring (zero or more).",
-        unit="lbf/in"),
+        unit="lbf/in", within=ZERO_OR_MORE),
     Key("spring_preload", "force", "Each spring's load with the weights at rest (zero or "
-        "more).", unit="lbf"),
+        "more).", unit="lbf", within=ZERO_OR_MORE),
     Key("friction_torque", "torque", "Coulomb friction torque at the pivots (zero or more).",
-        default="0 N m"),
+        default="0 N m", within=ZERO_OR_MORE),
     Key("dashpot", "torque_per_speed", "Dashpot torque per speed of swing (zero or more).",
-        default="0 N m s"),
+        default="0 N m s", within=ZERO_OR_MORE),
     GEAR_SETTING_KEYS,
 )
 

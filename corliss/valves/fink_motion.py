@@ -65,7 +65,7 @@ import numpy as np
 
 from corliss import units
 from corliss.errors import InputError
-from corliss.keyspec import POSITIVE_LENGTH, Derived, Key, group
+from corliss.keyspec import POSITIVE_LENGTH, ZERO_OR_MORE, Derived, Key, group
 from corliss.tables import DISCHARGE_COEFFICIENT, Table
 from corliss.valves.gear import GearType, ValveGear, register
 from corliss.valves.slide_valve import ECCENTRICITY, LAP_KEYS, PORT_KEYS, LappedValve, parse_ports
@@ -325,7 +325,7 @@ FINK_LINK_KEYS = group(
     Key("rod_a", "length", "a: eccentric centre to the point held on the line of stroke, "
         "longer than the eccentricity.", within=POSITIVE_LENGTH, unit="in"),
     Key("rod_b", "length", "b: from that point to the link's middle (zero or more; often 0, "
-        "Art. 78).", default="0 in", unit="in"),
+        "Art. 78).", default="0 in", unit="in", within=ZERO_OR_MORE),
     Key("radius_rod", "length", "g1: radius rod, block to valve stem.", within=POSITIVE_LENGTH,
         unit="in"),
     Key("half_link", "length", "c: the most the block may stand off the line of stroke; "
@@ -612,7 +612,7 @@ PORTER_ALLEN_KEYS = group(
     Key("valve_arm", "length", "R_v: the arms to the steam-valve stems.",
         within=POSITIVE_LENGTH, unit="in"),
     Key("steam_lap", "length", "Lap of the steam valves, zero or more and shorter than the "
-        "valve arm.", ends=True, unit="in"),
+        "valve arm.", ends=True, unit="in", within=ZERO_OR_MORE),
     Key("exhaust_ratio", "number", "k_e: the exhaust stem's travel over the exhaust point's "
         "(the bell crank).", default=1.0, within=(0.05, 20.0)),
     Key("exhaust_lap", "length", "Lap of the exhaust valves; negative: clearance.",

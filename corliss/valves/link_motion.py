@@ -183,7 +183,7 @@ class LinkMotion(LappedValve):
     name = "link_motion"
     summary = ("link motions, Zeuner's form or exact: Stephenson open or crossed rods, Gooch, "
                "Allen "
-               "(Spangler Chs. VII-XI); setting = block offset")
+               "(Spangler Chs. VII-XI); setting = block offset u / c")
 
     setting_name = "block offset u / c (1 full gear ahead, 0 mid gear, -1 full gear astern)"
     setting_range = (-1.0, 1.0)
@@ -618,13 +618,16 @@ LINK_MOTION_KEYS = group(
     ECCENTRICITY, ANGULAR_ADVANCE,
     Key("eccentric_rod", "length", "Each eccentric rod.", within=POSITIVE_LENGTH, unit="in"),
     Key("half_link", "length", "Half the link's chord c.", within=POSITIVE_LENGTH, unit="in"),
-    Key("block", "length", "Offset u of the block from the link's middle, within the half "
-        "link (its sign reverses the engine).", unit="in"),
+    Key("block", "length", "Offset u of the block from the link's middle, the notch: from "
+        "half_link (full gear ahead) through 0 (mid gear) to -half_link (full gear astern); "
+        "the cut-off follows from it (corliss design SCENE --cutoff F gives u / half_link).",
+        unit="in"),
     Key("radius_rod", "length", "Radius rod, longer than the half link; absent: infinitely "
         "long.", default=None, within=POSITIVE_LENGTH, unit="in",
         when="with link = \"gooch\" or \"allen\""),
     Key("allen_ratio", "number", "Allen's ratio, 0 (Gooch) to 1 (Stephenson).",
-        default=Derived("the book's ratio from the rods"), when="with link = \"allen\""),
+        default=Derived("the book's ratio from the rods"), within=(0.0, 1.0),
+        when="with link = \"allen\""),
     Key("motion", "choice", "Zeuner's motion (infinite rods) or the exact linkage.",
         default="zeuner", choices=("zeuner", "exact")),
     Key("link_radius", "length", "Radius of the link's arc, above the half link; absent: "

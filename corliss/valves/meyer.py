@@ -38,7 +38,7 @@ import math
 from dataclasses import dataclass
 
 from corliss.errors import InputError
-from corliss.keyspec import POSITIVE_LENGTH, Derived, Key, group
+from corliss.keyspec import POSITIVE_LENGTH, ZERO_OR_MORE, Derived, Key, group
 from corliss.tables import Table
 from corliss.valves import double_valve as dv
 from corliss.valves.gear import GearType, register
@@ -203,7 +203,7 @@ MEYER_KEYS = group(
     Key("block_length", "length", "Length d of each cut-off block.", within=POSITIVE_LENGTH,
         unit="in"),
     Key("max_half_spacing", "length", "The screw's greatest half spacing y_max of the blocks "
-        "(zero or more).", unit="in"),
+        "(zero or more).", unit="in", within=ZERO_OR_MORE),
     Key("block_offset", "length", "Offset of each block on the screw, leaving the blocks "
         "apart at y = 0.", default="0 in", ends=True, unit="in"),
     Key("passage_width", "length", "Width of the passage through the main valve.",

@@ -1077,7 +1077,8 @@ RADIAL_GEAR_KEYS = group(
          "along the lever); below the link's length, negative beyond the guided end.",
          _GUIDED, positive=False),
     Key("max_inclination", "angle", "The guide's inclination at full gear, above 0 and below "
-        "60 deg (Bremme: never above 25 deg, Art. 107).", unit="deg", when=_GUIDED),
+        "60 deg (Bremme: never above 25 deg, Art. 107).", within=(0.0, math.radians(60.0)),
+        unit="deg", when=_GUIDED),
     Key("hand", "choice", "Right- or left-hand rotation (Art. 98).", default="right",
         choices=("right", "left"), when=_GUIDED),
     _len("guide_radius", "Radius of the guide's arc, signed (positive: centre on the valve's "

@@ -403,8 +403,11 @@ PORT_KEYS = group(
 #: The laps of a lapped valve.
 LAP_KEYS = group(
     "laps", "A lapped valve's laps.",
-    Key("lap", "length", "Steam (outside) lap.", ends=True, unit="in"),
-    Key("exhaust_lap", "length", "Exhaust (inside) lap; negative: exhaust clearance.",
+    Key("lap", "length", "Steam (outside) lap: the valve's overlap of the steam port's edge "
+        "at mid travel, less than its half travel; negative: both ends take steam at mid "
+        "travel.", ends=True, unit="in"),
+    Key("exhaust_lap", "length", "Exhaust (inside) lap, less than the valve's half travel; "
+        "negative: exhaust clearance.",
         default="0 in", ends=True, unit="in"),
 )
 #: An Allen (trick) valve's passage.
@@ -417,14 +420,20 @@ ALLEN_KEYS = group(
 #: The throw of a gear's (main) eccentric.
 ECCENTRICITY = Key("eccentricity", "length", "Throw of the (main) eccentric, half its travel.",
                    within=POSITIVE_LENGTH, unit="in")
+#: The range of an eccentric's angular advance [rad]: the valve stands lap + lead =
+#: r sin(delta) from mid travel at the dead centre (Spangler, *Valve-Gears*, Art. 13), so
+#: delta lies in [-90 deg, 90 deg].
+ADVANCE_RANGE_rad = (-math.pi / 2, math.pi / 2)
 #: The angular advance of a gear's (main) eccentric.
-ANGULAR_ADVANCE = Key("angular_advance", "angle", "Angular advance of the (main) eccentric.",
-                      unit="deg")
+ANGULAR_ADVANCE = Key("angular_advance", "angle", "Angular advance of the (main) eccentric: how "
+                      "far beyond 90 deg it leads the crank. The gear takes no lead key: "
+                      "the lead follows from lap and advance (corliss events prints it).",
+                      within=ADVANCE_RANGE_rad, unit="deg")
 SLIDE_VALVE_KEYS = group(
     "slide_valve", "A plain slide valve (D or piston valve) on one eccentric.",
     ECCENTRICITY, LAP_KEYS,
     Key("angular_advance", "angle", "Angular advance, between -90 and 90 deg; or give lead "
-        "(exactly one of the two).", default=None, unit="deg"),
+        "(exactly one of the two).", default=None, within=ADVANCE_RANGE_rad, unit="deg"),
     Key("lead", "length", "Lead at the head end, lap + lead no more than the eccentricity; "
         "or give angular_advance (exactly one of the two).", default=None, unit="in"),
     Key("eccentric_rod", "length", "Eccentric rod plus valve stem, longer than the "
@@ -438,28 +447,6 @@ SLIDE_VALVE_KEYS = group(
         default="equal_lead", choices=("equal_lead", "mid_travel")),
     ALLEN_KEYS, PORT_KEYS,
 )
-
-
-def pair(t: Table, key: str, kind: str, default=None) -> tuple[float, float]:
-    """A value given once for both ends, or as [head, crank].
-
-    Parameters
-    ----------
-    t : Table
-        The table, bound to a group declaring ``key`` once or per end.
-    key : str
-        The key.
-    kind : str
-        Its kind of quantity (as declared).
-    default : str, optional
-        Ignored: the declared default serves.
-
-    Returns
-    -------
-    (float, float)
-        The (head, crank) values [SI].
-    """
-    return t.get(key)
 
 
 def parse_slide_valve(t: Table) -> SlideValveSpec:
