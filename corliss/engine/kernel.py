@@ -1063,7 +1063,13 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
         area = edge_area(net, e, cell)
         md, d1p, d1r, d1k, d2p, d2r, d2k = port_flow_partials(
             area, ecd[e], pa, ra, ka, pb, rb, kb, band, True)
-        h_up = ha if md > 0.0 else hb
+        # the side upstream as the flow's partials take it (side a at equal pressures):
+        # not by the sign of md, which is 0 there, where the right-hand side carries no
+        # enthalpy and its two one-sided derivatives carry side a's (pressure of b
+        # falling) or b's (rising); mixing a's flux slope with b's enthalpy matched
+        # neither (a steam chest that has equalised with the supply to the last bit)
+        up_a = pa >= pb
+        h_up = ha if up_a else hb
         # in time: the area's slope (the flow is proportional to the area) and the
         # two sides' states
         md_t = md / area * slope[ecyl[e], eport[e]] if ekind[e] != 1 and area > 0.0 else 0.0
@@ -1073,7 +1079,7 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
             if nd < 0:
                 continue
             dp, dr, dk = (d1p, d1r, d1k) if side == 0 else (d2p, d2r, d2k)
-            carries = (md > 0.0) == (side == 0)
+            carries = up_a == (side == 0)
             md_t += dp * jd[8, nd] + dr * jd[9, nd] + dk * jd[11, nd]
             if carries:
                 hd_t += md * jd[10, nd]
