@@ -55,9 +55,10 @@ until its work is periodic to 1e-5), so the card is a smooth function of the key
 a run stopped when periodic to a tolerance would jump where the cycle count changes.
 The Jacobian is by forward differences of ``DIFF_STEP`` of the range.  The runs of a
 fit on the ``fast`` tier use its compiled Rosenbrock method at rtol 1e-6, not its own
-5e-5 (:data:`SEARCH_RTOL` says why not 1e-5 either): at 5e-5 a few points of the admission line just after dead centre dip by up to
+5e-5: at 5e-5 a few points of the admission line just after dead centre dip by up to
 40 kPa and recover, differently as a key moves by a hundredth of its range, which left
-the cost rough by 2 % and the search stopped short (:data:`SEARCH_RTOL`).  At 1e-5 the
+the cost rough by 2 % and the search stopped short (:data:`SEARCH_RTOL`, which also
+says why not 1e-5).  At 1e-5 the
 second difference of a card's pressures over such steps is about 1 Pa (median; 0.5 kPa
 at the worst point), so the noise allows a small step; what sets it is the card: the
 lap of the default engine is pinned by a 0.5 psi card to a five-hundredth of a
