@@ -14,9 +14,12 @@ one implementation of the physics.  The integrators:
 * ``"rk4"``: classical fourth-order Runge-Kutta at a fixed crank-angle step, each
   segment between kinks divided into equal steps no longer than the step asked for;
 * ``"rosenbrock"``: the L-stable Rosenbrock 2(3) pair of Shampine and Reichelt
-  (MATLAB's ode23s; SIAM J. Sci. Comput. 18, 1997), with a finite-difference
-  Jacobian over the dynamic states, columns grouped by the network's structure
-  (:meth:`Network.column_colors`; the quadratures do not feed back).  Pressure
+  (MATLAB's ode23s; SIAM J. Sci. Comput. 18, 1997), with the Jacobian over the
+  dynamic states (the quadratures do not feed back) and the derivative in crank
+  angle computed analytically (:func:`_jacobian_exact`: the steam table's and the
+  port flow's own derivatives, no evaluation of the right-hand side) where the
+  network has no state-dependent wall heat, else by finite differences, columns
+  grouped by the network's structure (:meth:`Network.column_colors`).  Pressure
   equalisation through an open port is stiff (an eigenvalue near -300 per radian on
   the default engine), which holds the explicit methods to steps of about 0.6 deg
   whatever their tolerance; the Rosenbrock method steps over it;
@@ -25,10 +28,10 @@ one implementation of the physics.  The integrators:
   on the same Jacobian: Shampine's A-stable 4(3) pair, and the L-stable, stiffly
   accurate RODAS3 (order 3) and RODAS4 (order 4).  On the accuracy study's three
   scenes they reach either preset's accuracy for a half to two thirds of its
-  evaluations (the README's "Accuracy and time"), but on a very stiff network
-  (ports 1000 times too large) they ran out of the run-time budget where the
-  second-order method takes 5,000 evaluations a cycle, so they are offered, not
-  presets.
+  evaluations (the README's "Accuracy and time").  On a very stiff network (ports
+  1000 times too large) they ran out of the run-time budget with the
+  finite-difference Jacobian; with the analytic one they settle in 3 cycles of
+  3,000 (RODAS4) and 6,700 (``ros4``) evaluations.  They are offered, not presets.
 
 Output samples between steps come from cubic Hermite interpolation on the states and
 derivatives at the step ends (third-order, well inside the step error).
@@ -58,13 +61,13 @@ import numpy as np
 from numba import njit
 
 from corliss.logs import NOTICE
-from corliss.thermo.orifice import port_flow
-from corliss.thermo.steam_table import (CLAMP_HIGH_ENERGY, PARAMS, kappa_at, lookup_flagged,
-                                        t_sat)
+from corliss.thermo.orifice import port_flow, port_flow_partials
+from corliss.thermo.steam_table import (CLAMP_HIGH_ENERGY, PARAMS, kappa_at, kappa_partials,
+                                        lookup_flagged, lookup_partials, t_sat)
 
 log = logging.getLogger(__name__)
 #: Revision of the inlined property and port-flow code (see the module's docstring).
-DEPENDENCY_REVISION = 11
+DEPENDENCY_REVISION = 17
 TIER_TABLE, TIER_PERFECT = 0, 1
 TWO_PI = 2.0 * math.pi
 #: Clamps on trial states: integrators probe states with no steam (a negative mass in
@@ -299,6 +302,45 @@ def edge_area(net, e, pa):
     if ekind[e] == 1:
         return earea[e]
     return pa[ecyl[e], eport[e]]
+
+
+@njit(cache=True, inline="always")
+def _port_area_slopes(th, net, out):
+    """d(area)/dtheta [m2/rad] of every port, shape (cylinders, 4), on the cell of the
+    PortMap table that lies ahead of ``th`` (the side a forward step takes at a kink)."""
+    phase, grid, npts, area = net[3], net[16], net[17], net[18]
+    for c in range(npts.shape[0]):
+        n = npts[c]
+        t = (th + phase[c]) % TWO_PI
+        k = np.searchsorted(grid[c, :n], t, side="right") - 1
+        if k < 0:
+            k = 0
+        if k > n - 2:
+            k = n - 2
+        dg = grid[c, k + 1] - grid[c, k]
+        for p in range(4):
+            out[c, p] = (area[c, p, k + 1] - area[c, p, k]) / dg
+
+
+@njit(cache=True, inline="always")
+def _volume_curvature(th, net, i):
+    """d2V/dtheta2 of a node [m3/rad2]: the slider crank of :func:`node_volume`
+    differentiated once more (0 for a vessel)."""
+    geo, phase, kind, cyl, end = net[2], net[3], net[4], net[5], net[6]
+    if kind[i] == 1:
+        return 0.0
+    c = cyl[i]
+    R, L, Ah, Ac, ang = geo[c, 0], geo[c, 1], geo[c, 3], geo[c, 4], geo[c, 7]
+    a = th + phase[c]
+    sn = math.sin(a)
+    cs = math.cos(a)
+    d2s = R * cs
+    if ang > 0.0:
+        root = math.sqrt(L * L - R * R * sn * sn)
+        d2s += R * R * (cs * cs - sn * sn) / root + (R * R * sn * cs) ** 2 / root ** 3
+    if end[i] == 0:
+        return Ah * d2s
+    return -Ac * d2s
 
 
 @njit(cache=True, inline="always")
@@ -899,16 +941,194 @@ def dopri_error(y, ynew, K, h, atol, rtol):
     return err
 
 
+@njit(cache=True, inline="always")
+def _exact_jacobian_holds(net):
+    """Whether :func:`_jacobian_exact` covers the network's right-hand side: no wall
+    heat that depends on the state (none, or Marks's schedule); the film and wall
+    temperature models are differentiated by finite differences."""
+    heat = net[19]
+    for i in range(heat.shape[0]):
+        if heat[i, 0] != 0.0 and heat[i, 0] != 3.0:
+            return False
+    return True
+
+
+@njit(cache=True)
+def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
+    """The Jacobian of :func:`rhs` over the dynamic columns, and its time derivative,
+    from the derivatives of its parts, for a network :func:`_exact_jacobian_holds`
+    covers.
+
+    Each node's pressure, density, enthalpy and port-flow exponent depend on its own
+    mass m and energy E alone, through rho = m/V and u = E/m: their partials in
+    (rho, u) come from the table's own interpolation
+    (:func:`corliss.thermo.steam_table.lookup_partials`,
+    :func:`~corliss.thermo.steam_table.kappa_partials`) or the perfect gas's closed
+    form, and go to (m, E) by the chain rule (none in a coordinate the state's clamp
+    holds), and to the crank angle through the volume (drho/dtheta = -rho V'/V).  Each
+    node's work term ``-p dV/dtheta`` then moves its energy row and work quadrature
+    (in time also through V''); each edge's flow
+    (:func:`corliss.thermo.orifice.port_flow_partials`, and in time its area's slope
+    on the PortMap table) and the enthalpy it carries (of the side it leaves) move the
+    rows of its two ends and its quadratures.  ``pr`` is written with the properties
+    at ``y``, ``jd`` (shape (12, nodes)) with their partials, ``slope`` (shape
+    (cylinders, 4)) with the ports' area slopes.
+    """
+    nv = net[4].shape[0]
+    n = y.shape[0]
+    ndyn = 2 * nv
+    for i in range(n):
+        T[i] = 0.0
+        for j in range(ndyn):
+            J[i, j] = 0.0
+    for i in range(nv):
+        V, dV = node_volume(t, net, i)
+        pr[4, i] = dV
+        pr[5, i] = V
+        m = y[2 * i]
+        if m > 0.0:
+            u = y[2 * i + 1] / m
+            u_m = -u / m
+            u_e = 1.0 / m
+        else:
+            u = 2.6e6
+            u_m = 0.0
+            u_e = 0.0
+        r_m = 1.0 / V
+        r_t = -m / V * dV / V
+        rho, u, code = admissible_flagged(m / V, u)
+        if code & 3:
+            r_m = 0.0
+            r_t = 0.0
+        if code & 12:
+            u_m = 0.0
+            u_e = 0.0
+        if tier == TIER_PERFECT:
+            R, cv, u_ref = perf[0], perf[1], perf[2]
+            Tk = (u - u_ref) / cv
+            if Tk < 1.0:
+                Tk = 1.0
+                p_r, p_u = R * Tk, 0.0
+            else:
+                p_r, p_u = R * Tk, rho * R / cv
+            p = rho * R * Tk
+            k, k_r, k_u = 1.0 + R / cv, 0.0, 0.0
+        else:
+            p, Tk, x, sup, c2, p_r, p_u = lookup_partials(tab, rho, u)
+            k, k_r, k_u = kappa_partials(tab, rho, u)
+        h_r = p_r / rho - p / (rho * rho)
+        h_u = 1.0 + p_u / rho
+        pr[0, i] = p
+        pr[1, i] = rho
+        pr[2, i] = u + p / rho
+        pr[3, i] = k
+        # rows: d(p, rho, h, kappa) / d(m, E), then / dtheta
+        jd[0, i] = p_r * r_m + p_u * u_m
+        jd[1, i] = p_u * u_e
+        jd[2, i] = r_m
+        jd[3, i] = 0.0
+        jd[4, i] = h_r * r_m + h_u * u_m
+        jd[5, i] = h_u * u_e
+        jd[6, i] = k_r * r_m + k_u * u_m
+        jd[7, i] = k_u * u_e
+        jd[8, i] = p_r * r_t
+        jd[9, i] = r_t
+        jd[10, i] = h_r * r_t
+        jd[11, i] = k_r * r_t
+        q0 = ndyn + 2 * net[9].shape[0] + 5 * i
+        for v in range(2):
+            J[2 * i + 1, 2 * i + v] = -jd[v, i] * dV
+            J[q0, 2 * i + v] = jd[v, i] * dV
+        w_t = jd[8, i] * dV + p * _volume_curvature(t, net, i)
+        T[2 * i + 1] = -w_t
+        T[q0] = w_t
+    omega, band, res = net[0][0], net[1], net[8]
+    ea, eb, ecd, ekind, ecyl, eport = net[9], net[10], net[15], net[11], net[12], net[13]
+    port_areas(t, net, cell)
+    _port_area_slopes(t, net, slope)
+    P, RHO, H, K = pr[0], pr[1], pr[2], pr[3]
+    for e in range(ea.shape[0]):
+        a = ea[e]
+        b = eb[e]
+        if a >= 0:
+            pa, ra, ha, ka = P[a], RHO[a], H[a], K[a]
+        else:
+            r = -1 - a
+            pa, ra, ha, ka = res[r, 0], res[r, 1], res[r, 2], res[r, 3]
+        if b >= 0:
+            pb, rb, hb, kb = P[b], RHO[b], H[b], K[b]
+        else:
+            r = -1 - b
+            pb, rb, hb, kb = res[r, 0], res[r, 1], res[r, 2], res[r, 3]
+        area = edge_area(net, e, cell)
+        md, d1p, d1r, d1k, d2p, d2r, d2k = port_flow_partials(
+            area, ecd[e], pa, ra, ka, pb, rb, kb, band, True)
+        # the side upstream as the flow's partials take it (side a at equal pressures):
+        # not by the sign of md, which is 0 there, where the right-hand side carries no
+        # enthalpy and its two one-sided derivatives carry side a's (pressure of b
+        # falling) or b's (rising); mixing a's flux slope with b's enthalpy matched
+        # neither (a steam chest that has equalised with the supply to the last bit)
+        up_a = pa >= pb
+        h_up = ha if up_a else hb
+        # in time: the area's slope (the flow is proportional to the area) and the
+        # two sides' states
+        md_t = md / area * slope[ecyl[e], eport[e]] if ekind[e] != 1 and area > 0.0 else 0.0
+        hd_t = 0.0
+        for side in range(2):
+            nd = a if side == 0 else b
+            if nd < 0:
+                continue
+            dp, dr, dk = (d1p, d1r, d1k) if side == 0 else (d2p, d2r, d2k)
+            carries = up_a == (side == 0)
+            md_t += dp * jd[8, nd] + dr * jd[9, nd] + dk * jd[11, nd]
+            if carries:
+                hd_t += md * jd[10, nd]
+            for v in range(2):
+                col = 2 * nd + v
+                dmd = dp * jd[v, nd] + dr * jd[2 + v, nd] + dk * jd[6 + v, nd]
+                dhd = dmd * h_up
+                if carries:
+                    dhd += md * jd[4 + v, nd]
+                dmd /= omega
+                dhd /= omega
+                if a >= 0:
+                    J[2 * a, col] -= dmd
+                    J[2 * a + 1, col] -= dhd
+                if b >= 0:
+                    J[2 * b, col] += dmd
+                    J[2 * b + 1, col] += dhd
+                J[ndyn + 2 * e, col] += dmd
+                J[ndyn + 2 * e + 1, col] += dhd
+        hd_t += md_t * h_up
+        md_t /= omega
+        hd_t /= omega
+        if a >= 0:
+            T[2 * a] -= md_t
+            T[2 * a + 1] -= hd_t
+        if b >= 0:
+            T[2 * b] += md_t
+            T[2 * b + 1] += hd_t
+        T[ndyn + 2 * e] += md_t
+        T[ndyn + 2 * e + 1] += hd_t
+
+
 @njit(cache=True)
 def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, cell, att,
-              yp, fp, dl):
-    """Finite-difference Jacobian of the dynamic columns, and the time derivative.
+              yp, fp, dl, jd, slope):
+    """Jacobian of the dynamic columns, and the time derivative, for both Rosenbrock
+    integrators.
 
-    Columns of one colour are perturbed together (their rows do not overlap), so a
-    single cylinder costs two evaluations, plus one for the time derivative.  Clamped
-    evaluations go into the step's tally ``att``; ``yp``, ``fp`` (length of the state)
-    and ``dl`` (of the dynamic states) are scratch.
+    Analytic (:func:`_jacobian_exact`, no evaluation of :func:`rhs`) where it covers
+    the network, else by finite differences: columns of one colour are perturbed
+    together (their rows do not overlap), so a single cylinder costs two evaluations,
+    and the time derivative a forward difference, one more.  Clamped evaluations go
+    into the step's tally ``att``; ``yp``, ``fp`` (length of the state), ``dl`` (of
+    the dynamic states), ``jd`` (shape (12, nodes)) and ``slope`` (shape (cylinders,
+    4)) are scratch.  Returns the evaluations of :func:`rhs` spent.
     """
+    if _exact_jacobian_holds(net):
+        _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope)
+        return 0
     n = y.shape[0]
     ndyn = J.shape[1]
     ncol = owner.shape[0]
@@ -1438,6 +1658,8 @@ def cycle_rosenbrock(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, col
     fp = np.empty(n)
     dl = np.empty(ndyn)
     pr = np.empty((PR_ROWS, net[4].shape[0]))
+    jd = np.empty((12, net[4].shape[0]))
+    slope = np.empty((net[17].shape[0], 4))
     cell = np.empty((net[17].shape[0], 4))
     nfev = 0
     clamps = np.zeros(6)
@@ -1465,7 +1687,7 @@ def cycle_rosenbrock(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, col
                 h = b - t
             if age >= jac_age:
                 nfev += _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf,
-                                  pr, cell, att, yp, fp, dl)
+                                  pr, cell, att, yp, fp, dl, jd, slope)
                 age = 0
                 h_w = -1.0
             hd = h * _D
@@ -1595,7 +1817,7 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
               max_rhs, jac_age, gam, tA, tC, tc, td, tb, te, same, expo):
     """:func:`integrate_cycle` with a Rosenbrock method of a tableau (:data:`ROS_TABLEAUS`).
 
-    On the same finite-difference Jacobian as :func:`cycle_rosenbrock`; the
+    On the same Jacobian as :func:`cycle_rosenbrock` (:func:`_jacobian`); the
     derivative at the step's end (for the next step and the output) is evaluated only
     for a step whose error passes.
 
@@ -1683,6 +1905,8 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
     fp = np.empty(n)
     dl = np.empty(ndyn)
     pr = np.empty((PR_ROWS, net[4].shape[0]))
+    jd = np.empty((12, net[4].shape[0]))
+    slope = np.empty((net[17].shape[0], 4))
     cell = np.empty((net[17].shape[0], 4))
     nfev = 0
     clamps = np.zeros(6)
@@ -1710,7 +1934,7 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
                 h = b - t
             if age >= jac_age:
                 nfev += _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf,
-                                  pr, cell, att, yp, fp, dl)
+                                  pr, cell, att, yp, fp, dl, jd, slope)
                 age = 0
                 h_w = -1.0
             hd = h * gam

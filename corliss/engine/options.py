@@ -110,8 +110,12 @@ class Fidelity:
 #: rtol 1e-4 with ``rodas4``: 730 a cycle of the default card against 1,030, and
 #: 0.13 % off at most against 0.24 %; ``standard``'s with ``ros4`` at 7e-6: 1,870
 #: against 4,022), but on ports 1000 times too large (tests/test_property_tiers.py)
-#: both ran out of the run-time budget, and ``ros4`` at rtol 1e-8 on a compound with
-#: every effect: the presets keep the methods that cope.  (Diagnosed on the ports:
+#: both ran out of the run-time budget with a finite-difference Jacobian (with the
+#: analytic one, now used wherever the wall heat does not depend on the state, they
+#: settle in 3 cycles of 3,000 and 6,700 evaluations), and ``ros4`` at rtol 1e-8 on
+#: a compound with every effect (whose conductance wall heat keeps the finite
+#: differences): the presets keep the methods that cope.  (Diagnosed on the ports,
+#: with the finite-difference Jacobian:
 #: RODAS4's stages, whose coefficients reach 12.5, leave the steam table's range and
 #: are clamped in every step of the blow-down, which holds it to steps of 0.001 deg;
 #: ``ros4`` and RODAS3 clamp nothing there but reject every other step at about

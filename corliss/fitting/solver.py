@@ -54,10 +54,11 @@ same whole number of cycles (found once, at the start, by running the starting s
 until its work is periodic to 1e-5), so the card is a smooth function of the keys:
 a run stopped when periodic to a tolerance would jump where the cycle count changes.
 The Jacobian is by forward differences of ``DIFF_STEP`` of the range.  The runs of a
-fit on the ``fast`` tier use its compiled Rosenbrock method at rtol 1e-5, not its own
+fit on the ``fast`` tier use its compiled Rosenbrock method at rtol 1e-6, not its own
 5e-5: at 5e-5 a few points of the admission line just after dead centre dip by up to
 40 kPa and recover, differently as a key moves by a hundredth of its range, which left
-the cost rough by 2 % and the search stopped short (:data:`SEARCH_RTOL`).  At 1e-5 the
+the cost rough by 2 % and the search stopped short (:data:`SEARCH_RTOL`, which also
+says why not 1e-5).  At 1e-5 the
 second difference of a card's pressures over such steps is about 1 Pa (median; 0.5 kPa
 at the worst point), so the noise allows a small step; what sets it is the card: the
 lap of the default engine is pinned by a 0.5 psi card to a five-hundredth of a
@@ -102,7 +103,16 @@ determine it:
 - it takes part in a direction of the keys along which the card does not change above
   that noise (two keys that act only through their product, such as a port's length
   and its discharge coefficient): a singular value of the Jacobian below three times
-  the noise floor of its columns;
+  the noise floor of its columns.  The rows whose second difference is far beyond
+  that noise (ten times the columns' robust scale of them: the points at the card's
+  corners, where the nearest point of the simulated loop jumps from one line to the
+  next, and the area residuals, of large weight) are left out of this test and of the
+  columns' cosines: there a central difference is a secant, and two keys whose steps
+  move the product by different fractions (2 % of each range: 1.5 % for the port's
+  length, 1.1 % for its coefficient) give different secants of the same function.
+  On converged cards (rtol 1e-6, or 3e-6) those few rows alone made the port's
+  length and coefficient look distinguishable (a least singular value of 39,000
+  against a floor of 1,000; 370 without them);
 - or its standard error is larger than its range.
 
 The other keys' errors are then given with the unidentifiable ones held at their
@@ -141,8 +151,17 @@ log = logging.getLogger(__name__)
 #: centre, which come and go as a key moves by a hundredth of its range (the default
 #: engine: the crank end's pressure at 186-190 deg, clearance 0.076-0.081); at 1e-5 the
 #: largest second difference over the same steps is 0.5 kPa (median 1 Pa), for a run
-#: 1.6 times as long (86 ms against 55 ms).
-SEARCH_RTOL = {"fast": 1e-5}
+#: 1.6 times as long (86 ms against 55 ms).  But at 1e-5 the card's response to a
+#: port's area was still a third short of the converged one (the largest singular
+#: value of the port length's and coefficient's Jacobian 368,000 against 559,000 at
+#: 3e-6 and at 1e-6), and a key that acts on the crank end alone moved the head end's
+#: card by 1 to 15 Pa, smoothly (the two ends share the steps), so that the card of the
+#: head end seemed to fix the piston rod's diameter.  At 3e-6 that is 0.4 to 3 Pa, but
+#: a fit to a card with 2 psi of noise still stopped where the clearance's error was
+#: 0.0020, not the 0.0056 to 0.0057 of the same fit at 1e-6 or with RODAS4 at 3e-6;
+#: at 1e-6 it is 0.1 to 0.4 Pa, for 2.2 times the evaluations of 1e-5 (about those of
+#: 1e-5 with the finite-difference Jacobian).
+SEARCH_RTOL = {"fast": 1e-6}
 #: Forward-difference step of the search, as a fraction of each key's range, per
 #: fidelity tier (see the module's notes: about twice the root of the tier's noise).
 DIFF_STEP = {"fast": 0.005, "standard": 0.002, "reference": 0.001}
@@ -154,6 +173,11 @@ COVARIANCE = "sandwich"
 #: A column (or direction) of the Jacobian is noise when below this multiple of the
 #: noise floor its second differences measure.
 NOISE_FACTOR = 3.0
+#: A row of the covariance's Jacobian is a secant across a corner of the card, left out
+#: of the test of directions and of the columns' cosines, when its second difference in
+#: some column exceeds this multiple of that column's robust scale of them (the
+#: module's notes).
+SECANT_ROW_FACTOR = 10.0
 #: Crank-angle step of the simulated cards [deg]: the loop the measured points are
 #: held to is a polyline through them, and its corners (admission, release) should be
 #: the card's, not the sampling's.
@@ -222,7 +246,8 @@ class FitResult:
         others) [-].
     sensitivity_cosine : ndarray, shape (keys, keys)
         Cosine between the keys' columns of the Jacobian [-]: +-1 for two keys the card
-        cannot tell apart.
+        cannot tell apart (over the rows where a difference is a derivative: the
+        module's notes).
     residual_rms_Pa : float
         Root mean square of the point residuals at the optimum [Pa].
     s_Pa : float
@@ -247,8 +272,8 @@ class FitResult:
     standard_errors_classic : dict, optional
         ``{key: s.e.}`` from ``s^2 (J^T J)^-1``, beside them (see the module's notes).
     singular_values : list of float, optional
-        Singular values of the identifiable keys' Jacobian at the optimum [Pa per
-        unit of the scaled key].
+        Singular values of the identifiable keys' Jacobian at the optimum, over the
+        rows where a difference is a derivative [Pa per unit of the scaled key].
     noise_floor : float, optional
         The largest of the Jacobian columns' noise floors [Pa per unit of the scaled
         key].
@@ -642,10 +667,13 @@ def _check(scene, ranges: list, card: MeasuredCard | None = None) -> None:
 
 
 def _jacobian(prob: _Problem, u: np.ndarray, r0: np.ndarray, h: float):
-    """Central-difference Jacobian at ``u`` (each step kept inside [0, 1]) and each
-    column's noise floor from the second difference of the same runs."""
+    """Central-difference Jacobian at ``u`` (each step kept inside [0, 1]), each
+    column's noise floor from the second difference of the same runs, and which rows
+    are smooth: their second differences within :data:`SECANT_ROW_FACTOR` of each
+    column's robust scale of them (the others are secants across a corner)."""
     J = np.empty((r0.size, u.size))
     noise = np.empty(u.size)
+    smooth = np.ones(r0.size, dtype=bool)
     for i in range(u.size):
         lo, hi = u[i] - h, u[i] + h
         if lo < 0.0:
@@ -666,14 +694,19 @@ def _jacobian(prob: _Problem, u: np.ndarray, r0: np.ndarray, h: float):
         # second difference that is no noise)
         mad = float(np.median(np.abs(d2 - np.median(d2)))) * 1.4826
         noise[i] = mad * math.sqrt(d2.size / 12.0)
-    return J, noise
+        smooth &= np.abs(d2 - np.median(d2)) <= SECANT_ROW_FACTOR * mad
+    return J, noise, smooth
 
 
-def _uncertainty(J: np.ndarray, noise: np.ndarray, r: np.ndarray, keys: list[str]):
+def _uncertainty(J: np.ndarray, noise: np.ndarray, r: np.ndarray, keys: list[str],
+                 smooth: np.ndarray | None = None):
     """Standard errors of the scaled keys (sandwich), the unidentifiable ones and why,
     the correlation, the columns' cosines, the singular values, the noise floor, and
-    the standard errors s^2 (J^T J)^-1 would give."""
+    the standard errors s^2 (J^T J)^-1 would give.  The cosines and the singular values
+    (the test of directions) are of the ``smooth`` rows (all when None)."""
     n, p = J.shape
+    Js = J if smooth is None else J[smooth]
+    norms_s = np.linalg.norm(Js, axis=0)
     s2 = float(np.sum(r ** 2)) / max(n - p, 1)
     norms = np.linalg.norm(J, axis=0)
     floor = float(np.max(noise)) if noise.size else 0.0
@@ -684,11 +717,11 @@ def _uncertainty(J: np.ndarray, noise: np.ndarray, r: np.ndarray, keys: list[str
                       f"sensitivity {norms[i]:.3g} against a noise of {noise[i]:.3g}, in Pa "
                       "over its range)")
     with np.errstate(invalid="ignore", divide="ignore"):
-        cos = (J.T @ J) / np.outer(norms, norms)
+        cos = (Js.T @ Js) / np.outer(norms_s, norms_s)
     live = [i for i in range(p) if keys[i] not in why]
-    sv = np.linalg.svd(J[:, live], compute_uv=False) if live else np.array([])
+    sv = np.linalg.svd(Js[:, live], compute_uv=False) if live else np.array([])
     if len(live) > 1:
-        _, svals, vt = np.linalg.svd(J[:, live], full_matrices=False)
+        _, svals, vt = np.linalg.svd(Js[:, live], full_matrices=False)
         for k_sv, v in zip(svals, vt):
             if k_sv <= NOISE_FACTOR * floor:
                 members = [keys[live[j]] for j in range(len(live)) if abs(v[j]) > 0.3]
@@ -813,9 +846,9 @@ def fit_card(scene, card: MeasuredCard, ranges: list, *, fidelity: str = "fast",
     r0, best, geo = prob.residuals(u, detail=True)
     n, p = r0.size, len(ranges)
     s = math.sqrt(float(np.sum(r0 ** 2)) / max(n - p, 1))
-    J, noise = _jacobian(prob, u, r0, COV_STEP_FACTOR * DIFF_STEP[final])
+    J, noise, smooth = _jacobian(prob, u, r0, COV_STEP_FACTOR * DIFF_STEP[final])
     keys = [r.key for r in ranges]
-    se_u, why, corr, cos, sv, floor, se_c = _uncertainty(J, noise, r0, keys)
+    se_u, why, corr, cos, sv, floor, se_c = _uncertainty(J, noise, r0, keys, smooth)
     values = prob.values(u)
     spans = np.array([r.high - r.low for r in ranges])
     se = {k: (None if k in why else float(se_u[i] * spans[i])) for i, k in enumerate(keys)}

@@ -457,6 +457,117 @@ def kappa_at(tab, rho, u):
             + wr * ((1.0 - wu) * kap[i + 1, j] + wu * kap[i + 1, j + 1]))
 
 
+@njit(cache=True, inline="always")
+def lookup_partials(tab, rho, u):
+    """:func:`lookup_flagged` and the pressure's partial derivatives, from the same
+    interpolation.
+
+    Vapour: ``p = q rho`` with ``q`` bilinear in (ln rho, u), differentiated on its
+    cell.  Wet steam: the temperature solves the lever rule's residual
+    ``R(T; u, v) = 0`` (:func:`_lever`), so ``dT/du = -(v_g - v_f) / R_T`` and
+    ``dT/dv = (u_g - u_f) / R_T``, and ``p = exp(ln p(T))`` piecewise linear in T.
+    A coordinate clamped to the table's edge has no derivative.
+
+    Parameters
+    ----------
+    tab : tuple
+        The table's arrays, :meth:`SteamTable.arrays`.
+    rho : float
+        Density [kg/m3].
+    u : float
+        Specific internal energy [J/kg].
+
+    Returns
+    -------
+    p, T, x, superheated, code
+        As :func:`lookup_flagged`: pressure [Pa], temperature [K], dryness [-], vapour,
+        clamp code.
+    p_rho : float
+        dp/drho at constant u [Pa m3/kg].
+    p_u : float
+        dp/du at constant rho [Pa kg/J].
+    """
+    p, T, x, sup, code = lookup_flagged(tab, rho, u)
+    if sup:
+        lnrho0, dlnrho, u0, du, q = tab[0], tab[1], tab[2], tab[3], tab[4]
+        nr, nu = q.shape
+        fr = (math.log(rho) - lnrho0) / dlnrho if rho > 0.0 else 0.0
+        fr = min(max(fr, 0.0), nr - 1.0)
+        i = min(int(fr), nr - 2)
+        wr = fr - i
+        fu = min(max((u - u0) / du, 0.0), nu - 1.0)
+        j = min(int(fu), nu - 2)
+        wu = fu - j
+        q_fr = (1.0 - wu) * (q[i + 1, j] - q[i, j]) + wu * (q[i + 1, j + 1] - q[i, j + 1])
+        q_fu = (1.0 - wr) * (q[i, j + 1] - q[i, j]) + wr * (q[i + 1, j + 1] - q[i + 1, j])
+        rho_c = p / ((1.0 - wr) * ((1.0 - wu) * q[i, j] + wu * q[i, j + 1])
+                     + wr * ((1.0 - wu) * q[i + 1, j] + wu * q[i + 1, j + 1]))
+        p_rho = 0.0 if code & 3 else p / rho_c + q_fr / dlnrho
+        p_u = 0.0 if code & 24 else rho_c * q_fu / du
+        return p, T, x, sup, code, p_rho, p_u
+    if code != 0:
+        return p, T, x, sup, code, 0.0, 0.0
+    sT0, sdT, s_lnp, s_vf, s_lnvg, s_uf, s_ug = (tab[8], tab[9], tab[10], tab[11], tab[12],
+                                                 tab[13], tab[14])
+    f = max((T - sT0) / sdT, 0.0)
+    k = min(int(f), s_lnp.shape[0] - 2)
+    w = min(f - k, 1.0)
+    v = 1.0 / rho
+    _, der = _lever(T, u, v, sT0, sdT, s_vf, s_lnvg, s_uf, s_ug)
+    vf = s_vf[k] * (1.0 - w) + s_vf[k + 1] * w
+    vg = math.exp(s_lnvg[k] * (1.0 - w) + s_lnvg[k + 1] * w)
+    uf = s_uf[k] * (1.0 - w) + s_uf[k + 1] * w
+    ug = s_ug[k] * (1.0 - w) + s_ug[k + 1] * w
+    if not der < 0.0:
+        return p, T, x, sup, code, 0.0, 0.0
+    p_T = p * (s_lnp[k + 1] - s_lnp[k]) / sdT
+    return p, T, x, sup, code, p_T * (ug - uf) / der * (-v * v), p_T * (-(vg - vf) / der)
+
+
+@njit(cache=True, inline="always")
+def kappa_partials(tab, rho, u):
+    """:func:`kappa_at` and its partial derivatives on the same bilinear cell (none
+    in a coordinate clamped to the grid).
+
+    Parameters
+    ----------
+    tab : tuple
+        The table's arrays, :meth:`SteamTable.arrays`.
+    rho : float
+        Upstream density [kg/m3].
+    u : float
+        Upstream specific internal energy [J/kg].
+
+    Returns
+    -------
+    kappa : float
+        As :func:`kappa_at` [-].
+    k_rho : float
+        dkappa/drho at constant u [m3/kg].
+    k_u : float
+        dkappa/du at constant rho [kg/J].
+    """
+    k_lnrho0, k_dlnrho, k_u0, k_du, kap = tab[15], tab[16], tab[17], tab[18], tab[19]
+    nr, nu = kap.shape
+    fr = (math.log(rho) - k_lnrho0) / k_dlnrho if rho > 0.0 else 0.0
+    in_r = fr > 0.0 and fr < nr - 1.0
+    fr = min(max(fr, 0.0), nr - 1.0)
+    i = min(int(fr), nr - 2)
+    wr = fr - i
+    fu = (u - k_u0) / k_du
+    in_u = fu > 0.0 and fu < nu - 1.0
+    fu = min(max(fu, 0.0), nu - 1.0)
+    j = min(int(fu), nu - 2)
+    wu = fu - j
+    k = ((1.0 - wr) * ((1.0 - wu) * kap[i, j] + wu * kap[i, j + 1])
+         + wr * ((1.0 - wu) * kap[i + 1, j] + wu * kap[i + 1, j + 1]))
+    k_fr = (1.0 - wu) * (kap[i + 1, j] - kap[i, j]) + wu * (kap[i + 1, j + 1] - kap[i, j + 1])
+    k_fu = (1.0 - wr) * (kap[i, j + 1] - kap[i, j]) + wr * (kap[i + 1, j + 1] - kap[i + 1, j])
+    k_rho = k_fr / (k_dlnrho * rho) if in_r else 0.0
+    k_u = k_fu / k_du if in_u else 0.0
+    return k, k_rho, k_u
+
+
 @njit(cache=True)
 def lookup_many(tab, rho, u):
     """Vectorised :func:`lookup` (compiled).
