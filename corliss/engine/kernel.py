@@ -41,7 +41,17 @@ lookups inlined into it once), called by one function per integrator
 integrator it uses; inlining :func:`rhs` itself at every stage of every method, as
 before, made numba compile it ten times (2 min against 10 s on a loaded 2-core
 machine).  The functions that take the network or the table tuple stay inlined inside
-:func:`rhs`: a call that passes those tuples costs more than the work of a small one.  Numba keys that cache on the
+:func:`rhs`: a call that passes those tuples costs more than the work of a small one.
+
+:func:`rhs` is compiled without numba's reference counting (``_nrt=False``, the flag
+numba's own string functions use): every array it reads from the network and table
+tuples would otherwise be counted up and down with an atomic instruction (over 200 in
+its compiled code, many inside the loops over nodes and edges), which cost 0.76 of its
+1.2 us on the default scene.  It allocates nothing and keeps no reference past its
+return (its arrays are its caller's), so no count is needed; numba refuses to compile
+an allocation there (a typing error, not a silent leak).
+
+Numba keys that cache on the
 content of this file alone, not on the compiled functions it inlines from
 :mod:`corliss.thermo.orifice` and :mod:`corliss.thermo.steam_table`: a change there
 must come with a new :data:`DEPENDENCY_REVISION` here (and in
@@ -628,7 +638,7 @@ def node_states(th, y, net, tier, tab, perf, pr):
             pr[7, i] = t_sat(tab, p) if (sup and tier != TIER_PERFECT) else T
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def rhs(th, y, dy, net, tier, tab, perf, pr, cell):
     """Derivatives with respect to crank angle on a compiled property tier.
 
