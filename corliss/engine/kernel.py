@@ -44,7 +44,17 @@ lookups inlined into it once), called by one function per integrator
 integrator it uses; inlining :func:`rhs` itself at every stage of every method, as
 before, made numba compile it ten times (2 min against 10 s on a loaded 2-core
 machine).  The functions that take the network or the table tuple stay inlined inside
-:func:`rhs`: a call that passes those tuples costs more than the work of a small one.  Numba keys that cache on the
+:func:`rhs`: a call that passes those tuples costs more than the work of a small one.
+
+:func:`rhs` is compiled without numba's reference counting (``_nrt=False``, the flag
+numba's own string functions use): every array it reads from the network and table
+tuples would otherwise be counted up and down with an atomic instruction (over 200 in
+its compiled code, many inside the loops over nodes and edges), which cost 0.76 of its
+1.2 us on the default scene.  It allocates nothing and keeps no reference past its
+return (its arrays are its caller's), so no count is needed; numba refuses to compile
+an allocation there (a typing error, not a silent leak).
+
+Numba keys that cache on the
 content of this file alone, not on the compiled functions it inlines from
 :mod:`corliss.thermo.orifice` and :mod:`corliss.thermo.steam_table`: a change there
 must come with a new :data:`DEPENDENCY_REVISION` here (and in
@@ -207,11 +217,79 @@ def props(tier, tab, perf, rho, u):
 
 
 @njit(cache=True, inline="always")
+def piston_position(th, net, c):
+    """Piston travel from head dead centre and its derivative with crank angle.
+
+    The slider crank of :mod:`corliss.engine.geometry`, at the cylinder's own angle
+    ``th + phase``.
+
+    Parameters
+    ----------
+    th : float
+        Shaft crank angle [rad].
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    c : int
+        The cylinder.
+
+    Returns
+    -------
+    s : float
+        Travel [m].
+    ds : float
+        ds/dtheta [m/rad].
+    """
+    geo, phase = net[2], net[3]
+    R, L, ang = geo[c, 0], geo[c, 1], geo[c, 7]
+    a = th + phase[c]
+    sn = math.sin(a)
+    cs = math.cos(a)
+    s = R * (1.0 - cs)
+    ds = R * sn
+    if ang > 0.0:
+        root = math.sqrt(L * L - R * R * sn * sn)
+        s += L - root
+        ds += R * R * sn * cs / root
+    return s, ds
+
+
+@njit(cache=True, inline="always")
+def end_volume(net, c, end, s, ds):
+    """Volume of one end of a cylinder and its derivative, from the piston's travel.
+
+    Parameters
+    ----------
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    c : int
+        The cylinder.
+    end : int
+        0 the head end, 1 the crank end.
+    s : float
+        Piston travel from head dead centre [m] (:func:`piston_position`).
+    ds : float
+        ds/dtheta [m/rad].
+
+    Returns
+    -------
+    V : float
+        Volume [m3].
+    dV : float
+        dV/dtheta [m3/rad].
+    """
+    geo = net[2]
+    if end == 0:
+        return geo[c, 5] + geo[c, 3] * s, geo[c, 3] * ds
+    return geo[c, 6] + geo[c, 4] * (geo[c, 2] - s), -geo[c, 4] * ds
+
+
+@njit(cache=True, inline="always")
 def node_volume(th, net, i):
     """Volume of a node and its derivative with crank angle.
 
     The slider crank of :mod:`corliss.engine.geometry`, at the cylinder's own angle
-    ``th + phase``; a vessel's volume is fixed.
+    ``th + phase`` (:func:`piston_position`, :func:`end_volume`); a vessel's volume is
+    fixed.
 
     Parameters
     ----------
@@ -229,24 +307,11 @@ def node_volume(th, net, i):
     dV : float
         dV/dtheta [m3/rad].
     """
-    geo, phase, kind, cyl, end, fixedV = net[2], net[3], net[4], net[5], net[6], net[7]
+    kind, cyl, end, fixedV = net[4], net[5], net[6], net[7]
     if kind[i] == 1:
         return fixedV[i], 0.0
-    c = cyl[i]
-    R, L, S, Ah, Ac, Vch, Vcc, ang = (geo[c, 0], geo[c, 1], geo[c, 2], geo[c, 3], geo[c, 4],
-                                      geo[c, 5], geo[c, 6], geo[c, 7])
-    a = th + phase[c]
-    sn = math.sin(a)
-    cs = math.cos(a)
-    s = R * (1.0 - cs)
-    ds = R * sn
-    if ang > 0.0:
-        root = math.sqrt(L * L - R * R * sn * sn)
-        s += L - root
-        ds += R * R * sn * cs / root
-    if end[i] == 0:
-        return Vch + Ah * s, Ah * ds
-    return Vcc + Ac * (S - s), -Ac * ds
+    s, ds = piston_position(th, net, cyl[i])
+    return end_volume(net, cyl[i], end[i], s, ds)
 
 
 @njit(cache=True, inline="always")
@@ -546,6 +611,11 @@ def balances(th, y, pr, dy, net, areas):
             dy[q0 + 3] = h * A / omega
             dy[q0 + 4] = h * A * Ts / omega
     for e in range(ne):
+        ar = edge_area(net, e, areas)
+        if ar <= 0.0:
+            # a shut port: no flow (its quadratures' zeros are written above); the
+            # test is port_flow's own, which would return 0 before reading either side
+            continue
         a = ea[e]
         b = eb[e]
         if a >= 0:
@@ -558,7 +628,7 @@ def balances(th, y, pr, dy, net, areas):
         else:
             r = -1 - b
             pb, rb, hb, kb = res[r, 0], res[r, 1], res[r, 2], res[r, 3]
-        md = port_flow(edge_area(net, e, areas), ecd[e], pa, ra, ka, pb, rb, kb, band, True)
+        md = port_flow(ar, ecd[e], pa, ra, ka, pb, rb, kb, band, True)
         hd = md * (ha if md > 0.0 else hb)
         md /= omega
         hd /= omega
@@ -650,8 +720,21 @@ def node_states(th, y, net, tier, tab, perf, pr):
         res = net[8]
         for r in range(res.shape[0]):
             res[r, 3] = 1.0 + perf[0] / perf[1]
+    kind, cyl, end, fixedV = net[4], net[5], net[6], net[7]
+    # the piston's travel once per cylinder, not once per end: the nodes of a
+    # cylinder's two ends are adjacent (it is computed again for one that is not)
+    last = -1
+    s = 0.0
+    ds = 0.0
     for i in range(nv):
-        V, dV = node_volume(th, net, i)
+        if kind[i] == 1:
+            V, dV = fixedV[i], 0.0
+        else:
+            c = cyl[i]
+            if c != last:
+                s, ds = piston_position(th, net, c)
+                last = c
+            V, dV = end_volume(net, c, end[i], s, ds)
         pr[4, i] = dV
         pr[5, i] = V
         m = y[2 * i]
@@ -670,7 +753,7 @@ def node_states(th, y, net, tier, tab, perf, pr):
             pr[7, i] = t_sat(tab, p) if (sup and tier != TIER_PERFECT) else T
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def rhs(th, y, dy, net, tier, tab, perf, pr, cell):
     """Derivatives with respect to crank angle on a compiled property tier.
 

@@ -34,6 +34,11 @@ steam pipe's effective area read from a table of opening) or sets the valve gear
 whose port areas come from a table over (setting, crank angle), both uniform grids,
 read bilinearly.  Integration: Dormand-Prince 5(4) as in :mod:`corliss.engine.kernel`,
 with no stops inside a cycle (port kinks move with the setting).
+
+:func:`transient_rhs` and the helpers it calls are compiled without numba's reference
+counting (``_nrt=False``), as :func:`corliss.engine.kernel.rhs` is and for its reason:
+they allocate nothing, and the counts on the arrays read from the network and table
+tuples were most of their cost.
 """
 
 from __future__ import annotations
@@ -77,7 +82,7 @@ N_EXTRA = 9
 N_REC = 7
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def piston_kinematics(th, net, c):
     """Piston velocity and acceleration per crank angle of one cylinder.
 
@@ -114,7 +119,7 @@ def piston_kinematics(th, net, c):
     return ds, d2s
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _lin(grid0, dgrid, table, x):
     """Linear interpolation in a table on a uniform grid, clamped at its ends."""
     n = table.shape[0]
@@ -128,7 +133,7 @@ def _lin(grid0, dgrid, table, x):
     return table[k] * (1.0 - w) + table[k + 1] * w
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def uniform_cell(x, x0, x1, n):
     """The cell of a value on a uniform grid, and its weight, clamped to the grid.
 
@@ -161,7 +166,7 @@ def uniform_cell(x, x0, x1, n):
     return k, f - k
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def load_factor(t, lt, lf):
     """The load schedule ``f(t)``: piecewise linear, constant beyond its ends.
 
@@ -193,7 +198,7 @@ def load_factor(t, lt, lf):
     return lf[k] + (lf[k + 1] - lf[k]) * (t - lt[k]) / dt
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def governed_areas(th, s, omega, net, tr, pa):
     """Port areas of the governed cylinders at a gear setting.
 
@@ -243,7 +248,7 @@ def governed_areas(th, s, omega, net, tr, pa):
             trip_areas(t, s, omega, tr, c, pa)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def trip_areas(t, s, omega, tr, c, pa):
     """A trip gear's steam ports (0: head, 2: crank) after the release.
 
@@ -306,7 +311,7 @@ def trip_areas(t, s, omega, tr, c, pa):
             pa[c, port] = lim
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def transient_rhs(th, y, dy, net, tier, tab, perf, pr, pa, tr, out):
     """Derivatives with respect to crank angle of the whole loop.
 
