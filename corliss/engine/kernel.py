@@ -77,7 +77,7 @@ from corliss.thermo.steam_table import (CLAMP_HIGH_ENERGY, PARAMS, kappa_at, kap
 
 log = logging.getLogger(__name__)
 #: Revision of the inlined property and port-flow code (see the module's docstring).
-DEPENDENCY_REVISION = 17
+DEPENDENCY_REVISION = 18
 TIER_TABLE, TIER_PERFECT = 0, 1
 TWO_PI = 2.0 * math.pi
 #: Clamps on trial states: integrators probe states with no steam (a negative mass in
@@ -1036,7 +1036,7 @@ def _exact_jacobian_holds(net):
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
     """The Jacobian of :func:`rhs` over the dynamic columns, and its time derivative,
     from the derivatives of its parts, for a network :func:`_exact_jacobian_holds`
