@@ -131,11 +131,15 @@ class Fidelity:
 #: over three quarters of each turn (the step times the largest eigenvalue, -60 to
 #: -330 per radian, at 2.2 to 3.1, the edge of its stability), so that at 5e-5 it
 #: needed more evaluations than at 1e-6; ``ros4`` steps over the stiffness, and at
-#: 5e-5 took half of dopri5's evaluations there with a speed error a third of its.
-#: At ``standard``'s accuracy the steps are held to 1 to 2 deg by the port flow's own
-#: pace whatever the method, and ``ros4``, nine evaluations a step with its Jacobian,
-#: needed 1,960 a turn against dopri5's 1,610 for the same speed error; RODAS3, RODAS4,
-#: ROS34PW2 and a Jacobian kept for two or three steps all cost more.
+#: 5e-5 took half of dopri5's evaluations there (1,020 a turn against 1,940) with a
+#: fifth of its speed error; on the ten governed scenes (20 s each) it was faster on
+#: nine, four to eight times on the throttling ones.  At ``standard``'s accuracy the
+#: port flow's own pace holds every method to such steps on that engine, and ``ros4``,
+#: nine evaluations a step with its Jacobian, needed 2,100 a turn at 5e-6 against
+#: dopri5's 1,640 at 1e-6 for a speed error no larger (RODAS3, RODAS4, the W-method
+#: ROS34PW2 and a Jacobian kept for two or three steps all cost more); on two
+#: throttling scenes, whose steam chest is stiffer still, it took about 40 % of dopri5's
+#: time for that accuracy, so a scene may name ``method = "ros4"``.
 PRESETS: dict[str, Fidelity] = {
     "reference": Fidelity("reference", "heos", "LSODA", 1e-9, 5760, 1e-6, 60, 0.25),
     "standard": Fidelity("standard", "table", "dopri5", 1e-6, 1440, 1e-4, 40, 1.0),

@@ -817,12 +817,13 @@ def integrate_turn_ros(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr,
     by the stiff pressure equalisation through an open port to steps of 1 to 2 deg
     whatever its tolerance (an eigenvalue of -60 to -330 per radian on the
     Porter-Allen engine, the step times it at 2.2 to 3.1, the edge of its stability);
-    this one steps over it, which pays at loose tolerances (``fast``): at tight ones
-    the port flow's own pace holds every method to such steps, and the Jacobian's six
-    evaluations a step then cost more than they save.  The step carries over from turn
-    to turn (``sc[S_STEP]``).  Returns, raises and counts clamps as
-    :func:`integrate_turn`; a step whose end needs the properties clamped (but for the
-    greatest energy's) is retried shorter.
+    this one steps over it, which pays at loose tolerances (``fast``) and on a steam
+    chest's stiffer flow: at tight ones the Porter-Allen engine's port flow holds every
+    method to such steps by its own pace, and the Jacobian's six evaluations a step
+    then cost more than they save (:data:`corliss.engine.options.PRESETS`).  The step
+    carries over from turn to turn (``sc[S_STEP]``).  Returns, raises and counts clamps
+    as :func:`integrate_turn`; a step whose end needs the properties clamped (but for
+    the greatest energy's) is retried shorter.
 
     Parameters
     ----------
