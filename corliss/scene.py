@@ -619,6 +619,7 @@ def _run(t: Table) -> RunSpec:
         changes["properties"] = t.get("properties", None)
     if t.has("method"):
         changes["method"] = t.get("method", None)
+        changes["transient_method"] = None    # the transient loop's too
     if t.has("rtol"):
         changes["rtol"] = t.get("rtol", None)
     if t.has("convergence_tolerance"):

@@ -51,6 +51,9 @@ EXPANSION_LAWS = ("hyperbolic", "isentropic")
 SCIPY_METHODS = ("LSODA", "BDF", "Radau", "RK45", "DOP853")
 COMPILED_METHODS = ("dopri5", "rk4", "rosenbrock", "ros4", "rodas3", "rodas4")
 METHODS = SCIPY_METHODS + COMPILED_METHODS
+#: Integrators of the transient loop (:mod:`corliss.engine.transient_kernel`): ``dopri5``,
+#: and the Rosenbrock methods of :data:`corliss.engine.kernel.ROS_TABLEAUS`.
+TRANSIENT_METHODS = ("dopri5", "ros4", "rodas3", "rodas4")
 
 
 @dataclass(frozen=True)
@@ -83,6 +86,9 @@ class Fidelity:
         Crank-angle step of the time series and cards [deg].
     step_deg : float
         Crank-angle step of the fixed-step ``rk4`` integrator [deg].
+    transient_method : str or None
+        Integrator of a transient run's loop (:data:`TRANSIENT_METHODS`), at ``rtol``;
+        None: ``method`` (``dopri5`` when the loop does not have it).
     """
 
     name: str
@@ -94,6 +100,7 @@ class Fidelity:
     max_cycles: int
     output_step_deg: float
     step_deg: float = 1.0
+    transient_method: str | None = None
 
 
 #: The presets.  ``reference``: IAPWS-95 through HEOS at every call, LSODA at 1e-9;
@@ -121,10 +128,27 @@ class Fidelity:
 #: ``ros4`` and RODAS3 clamp nothing there but reject every other step at about
 #: 0.01 deg, their error estimates failing as the flux through the huge ports turns
 #: nonlinear within a step.)
+#:
+#: A transient run's loop integrates with dopri5 at ``standard`` and with ``ros4`` at
+#: ``fast`` (``transient_method``).  On the 60-second load step of
+#: benchmarks/load_step.py dopri5 is held by the stiff port flow to steps of 1 to 2 deg
+#: over three quarters of each turn (the step times the largest eigenvalue, -60 to
+#: -330 per radian, at 2.2 to 3.1, the edge of its stability), so that at 5e-5 it
+#: needed more evaluations than at 1e-6; ``ros4`` steps over the stiffness, and at
+#: 5e-5 took half of dopri5's evaluations there (1,020 a turn against 1,940) with a
+#: fifth of its speed error; on the ten governed scenes (20 s each) it was faster on
+#: nine, four to eight times on the throttling ones.  At ``standard``'s accuracy the
+#: port flow's own pace holds every method to such steps on that engine, and ``ros4``,
+#: nine evaluations a step with its Jacobian, needed 2,100 a turn at 5e-6 against
+#: dopri5's 1,640 at 1e-6 for a speed error no larger (RODAS3, RODAS4, the W-method
+#: ROS34PW2 and a Jacobian kept for two or three steps all cost more); on two
+#: throttling scenes, whose steam chest is stiffer still, it took about 40 % of dopri5's
+#: time for that accuracy, so a scene may name ``method = "ros4"``.
 PRESETS: dict[str, Fidelity] = {
     "reference": Fidelity("reference", "heos", "LSODA", 1e-9, 5760, 1e-6, 60, 0.25),
     "standard": Fidelity("standard", "table", "dopri5", 1e-6, 1440, 1e-4, 40, 1.0),
-    "fast": Fidelity("fast", "table", "rosenbrock", 5e-5, 720, 1e-3, 20, 2.0),
+    "fast": Fidelity("fast", "table", "rosenbrock", 5e-5, 720, 1e-3, 20, 2.0,
+                     transient_method="ros4"),
 }
 
 

@@ -8,7 +8,7 @@ cylinders start from a periodic state; then the shaft is released.
 
 What the governor moves is tabulated once: the throttle's effective area against its
 opening, or the valve gear's port areas over a uniform grid of (setting, crank angle),
-with the gear's events at each setting for the per-cycle cut-off.
+with the gear's events at the settings a turn visits for the per-cycle cut-off.
 """
 
 from __future__ import annotations
@@ -24,14 +24,14 @@ import numpy as np
 import pandas as pd
 
 from corliss.engine import transient_kernel as tk
-from corliss.engine.kernel import MAX_RHS_PER_CYCLE, announce_compile
+from corliss.engine.kernel import MAX_RHS_PER_CYCLE, ROS_TABLEAUS, announce_compile
 from corliss.engine.condensation import MarksLaw
 from corliss.engine.crank_resolved import budget_message
 from corliss.engine.model import build_gear, build_network, geometry_of, reservoir_states
 from corliss.engine.network import throttle_area_m2
 from corliss.engine.operating_point import (BALANCED, LOAD_TOO_HEAVY, SURPLUS_TOL,
                                            OperatingPoint, find_operating_point)
-from corliss.engine.options import record_of
+from corliss.engine.options import TRANSIENT_METHODS, record_of
 from corliss.engine.result import TransientResult
 from corliss.engine.speed_metrics import settled, step_time_of
 from corliss.engine.start_from_rest import HANDOVER_FRACTION, start_from_rest
@@ -80,9 +80,8 @@ class LoopTables:
         governor).
     setting_grid : ndarray or None
         The settings tabulated [-], with a governed gear.
-    cutoff_table : ndarray or None
-        Head and crank cut-off at each setting, fractions of the stroke [-]; shape
-        (2, settings).
+    cutoff_table : CutoffTable or None
+        Head and crank cut-off over the settings, fractions of the stroke [-].
     z0 : float
         The governor's equilibrium coordinate at the run's speed [-] (0 without one).
     mechanism : GovernorMechanism or None
@@ -92,7 +91,7 @@ class LoopTables:
     tr: tuple
     governed_gear: object | None
     setting_grid: np.ndarray | None
-    cutoff_table: np.ndarray | None      # (2, settings): head, crank cut-off fraction
+    cutoff_table: CutoffTable | None     # head and crank cut-off over the settings
     z0: float
     mechanism: object | None
 
@@ -105,22 +104,74 @@ def _governor_arrays(mech):
     return np.vstack([mech.M, mech.dM_dz, mech.G, mech.R, mech.J]).astype(float)
 
 
+class CutoffTable:
+    """The cut-off of each end over the tabulated settings of a governed gear, each
+    setting's found from the gear's events when a turn first needs it.
+
+    The events of a setting cost a root search on the gear (about 4 ms of a Fink
+    motion's); a load step visits a few of the settings, so finding all of them up
+    front was a tenth of a 60-second run's time.
+
+    Parameters
+    ----------
+    gear : object
+        The governed valve gear.
+    settings : ndarray
+        The settings tabulated [-], increasing.
+    frac : callable
+        Crank angle [rad] -> piston position as a fraction of the stroke [-].
+    """
+
+    def __init__(self, gear, settings: np.ndarray, frac: Callable):
+        self.gear = gear
+        self.settings = np.asarray(settings, dtype=float)
+        self.frac = frac
+        self.values = np.full((2, self.settings.size), np.nan)
+        self.known = np.zeros(self.settings.size, dtype=bool)
+
+    def _find(self, j: int) -> None:
+        ev = gear_events(self.gear.with_setting(float(self.settings[j])), self.frac)
+        for e, end in enumerate(("head", "crank")):
+            v = ev[end]["cutoff_frac"]
+            self.values[e, j] = np.nan if v is None else v
+        self.known[j] = True
+
+    def at(self, setting: float) -> tuple[float, float]:
+        """Head and crank cut-off at a setting, linear between the tabulated ones.
+
+        Parameters
+        ----------
+        setting : float
+            The gear's setting [-]; beyond the table, its end's.
+
+        Returns
+        -------
+        head, crank : float
+            Cut-off, fractions of the stroke [-] (NaN where an end has none).
+        """
+        n = self.settings.size
+        k = min(max(int(np.searchsorted(self.settings, setting, side="right")) - 1, 0),
+                max(n - 2, 0))
+        for j in range(k, min(k + 2, n)):
+            if not self.known[j]:
+                self._find(j)
+        if n == 1:
+            return float(self.values[0, 0]), float(self.values[1, 0])
+        g = self.settings[k:k + 2]
+        return (float(np.interp(setting, g, self.values[0, k:k + 2])),
+                float(np.interp(setting, g, self.values[1, k:k + 2])))
+
+
 def _gear_tables(gear, lo: float, hi: float, ncyl: int, governed: np.ndarray, nth: int,
                  frac: Callable):
     """Port areas over (setting, crank angle) for the governed cylinders, and the cut-off
-    of each end at each setting."""
+    of each end over the settings."""
     spm = tabulate_settings(gear, lo, hi, SETTING_POINTS, nth)
     area = np.zeros((ncyl, 4, spm.settings.size, nth + 1))
     for c in range(ncyl):
         if governed[c]:
             area[c] = np.transpose(spm.area_m2, (1, 0, 2))
-    cut = np.full((2, spm.settings.size), np.nan)
-    for j, s in enumerate(spm.settings):
-        ev = gear_events(gear.with_setting(float(s)), frac)
-        for e, end in enumerate(("head", "crank")):
-            v = ev[end]["cutoff_frac"]
-            cut[e, j] = np.nan if v is None else v
-    return spm.settings, area, cut
+    return spm.settings, area, CutoffTable(gear, spm.settings, frac)
 
 
 def _trip_tables(gear, grid: np.ndarray, nth: int):
@@ -283,9 +334,7 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
         raise InputError("run.fidelity", fid.name, "a fidelity on a compiled property tier "
                          "(\"standard\" or \"fast\", or properties = \"table\"): the transient "
                          "loop is compiled")
-    if fid.method != "dopri5":
-        log.info("the transient loop integrates with dopri5 at rtol %g (the preset's %s is "
-                 "for steady cycles)", fid.rtol, fid.method)
+    method = loop_method(fid)
     chest, exhaust = reservoir_states(scene, steam)
     geo = geometry_of(scene)
     gear = build_gear(scene)
@@ -314,8 +363,9 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
     sc = tables.tr[0]
     rtol = fid.rtol
     nfev = 0
+    integrate_turn = _turn_integrator(method, network)
     # warm-up: speed and governor held, time held at zero
-    announce_compile(tk.integrate_turn)
+    announce_compile(tk.integrate_turn if method == "dopri5" else tk.integrate_turn_ros)
     sc[tk.S_FREEZE] = 1.0
 
     def frozen_turns(y, omega, z, turns, tol=None):
@@ -335,7 +385,7 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
             if marks is not None:
                 marks.strokes_per_s = omega / math.pi
                 marks.apply(net[19])
-            y, _, _, _, nf_, status = tk.integrate_turn(y, 0.0, np.zeros(0), rtol, atol, net,
+            y, _, _, _, nf_, status = integrate_turn(y, 0.0, np.zeros(0), rtol, atol, net,
                                                         steam.kernel_tier, tab, perf, tables.tr,
                                                         False, math.inf)
             nfev += nf_
@@ -400,7 +450,7 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
             trial = y.copy()
             trial[nn + tk.X_OMEGA] = omega_dc
             trial[nn + tk.X_TIME] = 0.0
-            trial, _, _, _, nf_, status = tk.integrate_turn(trial, 0.0, np.zeros(0), rtol, atol, net,
+            trial, _, _, _, nf_, status = integrate_turn(trial, 0.0, np.zeros(0), rtol, atol, net,
                                                             steam.kernel_tier, tab, perf, tables.tr,
                                                             False, math.inf)
             nfev += nf_
@@ -442,7 +492,7 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
             out_theta = np.array([th0])
         else:
             out_theta = np.zeros(0)
-        y, samples, rec, n_rec, nf_, status = tk.integrate_turn(
+        y, samples, rec, n_rec, nf_, status = integrate_turn(
             y, th0, out_theta, rtol, atol, net, steam.kernel_tier, tab, perf, tables.tr,
             record == "step", longest)
         nfev += nf_
@@ -475,6 +525,44 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
                            z_start=start.governor_z, chest=chest, exhaust=exhaust,
                            start=start, clamped_trials=int(sc[tk.S_CLAMPED_TRIALS]),
                            clamped_hot=int(sc[tk.S_CLAMPED_HOT]))
+
+
+def loop_method(fidelity) -> str:
+    """The integrator of the transient loop at a fidelity.
+
+    The fidelity's ``transient_method``, or where unset its ``method``; a method the
+    loop does not have (the steady cycle's ``rk4``, ``rosenbrock`` or a scipy one)
+    becomes ``dopri5``.  Either integrates at the fidelity's ``rtol``.
+
+    Parameters
+    ----------
+    fidelity : Fidelity
+        The run's accuracy knobs.
+
+    Returns
+    -------
+    str
+        One of :data:`corliss.engine.options.TRANSIENT_METHODS`.
+    """
+    method = fidelity.transient_method or fidelity.method
+    if method not in TRANSIENT_METHODS:
+        log.info("the transient loop integrates with dopri5 at rtol %g (%s is for steady "
+                 "cycles)", fidelity.rtol, method)
+        method = "dopri5"
+    return method
+
+
+def _turn_integrator(method: str, network) -> Callable:
+    """The compiled turn of the loop with a method, as a function of the arguments of
+    :func:`corliss.engine.transient_kernel.integrate_turn`."""
+    if method == "dopri5":
+        return tk.integrate_turn
+    color, owner = network.column_colors()
+    tableau = ROS_TABLEAUS[method]
+
+    def turn(*args):
+        return tk.integrate_turn_ros(*args, color, owner, *tableau)
+    return turn
 
 
 def _report_start(start: OperatingPoint) -> None:
@@ -552,12 +640,7 @@ def _cycle_row(k: int, y0: np.ndarray, y: np.ndarray, network, tables: LoopTable
             row["throttle_opening_frac"] = act
         else:
             row["gear_setting_frac"] = act
-            grid, cut = tables.setting_grid, tables.cutoff_table
-            if grid.size > 1:
-                row["cutoff_head_frac"] = float(np.interp(act, grid, cut[0]))
-                row["cutoff_crank_frac"] = float(np.interp(act, grid, cut[1]))
-            else:
-                row["cutoff_head_frac"], row["cutoff_crank_frac"] = cut[0, 0], cut[1, 0]
+            row["cutoff_head_frac"], row["cutoff_crank_frac"] = tables.cutoff_table.at(act)
     return row
 
 

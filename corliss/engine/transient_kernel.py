@@ -52,12 +52,13 @@ from corliss.engine.kernel import (CL_ACCEPTED, CL_ACCEPTED_CODE, CL_REJECTED,
                                    CL_REJECTED_CODE, DOPRI_NODES, PR_ROWS, balances,
                                    copy_into, dopri_error, dopri_stage, emit_samples,
                                    node_states, port_areas, put_column, settle_clamps,
-                                   settle_trial, settle_visited, step_factor, tally_clamps)
+                                   settle_trial, settle_visited, step_factor, tally_clamps,
+                                   visited_clamp_off)
 from corliss.errors import RunError
 
 #: Revision of the inlined kernel, property and port-flow code: numba keys this file's
 #: cache on its content alone (see :mod:`corliss.engine.kernel`).
-DEPENDENCY_REVISION = 15
+DEPENDENCY_REVISION = 16
 
 TWO_PI = 2.0 * math.pi
 
@@ -72,7 +73,9 @@ S_CLAMPED_TRIALS, S_CLAMPED_TRIAL_CODE = 23, 24
 #: evaluated at it (the one clamp that does not stop a run; see
 #: :mod:`corliss.engine.crank_resolved`)
 S_CLAMPED_HOT = 25
-N_SCALARS = 26
+#: the Rosenbrock loop's next step [rad], carried from turn to turn (0: none yet)
+S_STEP = 26
+N_SCALARS = 27
 
 # the extra states after the network's, relative to its length
 X_OMEGA, X_Z, X_ZDOT, X_TIME, X_WLOAD, X_WFRIC, X_WGAS, X_ZDT, X_ADT = 0, 1, 2, 3, 4, 5, 6, 7, 8
@@ -82,7 +85,7 @@ N_EXTRA = 9
 N_REC = 7
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always")
 def piston_kinematics(th, net, c):
     """Piston velocity and acceleration per crank angle of one cylinder.
 
@@ -119,7 +122,7 @@ def piston_kinematics(th, net, c):
     return ds, d2s
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always")
 def _lin(grid0, dgrid, table, x):
     """Linear interpolation in a table on a uniform grid, clamped at its ends."""
     n = table.shape[0]
@@ -133,7 +136,7 @@ def _lin(grid0, dgrid, table, x):
     return table[k] * (1.0 - w) + table[k + 1] * w
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always")
 def uniform_cell(x, x0, x1, n):
     """The cell of a value on a uniform grid, and its weight, clamped to the grid.
 
@@ -166,7 +169,7 @@ def uniform_cell(x, x0, x1, n):
     return k, f - k
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always")
 def load_factor(t, lt, lf):
     """The load schedule ``f(t)``: piecewise linear, constant beyond its ends.
 
@@ -198,7 +201,7 @@ def load_factor(t, lt, lf):
     return lf[k] + (lf[k + 1] - lf[k]) * (t - lt[k]) / dt
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always")
 def governed_areas(th, s, omega, net, tr, pa):
     """Port areas of the governed cylinders at a gear setting.
 
@@ -248,7 +251,7 @@ def governed_areas(th, s, omega, net, tr, pa):
             trip_areas(t, s, omega, tr, c, pa)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always")
 def trip_areas(t, s, omega, tr, c, pa):
     """A trip gear's steam ports (0: head, 2: crank) after the release.
 
@@ -660,3 +663,415 @@ def _clamp_error(code):
     raise RunError("the steam in a cylinder became wetter than the range of the steam "
                    "properties in an accepted step.  The run was stopped rather than continue "
                    "on clamped properties; check supply.dryness")
+
+
+#: The loop's states that take a column of the Rosenbrock method's Jacobian besides the
+#: network's dynamic ones: speed, governor coordinate and its rate (offsets from the
+#: network's length).
+LOOP_COLUMNS = np.array([X_OMEGA, X_Z, X_ZDOT])
+
+
+@njit(cache=True, inline="always")
+def _loop_jacobian(t, y, f0, tq0, J, T, yscale, color, owner, net, tier, tab, perf, pr, pa,
+                   tr, out, att, yp, fp, dl, dtq):
+    """Finite-difference Jacobian of the loop, and its derivative in crank angle.
+
+    Columns: the network's dynamic states (``ndyn``), then speed, governor coordinate
+    and its rate (:data:`LOOP_COLUMNS`); ``J`` has shape (n, ndyn + 3).  The network's
+    columns of one colour are perturbed together as in
+    :func:`corliss.engine.kernel._jacobian` (their nodes' rows do not overlap); the
+    loop's own rows (speed, governor, works) see every node, but only through the
+    indicated torque sum p_i dV_i/dtheta, so a colour's change of such a row is shared
+    among the colour's columns as each one's node changed that sum (``tq0`` holds each
+    node's p dV/dtheta at ``y``; ``dtq`` is scratch of the nodes' length).  The loop's
+    three columns are perturbed one at a time.  Without them the method lost its
+    order: the flywheel's energy and the work integrals parted by 1e-5 of the change
+    even at rtol 1e-7 (tests/test_speed_loop.py).  Clamped evaluations go into
+    ``att``; ``yp``, ``fp`` and ``dl`` (of ``J``'s columns) are scratch.  Returns the
+    evaluations spent.
+    """
+    n = y.shape[0]
+    nn = n - N_EXTRA
+    ndyn = color.shape[0]
+    ncol = owner.shape[0]
+    nv = dtq.shape[0]
+    for j in range(ndyn):
+        dl[j] = 1e-7 * max(abs(y[j]), yscale[j])
+    for c in range(ncol):
+        copy_into(yp, y)
+        for j in range(ndyn):
+            if color[j] == c:
+                yp[j] += dl[j]
+        transient_rhs(t, yp, fp, net, tier, tab, perf, pr, pa, tr, out)
+        tally_clamps(pr, t, att)
+        for j in range(ndyn):
+            if color[j] == c:
+                for i in range(n):
+                    J[i, j] = 0.0
+        for i in range(nn):
+            j = owner[c, i]
+            if j >= 0:
+                J[i, j] = (fp[i] - f0[i]) / dl[j]
+        total = 0.0
+        for i in range(nv):
+            dtq[i] = pr[0, i] * pr[4, i] - tq0[i]
+            total += dtq[i]
+        if total != 0.0:
+            for j in range(ndyn):
+                if color[j] == c:
+                    share = dtq[j // 2] / total
+                    for i in range(nn, n):
+                        J[i, j] = (fp[i] - f0[i]) * share / dl[j]
+    for k in range(LOOP_COLUMNS.shape[0]):
+        q = nn + LOOP_COLUMNS[k]
+        d = 1e-7 * max(abs(y[q]), yscale[q])
+        copy_into(yp, y)
+        yp[q] += d
+        transient_rhs(t, yp, fp, net, tier, tab, perf, pr, pa, tr, out)
+        tally_clamps(pr, t, att)
+        for i in range(n):
+            J[i, ndyn + k] = (fp[i] - f0[i]) / d
+    dt = 1e-7 * max(abs(t), 1.0)
+    transient_rhs(t + dt, y, fp, net, tier, tab, perf, pr, pa, tr, out)
+    tally_clamps(pr, t + dt, att)
+    for i in range(n):
+        T[i] = (fp[i] - f0[i]) / dt
+    return ncol + LOOP_COLUMNS.shape[0] + 1
+
+
+@njit(cache=True, inline="always")
+def _column_state(k, ndyn, nn):
+    """The state of the Jacobian's column ``k``: the network's dynamic ones, then
+    :data:`LOOP_COLUMNS`."""
+    if k < ndyn:
+        return k
+    return nn + LOOP_COLUMNS[k - ndyn]
+
+
+@njit(cache=True)
+def _loop_w_inverse(J, hd, Winv, A, ndyn, nn):
+    """Inverse of the block of W = I - hd J over the Jacobian's columns (their rows and
+    columns) into ``Winv``, by Gauss-Jordan elimination with partial pivoting, as
+    :func:`corliss.engine.kernel._w_inverse`; ``A`` is scratch of its shape."""
+    m = J.shape[1]
+    for i in range(m):
+        r = _column_state(i, ndyn, nn)
+        for j in range(m):
+            A[i, j] = (1.0 if i == j else 0.0) - hd * J[r, j]
+            Winv[i, j] = 1.0 if i == j else 0.0
+    for c in range(m):
+        piv = c
+        for r in range(c + 1, m):
+            if abs(A[r, c]) > abs(A[piv, c]):
+                piv = r
+        if piv != c:
+            for j in range(m):
+                A[c, j], A[piv, j] = A[piv, j], A[c, j]
+                Winv[c, j], Winv[piv, j] = Winv[piv, j], Winv[c, j]
+        d = 1.0 / A[c, c]
+        for j in range(m):
+            A[c, j] *= d
+            Winv[c, j] *= d
+        for r in range(m):
+            if r != c:
+                f = A[r, c]
+                if f != 0.0:
+                    for j in range(m):
+                        A[r, j] -= f * A[c, j]
+                        Winv[r, j] -= f * Winv[c, j]
+
+
+@njit(cache=True)
+def _loop_w_solve(J, Winv, hd, x, out, ndyn, nn, xs):
+    """Solve W out = x: the Jacobian's columns' states by the inverse, the rest (which
+    do not feed back) by substitution, out_q = x_q + hd J_q out_columns; ``xs`` is
+    scratch of the columns' length."""
+    m = J.shape[1]
+    for i in range(m):
+        acc = 0.0
+        for j in range(m):
+            acc += Winv[i, j] * x[_column_state(j, ndyn, nn)]
+        xs[i] = acc
+    for q in range(x.shape[0]):
+        acc = x[q]
+        for j in range(m):
+            acc += hd * J[q, j] * xs[j]
+        out[q] = acc
+    for i in range(m):
+        out[_column_state(i, ndyn, nn)] = xs[i]
+
+
+@njit(cache=True, inline="always")
+def _node_torques(pr, tq):
+    """Each node's share of the indicated torque, p dV/dtheta [N m], of the latest
+    evaluation (as :func:`transient_rhs` sums it)."""
+    for i in range(tq.shape[0]):
+        tq[i] = pr[0, i] * pr[4, i]
+
+
+@njit(cache=True)
+def integrate_turn_ros(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, record, t_end,
+                       color, owner, gam, tA, tC, tc, td, tb, te, same, expo):
+    """Integrate one turn as :func:`integrate_turn`, with a Rosenbrock method.
+
+    The tableau's method of :func:`corliss.engine.kernel.cycle_ros` (one of
+    :data:`corliss.engine.kernel.ROS_TABLEAUS`) on the Jacobian of
+    :func:`_loop_jacobian`, one a step (the retry of a rejected step reuses it; the
+    linear algebra is :func:`corliss.engine.kernel._w_inverse`'s and ``_w_solve``'s
+    over the Jacobian's columns, which here are not the first states).  dopri5 is held
+    by the stiff pressure equalisation through an open port to steps of 1 to 2 deg
+    whatever its tolerance (an eigenvalue of -60 to -330 per radian on the
+    Porter-Allen engine, the step times it at 2.2 to 3.1, the edge of its stability);
+    this one steps over it, which pays at loose tolerances (``fast``) and on a steam
+    chest's stiffer flow: at tight ones the Porter-Allen engine's port flow holds every
+    method to such steps by its own pace, and the Jacobian's six evaluations a step
+    then cost more than they save (:data:`corliss.engine.options.PRESETS`).  The step
+    carries over from turn to turn (``sc[S_STEP]``).  Returns, raises and counts clamps
+    as :func:`integrate_turn`; a step whose end needs the properties clamped (but for
+    the greatest energy's) is retried shorter.
+
+    Parameters
+    ----------
+    y0 : ndarray
+        The state at ``th0`` (see :func:`transient_rhs`).
+    th0 : float
+        Shaft angle at the turn's start [rad].
+    out_theta : ndarray
+        Shaft angles [rad] where the state is sampled, increasing.
+    rtol : float
+        Relative tolerance [-].
+    atol : ndarray
+        Absolute tolerances, in each component's unit, of ``y0``'s shape.
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    tier : int
+        The compiled property tier.
+    tab : tuple
+        The steam table's arrays.
+    perf : ndarray
+        The perfect tier's parameters, shape (3,).
+    tr : tuple
+        The loop's tables (:attr:`corliss.engine.transient.LoopTables.tr`), as
+        :func:`integrate_turn`; ``sc[S_STEP]`` read and written.
+    record : bool
+        Whether to record every accepted step.
+    t_end : float
+        The run's end time [s].
+    color : ndarray of int64
+        The colour of each dynamic column
+        (:meth:`corliss.engine.network.Network.column_colors`).
+    owner : ndarray of int64
+        Which column of each colour moves each of the network's rows; shape (colours,
+        n_state of the network).
+    gam : float
+        The tableau's diagonal gamma [-].
+    tA, tC : ndarray
+        Its stage coefficients a_ij and c_ij, shape (stages, stages) [-].
+    tc, td, tb, te : ndarray
+        Its stage angles (fractions of the step), coefficients of the derivative in
+        crank angle, weights of the solution and of the error [-]; shape (stages,).
+    same : ndarray of int64
+        Per stage: 0 evaluate, 1 its argument is the step's start, 2 the stage
+        before's; shape (stages,).
+    expo : float
+        The exponent of the step's ratio to its error [-].
+
+    Returns
+    -------
+    y_end : ndarray
+        The state at the turn's end (or where it stopped).
+    samples : ndarray
+        ``samples[:, k]`` the state at ``out_theta[k]``; shape (n, outputs).
+    rec : ndarray
+        Per accepted step, as :func:`integrate_turn`; shape (:data:`N_REC`, at most
+        40000).
+    n_rec : int
+        Columns of ``rec`` filled.
+    nfev : int
+        Right-hand-side evaluations.
+    status : int
+        As :func:`integrate_turn`.
+
+    Raises
+    ------
+    RunError
+        A visited state needed a clamp other than the greatest energy's.
+    """
+    n = y0.shape[0]
+    nn = n - N_EXTRA
+    ndyn = color.shape[0]
+    ns = tb.shape[0]
+    nv = net[4].shape[0]
+    y = y0.copy()
+    samples = np.full((n, out_theta.shape[0]), np.nan)
+    nrec_max = 40000 if record else 1
+    rec = np.empty((N_REC, nrec_max))
+    n_rec = 0
+    f0 = np.empty(n)
+    f1 = np.empty(n)
+    U = np.empty((ns, n))
+    ytmp = np.empty(n)
+    tmp = np.empty(n)
+    m = ndyn + LOOP_COLUMNS.shape[0]
+    J = np.zeros((n, m))
+    Winv = np.empty((m, m))
+    A = np.empty((m, m))
+    xs = np.empty(m)
+    T = np.empty(n)
+    x = np.empty(n)
+    yscale = atol / rtol
+    yp = np.empty(n)
+    fp = np.empty(n)
+    dl = np.empty(ndyn)
+    tq0 = np.empty(nv)
+    tq1 = np.empty(nv)
+    dtq = np.empty(nv)
+    pr = np.empty((PR_ROWS, nv))
+    pa = np.empty((net[17].shape[0], 4))
+    out = np.empty(4)
+    out1 = np.empty(4)
+    sc = tr[0]
+    clamps = np.zeros(6)
+    att = np.zeros(4)
+    att_end = np.zeros(4)
+    a = th0
+    b = th0 + TWO_PI
+    t = a
+    transient_rhs(t, y, f0, net, tier, tab, perf, pr, pa, tr, out)
+    _node_torques(pr, tq0)
+    tally_clamps(pr, t, att)
+    settle_visited(att, clamps)
+    nfev = 1
+    io = 0
+    while io < out_theta.shape[0] and out_theta[io] <= a:
+        put_column(samples, io, y)
+        io += 1
+    if record:
+        rec[0, 0] = t
+        rec[1, 0] = y[nn + X_OMEGA]
+        rec[2, 0] = y[nn + X_Z]
+        rec[3, 0] = out[2]
+        rec[4, 0] = y[nn + X_TIME]
+        rec[5, 0] = out[0]
+        rec[6, 0] = out[1]
+        n_rec = 1
+    h = sc[S_STEP]
+    if not (h > 0.0):
+        scale = 0.0
+        for i in range(n):
+            v = abs(f0[i]) / (atol[i] + rtol * abs(y[i]))
+            if v > scale:
+                scale = v
+        h = 0.01 * (rtol ** 0.25) / scale if scale > 0.0 else 0.01
+        h = min(max(h, 1e-7), 0.05)
+    fresh = True           # J and T are not yet those of the step's start
+    h_w = -1.0             # the step W was inverted for
+    status = 0
+    while t < b:
+        if t + h > b or b - (t + h) < 1e-12:
+            h = b - t
+        if fresh:
+            nfev += _loop_jacobian(t, y, f0, tq0, J, T, yscale, color, owner, net, tier, tab,
+                                   perf, pr, pa, tr, out1, att, yp, fp, dl, dtq)
+            fresh = False
+            h_w = -1.0
+        hd = h * gam
+        if h != h_w:
+            _loop_w_inverse(J, hd, Winv, A, ndyn, nn)
+            h_w = h
+        for st in range(ns):
+            if st == 0 or same[st] == 1:
+                copy_into(fp, f0)
+            elif same[st] == 0:
+                for i in range(n):
+                    acc = y[i]
+                    for j in range(st):
+                        acc += tA[st, j] * U[j, i]
+                    ytmp[i] = acc
+                transient_rhs(t + tc[st] * h, ytmp, fp, net, tier, tab, perf, pr, pa, tr, out1)
+                tally_clamps(pr, t + tc[st] * h, att)
+                nfev += 1
+            for i in range(n):
+                acc = 0.0
+                for j in range(st):
+                    acc += tC[st, j] * U[j, i]
+                x[i] = fp[i] + h * td[st] * T[i] + acc / h
+            _loop_w_solve(J, Winv, hd, x, U[st], ndyn, nn, xs)
+            for i in range(n):
+                U[st, i] *= hd
+        err = 0.0
+        for i in range(n):
+            acc = y[i]
+            e = 0.0
+            for j in range(ns):
+                acc += tb[j] * U[j, i]
+                e += te[j] * U[j, i]
+            ytmp[i] = acc
+            e = abs(e) / (atol[i] + rtol * max(abs(y[i]), abs(acc)))
+            if e > err:
+                err = e
+        accepted = err <= 1.0 or h < 1e-10
+        if accepted:
+            transient_rhs(t + h, ytmp, f1, net, tier, tab, perf, pr, pa, tr, out)
+            _node_torques(pr, tq1)
+            tally_clamps(pr, t + h, att_end)
+            nfev += 1
+            # a step whose end needed the properties clamped is retried shorter
+            accepted = visited_clamp_off(att_end) == 0 or h < 1e-10
+        settle_trial(att, clamps)
+        settle_clamps(att_end, accepted, clamps)
+        if clamps[CL_ACCEPTED] > 0.0:
+            _visited_clamps(clamps, sc)
+        if accepted:
+            t1 = t + h
+            io = emit_samples(io, out_theta, t, y, f0, t1, ytmp, f1, samples, tmp)
+            t = t1
+            copy_into(y, ytmp)
+            copy_into(f0, f1)
+            copy_into(tq0, tq1)
+            before = y[nn + X_Z]
+            _project(y, nn)
+            if y[nn + X_Z] != before:   # a stop was struck: restart the derivative
+                transient_rhs(t, y, f0, net, tier, tab, perf, pr, pa, tr, out)
+                _node_torques(pr, tq0)
+                tally_clamps(pr, t, att)
+                settle_visited(att, clamps)
+                if clamps[CL_ACCEPTED] > 0.0:
+                    _visited_clamps(clamps, sc)
+                nfev += 1
+            fresh = True
+            if record and n_rec < nrec_max:
+                # out[] holds the values at the step's end
+                rec[0, n_rec] = t
+                rec[1, n_rec] = y[nn + X_OMEGA]
+                rec[2, n_rec] = y[nn + X_Z]
+                rec[3, n_rec] = out[2]
+                rec[4, n_rec] = y[nn + X_TIME]
+                rec[5, n_rec] = out[0]
+                rec[6, n_rec] = out[1]
+                n_rec += 1
+            h_next = h * step_factor(err, 0.9, expo)
+            if t < b:
+                sc[S_STEP] = h_next
+            h = h_next
+            if y[nn + X_OMEGA] < sc[S_WMIN]:
+                status = 2
+                break
+        elif err <= 1.0:
+            h = 0.5 * h  # accurate, but through a state the properties do not hold
+        else:
+            h = h * max(0.2, 0.9 * err ** expo)
+        if not (h > 0.0) or not math.isfinite(y[0]):
+            status = 1
+            break
+        if nfev > sc[S_MAX_RHS]:
+            status = 4
+            break
+    while io < out_theta.shape[0]:
+        put_column(samples, io, y)
+        io += 1
+    if status == 0 and y[nn + X_TIME] >= t_end:
+        status = 3
+    sc[S_CLAMPED_TRIALS] += clamps[CL_REJECTED]
+    sc[S_CLAMPED_TRIAL_CODE] = float(int(sc[S_CLAMPED_TRIAL_CODE]) | int(clamps[CL_REJECTED_CODE]))
+    return y, samples, rec, n_rec, nfev, status
