@@ -32,13 +32,16 @@ clipped to [0, 1] with the velocity into the stop removed.
 The governor's actuator value a = a0 + (a1 - a0) z either opens the throttle (the
 steam pipe's effective area read from a table of opening) or sets the valve gear,
 whose port areas come from a table over (setting, crank angle), both uniform grids,
-read bilinearly.  Integration: Dormand-Prince 5(4) as in :mod:`corliss.engine.kernel`,
-with no stops inside a cycle (port kinks move with the setting).
+read bilinearly.  Integration: Dormand-Prince 5(4) as in :mod:`corliss.engine.kernel`
+(:func:`integrate_turn`), or a Rosenbrock tableau of :data:`corliss.engine.kernel.ROS_TABLEAUS`
+(:func:`integrate_turn_ros`, the ``fast`` preset's ``ros4``), with no stops inside a cycle
+(port kinks move with the setting).
 
-:func:`transient_rhs` and the helpers it calls are compiled without numba's reference
-counting (``_nrt=False``), as :func:`corliss.engine.kernel.rhs` is and for its reason:
-they allocate nothing, and the counts on the arrays read from the network and table
-tuples were most of their cost.
+:func:`transient_rhs` is compiled without numba's reference counting
+(``_nrt=False``), as :func:`corliss.engine.kernel.rhs` is and for its reason: it
+allocates nothing, and the counts on the arrays read from the network and table tuples
+were most of its cost; the small helpers it calls are inlined into it, and so compiled
+the same way.
 """
 
 from __future__ import annotations
