@@ -38,7 +38,10 @@ BUILD_COMMAND = "from corliss.thermo.steam_table import load_table; load_table()
 def _kernels_missing(scene) -> bool:
     """True when the scene's compiled cycle integrator is not in numba's disk cache
     (False when this numba does not show its cache: then nothing is done)."""
-    method = scene.run.fidelity.method
+    # the integrator the run will take: a state-dependent wall heat keeps a preset's
+    # finite-difference method (Fidelity.steady_integrator)
+    exact = not (scene.run.has("wall_heat") and scene.engine.wall_heat_model != "marks")
+    method, _ = scene.run.fidelity.steady_integrator(exact)
     if method not in COMPILED_CODES:
         return False
     return bool(kernel.uncached(kernel.CYCLE_KERNELS[COMPILED_CODES[method]]))

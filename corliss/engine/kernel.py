@@ -1036,6 +1036,25 @@ def _exact_jacobian_holds(net):
     return True
 
 
+def exact_jacobian_covers(net) -> bool:
+    """Whether the Rosenbrock methods' Jacobian of this network is exact.
+
+    The Python face of the compiled test the integrators make: no wall heat that
+    depends on the state (none, or Marks's schedule).
+
+    Parameters
+    ----------
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+
+    Returns
+    -------
+    bool
+        True when :func:`_jacobian_exact` covers the network.
+    """
+    return bool(_exact_jacobian_holds.py_func(net))
+
+
 @njit(cache=True, _nrt=False)
 def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
     """The Jacobian of :func:`rhs` over the dynamic columns, and its time derivative,

@@ -89,6 +89,14 @@ class Fidelity:
     transient_method : str or None
         Integrator of a transient run's loop (:data:`TRANSIENT_METHODS`), at ``rtol``;
         None: ``method`` (``dopri5`` when the loop does not have it).
+    exact_method : str or None
+        Integrator of a steady crank-resolved run whose Rosenbrock Jacobian is exact
+        (:meth:`steady_integrator`): a compiled Rosenbrock method, at ``exact_rtol``;
+        None: ``method`` everywhere.  A preset's own: a fidelity changed in any field
+        (a scene's ``method`` or ``rtol``, ``dataclasses.replace``) integrates with
+        ``method`` at ``rtol``, as it says.
+    exact_rtol : float or None
+        Relative tolerance of ``exact_method`` [-].
     """
 
     name: str
@@ -101,6 +109,36 @@ class Fidelity:
     output_step_deg: float
     step_deg: float = 1.0
     transient_method: str | None = None
+    exact_method: str | None = None
+    exact_rtol: float | None = None
+
+    def steady_integrator(self, exact_jacobian: bool) -> tuple[str, float]:
+        """The integrator of a steady crank-resolved run, and its tolerance.
+
+        For a preset as it stands, ``exact_method`` at ``exact_rtol`` where the run's
+        Jacobian is exact (the compiled Rosenbrock methods differentiate the
+        right-hand side analytically unless a wall's heat depends on the state: the
+        skin, conductance and Adair models, whose switches at the saturation
+        temperature a finite-difference Jacobian straddles, so that these methods
+        crawl there); otherwise ``method`` at ``rtol``.
+
+        Parameters
+        ----------
+        exact_jacobian : bool
+            Whether the run's network has an exact Jacobian
+            (:func:`corliss.engine.kernel.exact_jacobian_covers`).
+
+        Returns
+        -------
+        method : str
+            The integrator (:data:`METHODS`).
+        rtol : float
+            Its relative tolerance [-].
+        """
+        if (exact_jacobian and self.exact_method is not None
+                and PRESETS.get(self.name) == self):
+            return self.exact_method, float(self.exact_rtol)
+        return self.method, self.rtol
 
 
 #: The presets.  ``reference``: IAPWS-95 through HEOS at every call, LSODA at 1e-9;
@@ -146,7 +184,8 @@ class Fidelity:
 #: time for that accuracy, so a scene may name ``method = "ros4"``.
 PRESETS: dict[str, Fidelity] = {
     "reference": Fidelity("reference", "heos", "LSODA", 1e-9, 5760, 1e-6, 60, 0.25),
-    "standard": Fidelity("standard", "table", "dopri5", 1e-6, 1440, 1e-4, 40, 1.0),
+    "standard": Fidelity("standard", "table", "dopri5", 1e-6, 1440, 1e-4, 40, 1.0,
+                         exact_method="rodas4", exact_rtol=2e-6),
     "fast": Fidelity("fast", "table", "rosenbrock", 5e-5, 720, 1e-3, 20, 2.0,
                      transient_method="ros4"),
 }
