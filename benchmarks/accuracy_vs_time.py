@@ -51,7 +51,8 @@ def settings(scene):
     for rtol in (1e-3, 1e-4, 1e-5, 1e-6):
         fid = dataclasses.replace(base, name="custom", method="rosenbrock", rtol=rtol)
         out.append((f"table rosenbrock rtol {rtol:.0e}", scene.replace_run(fidelity=fid)))
-    for method, rtols in (("ros4", (1e-4, 1e-5, 7e-6)), ("rodas4", (1e-4, 1e-5, 3e-6))):
+    for method, rtols in (("ros4", (1e-4, 1e-5, 7e-6)), ("rodas3", (1e-4, 1e-5, 5e-6)),
+                          ("rodas4", (1e-4, 1e-5, 3e-6, 2e-6))):
         for rtol in rtols:
             fid = dataclasses.replace(base, name="custom", method=method, rtol=rtol)
             out.append((f"table {method} rtol {rtol:.0e}", scene.replace_run(fidelity=fid)))

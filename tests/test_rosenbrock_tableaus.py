@@ -98,7 +98,7 @@ def test_error_estimate_is_of_lower_order(name):
 def test_the_compiled_tableau_integrator_gives_the_standard_card():
     """``kernel.cycle_ros`` itself, on the default scene: RODAS4 at rtol 1e-4 and
     Shampine's pair at 7e-6 give the indicated power and the steam of the ``standard``
-    preset (dopri5 at 1e-6, itself within 1e-5 of the converged reference) within the
+    preset (RODAS4 at 2e-6 on this card, itself within 3e-5 of the converged reference) within the
     accuracy the study measured for them across its three scenes (0.16 % and 0.005 %,
     README "Accuracy and time"), taken as 0.3 % and 0.02 % for a margin over the
     study's worst scene.  A wrong coefficient in the compiled stage loop, which the
