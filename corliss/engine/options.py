@@ -146,9 +146,10 @@ class Fidelity:
 #: (within 0.006 % of the reference in power and steam on the accuracy study's three
 #: scenes, at about half dopri5's time; at 10 rpm 2,000 evaluations a cycle where dopri5
 #: needed 84,000), else the compiled adaptive dopri5 at 1e-6 (a skin, conductance or
-#: Adair wall: there RODAS4 on a finite-difference Jacobian needed 14 to 30 times
-#: dopri5's evaluations, ``ros4`` 3 to 10 times, the switches at the saturation
-#: temperature defeating its error estimate);
+#: Adair wall: there, on a finite-difference Jacobian, RODAS4 at 2e-6 needed 14 and 30
+#: times dopri5's evaluations on the skin and conductance walls of the default engine,
+#: RODAS3 at 5e-6 3.6 and 2.6 times, the switches at the saturation temperature
+#: defeating their error estimates);
 #: ``fast``: the steam table and the compiled L-stable Rosenbrock method at rtol 5e-5
 #: (the explicit methods are held to small steps by the stiff pressure equalisation
 #: through an open port, whatever their tolerance).  At rtol 1e-4 its steam on the
