@@ -24,8 +24,9 @@ one implementation of the physics.  The integrators:
   the default engine), which holds the explicit methods to steps of about 0.6 deg
   whatever their tolerance; the Rosenbrock method steps over it;
 * ``"ros4"``, ``"rodas3"``, ``"rodas4"``: Rosenbrock methods of higher order from
-  their tableaus (:data:`ROS_TABLEAUS`, one compiled integrator :func:`cycle_ros`),
-  on the same Jacobian: Shampine's A-stable 4(3) pair, and the L-stable, stiffly
+  their tableaus (:data:`ROS_TABLEAUS`), on the same Jacobian and in the same
+  compiled step loop as ode23s (:func:`cycle_ros`, one integrator for every
+  Rosenbrock method, so that a run of one compiles them all): Shampine's A-stable 4(3) pair, and the L-stable, stiffly
   accurate RODAS3 (order 3) and RODAS4 (order 4).  On the accuracy study's three
   scenes they reach either preset's accuracy for a half to two thirds of its
   evaluations (the README's "Accuracy and time").  On a very stiff network (ports
@@ -1291,6 +1292,9 @@ def _w_solve(J, Winv, hd, x, out):
 
 _D = 1.0 / (2.0 + math.sqrt(2.0))
 _E32 = 6.0 + math.sqrt(2.0)
+#: :func:`cycle_ros`'s ``kind``: the ode23s pair's own stages, or a tableau's.
+KIND_ODE23S = 0
+KIND_TABLEAU = 1
 
 
 @njit(cache=True)
@@ -1667,169 +1671,6 @@ def cycle_rk4(y0, stops, out_theta, step, net, tier, tab, perf, max_rhs):
     return y, samples, nfev, True, clamps
 
 
-@njit(cache=True)
-def cycle_rosenbrock(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, owner,
-                     max_rhs, jac_age):
-    """:func:`integrate_cycle` with the Rosenbrock 2(3) pair of ode23s (module docstring).
-
-    Parameters
-    ----------
-    y0 : ndarray
-        The state at ``stops[0]``; shape (n_state,).
-    stops : ndarray
-        Shaft angles [rad], increasing: the segments between them are integrated
-        with a restart at each (:meth:`corliss.engine.network.Network.stops`).
-    out_theta : ndarray
-        Shaft angles [rad] where the state is sampled, increasing.
-    rtol : float
-        Relative tolerance [-].
-    atol : ndarray
-        Absolute tolerances, in each component's unit; shape (n_state,).
-    net : tuple
-        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
-    tier : int
-        The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.
-    tab : tuple
-        The steam table's arrays (:meth:`corliss.thermo.steam_table.SteamTable.arrays`).
-    perf : ndarray
-        The perfect tier's gas constant [J/(kg K)], ``cv`` [J/(kg K)] and ``u_ref``
-        [J/kg]; shape (3,) (unused on the table tier).
-    color : ndarray of int64
-        The colour of each dynamic column
-        (:meth:`corliss.engine.network.Network.column_colors`).
-    owner : ndarray of int64
-        Which column of each colour moves each row; shape (colours, n_state).
-    max_rhs : int
-        The run-time budget: most right-hand-side evaluations.
-    jac_age : int
-        Accepted steps a Jacobian serves (:data:`JACOBIAN_AGE`); it is computed
-        afresh at every segment's start and after a step rejected on a Jacobian
-        older than the step.
-
-    Returns
-    -------
-    y_end : ndarray
-        The state at ``stops[-1]``; shape (n_state,).
-    samples : ndarray
-        ``samples[:, k]`` the state at ``out_theta[k]``; shape (n_state, outputs).
-    nfev : int
-        Right-hand-side evaluations spent.
-    ok : bool
-        False when the step size collapsed, the state went non-finite or more than
-        ``max_rhs`` evaluations were spent.
-    clamps : ndarray
-        Evaluations that clamped a state, shape (6,), indexed by ``CL_*``: at visited
-        states (the ends of accepted steps) and at trial states (stages, probes,
-        rejected steps) apart.
-    """
-    n = y0.shape[0]
-    ndyn = color.shape[0]
-    y = y0.copy()
-    samples = np.full((n, out_theta.shape[0]), np.nan)
-    f0 = np.empty(n)
-    K = np.empty((4, n))
-    f1 = np.empty(n)
-    ytmp = np.empty(n)
-    tmp = np.empty(n)
-    J = np.zeros((n, ndyn))
-    Winv = np.empty((ndyn, ndyn))
-    A = np.empty((ndyn, ndyn))
-    T = np.empty(n)
-    x = np.empty(n)
-    yscale = atol / rtol
-    yp = np.empty(n)
-    fp = np.empty(n)
-    dl = np.empty(ndyn)
-    pr = np.empty((PR_ROWS, net[4].shape[0]))
-    jd = np.empty((12, net[4].shape[0]))
-    slope = np.empty((net[17].shape[0], 4))
-    cell = np.empty((net[17].shape[0], 4))
-    nfev = 0
-    clamps = np.zeros(6)
-    clamps[CL_NODE] = -1.0
-    att = np.zeros(4)
-    att_end = np.zeros(4)
-    io = 0
-    while io < out_theta.shape[0] and out_theta[io] <= stops[0]:
-        put_column(samples, io, y)
-        io += 1
-    h_prev = 0.0
-    for seg in range(stops.shape[0] - 1):
-        a = stops[seg]
-        b = stops[seg + 1]
-        if b - a <= 0.0:
-            continue
-        t = a
-        segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att)
-        nfev += 1
-        h = min(h_prev, b - a) if h_prev > 0.0 else initial_step(f0, y, atol, rtol, b - a)
-        age = jac_age          # steps the Jacobian has served: none yet in this segment
-        h_w = -1.0             # the step W was inverted for
-        while t < b:
-            if t + h > b or b - (t + h) < 1e-12:
-                h = b - t
-            if age >= jac_age:
-                nfev += _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf,
-                                  pr, cell, att, yp, fp, dl, jd, slope)
-                age = 0
-                h_w = -1.0
-            hd = h * _D
-            if h != h_w:
-                _w_inverse(J, hd, Winv, A)
-                h_w = h
-            for i in range(n):
-                x[i] = f0[i] + hd * T[i]
-            _w_solve(J, Winv, hd, x, K[0])
-            for i in range(n):
-                ytmp[i] = y[i] + 0.5 * h * K[0, i]
-            rhs(t + 0.5 * h, ytmp, K[1], net, tier, tab, perf, pr, cell)
-            tally_clamps(pr, t + 0.5 * h, att)
-            for i in range(n):
-                x[i] = K[1, i] - K[0, i]
-            _w_solve(J, Winv, hd, x, K[2])
-            for i in range(n):
-                K[2, i] += K[0, i]
-                ytmp[i] = y[i] + h * K[2, i]
-            rhs(t + h, ytmp, f1, net, tier, tab, perf, pr, cell)
-            tally_clamps(pr, t + h, att_end)
-            nfev += 2
-            for i in range(n):
-                x[i] = (f1[i] - _E32 * (K[2, i] - K[1, i]) - 2.0 * (K[0, i] - f0[i])
-                        + hd * T[i])
-            _w_solve(J, Winv, hd, x, K[3])
-            err = 0.0
-            for i in range(n):
-                e = abs(h / 6.0 * (K[0, i] - 2.0 * K[2, i] + K[3, i]))
-                e /= atol[i] + rtol * max(abs(y[i]), abs(ytmp[i]))
-                if e > err:
-                    err = e
-            accepted = (err <= 1.0 and visited_clamp_off(att_end) == 0) or h < 1e-12
-            settle_trial(att, clamps)
-            settle_clamps(att_end, accepted, clamps)
-            if accepted:
-                t1 = t + h
-                io = emit_samples(io, out_theta, t, y, f0, t1, ytmp, f1, samples, tmp)
-                t = t1
-                copy_into(y, ytmp)
-                copy_into(f0, f1)
-                h_prev = h * step_factor(err, 0.8, -1.0 / 3.0)
-                h = h_prev
-                age += 1
-            else:
-                if age > 0:
-                    age = jac_age    # rejected on an old Jacobian: a fresh one
-                if err <= 1.0:
-                    h = 0.5 * h  # accurate, but through a state the properties do not hold
-                else:
-                    h = h * max(0.2, 0.8 * err ** (-1.0 / 3.0))
-            if not (h > 0.0) or not math.isfinite(y[0]) or nfev > max_rhs:
-                return y, samples, nfev, False, clamps
-    while io < out_theta.shape[0]:
-        put_column(samples, io, y)
-        io += 1
-    return y, samples, nfev, True, clamps
-
-
 def _tableau(gamma, A, C, c, d, b, e, expo):
     """A Rosenbrock tableau as the arrays :func:`cycle_ros` takes, in the form
     ``(I/(gamma h) - J) u_i = f(t + c_i h, y + sum_j a_ij u_j) + sum_j c_ij u_j / h
@@ -1897,12 +1738,16 @@ ROS_TABLEAUS = {
 
 @njit(cache=True)
 def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, owner,
-              max_rhs, jac_age, gam, tA, tC, tc, td, tb, te, same, expo):
-    """:func:`integrate_cycle` with a Rosenbrock method of a tableau (:data:`ROS_TABLEAUS`).
+              max_rhs, jac_age, gam, tA, tC, tc, td, tb, te, same, expo, kind):
+    """:func:`integrate_cycle` with a Rosenbrock method: the ode23s pair, or a tableau's.
 
-    On the same Jacobian as :func:`cycle_rosenbrock` (:func:`_jacobian`); the
-    derivative at the step's end (for the next step and the output) is evaluated only
-    for a step whose error passes.
+    One compiled step loop for every Rosenbrock method (segments, Jacobian, W, step
+    control, clamps, output), with the stages of the method: Shampine and Reichelt's
+    2(3) pair of ode23s (``kind`` :data:`KIND_ODE23S`, its formulas as the paper
+    writes them; the tableau's arrays are then unused) or those of a tableau
+    (:data:`KIND_TABLEAU`, :data:`ROS_TABLEAUS`).  The ode23s pair evaluates the
+    derivative at the step's end as its last stage, for every step; a tableau's method
+    evaluates it (for the next step and the output) only for a step whose error passes.
 
     Parameters
     ----------
@@ -1934,23 +1779,26 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
     max_rhs : int
         The run-time budget: most right-hand-side evaluations.
     jac_age : int
-        Accepted steps a Jacobian serves (:data:`JACOBIAN_AGE`), as
-        :func:`cycle_rosenbrock`.
+        Accepted steps a Jacobian serves (:data:`JACOBIAN_AGE`); it is computed
+        afresh at every segment's start and after a step rejected on a Jacobian
+        older than the step.
     gam : float
-        The tableau's diagonal gamma [-].
+        The method's diagonal gamma [-] (ode23s: 1 / (2 + sqrt 2)).
     tA, tC : ndarray
-        Its stage coefficients a_ij and c_ij, shape (stages, stages), below the
-        diagonal [-].
+        The tableau's stage coefficients a_ij and c_ij, shape (stages, stages), below
+        the diagonal [-].
     tc, td, tb, te : ndarray
         Its stage angles c_i (fractions of the step), the coefficients d_i of the time
         derivative, the weights b_i of the solution and e_i of the error [-]; shape
-        (stages,).
+        (stages,) (ode23s: 4 stages' scratch).
     same : ndarray of int64
         Per stage: 0 evaluate, 1 its argument is the step's start, 2 the stage
         before's; shape (stages,).
     expo : float
         The exponent of the step's ratio to its error, ``-1/(order + 1)`` of the
         error estimate [-].
+    kind : int
+        :data:`KIND_ODE23S` or :data:`KIND_TABLEAU`.
 
     Returns
     -------
@@ -1971,6 +1819,7 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
     n = y0.shape[0]
     ndyn = color.shape[0]
     ns = tb.shape[0]
+    safety = 0.8 if kind == KIND_ODE23S else 0.9
     y = y0.copy()
     samples = np.full((n, out_theta.shape[0]), np.nan)
     f0 = np.empty(n)
@@ -2024,45 +1873,76 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
             if h != h_w:
                 _w_inverse(J, hd, Winv, A)
                 h_w = h
-            # u_i = hd W^-1 (...), W = I - hd J: the stages of I/(gamma h) - J
-            for st in range(ns):
-                if st == 0 or same[st] == 1:
-                    copy_into(fp, f0)
-                elif same[st] == 0:
-                    for i in range(n):
-                        acc = y[i]
-                        for j in range(st):
-                            acc += tA[st, j] * U[j, i]
-                        ytmp[i] = acc
-                    rhs(t + tc[st] * h, ytmp, fp, net, tier, tab, perf, pr, cell)
-                    tally_clamps(pr, t + tc[st] * h, att)
-                    nfev += 1
+            if kind == KIND_ODE23S:
+                # Shampine and Reichelt's formulas, k_i in U[i]; the end's derivative
+                # is the third stage's argument
                 for i in range(n):
-                    acc = 0.0
-                    for j in range(st):
-                        acc += tC[st, j] * U[j, i]
-                    x[i] = fp[i] + h * td[st] * T[i] + acc / h
-                _w_solve(J, Winv, hd, x, U[st])
+                    x[i] = f0[i] + hd * T[i]
+                _w_solve(J, Winv, hd, x, U[0])
                 for i in range(n):
-                    U[st, i] *= hd
-            err = 0.0
-            for i in range(n):
-                acc = y[i]
-                e = 0.0
-                for j in range(ns):
-                    acc += tb[j] * U[j, i]
-                    e += te[j] * U[j, i]
-                ytmp[i] = acc
-                e = abs(e) / (atol[i] + rtol * max(abs(y[i]), abs(acc)))
-                if e > err:
-                    err = e
-            accepted = err <= 1.0 or h < 1e-12
-            if accepted:
+                    ytmp[i] = y[i] + 0.5 * h * U[0, i]
+                rhs(t + 0.5 * h, ytmp, U[1], net, tier, tab, perf, pr, cell)
+                tally_clamps(pr, t + 0.5 * h, att)
+                for i in range(n):
+                    x[i] = U[1, i] - U[0, i]
+                _w_solve(J, Winv, hd, x, U[2])
+                for i in range(n):
+                    U[2, i] += U[0, i]
+                    ytmp[i] = y[i] + h * U[2, i]
                 rhs(t + h, ytmp, f1, net, tier, tab, perf, pr, cell)
                 tally_clamps(pr, t + h, att_end)
-                nfev += 1
-                # a step whose end needed the properties clamped is retried shorter
-                accepted = visited_clamp_off(att_end) == 0 or h < 1e-12
+                nfev += 2
+                for i in range(n):
+                    x[i] = (f1[i] - _E32 * (U[2, i] - U[1, i]) - 2.0 * (U[0, i] - f0[i])
+                            + hd * T[i])
+                _w_solve(J, Winv, hd, x, U[3])
+                err = 0.0
+                for i in range(n):
+                    e = abs(h / 6.0 * (U[0, i] - 2.0 * U[2, i] + U[3, i]))
+                    e /= atol[i] + rtol * max(abs(y[i]), abs(ytmp[i]))
+                    if e > err:
+                        err = e
+                accepted = (err <= 1.0 and visited_clamp_off(att_end) == 0) or h < 1e-12
+            else:
+                # u_i = hd W^-1 (...), W = I - hd J: the stages of I/(gamma h) - J
+                for st in range(ns):
+                    if st == 0 or same[st] == 1:
+                        copy_into(fp, f0)
+                    elif same[st] == 0:
+                        for i in range(n):
+                            acc = y[i]
+                            for j in range(st):
+                                acc += tA[st, j] * U[j, i]
+                            ytmp[i] = acc
+                        rhs(t + tc[st] * h, ytmp, fp, net, tier, tab, perf, pr, cell)
+                        tally_clamps(pr, t + tc[st] * h, att)
+                        nfev += 1
+                    for i in range(n):
+                        acc = 0.0
+                        for j in range(st):
+                            acc += tC[st, j] * U[j, i]
+                        x[i] = fp[i] + h * td[st] * T[i] + acc / h
+                    _w_solve(J, Winv, hd, x, U[st])
+                    for i in range(n):
+                        U[st, i] *= hd
+                err = 0.0
+                for i in range(n):
+                    acc = y[i]
+                    e = 0.0
+                    for j in range(ns):
+                        acc += tb[j] * U[j, i]
+                        e += te[j] * U[j, i]
+                    ytmp[i] = acc
+                    e = abs(e) / (atol[i] + rtol * max(abs(y[i]), abs(acc)))
+                    if e > err:
+                        err = e
+                accepted = err <= 1.0 or h < 1e-12
+                if accepted:
+                    rhs(t + h, ytmp, f1, net, tier, tab, perf, pr, cell)
+                    tally_clamps(pr, t + h, att_end)
+                    nfev += 1
+                    # a step whose end needed the properties clamped is retried shorter
+                    accepted = visited_clamp_off(att_end) == 0 or h < 1e-12
             settle_trial(att, clamps)
             settle_clamps(att_end, accepted, clamps)
             if accepted:
@@ -2072,7 +1952,7 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
                 copy_into(y, ytmp)
                 copy_into(f0, f1)
                 age += 1
-                h_prev = h * step_factor(err, 0.9, expo)
+                h_prev = h * step_factor(err, safety, expo)
                 h = h_prev
             else:
                 if age > 0:
@@ -2080,7 +1960,7 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
                 if err <= 1.0:
                     h = 0.5 * h  # accurate, but through a state the properties do not hold
                 else:
-                    h = h * max(0.2, 0.9 * err ** expo)
+                    h = h * max(0.2, safety * err ** expo)
             if not (h > 0.0) or not math.isfinite(y[0]) or nfev > max_rhs:
                 return y, samples, nfev, False, clamps
     while io < out_theta.shape[0]:
@@ -2097,10 +1977,14 @@ JACOBIAN_AGE = 1
 
 #: The tableau methods of :func:`cycle_ros`, by code from 3.
 ROS_METHODS = ("ros4", "rodas3", "rodas4")
+#: :func:`cycle_ros`'s tableau arguments for the ode23s pair: its gamma and four
+#: stages' scratch (its stages are its own formulas), its safety and exponent.
+_ODE23S_ARGS = (_D, np.zeros((4, 4)), np.zeros((4, 4)), np.zeros(4), np.zeros(4),
+                np.zeros(4), np.zeros(4), np.zeros(4, dtype=np.int64), -1.0 / 3.0)
 #: The compiled integrators by code (0 dopri5, 1 rk4, 2 Rosenbrock ode23s, 3 and on
-#: :func:`cycle_ros` with the tableau of :data:`ROS_METHODS`): separate
-#: functions, so that a run compiles only the one it uses.
-CYCLE_KERNELS = (cycle_dopri5, cycle_rk4, cycle_rosenbrock, cycle_ros, cycle_ros, cycle_ros)
+#: the tableaus of :data:`ROS_METHODS`): separate functions, so that a run compiles
+#: only the one it uses; one, :func:`cycle_ros`, for every Rosenbrock method.
+CYCLE_KERNELS = (cycle_dopri5, cycle_rk4, cycle_ros, cycle_ros, cycle_ros, cycle_ros)
 
 
 def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, tab, perf,
@@ -2165,11 +2049,11 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
     if method == 1:
         return cycle_rk4(y0, stops, out_theta, step, net, tier, tab, perf, max_rhs)
     if method >= 3:
-        gam, tA, tC, tc, td, tb, te, same, expo = ROS_TABLEAUS[ROS_METHODS[method - 3]]
-        return cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, owner,
-                         max_rhs, JACOBIAN_AGE, gam, tA, tC, tc, td, tb, te, same, expo)
-    return cycle_rosenbrock(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color,
-                            owner, max_rhs, JACOBIAN_AGE)
+        tableau, kind = ROS_TABLEAUS[ROS_METHODS[method - 3]], KIND_TABLEAU
+    else:
+        tableau, kind = _ODE23S_ARGS, KIND_ODE23S
+    return cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, owner,
+                     max_rhs, JACOBIAN_AGE, *tableau, kind)
 
 
 def uncached(dispatcher) -> bool | None:
