@@ -53,7 +53,12 @@ tuples would otherwise be counted up and down with an atomic instruction (over 2
 its compiled code, many inside the loops over nodes and edges), which cost 0.76 of its
 1.2 us on the default scene.  It allocates nothing and keeps no reference past its
 return (its arrays are its caller's), so no count is needed; numba refuses to compile
-an allocation there (a typing error, not a silent leak).
+an allocation there (a typing error, not a silent leak).  So are the integrators'
+helpers that take arrays and allocate nothing (clamp tallies, copies, Hermite output,
+the Jacobian, W's inverse and solves, the first step): numba counts a reference on
+every array argument on entry and exit of a compiled function, and with some fifteen
+such calls a step that was 0.3 us of a ros4 step's 3.4 (the integrators themselves
+allocate their scratch, so they keep the counts).
 
 Numba keys that cache on the
 content of this file alone, not on the compiled functions it inlines from
@@ -793,7 +798,7 @@ def rhs(th, y, dy, net, tier, tab, perf, pr, cell):
     derivatives(th, y, pr, dy, net, cell)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def tally_clamps(pr, t, att):
     """Add the latest evaluation's clamps to a step attempt's tally.
 
@@ -822,7 +827,7 @@ def tally_clamps(pr, t, att):
         att[1] = float(int(att[1]) | c)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def settle_visited(att, clamps):
     """Move a step attempt's tally into the cycle's as evaluations at visited states.
 
@@ -844,7 +849,7 @@ def settle_visited(att, clamps):
         att[k] = 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def settle_trial(att, clamps):
     """Move a step attempt's tally into the cycle's as evaluations at trial states.
 
@@ -863,7 +868,7 @@ def settle_trial(att, clamps):
         att[k] = 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def settle_clamps(att, accepted, clamps):
     """Move a step attempt's tally into the cycle's, as visited or trial states.
 
@@ -886,7 +891,7 @@ def settle_clamps(att, accepted, clamps):
         settle_trial(att, clamps)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def copy_into(dst, src):
     """``dst[:] = src`` for 1-d arrays of one length.
 
@@ -904,7 +909,7 @@ def copy_into(dst, src):
         dst[i] = src[i]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def put_column(samples, k, y):
     """``samples[:, k] = y``, as :func:`copy_into`.
 
@@ -936,7 +941,7 @@ _B = np.array([35 / 384, 0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84, 0])
 _E = np.array([71 / 57600, 0, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40])
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def hermite(t0, y0, f0, t1, y1, f1, t, out):
     """Cubic Hermite interpolation on a step from its end states and derivatives.
 
@@ -963,7 +968,7 @@ def hermite(t0, y0, f0, t1, y1, f1, t, out):
         out[i] = h00 * y0[i] + h10 * h * f0[i] + h01 * y1[i] + h11 * h * f1[i]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def dopri_stage(y, K, s_, h, ytmp):
     """The state at a Dormand-Prince stage: ``y + h sum_j a_sj K_j``.
 
@@ -987,7 +992,7 @@ def dopri_stage(y, K, s_, h, ytmp):
         ytmp[i] = y[i] + h * acc
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def dopri_error(y, ynew, K, h, atol, rtol):
     """The 5(4) pair's scaled error.
 
@@ -1196,7 +1201,7 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
         T[ndyn + 2 * e + 1] += hd_t
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, cell, att,
               yp, fp, dl, jd, slope):
     """Jacobian of the dynamic columns, and the time derivative, for both Rosenbrock
@@ -1241,7 +1246,7 @@ def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, ce
     return ncol + 1
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _w_inverse(J, hd, Winv, A):
     """Inverse of the dynamic block of W = I - hd J into ``Winv``, by Gauss-Jordan
     elimination with partial pivoting (a few rows: no LAPACK call, and none to
@@ -1273,7 +1278,7 @@ def _w_inverse(J, hd, Winv, A):
                         Winv[r, j] -= f * Winv[c, j]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _w_solve(J, Winv, hd, x, out):
     """Solve W out = x: the dynamic block by its inverse, the quadratures (which do
     not feed back) by substitution, out_q = x_q + hd J_q,dyn out_dyn."""
@@ -1297,7 +1302,7 @@ KIND_ODE23S = 0
 KIND_TABLEAU = 1
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def emit_samples(io, out_theta, t0, y0, f0, t1, y1, f1, samples, tmp):
     """Write the states at the output angles a step passed (cubic Hermite on the step).
 
@@ -1330,7 +1335,7 @@ def emit_samples(io, out_theta, t0, y0, f0, t1, y1, f1, samples, tmp):
     return io
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def initial_step(f0, y, atol, rtol, span):
     """A first step from the derivative's scale.
 
@@ -1363,7 +1368,7 @@ def initial_step(f0, y, atol, rtol, span):
     return min(max(h, 1e-9), span)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def step_factor(err, safety, expo):
     """The ratio of the next step to this one after an accepted step.
 
@@ -1386,7 +1391,7 @@ def step_factor(err, safety, expo):
     return min(5.0, max(0.2, safety * err ** expo))
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def visited_clamp_off(att_end):
     """The clamp bits of a step's end that make it no step of the physical path.
 
@@ -1408,7 +1413,7 @@ def visited_clamp_off(att_end):
     return 0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att):
     """The derivative at the start of a segment between kinks, a visited state.
 
