@@ -1823,33 +1823,44 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
     """
     n = y0.shape[0]
     ndyn = color.shape[0]
-    ns = tb.shape[0]
-    safety = 0.8 if kind == KIND_ODE23S else 0.9
     y = y0.copy()
     samples = np.full((n, out_theta.shape[0]), np.nan)
-    f0 = np.empty(n)
-    U = np.empty((ns, n))
-    f1 = np.empty(n)
-    ytmp = np.empty(n)
-    tmp = np.empty(n)
+    vec = np.empty((9, n))
+    U = np.empty((tb.shape[0], n))
     J = np.zeros((n, ndyn))
-    Winv = np.empty((ndyn, ndyn))
-    A = np.empty((ndyn, ndyn))
-    T = np.empty(n)
-    x = np.empty(n)
-    yscale = atol / rtol
-    yp = np.empty(n)
-    fp = np.empty(n)
+    mats = np.empty((2, ndyn, ndyn))
     dl = np.empty(ndyn)
     pr = np.empty((PR_ROWS, net[4].shape[0]))
     jd = np.empty((12, net[4].shape[0]))
-    slope = np.empty((net[17].shape[0], 4))
-    cell = np.empty((net[17].shape[0], 4))
-    nfev = 0
+    cyl = np.empty((2, net[17].shape[0], 4))
     clamps = np.zeros(6)
     clamps[CL_NODE] = -1.0
-    att = np.zeros(4)
-    att_end = np.zeros(4)
+    tally = np.zeros((2, 4))
+    nfev, ok = _ros_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf,
+                          color, owner, max_rhs, jac_age, gam, tA, tC, tc, td, tb, te, same,
+                          expo, kind, vec, U, J, mats, dl, pr, jd, cyl, clamps, tally)
+    return y, samples, nfev, ok, clamps
+
+
+@njit(cache=True, _nrt=False)
+def _ros_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, color, owner,
+               max_rhs, jac_age, gam, tA, tC, tc, td, tb, te, same, expo, kind, vec, U, J,
+               mats, dl, pr, jd, cyl, clamps, tally):
+    """:func:`cycle_ros`'s steps, on scratch it allocated (no reference counts:
+    the views of the scratch taken here cost nothing).  ``y`` is advanced to the
+    cycle's end, ``samples`` and ``clamps`` written; returns the evaluations spent
+    and whether the cycle ended well."""
+    n = y.shape[0]
+    ns = tb.shape[0]
+    safety = 0.8 if kind == KIND_ODE23S else 0.9
+    f0, f1, ytmp, tmp, T, x, yscale, yp, fp = (vec[0], vec[1], vec[2], vec[3], vec[4],
+                                               vec[5], vec[6], vec[7], vec[8])
+    for i in range(n):
+        yscale[i] = atol[i] / rtol
+    Winv, A = mats[0], mats[1]
+    slope, cell = cyl[0], cyl[1]
+    att, att_end = tally[0], tally[1]
+    nfev = 0
     io = 0
     while io < out_theta.shape[0] and out_theta[io] <= stops[0]:
         put_column(samples, io, y)
@@ -1967,11 +1978,11 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
                 else:
                     h = h * max(0.2, safety * err ** expo)
             if not (h > 0.0) or not math.isfinite(y[0]) or nfev > max_rhs:
-                return y, samples, nfev, False, clamps
+                return nfev, False
     while io < out_theta.shape[0]:
         put_column(samples, io, y)
         io += 1
-    return y, samples, nfev, True, clamps
+    return nfev, True
 
 
 #: Accepted steps of the Rosenbrock methods one Jacobian serves (1: a fresh one every
