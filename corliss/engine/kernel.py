@@ -1504,17 +1504,27 @@ def cycle_dopri5(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, max_rhs
     n = y0.shape[0]
     y = y0.copy()
     samples = np.full((n, out_theta.shape[0]), np.nan)
-    f0 = np.empty(n)
+    vec = np.empty((3, n))
     K = np.empty((7, n))
-    ytmp = np.empty(n)
-    tmp = np.empty(n)
     pr = np.empty((PR_ROWS, net[4].shape[0]))
     cell = np.empty((net[17].shape[0], 4))
-    nfev = 0
     clamps = np.zeros(6)
     clamps[CL_NODE] = -1.0
-    att = np.zeros(4)
-    att_end = np.zeros(4)
+    tally = np.zeros((2, 4))
+    nfev, ok = _dopri5_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf,
+                             max_rhs, vec, K, pr, cell, clamps, tally)
+    return y, samples, nfev, ok, clamps
+
+
+@njit(cache=True, _nrt=False)
+def _dopri5_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, max_rhs,
+                  vec, K, pr, cell, clamps, tally):
+    """:func:`cycle_dopri5`'s steps, on scratch it allocated (no reference counts).
+    ``y`` is advanced to the cycle's end, ``samples`` and ``clamps`` written; returns
+    the evaluations spent and whether the cycle ended well."""
+    f0, ytmp, tmp = vec[0], vec[1], vec[2]
+    att, att_end = tally[0], tally[1]
+    nfev = 0
     io = 0
     while io < out_theta.shape[0] and out_theta[io] <= stops[0]:
         put_column(samples, io, y)
@@ -1559,11 +1569,11 @@ def cycle_dopri5(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, max_rhs
             else:
                 h = h * max(0.2, 0.9 * err ** -0.2)
             if not (h > 0.0) or not math.isfinite(y[0]) or nfev > max_rhs:
-                return y, samples, nfev, False, clamps
+                return nfev, False
     while io < out_theta.shape[0]:
         put_column(samples, io, y)
         io += 1
-    return y, samples, nfev, True, clamps
+    return nfev, True
 
 
 @njit(cache=True)
