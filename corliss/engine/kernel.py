@@ -798,7 +798,7 @@ def rhs(th, y, dy, net, tier, tab, perf, pr, cell):
     derivatives(th, y, pr, dy, net, cell)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
 def tally_clamps(pr, t, att):
     """Add the latest evaluation's clamps to a step attempt's tally.
 
@@ -827,7 +827,7 @@ def tally_clamps(pr, t, att):
         att[1] = float(int(att[1]) | c)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
 def settle_visited(att, clamps):
     """Move a step attempt's tally into the cycle's as evaluations at visited states.
 
@@ -849,7 +849,7 @@ def settle_visited(att, clamps):
         att[k] = 0.0
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
 def settle_trial(att, clamps):
     """Move a step attempt's tally into the cycle's as evaluations at trial states.
 
@@ -868,7 +868,7 @@ def settle_trial(att, clamps):
         att[k] = 0.0
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
 def settle_clamps(att, accepted, clamps):
     """Move a step attempt's tally into the cycle's, as visited or trial states.
 
@@ -891,7 +891,7 @@ def settle_clamps(att, accepted, clamps):
         settle_trial(att, clamps)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
 def copy_into(dst, src):
     """``dst[:] = src`` for 1-d arrays of one length.
 
@@ -909,7 +909,7 @@ def copy_into(dst, src):
         dst[i] = src[i]
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
 def put_column(samples, k, y):
     """``samples[:, k] = y``, as :func:`copy_into`.
 
@@ -941,7 +941,7 @@ _B = np.array([35 / 384, 0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84, 0])
 _E = np.array([71 / 57600, 0, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40])
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
 def hermite(t0, y0, f0, t1, y1, f1, t, out):
     """Cubic Hermite interpolation on a step from its end states and derivatives.
 
@@ -968,7 +968,7 @@ def hermite(t0, y0, f0, t1, y1, f1, t, out):
         out[i] = h00 * y0[i] + h10 * h * f0[i] + h01 * y1[i] + h11 * h * f1[i]
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
 def dopri_stage(y, K, s_, h, ytmp):
     """The state at a Dormand-Prince stage: ``y + h sum_j a_sj K_j``.
 
@@ -992,7 +992,7 @@ def dopri_stage(y, K, s_, h, ytmp):
         ytmp[i] = y[i] + h * acc
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
 def dopri_error(y, ynew, K, h, atol, rtol):
     """The 5(4) pair's scaled error.
 
@@ -1201,7 +1201,7 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
         T[ndyn + 2 * e + 1] += hd_t
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
 def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, cell, att,
               yp, fp, dl, jd, slope):
     """Jacobian of the dynamic columns, and the time derivative, for both Rosenbrock
@@ -1246,7 +1246,7 @@ def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, ce
     return ncol + 1
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
 def _w_inverse(J, hd, Winv, A):
     """Inverse of the dynamic block of W = I - hd J into ``Winv``, by Gauss-Jordan
     elimination with partial pivoting (a few rows: no LAPACK call, and none to
@@ -1278,7 +1278,7 @@ def _w_inverse(J, hd, Winv, A):
                         Winv[r, j] -= f * Winv[c, j]
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
 def _w_solve(J, Winv, hd, x, out):
     """Solve W out = x: the dynamic block by its inverse, the quadratures (which do
     not feed back) by substitution, out_q = x_q + hd J_q,dyn out_dyn."""
@@ -1302,7 +1302,7 @@ KIND_ODE23S = 0
 KIND_TABLEAU = 1
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
 def emit_samples(io, out_theta, t0, y0, f0, t1, y1, f1, samples, tmp):
     """Write the states at the output angles a step passed (cubic Hermite on the step).
 
@@ -1335,7 +1335,7 @@ def emit_samples(io, out_theta, t0, y0, f0, t1, y1, f1, samples, tmp):
     return io
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
 def initial_step(f0, y, atol, rtol, span):
     """A first step from the derivative's scale.
 
@@ -1368,7 +1368,7 @@ def initial_step(f0, y, atol, rtol, span):
     return min(max(h, 1e-9), span)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
 def step_factor(err, safety, expo):
     """The ratio of the next step to this one after an accepted step.
 
@@ -1391,7 +1391,7 @@ def step_factor(err, safety, expo):
     return min(5.0, max(0.2, safety * err ** expo))
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
 def visited_clamp_off(att_end):
     """The clamp bits of a step's end that make it no step of the physical path.
 
@@ -1413,7 +1413,7 @@ def visited_clamp_off(att_end):
     return 0
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
 def segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att):
     """The derivative at the start of a segment between kinks, a visited state.
 
@@ -1456,9 +1456,11 @@ def segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att):
     settle_visited(att, clamps)
 
 
-@njit(cache=True)
 def cycle_dopri5(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, max_rhs):
     """:func:`integrate_cycle` with Dormand-Prince 5(4) (see the module docstring).
+
+    Allocates the scratch (in Python: no compiled function to compile for it) and hands
+    over to the compiled step loop :func:`_dopri5_steps`.
 
     Parameters
     ----------
@@ -1751,7 +1753,6 @@ ROS_TABLEAUS = {
 }
 
 
-@njit(cache=True)
 def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, owner,
               max_rhs, jac_age, gam, tA, tC, tc, td, tb, te, same, expo, kind):
     """:func:`integrate_cycle` with a Rosenbrock method: the ode23s pair, or a tableau's.
@@ -1763,6 +1764,8 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
     (:data:`KIND_TABLEAU`, :data:`ROS_TABLEAUS`).  The ode23s pair evaluates the
     derivative at the step's end as its last stage, for every step; a tableau's method
     evaluates it (for the next step and the output) only for a step whose error passes.
+    Allocates the scratch (in Python: no compiled function to compile for it) and hands
+    over to the compiled step loop :func:`_ros_steps`.
 
     Parameters
     ----------
@@ -2009,8 +2012,9 @@ _ODE23S_ARGS = (_D, np.zeros((4, 4)), np.zeros((4, 4)), np.zeros(4), np.zeros(4)
                 np.zeros(4), np.zeros(4), np.zeros(4, dtype=np.int64), -1.0 / 3.0)
 #: The compiled integrators by code (0 dopri5, 1 rk4, 2 Rosenbrock ode23s, 3 and on
 #: the tableaus of :data:`ROS_METHODS`): separate functions, so that a run compiles
-#: only the one it uses; one, :func:`cycle_ros`, for every Rosenbrock method.
-CYCLE_KERNELS = (cycle_dopri5, cycle_rk4, cycle_ros, cycle_ros, cycle_ros, cycle_ros)
+#: only the one it uses; one, :func:`_ros_steps` (called by :func:`cycle_ros`), for
+#: every Rosenbrock method.
+CYCLE_KERNELS = (_dopri5_steps, cycle_rk4, _ros_steps, _ros_steps, _ros_steps, _ros_steps)
 
 
 def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, tab, perf,
