@@ -2006,6 +2006,8 @@ JACOBIAN_AGE = 1
 
 #: The tableau methods of :func:`cycle_ros`, by code from 3.
 ROS_METHODS = ("ros4", "rodas3", "rodas4")
+#: Every method :func:`cycle_ros` integrates (on :func:`_jacobian`).
+ROSENBROCK_METHODS = ("rosenbrock",) + ROS_METHODS
 #: :func:`cycle_ros`'s tableau arguments for the ode23s pair: its gamma and four
 #: stages' scratch (its stages are its own formulas), its safety and exponent.
 _ODE23S_ARGS = (_D, np.zeros((4, 4)), np.zeros((4, 4)), np.zeros(4), np.zeros(4),
