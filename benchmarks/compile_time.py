@@ -8,6 +8,10 @@ time of that first call (which compiles everything the run calls), and numba's o
 compile events per compiled function, inclusive (with the functions it compiles for
 itself) and exclusive (without them), the largest first.
 
+The child runs in the empty cache folder, so that the ``corliss`` it imports is the
+one installed or on ``PYTHONPATH`` (with ``-c``, Python puts the working directory
+first on its path).
+
 Usage::
 
     python benchmarks/compile_time.py [--methods dopri5 ros4] [--top 6]
@@ -66,13 +70,13 @@ def main(argv=None) -> int:
     ap.add_argument("--methods", nargs="+", default=["dopri5", "rosenbrock", "ros4", "rodas4"])
     ap.add_argument("--top", type=int, default=6, help="functions listed per method")
     args = ap.parse_args(argv)
-    scene = os.path.join(HERE, "..", "scenes", "default.toml")
+    scene = os.path.abspath(os.path.join(HERE, "..", "scenes", "default.toml"))
     for method in args.methods:
         with tempfile.TemporaryDirectory() as cache:
             env = dict(os.environ, NUMBA_CACHE_DIR=cache)
             out = subprocess.run([sys.executable, "-c", CHILD, method, str(RTOL[method]),
                                   scene, str(args.top)], env=env, check=True,
-                                 capture_output=True, text=True)
+                                 capture_output=True, text=True, cwd=cache)
             print(out.stdout.strip().splitlines()[-1], flush=True)
     return 0
 
