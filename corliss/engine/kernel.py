@@ -26,8 +26,9 @@ one implementation of the physics.  The integrators:
 * ``"ros4"``, ``"rodas3"``, ``"rodas4"``: Rosenbrock methods of higher order from
   their tableaus (:data:`ROS_TABLEAUS`), on the same Jacobian and in the same
   compiled step loop as ode23s (:func:`cycle_ros`, one integrator for every
-  Rosenbrock method, so that a run of one compiles them all): Shampine's A-stable 4(3) pair, and the L-stable, stiffly
-  accurate RODAS3 (order 3) and RODAS4 (order 4).  On the accuracy study's three
+  Rosenbrock method, so that a run of one compiles them all): Shampine's A-stable
+  4(3) pair, and the L-stable, stiffly accurate RODAS3 (order 3) and RODAS4 (order
+  4).  On the accuracy study's three
   scenes they reach either preset's accuracy for a half to two thirds of its
   evaluations (the README's "Accuracy and time").  On a very stiff network (ports
   1000 times too large) they ran out of the run-time budget with the
@@ -54,11 +55,13 @@ its compiled code, many inside the loops over nodes and edges), which cost 0.76 
 1.2 us on the default scene.  It allocates nothing and keeps no reference past its
 return (its arrays are its caller's), so no count is needed; numba refuses to compile
 an allocation there (a typing error, not a silent leak).  So are the integrators'
-helpers that take arrays and allocate nothing (clamp tallies, copies, Hermite output,
-the Jacobian, W's inverse and solves, the first step): numba counts a reference on
-every array argument on entry and exit of a compiled function, and with some fifteen
-such calls a step that was 0.3 us of a ros4 step's 3.4 (the integrators themselves
-allocate their scratch, so they keep the counts).
+step loops (:func:`_dopri5_steps`, :func:`_ros_steps`, on scratch their Python callers
+:func:`cycle_dopri5` and :func:`cycle_ros` allocate) and their helpers (clamp tallies,
+copies, Hermite output, the Jacobians, W's inverse and solves, the first step): numba
+counts a reference on every array argument on entry and exit of a compiled function,
+and on every view of a scratch array, about 0.4 us of a ros4 step's 3.4 before.  The
+helpers only compiled code calls have no CPython wrapper (``no_cpython_wrapper``: less
+to compile).
 
 Numba keys that cache on the
 content of this file alone, not on the compiled functions it inlines from
