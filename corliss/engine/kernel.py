@@ -1140,6 +1140,12 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
     _port_area_slopes(t, net, slope)
     P, RHO, H, K = pr[0], pr[1], pr[2], pr[3]
     for e in range(ea.shape[0]):
+        area = edge_area(net, e, cell)
+        if area <= 0.0:
+            # a shut port: no flow and no partials (port_flow_partials's own test), nor
+            # in time (the area's slope enters only where the area is open), as in
+            # :func:`balances`
+            continue
         a = ea[e]
         b = eb[e]
         if a >= 0:
@@ -1152,7 +1158,6 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
         else:
             r = -1 - b
             pb, rb, hb, kb = res[r, 0], res[r, 1], res[r, 2], res[r, 3]
-        area = edge_area(net, e, cell)
         md, d1p, d1r, d1k, d2p, d2r, d2k = port_flow_partials(
             area, ecd[e], pa, ra, ka, pb, rb, kb, band, True)
         # the side upstream as the flow's partials take it (side a at equal pressures):
