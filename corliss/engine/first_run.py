@@ -42,10 +42,15 @@ JACOBIAN_COMMAND = ("import sys; from corliss.engine.first_run import compile_ja
                     "compile_jacobian(sys.stdin.buffer.read()); " + BUILD_COMMAND)
 
 
+def _steady_method(scene) -> str:
+    """The integrator the scene's steady run will take."""
+    return scene.run.fidelity.method
+
+
 def _kernels_missing(scene) -> bool:
     """True when the scene's compiled cycle integrator is not in numba's disk cache
     (False when this numba does not show its cache: then nothing is done)."""
-    method = scene.run.fidelity.method
+    method = _steady_method(scene)
     if method not in COMPILED_CODES:
         return False
     return bool(kernel.uncached(kernel.CYCLE_KERNELS[COMPILED_CODES[method]]))
@@ -77,7 +82,7 @@ def prepare(scene) -> None:
     # a Rosenbrock method's analytic Jacobian (a third of its compile time) is compiled
     # in the second process first, while this one compiles the right-hand side, which
     # the step loop needs before the Jacobian: this one then loads it from the cache
-    jacobian = (scene.run.fidelity.method in kernel.ROSENBROCK_METHODS
+    jacobian = (_steady_method(scene) in kernel.ROSENBROCK_METHODS
                 and bool(kernel.uncached(kernel._jacobian_exact)))
     try:
         # the second process, done with the table before this one is done compiling,
