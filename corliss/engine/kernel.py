@@ -24,9 +24,11 @@ one implementation of the physics.  The integrators:
   the default engine), which holds the explicit methods to steps of about 0.6 deg
   whatever their tolerance; the Rosenbrock method steps over it;
 * ``"ros4"``, ``"rodas3"``, ``"rodas4"``: Rosenbrock methods of higher order from
-  their tableaus (:data:`ROS_TABLEAUS`, one compiled integrator :func:`cycle_ros`),
-  on the same Jacobian: Shampine's A-stable 4(3) pair, and the L-stable, stiffly
-  accurate RODAS3 (order 3) and RODAS4 (order 4).  On the accuracy study's three
+  their tableaus (:data:`ROS_TABLEAUS`), on the same Jacobian and in the same
+  compiled step loop as ode23s (:func:`cycle_ros`, one integrator for every
+  Rosenbrock method, so that a run of one compiles them all): Shampine's A-stable
+  4(3) pair, and the L-stable, stiffly accurate RODAS3 (order 3) and RODAS4 (order
+  4).  On the accuracy study's three
   scenes they reach either preset's accuracy for a half to two thirds of its
   evaluations (the README's "Accuracy and time").  On a very stiff network (ports
   1000 times too large) they ran out of the run-time budget with the
@@ -52,7 +54,16 @@ tuples would otherwise be counted up and down with an atomic instruction (over 2
 its compiled code, many inside the loops over nodes and edges), which cost 0.76 of its
 1.2 us on the default scene.  It allocates nothing and keeps no reference past its
 return (its arrays are its caller's), so no count is needed; numba refuses to compile
-an allocation there (a typing error, not a silent leak).
+an allocation there (a typing error, not a silent leak).  So are the integrators'
+step loops (:func:`_dopri5_steps`, :func:`_ros_steps`, on scratch their Python callers
+:func:`cycle_dopri5` and :func:`cycle_ros` allocate) and their helpers (clamp tallies,
+copies, Hermite output, the Jacobians, W's inverse and solves, the first step): numba
+counts a reference on every array argument on entry and exit of a compiled function,
+and on every view of a scratch array, about 0.4 us of a ros4 step's 3.4 before.  The
+private helpers only compiled code calls (:func:`_jacobian`, :func:`_w_inverse`,
+:func:`_w_solve`) have no CPython wrapper (``no_cpython_wrapper``: less to compile; a
+call from Python would crash the interpreter).  The public ones keep theirs: without,
+a first ``ros4`` call compiled 0.4-0.6 s less (16.2 and 15.9 against 16.5 and 16.5 s).
 
 Numba keys that cache on the
 content of this file alone, not on the compiled functions it inlines from
@@ -792,7 +803,7 @@ def rhs(th, y, dy, net, tier, tab, perf, pr, cell):
     derivatives(th, y, pr, dy, net, cell)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def tally_clamps(pr, t, att):
     """Add the latest evaluation's clamps to a step attempt's tally.
 
@@ -821,7 +832,7 @@ def tally_clamps(pr, t, att):
         att[1] = float(int(att[1]) | c)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def settle_visited(att, clamps):
     """Move a step attempt's tally into the cycle's as evaluations at visited states.
 
@@ -843,7 +854,7 @@ def settle_visited(att, clamps):
         att[k] = 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def settle_trial(att, clamps):
     """Move a step attempt's tally into the cycle's as evaluations at trial states.
 
@@ -862,7 +873,7 @@ def settle_trial(att, clamps):
         att[k] = 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def settle_clamps(att, accepted, clamps):
     """Move a step attempt's tally into the cycle's, as visited or trial states.
 
@@ -885,7 +896,7 @@ def settle_clamps(att, accepted, clamps):
         settle_trial(att, clamps)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def copy_into(dst, src):
     """``dst[:] = src`` for 1-d arrays of one length.
 
@@ -903,7 +914,7 @@ def copy_into(dst, src):
         dst[i] = src[i]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def put_column(samples, k, y):
     """``samples[:, k] = y``, as :func:`copy_into`.
 
@@ -935,7 +946,7 @@ _B = np.array([35 / 384, 0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84, 0])
 _E = np.array([71 / 57600, 0, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40])
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def hermite(t0, y0, f0, t1, y1, f1, t, out):
     """Cubic Hermite interpolation on a step from its end states and derivatives.
 
@@ -962,7 +973,7 @@ def hermite(t0, y0, f0, t1, y1, f1, t, out):
         out[i] = h00 * y0[i] + h10 * h * f0[i] + h01 * y1[i] + h11 * h * f1[i]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def dopri_stage(y, K, s_, h, ytmp):
     """The state at a Dormand-Prince stage: ``y + h sum_j a_sj K_j``.
 
@@ -986,7 +997,7 @@ def dopri_stage(y, K, s_, h, ytmp):
         ytmp[i] = y[i] + h * acc
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def dopri_error(y, ynew, K, h, atol, rtol):
     """The 5(4) pair's scaled error.
 
@@ -1150,6 +1161,12 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
     _port_area_slopes(t, net, slope)
     P, RHO, H, K = pr[0], pr[1], pr[2], pr[3]
     for e in range(ea.shape[0]):
+        area = edge_area(net, e, cell)
+        if area <= 0.0:
+            # a shut port: no flow and no partials (port_flow_partials's own test), nor
+            # in time (the area's slope enters only where the area is open), as in
+            # :func:`balances`
+            continue
         a = ea[e]
         b = eb[e]
         if a >= 0:
@@ -1162,7 +1179,6 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
         else:
             r = -1 - b
             pb, rb, hb, kb = res[r, 0], res[r, 1], res[r, 2], res[r, 3]
-        area = edge_area(net, e, cell)
         md, d1p, d1r, d1k, d2p, d2r, d2k = port_flow_partials(
             area, ecd[e], pa, ra, ka, pb, rb, kb, band, True)
         # the side upstream as the flow's partials take it (side a at equal pressures):
@@ -1214,7 +1230,7 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
         T[ndyn + 2 * e + 1] += hd_t
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
 def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, cell, att,
               yp, fp, dl, jd, slope):
     """Jacobian of the dynamic columns, and the time derivative, for both Rosenbrock
@@ -1259,7 +1275,7 @@ def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, ce
     return ncol + 1
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
 def _w_inverse(J, hd, Winv, A):
     """Inverse of the dynamic block of W = I - hd J into ``Winv``, by Gauss-Jordan
     elimination with partial pivoting (a few rows: no LAPACK call, and none to
@@ -1291,7 +1307,7 @@ def _w_inverse(J, hd, Winv, A):
                         Winv[r, j] -= f * Winv[c, j]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
 def _w_solve(J, Winv, hd, x, out):
     """Solve W out = x: the dynamic block by its inverse, the quadratures (which do
     not feed back) by substitution, out_q = x_q + hd J_q,dyn out_dyn."""
@@ -1310,9 +1326,12 @@ def _w_solve(J, Winv, hd, x, out):
 
 _D = 1.0 / (2.0 + math.sqrt(2.0))
 _E32 = 6.0 + math.sqrt(2.0)
+#: :func:`cycle_ros`'s ``kind``: the ode23s pair's own stages, or a tableau's.
+KIND_ODE23S = 0
+KIND_TABLEAU = 1
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def emit_samples(io, out_theta, t0, y0, f0, t1, y1, f1, samples, tmp):
     """Write the states at the output angles a step passed (cubic Hermite on the step).
 
@@ -1345,7 +1364,7 @@ def emit_samples(io, out_theta, t0, y0, f0, t1, y1, f1, samples, tmp):
     return io
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def initial_step(f0, y, atol, rtol, span):
     """A first step from the derivative's scale.
 
@@ -1378,7 +1397,7 @@ def initial_step(f0, y, atol, rtol, span):
     return min(max(h, 1e-9), span)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def step_factor(err, safety, expo):
     """The ratio of the next step to this one after an accepted step.
 
@@ -1401,7 +1420,7 @@ def step_factor(err, safety, expo):
     return min(5.0, max(0.2, safety * err ** expo))
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def visited_clamp_off(att_end):
     """The clamp bits of a step's end that make it no step of the physical path.
 
@@ -1423,7 +1442,7 @@ def visited_clamp_off(att_end):
     return 0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att):
     """The derivative at the start of a segment between kinks, a visited state.
 
@@ -1466,9 +1485,11 @@ def segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att):
     settle_visited(att, clamps)
 
 
-@njit(cache=True)
 def cycle_dopri5(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, max_rhs):
     """:func:`integrate_cycle` with Dormand-Prince 5(4) (see the module docstring).
+
+    Allocates the scratch (in Python: no compiled function to compile for it) and hands
+    over to the compiled step loop :func:`_dopri5_steps`.
 
     Parameters
     ----------
@@ -1514,17 +1535,27 @@ def cycle_dopri5(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, max_rhs
     n = y0.shape[0]
     y = y0.copy()
     samples = np.full((n, out_theta.shape[0]), np.nan)
-    f0 = np.empty(n)
+    vec = np.empty((3, n))
     K = np.empty((7, n))
-    ytmp = np.empty(n)
-    tmp = np.empty(n)
     pr = np.empty((PR_ROWS, net[4].shape[0]))
     cell = np.empty((net[17].shape[0], 4))
-    nfev = 0
     clamps = np.zeros(6)
     clamps[CL_NODE] = -1.0
-    att = np.zeros(4)
-    att_end = np.zeros(4)
+    tally = np.zeros((2, 4))
+    nfev, ok = _dopri5_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf,
+                             max_rhs, vec, K, pr, cell, clamps, tally)
+    return y, samples, nfev, ok, clamps
+
+
+@njit(cache=True, _nrt=False)
+def _dopri5_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, max_rhs,
+                  vec, K, pr, cell, clamps, tally):
+    """:func:`cycle_dopri5`'s steps, on scratch it allocated (no reference counts).
+    ``y`` is advanced to the cycle's end, ``samples`` and ``clamps`` written; returns
+    the evaluations spent and whether the cycle ended well."""
+    f0, ytmp, tmp = vec[0], vec[1], vec[2]
+    att, att_end = tally[0], tally[1]
+    nfev = 0
     io = 0
     while io < out_theta.shape[0] and out_theta[io] <= stops[0]:
         put_column(samples, io, y)
@@ -1569,11 +1600,11 @@ def cycle_dopri5(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, max_rhs
             else:
                 h = h * max(0.2, 0.9 * err ** -0.2)
             if not (h > 0.0) or not math.isfinite(y[0]) or nfev > max_rhs:
-                return y, samples, nfev, False, clamps
+                return nfev, False
     while io < out_theta.shape[0]:
         put_column(samples, io, y)
         io += 1
-    return y, samples, nfev, True, clamps
+    return nfev, True
 
 
 @njit(cache=True)
@@ -1686,169 +1717,6 @@ def cycle_rk4(y0, stops, out_theta, step, net, tier, tab, perf, max_rhs):
     return y, samples, nfev, True, clamps
 
 
-@njit(cache=True)
-def cycle_rosenbrock(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, owner,
-                     max_rhs, jac_age):
-    """:func:`integrate_cycle` with the Rosenbrock 2(3) pair of ode23s (module docstring).
-
-    Parameters
-    ----------
-    y0 : ndarray
-        The state at ``stops[0]``; shape (n_state,).
-    stops : ndarray
-        Shaft angles [rad], increasing: the segments between them are integrated
-        with a restart at each (:meth:`corliss.engine.network.Network.stops`).
-    out_theta : ndarray
-        Shaft angles [rad] where the state is sampled, increasing.
-    rtol : float
-        Relative tolerance [-].
-    atol : ndarray
-        Absolute tolerances, in each component's unit; shape (n_state,).
-    net : tuple
-        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
-    tier : int
-        The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.
-    tab : tuple
-        The steam table's arrays (:meth:`corliss.thermo.steam_table.SteamTable.arrays`).
-    perf : ndarray
-        The perfect tier's gas constant [J/(kg K)], ``cv`` [J/(kg K)] and ``u_ref``
-        [J/kg]; shape (3,) (unused on the table tier).
-    color : ndarray of int64
-        The colour of each dynamic column
-        (:meth:`corliss.engine.network.Network.column_colors`).
-    owner : ndarray of int64
-        Which column of each colour moves each row; shape (colours, n_state).
-    max_rhs : int
-        The run-time budget: most right-hand-side evaluations.
-    jac_age : int
-        Accepted steps a Jacobian serves (:data:`JACOBIAN_AGE`); it is computed
-        afresh at every segment's start and after a step rejected on a Jacobian
-        older than the step.
-
-    Returns
-    -------
-    y_end : ndarray
-        The state at ``stops[-1]``; shape (n_state,).
-    samples : ndarray
-        ``samples[:, k]`` the state at ``out_theta[k]``; shape (n_state, outputs).
-    nfev : int
-        Right-hand-side evaluations spent.
-    ok : bool
-        False when the step size collapsed, the state went non-finite or more than
-        ``max_rhs`` evaluations were spent.
-    clamps : ndarray
-        Evaluations that clamped a state, shape (6,), indexed by ``CL_*``: at visited
-        states (the ends of accepted steps) and at trial states (stages, probes,
-        rejected steps) apart.
-    """
-    n = y0.shape[0]
-    ndyn = color.shape[0]
-    y = y0.copy()
-    samples = np.full((n, out_theta.shape[0]), np.nan)
-    f0 = np.empty(n)
-    K = np.empty((4, n))
-    f1 = np.empty(n)
-    ytmp = np.empty(n)
-    tmp = np.empty(n)
-    J = np.zeros((n, ndyn))
-    Winv = np.empty((ndyn, ndyn))
-    A = np.empty((ndyn, ndyn))
-    T = np.empty(n)
-    x = np.empty(n)
-    yscale = atol / rtol
-    yp = np.empty(n)
-    fp = np.empty(n)
-    dl = np.empty(ndyn)
-    pr = np.empty((PR_ROWS, net[4].shape[0]))
-    jd = np.empty((12, net[4].shape[0]))
-    slope = np.empty((net[17].shape[0], 4))
-    cell = np.empty((net[17].shape[0], 4))
-    nfev = 0
-    clamps = np.zeros(6)
-    clamps[CL_NODE] = -1.0
-    att = np.zeros(4)
-    att_end = np.zeros(4)
-    io = 0
-    while io < out_theta.shape[0] and out_theta[io] <= stops[0]:
-        put_column(samples, io, y)
-        io += 1
-    h_prev = 0.0
-    for seg in range(stops.shape[0] - 1):
-        a = stops[seg]
-        b = stops[seg + 1]
-        if b - a <= 0.0:
-            continue
-        t = a
-        segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att)
-        nfev += 1
-        h = min(h_prev, b - a) if h_prev > 0.0 else initial_step(f0, y, atol, rtol, b - a)
-        age = jac_age          # steps the Jacobian has served: none yet in this segment
-        h_w = -1.0             # the step W was inverted for
-        while t < b:
-            if t + h > b or b - (t + h) < 1e-12:
-                h = b - t
-            if age >= jac_age:
-                nfev += _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf,
-                                  pr, cell, att, yp, fp, dl, jd, slope)
-                age = 0
-                h_w = -1.0
-            hd = h * _D
-            if h != h_w:
-                _w_inverse(J, hd, Winv, A)
-                h_w = h
-            for i in range(n):
-                x[i] = f0[i] + hd * T[i]
-            _w_solve(J, Winv, hd, x, K[0])
-            for i in range(n):
-                ytmp[i] = y[i] + 0.5 * h * K[0, i]
-            rhs(t + 0.5 * h, ytmp, K[1], net, tier, tab, perf, pr, cell)
-            tally_clamps(pr, t + 0.5 * h, att)
-            for i in range(n):
-                x[i] = K[1, i] - K[0, i]
-            _w_solve(J, Winv, hd, x, K[2])
-            for i in range(n):
-                K[2, i] += K[0, i]
-                ytmp[i] = y[i] + h * K[2, i]
-            rhs(t + h, ytmp, f1, net, tier, tab, perf, pr, cell)
-            tally_clamps(pr, t + h, att_end)
-            nfev += 2
-            for i in range(n):
-                x[i] = (f1[i] - _E32 * (K[2, i] - K[1, i]) - 2.0 * (K[0, i] - f0[i])
-                        + hd * T[i])
-            _w_solve(J, Winv, hd, x, K[3])
-            err = 0.0
-            for i in range(n):
-                e = abs(h / 6.0 * (K[0, i] - 2.0 * K[2, i] + K[3, i]))
-                e /= atol[i] + rtol * max(abs(y[i]), abs(ytmp[i]))
-                if e > err:
-                    err = e
-            accepted = (err <= 1.0 and visited_clamp_off(att_end) == 0) or h < 1e-12
-            settle_trial(att, clamps)
-            settle_clamps(att_end, accepted, clamps)
-            if accepted:
-                t1 = t + h
-                io = emit_samples(io, out_theta, t, y, f0, t1, ytmp, f1, samples, tmp)
-                t = t1
-                copy_into(y, ytmp)
-                copy_into(f0, f1)
-                h_prev = h * step_factor(err, 0.8, -1.0 / 3.0)
-                h = h_prev
-                age += 1
-            else:
-                if age > 0:
-                    age = jac_age    # rejected on an old Jacobian: a fresh one
-                if err <= 1.0:
-                    h = 0.5 * h  # accurate, but through a state the properties do not hold
-                else:
-                    h = h * max(0.2, 0.8 * err ** (-1.0 / 3.0))
-            if not (h > 0.0) or not math.isfinite(y[0]) or nfev > max_rhs:
-                return y, samples, nfev, False, clamps
-    while io < out_theta.shape[0]:
-        put_column(samples, io, y)
-        io += 1
-    return y, samples, nfev, True, clamps
-
-
 def _tableau(gamma, A, C, c, d, b, e, expo):
     """A Rosenbrock tableau as the arrays :func:`cycle_ros` takes, in the form
     ``(I/(gamma h) - J) u_i = f(t + c_i h, y + sum_j a_ij u_j) + sum_j c_ij u_j / h
@@ -1914,14 +1782,19 @@ ROS_TABLEAUS = {
 }
 
 
-@njit(cache=True)
 def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, owner,
-              max_rhs, jac_age, gam, tA, tC, tc, td, tb, te, same, expo):
-    """:func:`integrate_cycle` with a Rosenbrock method of a tableau (:data:`ROS_TABLEAUS`).
+              max_rhs, jac_age, gam, tA, tC, tc, td, tb, te, same, expo, kind):
+    """:func:`integrate_cycle` with a Rosenbrock method: the ode23s pair, or a tableau's.
 
-    On the same Jacobian as :func:`cycle_rosenbrock` (:func:`_jacobian`); the
-    derivative at the step's end (for the next step and the output) is evaluated only
-    for a step whose error passes.
+    One compiled step loop for every Rosenbrock method (segments, Jacobian, W, step
+    control, clamps, output), with the stages of the method: Shampine and Reichelt's
+    2(3) pair of ode23s (``kind`` :data:`KIND_ODE23S`, its formulas as the paper
+    writes them; the tableau's arrays are then unused) or those of a tableau
+    (:data:`KIND_TABLEAU`, :data:`ROS_TABLEAUS`).  The ode23s pair evaluates the
+    derivative at the step's end as its last stage, for every step; a tableau's method
+    evaluates it (for the next step and the output) only for a step whose error passes.
+    Allocates the scratch (in Python: no compiled function to compile for it) and hands
+    over to the compiled step loop :func:`_ros_steps`.
 
     Parameters
     ----------
@@ -1953,23 +1826,26 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
     max_rhs : int
         The run-time budget: most right-hand-side evaluations.
     jac_age : int
-        Accepted steps a Jacobian serves (:data:`JACOBIAN_AGE`), as
-        :func:`cycle_rosenbrock`.
+        Accepted steps a Jacobian serves (:data:`JACOBIAN_AGE`); it is computed
+        afresh at every segment's start and after a step rejected on a Jacobian
+        older than the step.
     gam : float
-        The tableau's diagonal gamma [-].
+        The method's diagonal gamma [-] (ode23s: 1 / (2 + sqrt 2)).
     tA, tC : ndarray
-        Its stage coefficients a_ij and c_ij, shape (stages, stages), below the
-        diagonal [-].
+        The tableau's stage coefficients a_ij and c_ij, shape (stages, stages), below
+        the diagonal [-].
     tc, td, tb, te : ndarray
         Its stage angles c_i (fractions of the step), the coefficients d_i of the time
         derivative, the weights b_i of the solution and e_i of the error [-]; shape
-        (stages,).
+        (stages,) (ode23s: 4 stages' scratch).
     same : ndarray of int64
         Per stage: 0 evaluate, 1 its argument is the step's start, 2 the stage
         before's; shape (stages,).
     expo : float
         The exponent of the step's ratio to its error, ``-1/(order + 1)`` of the
         error estimate [-].
+    kind : int
+        :data:`KIND_ODE23S` or :data:`KIND_TABLEAU`.
 
     Returns
     -------
@@ -1989,32 +1865,48 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
     """
     n = y0.shape[0]
     ndyn = color.shape[0]
-    ns = tb.shape[0]
     y = y0.copy()
     samples = np.full((n, out_theta.shape[0]), np.nan)
-    f0 = np.empty(n)
-    U = np.empty((ns, n))
-    f1 = np.empty(n)
-    ytmp = np.empty(n)
-    tmp = np.empty(n)
+    vec = np.empty((9, n))
+    U = np.empty((tb.shape[0], n))
     J = np.zeros((n, ndyn))
-    Winv = np.empty((ndyn, ndyn))
-    A = np.empty((ndyn, ndyn))
-    T = np.empty(n)
-    x = np.empty(n)
-    yscale = atol / rtol
-    yp = np.empty(n)
-    fp = np.empty(n)
+    mats = np.empty((2, ndyn, ndyn))
     dl = np.empty(ndyn)
     pr = np.empty((PR_ROWS, net[4].shape[0]))
     jd = np.empty((12, net[4].shape[0]))
-    slope = np.empty((net[17].shape[0], 4))
-    cell = np.empty((net[17].shape[0], 4))
-    nfev = 0
+    cyl = np.empty((2, net[17].shape[0], 4))
     clamps = np.zeros(6)
     clamps[CL_NODE] = -1.0
-    att = np.zeros(4)
-    att_end = np.zeros(4)
+    tally = np.zeros((2, 4))
+    nfev, ok = _ros_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf,
+                          color, owner, max_rhs, jac_age, gam, tA, tC, tc, td, tb, te, same,
+                          expo, kind, vec, U, J, mats, dl, pr, jd, cyl, clamps, tally)
+    return y, samples, nfev, ok, clamps
+
+
+@njit(cache=True, _nrt=False)
+def _ros_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, color, owner,
+               max_rhs, jac_age, gam, tA, tC, tc, td, tb, te, same, expo, kind, vec, U, J,
+               mats, dl, pr, jd, cyl, clamps, tally):
+    """:func:`cycle_ros`'s steps, on scratch it allocated (no reference counts:
+    the views of the scratch taken here cost nothing).  ``y`` is advanced to the
+    cycle's end, ``samples`` and ``clamps`` written; returns the evaluations spent
+    and whether the cycle ended well."""
+    n = y.shape[0]
+    ns = tb.shape[0]
+    safety = 0.8 if kind == KIND_ODE23S else 0.9
+    f0, f1, ytmp, tmp, T, x, yscale, yp, fp = (vec[0], vec[1], vec[2], vec[3], vec[4],
+                                               vec[5], vec[6], vec[7], vec[8])
+    for i in range(n):
+        yscale[i] = atol[i] / rtol
+    Winv, A = mats[0], mats[1]
+    slope, cell = cyl[0], cyl[1]
+    att, att_end = tally[0], tally[1]
+    # the analytic Jacobian called from here, not through :func:`_jacobian`: through
+    # it, a call cost 2.2 us against 0.7 us (the default scene; numba's handling of a
+    # function that passes the network and table tuples on, it seems)
+    exact = _exact_jacobian_holds(net)
+    nfev = 0
     io = 0
     while io < out_theta.shape[0] and out_theta[io] <= stops[0]:
         put_column(samples, io, y)
@@ -2035,53 +1927,87 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
             if t + h > b or b - (t + h) < 1e-12:
                 h = b - t
             if age >= jac_age:
-                nfev += _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf,
-                                  pr, cell, att, yp, fp, dl, jd, slope)
+                if exact:
+                    _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope)
+                else:
+                    nfev += _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab,
+                                      perf, pr, cell, att, yp, fp, dl, jd, slope)
                 age = 0
                 h_w = -1.0
             hd = h * gam
             if h != h_w:
                 _w_inverse(J, hd, Winv, A)
                 h_w = h
-            # u_i = hd W^-1 (...), W = I - hd J: the stages of I/(gamma h) - J
-            for st in range(ns):
-                if st == 0 or same[st] == 1:
-                    copy_into(fp, f0)
-                elif same[st] == 0:
-                    for i in range(n):
-                        acc = y[i]
-                        for j in range(st):
-                            acc += tA[st, j] * U[j, i]
-                        ytmp[i] = acc
-                    rhs(t + tc[st] * h, ytmp, fp, net, tier, tab, perf, pr, cell)
-                    tally_clamps(pr, t + tc[st] * h, att)
-                    nfev += 1
+            if kind == KIND_ODE23S:
+                # Shampine and Reichelt's formulas, k_i in U[i]; the end's derivative
+                # is the third stage's argument
                 for i in range(n):
-                    acc = 0.0
-                    for j in range(st):
-                        acc += tC[st, j] * U[j, i]
-                    x[i] = fp[i] + h * td[st] * T[i] + acc / h
-                _w_solve(J, Winv, hd, x, U[st])
+                    x[i] = f0[i] + hd * T[i]
+                _w_solve(J, Winv, hd, x, U[0])
                 for i in range(n):
-                    U[st, i] *= hd
-            err = 0.0
-            for i in range(n):
-                acc = y[i]
-                e = 0.0
-                for j in range(ns):
-                    acc += tb[j] * U[j, i]
-                    e += te[j] * U[j, i]
-                ytmp[i] = acc
-                e = abs(e) / (atol[i] + rtol * max(abs(y[i]), abs(acc)))
-                if e > err:
-                    err = e
-            accepted = err <= 1.0 or h < 1e-12
-            if accepted:
+                    ytmp[i] = y[i] + 0.5 * h * U[0, i]
+                rhs(t + 0.5 * h, ytmp, U[1], net, tier, tab, perf, pr, cell)
+                tally_clamps(pr, t + 0.5 * h, att)
+                for i in range(n):
+                    x[i] = U[1, i] - U[0, i]
+                _w_solve(J, Winv, hd, x, U[2])
+                for i in range(n):
+                    U[2, i] += U[0, i]
+                    ytmp[i] = y[i] + h * U[2, i]
                 rhs(t + h, ytmp, f1, net, tier, tab, perf, pr, cell)
                 tally_clamps(pr, t + h, att_end)
-                nfev += 1
-                # a step whose end needed the properties clamped is retried shorter
-                accepted = visited_clamp_off(att_end) == 0 or h < 1e-12
+                nfev += 2
+                for i in range(n):
+                    x[i] = (f1[i] - _E32 * (U[2, i] - U[1, i]) - 2.0 * (U[0, i] - f0[i])
+                            + hd * T[i])
+                _w_solve(J, Winv, hd, x, U[3])
+                err = 0.0
+                for i in range(n):
+                    e = abs(h / 6.0 * (U[0, i] - 2.0 * U[2, i] + U[3, i]))
+                    e /= atol[i] + rtol * max(abs(y[i]), abs(ytmp[i]))
+                    if e > err:
+                        err = e
+                accepted = (err <= 1.0 and visited_clamp_off(att_end) == 0) or h < 1e-12
+            else:
+                # u_i = hd W^-1 (...), W = I - hd J: the stages of I/(gamma h) - J
+                for st in range(ns):
+                    if st == 0 or same[st] == 1:
+                        copy_into(fp, f0)
+                    elif same[st] == 0:
+                        for i in range(n):
+                            acc = y[i]
+                            for j in range(st):
+                                acc += tA[st, j] * U[j, i]
+                            ytmp[i] = acc
+                        rhs(t + tc[st] * h, ytmp, fp, net, tier, tab, perf, pr, cell)
+                        tally_clamps(pr, t + tc[st] * h, att)
+                        nfev += 1
+                    for i in range(n):
+                        acc = 0.0
+                        for j in range(st):
+                            acc += tC[st, j] * U[j, i]
+                        x[i] = fp[i] + h * td[st] * T[i] + acc / h
+                    _w_solve(J, Winv, hd, x, U[st])
+                    for i in range(n):
+                        U[st, i] *= hd
+                err = 0.0
+                for i in range(n):
+                    acc = y[i]
+                    e = 0.0
+                    for j in range(ns):
+                        acc += tb[j] * U[j, i]
+                        e += te[j] * U[j, i]
+                    ytmp[i] = acc
+                    e = abs(e) / (atol[i] + rtol * max(abs(y[i]), abs(acc)))
+                    if e > err:
+                        err = e
+                accepted = err <= 1.0 or h < 1e-12
+                if accepted:
+                    rhs(t + h, ytmp, f1, net, tier, tab, perf, pr, cell)
+                    tally_clamps(pr, t + h, att_end)
+                    nfev += 1
+                    # a step whose end needed the properties clamped is retried shorter
+                    accepted = visited_clamp_off(att_end) == 0 or h < 1e-12
             settle_trial(att, clamps)
             settle_clamps(att_end, accepted, clamps)
             if accepted:
@@ -2091,7 +2017,7 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
                 copy_into(y, ytmp)
                 copy_into(f0, f1)
                 age += 1
-                h_prev = h * step_factor(err, 0.9, expo)
+                h_prev = h * step_factor(err, safety, expo)
                 h = h_prev
             else:
                 if age > 0:
@@ -2099,13 +2025,13 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
                 if err <= 1.0:
                     h = 0.5 * h  # accurate, but through a state the properties do not hold
                 else:
-                    h = h * max(0.2, 0.9 * err ** expo)
+                    h = h * max(0.2, safety * err ** expo)
             if not (h > 0.0) or not math.isfinite(y[0]) or nfev > max_rhs:
-                return y, samples, nfev, False, clamps
+                return nfev, False
     while io < out_theta.shape[0]:
         put_column(samples, io, y)
         io += 1
-    return y, samples, nfev, True, clamps
+    return nfev, True
 
 
 #: Accepted steps of the Rosenbrock methods one Jacobian serves (1: a fresh one every
@@ -2116,10 +2042,17 @@ JACOBIAN_AGE = 1
 
 #: The tableau methods of :func:`cycle_ros`, by code from 3.
 ROS_METHODS = ("ros4", "rodas3", "rodas4")
+#: Every method :func:`cycle_ros` integrates (on :func:`_jacobian`).
+ROSENBROCK_METHODS = ("rosenbrock",) + ROS_METHODS
+#: :func:`cycle_ros`'s tableau arguments for the ode23s pair: its gamma and four
+#: stages' scratch (its stages are its own formulas), its safety and exponent.
+_ODE23S_ARGS = (_D, np.zeros((4, 4)), np.zeros((4, 4)), np.zeros(4), np.zeros(4),
+                np.zeros(4), np.zeros(4), np.zeros(4, dtype=np.int64), -1.0 / 3.0)
 #: The compiled integrators by code (0 dopri5, 1 rk4, 2 Rosenbrock ode23s, 3 and on
-#: :func:`cycle_ros` with the tableau of :data:`ROS_METHODS`): separate
-#: functions, so that a run compiles only the one it uses.
-CYCLE_KERNELS = (cycle_dopri5, cycle_rk4, cycle_rosenbrock, cycle_ros, cycle_ros, cycle_ros)
+#: the tableaus of :data:`ROS_METHODS`): separate functions, so that a run compiles
+#: only the one it uses; one, :func:`_ros_steps` (called by :func:`cycle_ros`), for
+#: every Rosenbrock method.
+CYCLE_KERNELS = (_dopri5_steps, cycle_rk4, _ros_steps, _ros_steps, _ros_steps, _ros_steps)
 
 
 def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, tab, perf,
@@ -2184,11 +2117,11 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
     if method == 1:
         return cycle_rk4(y0, stops, out_theta, step, net, tier, tab, perf, max_rhs)
     if method >= 3:
-        gam, tA, tC, tc, td, tb, te, same, expo = ROS_TABLEAUS[ROS_METHODS[method - 3]]
-        return cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, owner,
-                         max_rhs, JACOBIAN_AGE, gam, tA, tC, tc, td, tb, te, same, expo)
-    return cycle_rosenbrock(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color,
-                            owner, max_rhs, JACOBIAN_AGE)
+        tableau, kind = ROS_TABLEAUS[ROS_METHODS[method - 3]], KIND_TABLEAU
+    else:
+        tableau, kind = _ODE23S_ARGS, KIND_ODE23S
+    return cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, owner,
+                     max_rhs, JACOBIAN_AGE, *tableau, kind)
 
 
 def uncached(dispatcher) -> bool | None:

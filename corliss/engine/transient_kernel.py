@@ -61,7 +61,7 @@ from corliss.errors import RunError
 
 #: Revision of the inlined kernel, property and port-flow code: numba keys this file's
 #: cache on its content alone (see :mod:`corliss.engine.kernel`).
-DEPENDENCY_REVISION = 16
+DEPENDENCY_REVISION = 17
 
 TWO_PI = 2.0 * math.pi
 
