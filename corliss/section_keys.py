@@ -111,9 +111,12 @@ RUN = group(
         default="standard", choices=tuple(PRESETS)),
     Key("properties", "choice", "Steam property tier (overrides the preset's).",
         default=Derived("the fidelity preset's"), choices=tuple(BACKENDS)),
-    Key("method", "choice", "Integrator (overrides the preset's); the compiled ones need "
-        "properties \"table\" or \"perfect\".", default=Derived("the fidelity preset's"),
-        choices=METHODS),
+    Key("method", "choice", "Integrator of the steady cycle and of the transient loop "
+        "(overrides the preset's, which for standard is rodas4 at 2e-6 wherever the "
+        "Jacobian is exact and dopri5 at 1e-6 with a skin, conductance or Adair wall); "
+        "the compiled ones need properties \"table\" or \"perfect\"; the transient loop "
+        "has dopri5, ros4, rodas3 and rodas4, and takes dopri5 for any other.",
+        default=Derived("the fidelity preset's"), choices=METHODS),
     Key("rtol", "number", "Relative tolerance of the integrator.",
         default=Derived("the fidelity preset's"), within=(1e-13, 1e-2)),
     Key("convergence_tolerance", "number", "Cycle-to-cycle change taken as periodic, a "
