@@ -1275,16 +1275,20 @@ def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, ce
     return ncol + 1
 
 
-@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
-def _w_inverse(J, hd, Winv, A):
-    """Inverse of the dynamic block of W = I - hd J into ``Winv``, by Gauss-Jordan
-    elimination with partial pivoting (a few rows: no LAPACK call, and none to
-    compile); ``A`` is scratch of its shape."""
-    ndyn = J.shape[1]
-    for i in range(ndyn):
-        for j in range(ndyn):
-            A[i, j] = (1.0 if i == j else 0.0) - hd * J[i, j]
-            Winv[i, j] = 1.0 if i == j else 0.0
+@njit(cache=True, _nrt=False)
+def gauss_jordan(A, Winv):
+    """Invert ``A`` into ``Winv`` (which holds the identity), by Gauss-Jordan elimination
+    with partial pivoting, ``A`` overwritten: a few rows, no LAPACK call, and none to
+    compile.  Shared by the steady and transient Rosenbrock integrators.
+
+    Parameters
+    ----------
+    A : ndarray
+        The matrix, shape (m, m); overwritten.
+    Winv : ndarray
+        The identity on entry, the inverse of ``A`` on return; shape (m, m).
+    """
+    ndyn = A.shape[0]
     for c in range(ndyn):
         piv = c
         for r in range(c + 1, ndyn):
@@ -1305,6 +1309,18 @@ def _w_inverse(J, hd, Winv, A):
                     for j in range(ndyn):
                         A[r, j] -= f * A[c, j]
                         Winv[r, j] -= f * Winv[c, j]
+
+
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
+def _w_inverse(J, hd, Winv, A):
+    """Inverse of the dynamic block of W = I - hd J into ``Winv``
+    (:func:`gauss_jordan`); ``A`` is scratch of its shape."""
+    ndyn = J.shape[1]
+    for i in range(ndyn):
+        for j in range(ndyn):
+            A[i, j] = (1.0 if i == j else 0.0) - hd * J[i, j]
+            Winv[i, j] = 1.0 if i == j else 0.0
+    gauss_jordan(A, Winv)
 
 
 @njit(cache=True, _nrt=False, no_cpython_wrapper=True)

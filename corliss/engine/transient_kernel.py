@@ -54,14 +54,14 @@ from numba import njit
 from corliss.engine.kernel import (CL_ACCEPTED, CL_ACCEPTED_CODE, CL_REJECTED,
                                    CL_REJECTED_CODE, DOPRI_NODES, PR_ROWS, balances,
                                    copy_into, dopri_error, dopri_stage, emit_samples,
-                                   node_states, port_areas, put_column, settle_clamps,
-                                   settle_trial, settle_visited, step_factor, tally_clamps,
-                                   visited_clamp_off)
+                                   gauss_jordan, node_states, port_areas, put_column,
+                                   settle_clamps, settle_trial, settle_visited,
+                                   step_factor, tally_clamps, visited_clamp_off)
 from corliss.errors import RunError
 
 #: Revision of the inlined kernel, property and port-flow code: numba keys this file's
 #: cache on its content alone (see :mod:`corliss.engine.kernel`).
-DEPENDENCY_REVISION = 17
+DEPENDENCY_REVISION = 18
 
 TWO_PI = 2.0 * math.pi
 
@@ -754,7 +754,7 @@ def _column_state(k, ndyn, nn):
 @njit(cache=True)
 def _loop_w_inverse(J, hd, Winv, A, ndyn, nn):
     """Inverse of the block of W = I - hd J over the Jacobian's columns (their rows and
-    columns) into ``Winv``, by Gauss-Jordan elimination with partial pivoting, as
+    columns) into ``Winv``, by :func:`corliss.engine.kernel.gauss_jordan`, as
     :func:`corliss.engine.kernel._w_inverse`; ``A`` is scratch of its shape."""
     m = J.shape[1]
     for i in range(m):
@@ -762,26 +762,7 @@ def _loop_w_inverse(J, hd, Winv, A, ndyn, nn):
         for j in range(m):
             A[i, j] = (1.0 if i == j else 0.0) - hd * J[r, j]
             Winv[i, j] = 1.0 if i == j else 0.0
-    for c in range(m):
-        piv = c
-        for r in range(c + 1, m):
-            if abs(A[r, c]) > abs(A[piv, c]):
-                piv = r
-        if piv != c:
-            for j in range(m):
-                A[c, j], A[piv, j] = A[piv, j], A[c, j]
-                Winv[c, j], Winv[piv, j] = Winv[piv, j], Winv[c, j]
-        d = 1.0 / A[c, c]
-        for j in range(m):
-            A[c, j] *= d
-            Winv[c, j] *= d
-        for r in range(m):
-            if r != c:
-                f = A[r, c]
-                if f != 0.0:
-                    for j in range(m):
-                        A[r, j] -= f * A[c, j]
-                        Winv[r, j] -= f * Winv[c, j]
+    gauss_jordan(A, Winv)
 
 
 @njit(cache=True)
