@@ -143,7 +143,7 @@ def test_condensation_rises_with_the_fall_from_initial_to_exhaust_temperature():
 
 
 @pytest.mark.xfail(strict=True, raises=AssertionError,
-                   reason="issue 12, open: the model's missing water is flat "
+                   reason="issue 12: the model's missing water is flat "
                    "against the exhaust's temperature (docs/validation/condensation.md)")
 def test_missing_water_rises_as_the_exhaust_temperature_falls():
     """Marks Art. 75, eq. 221: the condensation is proportional to the fall from the
@@ -166,7 +166,7 @@ def test_missing_water_rises_as_the_exhaust_temperature_falls():
 
 
 @pytest.mark.xfail(strict=True, raises=AssertionError,
-                   reason="issue 12, open: the model's missing water falls as "
+                   reason="issue 12: the model's missing water falls as "
                    "the initial pressure rises (docs/validation/condensation.md)")
 def test_missing_water_rises_with_the_initial_pressure():
     """Willans's trials (1888, abstract in Sci. Am. Suppl. 647): the missing water of
