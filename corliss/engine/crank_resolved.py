@@ -96,6 +96,7 @@ class CrankResolved:
         self._perf = (np.array(steam.perfect_params()) if hasattr(steam, "perfect_params")
                       else np.zeros(3))
         self._pr = np.empty((kernel.PR_ROWS, network.n_nodes))
+        self._stops: dict[float, np.ndarray] = {}
         self._cell = np.empty((len(network.geometries), 4))
 
     def rhs(self, th: float, y: np.ndarray) -> np.ndarray:
@@ -261,7 +262,9 @@ class CrankResolved:
         y[self.network.n_dyn:self.network.n_quad_end] = 0.0   # the wall states carry on
         for i in self.network.wall_nodes:                        # but their quadratures
             y[self.network.i_wall(i, "heat_sat")] = y[self.network.i_wall(i, "heat_conv")] = 0.0
-        stops = np.asarray(self.network.stops(theta0), dtype=float)
+        if theta0 not in self._stops:      # the ports' kinks: the same every cycle
+            self._stops[theta0] = np.asarray(self.network.stops(theta0), dtype=float)
+        stops = self._stops[theta0]
         out_theta = np.asarray(out_theta, dtype=float)
         if self.compiled:
             y_end, samples, nfev, ok, clamps = kernel.integrate_cycle(

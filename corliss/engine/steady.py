@@ -232,13 +232,17 @@ def _crank_resolved(scene, model, pm, progress, start=None):
                     "a tolerance of %.2g; the card is the last cycle's (a tighter fidelity, or "
                     "more max_cycles, may settle it)", n_max, change,
                     max(residuals, key=residuals.get), fid.convergence_tolerance)
-    # post-process states to pressures etc.
+    # post-process states to pressures etc. (the volumes at the output angles are the
+    # same every cycle)
     ts = []
+    volumes = {}
     for k, s in enumerate(samples_all):
         ends = {}
         for end in ends_all:
             i = net.node(end)
-            V = net.volume(i, out_theta)
+            if i not in volumes:
+                volumes[i] = net.volume(i, out_theta)
+            V = volumes[i]
             m, U = s[2 * i], s[2 * i + 1]
             ends[end] = (*steam.states(m / V, U / m), V, m)
         frame = _cycle_frame(k, out_theta, omega, ends)
@@ -253,7 +257,9 @@ def _crank_resolved(scene, model, pm, progress, start=None):
         for vessel in ("chest", "receiver"):
             if vessel in net.node_names:
                 i = net.node(vessel)
-                V = net.volume(i, out_theta)
+                if i not in volumes:
+                    volumes[i] = net.volume(i, out_theta)
+                V = volumes[i]
                 frame[f"p_{vessel}_Pa"] = steam.states(s[2 * i] / V, s[2 * i + 1] / s[2 * i])[0]
         ts.append(frame)
     timeseries = Frame.concat(ts)
