@@ -1340,6 +1340,102 @@ def _w_solve(J, Winv, hd, x, out):
         out[q] = acc
 
 
+@njit(cache=True, inline="always")
+def tableau_argument(y, U, tA, st, ytmp):
+    """A Rosenbrock tableau's stage argument, ``ytmp = y + sum_j a_st,j u_j``
+    (the steady and the transient loops' shared arithmetic).
+
+    Parameters
+    ----------
+    y : ndarray
+        The state at the step's start, shape (n,).
+    U : ndarray
+        The stages so far, shape (stages, n).
+    tA : ndarray
+        The tableau's a_ij, shape (stages, stages) [-].
+    st : int
+        The stage.
+    ytmp : ndarray
+        Written: the argument, shape (n,).
+    """
+    for i in range(y.shape[0]):
+        acc = y[i]
+        for j in range(st):
+            acc += tA[st, j] * U[j, i]
+        ytmp[i] = acc
+
+
+@njit(cache=True, inline="always")
+def tableau_stage_rhs(fp, T, U, tC, td, st, h, x):
+    """The right-hand side of a tableau's stage equation,
+    ``x = f + h d_st df/dt + sum_j c_st,j u_j / h``.
+
+    Parameters
+    ----------
+    fp : ndarray
+        The derivatives at the stage's argument, shape (n,).
+    T : ndarray
+        The derivatives' rate in crank angle, shape (n,).
+    U : ndarray
+        The stages so far, shape (stages, n).
+    tC : ndarray
+        The tableau's c_ij, shape (stages, stages) [-].
+    td : ndarray
+        The tableau's d_i, shape (stages,) [-].
+    st : int
+        The stage.
+    h : float
+        The step [rad].
+    x : ndarray
+        Written: the right-hand side, shape (n,).
+    """
+    for i in range(fp.shape[0]):
+        acc = 0.0
+        for j in range(st):
+            acc += tC[st, j] * U[j, i]
+        x[i] = fp[i] + h * td[st] * T[i] + acc / h
+
+
+@njit(cache=True, inline="always")
+def tableau_solution(y, U, tb, te, atol, rtol, ytmp):
+    """A tableau step's solution ``ytmp = y + sum_i b_i u_i`` and its error against
+    the tolerances, ``max_i |sum_j e_j u_j,i| / (atol_i + rtol max(|y_i|, |ytmp_i|))``.
+
+    Parameters
+    ----------
+    y : ndarray
+        The state at the step's start, shape (n,).
+    U : ndarray
+        The stages, shape (stages, n).
+    tb, te : ndarray
+        The tableau's weights b_i and error weights e_i, shape (stages,) [-].
+    atol : ndarray
+        Absolute tolerances, shape (n,).
+    rtol : float
+        Relative tolerance [-].
+    ytmp : ndarray
+        Written: the step's solution, shape (n,).
+
+    Returns
+    -------
+    float
+        The error norm [-] (at most 1 passes).
+    """
+    ns = tb.shape[0]
+    err = 0.0
+    for i in range(y.shape[0]):
+        acc = y[i]
+        e = 0.0
+        for j in range(ns):
+            acc += tb[j] * U[j, i]
+            e += te[j] * U[j, i]
+        ytmp[i] = acc
+        e = abs(e) / (atol[i] + rtol * max(abs(y[i]), abs(acc)))
+        if e > err:
+            err = e
+    return err
+
+
 _D = 1.0 / (2.0 + math.sqrt(2.0))
 _E32 = 6.0 + math.sqrt(2.0)
 #: :func:`cycle_ros`'s ``kind``: the ode23s pair's own stages, or a tableau's.
@@ -1990,33 +2086,15 @@ def _ros_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, c
                     if st == 0 or same[st] == 1:
                         copy_into(fp, f0)
                     elif same[st] == 0:
-                        for i in range(n):
-                            acc = y[i]
-                            for j in range(st):
-                                acc += tA[st, j] * U[j, i]
-                            ytmp[i] = acc
+                        tableau_argument(y, U, tA, st, ytmp)
                         rhs(t + tc[st] * h, ytmp, fp, net, tier, tab, perf, pr, cell)
                         tally_clamps(pr, t + tc[st] * h, att)
                         nfev += 1
-                    for i in range(n):
-                        acc = 0.0
-                        for j in range(st):
-                            acc += tC[st, j] * U[j, i]
-                        x[i] = fp[i] + h * td[st] * T[i] + acc / h
+                    tableau_stage_rhs(fp, T, U, tC, td, st, h, x)
                     _w_solve(J, Winv, hd, x, U[st])
                     for i in range(n):
                         U[st, i] *= hd
-                err = 0.0
-                for i in range(n):
-                    acc = y[i]
-                    e = 0.0
-                    for j in range(ns):
-                        acc += tb[j] * U[j, i]
-                        e += te[j] * U[j, i]
-                    ytmp[i] = acc
-                    e = abs(e) / (atol[i] + rtol * max(abs(y[i]), abs(acc)))
-                    if e > err:
-                        err = e
+                err = tableau_solution(y, U, tb, te, atol, rtol, ytmp)
                 accepted = err <= 1.0 or h < 1e-12
                 if accepted:
                     rhs(t + h, ytmp, f1, net, tier, tab, perf, pr, cell)

@@ -56,12 +56,13 @@ from corliss.engine.kernel import (CL_ACCEPTED, CL_ACCEPTED_CODE, CL_REJECTED,
                                    copy_into, dopri_error, dopri_stage, emit_samples,
                                    gauss_jordan, node_states, port_areas, put_column,
                                    settle_clamps, settle_trial, settle_visited,
-                                   step_factor, tally_clamps, visited_clamp_off)
+                                   step_factor, tableau_argument, tableau_solution,
+                                   tableau_stage_rhs, tally_clamps, visited_clamp_off)
 from corliss.errors import RunError
 
 #: Revision of the inlined kernel, property and port-flow code: numba keys this file's
 #: cache on its content alone (see :mod:`corliss.engine.kernel`).
-DEPENDENCY_REVISION = 18
+DEPENDENCY_REVISION = 19
 
 TWO_PI = 2.0 * math.pi
 
@@ -967,33 +968,15 @@ def integrate_turn_ros(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr,
             if st == 0 or same[st] == 1:
                 copy_into(fp, f0)
             elif same[st] == 0:
-                for i in range(n):
-                    acc = y[i]
-                    for j in range(st):
-                        acc += tA[st, j] * U[j, i]
-                    ytmp[i] = acc
+                tableau_argument(y, U, tA, st, ytmp)
                 transient_rhs(t + tc[st] * h, ytmp, fp, net, tier, tab, perf, pr, pa, tr, out1)
                 tally_clamps(pr, t + tc[st] * h, att)
                 nfev += 1
-            for i in range(n):
-                acc = 0.0
-                for j in range(st):
-                    acc += tC[st, j] * U[j, i]
-                x[i] = fp[i] + h * td[st] * T[i] + acc / h
+            tableau_stage_rhs(fp, T, U, tC, td, st, h, x)
             _loop_w_solve(J, Winv, hd, x, U[st], ndyn, nn, xs)
             for i in range(n):
                 U[st, i] *= hd
-        err = 0.0
-        for i in range(n):
-            acc = y[i]
-            e = 0.0
-            for j in range(ns):
-                acc += tb[j] * U[j, i]
-                e += te[j] * U[j, i]
-            ytmp[i] = acc
-            e = abs(e) / (atol[i] + rtol * max(abs(y[i]), abs(acc)))
-            if e > err:
-                err = e
+        err = tableau_solution(y, U, tb, te, atol, rtol, ytmp)
         accepted = err <= 1.0 or h < 1e-10
         if accepted:
             transient_rhs(t + h, ytmp, f1, net, tier, tab, perf, pr, pa, tr, out)
