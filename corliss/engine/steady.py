@@ -234,14 +234,14 @@ def _crank_resolved(scene, model, pm, progress, start=None):
                     max(residuals, key=residuals.get), fid.convergence_tolerance)
     # post-process states to pressures etc. (the volumes at the output angles are the
     # same every cycle)
+    vessels = [v for v in ("chest", "receiver") if v in net.node_names]
+    volumes = {i: net.volume(i, out_theta)
+               for i in [net.node(n) for n in (*ends_all, *vessels)]}
     ts = []
-    volumes = {}
     for k, s in enumerate(samples_all):
         ends = {}
         for end in ends_all:
             i = net.node(end)
-            if i not in volumes:
-                volumes[i] = net.volume(i, out_theta)
             V = volumes[i]
             m, U = s[2 * i], s[2 * i + 1]
             ends[end] = (*steam.states(m / V, U / m), V, m)
@@ -254,13 +254,10 @@ def _crank_resolved(scene, model, pm, progress, start=None):
             frame[f"m_film_{end}_kg"] = s[net.i_film(i)]
             frame[f"Q_sat_{end}_J"] = s[net.i_wall(i, "heat_sat")]
             frame[f"Q_conv_{end}_J"] = s[net.i_wall(i, "heat_conv")]
-        for vessel in ("chest", "receiver"):
-            if vessel in net.node_names:
-                i = net.node(vessel)
-                if i not in volumes:
-                    volumes[i] = net.volume(i, out_theta)
-                V = volumes[i]
-                frame[f"p_{vessel}_Pa"] = steam.states(s[2 * i] / V, s[2 * i + 1] / s[2 * i])[0]
+        for vessel in vessels:
+            i = net.node(vessel)
+            V = volumes[i]
+            frame[f"p_{vessel}_Pa"] = steam.states(s[2 * i] / V, s[2 * i + 1] / s[2 * i])[0]
         ts.append(frame)
     timeseries = Frame.concat(ts)
     final = SteadyStart(y.copy(), None if net.wall_T is None else np.array(net.wall_T, dtype=float))
