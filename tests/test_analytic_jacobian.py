@@ -95,12 +95,18 @@ def test_analytic_jacobian_matches_central_differences(name, method):
     nd, n = net.n_dyn, y.size
     J, T = np.zeros((n, nd)), np.zeros(n)
     jd, slope = np.empty((12, net.n_nodes)), np.empty_like(crank._cell)
-    exact, diffs, exact_t, diffs_t = [], [], [], []
+    exact, diffs, exact_t, diffs_t, fresh = [], [], [], [], []
     for k, th in enumerate(out):
         yk = samples[:, k].copy()
         kernel._jacobian_exact(th, yk, J, T, crank.net, crank._tier, crank._tab, crank._perf,
-                               crank._pr, crank._cell, jd, slope)
+                               crank._pr, crank._cell, jd, slope, False)
         f0 = crank.rhs(th, yk)
+        # after the right-hand side at the same state, as the integrators call it: the
+        # node properties taken from that evaluation give the same Jacobian
+        J2, T2 = np.zeros_like(J), np.zeros_like(T)
+        kernel._jacobian_exact(th, yk, J2, T2, crank.net, crank._tier, crank._tab,
+                               crank._perf, crank._pr, crank._cell, jd, slope, True)
+        fresh.append((J2 - J, T2 - T))
         Jf, Jb, Jc = np.zeros_like(J), np.zeros_like(J), np.zeros_like(J)
         for j in range(nd):
             for step, sign, out_ in ((STEP_ONE_SIDED, 1.0, Jf), (STEP_ONE_SIDED, -1.0, Jb)):
@@ -136,6 +142,13 @@ def test_analytic_jacobian_matches_central_differences(name, method):
     k, i, j = np.unravel_index(np.argmax(err), err.shape)
     assert err.max() < TOL, (f"{err.max():.2e} at {math.degrees(out[k]):.0f} deg, row {i}, "
                              f"column {j}: {exact[k, i, j]:.6e} against {diffs[k, :, i, j]}")
+    # the Jacobian from the right-hand side's node properties (``fresh``): the same
+    # arithmetic but for the wet lookup's iteration, which agrees within 2e-9 K from
+    # any start (tests/test_property_tiers.py), a few 1e-10 of the row's terms at most
+    for k, (dJ, dT) in enumerate(fresh):
+        assert np.all(np.abs(dJ * np.abs(samples[:nd, k])) <= 1e-9 * row[:, None]), (
+            f"fresh Jacobian at {math.degrees(out[k]):.0f} deg")
+        assert np.all(np.abs(dT) <= 1e-9 * row_t), f"fresh d/dtheta at {math.degrees(out[k]):.0f} deg"
 
 
 def test_table_partials_match_differences_wet_and_superheated():

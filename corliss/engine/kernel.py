@@ -84,11 +84,12 @@ from numba import njit
 from corliss.logs import NOTICE
 from corliss.thermo.orifice import port_flow, port_flow_partials
 from corliss.thermo.steam_table import (CLAMP_HIGH_ENERGY, PARAMS, kappa_at, kappa_partials,
-                                        lookup_flagged, lookup_partials, t_sat)
+                                        lookup_near, lookup_partials, pressure_partials,
+                                        t_sat)
 
 log = logging.getLogger(__name__)
 #: Revision of the inlined property and port-flow code (see the module's docstring).
-DEPENDENCY_REVISION = 18
+DEPENDENCY_REVISION = 19
 TIER_TABLE, TIER_PERFECT = 0, 1
 TWO_PI = 2.0 * math.pi
 #: Clamps on trial states: integrators probe states with no steam (a negative mass in
@@ -105,12 +106,15 @@ RHO_MIN = PARAMS["rho_min"]     # [kg/m3], below dry saturated steam at the trip
 RHO_MAX = PARAMS["rho_max"]     # [kg/m3], dry saturated steam near 12.5 MPa
 U_MIN = PARAMS["kappa_u_min"]   # [J/kg], saturated water at the triple point
 U_MAX = PARAMS["u_max"]         # [J/kg], superheated steam beyond 1273 K
-#: Rows of the node-property scratch ``pr`` (see :func:`node_states`); the last holds
-#: each node's clamp code of the latest evaluation.
-PR_ROWS = 10
+#: Rows of the node-property scratch ``pr`` (see :func:`node_states`).
+PR_ROWS = 11
+#: row of the node properties holding each node's clamp code of the latest evaluation
 PR_CLAMP = 8
 #: row of the node properties holding the mixture's dryness [-] (1 when superheated)
 PR_X = 9
+#: row of the node properties saying whether the table answered from its vapour grid
+#: (1.0) or the lever rule (0.0), for :func:`_jacobian_exact` after :func:`rhs`
+PR_SUP = 10
 #: What the cycle integrator reports of clamps (the array it returns last): clamped
 #: evaluations at visited states, at trial states, the codes of each (OR of the
 #: bits), and the shaft angle [rad] and node of the first visited one.
@@ -184,7 +188,7 @@ def admissible_flagged(rho, u):
 
 
 @njit(cache=True, inline="always")
-def props(tier, tab, perf, rho, u):
+def props(tier, tab, perf, rho, u, T_near):
     """Properties of a state on a compiled tier, its inputs clamped first.
 
     Parameters
@@ -200,6 +204,10 @@ def props(tier, tab, perf, rho, u):
         Density [kg/m3].
     u : float
         Specific internal energy [J/kg].
+    T_near : float
+        A temperature near the answer [K], where the table's wet-state iteration
+        starts (:func:`corliss.thermo.steam_table.lookup_near`; NaN: from the
+        saturated vapour).
 
     Returns
     -------
@@ -223,7 +231,7 @@ def props(tier, tab, perf, rho, u):
             T = 1.0
             code |= 16
         return rho * R * T, T, 1.0, True, code
-    p, T, x, sup, c2 = lookup_flagged(tab, rho, u)
+    p, T, x, sup, c2 = lookup_near(tab, rho, u, T_near)
     return p, T, x, sup, code | c2
 
 
@@ -439,7 +447,8 @@ def derivatives(th, y, pr, dy, net, pa):
         Node properties, shape (:data:`PR_ROWS`, nodes): rows pressure [Pa], density
         [kg/m3], enthalpy [J/kg], port-flow exponent [-], dV/dtheta [m3/rad], volume
         [m3], temperature [K], wetted-wall temperature [K], clamp code
-        (:data:`PR_CLAMP`) and dryness [-] (:data:`PR_X`).
+        (:data:`PR_CLAMP`), dryness [-]
+        (:data:`PR_X`) and whether superheated (:data:`PR_SUP`).
     dy : ndarray
         Written: the derivatives with respect to crank angle (per radian), shape
         (n_state,).
@@ -503,7 +512,8 @@ def balances(th, y, pr, dy, net, areas):
         Node properties, shape (:data:`PR_ROWS`, nodes): rows pressure [Pa], density
         [kg/m3], enthalpy [J/kg], port-flow exponent [-], dV/dtheta [m3/rad], volume
         [m3], temperature [K], wetted-wall temperature [K], clamp code
-        (:data:`PR_CLAMP`) and dryness [-] (:data:`PR_X`).
+        (:data:`PR_CLAMP`), dryness [-]
+        (:data:`PR_X`) and whether superheated (:data:`PR_SUP`).
     dy : ndarray
         Written: the derivatives with respect to crank angle (per radian), shape
         (n_state,).
@@ -672,7 +682,8 @@ def sweep_films(y, pr, dy, net):
         Node properties, shape (:data:`PR_ROWS`, nodes): rows pressure [Pa], density
         [kg/m3], enthalpy [J/kg], port-flow exponent [-], dV/dtheta [m3/rad], volume
         [m3], temperature [K], wetted-wall temperature [K], clamp code
-        (:data:`PR_CLAMP`) and dryness [-] (:data:`PR_X`).
+        (:data:`PR_CLAMP`), dryness [-]
+        (:data:`PR_X`) and whether superheated (:data:`PR_SUP`).
     dy : ndarray
         The derivatives with respect to crank angle (per radian), shape (n_state,),
         updated in place.
@@ -724,7 +735,8 @@ def node_states(th, y, net, tier, tab, perf, pr):
         Written: node properties, shape (:data:`PR_ROWS`, nodes): rows
         pressure [Pa], density [kg/m3], enthalpy [J/kg], port-flow exponent [-],
         dV/dtheta [m3/rad], volume [m3], temperature [K], wetted-wall temperature
-        [K], clamp code (:data:`PR_CLAMP`) and dryness [-] (:data:`PR_X`).
+        [K], clamp code (:data:`PR_CLAMP`), dryness [-]
+        (:data:`PR_X`) and whether superheated (:data:`PR_SUP`).
     """
     nv = net[4].shape[0]
     if tier == TIER_PERFECT:
@@ -750,7 +762,10 @@ def node_states(th, y, net, tier, tab, perf, pr):
         pr[5, i] = V
         m = y[2 * i]
         u = y[2 * i + 1] / m if m > 0.0 else 2.6e6
-        p, T, x, sup, code = props(tier, tab, perf, m / V, u)
+        # the node's temperature at the evaluation before (the scratch's; anything
+        # outside the wet bracket, garbage or NaN included, is ignored) starts the
+        # table's wet iteration near its answer
+        p, T, x, sup, code = props(tier, tab, perf, m / V, u, pr[6, i])
         rho, u = admissible(m / V, u)
         pr[0, i] = p
         pr[1, i] = rho
@@ -759,6 +774,7 @@ def node_states(th, y, net, tier, tab, perf, pr):
         pr[6, i] = T
         pr[PR_CLAMP, i] = code
         pr[PR_X, i] = 1.0 if sup else x
+        pr[PR_SUP, i] = 1.0 if sup else 0.0
         # the temperature of a wetted wall at this pressure, for the wall-heat effect only
         if net[19][i, 0] > 0.0:
             pr[7, i] = t_sat(tab, p) if (sup and tier != TIER_PERFECT) else T
@@ -795,7 +811,8 @@ def rhs(th, y, dy, net, tier, tab, perf, pr, cell):
         Scratch, written: node properties, shape (:data:`PR_ROWS`, nodes): rows
         pressure [Pa], density [kg/m3], enthalpy [J/kg], port-flow exponent [-],
         dV/dtheta [m3/rad], volume [m3], temperature [K], wetted-wall temperature
-        [K], clamp code (:data:`PR_CLAMP`) and dryness [-] (:data:`PR_X`).
+        [K], clamp code (:data:`PR_CLAMP`), dryness [-]
+        (:data:`PR_X`) and whether superheated (:data:`PR_SUP`).
     cell : ndarray
         Scratch for the port areas [m2], shape (cylinders, 4).
     """
@@ -1067,7 +1084,7 @@ def exact_jacobian_covers(net) -> bool:
 
 
 @njit(cache=True, _nrt=False)
-def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
+def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope, fresh):
     """The Jacobian of :func:`rhs` over the dynamic columns, and its time derivative,
     from the derivatives of its parts, for a network :func:`_exact_jacobian_holds`
     covers.
@@ -1086,6 +1103,12 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
     rows of its two ends and its quadratures.  ``pr`` is written with the properties
     at ``y``, ``jd`` (shape (12, nodes)) with their partials, ``slope`` (shape
     (cylinders, 4)) with the ports' area slopes.
+
+    ``fresh``: the last :func:`rhs` on ``pr`` was at (``t``, ``y``) (an integrator's
+    step starts where its last evaluation was): a node it did not clamp keeps that
+    evaluation's volume, pressure and temperature, and only the partials are computed
+    (:func:`corliss.thermo.steam_table.pressure_partials`: the same numbers, without
+    the lookup's iteration, about a third of this function's time).
     """
     nv = net[4].shape[0]
     n = y.shape[0]
@@ -1095,9 +1118,13 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
         for j in range(ndyn):
             J[i, j] = 0.0
     for i in range(nv):
-        V, dV = node_volume(t, net, i)
-        pr[4, i] = dV
-        pr[5, i] = V
+        known = fresh and pr[PR_CLAMP, i] == 0.0
+        if known:
+            V, dV = pr[5, i], pr[4, i]
+        else:
+            V, dV = node_volume(t, net, i)
+            pr[4, i] = dV
+            pr[5, i] = V
         m = y[2 * i]
         if m > 0.0:
             u = y[2 * i + 1] / m
@@ -1126,8 +1153,12 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
                 p_r, p_u = R * Tk, rho * R / cv
             p = rho * R * Tk
             k, k_r, k_u = 1.0 + R / cv, 0.0, 0.0
+        elif known:
+            p = pr[0, i]
+            p_r, p_u = pressure_partials(tab, rho, u, p, pr[6, i], pr[PR_SUP, i] != 0.0, 0)
+            k, k_r, k_u = kappa_partials(tab, rho, u)
         else:
-            p, Tk, x, sup, c2, p_r, p_u = lookup_partials(tab, rho, u)
+            p, Tk, x, sup, c2, p_r, p_u = lookup_partials(tab, rho, u, pr[6, i])
             k, k_r, k_u = kappa_partials(tab, rho, u)
         h_r = p_r / rho - p / (rho * rho)
         h_u = 1.0 + p_u / rho
@@ -1245,7 +1276,7 @@ def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, ce
     4)) are scratch.  Returns the evaluations of :func:`rhs` spent.
     """
     if _exact_jacobian_holds(net):
-        _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope)
+        _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope, False)
         return 0
     n = y.shape[0]
     ndyn = J.shape[1]
@@ -1583,7 +1614,8 @@ def segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att):
         Scratch, written: node properties, shape (:data:`PR_ROWS`, nodes): rows
         pressure [Pa], density [kg/m3], enthalpy [J/kg], port-flow exponent [-],
         dV/dtheta [m3/rad], volume [m3], temperature [K], wetted-wall temperature
-        [K], clamp code (:data:`PR_CLAMP`) and dryness [-] (:data:`PR_X`).
+        [K], clamp code (:data:`PR_CLAMP`), dryness [-]
+        (:data:`PR_X`) and whether superheated (:data:`PR_SUP`).
     cell : ndarray
         Scratch for the port areas [m2], shape (cylinders, 4).
     clamps : ndarray
@@ -2032,6 +2064,9 @@ def _ros_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, c
         t = a
         segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att)
         nfev += 1
+        # whether the last evaluation on ``pr`` was at (t, y): the analytic Jacobian
+        # then takes the node properties from it
+        fresh = True
         h = min(h_prev, b - a) if h_prev > 0.0 else initial_step(f0, y, atol, rtol, b - a)
         age = jac_age          # accepted steps since J and T were computed
         h_w = -1.0             # the step W was inverted for
@@ -2040,7 +2075,8 @@ def _ros_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, c
                 h = b - t
             if age >= jac_age:
                 if exact:
-                    _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope)
+                    _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope,
+                                    fresh)
                 else:
                     nfev += _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab,
                                       perf, pr, cell, att, yp, fp, dl, jd, slope)
@@ -2104,6 +2140,8 @@ def _ros_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, c
                     accepted = visited_clamp_off(att_end) == 0 or h < 1e-12
             settle_trial(att, clamps)
             settle_clamps(att_end, accepted, clamps)
+            # an accepted step's last evaluation was at its end, where the next starts
+            fresh = accepted
             if accepted:
                 t1 = t + h
                 io = emit_samples(io, out_theta, t, y, f0, t1, ytmp, f1, samples, tmp)
