@@ -204,8 +204,9 @@ def _crank_resolved(scene, model, pm, progress, start=None):
         change = max(residuals.values())
         if progress:
             progress(k, change)
-        log.debug("cycle %d: work %.6g J, residuals %s", k, w,
-                  ", ".join(f"{n} {v:.2g}" for n, v in residuals.items()))
+        if log.isEnabledFor(logging.DEBUG):     # the text costs a few us a cycle
+            log.debug("cycle %d: work %.6g J, residuals %s", k, w,
+                      ", ".join(f"{n} {v:.2g}" for n, v in residuals.items()))
         if scene.run.cycles is None and change <= fid.convergence_tolerance:
             converged = k
             break
@@ -296,7 +297,10 @@ def _crank_timeseries(net, steam, ends_all, out_theta, omega: float, samples_all
     cycle, element by element the same arithmetic.
     """
     n_cyc, n_out = len(samples_all), out_theta.size
-    s = np.concatenate(samples_all, axis=1)
+    # the rows read: the volumes' states, first, and the skin walls' states and
+    # quadratures (a run without skin walls copies the first only: a microsecond a cycle)
+    rows = net.n_state if net.wall_nodes else net.n_dyn
+    s = np.concatenate([c[:rows] for c in samples_all], axis=1)
     k = np.arange(n_cyc)
     angle = (out_theta[None, :] + (TWO_PI * k)[:, None]).ravel()
     cols = {"cycle": np.repeat(k + 1, n_out), "crank_angle_deg": np.degrees(angle),
@@ -349,12 +353,13 @@ def _periodicity(lay: _Layout, wall_T, y0, y1, samples, wall0, dT_scale: float, 
     # each dynamic state's largest magnitude over the cycle (fmax skips a sample the
     # integrator did not reach, as nanmax would, in one ufunc call: nanmax's copies cost
     # a quarter of a fast cycle)
+    # (the arrays' own methods: numpy's functions wrap them at a microsecond a call)
     nd = lay.n_dyn
     peak = np.fmax.reduce(np.abs(samples[:nd]), axis=1)
     rel = np.abs(y1[:nd] - y0[:nd]) / np.maximum(peak, 1e-300)
-    out["mass"], out["energy"] = float(np.max(rel[0::2])), float(np.max(rel[1::2]))
+    out["mass"], out["energy"] = float(rel[0::2].max()), float(rel[1::2].max())
     m_in, m_out = row["m_supply_kg"], row["m_exhaust_kg"]
-    held = float(np.sum(peak[0::2]))
+    held = float(peak[0::2].sum())
     out["mass_balance"] = abs(m_in + m_out) / max(abs(m_in), abs(m_out), held, 1e-300)
     if wall0 is not None and wall_T is not None and np.any(wall_T != wall0):
         out["wall_temperature"] = float(np.max(np.abs(wall_T - wall0))) / dT_scale
