@@ -361,7 +361,7 @@ def _periodicity(lay: _Layout, wall_T, y0, y1, samples, wall0, dT_scale: float, 
     m_in, m_out = row["m_supply_kg"], row["m_exhaust_kg"]
     held = float(peak[0::2].sum())
     out["mass_balance"] = abs(m_in + m_out) / max(abs(m_in), abs(m_out), held, 1e-300)
-    if wall0 is not None and wall_T is not None and np.any(wall_T != wall0):
+    if wall0 is not None and wall_T is not None and (wall_T != wall0).any():
         out["wall_temperature"] = float(np.max(np.abs(wall_T - wall0))) / dT_scale
     for i, k, f in lay.walls:
         # the skin model's surface: its change over the cycle, and its deep wall's
