@@ -159,6 +159,10 @@ def _crank_resolved(scene, model, pm, progress, start=None):
                 and start.wall_T_K.shape == net.wall_T.shape:
             net.wall_T[:] = start.wall_T_K
     rows, samples_all, walls_used = [], [], []
+    # the sampled rows the time series reads: the volumes' states, first, and with skin
+    # walls their states and quadratures too; a run kept every cycle's whole samples
+    # before, and paid for the fresh memory (page faults) 10 to 20 us a cycle
+    kept = net.n_state if net.wall_nodes else net.n_dyn
     w_prev = None
     converged = None
     residuals = {}
@@ -181,7 +185,7 @@ def _crank_resolved(scene, model, pm, progress, start=None):
             crank.update_wall(y)
         row = _cycle_row(k, lay, net, y, wall_start)
         rows.append(row)
-        samples_all.append(samples)
+        samples_all.append(samples[:kept].copy() if kept < samples.shape[0] else samples)
         w = row["work_J"]
         residuals = _periodicity(lay, net.wall_T, y_start, y, samples, wall_start, dT_scale,
                                  row, w_prev)
@@ -289,7 +293,8 @@ def _cycle_row(k: int, lay: _Layout, net, y: np.ndarray, wall_start) -> dict:
 
 def _crank_timeseries(net, steam, ends_all, out_theta, omega: float, samples_all,
                       walls_used) -> Frame:
-    """Every cycle's time series, from the states sampled at ``out_theta`` each cycle.
+    """Every cycle's time series, from the states sampled at ``out_theta`` each cycle
+    (``samples_all``: each cycle's rows of the state, all or the volumes' only).
 
     The cycles' samples are stacked and each volume's states turned into pressure,
     temperature and dryness in one call of the tier (for the table, one compiled call
@@ -297,10 +302,7 @@ def _crank_timeseries(net, steam, ends_all, out_theta, omega: float, samples_all
     cycle, element by element the same arithmetic.
     """
     n_cyc, n_out = len(samples_all), out_theta.size
-    # the rows read: the volumes' states, first, and the skin walls' states and
-    # quadratures (a run without skin walls copies the first only: a microsecond a cycle)
-    rows = net.n_state if net.wall_nodes else net.n_dyn
-    s = np.concatenate([c[:rows] for c in samples_all], axis=1)
+    s = np.concatenate(samples_all, axis=1)
     k = np.arange(n_cyc)
     angle = (out_theta[None, :] + (TWO_PI * k)[:, None]).ravel()
     cols = {"cycle": np.repeat(k + 1, n_out), "crank_angle_deg": np.degrees(angle),
