@@ -129,6 +129,22 @@ def test_wet_lookup_answers_the_same_from_any_start(heos, table):
     assert wet >= 80
 
 
+def test_vectorised_lookup_is_the_scalar_lookup_to_the_bit(heos, table):
+    """A run's time series converts its states with :func:`lookup_many` (one compiled
+    loop over every cycle's samples), the kernel with the scalar lookup: the two must
+    be one function.  Over the grid's wet, saturated and superheated states and inputs
+    off the table (clamped), every pressure, temperature and dryness is the same double
+    (exact equality: the same arithmetic in the same order leaves no rounding to
+    tolerate)."""
+    tab = table.table.arrays()
+    states = _grid_states(heos)
+    rho = np.array([s.rho for s in states] + [1e-12, 1e6, 1.0, 1.0, -3.0, float("nan")])
+    u = np.array([s.u for s in states] + [2.5e6, 2.5e6, -1e9, 1e12, 2.5e6, 2.6e6])
+    got = np.array(lookup_many(tab, rho, u))
+    want = np.array([lookup(tab, r, e)[:3] for r, e in zip(rho, u)]).T
+    assert np.array_equal(got, want)
+
+
 def test_perfect_steam_expands_as_p_v_to_the_1_3():
     """Perfect steam, kappa = 1.3: an isentropic change obeys p v^1.3 = const (closed
     form of the ideal gas with constant specific heats)."""

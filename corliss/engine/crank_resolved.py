@@ -97,6 +97,11 @@ class CrankResolved:
                       else np.zeros(3))
         self._pr = np.empty((kernel.PR_ROWS, network.n_nodes))
         self._stops: dict[float, np.ndarray] = {}
+        # the states each cycle restarts from zero: the quadratures, and the skin
+        # walls' heat quadratures (their other states carry on)
+        self._quads = slice(network.n_dyn, network.n_quad_end)
+        self._wall_quads = [network.i_wall(i, w) for i in network.wall_nodes
+                            for w in ("heat_sat", "heat_conv")]
         self._cell = np.empty((len(network.geometries), 4))
 
     def rhs(self, th: float, y: np.ndarray) -> np.ndarray:
@@ -260,9 +265,9 @@ class CrankResolved:
             The integrator failed (its step size collapsed).
         """
         y = np.array(y0, dtype=float)
-        y[self.network.n_dyn:self.network.n_quad_end] = 0.0   # the wall states carry on
-        for i in self.network.wall_nodes:                        # but their quadratures
-            y[self.network.i_wall(i, "heat_sat")] = y[self.network.i_wall(i, "heat_conv")] = 0.0
+        y[self._quads] = 0.0              # the wall states carry on
+        if self._wall_quads:              # but their quadratures restart
+            y[self._wall_quads] = 0.0
         if theta0 not in self._stops:      # the ports' kinks: the same every cycle
             self._stops[theta0] = np.asarray(self.network.stops(theta0), dtype=float)
         stops = self._stops[theta0]

@@ -388,14 +388,37 @@ class Network:
         """
         return self.edge_names.index(name)
 
-    def boundary_totals(self, y: np.ndarray) -> dict:
+    def boundary_terms(self) -> list[tuple[str, float, int]]:
+        """The terms :meth:`boundary_totals` adds, for a runner to look up once a run.
+
+        Returns
+        -------
+        list of (str, float, int)
+            For each edge end at a reservoir, in edge order, its mass then its
+            enthalpy: the total it adds to (``m_supply_kg``, ``H_supply_J``,
+            ``m_exhaust_kg``, ``H_exhaust_J``), the sign [-] (+1 from the edge's end
+            ``a``, -1 from its end ``b``) and the index in the state vector.
+        """
+        terms = []
+        for e, (a, b) in enumerate(zip(self.e_a, self.e_b)):
+            for end, sign in ((a, 1.0), (b, -1.0)):
+                if end < 0:
+                    what = "supply" if end == reservoir(0) else "exhaust"
+                    terms.append((f"m_{what}_kg", sign, self.i_edge_mass(e)))
+                    terms.append((f"H_{what}_J", sign, self.i_edge_enthalpy(e)))
+        return terms
+
+    def boundary_totals(self, y, terms: list[tuple[str, float, int]] | None = None) -> dict:
         """Mass and enthalpy into the engine over a cycle across its boundary.
 
         Parameters
         ----------
-        y : ndarray
+        y : ndarray or list of float
             The state at the end of a cycle whose quadratures started from zero; shape
             (:attr:`n_state`,).
+        terms : list, optional
+            :meth:`boundary_terms`, when the caller holds them (a steady run sums them
+            every cycle); looked up here when not given.
 
         Returns
         -------
@@ -405,12 +428,8 @@ class Network:
             (reservoir 1; negative when, as usual, it goes out).
         """
         out = {"m_supply_kg": 0.0, "H_supply_J": 0.0, "m_exhaust_kg": 0.0, "H_exhaust_J": 0.0}
-        for e, (a, b) in enumerate(zip(self.e_a, self.e_b)):
-            for end, sign in ((a, 1.0), (b, -1.0)):
-                if end < 0:
-                    what = "supply" if end == reservoir(0) else "exhaust"
-                    out[f"m_{what}_kg"] += sign * y[self.i_edge_mass(e)]
-                    out[f"H_{what}_J"] += sign * y[self.i_edge_enthalpy(e)]
+        for name, sign, k in (self.boundary_terms() if terms is None else terms):
+            out[name] += sign * y[k]
         return out
 
     def leak_edges(self) -> list[tuple[str, int]]:

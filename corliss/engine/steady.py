@@ -159,6 +159,10 @@ def _crank_resolved(scene, model, pm, progress, start=None):
                 and start.wall_T_K.shape == net.wall_T.shape:
             net.wall_T[:] = start.wall_T_K
     rows, samples_all, walls_used = [], [], []
+    # the sampled rows the time series reads: the volumes' states, first, and with skin
+    # walls their states and quadratures too; a run kept every cycle's whole samples
+    # before, and paid for the fresh memory (page faults) 10 to 20 us a cycle
+    kept = net.n_state if net.wall_nodes else net.n_dyn
     w_prev = None
     converged = None
     residuals = {}
@@ -167,6 +171,7 @@ def _crank_resolved(scene, model, pm, progress, start=None):
         # the skin model's deep wall settles over a few periodic cycles of its own
         n_max *= 3
     dT_scale = max(model.chest.T - model.exhaust.T, 1.0)
+    lay = _layout(net, ends_all, heat, marks)
     for k in range(1, n_max + 1):
         if marks is not None:
             marks.apply(crank.net[19])
@@ -178,30 +183,12 @@ def _crank_resolved(scene, model, pm, progress, start=None):
             marks.update(steam, samples, out_theta)
         elif heat and not wall_nodes:
             crank.update_wall(y)
-        row = {"cycle": k}
-        for end in ends_all:
-            for what, edge in (("chest", f"{end}_steam"), ("exhaust", f"{end}_exhaust")):
-                e = net.edge(edge)
-                row[f"m_{what}_{end}_kg"] = y[net.i_edge_mass(e)]
-                row[f"H_{what}_{end}_J"] = y[net.i_edge_enthalpy(e)]
-            row[f"work_{end}_J"] = y[net.i_work(net.node(end))]
-            i = net.node(end)
-            if heat:           # every end's heat, so a compound's balance closes
-                row[f"Q_{end}_J"] = y[net.i_node_quad(i, "heat")]
-                row[f"Q_to_wall_{end}_J"] = y[net.i_node_quad(i, "heat_to_wall")]
-                if marks is None:      # Marks's law imposes the heat: the wall has no T
-                    row[f"T_wall_{end}_K"] = wall_start[i]
-        if "steam_pipe" in net.edge_names:
-            row["m_pipe_kg"] = y[net.i_edge_mass(net.edge("steam_pipe"))]
-        for name, e in net.leak_edges():
-            row[f"m_{name}_kg"] = y[net.i_edge_mass(e)]
-        row.update(net.boundary_totals(y))
-        row["work_J"] = sum(row[f"work_{end}_J"] for end in ends_all)
+        row = _cycle_row(k, lay, net, y, wall_start)
         rows.append(row)
-        samples_all.append(samples)
+        samples_all.append(samples[:kept].copy() if kept < samples.shape[0] else samples)
         w = row["work_J"]
-        residuals = _periodicity(net, y_start, y, samples, wall_start, dT_scale, row,
-                                 w_prev)
+        residuals = _periodicity(lay, net.wall_T, y_start, y, samples, wall_start, dT_scale,
+                                 row, w_prev)
         if heat and wall_nodes:
             # the skin model's deep wall steps once the cycle at its temperature is
             # periodic (CrankResolved.update_wall)
@@ -221,8 +208,9 @@ def _crank_resolved(scene, model, pm, progress, start=None):
         change = max(residuals.values())
         if progress:
             progress(k, change)
-        log.debug("cycle %d: work %.6g J, residuals %s", k, w,
-                  ", ".join(f"{n} {v:.2g}" for n, v in residuals.items()))
+        if log.isEnabledFor(logging.DEBUG):     # the text costs a few us a cycle
+            log.debug("cycle %d: work %.6g J, residuals %s", k, w,
+                      ", ".join(f"{n} {v:.2g}" for n, v in residuals.items()))
         if scene.run.cycles is None and change <= fid.convergence_tolerance:
             converged = k
             break
@@ -232,34 +220,8 @@ def _crank_resolved(scene, model, pm, progress, start=None):
                     "a tolerance of %.2g; the card is the last cycle's (a tighter fidelity, or "
                     "more max_cycles, may settle it)", n_max, change,
                     max(residuals, key=residuals.get), fid.convergence_tolerance)
-    # post-process states to pressures etc. (the volumes at the output angles are the
-    # same every cycle)
-    vessels = [v for v in ("chest", "receiver") if v in net.node_names]
-    volumes = {i: net.volume(i, out_theta)
-               for i in [net.node(n) for n in (*ends_all, *vessels)]}
-    ts = []
-    for k, s in enumerate(samples_all):
-        ends = {}
-        for end in ends_all:
-            i = net.node(end)
-            V = volumes[i]
-            m, U = s[2 * i], s[2 * i + 1]
-            ends[end] = (*steam.states(m / V, U / m), V, m)
-        frame = _cycle_frame(k, out_theta, omega, ends)
-        for i in wall_nodes:
-            # the skin model's surface temperature and the heat into the steam so far
-            end = net.node_names[i]
-            frame[f"T_wall_{end}_K"] = walls_used[k][i] + s[net.i_wall(i)]
-            frame[f"Q_{end}_J"] = s[net.i_node_quad(i, "heat")]
-            frame[f"m_film_{end}_kg"] = s[net.i_film(i)]
-            frame[f"Q_sat_{end}_J"] = s[net.i_wall(i, "heat_sat")]
-            frame[f"Q_conv_{end}_J"] = s[net.i_wall(i, "heat_conv")]
-        for vessel in vessels:
-            i = net.node(vessel)
-            V = volumes[i]
-            frame[f"p_{vessel}_Pa"] = steam.states(s[2 * i] / V, s[2 * i + 1] / s[2 * i])[0]
-        ts.append(frame)
-    timeseries = Frame.concat(ts)
+    timeseries = _crank_timeseries(net, steam, ends_all, out_theta, omega, samples_all,
+                                   walls_used)
     final = SteadyStart(y.copy(), None if net.wall_T is None else np.array(net.wall_T, dtype=float))
     return {"timeseries": timeseries, "cycles": Frame.from_rows(rows), "final_state": final,
             "cycles_to_converge": converged, "periodicity": residuals, "portmap": pm, "nfev": crank.nfev,
@@ -268,7 +230,109 @@ def _crank_resolved(scene, model, pm, progress, start=None):
                           for c, (g, ph) in enumerate(zip(net.geometries, net.phases))]}
 
 
-def _periodicity(net, y0, y1, samples, wall0, dT_scale: float, row: dict,
+@dataclasses.dataclass(frozen=True)
+class _Layout:
+    """Where a crank-resolved steady run reads each cycle's row and residuals, looked
+    up once a run (the network's index methods cost more than the reads, every cycle).
+
+    ``names[n]`` is read from ``index[n]`` of the state at the cycle's end followed by
+    the wall temperatures at its start; ``terms`` are
+    :meth:`~corliss.engine.network.Network.boundary_terms`; ``work`` the names of the
+    ends' work; ``walls`` each skin wall's node, surface state and film state.
+    """
+
+    names: tuple[str, ...]
+    index: tuple[int, ...]
+    terms: tuple[tuple[str, float, int], ...]
+    work: tuple[str, ...]
+    n_dyn: int
+    walls: tuple[tuple[int, int, int], ...]
+
+
+def _layout(net, ends_all, heat: bool, marks) -> _Layout:
+    """The indices of a run's cycle rows (:func:`_cycle_row`) and residuals."""
+    names, index = [], []
+    for end in ends_all:
+        for what, edge in (("chest", f"{end}_steam"), ("exhaust", f"{end}_exhaust")):
+            e = net.edge(edge)
+            names += [f"m_{what}_{end}_kg", f"H_{what}_{end}_J"]
+            index += [net.i_edge_mass(e), net.i_edge_enthalpy(e)]
+        i = net.node(end)
+        names.append(f"work_{end}_J")
+        index.append(net.i_work(i))
+        if heat:           # every end's heat, so a compound's balance closes
+            names += [f"Q_{end}_J", f"Q_to_wall_{end}_J"]
+            index += [net.i_node_quad(i, "heat"), net.i_node_quad(i, "heat_to_wall")]
+            if marks is None:      # Marks's law imposes the heat: the wall has no T
+                names.append(f"T_wall_{end}_K")
+                index.append(net.n_state + i)      # the wall at the cycle's start
+    if "steam_pipe" in net.edge_names:
+        names.append("m_pipe_kg")
+        index.append(net.i_edge_mass(net.edge("steam_pipe")))
+    for name, e in net.leak_edges():
+        names.append(f"m_{name}_kg")
+        index.append(net.i_edge_mass(e))
+    return _Layout(tuple(names), tuple(index), tuple(net.boundary_terms()),
+                   tuple(f"work_{end}_J" for end in ends_all), net.n_dyn,
+                   tuple((i, net.i_wall(i), net.i_film(i)) for i in net.wall_nodes))
+
+
+def _cycle_row(k: int, lay: _Layout, net, y: np.ndarray, wall_start) -> dict:
+    """Cycle ``k``'s row of balances: each edge's and end's totals, the boundary's, the
+    work, from the state ``y`` at its end and the walls ``wall_start`` at its start
+    (read as Python floats: the same values, cheaper to index)."""
+    src = y.tolist()
+    if wall_start is not None:
+        src += wall_start.tolist()
+    row = {"cycle": k}
+    row.update(zip(lay.names, [src[j] for j in lay.index]))
+    row.update(net.boundary_totals(src, lay.terms))
+    row["work_J"] = sum(row[w] for w in lay.work)
+    return row
+
+
+def _crank_timeseries(net, steam, ends_all, out_theta, omega: float, samples_all,
+                      walls_used) -> Frame:
+    """Every cycle's time series, from the states sampled at ``out_theta`` each cycle
+    (``samples_all``: each cycle's rows of the state, all or the volumes' only).
+
+    The cycles' samples are stacked and each volume's states turned into pressure,
+    temperature and dryness in one call of the tier (for the table, one compiled call
+    per volume), not one per cycle; the values are those of a conversion cycle by
+    cycle, element by element the same arithmetic.
+    """
+    n_cyc, n_out = len(samples_all), out_theta.size
+    s = np.concatenate(samples_all, axis=1)
+    k = np.arange(n_cyc)
+    angle = (out_theta[None, :] + (TWO_PI * k)[:, None]).ravel()
+    cols = {"cycle": np.repeat(k + 1, n_out), "crank_angle_deg": np.degrees(angle),
+            "time_s": angle / omega}
+    # the volumes at the output angles are the same every cycle
+    for end in ends_all:
+        i = net.node(end)
+        V = np.tile(net.volume(i, out_theta), n_cyc)
+        m, U = s[2 * i], s[2 * i + 1]
+        cols[f"p_{end}_Pa"], cols[f"T_{end}_K"], cols[f"x_{end}_frac"] = steam.states(m / V,
+                                                                                      U / m)
+        cols[f"V_{end}_m3"], cols[f"m_{end}_kg"] = V, m
+    for i in net.wall_nodes:
+        # the skin model's surface temperature and the heat into the steam so far
+        end = net.node_names[i]
+        deep = np.repeat([w[i] for w in walls_used], n_out)
+        cols[f"T_wall_{end}_K"] = deep + s[net.i_wall(i)]
+        cols[f"Q_{end}_J"] = s[net.i_node_quad(i, "heat")]
+        cols[f"m_film_{end}_kg"] = s[net.i_film(i)]
+        cols[f"Q_sat_{end}_J"] = s[net.i_wall(i, "heat_sat")]
+        cols[f"Q_conv_{end}_J"] = s[net.i_wall(i, "heat_conv")]
+    for vessel in ("chest", "receiver"):
+        if vessel in net.node_names:
+            i = net.node(vessel)
+            V = np.tile(net.volume(i, out_theta), n_cyc)
+            cols[f"p_{vessel}_Pa"] = steam.states(s[2 * i] / V, s[2 * i + 1] / s[2 * i])[0]
+    return Frame(cols)
+
+
+def _periodicity(lay: _Layout, wall_T, y0, y1, samples, wall0, dT_scale: float, row: dict,
                  w_prev: float | None) -> dict[str, float]:
     """How far one cycle is from periodic, each state against its own scale [-].
 
@@ -291,22 +355,21 @@ def _periodicity(net, y0, y1, samples, wall0, dT_scale: float, row: dict,
     # each dynamic state's largest magnitude over the cycle (fmax skips a sample the
     # integrator did not reach, as nanmax would, in one ufunc call: nanmax's copies cost
     # a quarter of a fast cycle)
-    peak = np.fmax.reduce(np.abs(samples[:net.n_dyn]), axis=1)
-    for what, k in (("mass", 0), ("energy", 1)):
-        scale = np.maximum(peak[k::2], 1e-300)
-        out[what] = float(np.max(np.abs(y1[k:net.n_dyn:2] - y0[k:net.n_dyn:2]) / scale))
+    # (the arrays' own methods: numpy's functions wrap them at a microsecond a call)
+    nd = lay.n_dyn
+    peak = np.fmax.reduce(np.abs(samples[:nd]), axis=1)
+    rel = np.abs(y1[:nd] - y0[:nd]) / np.maximum(peak, 1e-300)
+    out["mass"], out["energy"] = float(rel[0::2].max()), float(rel[1::2].max())
     m_in, m_out = row["m_supply_kg"], row["m_exhaust_kg"]
-    held = float(np.sum(peak[0::2]))
+    held = float(peak[0::2].sum())
     out["mass_balance"] = abs(m_in + m_out) / max(abs(m_in), abs(m_out), held, 1e-300)
-    if wall0 is not None and net.wall_T is not None and np.any(net.wall_T != wall0):
-        out["wall_temperature"] = float(np.max(np.abs(net.wall_T - wall0))) / dT_scale
-    for i in net.wall_nodes:
+    if wall0 is not None and wall_T is not None and (wall_T != wall0).any():
+        out["wall_temperature"] = float(np.max(np.abs(wall_T - wall0))) / dT_scale
+    for i, k, f in lay.walls:
         # the skin model's surface: its change over the cycle, and its deep wall's
-        k = net.i_wall(i)
         out["wall_temperature"] = max(out.get("wall_temperature", 0.0),
                                       abs(y1[k] - y0[k]) / dT_scale)
         # the film's water against the steam the end holds at most
-        f = net.i_film(i)
         m_end = max(float(peak[2 * i]), 1e-300)
         out["mass"] = max(out["mass"], abs(y1[f] - y0[f]) / m_end)
     return out

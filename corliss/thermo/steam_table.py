@@ -652,9 +652,9 @@ def kappa_partials(tab, rho, u):
     return k, k_rho, k_u
 
 
-@njit(cache=True)
 def lookup_many(tab, rho, u):
-    """Vectorised :func:`lookup` (compiled).
+    """Vectorised :func:`lookup`: the arrays allocated here, filled by the compiled
+    :func:`lookup_into`.
 
     Parameters
     ----------
@@ -671,13 +671,37 @@ def lookup_many(tab, rho, u):
         Absolute pressure [Pa], temperature [K] and dryness [-], each shape
         ``(n,)``.
     """
-    n = rho.shape[0]
-    p = np.empty(n)
-    T = np.empty(n)
-    x = np.empty(n)
-    for k in range(n):
-        p[k], T[k], x[k], _ = lookup(tab, rho[k], u[k])
+    rho = np.asarray(rho, dtype=float)
+    u = np.asarray(u, dtype=float)
+    p, T, x = np.empty(rho.shape[0]), np.empty(rho.shape[0]), np.empty(rho.shape[0])
+    lookup_into(tab, rho, u, p, T, x)
     return p, T, x
+
+
+@njit(cache=True, _nrt=False)
+def lookup_into(tab, rho, u, p, T, x):
+    """:func:`lookup` of each state into arrays the caller allocated (compiled).
+
+    Each state is :func:`lookup_flagged`'s, inlined, in a function that allocates
+    nothing and so counts no references (``_nrt=False``, as the kernel's loops): a
+    compiled loop that allocated its outputs and called :func:`lookup` took 0.17 us a
+    state on the default card's samples, this one 0.10; the same arithmetic, so the
+    same values.
+
+    Parameters
+    ----------
+    tab : tuple
+        The table's arrays, :meth:`SteamTable.arrays`.
+    rho : ndarray
+        Densities [kg/m3], shape ``(n,)``.
+    u : ndarray
+        Specific internal energies [J/kg], shape ``(n,)``.
+    p, T, x : ndarray
+        Written: absolute pressure [Pa], temperature [K] and dryness [-], each shape
+        ``(n,)``.
+    """
+    for k in range(rho.shape[0]):
+        p[k], T[k], x[k], _, _ = lookup_flagged(tab, rho[k], u[k])
 
 
 # --- build and cache ------------------------------------------------------------------
