@@ -1533,6 +1533,44 @@ def step_factor(err, safety, expo):
 
 
 @njit(cache=True, _nrt=False)
+def predictive_factor(err, h, err_acc, h_acc, safety, expo):
+    """The ratio of the next step to this one after an accepted step, by Gustafsson's
+    predictive controller.
+
+    The smaller of :func:`step_factor` and the ratio that the error's trend over the
+    last two accepted steps predicts, ``safety (h / h_acc) err^(2 expo) err_acc^(-expo)``
+    (Hairer and Wanner, *Solving Ordinary Differential Equations II*, Sec. IV.8,
+    eq. 8.21, as their codes RODAS and RADAU5 apply it, ``err_acc`` kept at least 0.01).
+
+    Parameters
+    ----------
+    err : float
+        The step's scaled error [-].
+    h : float
+        The step [rad].
+    err_acc : float
+        The scaled error of the accepted step before it, at least 0.01 [-]; 0 when
+        there was none (the factor is then :func:`step_factor`'s).
+    h_acc : float
+        That step [rad].
+    safety : float
+        The safety factor [-].
+    expo : float
+        The exponent, ``-1 / (order + 1)`` of the error estimate [-].
+
+    Returns
+    -------
+    float
+        The ratio [-], within [0.2, 5].
+    """
+    fac = step_factor(err, safety, expo)
+    if err_acc > 0.0 and err > 0.0:
+        gus = safety * (h / h_acc) * err ** (2.0 * expo) * err_acc ** (-expo)
+        fac = min(fac, min(5.0, max(0.2, gus)))
+    return fac
+
+
+@njit(cache=True, _nrt=False)
 def visited_clamp_off(att_end):
     """The clamp bits of a step's end that make it no step of the physical path.
 
@@ -2006,7 +2044,10 @@ def _ros_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, c
     and whether the cycle ended well."""
     n = y.shape[0]
     ns = tb.shape[0]
-    safety = 0.8 if kind == KIND_ODE23S else 0.9
+    safety = 0.9
+    # the ode23s pair's steps by Gustafsson's predictive controller, no growth on the
+    # step after a rejection (:func:`predictive_factor`); a tableau's by the error alone
+    predictive = kind == KIND_ODE23S
     f0, f1, ytmp, tmp, T, x, yscale, yp, fp = (vec[0], vec[1], vec[2], vec[3], vec[4],
                                                vec[5], vec[6], vec[7], vec[8])
     for i in range(n):
@@ -2024,6 +2065,9 @@ def _ros_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, c
         put_column(samples, io, y)
         io += 1
     h_prev = 0.0
+    h_acc = 0.0            # the last accepted step, and its error (at least 0.01)
+    err_acc = 0.0
+    rejected = False       # the last step tried was rejected
     for seg in range(stops.shape[0] - 1):
         a = stops[seg]
         b = stops[seg + 1]
@@ -2111,9 +2155,19 @@ def _ros_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, c
                 copy_into(y, ytmp)
                 copy_into(f0, f1)
                 age += 1
-                h_prev = h * step_factor(err, safety, expo)
+                if predictive:
+                    fac = predictive_factor(err, h, err_acc, h_acc, safety, expo)
+                    if rejected:
+                        fac = min(fac, 1.0)
+                    h_acc = h
+                    err_acc = max(err, 1e-2)
+                else:
+                    fac = step_factor(err, safety, expo)
+                rejected = False
+                h_prev = h * fac
                 h = h_prev
             else:
+                rejected = True
                 if age > 0:
                     age = jac_age    # rejected on an old Jacobian: a fresh one
                 if err <= 1.0:
