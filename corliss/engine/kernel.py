@@ -1510,6 +1510,79 @@ def initial_step(f0, y, atol, rtol, span):
 
 
 @njit(cache=True, _nrt=False)
+def starting_step(t, y, f0, atol, rtol, span, expo, net, tier, tab, perf, pr, cell, att,
+                  yp, fp):
+    """A first step from the derivative and its change over a trial Euler step.
+
+    Hairer, Norsett and Wanner's starting step (*Solving Ordinary Differential
+    Equations I*, Sec. II.4), in the error's max norm: with ``d0``, ``d1`` the scaled
+    state and derivative, a trial step ``h0 = 0.01 d0 / d1``; ``d2`` the scaled change
+    of the derivative over it, per radian; the step ``(0.01 / max(d1, d2))^(-expo)``,
+    at most ``100 h0``.  One evaluation of :func:`rhs` (its clamps go into ``att``, a
+    trial's).
+
+    Parameters
+    ----------
+    t : float
+        The start [rad].
+    y : ndarray
+        The state there; shape (n_state,).
+    f0 : ndarray
+        The derivative there (per radian); shape (n_state,).
+    atol : ndarray
+        Absolute tolerances, in each component's unit; shape (n_state,).
+    rtol : float
+        Relative tolerance [-].
+    span : float
+        The segment's length [rad].
+    expo : float
+        The exponent, ``-1 / (order + 1)`` of the method's error estimate [-].
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    tier : int
+        The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.
+    tab : tuple
+        The steam table's arrays (:meth:`corliss.thermo.steam_table.SteamTable.arrays`).
+    perf : ndarray
+        The perfect tier's gas constant [J/(kg K)], ``cv`` [J/(kg K)] and ``u_ref``
+        [J/kg]; shape (3,) (unused on the table tier).
+    pr : ndarray
+        Scratch for the node properties, shape (:data:`PR_ROWS`, nodes).
+    cell : ndarray
+        Scratch for the port areas [m2], shape (cylinders, 4).
+    att : ndarray
+        A step attempt's clamp tally, shape (4,), added to.
+    yp, fp : ndarray
+        Scratch, shape (n_state,).
+
+    Returns
+    -------
+    float
+        The step [rad], within [1e-9, ``span``].
+    """
+    n = y.shape[0]
+    d0 = 0.0
+    d1 = 0.0
+    for i in range(n):
+        sc = atol[i] + rtol * abs(y[i])
+        d0 = max(d0, abs(y[i]) / sc)
+        d1 = max(d1, abs(f0[i]) / sc)
+    h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
+    h0 = min(h0, span)
+    for i in range(n):
+        yp[i] = y[i] + h0 * f0[i]
+    rhs(t + h0, yp, fp, net, tier, tab, perf, pr, cell)
+    tally_clamps(pr, t + h0, att)
+    d2 = 0.0
+    for i in range(n):
+        d2 = max(d2, abs(fp[i] - f0[i]) / (atol[i] + rtol * abs(y[i])))
+    d2 /= h0
+    m = max(d1, d2)
+    h1 = max(1e-6, h0 * 1e-3) if m <= 1e-15 else (0.01 / m) ** (-expo)
+    return min(max(min(100.0 * h0, h1), 1e-9), span)
+
+
+@njit(cache=True, _nrt=False)
 def step_factor(err, safety, expo):
     """The ratio of the next step to this one after an accepted step.
 
@@ -2076,7 +2149,14 @@ def _ros_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, c
         t = a
         segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att)
         nfev += 1
-        h = min(h_prev, b - a) if h_prev > 0.0 else initial_step(f0, y, atol, rtol, b - a)
+        if h_prev > 0.0:
+            h = min(h_prev, b - a)
+        elif predictive:
+            h = starting_step(t, y, f0, atol, rtol, b - a, expo, net, tier, tab, perf, pr,
+                              cell, att, yp, fp)
+            nfev += 1
+        else:
+            h = initial_step(f0, y, atol, rtol, b - a)
         age = jac_age          # accepted steps since J and T were computed
         h_w = -1.0             # the step W was inverted for
         while t < b:
