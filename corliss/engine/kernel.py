@@ -2151,14 +2151,19 @@ def _ros_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, c
     h_acc = 0.0            # the last accepted step, and its error (at least 0.01)
     err_acc = 0.0
     rejected = False       # the last step tried was rejected
+    t_end = -1.0           # the angle of the last accepted step's end, f0 evaluated there
     for seg in range(stops.shape[0] - 1):
         a = stops[seg]
         b = stops[seg + 1]
         if b - a <= 0.0:
             continue
         t = a
-        segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att)
-        nfev += 1
+        if not (predictive and t_end == a):
+            # (the ode23s pair's last step ended on this stop: f0 is the derivative at
+            # this angle and state, evaluated and its clamps settled as a visited
+            # state's; the area's kink changes the derivative's slope, not its value)
+            segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att)
+            nfev += 1
         if h_prev > 0.0:
             h = min(h_prev, b - a)
         elif predictive:
@@ -2242,6 +2247,7 @@ def _ros_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, c
                 t1 = t + h
                 io = emit_samples(io, out_theta, t, y, f0, t1, ytmp, f1, samples, tmp)
                 t = t1
+                t_end = t1
                 copy_into(y, ytmp)
                 copy_into(f0, f1)
                 age += 1
