@@ -1511,7 +1511,7 @@ def initial_step(f0, y, atol, rtol, span):
 
 @njit(cache=True, _nrt=False)
 def starting_step(t, y, f0, atol, rtol, span, expo, net, tier, tab, perf, pr, cell, att,
-                  yp, fp):
+                  yp, fp, prs):
     """A first step from the derivative and its change over a trial Euler step.
 
     Hairer, Norsett and Wanner's starting step (*Solving Ordinary Differential
@@ -1519,7 +1519,8 @@ def starting_step(t, y, f0, atol, rtol, span, expo, net, tier, tab, perf, pr, ce
     state and derivative, a trial step ``h0 = 0.01 d0 / d1``; ``d2`` the scaled change
     of the derivative over it, per radian; the step ``(0.01 / max(d1, d2))^(-expo)``,
     at most ``100 h0``.  One evaluation of :func:`rhs` (its clamps go into ``att``, a
-    trial's).
+    trial's); ``pr`` is left as it came (the properties at ``t``, ``y``, where the
+    step's Jacobian may take them).
 
     Parameters
     ----------
@@ -1547,13 +1548,16 @@ def starting_step(t, y, f0, atol, rtol, span, expo, net, tier, tab, perf, pr, ce
         The perfect tier's gas constant [J/(kg K)], ``cv`` [J/(kg K)] and ``u_ref``
         [J/kg]; shape (3,) (unused on the table tier).
     pr : ndarray
-        Scratch for the node properties, shape (:data:`PR_ROWS`, nodes).
+        The node properties at ``t``, ``y``, shape (:data:`PR_ROWS`, nodes); used as
+        scratch and restored.
     cell : ndarray
         Scratch for the port areas [m2], shape (cylinders, 4).
     att : ndarray
         A step attempt's clamp tally, shape (4,), added to.
     yp, fp : ndarray
         Scratch, shape (n_state,).
+    prs : ndarray
+        Scratch of at least ``pr``'s rows, shape (rows, nodes).
 
     Returns
     -------
@@ -1571,8 +1575,14 @@ def starting_step(t, y, f0, atol, rtol, span, expo, net, tier, tab, perf, pr, ce
     h0 = min(h0, span)
     for i in range(n):
         yp[i] = y[i] + h0 * f0[i]
+    for r in range(pr.shape[0]):
+        for i in range(pr.shape[1]):
+            prs[r, i] = pr[r, i]
     rhs(t + h0, yp, fp, net, tier, tab, perf, pr, cell)
     tally_clamps(pr, t + h0, att)
+    for r in range(pr.shape[0]):
+        for i in range(pr.shape[1]):
+            pr[r, i] = prs[r, i]
     d2 = 0.0
     for i in range(n):
         d2 = max(d2, abs(fp[i] - f0[i]) / (atol[i] + rtol * abs(y[i])))
@@ -2106,7 +2116,7 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
     mats = np.empty((2, ndyn, ndyn))
     dl = np.empty(ndyn)
     pr = np.empty((PR_ROWS, net[4].shape[0]))
-    jd = np.empty((12, net[4].shape[0]))
+    jd = np.empty((max(12, PR_ROWS), net[4].shape[0]))   # also holds pr's rows (starting_step)
     cyl = np.empty((2, net[17].shape[0], 4))
     clamps = np.zeros(6)
     clamps[CL_NODE] = -1.0
@@ -2168,7 +2178,7 @@ def _ros_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, c
             h = min(h_prev, b - a)
         elif predictive:
             h = starting_step(t, y, f0, atol, rtol, b - a, expo, net, tier, tab, perf, pr,
-                              cell, att, yp, fp)
+                              cell, att, yp, fp, jd)
             nfev += 1
         else:
             h = initial_step(f0, y, atol, rtol, b - a)
