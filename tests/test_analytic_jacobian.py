@@ -98,14 +98,21 @@ def test_analytic_jacobian_matches_central_differences(name, method):
     exact, diffs, exact_t, diffs_t, fresh = [], [], [], [], []
     for k, th in enumerate(out):
         yk = samples[:, k].copy()
+        crank._pr[:] = np.nan         # no evaluation's properties: the full lookups
         kernel._jacobian_exact(th, yk, J, T, crank.net, crank._tier, crank._tab, crank._perf,
-                               crank._pr, crank._cell, jd, slope, False)
+                               crank._pr, crank._cell, jd, slope)
         f0 = crank.rhs(th, yk)
         # after the right-hand side at the same state, as the integrators call it: the
         # node properties taken from that evaluation give the same Jacobian
         J2, T2 = np.zeros_like(J), np.zeros_like(T)
         kernel._jacobian_exact(th, yk, J2, T2, crank.net, crank._tier, crank._tab,
-                               crank._perf, crank._pr, crank._cell, jd, slope, True)
+                               crank._perf, crank._pr, crank._cell, jd, slope)
+        fresh.append((J2 - J, T2 - T))
+        # and after a right-hand side at another state (a rejected step's trial): the
+        # Jacobian must not take that evaluation's properties
+        crank.rhs(th, yk * (1.0 + 1e-3))
+        kernel._jacobian_exact(th, yk, J2, T2, crank.net, crank._tier, crank._tab,
+                               crank._perf, crank._pr, crank._cell, jd, slope)
         fresh.append((J2 - J, T2 - T))
         Jf, Jb, Jc = np.zeros_like(J), np.zeros_like(J), np.zeros_like(J)
         for j in range(nd):
@@ -142,13 +149,15 @@ def test_analytic_jacobian_matches_central_differences(name, method):
     k, i, j = np.unravel_index(np.argmax(err), err.shape)
     assert err.max() < TOL, (f"{err.max():.2e} at {math.degrees(out[k]):.0f} deg, row {i}, "
                              f"column {j}: {exact[k, i, j]:.6e} against {diffs[k, :, i, j]}")
-    # the Jacobian from the right-hand side's node properties (``fresh``): the same
+    # the Jacobian from the right-hand side's node properties (after an evaluation
+    # at its state), or not (after one at another state): the same
     # arithmetic but for the wet lookup's iteration, which agrees within 2e-9 K from
     # any start (tests/test_property_tiers.py), a few 1e-10 of the row's terms at most
     for k, (dJ, dT) in enumerate(fresh):
-        assert np.all(np.abs(dJ * np.abs(samples[:nd, k])) <= 1e-9 * row[:, None]), (
-            f"fresh Jacobian at {math.degrees(out[k]):.0f} deg")
-        assert np.all(np.abs(dT) <= 1e-9 * row_t), f"fresh d/dtheta at {math.degrees(out[k]):.0f} deg"
+        deg = math.degrees(out[k // 2])
+        assert np.all(np.abs(dJ * np.abs(samples[:nd, k // 2])) <= 1e-9 * row[:, None]), (
+            f"Jacobian after an evaluation at {deg:.0f} deg ({('its', 'another')[k % 2]} state)")
+        assert np.all(np.abs(dT) <= 1e-9 * row_t), f"d/dtheta at {deg:.0f} deg"
 
 
 def test_table_partials_match_differences_wet_and_superheated():

@@ -145,7 +145,7 @@ class CrankResolved:
                 t_wet = self.steam.t_sat(st.p)
             self._pr[:, i] = (st.p, rho, u + st.p / rho, kappa_at(self._tab, rho, u), dV, V,
                               st.T, t_wet, code, 1.0 if st.superheated else st.x,
-                              1.0 if st.superheated else 0.0)
+                              1.0 if st.superheated else 0.0, th, m, y[2 * i + 1])
         # scipy does not say which evaluations are trials: each clamped one is counted as
         # one, and the accepted solution is checked after the cycle (:meth:`cycle`)
         self.clamped_trials += int(clamped)

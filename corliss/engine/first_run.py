@@ -140,7 +140,7 @@ def compile_jacobian(data: bytes) -> None:
     kernel._jacobian_exact(0.0, y, J, np.zeros(n), net, kernel.TIER_TABLE,
                            steam_table.mini_table().arrays(), np.zeros(3),
                            np.empty((kernel.PR_ROWS, nv)), np.empty((ncyl, 4)),
-                           np.empty((12, nv)), np.empty((ncyl, 4)), False)
+                           np.empty((12, nv)), np.empty((ncyl, 4)))
 
 
 def _compile_on(table, scene) -> None:

@@ -84,12 +84,12 @@ from numba import njit
 from corliss.logs import NOTICE
 from corliss.thermo.orifice import port_flow, port_flow_partials
 from corliss.thermo.steam_table import (CLAMP_HIGH_ENERGY, PARAMS, kappa_at, kappa_partials,
-                                        lookup_near, lookup_partials, pressure_partials,
+                                        lookup_near, pressure_partials,
                                         t_sat)
 
 log = logging.getLogger(__name__)
 #: Revision of the inlined property and port-flow code (see the module's docstring).
-DEPENDENCY_REVISION = 21
+DEPENDENCY_REVISION = 22
 TIER_TABLE, TIER_PERFECT = 0, 1
 TWO_PI = 2.0 * math.pi
 #: Clamps on trial states: integrators probe states with no steam (a negative mass in
@@ -107,7 +107,7 @@ RHO_MAX = PARAMS["rho_max"]     # [kg/m3], dry saturated steam near 12.5 MPa
 U_MIN = PARAMS["kappa_u_min"]   # [J/kg], saturated water at the triple point
 U_MAX = PARAMS["u_max"]         # [J/kg], superheated steam beyond 1273 K
 #: Rows of the node-property scratch ``pr`` (see :func:`node_states`).
-PR_ROWS = 11
+PR_ROWS = 14
 #: row of the node properties holding each node's clamp code of the latest evaluation
 PR_CLAMP = 8
 #: row of the node properties holding the mixture's dryness [-] (1 when superheated)
@@ -115,6 +115,10 @@ PR_X = 9
 #: row of the node properties saying whether the table answered from its vapour grid
 #: (1.0) or the lever rule (0.0), for :func:`_jacobian_exact` after :func:`rhs`
 PR_SUP = 10
+#: rows of the node properties holding the evaluation's shaft angle [rad] and the
+#: node's mass [kg] and energy [J] there: the state the properties are of, by which
+#: :func:`_jacobian_exact` knows it may take them
+PR_AT = 11
 #: What the cycle integrator reports of clamps (the array it returns last): clamped
 #: evaluations at visited states, at trial states, the codes of each (OR of the
 #: bits), and the shaft angle [rad] and node of the first visited one.
@@ -448,7 +452,8 @@ def derivatives(th, y, pr, dy, net, pa):
         [kg/m3], enthalpy [J/kg], port-flow exponent [-], dV/dtheta [m3/rad], volume
         [m3], temperature [K], wetted-wall temperature [K], clamp code
         (:data:`PR_CLAMP`), dryness [-]
-        (:data:`PR_X`) and whether superheated (:data:`PR_SUP`).
+        (:data:`PR_X`), whether superheated (:data:`PR_SUP`) and the state
+        they are of (:data:`PR_AT`).
     dy : ndarray
         Written: the derivatives with respect to crank angle (per radian), shape
         (n_state,).
@@ -513,7 +518,8 @@ def balances(th, y, pr, dy, net, areas):
         [kg/m3], enthalpy [J/kg], port-flow exponent [-], dV/dtheta [m3/rad], volume
         [m3], temperature [K], wetted-wall temperature [K], clamp code
         (:data:`PR_CLAMP`), dryness [-]
-        (:data:`PR_X`) and whether superheated (:data:`PR_SUP`).
+        (:data:`PR_X`), whether superheated (:data:`PR_SUP`) and the state
+        they are of (:data:`PR_AT`).
     dy : ndarray
         Written: the derivatives with respect to crank angle (per radian), shape
         (n_state,).
@@ -683,7 +689,8 @@ def sweep_films(y, pr, dy, net):
         [kg/m3], enthalpy [J/kg], port-flow exponent [-], dV/dtheta [m3/rad], volume
         [m3], temperature [K], wetted-wall temperature [K], clamp code
         (:data:`PR_CLAMP`), dryness [-]
-        (:data:`PR_X`) and whether superheated (:data:`PR_SUP`).
+        (:data:`PR_X`), whether superheated (:data:`PR_SUP`) and the state
+        they are of (:data:`PR_AT`).
     dy : ndarray
         The derivatives with respect to crank angle (per radian), shape (n_state,),
         updated in place.
@@ -736,7 +743,8 @@ def node_states(th, y, net, tier, tab, perf, pr):
         pressure [Pa], density [kg/m3], enthalpy [J/kg], port-flow exponent [-],
         dV/dtheta [m3/rad], volume [m3], temperature [K], wetted-wall temperature
         [K], clamp code (:data:`PR_CLAMP`), dryness [-]
-        (:data:`PR_X`) and whether superheated (:data:`PR_SUP`).
+        (:data:`PR_X`), whether superheated (:data:`PR_SUP`) and the state
+        they are of (:data:`PR_AT`).
     """
     nv = net[4].shape[0]
     if tier == TIER_PERFECT:
@@ -775,6 +783,9 @@ def node_states(th, y, net, tier, tab, perf, pr):
         pr[PR_CLAMP, i] = code
         pr[PR_X, i] = 1.0 if sup else x
         pr[PR_SUP, i] = 1.0 if sup else 0.0
+        pr[PR_AT, i] = th
+        pr[PR_AT + 1, i] = m
+        pr[PR_AT + 2, i] = y[2 * i + 1]
         # the temperature of a wetted wall at this pressure, for the wall-heat effect only
         if net[19][i, 0] > 0.0:
             pr[7, i] = t_sat(tab, p) if (sup and tier != TIER_PERFECT) else T
@@ -812,7 +823,8 @@ def rhs(th, y, dy, net, tier, tab, perf, pr, cell):
         pressure [Pa], density [kg/m3], enthalpy [J/kg], port-flow exponent [-],
         dV/dtheta [m3/rad], volume [m3], temperature [K], wetted-wall temperature
         [K], clamp code (:data:`PR_CLAMP`), dryness [-]
-        (:data:`PR_X`) and whether superheated (:data:`PR_SUP`).
+        (:data:`PR_X`), whether superheated (:data:`PR_SUP`) and the state
+        they are of (:data:`PR_AT`).
     cell : ndarray
         Scratch for the port areas [m2], shape (cylinders, 4).
     """
@@ -1084,7 +1096,7 @@ def exact_jacobian_covers(net) -> bool:
 
 
 @njit(cache=True, _nrt=False)
-def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope, fresh):
+def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
     """The Jacobian of :func:`rhs` over the dynamic columns, and its time derivative,
     from the derivatives of its parts, for a network :func:`_exact_jacobian_holds`
     covers.
@@ -1104,9 +1116,10 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope, fresh
     at ``y``, ``jd`` (shape (12, nodes)) with their partials, ``slope`` (shape
     (cylinders, 4)) with the ports' area slopes.
 
-    ``fresh``: the last :func:`rhs` on ``pr`` was at (``t``, ``y``) (an integrator's
-    step starts where its last evaluation was): a node it did not clamp keeps that
-    evaluation's volume, pressure and temperature, and only the partials are computed
+    A node whose properties on ``pr`` are those of its state at (``t``, ``y``) (the
+    angle, mass and energy of rows :data:`PR_AT` on: an integrator's step starts
+    where its last evaluation was) and were not clamped keeps that evaluation's volume,
+    pressure and temperature, and only the partials are computed
     (:func:`corliss.thermo.steam_table.pressure_partials`: the same numbers, without
     the lookup's iteration, about a third of this function's time).
     """
@@ -1118,7 +1131,8 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope, fresh
         for j in range(ndyn):
             J[i, j] = 0.0
     for i in range(nv):
-        known = fresh and pr[PR_CLAMP, i] == 0.0
+        known = (pr[PR_CLAMP, i] == 0.0 and pr[PR_AT, i] == t
+                 and pr[PR_AT + 1, i] == y[2 * i] and pr[PR_AT + 2, i] == y[2 * i + 1])
         if known:
             V, dV = pr[5, i], pr[4, i]
         else:
@@ -1153,12 +1167,14 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope, fresh
                 p_r, p_u = R * Tk, rho * R / cv
             p = rho * R * Tk
             k, k_r, k_u = 1.0 + R / cv, 0.0, 0.0
-        elif known:
-            p = pr[0, i]
-            p_r, p_u = pressure_partials(tab, rho, u, p, pr[6, i], pr[PR_SUP, i] != 0.0, 0)
-            k, k_r, k_u = kappa_partials(tab, rho, u)
         else:
-            p, Tk, x, sup, c2, p_r, p_u = lookup_partials(tab, rho, u, pr[6, i])
+            if known:
+                p, Tk, sup, c2 = pr[0, i], pr[6, i], pr[PR_SUP, i] != 0.0, 0
+            else:
+                p, Tk, x, sup, c2 = lookup_near(tab, rho, u, pr[6, i])
+            # (lookup_partials, its lookup skipped for a known node: one copy of the
+            # partials' code, which numba inlines)
+            p_r, p_u = pressure_partials(tab, rho, u, p, Tk, sup, c2)
             k, k_r, k_u = kappa_partials(tab, rho, u)
         h_r = p_r / rho - p / (rho * rho)
         h_u = 1.0 + p_u / rho
@@ -1276,7 +1292,7 @@ def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, ce
     4)) are scratch.  Returns the evaluations of :func:`rhs` spent.
     """
     if _exact_jacobian_holds(net):
-        _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope, False)
+        _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope)
         return 0
     n = y.shape[0]
     ndyn = J.shape[1]
@@ -1736,7 +1752,8 @@ def segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att):
         pressure [Pa], density [kg/m3], enthalpy [J/kg], port-flow exponent [-],
         dV/dtheta [m3/rad], volume [m3], temperature [K], wetted-wall temperature
         [K], clamp code (:data:`PR_CLAMP`), dryness [-]
-        (:data:`PR_X`) and whether superheated (:data:`PR_SUP`).
+        (:data:`PR_X`), whether superheated (:data:`PR_SUP`) and the state
+        they are of (:data:`PR_AT`).
     cell : ndarray
         Scratch for the port areas [m2], shape (cylinders, 4).
     clamps : ndarray
@@ -2214,10 +2231,6 @@ def _ros_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, c
             nfev += 1
         else:
             h = initial_step(f0, y, atol, rtol, b - a)
-        # the last evaluation on ``pr`` was at (t, y) (the segment's start, or the step
-        # that ended on it; the starting step restores ``pr``): the analytic Jacobian
-        # takes the node properties from it
-        fresh = True
         age = jac_age          # accepted steps since J and T were computed
         h_w = -1.0             # the step W was inverted for
         while t < b:
@@ -2225,8 +2238,7 @@ def _ros_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, c
                 h = b - t
             if age >= jac_age:
                 if exact:
-                    _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope,
-                                    fresh)
+                    _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope)
                 else:
                     nfev += _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab,
                                       perf, pr, cell, att, yp, fp, dl, jd, slope)
@@ -2290,8 +2302,6 @@ def _ros_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, c
                     accepted = visited_clamp_off(att_end) == 0 or h < 1e-12
             settle_trial(att, clamps)
             settle_clamps(att_end, accepted, clamps)
-            # an accepted step's last evaluation was at its end, where the next starts
-            fresh = accepted
             if accepted:
                 t1 = t + h
                 io = emit_samples(io, out_theta, t, y, f0, t1, ytmp, f1, samples, tmp)

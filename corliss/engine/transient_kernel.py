@@ -62,7 +62,7 @@ from corliss.errors import RunError
 
 #: Revision of the inlined kernel, property and port-flow code: numba keys this file's
 #: cache on its content alone (see :mod:`corliss.engine.kernel`).
-DEPENDENCY_REVISION = 22
+DEPENDENCY_REVISION = 23
 
 TWO_PI = 2.0 * math.pi
 
