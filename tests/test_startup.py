@@ -68,11 +68,11 @@ def test_warm_run_with_figures_imports_matplotlib_but_not_coolprop_scipy_solvers
     assert _heavy(modules, [p for p in NOT_WITHOUT_PLOTS if p != "matplotlib"]) == []
 
 
-def _json_run(tmp_path, name: str, env: dict) -> tuple[dict, str]:
+def _json_run(tmp_path, name: str, env: dict, *args: str) -> tuple[dict, str]:
     import os
     proc = subprocess.run([sys.executable, "-c", "import sys; from corliss.cli import main; "
                            "sys.exit(main(sys.argv[1:]))", "-v", "run", "--json", "--no-plots",
-                           "--out", str(tmp_path / name)],
+                           "--out", str(tmp_path / name), *args],
                           capture_output=True, text=True, timeout=900, env={**os.environ, **env})
     assert proc.returncode == 0, proc.stderr
     return json.loads(proc.stdout), proc.stderr
@@ -83,12 +83,19 @@ def test_a_fresh_machines_first_run_builds_the_table_beside_the_compilation(tmp_
     at empty folders), the first run builds the table in a second process while it
     compiles (``corliss.engine.first_run``), fills both caches, and reports exactly what
     a warm machine reports: the miniature table it compiles on is thrown away, so the
-    indicated power, steam and events agree to the last bit."""
+    indicated power, steam and events agree to the last bit.  The Rosenbrock step loop
+    is compiled in a version for each kind of method (the ``fast`` preset's ode23s pair,
+    ``standard``'s RODAS4 tableau): a first ``fast`` run on that machine still says it
+    compiles, and the next one does not."""
     warm, _ = _json_run(tmp_path, "warm", {})
-    cold, log = _json_run(tmp_path, "cold", {"CORLISS_CACHE": str(tmp_path / "table"),
-                                             "NUMBA_CACHE_DIR": str(tmp_path / "numba")})
+    env = {"CORLISS_CACHE": str(tmp_path / "table"), "NUMBA_CACHE_DIR": str(tmp_path / "numba")}
+    cold, log = _json_run(tmp_path, "cold", env)
     assert "building the steam table in a second process" in log
     assert list((tmp_path / "table").glob("steam-table-*.npz"))
     assert list((tmp_path / "numba").rglob("*.nbi"))
     for key in ("indicated_power_W", "steam_rate_kg_per_h", "mep_mean_Pa", "events"):
         assert cold[key] == warm[key], key
+    _, log = _json_run(tmp_path, "fast", env, "--fidelity", "fast")
+    assert "compiling the kernels once for this machine (_ros_steps" in log
+    _, log = _json_run(tmp_path, "fast-again", env, "--fidelity", "fast")
+    assert "compiling" not in log

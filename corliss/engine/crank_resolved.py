@@ -89,8 +89,10 @@ class CrankResolved:
         if self.compiled and steam.kernel_tier is None:
             raise ValueError(f"property tier {steam.name!r} has no compiled form")
         self._tier = steam.kernel_tier if steam.kernel_tier is not None else -1
-        kernel.announce_compile(kernel.CYCLE_KERNELS[COMPILED_CODES[method]] if self.compiled
-                                else kernel.rhs)
+        if self.compiled:
+            kernel.announce_compile(cycle=COMPILED_CODES[method])
+        else:
+            kernel.announce_compile(kernel.rhs)
         from corliss.thermo.steam_table import load_table
         self._tab = steam.table.arrays() if hasattr(steam, "table") else load_table().arrays()
         self._perf = (np.array(steam.perfect_params()) if hasattr(steam, "perfect_params")

@@ -55,7 +55,7 @@ def _kernels_missing(scene) -> bool:
     method = _steady_method(scene)
     if method not in COMPILED_CODES:
         return False
-    return bool(kernel.uncached(kernel.CYCLE_KERNELS[COMPILED_CODES[method]]))
+    return bool(kernel.cycle_kernel_uncached(COMPILED_CODES[method]))
 
 
 def _wanted(scene) -> bool:
