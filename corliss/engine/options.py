@@ -150,18 +150,23 @@ class Fidelity:
 #: times dopri5's evaluations on the skin and conductance walls of the default engine,
 #: RODAS3 at 5e-6 3.6 and 2.6 times, the switches at the saturation temperature
 #: defeating their error estimates);
-#: ``fast``: the steam table and the compiled L-stable Rosenbrock method at rtol 5e-5
-#: (the explicit methods are held to small steps by the stiff pressure equalisation
-#: through an open port, whatever their tolerance).  At rtol 1e-4 its steam on the
-#: default card scattered between +0.11 % and +0.29 % of a converged run as the
-#: tolerance moved by a thousandth; at 5e-5 it is +0.047 % whatever the thousandth,
-#: for 13-24 % more evaluations on the three scenes of the accuracy study.  Their
-#: measured price is in the README (benchmarks/accuracy_vs_time.py).  The
+#: ``fast``: the steam table and the compiled L-stable Rosenbrock method (the ode23s
+#: pair, its steps by Gustafsson's predictive controller) at rtol 5e-5 (the explicit
+#: methods are held to small steps by the stiff pressure equalisation through an open
+#: port, whatever their tolerance).  Within 0.26 % of the reference in power and steam
+#: on the accuracy study's three scenes; at 7e-5 12 % fewer evaluations and 0.30 %, at
+#: 1e-4 0.37 % on the short cut-off, and the crank end's admission pressure of the
+#: default card 0.31 % of supply off a converged run (tests/test_rosenbrock_tableaus.py
+#: holds it within 0.25 %).  Its measured price is in the README
+#: (benchmarks/accuracy_vs_time.py).  (Before the predictive controller, at 1e-4 its
+#: steam on the default card scattered between +0.11 % and +0.29 % of a converged run
+#: as the tolerance moved by a thousandth: the error-only control walked onto a false
+#: solution of the pair at that admission, and its cycle was not periodic.)  The
 #: higher-order Rosenbrock methods (``ros4``, ``rodas3``, ``rodas4``) reach either
-#: preset's accuracy on the study's three scenes for fewer evaluations (``fast``'s at
-#: rtol 1e-4 with ``rodas4``: 730 a cycle of the default card against 1,030, and
-#: 0.13 % off at most against 0.24 %; ``standard``'s with ``ros4`` at 7e-6: 1,870
-#: against 4,022), but on ports 1000 times too large (tests/test_property_tiers.py)
+#: preset's accuracy on the study's three scenes (``fast``'s at rtol 1e-4 with
+#: ``rodas4``: 730 evaluations a cycle of the default card, against the pair's 1,030
+#: before its predictive controller and 340 after it; ``standard``'s with ``ros4`` at
+#: 7e-6: 1,870 against dopri5's 4,022), but on ports 1000 times too large (tests/test_property_tiers.py)
 #: both ran out of the run-time budget with a finite-difference Jacobian (with the
 #: analytic one, now used wherever the wall heat does not depend on the state, they
 #: settle in 3 cycles of 3,000 and 6,700 evaluations), and ``ros4`` at rtol 1e-8 on
