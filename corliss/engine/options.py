@@ -166,8 +166,8 @@ class Fidelity:
 #: preset's accuracy on the study's three scenes (``fast``'s at rtol 1e-4 with
 #: ``rodas4``: 730 evaluations a cycle of the default card, against the pair's 1,030
 #: before its predictive controller and 340 after it; ``standard``'s with ``ros4`` at
-#: 7e-6: 1,870 against dopri5's 4,022), but on ports 1000 times too large (tests/test_property_tiers.py)
-#: both ran out of the run-time budget with a finite-difference Jacobian (with the
+#: 7e-6: 1,870 against dopri5's 4,022), but on ports 1000 times too large
+#: (tests/test_property_tiers.py) both ran out of the run-time budget with a finite-difference Jacobian (with the
 #: analytic one, now used wherever the wall heat does not depend on the state, they
 #: settle in 3 cycles of 3,000 and 6,700 evaluations), and ``ros4`` at rtol 1e-8 on
 #: a compound with every effect (whose conductance wall heat keeps the finite

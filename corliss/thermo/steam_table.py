@@ -312,8 +312,9 @@ def lookup_near(tab, rho, u, T_near):
     """:func:`lookup_flagged`, the wet state's Newton iteration started from a
     temperature near the answer.
 
-    The same answer (the iteration converges to 1e-12 K or better from any start in
-    its bracket), for fewer evaluations of the lever rule when ``T_near`` is close: a
+    The same answer (within 1e-12 K where Newton's steps converge, 2e-9 K where the
+    safeguard bisects; tests/test_property_tiers.py starts it from everywhere), for
+    fewer evaluations of the lever rule when ``T_near`` is close: a
     node's temperature at its previous evaluation (the integrators evaluate nearby
     states in turn), or that of the same state (a Jacobian after the right-hand side)
     takes one or two against about five from the saturated-vapour end.
