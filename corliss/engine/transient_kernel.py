@@ -460,6 +460,36 @@ def _project(y, nn):
             y[nn + X_ZDOT] = 0.0
 
 
+@njit(cache=True, inline="always")
+def _record(rec, k, t, y, nn, out):
+    """Column ``k`` of a turn's record (:func:`integrate_turn`'s ``rec``): the shaft
+    angle [rad], speed [rad/s], z [-], actuator [-], time [s], indicated and load
+    torques [N m] (``out`` holds the actuator and the torques of the evaluation at
+    ``t``, ``y``)."""
+    rec[0, k] = t
+    rec[1, k] = y[nn + X_OMEGA]
+    rec[2, k] = y[nn + X_Z]
+    rec[3, k] = out[2]
+    rec[4, k] = y[nn + X_TIME]
+    rec[5, k] = out[0]
+    rec[6, k] = out[1]
+
+
+@njit(cache=True, inline="always")
+def _turn_end(io, out_theta, samples, y, nn, status, t_end, clamps, sc):
+    """A turn's end, for both loops: the samples not reached take the last state, the
+    status says when the run's time has passed, and the turn's clamped trials go into
+    ``sc``; returns the status."""
+    while io < out_theta.shape[0]:
+        put_column(samples, io, y)
+        io += 1
+    if status == 0 and y[nn + X_TIME] >= t_end:
+        status = 3
+    sc[S_CLAMPED_TRIALS] += clamps[CL_REJECTED]
+    sc[S_CLAMPED_TRIAL_CODE] = float(int(sc[S_CLAMPED_TRIAL_CODE]) | int(clamps[CL_REJECTED_CODE]))
+    return status
+
+
 @njit(cache=True)
 def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, record, t_end):
     """Integrate one turn, from ``th0`` to ``th0 + 2 pi`` (dopri5, dense Hermite output).
@@ -555,13 +585,7 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
         put_column(samples, io, y)
         io += 1
     if record:
-        rec[0, 0] = t
-        rec[1, 0] = y[nn + X_OMEGA]
-        rec[2, 0] = y[nn + X_Z]
-        rec[3, 0] = out[2]
-        rec[4, 0] = y[nn + X_TIME]
-        rec[5, 0] = out[0]
-        rec[6, 0] = out[1]
+        _record(rec, 0, t, y, nn, out)
         n_rec = 1
     scale = 0.0
     for i in range(n):
@@ -603,13 +627,7 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
             copy_into(f0, K[6])
             if record and n_rec < nrec_max:
                 # out[] holds the values at the last stage, which is the step's end (FSAL)
-                rec[0, n_rec] = t
-                rec[1, n_rec] = y[nn + X_OMEGA]
-                rec[2, n_rec] = y[nn + X_Z]
-                rec[3, n_rec] = out[2]
-                rec[4, n_rec] = y[nn + X_TIME]
-                rec[5, n_rec] = out[0]
-                rec[6, n_rec] = out[1]
+                _record(rec, n_rec, t, y, nn, out)
                 n_rec += 1
             h = h * step_factor(err, 0.9, -0.2)
             if y[nn + X_OMEGA] < sc[S_WMIN]:
@@ -623,13 +641,7 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
         if nfev > sc[S_MAX_RHS]:
             status = 4
             break
-    while io < out_theta.shape[0]:
-        put_column(samples, io, y)
-        io += 1
-    if status == 0 and y[nn + X_TIME] >= t_end:
-        status = 3
-    sc[S_CLAMPED_TRIALS] += clamps[CL_REJECTED]
-    sc[S_CLAMPED_TRIAL_CODE] = float(int(sc[S_CLAMPED_TRIAL_CODE]) | int(clamps[CL_REJECTED_CODE]))
+    status = _turn_end(io, out_theta, samples, y, nn, status, t_end, clamps, sc)
     return y, samples, rec, n_rec, nfev, status
 
 
@@ -932,13 +944,7 @@ def integrate_turn_ros(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr,
         put_column(samples, io, y)
         io += 1
     if record:
-        rec[0, 0] = t
-        rec[1, 0] = y[nn + X_OMEGA]
-        rec[2, 0] = y[nn + X_Z]
-        rec[3, 0] = out[2]
-        rec[4, 0] = y[nn + X_TIME]
-        rec[5, 0] = out[0]
-        rec[6, 0] = out[1]
+        _record(rec, 0, t, y, nn, out)
         n_rec = 1
     h = sc[S_STEP]
     if not (h > 0.0):
@@ -1009,13 +1015,7 @@ def integrate_turn_ros(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr,
             fresh = True
             if record and n_rec < nrec_max:
                 # out[] holds the values at the step's end
-                rec[0, n_rec] = t
-                rec[1, n_rec] = y[nn + X_OMEGA]
-                rec[2, n_rec] = y[nn + X_Z]
-                rec[3, n_rec] = out[2]
-                rec[4, n_rec] = y[nn + X_TIME]
-                rec[5, n_rec] = out[0]
-                rec[6, n_rec] = out[1]
+                _record(rec, n_rec, t, y, nn, out)
                 n_rec += 1
             h_next = h * step_factor(err, 0.9, expo)
             if t < b:
@@ -1034,11 +1034,5 @@ def integrate_turn_ros(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr,
         if nfev > sc[S_MAX_RHS]:
             status = 4
             break
-    while io < out_theta.shape[0]:
-        put_column(samples, io, y)
-        io += 1
-    if status == 0 and y[nn + X_TIME] >= t_end:
-        status = 3
-    sc[S_CLAMPED_TRIALS] += clamps[CL_REJECTED]
-    sc[S_CLAMPED_TRIAL_CODE] = float(int(sc[S_CLAMPED_TRIAL_CODE]) | int(clamps[CL_REJECTED_CODE]))
+    status = _turn_end(io, out_theta, samples, y, nn, status, t_end, clamps, sc)
     return y, samples, rec, n_rec, nfev, status
