@@ -19,6 +19,7 @@ asks 1e-9 of it.
 from __future__ import annotations
 
 import dataclasses
+import gc
 import math
 from pathlib import Path
 
@@ -43,6 +44,15 @@ FOUR = {"default": "eccentric", "hinkley-stephenson-link": "stephenson",
         "walschaerts-locomotive": "walschaerts", "corliss-trip-gear": "corliss"}
 #: An animation made for its frames and closed unsaved warns that it rendered nothing.
 pytestmark = pytest.mark.filterwarnings("ignore:Animation was deleted without rendering")
+
+
+@pytest.fixture(autouse=True)
+def _collect_animations():
+    """Collect each test's animations before its teardown ends, under the filter above:
+    left to the garbage collector, one is deleted during a later test of another file
+    on the same worker, whose warnings summary then shows it."""
+    yield
+    gc.collect()
 VALVE_TOL_m = 1e-9
 ROD_REL_TOL = 1e-9
 
