@@ -90,7 +90,8 @@ class CrankResolved:
             raise ValueError(f"property tier {steam.name!r} has no compiled form")
         self._tier = steam.kernel_tier if steam.kernel_tier is not None else -1
         if self.compiled:
-            kernel.announce_compile(cycle=COMPILED_CODES[method])
+            kernel.announce_compile(cycle=COMPILED_CODES[method],
+                                    exact=kernel.exact_jacobian_covers(self.net))
         else:
             kernel.announce_compile(kernel.rhs)
         from corliss.thermo.steam_table import load_table

@@ -42,20 +42,26 @@ JACOBIAN_COMMAND = ("import sys; from corliss.engine.first_run import compile_ja
                     "compile_jacobian(sys.stdin.buffer.read()); " + BUILD_COMMAND)
 
 
+def _exact(scene) -> bool:
+    """Whether the scene's network has an analytic Jacobian: no wall heat that depends
+    on the state (:func:`corliss.engine.kernel.exact_jacobian_covers`, from the scene)."""
+    return not (scene.run.has("wall_heat") and scene.engine.wall_heat_model != "marks")
+
+
 def _steady_method(scene) -> str:
     """The integrator the scene's steady run will take: a state-dependent wall heat
     keeps a preset's finite-difference method (``Fidelity.steady_integrator``)."""
-    exact = not (scene.run.has("wall_heat") and scene.engine.wall_heat_model != "marks")
-    return scene.run.fidelity.steady_integrator(exact)[0]
+    return scene.run.fidelity.steady_integrator(_exact(scene))[0]
 
 
 def _kernels_missing(scene) -> bool:
-    """True when the scene's compiled cycle integrator is not in numba's disk cache
-    (False when this numba does not show its cache: then nothing is done)."""
+    """True when the scene's compiled cycle integrator is not in numba's disk cache, in
+    the version its run takes (False when this numba does not show its cache: then
+    nothing is done)."""
     method = _steady_method(scene)
     if method not in COMPILED_CODES:
         return False
-    return bool(kernel.cycle_kernel_uncached(COMPILED_CODES[method]))
+    return bool(kernel.cycle_kernel_uncached(COMPILED_CODES[method], _exact(scene)))
 
 
 def _wanted(scene) -> bool:
@@ -84,7 +90,7 @@ def prepare(scene) -> None:
     # a Rosenbrock method's analytic Jacobian (a third of its compile time) is compiled
     # in the second process first, while this one compiles the right-hand side, which
     # the step loop needs before the Jacobian: this one then loads it from the cache
-    jacobian = (_steady_method(scene) in kernel.ROSENBROCK_METHODS
+    jacobian = (_steady_method(scene) in kernel.ROSENBROCK_METHODS and _exact(scene)
                 and bool(kernel.uncached(kernel._jacobian_exact)))
     try:
         # the second process, done with the table before this one is done compiling,
