@@ -2525,5 +2525,5 @@ def announce_compile(*dispatchers, cycle: int | None = None, exact: bool = True)
         return
     missing = [d.__name__ for d, m in zip(dispatchers, state) if m]
     if missing:
-        log.log(NOTICE, "compiling the kernels once for this machine (%s; about 15 s); "
+        log.log(NOTICE, "compiling the kernels once for this machine (%s; 10 to 15 s); "
                 "later runs load them from the cache", ", ".join(missing))
