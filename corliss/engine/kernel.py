@@ -89,7 +89,7 @@ from corliss.thermo.steam_table import (CLAMP_HIGH_ENERGY, PARAMS, kappa_at, kap
 
 log = logging.getLogger(__name__)
 #: Revision of the inlined property and port-flow code (see the module's docstring).
-DEPENDENCY_REVISION = 22
+DEPENDENCY_REVISION = 23
 TIER_TABLE, TIER_PERFECT = 0, 1
 TWO_PI = 2.0 * math.pi
 #: Clamps on trial states: integrators probe states with no steam (a negative mass in
@@ -277,6 +277,43 @@ def piston_position(th, net, c):
 
 
 @njit(cache=True, inline="always")
+def piston_kinematics(th, net, c):
+    """Piston velocity and acceleration per crank angle of one cylinder.
+
+    The slider crank of :mod:`corliss.engine.geometry` at the cylinder's own angle
+    (an infinite rod without rod angularity).
+
+    Parameters
+    ----------
+    th : float
+        Shaft crank angle [rad].
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    c : int
+        The cylinder.
+
+    Returns
+    -------
+    ds : float
+        ``ds/dtheta`` [m/rad].
+    d2s : float
+        ``d2s/dtheta2`` [m/rad2].
+    """
+    geo, phase = net[2], net[3]
+    R, L, ang = geo[c, 0], geo[c, 1], geo[c, 7]
+    a = th + phase[c]
+    sn = math.sin(a)
+    cs = math.cos(a)
+    ds = R * sn
+    d2s = R * cs
+    if ang > 0.0:
+        root = math.sqrt(L * L - R * R * sn * sn)
+        ds += R * R * sn * cs / root
+        d2s += R * R * (cs * cs - sn * sn) / root + (R * R * sn * cs) ** 2 / root ** 3
+    return ds, d2s
+
+
+@njit(cache=True, inline="always")
 def end_volume(net, c, end, s, ds):
     """Volume of one end of a cylinder and its derivative, from the piston's travel.
 
@@ -413,22 +450,42 @@ def _port_area_slopes(th, net, out):
 @njit(cache=True, inline="always")
 def _volume_curvature(th, net, i):
     """d2V/dtheta2 of a node [m3/rad2]: the slider crank of :func:`node_volume`
-    differentiated once more (0 for a vessel)."""
-    geo, phase, kind, cyl, end = net[2], net[3], net[4], net[5], net[6]
+    differentiated once more (:func:`piston_kinematics`; 0 for a vessel)."""
+    geo, kind, cyl, end = net[2], net[4], net[5], net[6]
     if kind[i] == 1:
         return 0.0
     c = cyl[i]
-    R, L, Ah, Ac, ang = geo[c, 0], geo[c, 1], geo[c, 3], geo[c, 4], geo[c, 7]
-    a = th + phase[c]
-    sn = math.sin(a)
-    cs = math.cos(a)
-    d2s = R * cs
-    if ang > 0.0:
-        root = math.sqrt(L * L - R * R * sn * sn)
-        d2s += R * R * (cs * cs - sn * sn) / root + (R * R * sn * cs) ** 2 / root ** 3
+    d2s = piston_kinematics(th, net, c)[1]
     if end[i] == 0:
-        return Ah * d2s
-    return -Ac * d2s
+        return geo[c, 3] * d2s
+    return -geo[c, 4] * d2s
+
+
+@njit(cache=True, inline="always")
+def edge_side(x, pr, res):
+    """The state at one end of an edge: a node's (from the node properties) or a
+    reservoir's.
+
+    Parameters
+    ----------
+    x : int
+        The end: a node index (0 and up) or a reservoir's code (``-1 - r``).
+    pr : ndarray
+        The node properties, shape (:data:`PR_ROWS`, nodes) (rows pressure, density,
+        enthalpy, port-flow exponent read).
+    res : ndarray
+        The reservoirs' states, shape (reservoirs, 4): p [Pa], rho [kg/m3], h [J/kg],
+        the port-flow exponent [-].
+
+    Returns
+    -------
+    p, rho, h, kappa : float
+        Pressure [Pa], density [kg/m3], enthalpy [J/kg] and port-flow exponent [-].
+    """
+    if x >= 0:
+        return pr[0, x], pr[1, x], pr[2, x], pr[3, x]
+    r = -1 - x
+    return res[r, 0], res[r, 1], res[r, 2], res[r, 3]
 
 
 @njit(cache=True, inline="always")
@@ -529,7 +586,7 @@ def balances(th, y, pr, dy, net, areas):
         The port areas [m2], shape (cylinders, 4).
     """
     omega, band, res = net[0][0], net[1], net[8]
-    P, RHO, H, K = pr[0], pr[1], pr[2], pr[3]
+    P, RHO, H = pr[0], pr[1], pr[2]
     geo, ncyl_, end_, heat, wallT = net[2], net[5], net[6], net[19], net[20]
     ea, eb, ecd = net[9], net[10], net[15]
     nv = P.shape[0]
@@ -645,16 +702,8 @@ def balances(th, y, pr, dy, net, areas):
             continue
         a = ea[e]
         b = eb[e]
-        if a >= 0:
-            pa, ra, ha, ka = P[a], RHO[a], H[a], K[a]
-        else:
-            r = -1 - a
-            pa, ra, ha, ka = res[r, 0], res[r, 1], res[r, 2], res[r, 3]
-        if b >= 0:
-            pb, rb, hb, kb = P[b], RHO[b], H[b], K[b]
-        else:
-            r = -1 - b
-            pb, rb, hb, kb = res[r, 0], res[r, 1], res[r, 2], res[r, 3]
+        pa, ra, ha, ka = edge_side(a, pr, res)
+        pb, rb, hb, kb = edge_side(b, pr, res)
         md = port_flow(ar, ecd[e], pa, ra, ka, pb, rb, kb, band, True)
         hd = md * (ha if md > 0.0 else hb)
         md /= omega
@@ -1206,7 +1255,6 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
     ea, eb, ecd, ekind, ecyl, eport = net[9], net[10], net[15], net[11], net[12], net[13]
     port_areas(t, net, cell)
     _port_area_slopes(t, net, slope)
-    P, RHO, H, K = pr[0], pr[1], pr[2], pr[3]
     for e in range(ea.shape[0]):
         area = edge_area(net, e, cell)
         if area <= 0.0:
@@ -1216,16 +1264,8 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
             continue
         a = ea[e]
         b = eb[e]
-        if a >= 0:
-            pa, ra, ha, ka = P[a], RHO[a], H[a], K[a]
-        else:
-            r = -1 - a
-            pa, ra, ha, ka = res[r, 0], res[r, 1], res[r, 2], res[r, 3]
-        if b >= 0:
-            pb, rb, hb, kb = P[b], RHO[b], H[b], K[b]
-        else:
-            r = -1 - b
-            pb, rb, hb, kb = res[r, 0], res[r, 1], res[r, 2], res[r, 3]
+        pa, ra, ha, ka = edge_side(a, pr, res)
+        pb, rb, hb, kb = edge_side(b, pr, res)
         md, d1p, d1r, d1k, d2p, d2r, d2k = port_flow_partials(
             area, ecd[e], pa, ra, ka, pb, rb, kb, band, True)
         # the side upstream as the flow's partials take it (side a at equal pressures):

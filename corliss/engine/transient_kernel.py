@@ -54,15 +54,15 @@ from numba import njit
 from corliss.engine.kernel import (CL_ACCEPTED, CL_ACCEPTED_CODE, CL_REJECTED,
                                    CL_REJECTED_CODE, DOPRI_NODES, PR_ROWS, balances,
                                    copy_into, dopri_error, dopri_stage, emit_samples,
-                                   gauss_jordan, node_states, port_areas, put_column,
-                                   settle_clamps, settle_trial, settle_visited,
+                                   gauss_jordan, node_states, piston_kinematics, port_areas,
+                                   put_column, settle_clamps, settle_trial, settle_visited,
                                    step_factor, tableau_argument, tableau_solution,
                                    tableau_stage_rhs, tally_clamps, visited_clamp_off)
 from corliss.errors import RunError
 
 #: Revision of the inlined kernel, property and port-flow code: numba keys this file's
 #: cache on its content alone (see :mod:`corliss.engine.kernel`).
-DEPENDENCY_REVISION = 23
+DEPENDENCY_REVISION = 24
 
 TWO_PI = 2.0 * math.pi
 
@@ -87,43 +87,6 @@ N_EXTRA = 9
 #: what a recorded step keeps: theta, omega, z, actuator, t, T_gas, T_load, then
 #: p of every node
 N_REC = 7
-
-
-@njit(cache=True, inline="always")
-def piston_kinematics(th, net, c):
-    """Piston velocity and acceleration per crank angle of one cylinder.
-
-    The slider crank of :mod:`corliss.engine.geometry` at the cylinder's own angle
-    (an infinite rod without rod angularity).
-
-    Parameters
-    ----------
-    th : float
-        Shaft crank angle [rad].
-    net : tuple
-        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
-    c : int
-        The cylinder.
-
-    Returns
-    -------
-    ds : float
-        ``ds/dtheta`` [m/rad].
-    d2s : float
-        ``d2s/dtheta2`` [m/rad2].
-    """
-    geo, phase = net[2], net[3]
-    R, L, ang = geo[c, 0], geo[c, 1], geo[c, 7]
-    a = th + phase[c]
-    sn = math.sin(a)
-    cs = math.cos(a)
-    ds = R * sn
-    d2s = R * cs
-    if ang > 0.0:
-        root = math.sqrt(L * L - R * R * sn * sn)
-        ds += R * R * sn * cs / root
-        d2s += R * R * (cs * cs - sn * sn) / root + R ** 4 * sn * sn * cs * cs / root ** 3
-    return ds, d2s
 
 
 @njit(cache=True, inline="always")
