@@ -162,7 +162,8 @@ def test_analytic_jacobian_matches_central_differences(name, method):
 
 def test_table_partials_match_differences_wet_and_superheated():
     """The steam table's pressure and exponent partials
-    (``lookup_partials``, ``kappa_partials``) against central differences of
+    (``pressure_partials`` on ``lookup_flagged``'s answer, ``kappa_partials``)
+    against central differences of
     ``lookup_flagged`` and ``kappa_at`` on a grid of wet and superheated states from
     0.05 to 20 kg/m3 and 2.0 to 3.2 MJ/kg: within 1e-5 relative, plus the differences
     rounding (4 eps |f| / d).  A central difference of relative step 1e-7 errs by
@@ -170,12 +171,13 @@ def test_table_partials_match_differences_wet_and_superheated():
     straddles a cell edge or saturation is covered by also accepting either one-sided
     difference."""
     from corliss.thermo.steam_table import (kappa_at, kappa_partials, load_table,
-                                            lookup_flagged, lookup_partials)
+                                            lookup_flagged, pressure_partials)
     tab = load_table().arrays()
     seen = set()
     for rho in np.geomspace(0.05, 20.0, 23):
         for u in np.linspace(2.0e6, 3.2e6, 29):
-            p, _, _, sup, code, p_r, p_u = lookup_partials(tab, rho, u)
+            p, T, _, sup, code = lookup_flagged(tab, rho, u)
+            p_r, p_u = pressure_partials(tab, rho, u, p, T, sup, code)
             if code:
                 continue
             seen.add(sup)

@@ -89,7 +89,7 @@ from corliss.thermo.steam_table import (CLAMP_HIGH_ENERGY, PARAMS, kappa_at, kap
 
 log = logging.getLogger(__name__)
 #: Revision of the inlined property and port-flow code (see the module's docstring).
-DEPENDENCY_REVISION = 23
+DEPENDENCY_REVISION = 24
 TIER_TABLE, TIER_PERFECT = 0, 1
 TWO_PI = 2.0 * math.pi
 #: Clamps on trial states: integrators probe states with no steam (a negative mass in
@@ -1153,7 +1153,7 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
     Each node's pressure, density, enthalpy and port-flow exponent depend on its own
     mass m and energy E alone, through rho = m/V and u = E/m: their partials in
     (rho, u) come from the table's own interpolation
-    (:func:`corliss.thermo.steam_table.lookup_partials`,
+    (:func:`corliss.thermo.steam_table.pressure_partials`,
     :func:`~corliss.thermo.steam_table.kappa_partials`) or the perfect gas's closed
     form, and go to (m, E) by the chain rule (none in a coordinate the state's clamp
     holds), and to the crank angle through the volume (drho/dtheta = -rho V'/V).  Each
@@ -1221,8 +1221,8 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
                 p, Tk, sup, c2 = pr[0, i], pr[6, i], pr[PR_SUP, i] != 0.0, 0
             else:
                 p, Tk, x, sup, c2 = lookup_near(tab, rho, u, pr[6, i])
-            # (lookup_partials, its lookup skipped for a known node: one copy of the
-            # partials' code, which numba inlines)
+            # (the lookup skipped for a known node: one copy of the partials' code,
+            # which numba inlines)
             p_r, p_u = pressure_partials(tab, rho, u, p, Tk, sup, c2)
             k, k_r, k_u = kappa_partials(tab, rho, u)
         h_r = p_r / rho - p / (rho * rho)
@@ -1688,7 +1688,7 @@ def step_factor(err, safety, expo):
     err : float
         The step's scaled error [-].
     safety : float
-        The safety factor [-] (0.9 for dopri5, 0.8 for the Rosenbrock pair).
+        The safety factor [-] (0.9 for dopri5 and the Rosenbrock methods).
     expo : float
         The exponent, ``-1 / (order + 1)`` of the error estimate [-].
 
@@ -2248,9 +2248,6 @@ def _ros_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, c
     Winv, A = mats[0], mats[1]
     slope, cell = cyl[0], cyl[1]
     att, att_end = tally[0], tally[1]
-    # the analytic Jacobian called from here, not through :func:`_jacobian`: through
-    # it, a call cost 2.2 us against 0.7 us (the default scene; numba's handling of a
-    # function that passes the network and table tuples on, it seems)
     nfev = 0
     io = 0
     while io < out_theta.shape[0] and out_theta[io] <= stops[0]:
@@ -2288,6 +2285,9 @@ def _ros_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, c
                 h = b - t
             if age >= jac_age:
                 if finite is None:
+                    # called from here, not through :func:`_jacobian`: through it, a call
+                    # cost 2.2 us against 0.7 us (the default scene; numba's handling of a
+                    # function that passes the network and table tuples on, it seems)
                     _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope)
                 else:
                     nfev += _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab,

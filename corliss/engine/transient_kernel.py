@@ -62,7 +62,7 @@ from corliss.errors import RunError
 
 #: Revision of the inlined kernel, property and port-flow code: numba keys this file's
 #: cache on its content alone (see :mod:`corliss.engine.kernel`).
-DEPENDENCY_REVISION = 24
+DEPENDENCY_REVISION = 25
 
 TWO_PI = 2.0 * math.pi
 

@@ -504,50 +504,17 @@ def kappa_at(tab, rho, u):
 
 
 @njit(cache=True, inline="always")
-def lookup_partials(tab, rho, u, T_near=math.nan):
-    """:func:`lookup_flagged` and the pressure's partial derivatives, from the same
-    interpolation.
+def pressure_partials(tab, rho, u, p, T, superheated, code):
+    """The pressure's partial derivatives at a state the lookup has answered, from
+    the same interpolation.
 
     Vapour: ``p = q rho`` with ``q`` bilinear in (ln rho, u), differentiated on its
     cell.  Wet steam: the temperature solves the lever rule's residual
     ``R(T; u, v) = 0`` (:func:`_lever`), so ``dT/du = -(v_g - v_f) / R_T`` and
     ``dT/dv = (u_g - u_f) / R_T``, and ``p = exp(ln p(T))`` piecewise linear in T.
-    A coordinate clamped to the table's edge has no derivative.
-
-    Parameters
-    ----------
-    tab : tuple
-        The table's arrays, :meth:`SteamTable.arrays`.
-    rho : float
-        Density [kg/m3].
-    u : float
-        Specific internal energy [J/kg].
-    T_near : float, optional
-        A temperature near the answer [K], where the wet state's iteration starts
-        (:func:`lookup_near`); NaN (the default): the saturated vapour's.
-
-    Returns
-    -------
-    p, T, x, superheated, code
-        As :func:`lookup_flagged`: pressure [Pa], temperature [K], dryness [-], vapour,
-        clamp code.
-    p_rho : float
-        dp/drho at constant u [Pa m3/kg].
-    p_u : float
-        dp/du at constant rho [Pa kg/J].
-    """
-    p, T, x, sup, code = lookup_near(tab, rho, u, T_near)
-    p_rho, p_u = pressure_partials(tab, rho, u, p, T, sup, code)
-    return p, T, x, sup, code, p_rho, p_u
-
-
-@njit(cache=True, inline="always")
-def pressure_partials(tab, rho, u, p, T, superheated, code):
-    """The pressure's partial derivatives at a state the lookup has answered.
-
-    :func:`lookup_partials` without the lookup, for a caller that holds its answer
-    (the analytic Jacobian after the right-hand side at the same state): the same
-    arithmetic on the same cell.
+    A coordinate clamped to the table's edge has no derivative.  The answer is the
+    caller's (:func:`lookup_near`'s, or for the analytic Jacobian that of the
+    right-hand side just evaluated at the same state).
 
     Parameters
     ----------
