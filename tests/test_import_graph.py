@@ -26,7 +26,7 @@ LAYERS = [
     ("corliss.scene", 3), ("corliss.studies", 3), ("corliss.fitting", 3),
     ("corliss.plot", 4),
     ("corliss.files", 5),
-    ("corliss.cli", 6),
+    ("corliss.cli", 6), ("corliss.__main__", 6),
 ]
 #: The three physics packages of layer 1 are independent of each other.
 INDEPENDENT = {"corliss.thermo", "corliss.valves", "corliss.governors"}
@@ -109,7 +109,7 @@ def test_no_import_crosses_a_layer_boundary_upwards():
 def test_no_module_imports_a_private_name_of_another():
     _, edges = _edges()
     wrong = [f"{src}:{line} imports {name} from {dest}" for src, dest, name, line in edges
-             if name and name.startswith("_") and dest != src]
+             if name and name.startswith("_") and not name.endswith("__") and dest != src]
     assert not wrong, "\n".join(wrong)
 
 

@@ -30,11 +30,12 @@ import tempfile
 from importlib.metadata import PackageNotFoundError
 from pathlib import Path
 
+import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.figure import Figure
 
-from corliss import plot
+from corliss import __version__, plot
 from corliss.frames import columns
-from corliss.engine import result as engine_result
 from corliss.engine.options import Fidelity
 from corliss.errors import InputError
 from corliss.scene.loader import scene_from_dict
@@ -62,8 +63,7 @@ def package_version() -> str:
     try:
         return installed_version("corliss")
     except PackageNotFoundError:  # pragma: no cover - running from a source tree
-        import corliss
-        return corliss.__version__
+        return __version__
 
 
 def dependency_versions() -> dict[str, str | None]:
@@ -503,13 +503,14 @@ def write(result, out_dir, plots: bool = True) -> dict[str, Path]:
             _write_table(result, table, staged, name, None)
             files[table] = out.files[name]
         if plots:
-            import matplotlib
-            matplotlib.use("Agg")
-            import matplotlib.pyplot as plt
             for kind, size in _figures(result):
-                fig, ax = (plt.subplots(figsize=size) if size[0] else (None, None))
+                # a one-axes figure is drawn on a Figure of its own (no pyplot, no
+                # backend); a figure of several axes is made by its plot function
+                fig = Figure(figsize=size) if size[0] else None
+                ax = fig.add_subplot() if fig is not None else None
                 try:
-                    drawn = plot_result(result, kind, ax)
+                    with plt.ioff():
+                        drawn = plot_result(result, kind, ax)
                     fig = drawn.get("figure", fig)
                     name = f"{stem}.{kind}.png"
                     fig.savefig(out.stage(name), dpi=DPI, bbox_inches="tight", format="png",
@@ -523,13 +524,3 @@ def write(result, out_dir, plots: bool = True) -> dict[str, Path]:
         files["summary"] = out.files[name]
     return files
 
-
-class _Exporter:
-    """What the engine's results call for their export methods."""
-
-    to_csv = staticmethod(to_csv)
-    plot = staticmethod(plot_result)
-    write = staticmethod(write)
-
-
-engine_result.register_exporter(_Exporter())

@@ -18,7 +18,10 @@ from pathlib import Path
 import numpy as np
 
 from corliss.keys import units
+from corliss.engine.flywheel import parse_flywheel
 from corliss.engine.geometry import EngineSpec
+from corliss.engine.load import parse_load
+from corliss.governors import GOVERNORS
 from corliss.governors.operating_point import working_travel
 from corliss.engine.options import (COMPILED_METHODS, EFFECT_KEYS, EFFECTS, PLANNED_EFFECTS,
                                     PRESETS, SCIPY_METHODS, Fidelity)
@@ -28,6 +31,7 @@ from corliss.scene.sections import (COMPARE, COMPOUND, ENGINE, EXHAUST, FLYWHEEL
                                   RECORD_CHOICES, RUN, START_CHOICES, SUPPLY)  # noqa: F401
 from corliss.keys.toml_table import Table
 from corliss.keys.textfiles import read_text
+from corliss.thermo import steam_table
 from corliss.thermo.steam import BACKENDS, HEOSSteam, TableSteam
 from corliss.valves import GEARS
 
@@ -520,7 +524,6 @@ def _check_states(data: dict, supply: SupplySpec, exhaust: ExhaustSpec, run: Run
     before any work: below the critical pressure (IAPWS: 22.064 MPa; no steam and
     water apart above it), and for the ``table`` tier inside the table's density and
     energy, with room for the exhaust steam to expand a little below back pressure."""
-    from corliss.thermo import steam_table
     raw_p = data["supply"].get("pressure")
     if supply.pressure_Pa >= units.CRITICAL_PRESSURE_Pa:
         raise InputError("supply.pressure", raw_p, "a pressure below the critical pressure of "
@@ -797,8 +800,6 @@ def _speed_loop(data: dict, run: RunSpec, supply: SupplySpec, gt, gear, baromete
                 scene_dir: Path | None) -> dict:
     """The [flywheel], [load] and [governor] sections of a transient run, checked against
     the rest of the scene (what the governor moves must exist)."""
-    from corliss.engine.flywheel import parse_flywheel
-    from corliss.engine.load import parse_load
     present = [k for k in ("governor", "flywheel", "load") if k in data]
     if run.mode != "transient":
         if present:
@@ -815,7 +816,6 @@ def _speed_loop(data: dict, run: RunSpec, supply: SupplySpec, gt, gear, baromete
     load = parse_load(Table(data["load"], "load", barometer, LOAD), run.speed_rad_s, scene_dir)
     out = {"flywheel": flywheel, "load": load}
     if "governor" in data:
-        from corliss.governors import GOVERNORS
         g = Table(data["governor"], "governor", barometer)
         gov_t = _registered(g, GOVERNORS)
         g.bind(gov_t.keys)

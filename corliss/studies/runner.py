@@ -34,7 +34,7 @@ import numpy as np
 from corliss.engine.model import steady_scene
 from corliss.engine.steady import run_steady
 from corliss.errors import InputError
-from corliss.scene.loader import Scene, find_scene, load_scene, scene_from_dict
+from corliss.scene.loader import Scene, default_scene_path, find_scene, load_scene, scene_from_dict
 from corliss.keys.edits import KeyValue, with_keys
 from corliss.studies.sampling import make_design
 from corliss.studies.responses import check_responses, flatten, response_value
@@ -123,7 +123,6 @@ def _base_of(scene) -> tuple[dict, Scene]:
     if isinstance(scene, dict):
         return scene, scene_from_dict(scene, name="scene")
     if scene is None or isinstance(scene, (str, Path)):
-        from corliss.scene.loader import default_scene_path
         sc = load_scene(find_scene(scene) if scene is not None else default_scene_path())
         return sc.data, sc
     raise InputError("scene", scene, "a Scene, its tables (dict), a scene file or a bundled "
