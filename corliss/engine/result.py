@@ -44,10 +44,10 @@ TWO_PI = 2.0 * math.pi
 NO_WORK_REASON = ("undefined: the card does no net work, so there is no stroke's work to "
                   "refer the fluctuation to (Marks Art. 57)")
 
-#: The module that writes a result's files and draws its figures (the files layer, above this one): loaded by
-#: name the first time an export method is called, as python-control's
-#: ``TimeResponseData`` hands its plots to a module of their own, so that the engine
-#: imports no file writer and ``import corliss`` loads none.
+#: The module that writes a result's files and draws its figures (the files layer, above
+#: this one): loaded by name the first time an export method is called, as
+#: python-control's ``TimeResponseData`` hands its plots to a module of their own, so
+#: that the engine imports no file writer and ``import corliss`` loads none.
 WRITER = "corliss.files.run_output"
 
 

@@ -191,10 +191,10 @@ XTOL, FTOL = 1e-4, 1e-8
 MAX_NFEV_PER_KEY = 60
 
 
-#: The module that writes a fit's files and draws its card (the files layer, above this one): loaded by
-#: name the first time an export method is called, as python-control's
-#: ``TimeResponseData`` hands its plots to a module of their own, so that the fitting package
-#: imports no file writer and ``import corliss`` loads none.
+#: The module that writes a fit's files and draws its card (the files layer, above this
+#: one): loaded by name the first time an export method is called, as python-control's
+#: ``TimeResponseData`` hands its plots to a module of their own, so that the fitting
+#: package imports no file writer and ``import corliss`` loads none.
 WRITER = "corliss.files.fit_output"
 
 

@@ -3,7 +3,7 @@
 Every dimensional value is a quantity string with its unit; unknown keys, missing
 units and impossible geometry are :class:`~corliss.errors.InputError` naming the key,
 the value and what would be valid, raised before any work starts.  The format is
-described in the README and ``docs/architecture.md`` and shown by
+described in ``docs/scenes.md`` and ``docs/scene-reference.md`` and shown by
 ``scenes/default.toml``.
 """
 

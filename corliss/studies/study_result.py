@@ -27,10 +27,10 @@ RUN_ID = "run_id"
 STATUS = "status"
 ERROR = "error"
 
-#: The module that writes a study's files and draws its figure (the files layer, above this one): loaded by
-#: name the first time an export method is called, as python-control's
-#: ``TimeResponseData`` hands its plots to a module of their own, so that the studies package
-#: imports no file writer and ``import corliss`` loads none.
+#: The module that writes a study's files and draws its figure (the files layer, above
+#: this one): loaded by name the first time an export method is called, as
+#: python-control's ``TimeResponseData`` hands its plots to a module of their own, so
+#: that the studies package imports no file writer and ``import corliss`` loads none.
 WRITER = "corliss.files.study_output"
 
 
