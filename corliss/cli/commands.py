@@ -1100,9 +1100,6 @@ def main(argv: list[str] | None = None) -> int:
         with nothing written, and 0 when the output pipe closes early.
     """
     args = build_parser().parse_args(argv)
-    # the command draws into files only: matplotlib's file backend unless the user
-    # named one (the library never sets it; matplotlib reads this when first imported)
-    os.environ.setdefault("MPLBACKEND", "Agg")
     beat = configure_logging(args.verbose)
     try:
         return args.func(args)

@@ -21,8 +21,6 @@ import hashlib
 import json
 from pathlib import Path
 
-from matplotlib.figure import Figure
-
 from corliss.keys import units
 from corliss.errors import InputError
 from corliss.fitting import solver
@@ -212,6 +210,7 @@ def write(fit_result: FitResult, out_dir, plots: bool = True,
         out.stage(FILES["scene"]).write_text(toml_text, encoding="utf-8")
         files["scene"] = out.files[FILES["scene"]]
         if plots:
+            from matplotlib.figure import Figure  # only when drawing
             fig = Figure(figsize=(9, 5.8))        # no pyplot: the user's backend untouched
             plot_fit_card(fit_result, ax=fig.add_subplot(), units_system=units_system)
             fig.savefig(out.stage(FILES["card"]), dpi=DPI, bbox_inches="tight",

@@ -30,9 +30,7 @@ import tempfile
 from importlib.metadata import PackageNotFoundError
 from pathlib import Path
 
-import matplotlib.pyplot as plt
 import numpy as np
-from matplotlib.figure import Figure
 
 from corliss import __version__, plot
 from corliss.frames import columns
@@ -503,6 +501,8 @@ def write(result, out_dir, plots: bool = True) -> dict[str, Path]:
             _write_table(result, table, staged, name, None)
             files[table] = out.files[name]
         if plots:
+            import matplotlib.pyplot as plt     # only when drawing: a run without
+            from matplotlib.figure import Figure  # figures imports no matplotlib
             for kind, size in _figures(result):
                 # a one-axes figure is drawn on a Figure of its own (no pyplot, no
                 # backend); a figure of several axes is made by its plot function

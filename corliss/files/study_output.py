@@ -21,8 +21,6 @@ import logging
 import tomllib
 from pathlib import Path
 
-import matplotlib.pyplot as plt
-
 from corliss.errors import InputError
 from corliss.logs import NOTICE
 from corliss.plot import plot_study
@@ -162,6 +160,7 @@ def write(result, out_dir, plots: bool = True, parquet: bool | None = None) -> d
         out.stage(bname).write_text(text, encoding="utf-8")
         files["base"] = out.files[bname]
         if plots:
+            import matplotlib.pyplot as plt       # only when drawing
             with plt.ioff():
                 drawn = plot(result, None, None)
             try:

@@ -21,8 +21,6 @@ from corliss.keys import units
 from corliss.engine.flywheel import parse_flywheel
 from corliss.engine.geometry import EngineSpec
 from corliss.engine.load import parse_load
-from corliss.governors import GOVERNORS
-from corliss.governors.operating_point import working_travel
 from corliss.engine.options import (COMPILED_METHODS, EFFECT_KEYS, EFFECTS, PLANNED_EFFECTS,
                                     PRESETS, SCIPY_METHODS, Fidelity)
 from corliss.errors import InputError
@@ -816,6 +814,8 @@ def _speed_loop(data: dict, run: RunSpec, supply: SupplySpec, gt, gear, baromete
     load = parse_load(Table(data["load"], "load", barometer, LOAD), run.speed_rad_s, scene_dir)
     out = {"flywheel": flywheel, "load": load}
     if "governor" in data:
+        # the governors are loaded for a governed scene only: a steady run imports none
+        from corliss.governors import GOVERNORS
         g = Table(data["governor"], "governor", barometer)
         gov_t = _registered(g, GOVERNORS)
         g.bind(gov_t.keys)
@@ -864,6 +864,7 @@ def _check_governed_speed(gov, mech, g: Table, run: RunSpec) -> None:
     """Refuse a governor ``gov`` (tabulated as ``mech``) whose static characteristic
     balances nowhere near the run speed (a drive ratio that puts its working speed far
     from the engine's), naming the key and the speed it would govern at."""
+    from corliss.governors.operating_point import working_travel   # a governed scene only
     ends = np.array(working_travel(mech))
     lo, hi = gov.equilibrium_speed_rad_s(ends) / units.RPM_RAD_S
     rpm = run.speed_rpm
