@@ -28,7 +28,7 @@ LAYERS = [
     ("corliss.scene", 3), ("corliss.section_keys", 3), ("corliss.scene_reference", 3), ("corliss.studies", 3), ("corliss.fitting", 3),
     ("corliss.plot", 4),
     ("corliss.results", 5), ("corliss.study_output", 5), ("corliss.design_scene", 5),
-    ("corliss.fit_output", 5),
+    ("corliss.fit_output", 5), ("corliss.workbench", 5),
     ("corliss.heartbeat", 6),
     ("corliss.cli", 6),
 ]
