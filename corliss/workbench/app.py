@@ -263,7 +263,7 @@ class Workbench:
         self.ports.legend.label_text_font_size = "8pt"
         self.ports.legend.background_fill_alpha = 0.6
 
-        self.toml = TextAreaInput(value=self.scene_text(), rows=14, width=380, title="scene",
+        self.toml = TextAreaInput(value=self.scene_text(), rows=12, width=720, title="scene",
                                   css_classes=["wb-toml"], disabled=True)
         self.save = Button(label="save scene (TOML)", css_classes=["wb-save"], width=200)
         self.save.js_on_click(CustomJS(args={"area": self.toml, "name": f"{self.name}.toml"},
@@ -373,15 +373,16 @@ class Workbench:
                                       f"[{card['x_unit']}]")
         self.card.yaxis.axis_label = f"pressure [{card['p_unit']}]"
         s = v["summary"]
-        self.card.title.text = (f"{v['title']}: {v['speed_rpm']:.0f} rpm, "
-                                f"{s['indicated power']}, m.e.p. {s['m.e.p.']}")
+        self.card.title.text = (f"{v['title']}: {s['indicated power']}, "
+                                f"m.e.p. {s['m.e.p.']}")
         rows = "".join(f"<tr><td style='padding-right: 1em'>{html.escape(k)}</td>"
                        f"<td class='wb-num' data-key='"
                        f"{html.escape(k)}'>{html.escape(t)}</td></tr>" for k, t in s.items())
         self.summary.text = f"<table class='wb-summary-table'>{rows}</table>"
         ev = v["events"]
-        cells = "".join(f"<tr><td>{html.escape(e)}</td><td class='wb-head'>{h}</td>"
-                        f"<td class='wb-crank'>{c}</td></tr>"
+        td = "<td style='padding: 1px 8px 1px 0'"
+        cells = "".join(f"<tr>{td}>{html.escape(e)}</td>{td} class='wb-head'>{h}</td>"
+                        f"{td} class='wb-crank'>{c}</td></tr>"
                         for e, h, c in zip(ev["event"], ev["head"], ev["crank"]))
         self.table.text = ("<table class='wb-events-table' style='border-collapse: collapse'>"
                            "<tr><th style='text-align:left'>event</th><th>head</th>"

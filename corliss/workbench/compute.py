@@ -3,7 +3,7 @@
 :func:`compute_view` loads the edited scene, runs its steady card and gathers what the
 page draws (the card of each end with its events, the events table, the Zeuner
 diagram, the port openings against crank angle and the summary), in the units the
-page shows, as plain lists and numbers: it runs in a worker process, off the page
+page shows, as arrays (sent to the browser as binary buffers), numbers and text: it runs in a worker process, off the page
 server's event loop, and its answer crosses back by pickling.  A scene the loader
 refuses comes back as its message and the key it names.
 """
@@ -62,8 +62,8 @@ def card_view(result, system: str) -> dict:
         card = held[end]
         frac = np.asarray(card["piston_frac"], dtype=float)
         p = np.asarray(card["p_Pa"], dtype=float)
-        out[end] = {"x": units.to_unit(frac * stroke, x_unit).tolist(),
-                    "y": units.to_unit(p, p_unit, barometer_Pa=baro).tolist()}
+        out[end] = {"x": np.asarray(units.to_unit(frac * stroke, x_unit), dtype=float),
+                    "y": np.asarray(units.to_unit(p, p_unit, barometer_Pa=baro), dtype=float)}
         ev = result.events.get(end, {})
         ang = np.mod(np.asarray(card["crank_angle_deg"], dtype=float), 360.0) \
             if "crank_angle_deg" in card else None
@@ -134,9 +134,9 @@ def ports_view(gear, system: str) -> dict:
     th = np.linspace(0.0, 2.0 * np.pi, ANGLES)
     op = units.to_unit(np.asarray(gear.openings(th), dtype=float), "in" if system == "US"
                        else "mm")
-    out = {"deg": np.degrees(th).tolist()}
+    out = {"deg": np.degrees(th)}
     for i, port in enumerate(PORTS):
-        out[port] = op[i].tolist()
+        out[port] = op[i]
     return out
 
 
@@ -163,17 +163,17 @@ def zeuner_view(gear, system: str) -> dict | None:
             or not hasattr(spec, "exhaust_lap_m"):
         return None
     u = "in" if system == "US" else "mm"
-    th = np.linspace(0.0, 2.0 * np.pi, 2 * ANGLES - 1)
+    th = np.linspace(0.0, 2.0 * np.pi, ANGLES)
     x = units.to_unit(np.asarray(gear.travel(th), dtype=float), u)
     out = {}
     for end, mask, rad in (("head", x > 0, x), ("crank", x <= 0, -x)):
-        out[end] = {"x": np.where(mask, rad * np.cos(th), np.nan).tolist(),
-                    "y": np.where(mask, rad * np.sin(th), np.nan).tolist()}
+        out[end] = {"x": np.where(mask, rad * np.cos(th), np.nan),
+                    "y": np.where(mask, rad * np.sin(th), np.nan)}
     t = np.linspace(0.0, 2.0 * np.pi, 181)
     radii = sorted({abs(float(units.to_unit(v, u))) for v in (*spec.lap_m, *spec.exhaust_lap_m)}
                    - {0.0})
-    out["circles"] = {"x": [(r * np.cos(t)).tolist() for r in radii],
-                      "y": [(r * np.sin(t)).tolist() for r in radii]}
+    out["circles"] = {"x": [r * np.cos(t) for r in radii],
+                      "y": [r * np.sin(t) for r in radii]}
     out["r"] = float(np.nanmax(np.abs(x))) if x.size else 1.0
     return out
 
