@@ -25,8 +25,9 @@ from dataclasses import dataclass
 from functools import partial
 
 from bokeh.layouts import column, row
-from bokeh.models import (Button, CheckboxGroup, ColumnDataSource, CustomJS, Div,
-                          LabelSet, RadioButtonGroup, Select, Slider, Span, TextAreaInput)
+from bokeh import models as bkm         # Div by its module: its docstring upsets numpydoc
+from bokeh.models import (Button, CheckboxGroup, ColumnDataSource, CustomJS, LabelSet,
+                          RadioButtonGroup, Select, Slider, Span, TextAreaInput)
 from bokeh.plotting import figure
 
 from corliss.scene_keys import with_keys
@@ -100,7 +101,7 @@ class Runner:
 class _Widget:
     control: Control
     widget: object
-    error: Div
+    error: bkm.Div
 
 
 def _css(name: str) -> str:
@@ -195,8 +196,9 @@ class Workbench:
         else:
             w = Select(title=c.label, options=list(c.choices), value=c.value, width=300,
                        css_classes=css)
-        err = Div(text="", visible=False, width=300, css_classes=[css[0] + "-error", "wb-error"],
-                  styles={"color": "#a00000", "font-size": "12px"})
+        err = bkm.Div(text="", visible=False, width=300,
+                      css_classes=[css[0] + "-error", "wb-error"],
+                      styles={"color": "#a00000", "font-size": "12px"})
         item = _Widget(c, w, err)
         prop = "active" if c.widget == "effects" else "value"
         w.on_change(prop, partial(self._on_control, item))
@@ -214,8 +216,8 @@ class Workbench:
                                              active=0 if self.units == "US" else 1)
         self.units_switch.on_change("active", self._on_units)
         self.controls = self._controls_column()
-        self.status = Div(text="working...", css_classes=["wb-status"], width=700)
-        self.summary = Div(text="", css_classes=["wb-summary"], width=380)
+        self.status = bkm.Div(text="working...", css_classes=["wb-status"], width=700)
+        self.summary = bkm.Div(text="", css_classes=["wb-summary"], width=380)
 
         self.card_src = {e: ColumnDataSource({"x": [], "y": []}) for e in ("head", "crank")}
         self.marks = ColumnDataSource({"x": [], "y": [], "label": [], "end": []})
@@ -237,7 +239,7 @@ class Workbench:
         self.card.legend.background_fill_alpha = 0.0
         self.card.legend.border_line_alpha = 0.0
 
-        self.table = Div(text="", css_classes=["wb-events"], width=380)
+        self.table = bkm.Div(text="", css_classes=["wb-events"], width=380)
 
         self.zsrc = {e: ColumnDataSource({"x": [], "y": []}) for e in ("head", "crank")}
         self.zcircles = ColumnDataSource({"xs": [], "ys": []})
@@ -251,7 +253,7 @@ class Workbench:
                                legend_label="lap circles")
         self.zeuner.legend.label_text_font_size = "8pt"
         self.zeuner.legend.background_fill_alpha = 0.6
-        self.znote = Div(text="", visible=False, width=380)
+        self.znote = bkm.Div(text="", visible=False, width=380)
 
         self.psrc = ColumnDataSource({"deg": [], **{p: [] for p in _PORT_STYLE}})
         self.ports = figure(width=720, height=280, title="port openings",
@@ -277,7 +279,7 @@ class Workbench:
             setTimeout(() => { URL.revokeObjectURL(a.href); a.remove(); }, 1000);
         """))
 
-        head = Div(text=f"<b>corliss workbench</b>: {html.escape(self.name)}", width=320)
+        head = bkm.Div(text=f"<b>corliss workbench</b>: {html.escape(self.name)}", width=320)
         self.left = column(head, self.units_switch, self.controls)
         right = column(self.status,
                        row(self.card, column(self.summary, self.table)),
