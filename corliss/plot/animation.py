@@ -27,8 +27,10 @@ import math
 import numpy as np
 
 from corliss import units
+from corliss.valves.baker import BakerGear
 from corliss.valves.corliss_gear import CorlissGear, CorlissSpec
 from corliss.valves.link_motion import LinkMotion, LinkMotionSpec
+from corliss.valves.oscillating import OscillatingCylinder
 from corliss.valves.radial_gear import JoySpec, RadialGear, SimpleRadialSpec, WalschaertsSpec
 from corliss.valves.slide_valve import LappedValve, SlideValve
 
@@ -70,6 +72,10 @@ def linkage_kind(gear) -> str:
         return "stephenson" if gear.spec.kind.startswith("stephenson") else "gooch_allen"
     if isinstance(gear, RadialGear) and gear.spec.motion == "exact":
         return "walschaerts" if gear.spec.kind == "walschaerts" else "radial"
+    if isinstance(gear, BakerGear):
+        return "radial"
+    if isinstance(gear, OscillatingCylinder):
+        return "oscillating"
     if isinstance(gear, LappedValve):
         return "travel"
     raise ValueError(f"the {gear.name} gear has no single valve to animate")
@@ -465,21 +471,24 @@ class _Walschaerts(_Linkage):
 
 
 class _Radial(_Linkage):
-    """The exact Hackworth, Marshall, Angstrom (a vertical engine) or Joy gear: its rods
-    and links as the joints give them, the guide at its setting, and the crank."""
+    """The exact Hackworth, Marshall, Angstrom (a vertical engine), Joy or Baker gear: its
+    rods and links as the joints give them, the guide at its setting (the Baker gear's:
+    the arc its gear connecting rod's middle pin swings on), and the crank."""
 
     def __init__(self, ax, gear, scale, stroke_m):
         super().__init__(ax, gear, scale, stroke_m)
-        self.joy = gear.spec.kind == "joy"
+        # the Joy and Baker gears draw their main crank among their rods
+        self.joy = getattr(gear.spec, "kind", "baker") in ("joy", "baker")
         j0 = gear.joints(0.0)
         gx, gy = zip(*(_xy(p, scale) for p in j0.guide))
         ax.plot(gx, gy, color=_FIXED, lw=5.0, alpha=0.5, solid_capstyle="butt")
         ax.plot([0], [0], "o", color=_FIXED, ms=5)
         mv = self.moving
         self.crank = None if self.joy else _line(ax, lw=3.0, moving=mv)
-        widths = {"crank": 3.0, "eccentric": 2.0, "connecting rod": 2.4}
+        widths = {"crank": 3.0, "main crank": 3.0, "eccentric": 2.0, "connecting rod": 2.4}
         self.lines = {n: _line(ax, lw=widths.get(n, 1.5), moving=mv,
-                               color=_FIXED if n in ("eccentric", "anchor link") else _ROD)
+                               color=_FIXED if n in ("eccentric", "anchor link", "yoke")
+                               else _ROD)
                       for n in j0.rods_m}
         self.pins = self._mv(ax.plot([], [], "o", color=_ROD, ms=3)[0])
         self.valve = self._mv(ax.plot([], [], "s", color=_STEAM, ms=6)[0])
@@ -513,6 +522,49 @@ class _Radial(_Linkage):
         v = _xy(j.points.get("valve_rod_end", j.points["valve_pin"]), sc)
         self.valve.set_data([v[0]], [v[1]])
         self.rods = {n: (self.lines[n], j.rods_m[n][0]) for n in j.rods_m}
+        return j
+
+
+class _Oscillating(_Linkage):
+    """An oscillating engine: the crank, the piston rod and the cylinder swinging on its
+    trunnion (the cylinder's body drawn schematically, a stroke and a bit long about the
+    trunnion); the valve panel beside it is the port face developed flat."""
+
+    def __init__(self, ax, gear, scale, stroke_m):
+        super().__init__(ax, gear, scale, stroke_m)
+        s = gear.spec
+        R, D = s.crank_m * scale, s.trunnion_distance_m * scale
+        self._circle((0, 0), s.crank_m, color=_FIXED, lw=0.6, ls=":")
+        ax.plot([0], [0], "o", color=_FIXED, ms=5)
+        ax.plot([0], [D], "o", color=_FIXED, ms=6)
+        mv = self.moving
+        self.crank = _line(ax, lw=3.0, moving=mv)
+        self.prod = _line(ax, lw=2.0, moving=mv)
+        self.body = _line(ax, lw=1.4, moving=mv)
+        self.piston = _line(ax, lw=3.0, color=_STEAM, moving=mv)
+        self.half = 1.3 * R
+        self.radius = 0.5 * R
+        ax.set_xlim(-2.2 * R, 2.2 * R)
+        ax.set_ylim(-1.3 * R, D + 1.6 * R)
+        ax.text(0.01, 0.97, "oscillating cylinder: the port face swings with it",
+                transform=ax.transAxes, va="top", fontsize=7, color="0.4")
+
+    def update(self, theta):
+        j = self.gear.joints(theta)
+        sc = self.scale
+        pin, tr, pi_ = _xy(j.crank_pin, sc), _xy(j.trunnion, sc), _xy(j.piston, sc)
+        _set(self.crank, (0, 0), pin)
+        _set(self.prod, pin, pi_)
+        ux, uy = tr[0] - pin[0], tr[1] - pin[1]
+        d = math.hypot(ux, uy)
+        ux, uy = ux / d, uy / d
+        nx, ny = -uy * self.radius, ux * self.radius
+        a = (tr[0] - ux * self.half, tr[1] - uy * self.half)
+        b = (tr[0] + ux * self.half, tr[1] + uy * self.half)
+        _set(self.body, (a[0] + nx, a[1] + ny), (b[0] + nx, b[1] + ny), (b[0] - nx, b[1] - ny),
+             (a[0] - nx, a[1] - ny), (a[0] + nx, a[1] + ny))
+        _set(self.piston, (pi_[0] + nx, pi_[1] + ny), (pi_[0] - nx, pi_[1] - ny))
+        self.rods = {"crank": (self.crank, self.gear.spec.crank_m)}
         return j
 
 
@@ -825,7 +877,8 @@ def animate_gear(gear, result=None, *, frames: int = 72, stroke_m: float | None 
     ax_link.axis("off")
     artists = {}
     linkage = {"eccentric": _Eccentric, "stephenson": _Stephenson, "walschaerts": _Walschaerts,
-               "gooch_allen": _GoochAllen, "radial": _Radial, "travel": _Travel}
+               "gooch_allen": _GoochAllen, "radial": _Radial, "travel": _Travel,
+               "oscillating": _Oscillating}
     if kind == "corliss":
         drawer = _Corliss(ax_link, gear, scale, stroke_m, ax_shaft, ax_valves)
         artists["valve_edges"] = [(line, c, b, sn) for line, c, b, sn in

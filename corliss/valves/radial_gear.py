@@ -903,6 +903,46 @@ def _walschaerts(spec: WalschaertsSpec, th):
     return -pts["valve_pin"][0] if spec.admission == "outside" else pts["valve_pin"][0]
 
 
+def combination_lever(Dd, XH, rho, a, ell, ul, yv, outside):
+    """The combination lever of a Walschaerts or Baker gear solved at every crank angle:
+    its radius rod (length ``rho``) pinned at ``Dd``, its union link (length ``ul``)
+    at the crosshead arm ``XH`` (points, shape (2, n) [m]), its valve pin on the line
+    ``y = yv``; ``a`` and ``ell`` from the radius rod's pin to the valve pin's and the
+    union link's, the valve pin above the radius rod's (``outside``) or between the two.
+
+    Returns
+    -------
+    V : ndarray
+        The valve pin, shape (2, n) [m].
+    w : ndarray
+        The lever's unit vector, valve pin towards the radius rod's pin for outside
+        admission (shape (2, n)).
+    da, dl : float
+        The radius rod's pin at ``V + da w`` and the union link's at ``V + dl w`` [m].
+    """
+    n = Dd.shape[1]
+    # the lever: unknowns the valve pin's x and the lever's angle gamma from the vertical
+    if outside:
+        da, dl = -a, -(a + ell)            # A = V + da w, L = V + dl w
+    else:
+        da, dl = a, -(ell - a)
+
+    def residual(vx, g):
+        wx, wy = np.sin(g), np.cos(g)
+        ax_, ay_ = vx + da * wx, yv + da * wy
+        lx, ly = vx + dl * wx, yv + dl * wy
+        return (np.hypot(ax_ - Dd[0], ay_ - Dd[1]) - rho,
+                np.hypot(lx - XH[0], ly - XH[1]) - ul)
+
+    ax0 = Dd[0] + rho
+    lx0 = XH[0] + ul
+    g = np.arcsin(np.clip((ax0 - lx0) / ell, -0.99, 0.99))
+    vx = ax0 - da * np.sin(g)
+    vx, g = newton2(residual, vx, g, 1e-7 * rho, 1e-8, 1e-13 * rho, 1e-13)
+    w = np.array([np.sin(g), np.cos(g)])
+    return np.array([vx, np.full(n, yv)]), w, da, dl
+
+
 def _walschaerts_points(spec: WalschaertsSpec, th) -> dict:
     """Every joint of the exact Walschaerts gear at crank angles ``th`` (arrays of shape
     (2, n) [m]; see the module doc)."""
@@ -929,27 +969,7 @@ def _walschaerts_points(spec: WalschaertsSpec, th) -> dict:
 
     s = (1.0 if outside else -1.0) * spec.die_m
     Dd = on_link(s)
-    # the lever: unknowns the valve pin's x and the lever's angle gamma from the vertical
-    if outside:
-        da, dl = -a, -(a + ell)            # A = V + da w, L = V + dl w
-    else:
-        da, dl = a, -(ell - a)
-    yv = spec.valve_height_m
-
-    def residual(vx, g):
-        wx, wy = np.sin(g), np.cos(g)
-        ax_, ay_ = vx + da * wx, yv + da * wy
-        lx, ly = vx + dl * wx, yv + dl * wy
-        return (np.hypot(ax_ - Dd[0], ay_ - Dd[1]) - rho,
-                np.hypot(lx - XH[0], ly - XH[1]) - ul)
-
-    ax0 = Dd[0] + rho
-    lx0 = XH[0] + ul
-    g = np.arcsin(np.clip((ax0 - lx0) / ell, -0.99, 0.99))
-    vx = ax0 - da * np.sin(g)
-    vx, g = newton2(residual, vx, g, 1e-7 * rho, 1e-8, 1e-13 * rho, 1e-13)
-    w = np.array([np.sin(g), np.cos(g)])
-    V = np.array([vx, np.full(n, yv)])
+    V, w, da, dl = combination_lever(Dd, XH, rho, a, ell, ul, spec.valve_height_m, outside)
     umax = spec.max_die_m
     return {"axle": np.zeros((2, n)), "crank_pin": np.array([Bx, By]),
             "crosshead": np.array([Cx, np.zeros(n)]), "crosshead_arm": XH,
