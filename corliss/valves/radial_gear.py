@@ -910,6 +910,24 @@ def combination_lever(Dd, XH, rho, a, ell, ul, yv, outside):
     ``y = yv``; ``a`` and ``ell`` from the radius rod's pin to the valve pin's and the
     union link's, the valve pin above the radius rod's (``outside``) or between the two.
 
+    Parameters
+    ----------
+    Dd : ndarray
+        The radius rod's (Baker: valve rod's) far end at each crank angle, shape (2, n) [m].
+    XH : ndarray
+        The union link's pin on the crosshead arm, shape (2, n) [m].
+    rho : float
+        The radius rod's length [m].
+    a, ell : float
+        Along the lever from the radius rod's pin to the valve pin and to the union
+        link's pin [m].
+    ul : float
+        The union link's length [m].
+    yv : float
+        The valve stem's height [m].
+    outside : bool
+        Outside admission (the valve pin above the radius rod's pin).
+
     Returns
     -------
     V : ndarray

@@ -57,10 +57,29 @@ class SlipEccentricSpec(SlideValveSpec):
     The fields of :class:`~corliss.valves.slide_valve.SlideValveSpec`, with
     ``angular_advance_rad`` the advance the eccentric has in the direction it is
     running (``forward_advance_rad`` ahead, ``backward_advance_rad`` astern: the
-    parser and :meth:`running` keep them so), and:
+    parser and :meth:`running` keep them so).
 
     Parameters
     ----------
+    eccentricity_m : float
+        Eccentric throw r [m].
+    lap_m, exhaust_lap_m : tuple of float
+        Steam and exhaust laps of the (head, crank) end [m].
+    angular_advance_rad : float
+        The advance of the stop that drives [rad].
+    port_width_m, port_length_m : float
+        The steam ports' width along the travel and length [m].
+    discharge_coefficient : float, optional
+        Of the port opening [-].
+    eccentric_rod_m : float or None, optional
+        Eccentric rod plus valve stem [m]; None for Zeuner's motion.
+    connection, steam, setting : str, optional
+        As the slide valve's (a slip eccentric drives its valve directly, steam
+        outside, set for equal lead).
+    ports_per_end : int, optional
+        Openings each edge uncovers.
+    allen_passage_m : float or None, optional
+        An Allen valve's passage [m]; None for a plain valve.
     forward_advance_rad : float
         Angular advance delta_f with the pin on the forward stop [rad].
     backward_advance_rad : float
