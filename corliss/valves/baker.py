@@ -53,9 +53,19 @@ by (1 +- a/l) as Walschaerts's does::
 
     C = (a/l) R        S = (1 +- a/l) (k2/k1) (n/(n+m)) tan(alpha) e / cos(phi)
 
-The exact linkage is solved at every crank angle: the eccentric crank's pin, then the
-bell crank's angle and the radius bars' by a vectorised Newton solve (two unknowns),
-then the combination lever as Walschaerts's; tabulated at 1/2 deg, splined, zeroed for
+*Derived here* too, to second order: the middle pin's arc about Y lifts it
+Delta^2 / (2 h) as it swings Delta either way, while the gear connecting rod's tilt
+drops its top n phi^2 / 2 below the middle pin's rise (phi = Delta / n): with the yoke
+centred the top stays still to second order when the radius bars are as long as the
+rod's upper part (h = n), the top then standing where the radius bars hang from, in
+line with the yoke's pivots (Wikipedia's statement).  Otherwise the difference lifts
+the top once each way of the swing, and the two ends' cut-offs part.
+
+The exact linkage is solved at every crank angle: the eccentric crank's pin; then the
+radius bars' angle by Newton's method (one unknown: the gear connecting rod's top
+found from it where the rod meets the bell crank's arm, a circle intersection, and its
+lower end on the line through the two, which the eccentric rod must reach); then the
+combination lever as Walschaerts's; tabulated at 1/2 deg, splined, zeroed for
 equal lead.  The yoke is tilted the way that runs the engine ahead for a positive
 setting (that way found from the linkage itself when the gear is built).
 """
@@ -74,8 +84,7 @@ from corliss.errors import InputError
 from corliss.keyspec import POSITIVE_LENGTH, Key, group
 from corliss.tables import Table
 from corliss.valves.gear import GearType, register
-from corliss.valves.newton import newton2
-from corliss.valves.radial_gear import RadialJoints, combination_lever
+from corliss.valves.radial_gear import RadialJoints, _circles, combination_lever
 from corliss.valves.slide_valve import (ALLEN_KEYS, LAP_KEYS, PORT_KEYS, LappedValve,
                                         parse_allen_passage, parse_ports)
 
@@ -228,21 +237,34 @@ def _points(spec: BakerSpec, th: np.ndarray, sense: float) -> dict:
     alpha = sense * spec.setting * spec.max_yoke_rad
     Y = O + h * np.array([math.sin(alpha), math.cos(alpha)])
 
-    def joints(mu, nu):
+    U0 = np.repeat(lay["U0"][:, None], N, axis=1)
+    Kn = np.repeat(K[:, None], N, axis=1)
+
+    def joints(mu):
+        # M on its circle about Y; U where the rod's upper part meets the bell crank's
+        # arm (the branch nearer U's place at the dead centres); P on the line M-U
         M = np.array([Y[0] - h * np.sin(mu), Y[1] - h * np.cos(mu)])
-        U = np.array([K[0] - k1 * np.cos(nu), K[1] - k1 * np.sin(nu)])
+        U = _circles(M, n, Kn, k1, U0)
         P = M + (m / n) * (M - U)
         return M, U, P
 
-    def residual(mu, nu):
-        M, U, P = joints(mu, nu)
-        return (np.hypot(U[0] - M[0], U[1] - M[1]) - n,
-                np.hypot(P[0] - Q[0], P[1] - Q[1]) - er)
+    def residual(mu):
+        M, U, P = joints(mu)
+        return np.hypot(P[0] - Q[0], P[1] - Q[1]) - er
 
-    mu, nu = newton2(residual, np.full(N, alpha), np.zeros(N), 1e-8, 1e-8, 1e-14, 1e-14)
-    M, U, P = joints(mu, nu)
-    r1, r2 = residual(mu, nu)
-    bad = ~((np.abs(r1) < 1e-9 * n) & (np.abs(r2) < 1e-9 * er))
+    # one unknown, the radius bars' angle: Newton's method, the derivative by a
+    # difference, each step held to 0.1 rad
+    mu = np.full(N, alpha)
+    for _ in range(60):
+        f0 = residual(mu)
+        d = (residual(mu + 1e-7) - f0) / 1e-7
+        step = np.clip(-f0 / d, -0.1, 0.1)
+        mu = mu + step
+        if np.all(np.abs(step) < 1e-14):
+            break
+    M, U, P = joints(mu)
+    bad = ~(np.abs(residual(mu)) < 1e-9 * er)
+    nu = np.arctan2(K[1] - U[1], K[0] - U[0])
     V = np.array([K[0] - k2 * np.sin(nu), K[1] + k2 * np.cos(nu)])
     outside = spec.admission == "outside"
     W, w, da, dl = combination_lever(V, XH, spec.valve_rod_m, spec.lever_valve_m,

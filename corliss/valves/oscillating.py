@@ -18,8 +18,10 @@ end's at radius rho from the trunnion's centre towards the head, the crank end's
 opposite it) is a slot of width ``w_c`` along its arc; the standard has a steam port
 and an exhaust port of width ``w_s`` on the same circle, their centres ``beta_s`` and
 ``beta_e`` either side of the line of centres (the head end's steam port on the side the
-cylinder swings to while the head end takes steam; the crank end's steam port
-diametrically opposite, so on the other side in the swing's sense).  Two slots on one
+cylinder's head-end port swings to while the head end takes steam; the crank end's
+steam port on the same side of the line of centres, across the trunnion, where the
+crank end's port, diametrically opposite the head end's, comes as the cylinder swings
+back).  Two slots on one
 circle overlap by ``(w_c + w_s)/2 - rho |psi - beta|`` (clipped to [0, min(w_c, w_s)]):
 arc lengths on a circle add as on a straight face.  The port face is therefore a lapped
 valve (:class:`~corliss.valves.slide_valve.LappedValve`) whose travel is the arc the
