@@ -9,10 +9,10 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq, fsolve
 
-from corliss import cli
+from corliss.cli import commands as cli
 from corliss.engine.model import build_gear, scene_events
 from corliss.errors import InputError
-from corliss.scene import find_scene, load_scene, scene_from_dict
+from corliss.scene.loader import find_scene, load_scene, scene_from_dict
 from corliss.valves.baker import BakerGear, baker_layout
 from corliss.valves.events import events
 from corliss.valves.oscillating import OscillatingCylinder, swing_angle

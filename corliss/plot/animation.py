@@ -26,7 +26,7 @@ import math
 
 import numpy as np
 
-from corliss import units
+from corliss.keys import units
 from corliss.valves.baker import BakerGear
 from corliss.valves.corliss_gear import CorlissGear, CorlissSpec
 from corliss.valves.link_motion import LinkMotion, LinkMotionSpec

@@ -37,10 +37,10 @@ import dataclasses
 import math
 from dataclasses import dataclass
 
-from corliss import units
+from corliss.keys import units
 from corliss.errors import InputError
-from corliss.keyspec import POSITIVE_LENGTH, Key, group
-from corliss.tables import Table
+from corliss.keys.declared import POSITIVE_LENGTH, Key, group
+from corliss.keys.toml_table import Table
 from corliss.valves.gear import GearType, register
 from corliss.valves.slide_valve import (ADVANCE_RANGE_rad, ALLEN_KEYS, ECCENTRICITY,
                                         LAP_KEYS, PORT_KEYS, SlideValve, SlideValveSpec,
