@@ -84,7 +84,7 @@ from corliss.errors import InputError
 from corliss.keys.declared import POSITIVE_LENGTH, Key, group
 from corliss.keys.toml_table import Table
 from corliss.valves.gear import GearType, register
-from corliss.valves.radial_gear import RadialJoints, _circles, combination_lever
+from corliss.valves.radial_gear import RadialJoints, circle_intersection, combination_lever
 from corliss.valves.slide_valve import (ALLEN_KEYS, LAP_KEYS, PORT_KEYS, LappedValve,
                                         parse_allen_passage, parse_ports)
 
@@ -244,7 +244,7 @@ def _points(spec: BakerSpec, th: np.ndarray, sense: float) -> dict:
         # M on its circle about Y; U where the rod's upper part meets the bell crank's
         # arm (the branch nearer U's place at the dead centres); P on the line M-U
         M = np.array([Y[0] - h * np.sin(mu), Y[1] - h * np.cos(mu)])
-        U = _circles(M, n, Kn, k1, U0)
+        U = circle_intersection(M, n, Kn, k1, U0)
         P = M + (m / n) * (M - U)
         return M, U, P
 

@@ -606,9 +606,23 @@ def exact_valve_position(spec, theta: np.ndarray) -> np.ndarray:
     return _walschaerts(spec, th)
 
 
-def _circles(c1, r1, c2, r2, near):
-    """The intersection of circles (c1, r1) and (c2, r2) nearer the point ``near``
-    (arrays of points, shape (2, n); NaN where they do not meet)."""
+def circle_intersection(c1, r1, c2, r2, near):
+    """The intersection of two circles nearer a given point, at every crank angle.
+
+    Parameters
+    ----------
+    c1, c2 : ndarray
+        The circles' centres, shape (2, n) [m].
+    r1, r2 : float or ndarray
+        Their radii [m].
+    near : ndarray
+        The point, shape (2, n) or (2,) [m], whose nearer intersection is taken.
+
+    Returns
+    -------
+    ndarray
+        The intersection, shape (2, n) [m]; NaN where the circles do not meet.
+    """
     dx, dy = c2[0] - c1[0], c2[1] - c1[1]
     d = np.hypot(dx, dy)
     a = (r1 * r1 - r2 * r2 + d * d) / (2 * d)
@@ -637,7 +651,7 @@ def _on_guide(origin, t, nrm, radius, centre_of, reach, near):
     k = math.copysign(1.0, radius)
     cc = np.array([origin[0] + k * rho * nrm[0], origin[1] + k * rho * nrm[1]])
     cc = np.repeat(cc[:, None], centre_of.shape[1], axis=1)
-    return _circles(cc, rho, centre_of, reach, near)
+    return circle_intersection(cc, rho, centre_of, reach, near)
 
 
 def _simple(spec: SimpleRadialSpec, th):
@@ -712,7 +726,7 @@ def _watt(spec: SimpleRadialSpec, G, t, nrm, E, l1):
 
     def h_of(beta):
         e1 = p1[:, None] - a * (np.outer(nrm, np.cos(beta)) - np.outer(t, np.sin(beta)))
-        e2 = _circles(np.repeat(p2[:, None], beta.size, axis=1), a, e1, b,
+        e2 = circle_intersection(np.repeat(p2[:, None], beta.size, axis=1), a, e1, b,
                       np.repeat(far, beta.size, axis=1))
         return 0.5 * (e1 + e2)
 
@@ -752,7 +766,7 @@ def _joy_points(spec: JoySpec, th) -> dict:
     dmid = b - c
     e0 = np.array([dmid, -math.sqrt(l3 * l3 - R * R)])     # e below the line of stroke
     f = e0 - np.array([spec.anchor_link_m, 0.0])
-    E = _circles(np.repeat(f[:, None], n, axis=1), spec.anchor_link_m, Dp, l3,
+    E = circle_intersection(np.repeat(f[:, None], n, axis=1), spec.anchor_link_m, Dp, l3,
                  np.repeat(e0[:, None], n, axis=1))
     Gp = Dp + (l4 / l3) * (E - Dp)
     g0y = l4 / l3 * e0[1]
@@ -977,7 +991,7 @@ def _walschaerts_points(spec: WalschaertsSpec, th) -> dict:
     Bx, By = R * np.cos(th), -R * np.sin(th)
     Cx = Bx + np.sqrt(b * b - By * By)
     XH = np.array([Cx + lay["arm"], np.full(n, lay["yL"])])
-    F = _circles(np.repeat(T[:, None], n, axis=1), k, Q, er, np.repeat(F0[:, None], n, axis=1))
+    F = circle_intersection(np.repeat(T[:, None], n, axis=1), k, Q, er, np.repeat(F0[:, None], n, axis=1))
     beta = np.arctan2(F[0] - T[0], -(F[1] - T[1]))
 
     def on_link(s):
