@@ -387,3 +387,64 @@ def test_gears_build_their_kinds():
                       ("oscillating-model", OscillatingCylinder),
                       ("baker-locomotive", BakerGear)):
         assert isinstance(build_gear(load_scene(find_scene(name))), cls)
+
+
+# ----------------------------------------------------------------------- the pictures
+
+def test_the_baker_gear_is_drawn_as_its_linkage():
+    """The animation draws the Baker gear from its joints: each of its 14 rods, arms
+    and links drawn as long as the scene's, in every frame checked, and the valve at
+    the gear's travel."""
+    import matplotlib.pyplot as plt
+
+    from corliss.plot.animation import animate_gear, rod_lengths
+    scene = load_scene(find_scene("baker-locomotive"))
+    gear = build_gear(scene)
+    drawn = animate_gear(gear, None, frames=24, stroke_m=scene.engine.stroke_m)
+    try:
+        assert drawn["kind"] == "radial"
+        for i in (0, 5, 11, 17):
+            joints = drawn["update"](i)
+            lengths = rod_lengths(joints)
+            assert len(lengths) == 14
+            for name, (between, spec) in lengths.items():
+                # the joints come from a solve to 1e-9 of the eccentric rod
+                assert between == pytest.approx(spec, abs=1e-7), name
+            theta = drawn["angles_rad"][i]
+            assert joints.valve_m == pytest.approx(float(gear.travel(np.array([theta]))[0]),
+                                                   abs=1e-6)
+    finally:
+        plt.close(drawn["figure"])
+
+
+def test_the_oscillating_port_face_is_drawn_open_as_the_gear_opens_it():
+    """Read off the picture: each end's cylinder port, drawn over the standard's ports
+    developed along the arc, overlaps the steam and exhaust ports by the gear's own
+    openings at the frame's crank angle."""
+    import matplotlib.pyplot as plt
+
+    from corliss.plot.animation import animate_gear
+    scene = _osc(19.0)
+    gear = build_gear(scene)
+    s = gear.spec
+    drawn = animate_gear(gear, None, frames=24, stroke_m=scene.engine.stroke_m)
+    sc = drawn["scale"]
+    try:
+        assert drawn["kind"] == "oscillating"
+        head, crank = drawn["artists"]["cylinder_ports"]
+        rho, w = s.port_radius_m, s.standard_port_m
+        for i in range(0, 24, 3):
+            drawn["update"](i)
+            seen = []
+            for patch, steam, exhaust in ((head, s.steam_port_angle_rad,
+                                           -s.exhaust_port_angle_rad),
+                                          (crank, -s.steam_port_angle_rad,
+                                           s.exhaust_port_angle_rad)):
+                a = (patch.get_x() / sc, (patch.get_x() + patch.get_width()) / sc)
+                for beta in (steam, exhaust):
+                    b = (rho * beta - w / 2, rho * beta + w / 2)
+                    seen.append(max(0.0, min(a[1], b[1]) - max(a[0], b[0])))
+            want = gear.openings(np.array([drawn["angles_rad"][i]]))[:, 0]
+            assert seen == pytest.approx(list(want), abs=1e-9), i
+    finally:
+        plt.close(drawn["figure"])

@@ -6,7 +6,9 @@ Every position drawn comes from the gear's own solve: a gear that solves its lin
 exactly gives its joints at a crank angle (``gear.joints(theta)``: the plain slide
 valve's eccentric and rod, the exact Stephenson, Gooch and Allen links, the exact radial
 gears
-(Walschaerts, Joy, Hackworth, Marshall, Angstrom), the Corliss wrist plate with its four
+(Walschaerts, Joy, Hackworth, Marshall, Angstrom) and the Baker gear, the oscillating
+cylinder swinging on its trunnion (its port face drawn developed flat, the cylinder's
+ports over the standard's), the Corliss wrist plate with its four
 valves and trip), the same solve its valve travel and
 port openings come from; any other gear with one lapped valve is drawn from its travel
 alone (the crank, its virtual eccentric and the valve over its ports, the linkage not
@@ -220,6 +222,41 @@ def _draw_seat(ax, lay, scale):
     ax.set_ylim(-depth * 1.9, 3.2 * w)
     ax.set_aspect("equal")
     ax.axis("off")
+
+
+def _draw_port_face(ax, gear, scale) -> list:
+    """An oscillating cylinder's port face developed flat along its arc (arc length
+    rho psi to the right): the standard's steam and exhaust ports fixed, one row for
+    each end (the crank end's below, its steam port on the other side of the line of
+    centres, as the swing meets it), and the cylinder's port of each end drawn over them
+    where its travel puts it.  Returns the cylinder's ports (patches to move)."""
+    from matplotlib.patches import Rectangle
+    s = gear.spec
+    rho, h = s.port_radius_m, s.port_length_m
+    rows = [(0.0, s.steam_port_angle_rad, -s.exhaust_port_angle_rad, "head end")]
+    if s.acting == "double":
+        rows.append((-2.2 * h, -s.steam_port_angle_rad, s.exhaust_port_angle_rad, "crank end"))
+    ports = []
+    reach = rho * (s.max_swing_rad + max(s.steam_port_angle_rad, s.exhaust_port_angle_rad)) \
+        + s.standard_port_m
+    for y0, steam, exhaust, label in rows:
+        ax.add_patch(Rectangle((-reach * scale, (y0 - 0.1 * h) * scale), 2 * reach * scale,
+                               1.2 * h * scale, facecolor="0.9", edgecolor=_FIXED, lw=0.6))
+        for beta, colour in ((steam, _STEAM), (exhaust, _EXHAUST)):
+            ax.add_patch(Rectangle(((rho * beta - 0.5 * s.standard_port_m) * scale, y0 * scale),
+                                   s.standard_port_m * scale, h * scale, facecolor=colour,
+                                   alpha=0.45, edgecolor=colour))
+        ax.text(-reach * scale, (y0 + 1.2 * h) * scale, label, fontsize=7, va="bottom")
+        ports.append(ax.add_patch(Rectangle((-0.5 * s.cylinder_port_m * scale, y0 * scale),
+                                            s.cylinder_port_m * scale, h * scale,
+                                            facecolor="none", edgecolor="k", lw=1.6)))
+    ax.set_xlim(-1.1 * reach * scale, 1.1 * reach * scale)
+    ax.set_ylim((rows[-1][0] - 0.6 * h) * scale, 2.4 * h * scale)
+    ax.set_aspect("equal")
+    ax.axis("off")
+    ax.set_title("port face: the cylinder's port (black) over\nthe steam (red) and "
+                 "exhaust (blue) ports", fontsize=8)
+    return ports
 
 
 # ------------------------------------------------------------------ linkages
@@ -546,8 +583,8 @@ class _Oscillating(_Linkage):
         self.radius = 0.5 * R
         ax.set_xlim(-2.2 * R, 2.2 * R)
         ax.set_ylim(-1.3 * R, D + 1.6 * R)
-        ax.text(0.01, 0.97, "oscillating cylinder: the port face swings with it",
-                transform=ax.transAxes, va="top", fontsize=7, color="0.4")
+        ax.text(0.01, 0.03, "oscillating cylinder: the port face swings with it",
+                transform=ax.transAxes, va="bottom", fontsize=7, color="0.4")
 
     def update(self, theta):
         j = self.gear.joints(theta)
@@ -888,7 +925,13 @@ def animate_gear(gear, result=None, *, frames: int = 72, stroke_m: float | None 
         drawer = linkage[kind](ax_link, gear, scale, stroke_m)
     moving = list(drawer.moving)
     valve_rest, valve_sense, lay = None, None, None
-    if ax_valve is not None:
+    if ax_valve is not None and kind == "oscillating":
+        artists["cylinder_ports"] = _draw_port_face(ax_valve, gear, scale)
+        moving += artists["cylinder_ports"]
+        artists["valve_x"] = ax_valve.text(0.0, 1.6 * gear.spec.port_length_m * scale, "",
+                                           ha="center", va="bottom", fontsize=7)
+        moving.append(artists["valve_x"])
+    elif ax_valve is not None:
         lay = _valve_layout(gear)
         _draw_seat(ax_valve, lay, scale)
         valve_rest = valve_outline(gear, 0.0, lay) * scale
@@ -955,7 +998,11 @@ def animate_gear(gear, result=None, *, frames: int = 72, stroke_m: float | None 
         label.set_text(f"crank {math.degrees(theta):5.1f} deg")
         if ax_valve is not None:
             x_m = joints.valve_m if joints is not None else float(gear.travel(np.array([theta]))[0])
-            artists["valve"].set_xy(valve_outline(gear, x_m, lay) * scale)
+            if kind == "oscillating":
+                for patch in artists["cylinder_ports"]:
+                    patch.set_x((x_m - 0.5 * gear.spec.cylinder_port_m) * scale)
+            else:
+                artists["valve"].set_xy(valve_outline(gear, x_m, lay) * scale)
             artists["valve_x"].set_text(f"x = {x_m * scale:+.3f} {u} (+ opens head steam)")
         d = math.degrees(theta)
         artists["cursor"].set_xdata([d, d])
