@@ -89,8 +89,7 @@ def test_slip_eccentric_reversal_against_the_stops_geometry():
 
 def _slip_scene(**gear):
     scene = load_scene(find_scene("slip-eccentric-launch"))
-    data = dataclasses.replace(scene).data
-    data = {k: (dict(v) if isinstance(v, dict) else v) for k, v in data.items()}
+    data = {k: (dict(v) if isinstance(v, dict) else v) for k, v in scene.data.items()}
     data["valve_gear"].update(gear)
     return data
 
