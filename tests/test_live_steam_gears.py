@@ -214,6 +214,19 @@ def test_single_acting_oscillator_never_opens_its_crank_end():
     assert np.all(g.openings(np.linspace(0, 2 * math.pi, 73))[2:] == 0.0)
 
 
+def test_single_acting_oscillator_works_its_head_end_only():
+    """The crank end of a single-acting cylinder is a closed space here (the gear-level
+    choice, module doc): with adiabatic walls its steam is compressed and expands back
+    along the same path, so it does no net work over a turn (its mean effective
+    pressure zero to the run's periodicity tolerance, 1e-4 of the head end's), while
+    the head end works as the double-acting cylinder's does."""
+    from corliss.engine.simulate import simulate
+    single = simulate(_osc(17.2, acting="single")).summary
+    double = simulate(_osc(17.2)).summary
+    assert abs(single["mep_crank_Pa"]) < 1e-4 * single["mep_head_Pa"]
+    assert single["mep_head_Pa"] == pytest.approx(double["mep_head_Pa"], rel=1e-3)
+
+
 @pytest.mark.parametrize("key, value, says", [
     ("steam_port_angle", "40 deg", "never reaches"),
     ("steam_port_angle", "5 deg", "full register"),
