@@ -81,7 +81,7 @@ def measure(scene: str, control: str, repeats: int, fidelity: str, exe: str,
             shot: str | None = None) -> dict:
     from playwright.sync_api import sync_playwright
     port = _free_port()
-    proc = subprocess.Popen([sys.executable, "-m", "corliss.cli", "workbench", scene,
+    proc = subprocess.Popen([sys.executable, "-m", "corliss.cli.commands", "workbench", scene,
                              "--no-browser", "--port", str(port), "--fidelity", fidelity],
                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     try:

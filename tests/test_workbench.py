@@ -22,8 +22,8 @@ from pathlib import Path
 
 import pytest
 
-from corliss.scene import default_scene_path
-from corliss.scene_keys import with_keys
+from corliss.keys.edits import with_keys
+from corliss.scene.loader import default_scene_path
 
 ROOT = Path(__file__).resolve().parent.parent
 #: A first run in a fresh checkout compiles the kernels (a minute or two on a loaded
@@ -60,7 +60,7 @@ def workbench(tmp_path):
     """``corliss workbench --no-browser`` on a free loopback port: (url, port)."""
     port = _free_port()
     log = open(tmp_path / "server.log", "w")
-    proc = subprocess.Popen([sys.executable, "-m", "corliss.cli", "workbench", "--no-browser",
+    proc = subprocess.Popen([sys.executable, "-m", "corliss.cli.commands", "workbench", "--no-browser",
                              "--port", str(port)], stdout=log, stderr=subprocess.STDOUT,
                             cwd=tmp_path)
     try:
@@ -107,6 +107,12 @@ def _wait_redrawn(page, before: list[str], timeout_s: float, drawn: str = "") ->
         status = page.locator(".wb-status span").all_inner_texts()
         if now and now != before and status and status[0].startswith("redrawn") and \
                 drawn in page.locator(".wb-toml textarea").input_value():
+            # the run of these settings is drawn; the browser may lay out a text a
+            # frame or two after it has the value: read it once it holds still
+            time.sleep(0.5)
+            while (again := _numbers(page)) != now:
+                now = again
+                time.sleep(0.5)
             return now
         time.sleep(0.05)
     raise AssertionError(f"no redraw within {timeout_s} s: {before} -> {_numbers(page)}")
@@ -167,7 +173,7 @@ def test_lap_slider_redraws_the_card_of_corliss_run_and_the_page_stays_local(wor
     assert "# steam (outside) lap" in text and "Marks Art. 29" in text
 
     # the card's numbers are those `corliss run` prints for the saved scene
-    out = subprocess.run([sys.executable, "-m", "corliss.cli", "run", str(saved), "--json",
+    out = subprocess.run([sys.executable, "-m", "corliss.cli.commands", "run", str(saved), "--json",
                           "--no-plots", "--out", str(tmp_path / "run")], capture_output=True,
                          text=True, cwd=tmp_path, check=True)
     s = json.loads(out.stdout)

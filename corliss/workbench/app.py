@@ -30,7 +30,7 @@ from bokeh.models import (Button, CheckboxGroup, ColumnDataSource, CustomJS, Lab
                           RadioButtonGroup, Select, Slider, Span, TextAreaInput)
 from bokeh.plotting import figure
 
-from corliss.scene_keys import with_keys
+from corliss.keys.edits import with_keys
 from corliss.workbench.compute import compute_view
 from corliss.workbench.controls import Control, controls_for, scene_value
 from corliss.workbench.scene_text import edited_text

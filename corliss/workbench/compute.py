@@ -15,11 +15,11 @@ import time
 
 import numpy as np
 
-from corliss import units
 from corliss.engine.model import build_gear, steady_scene
 from corliss.engine.simulate import simulate
 from corliss.errors import InputError, RunError
-from corliss.scene import scene_from_dict
+from corliss.keys import units
+from corliss.scene.loader import scene_from_dict
 from corliss.valves.gear import PORTS
 
 #: The events marked on the card, with their labels (as :func:`corliss.plot.cards.plot_card`).

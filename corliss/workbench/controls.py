@@ -17,11 +17,11 @@ from dataclasses import dataclass
 import numpy as np
 from CoolProp.CoolProp import PropsSI
 
-from corliss import units
 from corliss.engine.options import EFFECTS, PRESETS
-from corliss.keyspec import REQUIRED, Derived, Key
-from corliss.scene_keys import get_key
-from corliss.section_keys import ENGINE, EXHAUST, RUN, SUPPLY
+from corliss.keys import units
+from corliss.keys.declared import REQUIRED, Derived, Key
+from corliss.keys.edits import get_key
+from corliss.scene.sections import ENGINE, EXHAUST, RUN, SUPPLY
 from corliss.valves import GEARS
 
 #: The unit a slider shows for each kind of quantity, by unit system.

@@ -13,8 +13,8 @@ from __future__ import annotations
 import re
 import tomllib
 
-from corliss.scene_keys import with_keys
-from corliss.toml_text import dumps
+from corliss.keys.edits import with_keys
+from corliss.keys.toml_text import dumps
 
 _HEADER = re.compile(r"^\s*\[(?P<name>[^\[\]]+)\]\s*(#.*)?$")
 _ANY_HEADER = re.compile(r"^\s*\[")

@@ -19,11 +19,11 @@ from bokeh.application.handlers.function import FunctionHandler
 from bokeh.server.server import Server
 from bokeh.settings import settings
 
-from corliss.errors import InputError
 from corliss.engine.options import PRESETS
+from corliss.errors import InputError
+from corliss.keys.textfiles import read_text
 from corliss.logs import NOTICE
-from corliss.scene import default_scene_path, find_scene, load_scene
-from corliss.textfiles import read_text
+from corliss.scene.loader import default_scene_path, find_scene, load_scene
 from corliss.workbench.app import Runner, make_document
 
 log = logging.getLogger(__name__)
