@@ -138,6 +138,11 @@ def _span(key: Key, now: float, scale: float, unit: str, barometer_Pa: float):
             a = max(a, 0.0)
     sa, sb = (_shown(key, v, unit, barometer_Pa) for v in (a, b))
     step = 1.0 if key.kind == "integer" else _nice_step((sb - sa) / STEPS)
+    shown = _shown(key, now, unit, barometer_Pa)
+    for _ in range(4):      # a finer step where the value now is off the grid
+        if abs(shown / step - round(shown / step)) < 1e-6:
+            break
+        step /= 10.0
     start = math.ceil(sa / step - 1e-9) * step
     stop = math.floor(sb / step + 1e-9) * step
     return start, stop, step
@@ -145,11 +150,12 @@ def _span(key: Key, now: float, scale: float, unit: str, barometer_Pa: float):
 
 def _value_of(key: Key, table: dict):
     """The value a scene gives a key, or its concrete default; None where it has
-    neither (optional, derived or required and absent)."""
+    neither (optional, derived or required and absent), or where the key is read only
+    in some cases (its ``when``) and the scene does not give it."""
     if key.name in table:
         return table[key.name]
     d = key.default
-    if d is REQUIRED or d is None or isinstance(d, Derived):
+    if d is REQUIRED or d is None or isinstance(d, Derived) or key.when:
         return None
     return d
 
