@@ -22,7 +22,7 @@ LAYERS = [
     ("corliss.errors", 0), ("corliss.units", 0), ("corliss.registry", 0),
     ("corliss.tables", 0), ("corliss.keyspec", 0), ("corliss.columns", 0), ("corliss.logs", 0),
     ("corliss.textfiles", 0), ("corliss.scene_keys", 0), ("corliss.toml_text", 0),
-    ("corliss.frame", 0), ("corliss.versions", 0),
+    ("corliss.frame", 0), ("corliss.versions", 0), ("corliss.limits", 0),
     ("corliss.thermo", 1), ("corliss.valves", 1), ("corliss.governors", 1),
     ("corliss.engine", 2),
     ("corliss.scene", 3), ("corliss.section_keys", 3), ("corliss.scene_reference", 3), ("corliss.studies", 3), ("corliss.fitting", 3),
