@@ -246,7 +246,7 @@ def _meta_run(run: object, base, key: str, edited: bool):
             d = _first_difference(jsonable(run[n]), jsonable(getattr(base, n)))
             if d is not None:
                 raise InputError(f"{key}.{n}", _short(run[n]), f"the scene's own "
-                                 f"{_short(jsonable(getattr(base, n)))}: the meta file's run "
+                                 f"{_short(jsonable(getattr(base, n)))!r}: the meta file's run "
                                  "disagrees with its scene (edited by hand?)")
     fid = run["fidelity"]
     known = [jsonable(base.fidelity)] + [jsonable(f) for f in PRESETS.values()]
@@ -351,7 +351,7 @@ def scene_from_meta(path: str | Path, edited: bool = False):
             d = _first_difference(jsonable(parsed), data)
             if d is not None:
                 raise InputError(f"scene_data.{d[0]}" if d[0] else "scene_data",
-                                 _short(d[2]), f"{_short(d[1])}, as the meta file's scene "
+                                 _short(d[2]), f"{_short(d[1])!r}, as the meta file's scene "
                                  "text has it: its tables were changed after the run "
                                  "(run the text as edited with --as-edited)")
     elif sha is not None:
