@@ -71,7 +71,7 @@ from corliss.errors import (EXIT_BALANCE_FAILED, EXIT_INTERRUPTED, EXIT_TERMINAT
                             RunError, Terminated)
 from corliss.heartbeat import Heartbeat
 from corliss.logs import NOTICE
-from corliss.results import OutputFiles, scene_from_meta, summary_json
+from corliss.results import OutputFiles, plain_text, scene_from_meta, summary_json
 from corliss.scene import bundled_scenes, default_scene_path, find_scene, load_scene
 
 log = logging.getLogger("corliss")
@@ -444,7 +444,7 @@ def cmd_gear(args) -> int:
     gear = build_gear(scene)
     out_dir = Path(args.out if args.out is not None else scene.output.dir)
     name = f"{scene.name}.gear.png"
-    with OutputFiles(out_dir) as out:
+    with OutputFiles(out_dir) as out, plain_text():
         fig = plot_gear(gear, units_system=scene.output.units)["figure"]
         try:
             fig.suptitle(f"{scene.title}: {scene.gear_type}", fontsize=11)
@@ -502,8 +502,9 @@ def cmd_animate(args) -> int:
     title = f"{scene.title}: {scene.gear_type}" + (" (the exact linkage)" if changed else "")
     out_dir = Path(args.out if args.out is not None else scene.output.dir)
     name = f"{scene.name}.animation.{args.format}"
-    drawn = animate_gear(gear, result, frames=args.frames, units_system=scene.output.units,
-                         stroke_m=scene.engine.stroke_m, title=title)
+    with plain_text():
+        drawn = animate_gear(gear, result, frames=args.frames, units_system=scene.output.units,
+                             stroke_m=scene.engine.stroke_m, title=title)
     try:
         with OutputFiles(out_dir) as out:
             write_animation(drawn, out.stage(name), args.format)
@@ -838,6 +839,9 @@ def cmd_bench(args) -> int:
         :class:`~corliss.errors.InputError`, which :func:`main` turns into 2).
     """
     import importlib.util
+    if not 1 <= args.repeats <= limits.MAX_BENCH_REPEATS:
+        raise InputError("--repeats", args.repeats, "a whole number of repeats from 1 to "
+                         f"{limits.MAX_BENCH_REPEATS}")
     here = Path(__file__).resolve().parent.parent
     for root in (Path.cwd(), here):
         script = root / "benchmarks" / "accuracy_vs_time.py"

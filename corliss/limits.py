@@ -24,3 +24,8 @@ MAX_CARD_BYTES = 2_000_000
 MAX_CARD_POINTS = 20_000
 #: How far a card's ``piston_frac`` may lie outside [0, 1], a digitiser's slip [-].
 CARD_FRACTION_SLACK = 0.02
+#: Longest scene title [characters]: a title is a line over a figure and in every
+#: file's header (a 10 MB title crashed the plot after 144 s).
+MAX_TITLE_CHARS = 200
+#: Repeats of ``corliss bench`` per setting (the median is taken) [-].
+MAX_BENCH_REPEATS = 100

@@ -845,6 +845,20 @@ def _figures(result) -> list[tuple[str, tuple[float, float]]]:
     return [("willans", (8, 5.5))]
 
 
+def plain_text():
+    """A block whose figures show text as it is: a ``$`` in a scene's title is a
+    dollar, not the start of mathtext (``$\\frac{a}{$`` stopped a run's plot); none
+    of corliss's own labels uses mathtext.
+
+    Returns
+    -------
+    contextlib.AbstractContextManager
+        matplotlib's ``rc_context`` with ``text.parse_math`` off.
+    """
+    import matplotlib
+    return matplotlib.rc_context({"text.parse_math": False})
+
+
 def write(result, out_dir, plots: bool = True) -> dict[str, Path]:
     """Write every file of ``result`` into ``out_dir`` as one transaction.
 
@@ -868,7 +882,7 @@ def write(result, out_dir, plots: bool = True) -> dict[str, Path]:
     """
     stem = result.scene.name
     files: dict[str, Path] = {}
-    with OutputFiles(out_dir) as out:
+    with OutputFiles(out_dir) as out, plain_text():
         for table, suffix in TABLE_FILES[result.kind].items():
             name = f"{stem}.{suffix}.csv"
             staged = out.stage(name)

@@ -474,3 +474,59 @@ def test_a_card_file_over_the_size_limit_is_refused(tmp_path, capsys):
     code, _, err = _run(["fit", "default", str(card), "--vary", "valve_gear.lap=0.7:1.3in",
                          "--out", str(tmp_path / "o")], capsys)
     assert code == 2 and "MB" in err
+
+
+# --- clean refusals where there were tracebacks ------------------------------------------
+
+def _scene_with(tmp_path, name: str, title_line: str) -> Path:
+    import re
+    text = SCENES["default"].read_text()
+    path = tmp_path / f"{name}.toml"
+    new, n = re.subn(r"(?m)^title = .*$", lambda _: title_line, text, count=1)
+    assert n == 1
+    path.write_text(new)
+    return path
+
+
+@pytest.mark.parametrize("text, words", [
+    ('title = "x"\na = ' + "[" * 5000 + "]" * 5000 + "\n", "recursion"),
+    ("title = " + "9" * 5001 + "\n", "4300 digits"),
+])
+def test_toml_nested_too_deeply_or_a_huge_integer_is_refused(text, words, tmp_path, capsys):
+    """Arrays nested 5,000 deep (tomllib's RecursionError) and a 5,001-digit integer
+    (Python's ValueError): exit 2 naming the scene, no traceback."""
+    path = tmp_path / "s.toml"
+    path.write_text(text)
+    code, _, err = _run(["events", str(path)], capsys)
+    assert code == 2 and "scene" in err and words in err
+
+
+def test_a_title_with_dollars_is_plain_text_and_control_characters_are_refused(tmp_path,
+                                                                             capsys):
+    """``$\\frac{a}{$`` in a title stopped the plot (matplotlib's mathtext): now drawn
+    as it is; a control character (which broke ``fitted.toml``) or a title over the
+    ceiling is refused naming ``title``."""
+    path = _scene_with(tmp_path, "dollars", 'title = "$\\\\frac{a}{$ and $5"')
+    code, _, err = _run(["run", str(path), "--out", str(tmp_path / "a"), "--cycles", "2",
+                         "--fidelity", "fast"], capsys)
+    assert code == 0, err
+    assert (tmp_path / "a" / "dollars.card.png").stat().st_size > 0
+    for i, title in enumerate(['title = "a\\u0007b"', f'title = "{"x" * 201}"']):
+        path = _scene_with(tmp_path, f"bad{i}", title)
+        code, _, err = _run(["events", str(path)], capsys)
+        assert code == 2 and "title" in err
+
+
+@pytest.mark.parametrize("argv, key", [
+    (["study", "default", "--vary", "valve_gear.lap=0.8:1.2in", "--grid", "--levels", "2",
+      "--scheduler", "tls://127.0.0.1:1"], "--scheduler"),
+    (["study", "default", "--vary", "valve_gear.lap=0.8:1.2in", "--grid", "--levels", "2",
+      "--scheduler", "ucx://x"], "--scheduler"),
+    (["bench", "--repeats", "0"], "--repeats"),
+])
+def test_options_that_gave_tracebacks_are_refused(argv, key, tmp_path, capsys):
+    """``--scheduler tls://...`` (a TypeError inside distributed), ``ucx://...`` (an
+    abstract class), ``bench --repeats 0`` (ran): exit 2 naming the option."""
+    code, _, err = _run(argv + ["--out", str(tmp_path / "o")], capsys)
+    assert code == 2 and key in err
+    assert not (tmp_path / "o").exists()

@@ -244,12 +244,14 @@ def dask_client(scheduler):
                          "--scheduler, on this machine's cores)") from None
     if isinstance(scheduler, Client):
         return scheduler, False
-    if not isinstance(scheduler, str) or "://" not in scheduler:
-        raise InputError("--scheduler", scheduler, "a Dask scheduler's address, e.g. "
-                         "tcp://10.0.0.5:8786")
+    if not isinstance(scheduler, str) or not scheduler.startswith("tcp://") \
+            or len(scheduler) <= len("tcp://"):
+        raise InputError("--scheduler", scheduler, "a Dask scheduler's address over TCP, e.g. "
+                         "tcp://10.0.0.5:8786 (tls:// needs security settings and ucx:// "
+                         "ucx-py, neither of which corliss sets up)")
     try:
         return Client(scheduler, timeout="10s"), True
-    except (OSError, TimeoutError, ValueError) as exc:
+    except (OSError, TimeoutError, ValueError, TypeError) as exc:
         raise InputError("--scheduler", scheduler, "the address of a running Dask scheduler "
                          f"(none answered: {type(exc).__name__}: {exc})") from None
 
