@@ -506,7 +506,7 @@ def test_a_title_with_dollars_is_plain_text_and_control_characters_are_refused(t
     """``$\\frac{a}{$`` in a title stopped the plot (matplotlib's mathtext): now drawn
     as it is; a control character (which broke ``fitted.toml``) or a title over the
     ceiling is refused naming ``title``."""
-    path = _scene_with(tmp_path, "dollars", 'title = "$\\\\frac{a}{$ and $5"')
+    path = _scene_with(tmp_path, "dollars", 'title = "costs $\\\\frac{a}{$"')
     code, _, err = _run(["run", str(path), "--out", str(tmp_path / "a"), "--cycles", "2",
                          "--fidelity", "fast"], capsys)
     assert code == 0, err
