@@ -71,7 +71,8 @@ from corliss.errors import (EXIT_BALANCE_FAILED, EXIT_INTERRUPTED, EXIT_TERMINAT
                             RunError, Terminated)
 from corliss.heartbeat import Heartbeat
 from corliss.logs import NOTICE
-from corliss.results import OutputFiles, plain_text, scene_from_meta, summary_json
+from corliss.results import (OutputFiles, plain_name, plain_text, scene_from_meta,
+                             summary_json)
 from corliss.scene import bundled_scenes, default_scene_path, find_scene, load_scene
 
 log = logging.getLogger("corliss")
@@ -79,6 +80,7 @@ log = logging.getLogger("corliss")
 
 def _load(path: str | None, units_system: str | None = None):
     scene = load_scene(find_scene(path) if path is not None else default_scene_path())
+    plain_name(scene.name, "scene")     # the stem of every file written, checked before work
     if units_system is not None:
         scene = dataclasses.replace(scene, output=dataclasses.replace(scene.output,
                                                                       units=units_system))
