@@ -36,17 +36,16 @@ from pathlib import Path
 
 import pytest
 
-import corliss
-import corliss.design_scene
-import corliss.engine.compare
-import corliss.engine.load_range
-import corliss.fit_output
+import corliss.files.design_output
+import corliss.files.fit_output
 import corliss.studies
-from corliss import cli
+import corliss.studies.compare
+import corliss.studies.load_range
+from corliss.cli import commands as cli
 from corliss.errors import EXIT_BALANCE_FAILED, InputError
+from corliss.files.run_output import STAGING_PREFIX
 from corliss.fitting.card import parse_card
-from corliss.results import STAGING_PREFIX
-from corliss.scene import bundled_scenes
+from corliss.scene.loader import bundled_scenes
 
 SCENES = bundled_scenes()
 #: Cases of each kind in CI (seconds in all once the kernels are compiled).
@@ -283,9 +282,10 @@ def test_random_command_lines_are_answered_never_a_traceback(sandbox, monkeypatc
     def reached(*a, **k):
         raise _Reached()
     for module, name in [(cli, "simulate"), (corliss.studies, "study"),
-                         (corliss.fit_output, "fit"), (corliss.design_scene, "design"),
-                         (corliss.engine.load_range, "load_ranges"),
-                         (corliss.engine.compare, "compare"), (cli, "build_gear")]:
+                         (corliss.files.fit_output, "fit"),
+                         (corliss.files.design_output, "design"),
+                         (corliss.studies.load_range, "load_ranges"),
+                         (corliss.studies.compare, "compare"), (cli, "build_gear")]:
         monkeypatch.setattr(module, name, reached)
     (sandbox["box"] / "card.csv").write_text(_base_card())
     rng = random.Random(SEED)

@@ -30,14 +30,15 @@ from pathlib import Path
 
 import pytest
 
-from corliss import cli, limits
+import numpy as np
+
+from corliss.cli import commands as cli
 from corliss.engine.balance import BALANCE_FACTOR, balance_failure, balance_tolerance
 from corliss.errors import EXIT_BALANCE_FAILED, RunError
+from corliss.files.run_output import STAGING_PREFIX, OutputFiles
 from corliss.fitting.card import count_loops, parse_card
-from corliss.results import STAGING_PREFIX, OutputFiles
-from corliss.scene import bundled_scenes
-
-import numpy as np
+from corliss.keys import limits
+from corliss.scene.loader import bundled_scenes
 
 SCENES = bundled_scenes()
 ROOT = Path(__file__).resolve().parent.parent
@@ -269,10 +270,10 @@ def test_sigint_at_every_rename_of_the_commit_leaves_one_whole_run(earlier, caps
         assert _run(["run", "--out", str(earlier), "--cycles", "2", *FAST], capsys)[0] == 0
 
 
-_MAIN = "import sys; from corliss import cli; sys.exit(cli.main(sys.argv[1:]))"
+_MAIN = "import sys; from corliss.cli import commands; sys.exit(commands.main(sys.argv[1:]))"
 _KILLER = textwrap.dedent("""
     import os, signal, sys
-    from corliss import cli
+    from corliss.cli import commands as cli
     k, real, calls = int(sys.argv[1]), os.replace, []
     def killing(src, dst):
         calls.append(dst)
