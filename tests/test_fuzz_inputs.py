@@ -201,12 +201,12 @@ def card_case(rng: random.Random, card: str) -> tuple[str, str]:
     return "\n".join(lines) + "\n", how
 
 
-def test_mutated_cards_are_read_or_refused_naming_the_card():
+def test_mutated_cards_are_read_or_refused_naming_the_card(sandbox):
     """A fit reads a card before any work: each mutated card is read whole or refused
     with an InputError naming the card; nothing else escapes."""
     rng = random.Random(SEED)
     refused = 0
-    base = _base_card()
+    base = sandbox["card"]
     for i in range(CASES * 3):
         text, what = card_case(rng, base)
         try:
@@ -217,20 +217,6 @@ def test_mutated_cards_are_read_or_refused_naming_the_card():
     assert refused
 
 
-def _base_card() -> str:
-    """A real card's text: the default scene's, as ``corliss run`` writes it (read from
-    a two-cycle run the first time it is needed)."""
-    global _CARD
-    if _CARD is None:
-        import tempfile
-        with tempfile.TemporaryDirectory() as d, contextlib.redirect_stdout(io.StringIO()):
-            assert cli.main(["run", "--out", d, "--cycles", "2", "--fidelity", "fast",
-                             "--no-plots"]) == 0
-            _CARD = (Path(d) / "default.cards.csv").read_text()
-    return _CARD
-
-
-_CARD: str | None = None
 
 
 # --- command lines ---------------------------------------------------------------------
@@ -281,13 +267,13 @@ def test_random_command_lines_are_answered_never_a_traceback(sandbox, monkeypatc
     marker, so the parser's and the checks' answers are what is tested."""
     def reached(*a, **k):
         raise _Reached()
+    (sandbox["box"] / "card.csv").write_text(sandbox["card"])
     for module, name in [(cli, "simulate"), (corliss.studies, "study"),
                          (corliss.files.fit_output, "fit"),
                          (corliss.files.design_output, "design"),
                          (corliss.studies.load_range, "load_ranges"),
                          (corliss.studies.compare, "compare"), (cli, "build_gear")]:
         monkeypatch.setattr(module, name, reached)
-    (sandbox["box"] / "card.csv").write_text(_base_card())
     rng = random.Random(SEED)
     flags = _flags()
     codes = []
