@@ -531,3 +531,31 @@ def test_options_that_gave_tracebacks_are_refused(argv, key, tmp_path, capsys):
     code, _, err = _run(argv + ["--out", str(tmp_path / "o")], capsys)
     assert code == 2 and key in err
     assert not (tmp_path / "o").exists()
+
+
+# --- caches ------------------------------------------------------------------------------
+
+def test_the_steam_tables_temporary_file_is_removed_on_any_exit(tmp_path, monkeypatch):
+    """A save interrupted (Ctrl-C while ``np.savez`` writes) leaves no temporary file; a
+    temporary file of a process that is gone (killed while saving: 10 MB, never removed
+    before) is removed by the next save; one of a live process is left alone."""
+    from corliss.thermo import steam_table
+    path = tmp_path / "table.npz"
+    real = np.savez
+
+    def interrupted(file, **data):
+        real(file, **data)
+        raise KeyboardInterrupt
+    monkeypatch.setattr(steam_table.np, "savez", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        steam_table._save(path, {"a": np.zeros(3)})
+    assert list(tmp_path.iterdir()) == []
+    monkeypatch.setattr(steam_table.np, "savez", real)
+    gone = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"],
+                          capture_output=True, text=True).stdout.strip()
+    stale = tmp_path / f"table.{gone}.tmp.npz"
+    stale.write_bytes(b"half a table")
+    live = tmp_path / f"table.{os.getppid()}.tmp.npz"
+    live.write_bytes(b"another process's table, being written")
+    steam_table._save(path, {"a": np.zeros(3)})
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(["table.npz", live.name])
