@@ -10,6 +10,7 @@ described in the README and ``docs/architecture.md`` and shown by
 from __future__ import annotations
 
 import dataclasses
+import logging
 import math
 import tomllib
 from dataclasses import dataclass
@@ -30,6 +31,8 @@ from corliss.tables import Table
 from corliss.textfiles import read_text
 from corliss.thermo.steam import BACKENDS, HEOSSteam, TableSteam
 from corliss.valves import GEARS
+
+log = logging.getLogger(__name__)
 
 SECTIONS = ("title", "engine", "supply", "exhaust", "valve_gear", "run", "output", "compound",
             "lp_valve_gear", "governor", "flywheel", "load", "compare")
@@ -784,7 +787,7 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
     if not isinstance(title, str):
         raise InputError("title", title, "a string")
     loop = _speed_loop(data, run, supply, gt, gear, barometer,
-                       Path(source).parent if source else None)
+                       Path(source).parent if source else None, engine)
     cmp = None
     if "compare" in data:
         cmp = _compare(Table(data["compare"], "compare", barometer, COMPARE),
@@ -794,7 +797,7 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
 
 
 def _speed_loop(data: dict, run: RunSpec, supply: SupplySpec, gt, gear, barometer: float,
-                scene_dir: Path | None) -> dict:
+                scene_dir: Path | None, engine: EngineSpec) -> dict:
     """The [flywheel], [load] and [governor] sections of a transient run, checked against
     the rest of the scene (what the governor moves must exist)."""
     from corliss.engine.flywheel import parse_flywheel
@@ -848,7 +851,11 @@ def _speed_loop(data: dict, run: RunSpec, supply: SupplySpec, gt, gear, baromete
                     raise InputError(key, g.raw(key.split(".")[1], value),
                                      f"a gear setting within the {gt.name} gear's range "
                                      f"{lo} to {hi} ({g_obj.setting_name})")
+        spec = _check_governor_sense(spec, mech, g, gt, gear, run, engine)
+        governor = gov_t.build(spec)
+        mech = governor.mechanism(11)
         _check_governed_speed(governor, mech, g, run)
+        _check_governor_spring(gov_t, spec, mech, g, run)
         out["governor_type"] = gov_t.name
         out["governor"] = spec
     return out
@@ -858,6 +865,134 @@ def _speed_loop(data: dict, run: RunSpec, supply: SupplySpec, gt, gear, baromete
 #: a load step carries the speed a few per cent past the range; a governor whose range
 #: lies a quarter or more away from the run speed cannot govern that engine.
 GOVERNED_SPEED_MARGIN = 0.25
+
+
+#: The smallest change of the mean cut-off [fraction of stroke] between the governor's
+#: rest and its top stop that counts as governing: a governor whose travel moves the
+#: cut-off less than this does nothing an engine would notice.
+GOVERNOR_SENSE_MIN_FRAC = 1e-3
+
+
+def _admitted_frac(ev: dict) -> float:
+    """An end's cut-off as a fraction of stroke: 0 when the valve never opens, 1 when it
+    opens and never cuts off."""
+    if ev["admission_deg"] is None:
+        return 0.0
+    return 1.0 if ev["cutoff_frac"] is None else float(ev["cutoff_frac"])
+
+
+def _mean_cutoff(gear_obj, geo, setting: float) -> float:
+    from corliss.valves.events import events as valve_events
+    ev = valve_events(gear_obj.with_setting(setting), lambda t: float(geo.fraction(t)))
+    return 0.5 * (_admitted_frac(ev["head"]) + _admitted_frac(ev["crank"]))
+
+
+def _check_governor_sense(spec, mech, g: Table, gt, gear, run: RunSpec, engine: EngineSpec):
+    """A governor must act in the stabilising sense: as the speed rises and it lifts from
+    rest (z = 0) to its top stop (z = 1), the throttle closes or the cut-off shortens.
+
+    The static characteristic's sense is read from its two ends before any work: the
+    throttle openings, or the mean cut-off of the two ends (:mod:`corliss.valves.events`)
+    at the gear settings at rest and at the top stop.  A governor acting the wrong way
+    (it gives more steam as the engine speeds up, so a load change runs away) is refused,
+    naming both keys; when neither key is written, their defaults are swapped to the
+    sense that governs, and the log says so.
+
+    Returns
+    -------
+    spec
+        The governor's spec, with its actuator's ends swapped when the defaults acted the
+        wrong way.
+    """
+    a = spec.actuator
+    given = [k for k in (("opening_at_rest", "opening_at_top") if a.acts_on == "throttle"
+                         else ("setting_at_rest", "setting_at_top")) if k in g.data]
+    if a.acts_on == "throttle":
+        at_rest, at_top = a.at_rest, a.at_top
+        what = (f"the throttle opens from {at_rest:g} at rest to {at_top:g} at the top stop")
+    else:
+        from corliss.engine.geometry import CylinderGeometry
+        gear_obj = gt.build(gear)
+        if hasattr(gear_obj, "with_speed"):
+            gear_obj = gear_obj.with_speed(run.speed_rad_s)
+        geo = CylinderGeometry(engine, rod_angularity=run.has("rod_angularity"))
+        at_rest = _mean_cutoff(gear_obj, geo, a.at_rest)
+        at_top = _mean_cutoff(gear_obj, geo, a.at_top)
+        what = (f"the mean cut-off goes from {at_rest:.3g} of the stroke at rest (setting "
+                f"{a.at_rest:g}) to {at_top:.3g} at the top stop (setting {a.at_top:g})")
+    if at_top < at_rest - GOVERNOR_SENSE_MIN_FRAC:
+        return spec
+    if at_top > at_rest + GOVERNOR_SENSE_MIN_FRAC and not given:
+        log.info("governor: the default %s act the wrong way for the %s gear (%s); swapped",
+                 "openings" if a.acts_on == "throttle" else "settings", gt.name, what)
+        return dataclasses.replace(spec, actuator=dataclasses.replace(
+            a, at_rest=a.at_top, at_top=a.at_rest))
+    keys = (("governor.opening_at_rest", "governor.opening_at_top") if a.acts_on == "throttle"
+            else ("governor.setting_at_rest", "governor.setting_at_top"))
+    sense = ("gives more steam as the engine speeds up, so a load change would run it away"
+             if at_top > at_rest else "does not change the steam the engine takes")
+    raise InputError(f"{keys[0]} and {keys[1]}", [a.at_rest, a.at_top],
+                     f"a governor that gives less steam as it lifts: {what}; it {sense}. "
+                     + ("Swap the two values" if at_top > at_rest else
+                        "Give the gear's setting of the longest cut-off at rest and of the "
+                        "shortest at the top stop"))
+
+
+#: How far the speed at which a spring-loaded governor balances in the middle of its
+#: travel may lie from the run speed [fraction]: the bundled governors, of 4.5 to 7.7 %
+#: droop, balance within 1 % of run.speed at mid-travel, and a start from equilibrium
+#: lands within half the droop of it; a spring that puts the middle a tenth away
+#: starts the engine as far from the speed it was written for.
+SPRING_SPEED_MARGIN = 0.10
+
+
+def _check_governor_spring(gov_t, spec, mech, g: Table, run: RunSpec) -> None:
+    """Refuse a spring-loaded governor (shaft or Hartnell) whose spring balances the
+    middle of its working travel far from run.speed, with the stiffness (preload kept)
+    and the preload (stiffness kept) that would balance it there."""
+    if not (hasattr(spec, "spring_stiffness_N_m") and hasattr(spec, "spring_preload_N")):
+        return
+    lo, hi = working_travel(mech)
+    z_mid = np.array([0.5 * (lo + hi)])
+    target = run.speed_rad_s
+
+    def mid_speed(sp) -> float:
+        return float(gov_t.build(sp).equilibrium_speed_rad_s(z_mid)[0])
+
+    w = mid_speed(spec)
+    if abs(w / target - 1.0) <= SPRING_SPEED_MARGIN:
+        return
+
+    def solve(field: str) -> float | None:
+        # the spring's moment is linear in its stiffness and preload, so the squared
+        # speed is linear in each (omega^2 = R / G): two evaluations give the root
+        x0 = getattr(spec, field)
+        x1 = x0 * 1.5 + 1.0
+        w0 = w ** 2
+        w1 = mid_speed(dataclasses.replace(spec, **{field: x1})) ** 2
+        if w1 == w0:
+            return None
+        x = x0 + (target ** 2 - w0) * (x1 - x0) / (w1 - w0)
+        return x if x >= 0.0 else None
+
+    k = solve("spring_stiffness_N_m")
+    p = solve("spring_preload_N")
+    us = not any(str(g.raw(n, "")).strip().endswith(("N/m", "N", "kN", "N/mm"))
+                 for n in ("spring_stiffness", "spring_preload"))
+    fix = []
+    if k is not None:
+        fix.append("spring_stiffness = " + (f"\"{k * units.INCH_m / units.LBF_N:.3g} lbf/in\""
+                                            if us else f"\"{k:.4g} N/m\""))
+    if p is not None:
+        fix.append("spring_preload = " + (f"\"{p / units.LBF_N:.4g} lbf\"" if us else
+                                          f"\"{p:.4g} N\""))
+    raise InputError("governor.spring_stiffness", g.raw("spring_stiffness", None),
+                     f"a spring that balances the governor near run.speed = "
+                     f"{run.speed_rpm:.4g} rpm: in the middle of its travel it balances at "
+                     f"{w / units.RPM_RAD_S:.4g} rpm, so the engine would start and run "
+                     f"{100 * (w / target - 1.0):+.0f} % from the speed it was written for"
+                     + ("; " + " or ".join(fix) + " (the other kept) would balance it at "
+                        "run.speed" if fix else ""))
 
 
 def _check_governed_speed(gov, mech, g: Table, run: RunSpec) -> None:
