@@ -589,7 +589,7 @@ def cmd_design(args) -> int:
                equalise=args.equalise, reference_end=args.reference_end, end=args.end)
     files = d.write(out_dir)
     if args.json:
-        print(json.dumps(d.summary(), indent=2))
+        print(json.dumps({"title": d.scene.title, "kind": "design", **d.summary()}, indent=2))
         return 0
     u = "in" if scene.output.units == "US" else "mm"
     q = lambda v: f"{units.to_unit(v, u):.4f} {u}"  # noqa: E731

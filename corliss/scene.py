@@ -23,7 +23,7 @@ from corliss.engine.geometry import EngineSpec
 from corliss.engine.operating_point import working_travel
 from corliss.engine.options import (COMPILED_METHODS, EFFECT_KEYS, EFFECTS, PLANNED_EFFECTS,
                                     PRESETS, SCIPY_METHODS, Fidelity)
-from corliss.errors import InputError
+from corliss.errors import InputError, InputErrors
 from corliss.keyspec import REQUIRED
 from corliss.section_keys import (COMPARE, COMPOUND, ENGINE, EXHAUST, FLYWHEEL, LOAD, OUTPUT,
                                   RECORD_CHOICES, RUN, START_CHOICES, SUPPLY)  # noqa: F401
@@ -696,6 +696,127 @@ def _run(t: Table) -> RunSpec:
 
 
 def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) -> Scene:
+    """Validate a parsed TOML document into a :class:`Scene`; every mistake at once.
+
+    Parameters
+    ----------
+    data : dict
+        The scene's tables, as TOML reads them.
+    name : str
+        The scene's name.
+    source : str, optional
+        The path it was read from (a load schedule is found beside it).
+
+    Returns
+    -------
+    Scene
+        The validated scene, all SI.
+
+    Raises
+    ------
+    InputError
+        Naming the offending key; :class:`~corliss.errors.InputErrors` (an InputError)
+        listing every mistake when the scene has several: each key read on its own
+        against its declaration (kind, units, range, choices), every unknown section and
+        key, and the first mistake the whole scene's checks found.
+    """
+    try:
+        return _scene_from_dict(data, name, source)
+    except InputError as first:
+        if isinstance(first, InputErrors):
+            raise
+        # the loader's own mistake first (the one a single-mistake scene reports)
+        # (a key the first message already names, a misspelling it points out, once)
+        errors = [first] + [e for e in key_errors(data)
+                            if e.key != first.key and e.key not in str(first)]
+        if len(errors) > 1:
+            raise InputErrors(errors) from None
+        raise
+
+
+#: The sections read by one key group each (the gear and governor by their registry).
+_SECTION_KEYS = {"engine": ENGINE, "supply": SUPPLY, "exhaust": EXHAUST, "run": RUN,
+                 "output": OUTPUT, "flywheel": FLYWHEEL, "load": LOAD, "compare": COMPARE,
+                 "compound": COMPOUND}
+
+
+def key_errors(data: dict) -> list[InputError]:
+    """Every mistake of a scene that shows in one key alone, or in its sections.
+
+    Unknown and missing sections; in each section, each key read on its own by its
+    declaration (kind, units, range, choices) and each key the section does not take.
+    Mistakes between keys (a lap larger than the travel, a governor that acts the wrong
+    way) need the scene's other values and are left to :func:`scene_from_dict`.
+
+    Parameters
+    ----------
+    data : dict
+        The scene's tables, as TOML reads them.
+
+    Returns
+    -------
+    list of InputError
+        In the scene's order of sections and keys; empty when none shows this way.
+    """
+    from corliss.governors import GOVERNORS
+    errors: list[InputError] = []
+    for key in data:
+        if key not in SECTIONS:
+            errors.append(InputError(key, data[key], "a known section: " + ", ".join(SECTIONS)))
+    for key in SECTIONS[1:6]:
+        if key not in data:
+            errors.append(InputError(key, None, f"a [{key}] section: it is required"))
+    barometer = units.STANDARD_ATMOSPHERE_Pa
+    sup = data.get("supply")
+    if isinstance(sup, dict) and "barometer" in sup:
+        try:
+            barometer = Table(sup, "supply", keys=SUPPLY).get("barometer")
+        except InputError:
+            pass            # reported with the supply's keys below
+    for section, table in data.items():
+        if section not in SECTIONS or section == "title":
+            continue
+        if not isinstance(table, dict):
+            errors.append(InputError(section, table, "a table (a [section] in the scene)"))
+            continue
+        group = _SECTION_KEYS.get(section)
+        registry = {"valve_gear": GEARS, "lp_valve_gear": GEARS,
+                    "governor": GOVERNORS}.get(section)
+        if registry is not None:
+            t = Table(table, section, barometer)
+            try:
+                group = _registered(t, registry).keys
+            except InputError as exc:
+                errors.append(exc)
+                continue
+        if group is None:
+            continue
+        for key in table:
+            if key == "type" and registry is not None:
+                continue
+            if key not in group:
+                try:
+                    Table({key: table[key]}, section, barometer, group).finish(
+                        {n: e.keys for n, e in registry.items()} if registry else None)
+                except InputError as exc:
+                    errors.append(exc)
+                continue
+            t = Table(table, section, barometer, group)
+            try:
+                if group[key].kind == "fraction":
+                    _pair_fraction(t, key)              # one fraction or [head, crank]
+                elif key == "temperature" and table[key] == "saturated":
+                    pass
+                else:
+                    t.get(key)
+            except InputError as exc:
+                errors.append(exc)
+            except Exception:   # noqa: BLE001 - a key read only beside others: left to the loader
+                pass
+    return errors
+
+
+def _scene_from_dict(data: dict, name: str = "scene", source: str | None = None) -> Scene:
     """Validate a parsed TOML document into a :class:`Scene`.
 
     Parameters
@@ -918,8 +1039,9 @@ def _check_governor_sense(spec, mech, g: Table, gt, gear, run: RunSpec, engine: 
         geo = CylinderGeometry(engine, rod_angularity=run.has("rod_angularity"))
         at_rest = _mean_cutoff(gear_obj, geo, a.at_rest)
         at_top = _mean_cutoff(gear_obj, geo, a.at_top)
-        what = (f"the mean cut-off goes from {at_rest:.3g} of the stroke at rest (setting "
-                f"{a.at_rest:g}) to {at_top:.3g} at the top stop (setting {a.at_top:g})")
+        what = (f"on the valve_gear ({gt.name}), the mean cut-off goes from {at_rest:.3g} of "
+                f"the stroke at rest (setting {a.at_rest:g}) to {at_top:.3g} at the top stop "
+                f"(setting {a.at_top:g})")
     if at_top < at_rest - GOVERNOR_SENSE_MIN_FRAC:
         return spec
     if at_top > at_rest + GOVERNOR_SENSE_MIN_FRAC and not given:
@@ -931,8 +1053,9 @@ def _check_governor_sense(spec, mech, g: Table, gt, gear, run: RunSpec, engine: 
             else ("governor.setting_at_rest", "governor.setting_at_top"))
     sense = ("gives more steam as the engine speeds up, so a load change would run it away"
              if at_top > at_rest else "does not change the steam the engine takes")
-    raise InputError(f"{keys[0]} and {keys[1]}", [a.at_rest, a.at_top],
-                     f"a governor that gives less steam as it lifts: {what}; it {sense}. "
+    raise InputError(keys[0], a.at_rest,
+                     f"with {keys[1]} = {a.at_top:g}, a governor that gives less steam as it "
+                     f"lifts: {what}; it {sense}. "
                      + ("Swap the two values" if at_top > at_rest else
                         "Give the gear's setting of the longest cut-off at rest and of the "
                         "shortest at the top stop"))

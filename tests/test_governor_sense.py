@@ -48,8 +48,8 @@ def test_wrong_way_throttle_refused_naming_both_keys():
     d = _data("watt-throttling-governor")
     d["governor"]["opening_at_rest"] = 0.2
     d["governor"]["opening_at_top"] = 0.9
-    with pytest.raises(InputError, match=r"governor.opening_at_rest and "
-                                         r"governor.opening_at_top"):
+    with pytest.raises(InputError, match=r"governor.opening_at_rest = 0.2 .*"
+                                         r"governor.opening_at_top = 0.9"):
         scene_from_dict(d, name="wrong-way")
 
 

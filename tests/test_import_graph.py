@@ -30,7 +30,7 @@ LAYERS = [
     ("corliss.results", 5), ("corliss.study_output", 5), ("corliss.design_scene", 5),
     ("corliss.fit_output", 5),
     ("corliss.heartbeat", 6),
-    ("corliss.cli", 6),
+    ("corliss.cli", 6), ("corliss.__main__", 6),
 ]
 #: The three physics packages of layer 1 are independent of each other.
 INDEPENDENT = {"corliss.thermo", "corliss.valves", "corliss.governors"}

@@ -229,7 +229,8 @@ def test_cards_doing_no_work_are_results(change, tmp_path, capsys):
     path.write_text(text)
     out = tmp_path / "out"
     code, printed, err = _run(["run", str(path), "--out", str(out), "--fidelity", "fast"], capsys)
-    assert code == 0, err
+    # a completed run that failed physically: exit 4 (docs/exit-codes.md), every file
+    assert code == 4 and "negative_work" in err, err
     assert {p.name for p in out.iterdir()} == _expected("noworkscene", False)
     s = json.loads((out / "noworkscene.summary.json").read_text())
     assert s["indicated_power_W"] <= 0.0
