@@ -19,7 +19,7 @@ from pathlib import Path
 
 import pytest
 
-from corliss import cli
+from corliss.cli import commands as cli
 from corliss.engine.verdict import EXIT_PHYSICAL
 
 SCENES = Path(__file__).resolve().parent.parent / "scenes"

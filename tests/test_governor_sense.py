@@ -17,11 +17,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from corliss import units
-from corliss.engine.operating_point import working_travel
+from corliss.keys import units
+from corliss.governors.operating_point import working_travel
 from corliss.errors import InputError
 from corliss.governors import GOVERNORS
-from corliss.scene import scene_from_dict
+from corliss.scene.loader import scene_from_dict
 
 SCENES = Path(__file__).resolve().parent.parent / "scenes"
 

@@ -14,7 +14,7 @@ from pathlib import Path
 import jsonschema
 import pytest
 
-from corliss import cli
+from corliss.cli import commands as cli
 
 ROOT = Path(__file__).resolve().parent.parent
 SCHEMAS = ROOT / "docs" / "schemas"

@@ -8,9 +8,9 @@ from pathlib import Path
 
 import pytest
 
-from corliss import cli
+from corliss.cli import commands as cli
 from corliss.errors import InputError, InputErrors
-from corliss.scene import bundled_scenes, key_errors, scene_from_dict
+from corliss.scene.loader import bundled_scenes, key_errors, scene_from_dict
 
 SCENES = Path(__file__).resolve().parent.parent / "scenes"
 

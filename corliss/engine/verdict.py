@@ -11,8 +11,8 @@ settled did not settle.  Each is reported in the summary's ``failures`` list
 
 from __future__ import annotations
 
-from corliss import units
-from corliss.engine.operating_point import characteristic_speed
+from corliss.keys import units
+from corliss.governors.operating_point import characteristic_speed
 
 #: Exit status of a run that completed, its files written, but failed physically.
 EXIT_PHYSICAL = 4
