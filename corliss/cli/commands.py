@@ -603,6 +603,8 @@ def cmd_design(args) -> int:
                   f"lead {q(v.lead_m[k])}, greatest opening {q(v.max_opening_m[k])}")
     else:
         print(f"  setting          {v.setting:.6f} ({v.setting_name})")
+    for w in d.warnings:
+        print(f"  WARNING          {w}")
     for end, ev in d.events.items():
         print(f"  {end:5s} events     cut-off {_fmt(ev['cutoff_frac'], '', 4)}, release "
               f"{_fmt(ev['release_frac'], '', 4)}, compression {_fmt(ev['compression_frac'], '', 4)}"
