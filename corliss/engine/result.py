@@ -906,8 +906,11 @@ class SweepResult(Result):
         for knob, pts in groups:
             a, b, r2 = willans_fit(pts) if len(pts) >= 2 else (None, None, None)
             pre = "" if self.knob != "both" else f"{knob}_"
+            # compare's names for the same line: the slope as kg/kWh (b [kg/h per W]
+            # x 1000 W/kW), the fit's R2 as a fraction
             out.update({f"{pre}willans_intercept_kg_per_h": a,
-                        f"{pre}willans_slope_kg_per_h_per_W": b, f"{pre}willans_r2": r2})
+                        f"{pre}willans_slope_kg_per_kWh": None if b is None else 1e3 * b,
+                        f"{pre}willans_r2_frac": r2})
         out.update({"rhs_evaluations": self.rhs_evaluations, "wall_time_s": self.wall_time_s})
         return out
 
