@@ -89,7 +89,7 @@ class RunError(RuntimeError):
     """A run that cannot go on, for a reason in the scene rather than in the code.
 
     The run-time budget exhausted, a state outside the steam properties.  The CLI
-    turns it into a one-paragraph message and exit code 2, with no files written.
+    turns it into a one-paragraph message and exit code 3, with no files written.
     Raised as ``RunError(message)``, the message saying what happened, with the scene
     quantities that likely caused it (the constructor is :class:`RuntimeError`'s).
     """
