@@ -199,7 +199,7 @@ def test_a_cycle_that_exhausts_its_budget_stops_with_a_message(tmp_path, capsys,
     out = tmp_path / "out"
     code = cli.main(["run", "--out", str(out), "--cycles", "2"])
     err = capsys.readouterr().err
-    assert code == 3 and "run.speed" in err and "engine.stroke" in err, err
+    assert code == 5 and "run.speed" in err and "engine.stroke" in err, err
     assert not out.exists()
 
 
@@ -209,7 +209,7 @@ def test_a_turn_that_exhausts_its_budget_stops_with_a_message(tmp_path, capsys, 
     code = cli.main(["run", "porter-allen-governor", "--out", str(out), "--duration", "0.5 s",
                      "--fidelity", "fast"])
     err = capsys.readouterr().err
-    assert code == 3 and "run.speed" in err and "warm-up" in err, err
+    assert code == 5 and "run.speed" in err and "warm-up" in err, err
     assert not out.exists()
 
 
