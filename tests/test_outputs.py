@@ -170,7 +170,8 @@ def test_a_failure_while_moving_files_into_place_restores_the_earlier_run(
     monkeypatch.setattr(os, "replace", failing)
     code = cli.main(["run", "--out", str(tmp_path), "--cycles", "3", "--fidelity", "fast"])
     monkeypatch.setattr(os, "replace", real)
-    assert code == 2        # a full disk is the machine's state, not a traceback
+    # a full disk is the machine's state, not a traceback: a run that stopped (exit 5)
+    assert code == cli.EXIT_RUN_STOPPED
     assert "No space left on device (injected)" in capsys.readouterr().err
     assert failed
     assert _snapshot(tmp_path) == before
