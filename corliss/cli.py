@@ -137,11 +137,11 @@ def print_steady(result, files) -> None:
 
 def _print_walls(s: dict, us: bool) -> None:
     """Initial condensation and the jacket's steam, when the walls exchange heat."""
-    miss = [s[k] for k in ("missing_water_fraction_head", "missing_water_fraction_crank")
-            if s.get(k) is not None]
-    if miss:
-        print(f"  missing water    {', '.join(f'{m:.3f}' for m in miss)} of the steam at "
-              "cut-off (head, crank)")
+    ends = [e for e in ("head", "crank") if s.get(f"missing_water_fraction_{e}") is not None]
+    if ends:
+        print("  missing water    " + ", ".join(f"{s[f'missing_water_fraction_{e}']:.3f}"
+                                              for e in ends)
+              + f" of the steam at cut-off ({', '.join(ends)})")
     if "jacket_steam_kg_per_h" in s:
         wr = s["water_rate_with_jacket_kg_per_kWh"]
         if us:

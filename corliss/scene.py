@@ -461,7 +461,8 @@ def _engine(t: Table) -> EngineSpec:
     jacket = t.get("jacket")
     thickness = t.get("wall_thickness", within=(1e-3, 0.5 * bore))
     spec = EngineSpec(bore, stroke, rod, prd, _pair_fraction(t, "clearance"), mass, f0, f1,
-                      *leaks, model, marks, crank_angles, condensing, jacket, thickness)
+                      *leaks, model, marks, crank_angles, condensing, jacket, thickness,
+                      t.get("steam_ends"))
     t.finish()
     return spec
 

@@ -18,6 +18,7 @@ from corliss.engine.options import EFFECTS, EXPANSION_LAWS, METHODS, MODELS, PRE
 from corliss.keyspec import POSITIVE_LENGTH, ZERO_OR_MORE, Derived, Key, group
 from corliss.tables import DISCHARGE_COEFFICIENT
 from corliss.thermo.steam import BACKENDS
+from corliss.valves.single_acting import STEAM_ENDS
 
 #: How a transient run's time series is recorded (see :class:`corliss.scene.RunSpec`).
 RECORD_CHOICES = ("step", "degree", "cycle")
@@ -66,6 +67,9 @@ ENGINE = group(
         choices=("none", "barrel"), effect="wall_heat"),
     Key("wall_thickness", "length", "Cylinder wall thickness, 1 mm to half the bore.",
         default="1 in", within=(1e-3, math.inf), unit="in", effect="wall_heat"),
+    Key("steam_ends", "choice", "The ends that take steam: both (double-acting), or head or "
+        "crank alone (single-acting: the other end's exhaust port stands open).",
+        default="both", choices=STEAM_ENDS),
 )
 
 SUPPLY = group(

@@ -61,6 +61,10 @@ class EngineSpec:
         saturation temperature (skin model).
     wall_thickness_m : float
         The barrel's wall between bore and jacket [m] (skin model, with a jacket).
+    steam_ends : str
+        The ends that take steam: ``"both"`` (double-acting), ``"head"`` or ``"crank"``
+        (single-acting: the other end's exhaust port stands open,
+        :mod:`corliss.valves.single_acting`).
     """
 
     bore_m: float
@@ -79,6 +83,7 @@ class EngineSpec:
     condensing_W_m2K: float | None = 3.0e5
     jacket: str = "none"
     wall_thickness_m: float = 0.0254
+    steam_ends: str = "both"
 
 
 @dataclass(frozen=True)

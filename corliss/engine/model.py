@@ -21,6 +21,7 @@ from corliss.thermo.steam import State, Steam, make_steam
 from corliss.thermo.wall_properties import transport_properties
 from corliss.valves import events as valve_events
 from corliss.valves import gear_type, tabulate
+from corliss.valves.single_acting import single_acting
 
 log = logging.getLogger(__name__)
 
@@ -76,7 +77,7 @@ def build_gear(scene):
         The valve gear (:mod:`corliss.valves`), at the run's speed for gears whose
         motion depends on it (those with a ``with_speed``).
     """
-    gear = gear_type(scene.gear_type).build(scene.gear)
+    gear = single_acting(gear_type(scene.gear_type).build(scene.gear), scene.engine.steam_ends)
     return gear.with_speed(scene.run.speed_rad_s) if hasattr(gear, "with_speed") else gear
 
 
@@ -95,7 +96,8 @@ def build_lp_gear(scene):
     """
     if scene.compound is None:
         return None
-    return gear_type(scene.compound.lp_gear_type).build(scene.compound.lp_gear)
+    return single_acting(gear_type(scene.compound.lp_gear_type).build(scene.compound.lp_gear),
+                         scene.compound.lp_engine.steam_ends)
 
 
 def scene_events(scene, settings: list[float] | None = None):
