@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 import corliss
-from corliss.engine import kernel
+from corliss.engine.kernels import balances, properties
 from corliss.scene import bundled_scenes, scene_from_dict
 from corliss.thermo.steam import HEOSSteam
 from corliss.thermo.steam_table import covers
@@ -99,7 +99,7 @@ def test_the_wall_never_gives_heat_against_the_temperature_difference(supply, sp
         # dry steam is heated at most to the wall: superheat only where the wall,
         # the supply or compression put it (the supply's temperature bounds them)
         rho = last[f"m_{end}_kg"].to_numpy() / last[f"V_{end}_m3"].to_numpy()
-        assert rho.min() > kernel.RHO_MIN
+        assert rho.min() > properties.RHO_MIN
         assert T.max() < max(r.chest.T, Tw.max()) + 150.0
         x = last[f"x_{end}_frac"].to_numpy()
         for k in range(0, p.size, 8):     # every eighth sample: HEOS is slow
@@ -418,10 +418,10 @@ def test_the_wall_is_wetted_by_the_mixtures_dryness():
     step stores in its own row (``PR_X``; the port flow's exponent is the real fluid's
     and says nothing of the dryness): wholly wet below 1 - WET_BAND, dry at x = 1, the
     cubic step's middle half-way between."""
-    assert kernel.PR_X < kernel.PR_ROWS and kernel.PR_X != kernel.PR_CLAMP
-    assert kernel.wetted_share(1.0) == 0.0
-    assert kernel.wetted_share(1.0 - kernel.WET_BAND / 2) == pytest.approx(0.5)
-    assert kernel.wetted_share(0.9) == 1.0
+    assert properties.PR_X < properties.PR_ROWS and properties.PR_X != properties.PR_CLAMP
+    assert balances.wetted_share(1.0) == 0.0
+    assert balances.wetted_share(1.0 - balances.WET_BAND / 2) == pytest.approx(0.5)
+    assert balances.wetted_share(0.9) == 1.0
 
 
 # --- every cylinder its own wall ----------------------------------------------------

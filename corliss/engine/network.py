@@ -597,7 +597,7 @@ class Network:
         Returns
         -------
         tuple
-            21 entries, read by index in :mod:`corliss.engine.kernel`: 0 ``[omega]``
+            21 entries, read by index in :mod:`corliss.engine.kernels`: 0 ``[omega]``
             [rad/s]; 1 band [-]; 2 geometry (cylinders, 8): crank radius, rod, stroke
             [m], head and crank piston areas [m2], head and crank clearances [m3],
             rod angularity (1 or 0); 3 phases [rad]; 4-7 node kind, cylinder, end,

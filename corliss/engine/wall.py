@@ -447,7 +447,7 @@ class IdealPortWall:
     Art. 74: the steam condensed at admission is supplied steam that never shows on the
     card).  The stepping splits each step of the grid in two: first the wall exchanges
     heat and water with the steam over the step's time ``dt = d(theta) / omega`` (the
-    same flows as the compiled kernel's, :func:`corliss.engine.kernel.balances`), then
+    same flows as the compiled kernel's, :func:`corliss.engine.kernels.balances.balances`), then
     the ports act (isentropic while closed; at the reservoir's pressure while open).
 
     The exchange over a step, per end (``A`` the wall the steam touches now, ``A_w``
