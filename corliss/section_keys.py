@@ -26,6 +26,8 @@ RECORD_CHOICES = ("step", "degree", "cycle")
 START_CHOICES = ("equilibrium", "run_speed", "rest")
 #: Wall-heat models of the ``wall_heat`` effect.
 WALL_HEAT_MODELS = ("skin", "marks", "conductance", "adair")
+#: Models of the ``leakage`` effect.
+LEAKAGE_MODELS = ("orifice", "period")
 #: Cylinder sizes: a model's half-inch cylinder to the largest engines built [m].
 CYLINDER_RANGE = (1e-3, 5.0)
 
@@ -56,6 +58,14 @@ ENGINE = group(
         "each end, up to 5 % of the piston area.", default="0 in2", effect="leakage"),
     Key("piston_leakage_area", "area", "Equivalent orifice of the leak past the piston, up "
         "to 5 % of the piston area.", default="0 in2", effect="leakage"),
+    Key("leakage_model", "choice", "How the leaks flow: as orifices of equivalent area, or "
+        "by the period's law (a rate of leak times the pressure difference, Callendar and "
+        "Nicolson 1897).", default="orifice", choices=LEAKAGE_MODELS, effect="leakage"),
+    Key("valve_leak_rate", "leak_rate", "Rate of leak of the valve, chest to exhaust, per "
+        "unit of pressure difference (Callendar and Nicolson's flat slide valve: "
+        "3 lb/h psi).", default="0 lb/h psi", effect="leakage"),
+    Key("piston_leak_rate", "leak_rate", "Rate of leak past the piston per unit of "
+        "pressure difference.", default="0 lb/h psi", effect="leakage"),
     Key("wall_heat_model", "choice", "How heat passes between steam and cylinder walls.",
         default="skin", choices=WALL_HEAT_MODELS, effect="wall_heat"),
     Key("marks_constant", "heat_transfer", "Marks's constant of condensation (Art. 82), "

@@ -65,6 +65,12 @@ class EngineSpec:
         The ends that take steam: ``"both"`` (double-acting), ``"head"`` or ``"crank"``
         (single-acting: the other end's exhaust port stands open,
         :mod:`corliss.valves.single_acting`).
+    leakage_model : str
+        ``"orifice"`` (the leak areas above) or ``"period"`` (the rates of leak below,
+        :mod:`corliss.thermo.leak_law`).
+    valve_leak_rate_kg_s_Pa, piston_leak_rate_kg_s_Pa : float
+        Rates of leak of the valve (chest to exhaust) and past the piston, flow per
+        unit of pressure difference [kg/(s Pa)] (``leakage`` effect, period model).
     """
 
     bore_m: float
@@ -84,6 +90,9 @@ class EngineSpec:
     jacket: str = "none"
     wall_thickness_m: float = 0.0254
     steam_ends: str = "both"
+    leakage_model: str = "orifice"
+    valve_leak_rate_kg_s_Pa: float = 0.0
+    piston_leak_rate_kg_s_Pa: float = 0.0
 
 
 @dataclass(frozen=True)

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 from corliss.engine.geometry import CylinderGeometry
 from corliss.engine.network import (Network, compound, single_cylinder, with_leakage,
-                                    with_steam_chest, with_wall_heat)
+                                    with_period_leakage, with_steam_chest, with_wall_heat)
 from corliss.errors import InputError
 from corliss.thermo.steam import State, Steam, make_steam
 from corliss.thermo.wall_properties import transport_properties
@@ -205,7 +205,10 @@ def build_network(scene, geo, pm, steam: Steam, chest: State, exhaust: State) ->
                        cp.receiver_volume_m3, chest, exhaust, rec, omega)
     if scene.run.has("steam_chest"):
         net = with_steam_chest(net, scene.supply)
-    if scene.run.has("leakage"):
+    if scene.run.has("leakage") and scene.engine.leakage_model == "period":
+        net = with_period_leakage(net, scene.engine.valve_leak_rate_kg_s_Pa,
+                                  scene.engine.piston_leak_rate_kg_s_Pa)
+    elif scene.run.has("leakage"):
         net = with_leakage(net, scene.engine.valve_leakage_area_m2,
                            scene.engine.piston_leakage_area_m2)
     if scene.run.has("wall_heat"):

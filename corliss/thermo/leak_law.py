@@ -37,6 +37,8 @@ from __future__ import annotations
 
 from typing import NamedTuple
 
+from numba import njit
+
 #: One pound-force per square inch [Pa] and one hour [s].
 PSI_PA = 6894.757293168361
 HOUR_S = 3600.0
@@ -88,6 +90,25 @@ CALLENDAR_NICOLSON_TESTS = (
              18.6, HOUR_S, 4.6 * AT_PA,
              "Callendar and Nicolson 1897, Min. Proc. ICE 131; DPJ 312 (1899) p. 163"),
 )
+
+
+@njit(cache=True)
+def linear_leak(rate_kg_s_Pa: float, p_from_Pa: float, p_to_Pa: float) -> float:
+    """The law itself, compiled for the engine's kernels: ``R (p_from - p_to)``.
+
+    Parameters
+    ----------
+    rate_kg_s_Pa : float
+        The path's rate of leak [kg/(s Pa)].
+    p_from_Pa, p_to_Pa : float
+        Pressures on the two sides [Pa].
+
+    Returns
+    -------
+    float
+        The flow [kg/s] from ``p_from`` to ``p_to`` (negative the other way).
+    """
+    return rate_kg_s_Pa * (p_from_Pa - p_to_Pa)
 
 
 def rate_of_leak_kg_s_Pa(mass_kg: float, duration_s: float, dp_Pa: float) -> float:
@@ -149,5 +170,5 @@ def leak_flow_kg_s(p_from_Pa: float, p_to_Pa: float, rate_kg_s_Pa: float,
     if rate_kg_s_Pa < 0.0 or min(opening_m, opening_ref_m, face_m, face_ref_m) <= 0.0:
         raise ValueError(f"leak_flow_kg_s: rate_kg_s_Pa={rate_kg_s_Pa!r} must be zero or "
                          "more and the lengths and widths positive")
-    return rate_kg_s_Pa * (p_from_Pa - p_to_Pa) * (opening_m / opening_ref_m) * (
-        face_ref_m / face_m)
+    return linear_leak(rate_kg_s_Pa * (opening_m / opening_ref_m) * (face_ref_m / face_m),
+                       p_from_Pa, p_to_Pa)

@@ -16,6 +16,7 @@ from numba import njit
 
 from corliss.engine.kernels.mechanism import TWO_PI, edge_area, port_areas
 from corliss.engine.kernels.properties import PR_X, node_states
+from corliss.thermo.leak_law import linear_leak
 from corliss.thermo.orifice import port_flow
 
 
@@ -150,7 +151,7 @@ def balances(th, y, pr, dy, net, areas):
     omega, band, res = net[0][0], net[1], net[8]
     P, RHO, H = pr[0], pr[1], pr[2]
     geo, ncyl_, end_, heat, wallT = net[2], net[5], net[6], net[19], net[20]
-    ea, eb, ecd = net[9], net[10], net[15]
+    ea, eb, ecd, ekind = net[9], net[10], net[15], net[11]
     nv = P.shape[0]
     ne = ea.shape[0]
     ndyn = 2 * nv
@@ -266,7 +267,12 @@ def balances(th, y, pr, dy, net, areas):
         b = eb[e]
         pa, ra, ha, ka = edge_side(a, pr, res)
         pb, rb, hb, kb = edge_side(b, pr, res)
-        md = port_flow(ar, ecd[e], pa, ra, ka, pb, rb, kb, band, True)
+        if ekind[e] == 2:
+            # the period's leak (corliss.thermo.leak_law): the rate of leak times the
+            # pressure difference, carrying the enthalpy of the side it leaves
+            md = linear_leak(ar, pa, pb)
+        else:
+            md = port_flow(ar, ecd[e], pa, ra, ka, pb, rb, kb, band, True)
         hd = md * (ha if md > 0.0 else hb)
         md /= omega
         hd /= omega

@@ -18,6 +18,7 @@ from corliss.engine.kernels.mechanism import (_port_area_slopes, _volume_curvatu
 from corliss.engine.kernels.properties import (PR_AT, PR_CLAMP, PR_SUP, TIER_PERFECT,
                                                admissible_flagged)
 from corliss.engine.kernels.stepping import copy_into
+from corliss.thermo.leak_law import linear_leak
 from corliss.thermo.orifice import port_flow_partials
 from corliss.thermo.steam_table import kappa_partials, lookup_near, pressure_partials
 
@@ -175,8 +176,13 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
         b = eb[e]
         pa, ra, ha, ka = edge_side(a, pr, res)
         pb, rb, hb, kb = edge_side(b, pr, res)
-        md, d1p, d1r, d1k, d2p, d2r, d2k = port_flow_partials(
-            area, ecd[e], pa, ra, ka, pb, rb, kb, band, True)
+        if ekind[e] == 2:
+            # the period's linear leak: R (p_a - p_b), its partials R and -R
+            md, d1p, d1r, d1k, d2p, d2r, d2k = (linear_leak(area, pa, pb), area, 0.0, 0.0,
+                                                -area, 0.0, 0.0)
+        else:
+            md, d1p, d1r, d1k, d2p, d2r, d2k = port_flow_partials(
+                area, ecd[e], pa, ra, ka, pb, rb, kb, band, True)
         # the side upstream as the flow's partials take it (side a at equal pressures):
         # not by the sign of md, which is 0 there, where the right-hand side carries no
         # enthalpy and its two one-sided derivatives carry side a's (pressure of b
@@ -186,7 +192,7 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
         h_up = ha if up_a else hb
         # in time: the area's slope (the flow is proportional to the area) and the
         # two sides' states
-        md_t = md / area * slope[ecyl[e], eport[e]] if ekind[e] != 1 and area > 0.0 else 0.0
+        md_t = md / area * slope[ecyl[e], eport[e]] if ekind[e] == 0 and area > 0.0 else 0.0
         hd_t = 0.0
         for side in range(2):
             nd = a if side == 0 else b

@@ -182,7 +182,8 @@ def port_areas(th, net, pa):
 
 @njit(cache=True, inline="always")
 def edge_area(net, e, pa):
-    """Open area of an edge: a fixed orifice's, or its port's.
+    """Open area of an edge: a fixed orifice's, or its port's; for a linear leak
+    (:data:`corliss.engine.network.LINEAR_EDGE`), its rate of leak [kg/(s Pa)].
 
     Parameters
     ----------
@@ -196,10 +197,10 @@ def edge_area(net, e, pa):
     Returns
     -------
     float
-        The area [m2].
+        The area [m2] (a linear leak's rate [kg/(s Pa)]).
     """
     ekind, ecyl, eport, earea = net[11], net[12], net[13], net[14]
-    if ekind[e] == 1:
+    if ekind[e] >= 1:
         return earea[e]
     return pa[ecyl[e], eport[e]]
 
