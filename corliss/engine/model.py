@@ -228,7 +228,8 @@ def build_network(scene, geo, pm, steam: Steam, chest: State, exhaust: State) ->
         net = with_wall_heat(net, model, eng.marks_constant_W_m2K,
                              transport_properties(chest.p, chest.T),
                              condensing_W_m2K=eng.condensing_W_m2K, jacket_T_K=jacket_T,
-                             wall_thickness_m=eng.wall_thickness_m)
+                             wall_thickness_m=eng.wall_thickness_m,
+                             idle_ends={"both": (), "head": (1,), "crank": (0,)}[eng.steam_ends])
     return net
 
 

@@ -882,7 +882,7 @@ WALL_MODELS = {"conductance": 1.0, "adair": 2.0, "marks": 3.0, "skin": 4.0}
 
 def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
                    condensing_W_m2K: float | None = None, jacket_T_K: float | None = None,
-                   wall_thickness_m: float = 0.025) -> Network:
+                   wall_thickness_m: float = 0.025, idle_ends: tuple = ()) -> Network:
     """Heat exchange between the steam of each cylinder end and its walls.
 
     ``model``:
@@ -908,8 +908,10 @@ def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
       cycle by cycle; with ``jacket_T_K``, the barrel's outer face (``wall_thickness_m``
       of iron away) is held at that temperature.  Every cylinder has its own wall.
 
-    Every cylinder end gets the model's row in :attr:`Network.node_heat`; vessels
-    (chest, receiver) exchange no heat.
+    Every cylinder end gets the model's row in :attr:`Network.node_heat` but a
+    single-acting cylinder's idle end (``idle_ends``), whose side of the piston stands
+    open to the exhaust and is no part of the engine's steam; vessels (chest,
+    receiver) exchange no heat.
 
     Parameters
     ----------
@@ -930,6 +932,8 @@ def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
         A jacket's temperature [K] (skin model; None: no jacket).
     wall_thickness_m : float
         The barrel's iron between bore and jacket [m] (skin model, with a jacket).
+    idle_ends : tuple of int
+        Ends (0 head, 1 crank) of every cylinder that take no steam: no wall heat.
 
     Returns
     -------
@@ -941,7 +945,7 @@ def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
     k, mu, pr = steam_props
     code = WALL_MODELS[model]
     for i, kind in enumerate(net.node_kind):
-        if kind == PISTON:
+        if kind == PISTON and net.node_end[i] not in idle_ends:
             net.node_heat[i] = (code, h_marks, k, mu, pr) + (0.0,) * (HEAT_COLUMNS - 5)
     if model == "skin":
         h_c = wall.CONDENSING_W_M2K if condensing_W_m2K is None else condensing_W_m2K
