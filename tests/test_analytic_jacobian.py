@@ -67,6 +67,14 @@ def _scene(name):
     if name == "steam chest":
         return make_scene(supply={"chest_volume": "3 ft3", "pipe_diameter": "5 in"},
                           run={"effects": ["port_flow", "rod_angularity", "steam_chest"]})
+    if name == "period leak":
+        # the period's linear leaks (chest to exhaust, head to crank), with the chest a
+        # state so that the valve's leak has partials too
+        return make_scene(supply={"chest_volume": "3 ft3", "pipe_diameter": "5 in"},
+                          engine={"leakage_model": "period", "valve_leak_rate": "3 lb/h psi",
+                                  "piston_leak_rate": "1 lb/h psi"},
+                          run={"effects": ["port_flow", "rod_angularity", "steam_chest",
+                                           "leakage"]})
     if name == "perfect steam":
         fid = dataclasses.replace(PRESETS["standard"], name="custom", properties="perfect")
         return make_scene().replace_run(fidelity=fid)
@@ -75,6 +83,7 @@ def _scene(name):
 
 @pytest.mark.parametrize("name, method", [
     ("default", "rosenbrock"), ("steam chest", "rosenbrock"), ("steam chest", "ros4"),
+    ("period leak", "rosenbrock"),
     ("perfect steam", "rosenbrock"), ("high-speed-condensing", "rosenbrock"),
     ("twin-90-degrees", "rosenbrock")])
 def test_analytic_jacobian_matches_central_differences(name, method):
