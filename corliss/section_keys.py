@@ -71,7 +71,8 @@ ENGINE = group(
     Key("marks_constant", "heat_transfer", "Marks's constant of condensation (Art. 82), "
         "above zero.", default="18.13 Btu/ft2 degF min", effect="wall_heat"),
     Key("condensing_coefficient", "heat_transfer", "Film coefficient of condensing steam "
-        "on the wall (above zero), or \"marks\" (Marks's eq. 221).", default="300 kW/m2 K",
+        "on the wall (above zero), or \"marks\" (Marks's eq. 221); the default is Callendar and "
+        "Nicolson's measured 4 kcal/s m2 degC.", default="16747.2 W/m2 K",
         choices=("marks",), effect="wall_heat"),
     Key("jacket", "choice", "A steam jacket round the barrel.", default="none",
         choices=("none", "barrel"), effect="wall_heat"),

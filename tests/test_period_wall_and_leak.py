@@ -7,15 +7,20 @@ in ``tests/data/callendar_nicolson_1897.csv`` (each with its DPJ page) and
 
 from __future__ import annotations
 
+import copy
 import csv
 import functools
+import tomllib
 from pathlib import Path
 
 import numpy as np
 import pytest
 from scipy.optimize import brentq
 
+import corliss
+from corliss.engine import wall
 from corliss.thermo import leak_law, wall_cycle
+from corliss.scene import bundled_scenes, scene_from_dict
 from corliss.thermo.steam import HEOSSteam
 
 DATA = Path(__file__).parent / "data" / "callendar_nicolson_1897.csv"
@@ -65,7 +70,8 @@ def test_callendar_and_nicolsons_coefficient_is_four_kcal_per_second_m2_and_degc
     """DPJ 312 p. 164: 4 kcal per second, m2 and degC on clean dry surfaces; their
     largest condensation, 23.74 kg of steam per m2, hour and degC (p. 165), times the
     latent heat at 150 degC (2.114 MJ/kg, IAPWS-95) is 13.9 kW/(m2 K), 17 % under it
-    (the two are different readings of one law; 20 % covers them)."""
+    (the two are different readings of one law; 20 % covers them).  The engine's
+    default condensing coefficient is theirs."""
     h = wall_cycle.CALLENDAR_NICOLSON_W_M2K
     assert h == pytest.approx(16747.2, rel=1e-9)
     heos = HEOSSteam()
@@ -73,6 +79,7 @@ def test_callendar_and_nicolsons_coefficient_is_four_kcal_per_second_m2_and_degc
     wet = heos.px(heos_p, 0.0)
     L = sat.h - wet.h
     assert wall_cycle.CALLENDAR_NICOLSON_MAX_KG_M2SK * L == pytest.approx(h, rel=0.20)
+    assert wall.CONDENSING_W_M2K == h
 
 
 def test_the_surface_peaks_near_their_149_degc_and_takes_their_heat_at_44_rpm():
@@ -142,3 +149,23 @@ def test_the_leak_follows_the_difference_the_opening_and_the_faces():
         0.5 * m)
     with pytest.raises(ValueError, match="rate_kg_s_Pa"):
         leak_law.leak_flow_kg_s(1.0, 0.0, -R)
+
+
+@pytest.mark.parametrize("speed_rpm", [44.0, 77.0])
+def test_the_engines_surface_swings_as_their_wall_within_three_times(speed_rpm):
+    """The engine's own skin wall on the bundled scene after their engine (single-acting
+    10.5 x 12 in, 0.2 cut-off, 100.5 psia, non-condensing): the head end's surface
+    swings more than their computed 11.5 K (44 rpm) and 6 K (77 rpm) and under three
+    times it (15.9 and 15.5 K: the lumped surface node's swing hardly falls with speed,
+    where theirs halved); with the old default, 3e5 W/(m2 K), more than three times
+    (41 and 44 K)."""
+    data = tomllib.loads(bundled_scenes()["callendar-nicolson-single-acting"].read_text())
+    data["run"].update({"speed": f"{speed_rpm:g} rpm", "fidelity": "fast"})
+    measured = _measured("surface_swing", speed_rpm)
+    swing = corliss.simulate(scene_from_dict(data, name="cn")).summary[
+        "wall_surface_swing_head_K"]
+    assert measured < swing < 3.0 * measured
+    old = copy.deepcopy(data)
+    old["engine"]["condensing_coefficient"] = "300 kW/m2 K"
+    assert corliss.simulate(scene_from_dict(old, name="cn-old")).summary[
+        "wall_surface_swing_head_K"] > 3.0 * measured

@@ -110,10 +110,13 @@ def test_ideal_ports_are_the_limit_of_ever_larger_ports(ideal):
     """The ideal-port model is what the port-flow model tends to as the ports grow
     without bound (corliss.engine.equilibrium): through the gear's ports made 4, 16
     and 64 times larger, the missing water at cut-off of each end comes nearer the
-    ideal ports' at each step, and at 64 times is within 0.02 of it (the head end's
-    0.292, 0.263, 0.243 against 0.231 with ideal ports: with larger ports the
-    admission's wire-drawing, which lowers the pressure at cut-off and so the steam
-    the card shows, shrinks slowly, as the square root of the area or slower)."""
+    ideal ports', the largest gap of the two ends at 64 times under half its value at
+    4 times and within 0.01 (with the default coefficient, Callendar and Nicolson's,
+    the gaps are 0.005 and 0.007 at 4 times, under 0.002 at 16 and 64 times; with the
+    old 3e5 W/(m2 K) the head end's went 0.292, 0.263, 0.243 against 0.231: with
+    larger ports the admission's wire-drawing, which lowers the pressure at cut-off
+    and so the steam the card shows, shrinks slowly, as the square root of the area or
+    slower)."""
     s_ideal = ideal.summary
     gaps = []
     for scale in (4.0, 16.0, 64.0):
@@ -121,10 +124,9 @@ def test_ideal_ports_are_the_limit_of_ever_larger_ports(ideal):
         assert s["cycles_to_converge"] is not None
         gaps.append([s[f"missing_water_fraction_{end}"] - s_ideal[f"missing_water_fraction_{end}"]
                      for end in ("head", "crank")])
-    gaps = np.array(gaps)
-    assert np.all(gaps > 0.0)
-    assert np.all(np.diff(gaps, axis=0) < 0.0)
-    assert np.all(gaps[-1] < 0.02)
+    gaps = np.abs(np.array(gaps))
+    assert gaps[-1].max() < 0.5 * gaps[0].max()
+    assert gaps[-1].max() < 0.01
     # the wall's mean surface temperature and heat tend to the same limit
     s64 = s  # the 64-times run
     for end in ("head", "crank"):

@@ -86,7 +86,7 @@ class EngineSpec:
     wall_heat_model: str = "skin"
     marks_constant_W_m2K: float = 6176.8
     crank_angles_rad: tuple[float, ...] = (0.0,)
-    condensing_W_m2K: float | None = 3.0e5
+    condensing_W_m2K: float | None = 16747.2
     jacket: str = "none"
     wall_thickness_m: float = 0.0254
     steam_ends: str = "both"

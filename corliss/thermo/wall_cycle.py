@@ -48,7 +48,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.linalg import solve_banded
 
 #: Callendar and Nicolson's coefficient of condensation on clean dry cast iron, 4 kcal
 #: per second, m2 and degC (DPJ 312, 1899, p. 164), in W/(m2 K): 4 x 4186.8.
@@ -185,18 +184,25 @@ def periodic_wall_cycle(t_sat_K: np.ndarray, speed_rpm: float, h_W_m2K: float,
     dx = depth / (n_x - 1)
     x = np.linspace(0.0, depth, n_x)
     r = alpha * dt / dx ** 2
-    # the banded matrix of (I - dt * Laplacian): ghost-node Neumann at both ends, the
-    # surface's flux added per step as h_eff (T_gas - T_0)
-    ab = np.zeros((3, n_x))
-    ab[0, 1:] = -r
-    ab[1, :] = 1.0 + 2.0 * r
-    ab[2, :-1] = -r
-    ab[0, 1] = -2.0 * r
-    ab[2, -2] = -2.0 * r
+    # the matrix of (I - dt * Laplacian): ghost-node Neumann at both ends (or the deep
+    # node held), the surface's flux added per step as h_eff (T_gas - T_0); inverted
+    # once for each of the two coefficients the surface takes (wet, dry)
+    m = np.zeros((n_x, n_x))
+    i = np.arange(n_x)
+    m[i, i] = 1.0 + 2.0 * r
+    m[i[1:], i[:-1]] = -r
+    m[i[:-1], i[1:]] = -r
+    m[0, 1] = -2.0 * r
+    m[-1, -2] = -2.0 * r
     if T_deep_K is not None:                    # held behind: the last row is T = T_deep
-        ab[1, -1] = 1.0
-        ab[2, -2] = 0.0
+        m[-1, :] = 0.0
+        m[-1, -1] = 1.0
     flux_gain = 2.0 * dt / (rho * c * dx)       # surface node: half cell
+    inverse = {}
+    for h in (h_W_m2K, h_dry_W_m2K):
+        a = m.copy()
+        a[0, 0] += flux_gain * h
+        inverse[h] = np.linalg.inv(a)
     T = np.full(n_x, float(np.mean(t_sat)) if T_deep_K is None else float(T_deep_K))
     film = 0.0
     out = np.empty((len(depths_m), n_t))
@@ -211,11 +217,9 @@ def periodic_wall_cycle(t_sat_K: np.ndarray, speed_rpm: float, h_W_m2K: float,
                 h = h_W_m2K
             else:
                 h = h_dry_W_m2K
-            a = ab.copy()
-            a[1, 0] += flux_gain * h
             rhs = T.copy()
             rhs[0] += flux_gain * h * ts
-            T = solve_banded((1, 1), a, rhs)
+            T = inverse[h] @ rhs
             q = h * (ts - T[0])                      # [W/m2] into the wall
             if h == h_W_m2K:
                 film = max(film + q * dt / latent_J_kg, 0.0)
