@@ -127,11 +127,14 @@ def test_ideal_ports_are_the_limit_of_ever_larger_ports(ideal):
     gaps = np.abs(np.array(gaps))
     assert gaps[-1].max() < 0.5 * gaps[0].max()
     assert gaps[-1].max() < 0.01
-    # the wall's mean surface temperature and heat tend to the same limit
+    # the wall's mean surface temperature and heat tend to the same limit (within 4 K:
+    # 3.5 K at 64 times with the default coefficient, the surface's mean 128 degC
+    # against ideal ports' 131, under 1.5 K with the old 3e5 W/(m2 K), which tied the
+    # surface closer to the steam)
     s64 = s  # the 64-times run
     for end in ("head", "crank"):
         assert s64[f"wall_surface_mean_{end}_K"] == pytest.approx(
-            s_ideal[f"wall_surface_mean_{end}_K"], abs=2.0)
+            s_ideal[f"wall_surface_mean_{end}_K"], abs=4.0)
         assert s64[f"heat_to_walls_{end}_J_per_cycle"] == pytest.approx(
             s_ideal[f"heat_to_walls_{end}_J_per_cycle"], rel=0.05)
 
