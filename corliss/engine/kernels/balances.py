@@ -12,8 +12,8 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
 
+from corliss.engine.kernels.compiled import njit
 from corliss.engine.kernels.mechanism import TWO_PI, edge_area, port_areas
 from corliss.engine.kernels.properties import PR_X, node_states
 from corliss.thermo.orifice import port_flow
