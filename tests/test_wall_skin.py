@@ -16,8 +16,8 @@ import numpy as np
 import pytest
 
 import corliss
-from corliss.engine.kernels import balances, properties
-from corliss.scene import bundled_scenes, scene_from_dict
+from corliss.engine.kernels import properties, walls
+from corliss.scene.loader import bundled_scenes, scene_from_dict
 from corliss.thermo.steam import HEOSSteam
 from corliss.thermo.steam_table import covers
 
@@ -448,9 +448,9 @@ def test_the_wall_is_wetted_by_the_mixtures_dryness():
     and says nothing of the dryness): wholly wet below 1 - WET_BAND, dry at x = 1, the
     cubic step's middle half-way between."""
     assert properties.PR_X < properties.PR_ROWS and properties.PR_X != properties.PR_CLAMP
-    assert balances.wetted_share(1.0) == 0.0
-    assert balances.wetted_share(1.0 - balances.WET_BAND / 2) == pytest.approx(0.5)
-    assert balances.wetted_share(0.9) == 1.0
+    assert walls.wetted_share(1.0) == 0.0
+    assert walls.wetted_share(1.0 - walls.WET_BAND / 2) == pytest.approx(0.5)
+    assert walls.wetted_share(0.9) == 1.0
 
 
 # --- every cylinder its own wall ----------------------------------------------------

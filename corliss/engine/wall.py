@@ -10,6 +10,11 @@ second law must therefore carry the surface's temperature: heat flows only from 
 hotter of steam and surface to the colder, and dry steam is heated at most to the
 surface's temperature.
 
+The wall's laws themselves (Adair's convection, the film's and the wet steam's
+coefficients, the film's limits) are written once, in
+:mod:`corliss.engine.kernels.walls`, which this module's reference path and the
+compiled balances both call.
+
 The surface as one lumped node (the choice, argued)
 ---------------------------------------------------
 The temperature wave the cycle drives into the iron dies within the skin depth
@@ -155,6 +160,8 @@ from __future__ import annotations
 
 import math
 
+from corliss.engine.kernels.walls import (FILM_MAX_KG_M2, FILM_WET_KG_M2, adair_h,
+                                          skin_coefficients)
 from corliss.thermo.wall_cycle import CALLENDAR_NICOLSON_W_M2K
 
 #: Grey cast iron (makeitfrom.com, "Grey Cast Iron"): conductivity [W/(m K)], specific
@@ -163,15 +170,6 @@ CAST_IRON_K, CAST_IRON_C, CAST_IRON_RHO = 46.0, 490.0, 7500.0
 #: Coefficient of condensation and evaporation on the surface [W/(m2 K)]: Callendar and
 #: Nicolson's, 4 kcal/(s m2 degC) (DPJ 312, 1899, p. 164; see the module docstring).
 CONDENSING_W_M2K = CALLENDAR_NICOLSON_W_M2K
-#: Film of water over which the wall counts as wetted: 10 microns, where a draining
-#: film breaks into drops and rivulets [kg/m2].
-FILM_WET_KG_M2 = 1.0e-2
-#: The thickest film a surface holds before the water runs off into the steam [kg/m2]:
-#: Nusselt's film thickness, [4 mu_l k_l L dT / (rho_l^2 g h_fg)]^(1/4), about 0.1 mm
-#: for a 12 in cover and a 20 K drop.
-FILM_MAX_KG_M2 = 0.1
-#: The mixture's wetness from which wet steam wets the whole wall [-].
-WET_BAND = 0.02
 #: Skin-model columns of a node's wall-heat row (after code, h_c, k, mu, Pr).
 COL_CAPACITY, COL_CONDUCTANCE, COL_AREA, COL_STATE, COL_JACKET_GA, COL_JACKET_T = 5, 6, 7, 8, 9, 10
 
@@ -441,11 +439,6 @@ class ConductionGrid:
             self.theta[i] = a + b * self.theta[i - 1]
 
 
-def _smoothstep(w: float) -> float:
-    w = min(max(w, 0.0), 1.0)
-    return w * w * (3.0 - 2.0 * w)
-
-
 class IdealPortWall:
     """The skin wall of one cylinder end for the ideal-port model (no ``port_flow``).
 
@@ -579,14 +572,9 @@ class IdealPortWall:
         T = st.T
         x = 1.0 if st.superheated else st.x
         Tsat = steam.t_sat(st.p) if st.superheated else T
-        de = 6.0 * V / A
-        re_ = st.rho * (0.5 * self.omega * de) * de / self.mu
-        hv = 0.053 * self.k / de * re_ ** 0.8 * self.pr ** 0.6
-        hf, hm = self.h_c, 0.0
-        if Tw > Tsat:
-            wf = _smoothstep(self.film / (FILM_WET_KG_M2 * Aw))
-            hm = hf * (1.0 - wf) * _smoothstep((1.0 - x) / WET_BAND)
-            hf *= wf
+        # the wall's laws, the compiled balances' own (corliss.engine.kernels.walls)
+        hv = adair_h(float(st.rho), self.omega, V, A, self.mu, self.k, self.pr)
+        hf, hm = skin_coefficients(Tw, Tsat, self.h_c, float(self.film), Aw, float(x))
         lat_c = max(st.h - self.h_L, 0.5 * self.L)     # condensing, per kg [J/kg]
         # the surface, backward Euler; a flow that would take more than there is
         # within the step (the film's water boiling off, the mixture's water, or,

@@ -76,9 +76,10 @@ inverse and solves) have no CPython wrapper (``no_cpython_wrapper``: less to com
 call from Python would crash the interpreter).  The public ones keep theirs: without,
 a first ``ros4`` call compiled 0.4-0.6 s less (16.2 and 15.9 against 16.5 and 16.5 s).
 
-Numba keys each module's cache on the content of that file alone, not on the compiled
-functions it inlines from other modules (:mod:`corliss.thermo.orifice`,
-:mod:`corliss.thermo.steam_table` and the kernels' own modules): a change there must
-come with a new :data:`~corliss.engine.kernels.cache.DEPENDENCY_REVISION`, or the
-cached kernel keeps the old code.
+Numba keys a function's cache on the content of its own file alone, not on the
+compiled functions it inlines from other modules (:mod:`corliss.thermo.orifice`,
+:mod:`corliss.thermo.steam_table` and the kernels' own modules).  Every kernel is
+compiled through :func:`corliss.engine.kernels.compiled.njit`, which keys its cache on
+the content of every module it can inline instead: a change to any of them recompiles
+the kernels that inline it, with no revision number to bump.
 """

@@ -12,10 +12,12 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
 
+from corliss.engine.kernels.compiled import njit
 from corliss.engine.kernels.mechanism import TWO_PI, edge_area, port_areas
 from corliss.engine.kernels.properties import PR_X, node_states
+from corliss.engine.kernels.walls import (FILM_MAX_KG_M2, FILM_WET_KG_M2, adair_h,
+                                          skin_coefficients)
 from corliss.thermo.leak_law import linear_leak
 from corliss.thermo.orifice import port_flow
 
@@ -80,39 +82,6 @@ def derivatives(th, y, pr, dy, net, pa):
     """
     port_areas(th, net, pa)
     balances(th, y, pr, dy, net, pa)
-
-
-#: The skin model's film (corliss.engine.wall): wetted from FILM_WET, running off into
-#: the steam beyond FILM_MAX [kg/m2]; wet steam wets the wall while it holds more than
-#: WET_BAND of water.
-FILM_WET = 1.0e-2
-
-
-FILM_MAX = 0.1
-
-
-WET_BAND = 0.02
-
-
-@njit(cache=True, inline="always")
-def wetted_share(x):
-    """Share of a wall that wet steam wets.
-
-    1 while the mixture holds more than :data:`WET_BAND` of water, falling smoothly (a
-    cubic step) to 0 at dry steam.
-
-    Parameters
-    ----------
-    x : float
-        The mixture's dryness [-] (1 when dry or superheated).
-
-    Returns
-    -------
-    float
-        The wetted share [-], 0 to 1.
-    """
-    w = min(max((1.0 - x) / WET_BAND, 0.0), 1.0)
-    return w * w * (3.0 - 2.0 * w)
 
 
 @njit(cache=True, inline="always")
@@ -181,18 +150,8 @@ def balances(th, y, pr, dy, net, areas):
                 mf = y[k + 1]
                 Aw = heat[i, 7]
                 Tsat = pr[7, i]
-                de = 6.0 * V / A
-                re_ = RHO[i] * (0.5 * omega * de) * de / heat[i, 3]
-                hv = 0.053 * heat[i, 2] / de * re_ ** 0.8 * heat[i, 4] ** 0.6
-                hf = heat[i, 1]
-                hm = 0.0
-                if Tw > Tsat:
-                    # a wetted surface boils its water off: the film's, and where the
-                    # film is gone, the water wet steam brings to it
-                    wf = min(max(mf / (FILM_WET * Aw), 0.0), 1.0)
-                    wf = wf * wf * (3.0 - 2.0 * wf)      # smooth at dry and fully wet
-                    hm = hf * (1.0 - wf) * wetted_share(pr[PR_X, i])
-                    hf *= wf
+                hv = adair_h(RHO[i], omega, V, A, heat[i, 3], heat[i, 2], heat[i, 4])
+                hf, hm = skin_coefficients(Tw, Tsat, heat[i, 1], mf, Aw, pr[PR_X, i])
                 qf = hf * (Tw - Tsat) * A            # [W] from the wall into the film
                 qm = hm * (Tw - Tsat) * A            # [W] into the mixture's water
                 qc = hv * (Tw - Ts) * A              # [W] into the steam by convection
@@ -207,7 +166,8 @@ def balances(th, y, pr, dy, net, areas):
                 else:
                     lat = L
                 mdot = qf / lat
-                run = (mf - FILM_MAX * Aw) * omega if mf > FILM_MAX * Aw else 0.0
+                held = FILM_MAX_KG_M2 * Aw
+                run = (mf - held) * omega if mf > held else 0.0
                 dy[2 * i] += (mdot + run) / omega
                 dy[2 * i + 1] += ((mdot + run) * hL + qf + qv) / omega
                 dy[k + 1] = -(mdot + run) / omega
@@ -248,9 +208,7 @@ def balances(th, y, pr, dy, net, areas):
                 if wallT[i] > Ts:
                     Ts = pr[7, i]
             else:
-                de = 6.0 * V / A
-                re_ = RHO[i] * (0.5 * omega * de) * de / heat[i, 3]
-                h = 0.053 * heat[i, 2] / de * re_ ** 0.8 * heat[i, 4] ** 0.6
+                h = adair_h(RHO[i], omega, V, A, heat[i, 3], heat[i, 2], heat[i, 4])
             q = h * A * (wallT[i] - Ts) / omega
             dy[2 * i + 1] += q
             dy[q0 + 1] = q
@@ -291,8 +249,8 @@ def balances(th, y, pr, dy, net, areas):
 def sweep_films(y, pr, dy, net):
     """The skin model's film swept out with the steam (:mod:`corliss.engine.wall`).
 
-    While an end's steam flows out, the film beyond :data:`FILM_WET` goes with it in
-    the proportion of the steam leaving, into the steam as water of the film's
+    While an end's steam flows out, the film beyond
+    :data:`~corliss.engine.kernels.walls.FILM_WET_KG_M2` goes with it in the proportion of the steam leaving, into the steam as water of the film's
     enthalpy.
 
     Parameters
@@ -319,7 +277,7 @@ def sweep_films(y, pr, dy, net):
         if heat[i, 0] != 4.0 or not dy[2 * i] < 0.0:
             continue
         k = int(heat[i, 8])
-        extra = y[k + 1] - FILM_WET * heat[i, 7]
+        extra = y[k + 1] - FILM_WET_KG_M2 * heat[i, 7]
         m = y[2 * i]
         if extra > 0.0 and m > 0.0:
             sw = extra * (-dy[2 * i]) / m

@@ -11,12 +11,7 @@ from corliss.engine.kernels.cycle import CYCLE_KERNELS, ROS_FINITE_ARG, ROS_PAIR
 from corliss.engine.kernels.rosenbrock import _ros_steps
 from corliss.logs import NOTICE
 
-
 log = logging.getLogger(__name__)
-
-
-#: Revision of the inlined property and port-flow code (see the module's docstring).
-DEPENDENCY_REVISION = 24
 
 
 def uncached(dispatcher, nones: dict[int, bool] | None = None) -> bool | None:

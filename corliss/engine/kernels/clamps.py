@@ -5,8 +5,7 @@ cycle integrator reports of them (``CL_*``).
 
 from __future__ import annotations
 
-from numba import njit
-
+from corliss.engine.kernels.compiled import njit
 from corliss.engine.kernels.properties import PR_CLAMP
 from corliss.thermo.steam_table import CLAMP_HIGH_ENERGY
 

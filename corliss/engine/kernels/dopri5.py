@@ -9,12 +9,12 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
 from corliss.engine.kernels.balances import rhs
 from corliss.engine.kernels.clamps import (CL_ACCEPTED, CL_NODE, settle_clamps,
                                            settle_trial, settle_visited, tally_clamps,
                                            visited_clamp_off)
+from corliss.engine.kernels.compiled import njit
 from corliss.engine.kernels.loop import (N_EXTRA, N_REC, S_MAX_RHS, S_WMIN, X_OMEGA, X_Z,
                                          _project, _record, _turn_end, _visited_clamps,
                                          transient_rhs)

@@ -8,10 +8,10 @@ columns plus the shaft and governor states).
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
 from corliss.engine.kernels.balances import edge_side, rhs
 from corliss.engine.kernels.clamps import tally_clamps
+from corliss.engine.kernels.compiled import njit
 from corliss.engine.kernels.loop import N_EXTRA, X_OMEGA, X_Z, X_ZDOT, transient_rhs
 from corliss.engine.kernels.mechanism import (_port_area_slopes, _volume_curvature,
                                               edge_area, node_volume, port_areas)

@@ -50,11 +50,11 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
 from corliss.engine.kernels.balances import balances
 from corliss.engine.kernels.clamps import (CL_ACCEPTED, CL_ACCEPTED_CODE, CL_REJECTED,
                                            CL_REJECTED_CODE)
+from corliss.engine.kernels.compiled import njit
 from corliss.engine.kernels.mechanism import TWO_PI, piston_kinematics, port_areas
 from corliss.engine.kernels.properties import node_states
 from corliss.engine.kernels.stepping import put_column

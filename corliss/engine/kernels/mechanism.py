@@ -8,7 +8,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+
+from corliss.engine.kernels.compiled import njit
 
 
 TWO_PI = 2.0 * math.pi

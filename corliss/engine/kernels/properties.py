@@ -6,8 +6,8 @@ the perfect gas), and the rows of the node-property scratch ``pr`` (``PR_*``).
 
 from __future__ import annotations
 
-from numba import njit
 
+from corliss.engine.kernels.compiled import njit
 from corliss.engine.kernels.mechanism import end_volume, piston_position
 from corliss.thermo.steam_table import PARAMS, kappa_at, lookup_near, t_sat
 

@@ -9,12 +9,12 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
 from corliss.engine.kernels.balances import rhs
 from corliss.engine.kernels.clamps import (CL_ACCEPTED, CL_NODE, settle_clamps,
                                            settle_trial, settle_visited, tally_clamps,
                                            visited_clamp_off)
+from corliss.engine.kernels.compiled import njit
 from corliss.engine.kernels.jacobians import (LOOP_COLUMNS, _exact_jacobian_holds,
                                               _jacobian, _jacobian_exact, _loop_jacobian,
                                               _loop_w_inverse, _loop_w_solve, _w_inverse,

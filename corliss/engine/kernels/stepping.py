@@ -5,10 +5,9 @@ and the samples written at the output angles.
 
 from __future__ import annotations
 
-from numba import njit
-
 from corliss.engine.kernels.balances import rhs
 from corliss.engine.kernels.clamps import settle_visited, tally_clamps
+from corliss.engine.kernels.compiled import njit
 from corliss.engine.kernels.tableaus import hermite
 
 

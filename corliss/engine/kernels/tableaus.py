@@ -9,7 +9,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+
+from corliss.engine.kernels.compiled import njit
 
 
 # Dormand-Prince 5(4) tableau
