@@ -145,7 +145,8 @@ def _crank_resolved(scene, model, pm, progress, start=None):
     wall_nodes = net.wall_nodes
     marks = None
     if heat and scene.engine.wall_heat_model == "marks":
-        marks = MarksLaw(net, geo, model.events, omega, model.chest.T, model.exhaust.T)
+        marks = MarksLaw(net, geo, model.events, omega, model.chest.T, model.exhaust.T,
+                         lp_events=model.lp_events)
     method, rtol = fid.steady_integrator(steam.kernel_tier is not None
                                          and jacobians.exact_jacobian_covers(net.arrays()))
     crank = CrankResolved(net, steam, method, rtol, step_deg=fid.step_deg)
