@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 import corliss
-from corliss import cli
+from corliss.cli import commands as cli
 from corliss.errors import InputError
 from corliss.scene import bundled_scenes, scene_from_dict
 

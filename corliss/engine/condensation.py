@@ -184,6 +184,8 @@ class MarksLaw:
         A compound's low-pressure valve events by end: its ends (``lp_head``,
         ``lp_crank``) take their rows from these and from the LP cylinder's geometry.
 
+    Notes
+    -----
     Each end's row is built from its own cylinder's geometry (``network.geometries``)
     and events, in that cylinder's own crank angle (the kernel adds the cylinder's
     phase), and its cut-off temperature is sampled at the shaft angle where that
