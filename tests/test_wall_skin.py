@@ -523,3 +523,17 @@ def test_marks_constant_as_a_calibration():
         s["marks_missing_water_fraction_head"], rel=0.015)
     default = _missing(_run("cut0.4", valve_gear={"setting": 0.4}))
     assert s["missing_water_fraction_head"] > default
+
+
+def test_the_wetness_at_cut_off_counts_the_walls_water():
+    """English (Proc. IMechE 1887, in DPJ 267, 1888, p. 302): what counts is the water
+    present at the end of admission, whether condensed in the cylinder or carried in.
+    On dry saturated steam that water is what condensed, so the wetness at cut-off
+    with the wall's film counted is the missing water at cut-off to 0.01 of the steam
+    (the cushion's share of each differs: 0.132 against 0.131 at the head end here),
+    where the mixture's wetness alone reads under 0.01 (the water is on the wall)."""
+    s = _run("cut0.4", valve_gear={"setting": 0.4}).summary
+    for end in ("head", "crank"):
+        assert s[f"wet_fraction_at_cutoff_{end}"] < 0.01
+        assert s[f"wet_fraction_at_cutoff_with_film_{end}"] == pytest.approx(
+            s[f"missing_water_fraction_{end}"], abs=0.01)

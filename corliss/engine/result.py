@@ -161,6 +161,13 @@ class Result:
             return out
         c, k = angle("cutoff_deg"), angle("compression_deg")
         out[f"wet_fraction_at_cutoff_{end}"] = 1.0 - at(f"x_{end}_frac", c)
+        if f"m_film_{end}_kg" in ts:
+            # the period's "wetness at cut-off" counts all the water present, the wall's
+            # film with the mixture's (English, in DPJ 267, 1888, p. 302: what counts is
+            # the water present at the end of admission, wherever it condensed)
+            m, film = at(f"m_{end}_kg", c), at(f"m_film_{end}_kg", c)
+            out[f"wet_fraction_at_cutoff_with_film_{end}"] = (
+                (m * (1.0 - at(f"x_{end}_frac", c)) + film) / (m + film))
         supplied = float(row[f"m_chest_{end}_kg"])
         shown = (at(f"V_{end}_m3", c) * sat.px(at(f"p_{end}_Pa", c), 1.0).rho
                  - at(f"V_{end}_m3", k) * sat.px(at(f"p_{end}_Pa", k), 1.0).rho)
