@@ -137,6 +137,14 @@ def print_steady(result, files) -> None:
 
 def _print_walls(s: dict, us: bool) -> None:
     """Initial condensation and the jacket's steam, when the walls exchange heat."""
+    if "valve_leakage_fraction_of_steam" in s:
+        leak = s["valve_leakage_kg_per_h"]
+        print(f"  valve leakage    "
+              + (f"{leak / units.POUND_kg:.1f} lb/h" if us else f"{leak:.1f} kg/h")
+              + f", {s['valve_leakage_fraction_of_steam']:.3f} of the steam")
+    if s.get("missing_water_fraction_of_feed") is not None:
+        print(f"  missing water    {s['missing_water_fraction_of_feed']:.3f} of the feed at "
+              "cut-off (condensation and leakage)")
     ends = [e for e in ("head", "crank") if s.get(f"missing_water_fraction_{e}") is not None]
     if ends:
         print("  missing water    " + ", ".join(f"{s[f'missing_water_fraction_{e}']:.3f}"
