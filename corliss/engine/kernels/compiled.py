@@ -61,8 +61,12 @@ def module_file(module: str, root: Path = PACKAGE_ROOT) -> Path | None:
 
 @functools.lru_cache(maxsize=None)
 def _read(module: str, root: Path) -> tuple[frozenset, bool]:
-    """The package's modules ``module`` imports, and whether it defines compiled code."""
-    text = module_file(module, root).read_text(encoding="utf-8")
+    """The package's modules ``module`` imports, and whether it defines compiled code
+    (nothing and False for a module without a source file)."""
+    path = module_file(module, root)
+    if path is None:
+        return frozenset(), False
+    text = path.read_text(encoding="utf-8")
     return frozenset(_imported(module, text, root)), bool(_COMPILED.search(text))
 
 
@@ -110,7 +114,8 @@ def inlined_modules(module: str, root: Path = PACKAGE_ROOT) -> list[str]:
 def _key(module: str, root: Path) -> str:
     h = hashlib.sha256()
     for m in inlined_modules(module, root):
-        h.update(m.encode() + b"\0" + module_file(m, root).read_bytes() + b"\0")
+        path = module_file(m, root)
+        h.update(m.encode() + b"\0" + (path.read_bytes() if path else b"") + b"\0")
     return h.hexdigest()
 
 
