@@ -127,16 +127,28 @@ def test_ideal_ports_are_the_limit_of_ever_larger_ports(ideal):
     gaps = np.abs(np.array(gaps))
     assert gaps[-1].max() < 0.5 * gaps[0].max()
     assert gaps[-1].max() < 0.01
-    # the wall's mean surface temperature and heat tend to the same limit (within 4 K:
-    # 3.5 K at 64 times with the default coefficient, the surface's mean 128 degC
-    # against ideal ports' 131, under 1.5 K with the old 3e5 W/(m2 K), which tied the
-    # surface closer to the steam)
-    s64 = s  # the 64-times run
+
+
+@pytest.mark.xfail(strict=True, raises=AssertionError,
+                   reason="issue 31: with the measured coefficient the port-flow wall's "
+                   "surface moves away from the ideal-port wall's as the ports grow")
+def test_the_walls_surface_and_heat_tend_to_the_ideal_ports(ideal):
+    """The wall's mean surface temperature and heat should come nearer the ideal-port
+    wall's as the ports grow (4 and 64 times), and at 64 times lie within 4 K and a
+    fifth.  With the old coefficient, 3e5 W/(m2 K), they came within 1.5 K and 5 %;
+    with Callendar and Nicolson's the head end's surface is 1.3 K off at 4 times and
+    3.5 K at 64 (131.7 against 128.2 degC), its heat 13.2 kJ against 15.4: the
+    ideal-port wall (corliss.engine.equilibrium) and the port-flow wall part where the
+    surface lags the steam.  Strict: this fails once they meet."""
+    s_ideal = ideal.summary
+    runs = [run_steady(_scene(True), portmap_scale=scale).summary for scale in (4.0, 64.0)]
     for end in ("head", "crank"):
-        assert s64[f"wall_surface_mean_{end}_K"] == pytest.approx(
-            s_ideal[f"wall_surface_mean_{end}_K"], abs=4.0)
-        assert s64[f"heat_to_walls_{end}_J_per_cycle"] == pytest.approx(
-            s_ideal[f"heat_to_walls_{end}_J_per_cycle"], rel=0.05)
+        for key, within in ((f"wall_surface_mean_{end}_K", 4.0),
+                            (f"heat_to_walls_{end}_J_per_cycle",
+                             0.2 * s_ideal[f"heat_to_walls_{end}_J_per_cycle"])):
+            far, near = (abs(r[key] - s_ideal[key]) for r in runs)
+            assert near < far, (key, far, near)
+            assert near < within, (key, near)
 
 
 @pytest.mark.parametrize("supply,speed", [("saturated", "10 rpm"), ("wet", "600 rpm"),
