@@ -31,6 +31,10 @@
     the runnable ``fitted.toml`` and the measured card over the fitted one.
 ``corliss bench [--repeats N] [--out DIR]``
     The accuracy-versus-time study of ``benchmarks/`` (from a source checkout).
+``corliss workbench [SCENE] [--port N] [--no-browser] [--fidelity F]``
+    A local page (127.0.0.1) to set the gear, speed, steam and clearance by hand and
+    watch the card, the events, the Zeuner diagram and the port openings redrawn
+    (needs ``corliss[workbench]``; every asset served locally).
 ``corliss list scenes|gears|effects|governors``
     What the package holds.
 ``corliss list keys GEAR_OR_GOVERNOR``
@@ -886,6 +890,29 @@ def cmd_explain(args) -> int:
     return 0
 
 
+def cmd_workbench(args) -> int:
+    """``corliss workbench``: serve the workbench page until interrupted.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        ``scene``, ``port``, ``address``, ``no_browser`` and ``fidelity``.
+
+    Returns
+    -------
+    int
+        0 once stopped (a bad scene or option is an InputError: exit 2).
+    """
+    try:
+        from corliss.workbench.server import serve
+    except ImportError as exc:      # the optional extra is not installed
+        raise InputError("workbench", str(exc), 'the workbench extra: pip install '
+                         '"corliss[workbench]"') from None
+    serve(args.scene, port=args.port, address=args.address,
+          open_browser=not args.no_browser, fidelity=args.fidelity)
+    return 0
+
+
 def cmd_list_keys(args) -> int:
     """``corliss list keys GEAR_OR_GOVERNOR``: a type's scene keys; any other ``list``
     goes to :func:`cmd_list`.
@@ -1079,6 +1106,17 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--repeats", type=int, default=3, help="repeats per setting (median)")
     b.add_argument("--out", help="directory for the CSV and plot (default benchmarks/results)")
     b.set_defaults(func=cmd_bench)
+    wb = sub.add_parser("workbench", help="a local page to set the gear and steam by hand "
+                        "and watch the card redrawn")
+    wb.add_argument("scene", nargs="?", help="scene TOML or a bundled scene's name "
+                    "(default: the bundled default scene)")
+    wb.add_argument("--port", type=int, help="port (default: a free one)")
+    wb.add_argument("--address", default="127.0.0.1", help="address to listen on "
+                    "(default 127.0.0.1, this machine only)")
+    wb.add_argument("--no-browser", action="store_true", help="serve only; open no browser")
+    wb.add_argument("--fidelity", choices=("reference", "standard", "fast"), default="fast",
+                    help="fidelity the page starts at (default fast)")
+    wb.set_defaults(func=cmd_workbench)
     ls = sub.add_parser("list", help="list bundled scenes and the registries")
     ls.add_argument("what", choices=("scenes", "gears", "effects", "governors", "keys"))
     ls.add_argument("name", nargs="?", help="with keys: the gear or governor")
