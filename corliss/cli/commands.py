@@ -204,11 +204,19 @@ def print_steady(result, files) -> None:
 
 def _print_walls(s: dict, us: bool) -> None:
     """Initial condensation and the jacket's steam, when the walls exchange heat."""
-    miss = [s[k] for k in ("missing_water_fraction_head", "missing_water_fraction_crank")
-            if s.get(k) is not None]
-    if miss:
-        print(f"  missing water    {', '.join(f'{m:.3f}' for m in miss)} of the steam at "
-              "cut-off (head, crank)")
+    if "valve_leakage_fraction_of_steam" in s:
+        leak = s["valve_leakage_kg_per_h"]
+        print(f"  valve leakage    "
+              + (f"{leak / units.POUND_kg:.1f} lb/h" if us else f"{leak:.1f} kg/h")
+              + f", {s['valve_leakage_fraction_of_steam']:.3f} of the steam")
+    ends = [e for e in ("head", "crank") if s.get(f"missing_water_fraction_{e}") is not None]
+    if ends:
+        print("  missing water    " + ", ".join(f"{s[f'missing_water_fraction_{e}']:.3f}"
+                                              for e in ends)
+              + f" of the steam at cut-off ({', '.join(ends)})")
+    if s.get("missing_water_fraction_of_feed") is not None:
+        print(f"  of the feed      {s['missing_water_fraction_of_feed']:.3f} missing at "
+              "cut-off (condensation and leakage)")
     if "jacket_steam_kg_per_h" in s:
         wr = s["water_rate_with_jacket_kg_per_kWh"]
         if us:
