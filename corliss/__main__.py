@@ -4,5 +4,5 @@ import sys
 
 from corliss.cli.commands import main
 
-if __name__ == "__main__":
+if __name__ == "__main__":      # not when a documentation tool imports every module
     sys.exit(main())

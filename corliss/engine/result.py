@@ -33,6 +33,7 @@ from corliss.engine import crank_effort as ce
 from corliss.engine.condensation import marks_condensation_kg
 from corliss.engine.options import record_of
 from corliss.engine.speed_metrics import load_step_metrics, step_time_of
+from corliss.engine.verdict import steady_failures, transient_failures
 from corliss.frames.frame import Frame
 from corliss.thermo.steam import HEOSSteam, TableSteam
 
@@ -117,8 +118,17 @@ class Result:
     def summary(self) -> dict:
         """The run's summary (SI unless a key names its unit); computed once."""
         if self._summary is None:
-            self._summary = self._make_summary()
+            summary = self._make_summary()
+            failures = self._failures(summary)
+            if failures is not None:
+                summary["failures"] = failures
+            self._summary = summary
         return self._summary
+
+    def _failures(self, summary: dict) -> list[dict] | None:
+        """The ways a completed run failed physically (see :mod:`corliss.engine.verdict`);
+        None for a kind that reports none."""
+        return None
 
     def _end_condensation(self, end, ev, geo, e_idx, shift_deg, row, ts, at, sat) -> dict:
         """The condensation summary of one end (``end`` with its cylinder's prefix; its
@@ -148,6 +158,13 @@ class Result:
             return out
         c, k = angle("cutoff_deg"), angle("compression_deg")
         out[f"wet_fraction_at_cutoff_{end}"] = 1.0 - at(f"x_{end}_frac", c)
+        if f"m_film_{end}_kg" in ts:
+            # the period's "wetness at cut-off" counts all the water present, the wall's
+            # film with the mixture's (English, in DPJ 267, 1888, p. 302: what counts is
+            # the water present at the end of admission, wherever it condensed)
+            m, film = at(f"m_{end}_kg", c), at(f"m_film_{end}_kg", c)
+            out[f"wet_fraction_at_cutoff_with_film_{end}"] = (
+                (m * (1.0 - at(f"x_{end}_frac", c)) + film) / (m + film))
         supplied = float(row[f"m_chest_{end}_kg"])
         shown = (at(f"V_{end}_m3", c) * sat.px(at(f"p_{end}_Pa", c), 1.0).rho
                  - at(f"V_{end}_m3", k) * sat.px(at(f"p_{end}_Pa", k), 1.0).rho)
@@ -501,6 +518,15 @@ class SteadyResult(Result):
         valve_leaks = [k for k in row.index if k.startswith("m_valve_leak_")]
         if valve_leaks:
             out["valve_leakage_kg_per_h"] = float(sum(row[k] for k in valve_leaks)) * rev_per_h
+            for k in valve_leaks:       # each path's: the period's law has its own names
+                out[f"{k[2:-3]}_kg_per_h"] = float(row[k]) * rev_per_h
+            # the leak that leaves the steam side, as a fraction of the steam supplied
+            # (a compound's HP valve leaks into the receiver; the LP's is the receiver's)
+            fed = (["m_valve_leak_receiver_kg"] if "m_valve_leak_receiver_kg" in row
+                   else valve_leaks)
+            supplied = float(row["m_supply_kg"])
+            if supplied > 0.0:
+                out["valve_leakage_fraction_of_steam"] = float(sum(row[k] for k in fed)) / supplied
         if "m_piston_leak_kg" in row:
             out["piston_leakage_net_kg_per_cycle"] = float(row["m_piston_leak_kg"])
         if "Q_head_J" in row:
@@ -577,6 +603,16 @@ class SteadyResult(Result):
                 if f"Q_to_wall_{end}_J" in row:
                     out.update(self._end_condensation(
                         end, evs[end0], geo, e_idx, math.degrees(phase), row, ts, at, sat))
+        # the period's "missing quantity of feed water at cut-off" (Willans 1888): the
+        # steam supplied less what the (high-pressure) cylinders hold as steam at
+        # cut-off, of the steam supplied: condensation and leakage together
+        per = [k for k in out if k.startswith("missing_water_per_stroke_")
+               and not k.startswith("missing_water_per_stroke_lp_")]
+        supplied = float(row["m_supply_kg"])
+        if per and supplied > 0.0:
+            steam = sum(float(row[f"m_chest_{k[len('missing_water_per_stroke_'):-3]}_kg"])
+                        - out[k] for k in per)
+            out["missing_water_fraction_of_feed"] = (supplied - steam) / supplied
         if self.scene.engine.jacket != "none":
             out.update(self._jacket_summary(row, sat, work_J))
         return out
@@ -602,6 +638,9 @@ class SteadyResult(Result):
         total = steam_kg_h + jacket_kg_h
         return {"jacket_heat_W": q * rev_per_s, "jacket_steam_kg_per_h": jacket_kg_h,
                 "water_rate_with_jacket_kg_per_kWh": total / power_kW if power_kW > 0 else None}
+
+    def _failures(self, summary: dict) -> list[dict]:
+        return steady_failures(summary, fixed_cycles=self.scene.run.cycles is not None)
 
     def _make_summary(self) -> dict:
         run = self.scene.run
@@ -731,6 +770,12 @@ class TransientResult(Result):
     def step_time_s(self) -> float | None:
         """The time of the load's step [s] (None for a load without one)."""
         return step_time_of(self.scene.load)
+
+    def _failures(self, summary: dict) -> list[dict]:
+        z_end = (float(self.cycles["governor_z_frac"].iloc[-1])
+                 if "governor_z_frac" in self.cycles else None)
+        return transient_failures(summary, self.mechanism, z_end,
+                                  until_settled=self.scene.run.until_settled)
 
     @property
     def metrics(self) -> dict:
@@ -873,8 +918,11 @@ class SweepResult(Result):
         for knob, pts in groups:
             a, b, r2 = willans_fit(pts) if len(pts) >= 2 else (None, None, None)
             pre = "" if self.knob != "both" else f"{knob}_"
+            # compare's names for the same line: the slope as kg/kWh (b [kg/h per W]
+            # x 1000 W/kW), the fit's R2 as a fraction
             out.update({f"{pre}willans_intercept_kg_per_h": a,
-                        f"{pre}willans_slope_kg_per_h_per_W": b, f"{pre}willans_r2": r2})
+                        f"{pre}willans_slope_kg_per_kWh": None if b is None else 1e3 * b,
+                        f"{pre}willans_r2_frac": r2})
         out.update({"rhs_evaluations": self.rhs_evaluations, "wall_time_s": self.wall_time_s})
         return out
 
