@@ -1088,6 +1088,7 @@ def _check_governor_spring(gov_t, spec, mech, g: Table, run: RunSpec) -> None:
     and the preload (stiffness kept) that would balance it there."""
     if not (hasattr(spec, "spring_stiffness_N_m") and hasattr(spec, "spring_preload_N")):
         return
+    from corliss.governors.operating_point import working_travel   # a governed scene only
     lo, hi = working_travel(mech)
     z_mid = np.array([0.5 * (lo + hi)])
     target = run.speed_rad_s
