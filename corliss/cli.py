@@ -22,7 +22,7 @@
     Throttling against cut-off governing of one engine across its load range, with
     and without condensation: the table (CSV with its meta), the Willans lines and
     steam rates (PNG), and a verdict printed: which governing uses less steam where.
-``corliss study SCENE --vary KEY=LOW:HIGH ... (--grid [--levels N] | --lhs N | --monte-carlo N) [--response KEY] [--jobs N | --scheduler ADDR] [--json] [--out DIR]``
+``corliss study SCENE --vary KEY=LOW:HIGH ... (--grid [--levels N] | --lhs N | --monte-carlo N) [--response KEY] [--jobs N | --scheduler ADDR] [--json] [--out DIR] [--resume]``
     Steady runs over a design of scene keys: one tidy table (CSV with its meta, and
     Parquet), the base scene, the figure of responses against keys.
 ``corliss fit SCENE CARD.csv --vary KEY=LOW:HIGH ... [--refine] [--bootstrap N] [--out DIR]``
@@ -50,6 +50,7 @@ Runs that take more than a couple of seconds show a progress line on a terminal.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import dataclasses
 import json
 import logging
@@ -64,11 +65,12 @@ import corliss
 from corliss import units
 from corliss.engine.model import build_gear, scene_events
 from corliss.engine.simulate import simulate
-from corliss.errors import InputError, RunError
+from corliss.errors import InputError, RunError, StudyStopped
 from corliss.heartbeat import Heartbeat
 from corliss.logs import NOTICE
 from corliss.results import OutputFiles, scene_from_meta, summary_json
 from corliss.scene import bundled_scenes, default_scene_path, find_scene, load_scene
+from corliss.studies.journal import check_writable
 
 log = logging.getLogger("corliss")
 
@@ -568,7 +570,7 @@ def cmd_sweep(args) -> int:
             if len(values[knob]) < 2:
                 raise InputError(flag, text, "two values or more")
     # values checked before work
-    result, files = _study(args, scene, lambda bar: load_ranges(scene, values, progress=bar))
+    result, files = _study(args, scene, lambda bar, out: load_ranges(scene, values, progress=bar))
     if files is None:
         return 0
     frame = convert_frame(result.points, scene.output.units, scene.supply.barometer_Pa)[0]
@@ -577,17 +579,34 @@ def cmd_sweep(args) -> int:
     return 0
 
 
+@contextlib.contextmanager
+def _out_dir(path):
+    """The output directory, made and proved writable before the work (a directory
+    that cannot take the files is found before the runs, not after them); made here
+    and left empty by a refused or failed command, it is removed again."""
+    out = Path(path)
+    made = not out.exists()
+    check_writable(out)
+    try:
+        yield out
+    except BaseException:
+        if made and out.is_dir() and not any(out.iterdir()):
+            out.rmdir()
+        raise
+
+
 def _study(args, scene, run):
-    """Run a study of many steady runs, ``run(progress)``, with a progress bar unless
+    """Run a study of many steady runs, ``run(progress, out)``, with a progress bar unless
     ``--json``; write its files; with ``--json`` print its summary instead and return
     no files."""
     bar = None if args.json else ProgressBar("runs")
-    try:
-        result = run(bar)
-    finally:
-        if bar:
-            bar.close()
-    files = result.write(Path(args.out if args.out is not None else scene.output.dir))
+    with _out_dir(args.out if args.out is not None else scene.output.dir) as out:
+        try:
+            result = run(bar, out)
+        finally:
+            if bar:
+                bar.close()
+        files = result.write(out)
     if args.json:
         print(summary_json(result.summary))
         return result, None
@@ -676,7 +695,7 @@ def cmd_compare(args) -> int:
     from corliss.engine.compare import DEFAULT_LOADS, compare
     scene = _load(args.scene, args.units)
     loads = _loads(args.loads) if args.loads else list(DEFAULT_LOADS)
-    result, files = _study(args, scene, lambda bar: compare(
+    result, files = _study(args, scene, lambda bar, out: compare(
         scene, loads, condensation=args.with_condensation, fidelity=args.fidelity,
         droop=not args.no_droop, progress=bar))
     if files is None:
@@ -705,10 +724,11 @@ def cmd_study(args) -> int:
     """
     from corliss.studies import study
     scene = _load(args.scene)
-    result, files = _study(args, scene, lambda bar: study(
+    result, files = _study(args, scene, lambda bar, out: study(
         scene, args.vary, grid=args.grid, levels=args.levels, lhs=args.lhs,
         monte_carlo=args.monte_carlo, seed=args.seed, responses=args.response,
-        fidelity=args.fidelity, jobs=args.jobs, scheduler=args.scheduler, progress=bar))
+        fidelity=args.fidelity, jobs=args.jobs, scheduler=args.scheduler, progress=bar,
+        out=out, resume=args.resume))
     if files is None:
         return 0
     s = result.summary
@@ -743,10 +763,10 @@ def cmd_fit(args) -> int:
     """
     from corliss.fit_output import fit, print_fit
     scene = _load(args.scene, args.units)
-    result = fit(scene, args.card, args.vary, fidelity=args.fidelity, refine=args.refine,
-                 bootstrap=args.bootstrap, seed=args.seed)
-    files = result.write(Path(args.out if args.out is not None else scene.output.dir),
-                         plots=not args.no_plots)
+    with _out_dir(args.out if args.out is not None else scene.output.dir) as out:
+        result = fit(scene, args.card, args.vary, fidelity=args.fidelity, refine=args.refine,
+                     bootstrap=args.bootstrap, seed=args.seed)
+        files = result.write(out, plots=not args.no_plots)
     if args.json:
         print(summary_json(result.summary))
     else:
@@ -1007,7 +1027,10 @@ def build_parser() -> argparse.ArgumentParser:
     st.add_argument("--jobs", type=int, help="local processes (default: every core)")
     st.add_argument("--scheduler", metavar="ADDR", help="run on the Dask cluster whose "
                     "scheduler is at ADDR, e.g. tcp://10.0.0.5:8786 (needs corliss[dask])")
-    st.add_argument("--out", help="output directory (default: the scene's [output] dir)")
+    st.add_argument("--out", help="output directory (default: the scene's [output] dir); "
+                    "rows are kept in it as runs finish, so a stopped study keeps them")
+    st.add_argument("--resume", action="store_true", help="finish a stopped study: run only "
+                    "the rows its partial file in --out lacks")
     st.add_argument("--json", action="store_true", help="print the summary as JSON")
     st.set_defaults(func=cmd_study)
     ft = sub.add_parser("fit", help="calibrate scene keys to a measured indicator card")
@@ -1107,6 +1130,9 @@ def main(argv: list[str] | None = None) -> int:
         print(f"corliss: {exc} Nothing was simulated and no files were written.",
               file=sys.stderr)
         return 2
+    except StudyStopped as exc:
+        print(f"corliss: {exc}.", file=sys.stderr)
+        return 143 if exc.signal_name == "SIGTERM" else 130
     except RunError as exc:
         print(f"corliss: the run stopped: {exc}. No files were written.", file=sys.stderr)
         return 2
