@@ -44,7 +44,7 @@ import signal
 import sys
 import threading
 import time
-from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from concurrent.futures import FIRST_COMPLETED, CancelledError, ProcessPoolExecutor, wait
 from pathlib import Path
 from typing import Callable
 
@@ -163,6 +163,8 @@ def run_chunk(spec: StudySpec, run_ids, values) -> tuple[list, int, str | None]:
 
 #: In a worker process: the study it serves (set once, as it starts).
 _WORKER_SPEC: StudySpec | None = None
+#: The signals that stop a study.
+_STOPS = {signal.SIGINT, signal.SIGTERM}
 #: prctl's option that sends the child a signal when its parent dies (Linux).
 _PR_SET_PDEATHSIG = 1
 
@@ -182,6 +184,8 @@ def _init_worker(spec: StudySpec, parent_pid: int) -> None:
     _WORKER_SPEC = spec
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    if hasattr(signal, "pthread_sigmask"):
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, _STOPS)
     if sys.platform.startswith("linux"):
         try:
             ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGKILL)
@@ -247,18 +251,30 @@ def _run_local(spec, chunks, jobs, collect):
         rest = [(first[0][1:], first[1][1:])] + rest
     methods = multiprocessing.get_all_start_methods()
     ctx = multiprocessing.get_context("fork" if "fork" in methods else None)
-    pool = ProcessPoolExecutor(max_workers=jobs, mp_context=ctx, initializer=_init_worker,
-                               initargs=(spec, os.getpid()))
+    # Ctrl-C and SIGTERM wait while the workers start (a signal in the middle of a fork
+    # is lost in its handlers), and are taken at once after
+    masked = hasattr(signal, "pthread_sigmask")
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, _STOPS) if masked else None
+    pool = None
     try:
+        pool = ProcessPoolExecutor(max_workers=jobs, mp_context=ctx, initializer=_init_worker,
+                                   initargs=(spec, os.getpid()))
         futs = {pool.submit(_pool_chunk, ids, vals): ids for ids, vals in rest}
+        if masked:
+            signal.pthread_sigmask(signal.SIG_SETMASK, old)
+            masked = False
         pending = set(futs)
         while pending:
             done, pending = wait(pending, return_when=FIRST_COMPLETED)
             for fut in done:
                 collect(futs[fut], fut.result())
     except BaseException:
-        _stop_pool(pool)
+        if pool is not None:
+            _stop_pool(pool)
         raise
+    finally:
+        if masked:
+            signal.pthread_sigmask(signal.SIG_SETMASK, old)
     pool.shutdown(wait=True)
 
 
@@ -307,9 +323,16 @@ def _dask_chunk(spec, run_ids, values):
     return run_chunk(spec, run_ids, values)
 
 
+def _hold(spec):
+    """A Dask task that gives the study's spec: its tasks depend on it, so the spec
+    goes to each worker once, and is made again if every worker holding it is lost
+    (data scattered to the workers would be lost with them)."""
+    return spec
+
+
 def _run_dask(client, spec, chunks, collect):
     import distributed
-    shared = client.scatter(spec, broadcast=True, hash=False)
+    shared = client.submit(_hold, spec, pure=False)
     futs = client.map(_dask_chunk, [shared] * len(chunks), [c[0] for c in chunks],
                       [c[1] for c in chunks], pure=False)
     ids = {f.key: c[0] for f, c in zip(futs, chunks)}
@@ -320,10 +343,14 @@ def _run_dask(client, spec, chunks, collect):
             try:
                 res = distributed.wait(pending, timeout=POLL_S, return_when="FIRST_COMPLETED")
                 done, pending = set(res.done), set(res.not_done)
+                for fut in done:
+                    collect(ids[fut.key], fut.result())
             except (TimeoutError, distributed.TimeoutError):
                 done = set()
-            for fut in done:
-                collect(ids[fut.key], fut.result())
+            except CancelledError as exc:      # dask.distributed's are these
+                raise RunError(f"the Dask cluster at {client.scheduler.address} dropped the "
+                               f"study's tasks ({type(exc).__name__}), with {len(pending)} "
+                               "left: were its workers lost?") from None
             if done:
                 alone_since = None
                 continue
