@@ -179,7 +179,7 @@ def _interval_near(cross: list[tuple[float, bool]], anchor: float):
 
 
 def end_events(gear: ValveGear, end: str, piston_fraction: Callable[[float], float],
-               table: list | None = None) -> dict:
+               table: list | None = None, sampled: tuple | None = None) -> dict:
     """Events of one end (``"head"`` or ``"crank"``) as the JSON contract names them.
 
     Admission and cut-off are the opening and closing of the steam port nearest the
@@ -198,6 +198,10 @@ def end_events(gear: ValveGear, end: str, piston_fraction: Callable[[float], flo
     table : list or None, optional
         A crossing table already found, whose first level is zero (a PortMap's
         ``crossings``); found here when None.
+    sampled : tuple of ndarray, optional
+        ``(gear.openings(th), gear.signed_openings(th))`` over a turn's samples
+        (both ends read the same samples: :func:`events` finds them once); found
+        here when None.
 
     Returns
     -------
@@ -224,10 +228,11 @@ def end_events(gear: ValveGear, end: str, piston_fraction: Callable[[float], flo
         table = crossing_table(gear, np.zeros((4, 1)))
     adm, cut = _interval_near(table[steam][0], dead)
     rel, comp = _interval_near(table[exhaust][0], dead + math.pi)
-    th = np.linspace(0.0, TWO_PI, _SAMPLES, endpoint=False)
-    opening = gear.openings(th)[steam]
+    if sampled is None:
+        sampled = _sampled(gear)
+    opening = sampled[0][steam]
     width = gear.port_widths()[steam]
-    signed_max = float(gear.signed_openings(th)[steam].max())
+    signed_max = float(sampled[1][steam].max())
 
     def deg(t):
         return None if t is None else float(math.degrees(t) % 360.0)
@@ -269,4 +274,12 @@ def events(gear: ValveGear, piston_fraction: Callable[[float], float],
     """
     if table is None:
         table = crossing_table(gear, np.zeros((4, 1)))
-    return {end: end_events(gear, end, piston_fraction, table) for end in ("head", "crank")}
+    sampled = _sampled(gear)
+    return {end: end_events(gear, end, piston_fraction, table, sampled)
+            for end in ("head", "crank")}
+
+
+def _sampled(gear: ValveGear) -> tuple[np.ndarray, np.ndarray]:
+    """The gear's openings and signed openings over :data:`_SAMPLES` angles a turn."""
+    th = np.linspace(0.0, TWO_PI, _SAMPLES, endpoint=False)
+    return gear.openings(th), gear.signed_openings(th)
