@@ -1,5 +1,5 @@
-"""A study's rows kept on disk as they finish, so a stopped study keeps them and
-``corliss study ... --resume`` finishes it without repeating them.
+"""A study's rows kept on disk as they finish: a stopped study keeps them, and
+``corliss study --resume`` finishes it without repeating them.
 
 The journal is ``<scene>.study.partial.jsonl`` in the study's output directory: a
 first line (JSON) that says the file is partial and which study it is (a fingerprint
