@@ -17,9 +17,10 @@ Measured per study:
   chunks, collecting rows) and its pool's workers' (read when the pool is shut down
   and its workers reaped);
 * the serial fraction ``s``: the parent's CPU over the parent's and the workers'
-  (the workers' start-up counted in theirs), and from it Amdahl's speed-up on N
-  processes, ``1 / (s + (1 - s) / N)``, for 16 and 64 (derived, not measured: no
-  machine with that many free cores was at hand).
+  (the workers' start-up counted in theirs), and the parent's CPU to start one more
+  worker (a fork of the process as it is after the study); from them Amdahl's
+  speed-up on N processes, ``(P + W) / (P + (N - 2) F + W / N)`` (:func:`amdahl`), for
+  16 and 64 (derived, not measured: no machine with that many free cores was at hand).
 
 On a machine shared with other work, two processes cannot show their speed-up in
 wall time alone: the CPU figures say whether the parallel path adds work of its own.
@@ -52,6 +53,8 @@ VARY = ["valve_gear.port_width=1.0:1.5in", "engine.clearance=0.04:0.12",
         "valve_gear.lap=0.8:1.2in", "run.speed=90:150rpm"]
 RESPONSES = ["indicated_power_W", "mep_mean_Pa", "steam_rate_kg_per_h",
              "water_rate_kg_per_kWh", "events.head.cutoff_frac"]
+#: Forks timed to find what one more worker's start costs the parent.
+FORKS = 5
 
 
 def _cpu(who) -> float:
@@ -81,8 +84,17 @@ def measure(runs: int, jobs: int) -> dict:
     res = corliss.study("default", VARY, lhs=runs, seed=0, fidelity="fast",
                         responses=RESPONSES, jobs=jobs)
     wall = time.perf_counter() - t0
-    return {"wall_s": wall, "parent_cpu_s": _cpu(resource.RUSAGE_SELF) - p0,
-            "workers_cpu_s": _cpu(resource.RUSAGE_CHILDREN) - c0, "failed": int(res.failed)}
+    out = {"wall_s": wall, "parent_cpu_s": _cpu(resource.RUSAGE_SELF) - p0,
+           "workers_cpu_s": _cpu(resource.RUSAGE_CHILDREN) - c0, "failed": int(res.failed)}
+    # what starting one more worker costs this process: a fork of it as it is now
+    f0 = _cpu(resource.RUSAGE_SELF)
+    for _ in range(FORKS):
+        pid = os.fork()
+        if pid == 0:
+            os._exit(0)
+        os.waitpid(pid, 0)
+    out["fork_cpu_s"] = (_cpu(resource.RUSAGE_SELF) - f0) / FORKS
+    return out
 
 
 def _sitting(code: Path, runs: int, jobs: int) -> dict:
@@ -94,9 +106,15 @@ def _sitting(code: Path, runs: int, jobs: int) -> dict:
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
-def amdahl(s: float, n: int) -> float:
-    """Speed-up on ``n`` processes of work whose serial fraction is ``s`` [-]."""
-    return 1.0 / (s + (1.0 - s) / n)
+def amdahl(parent_s: float, workers_s: float, fork_s: float, n: int) -> float:
+    """Speed-up on ``n`` processes (Amdahl) of a study whose parent spent
+    ``parent_s`` [s] of CPU with two workers, its workers ``workers_s`` [s], and whose
+    every further worker costs the parent ``fork_s`` [s] to start.
+
+    ``(P + W) / (P + (n - 2) F + W / n)``: the parent's work is serial, the workers'
+    divides among them, and a worker's start (a fork) is serial in the parent.
+    """
+    return (parent_s + workers_s) / (parent_s + (n - 2) * fork_s + workers_s / n)
 
 
 def main(argv=None) -> int:
@@ -143,19 +161,23 @@ def main(argv=None) -> int:
         w1, w2 = med(name, 1, "wall_s"), med(name, 2, "wall_s")
         cpu1 = med(name, 1, "parent_cpu_s") / n
         par, wrk = med(name, 2, "parent_cpu_s"), med(name, 2, "workers_cpu_s")
+        fork = med(name, 2, "fork_cpu_s")
         s = par / (par + wrk)
         summary[name] = {"runs_per_s_1": n / w1, "cpu_ms_per_run_1": 1e3 * cpu1,
                          "two_over_one": w1 / w2, "parent_ms_per_run": 1e3 * par / n,
                          "workers_ms_per_run": 1e3 * wrk / n, "serial_fraction": s,
                          "parent_share_of_run": (par / n) / cpu1,
-                         "speedup_16": amdahl(s, 16), "speedup_64": amdahl(s, 64)}
+                         "fork_ms": 1e3 * fork,
+                         "speedup_16": amdahl(par, wrk, fork, 16),
+                         "speedup_64": amdahl(par, wrk, fork, 64)}
         x = summary[name]
         print(f"{name:9s} 1 process: {x['runs_per_s_1']:6.1f} runs/s, "
               f"{x['cpu_ms_per_run_1']:.2f} ms CPU a run | 2 processes: "
               f"{x['two_over_one']:.2f} x one (wall) | parent {x['parent_ms_per_run']:.3f} ms "
               f"a run = {100 * x['parent_share_of_run']:.1f} % of a run, workers "
-              f"{x['workers_ms_per_run']:.2f} ms a run | serial fraction {s:.4f}: "
-              f"{x['speedup_16']:.1f} x on 16, {x['speedup_64']:.1f} x on 64 (Amdahl)")
+              f"{x['workers_ms_per_run']:.2f} ms a run | serial fraction {s:.4f}, "
+              f"{x['fork_ms']:.1f} ms a worker's start: {x['speedup_16']:.1f} x on 16, "
+              f"{x['speedup_64']:.1f} x on 64 (Amdahl, derived)")
     if "baseline" in summary:
         a, b = summary["this"], summary["baseline"]
         print(f"this / baseline, runs a second on one process: "

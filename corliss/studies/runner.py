@@ -36,6 +36,7 @@ from __future__ import annotations
 
 import ctypes
 import dataclasses
+import json
 import logging
 import math
 import multiprocessing
@@ -161,6 +162,9 @@ def run_chunk(spec: StudySpec, run_ids, values) -> tuple[list, int, str | None]:
 
 # --- a local pool's workers ----------------------------------------------------------------
 
+#: The base scenes and fidelities this process has run a study of (its kernels for
+#: them loaded): a later study of one starts its workers without a run here first.
+_WARMED: set = set()
 #: In a worker process: the study it serves (set once, as it starts).
 _WORKER_SPEC: StudySpec | None = None
 #: The signals that stop a study.
@@ -239,16 +243,23 @@ class _Signals:
 
 
 def _run_local(spec, chunks, jobs, collect):
+    warm = (spec.name, spec.fidelity, json.dumps(spec.base, sort_keys=True, default=str))
     if jobs == 1 or len(chunks) <= 1:
         for ids, vals in chunks:
             collect(ids, run_chunk(spec, ids, vals))
+            _WARMED.add(warm)
         return
-    # this process's first run loads the compiled kernels and the steam table: forked
-    # workers start with them (spawned ones load them from their caches)
-    first, rest = chunks[0], chunks[1:]
-    collect(first[0][:1], run_chunk(spec, first[0][:1], first[1][:1]))
-    if len(first[0]) > 1:
-        rest = [(first[0][1:], first[1][1:])] + rest
+    # this process's first run of the scene loads the compiled kernels and the steam
+    # table: forked workers start with them (spawned ones load them from their caches)
+    rest = chunks
+    if warm not in _WARMED:
+        first, rest = chunks[0], chunks[1:]
+        collect(first[0][:1], run_chunk(spec, first[0][:1], first[1][:1]))
+        if len(first[0]) > 1:
+            rest = [(first[0][1:], first[1][1:])] + rest
+        _WARMED.add(warm)
+        if not rest:
+            return
     methods = multiprocessing.get_all_start_methods()
     ctx = multiprocessing.get_context("fork" if "fork" in methods else None)
     # Ctrl-C and SIGTERM wait while the workers start (a signal in the middle of a fork
