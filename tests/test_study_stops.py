@@ -196,6 +196,27 @@ def test_an_output_directory_that_cannot_be_written_is_refused_before_any_run(
     assert rc == 2 and "--out" in err and "a directory this user can write" in err
 
 
+@linux_only
+def test_a_local_worker_killed_mid_study_has_its_tasks_run_again(caplog):
+    """One of the pool's two workers killed (SIGKILL, as the kernel's out-of-memory
+    killer does) after the first chunk comes back: the pool is started again, the
+    unfinished chunks resent, and the table is the one-sitting table row for row."""
+    kw = dict(lhs=24, seed=3, fidelity="fast", responses=RESPONSES)
+    whole = corliss.study(copy.deepcopy(BASE), VARY, jobs=1, **kw)
+    killed = []
+
+    def progress(done, total):
+        workers = _children(os.getpid())
+        if not killed and done > 1 and workers:
+            os.kill(workers[0], signal.SIGKILL)
+            killed.append(workers[0])
+
+    got = corliss.study(copy.deepcopy(BASE), VARY, jobs=2, chunk_size=2, progress=progress,
+                        **kw)
+    assert killed and "worker process was lost" in caplog.text
+    pd.testing.assert_frame_equal(got.points, whole.points, check_exact=True)
+
+
 def test_a_dask_worker_killed_mid_study_leaves_the_study_to_the_others(tmp_path):
     """Two worker processes under nannies; after the first chunk comes back one is
     killed (SIGKILL): its tasks run again elsewhere, and the table is the one-sitting

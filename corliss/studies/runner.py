@@ -24,9 +24,11 @@ appended to its journal (:mod:`corliss.studies.journal`) as they come.
 A study stopped by Ctrl-C or SIGTERM ends its workers at once and raises
 :class:`~corliss.errors.StudyStopped` naming the rows kept; a pool's workers also
 end when this process is killed outright (they watch for it).  ``resume=True``
-reads the journal back and runs only the rows it lacks.  On Dask, a lost worker's
-tasks run again on another (Dask's own rescheduling); a cluster left with no worker
-for :data:`NO_WORKERS_GRACE_S` is an error, not a wait for ever.
+reads the journal back and runs only the rows it lacks.  A local worker that is
+lost (killed, out of memory) breaks its pool: a new pool runs the unfinished chunks
+again (up to :data:`POOL_RESTARTS` times).  On Dask, a lost worker's tasks run again
+on another (Dask's own rescheduling); a cluster left with no worker for
+:data:`NO_WORKERS_GRACE_S` is an error, not a wait for ever.
 
 The same inputs give the same numbers on any worker, so a study's table does not
 depend on where, in what order or in how many sittings it ran.
@@ -46,6 +48,7 @@ import sys
 import threading
 import time
 from concurrent.futures import FIRST_COMPLETED, CancelledError, ProcessPoolExecutor, wait
+from concurrent.futures.process import BrokenProcessPool
 from pathlib import Path
 from typing import Callable
 
@@ -76,6 +79,9 @@ CHECK_ALL_UP_TO = 32
 MAX_CHUNK = 50
 #: Chunks per worker, at least, when the runs allow (for balance: runs differ in cost).
 CHUNKS_PER_WORKER = 4
+#: Times a local pool is started again when one of its workers is lost (killed, out
+#: of memory), its unfinished tasks resent, before the study stops with an error.
+POOL_RESTARTS = 2
 #: Seconds a Dask cluster may have no worker before the study stops with an error.
 NO_WORKERS_GRACE_S = 30.0
 #: Seconds between looks at a Dask cluster's workers while tasks are out.
@@ -260,6 +266,19 @@ def _run_local(spec, chunks, jobs, collect):
         _WARMED.add(warm)
         if not rest:
             return
+    for _ in range(POOL_RESTARTS + 1):
+        rest = _pool_pass(spec, rest, jobs, collect)
+        if not rest:
+            return
+        log.warning("a worker process was lost: %d task(s) run again on a new pool",
+                    len(rest))
+    raise RunError(f"the study's worker processes were lost {POOL_RESTARTS + 1} times, with "
+                   f"{sum(len(c[0]) for c in rest)} runs left (out of memory? a run that "
+                   "crashes its process?); run it with --jobs 1 to see")
+
+
+def _pool_pass(spec, chunks, jobs, collect) -> list:
+    """Run ``chunks`` on a fresh pool; the chunks left when a worker was lost."""
     methods = multiprocessing.get_all_start_methods()
     ctx = multiprocessing.get_context("fork" if "fork" in methods else None)
     # Ctrl-C and SIGTERM wait while the workers start (a signal in the middle of a fork
@@ -267,18 +286,25 @@ def _run_local(spec, chunks, jobs, collect):
     masked = hasattr(signal, "pthread_sigmask")
     old = signal.pthread_sigmask(signal.SIG_BLOCK, _STOPS) if masked else None
     pool = None
+    futs = {}
     try:
         pool = ProcessPoolExecutor(max_workers=jobs, mp_context=ctx, initializer=_init_worker,
                                    initargs=(spec, os.getpid()))
-        futs = {pool.submit(_pool_chunk, ids, vals): ids for ids, vals in rest}
+        futs = {pool.submit(_pool_chunk, ids, vals): (ids, vals) for ids, vals in chunks}
         if masked:
             signal.pthread_sigmask(signal.SIG_SETMASK, old)
             masked = False
-        pending = set(futs)
-        while pending:
+        pending, lost = set(futs), set()
+        while pending and not lost:
             done, pending = wait(pending, return_when=FIRST_COMPLETED)
             for fut in done:
-                collect(futs[fut], fut.result())
+                if isinstance(fut.exception(), BrokenProcessPool):
+                    lost.add(fut)
+                else:
+                    collect(futs[fut][0], fut.result())
+        if lost:
+            _stop_pool(pool)
+            return [futs[f] for f in futs if f in lost or f in pending]
     except BaseException:
         if pool is not None:
             _stop_pool(pool)
@@ -287,6 +313,7 @@ def _run_local(spec, chunks, jobs, collect):
         if masked:
             signal.pthread_sigmask(signal.SIG_SETMASK, old)
     pool.shutdown(wait=True)
+    return []
 
 
 def dask_client(scheduler):
