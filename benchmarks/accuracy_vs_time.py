@@ -120,7 +120,7 @@ def first_run_cost(scene_path) -> dict:
         out = {}
         for label in ("first_run_s", "second_run_s"):
             t0 = time.perf_counter()
-            subprocess.run([sys.executable, "-m", "corliss.cli", "run", str(scene_path), "--out",
+            subprocess.run([sys.executable, "-m", "corliss.cli.commands", "run", str(scene_path), "--out",
                             os.path.join(tmp, "out"), "--json"], env=env, check=True,
                            capture_output=True)
             out[label] = time.perf_counter() - t0

@@ -28,7 +28,7 @@ import numpy as np
 import pandas as pd
 
 import corliss
-from corliss.scene import bundled_scenes, scene_from_dict
+from corliss.scene.loader import bundled_scenes, scene_from_dict
 
 OUT = Path(__file__).resolve().parent / "results" / "condensation_study.csv"
 ENGINES = {"small": "meyer-cutoff", "locomotive": "walschaerts-locomotive"}

@@ -12,7 +12,7 @@ is noisy.  The commands:
 * ``corliss run``: the default scene, its CSVs with their meta files, the two PNGs and
   the summary;
 * ``corliss run --json --no-plots``: the same run, no figures, the summary as JSON;
-* ``import corliss.cli``: what the command costs before it does anything.
+* ``import corliss.cli.commands``: what the command costs before it does anything.
 
 Usage::
 
@@ -44,7 +44,7 @@ def _corliss() -> list[str]:
     """The ``corliss`` command as installed, or the same entry point through Python."""
     exe = shutil.which("corliss")
     return [exe] if exe else [sys.executable, "-c",
-                              "import sys; from corliss.cli import main; sys.exit(main())"]
+                              "import sys; from corliss.cli.commands import main; sys.exit(main())"]
 
 
 def commands(out: str) -> dict[str, list[str]]:
@@ -52,7 +52,7 @@ def commands(out: str) -> dict[str, list[str]]:
     return {
         "corliss run (default scene, CSVs and PNGs)": c + ["run", "--out", out],
         "corliss run --json --no-plots": c + ["run", "--json", "--no-plots", "--out", out],
-        "python -c 'import corliss.cli'": [sys.executable, "-c", "import corliss.cli"],
+        "python -c 'import corliss.cli.commands'": [sys.executable, "-c", "import corliss.cli.commands"],
     }
 
 

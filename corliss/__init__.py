@@ -10,18 +10,18 @@ input raises :class:`InputError`, naming the key, the value and what is valid.
 
 Its layers, bottom up (a module imports its own layer and those below, never above):
 
-- the vocabulary: :mod:`corliss.errors`, :mod:`corliss.units`, :mod:`corliss.columns`,
-  :mod:`corliss.scene_keys` and the small readers and writers beside them;
+- the vocabulary: :mod:`corliss.errors`, :mod:`corliss.keys.units`, :mod:`corliss.frames.columns`,
+  :mod:`corliss.keys.edits` and the small readers and writers beside them;
 - the physics, independent of each other: :mod:`corliss.thermo` (steam properties and
   flow through ports), :mod:`corliss.valves` (valve gears) and
   :mod:`corliss.governors`;
 - :mod:`corliss.engine`: the engine's model, its integration and its results;
-- :mod:`corliss.scene`, :mod:`corliss.studies`, :mod:`corliss.fitting`: scenes, studies
+- :mod:`corliss.scene.loader`, :mod:`corliss.studies`, :mod:`corliss.fitting`: scenes, studies
   and fits;
 - :mod:`corliss.plot`: the figures;
-- the files: :mod:`corliss.results`, :mod:`corliss.study_output`,
-  :mod:`corliss.design_scene`, :mod:`corliss.fit_output`;
-- the command: :mod:`corliss.cli`.
+- the files: :mod:`corliss.files.run_output`, :mod:`corliss.files.study_output`,
+  :mod:`corliss.files.design_output`, :mod:`corliss.files.fit_output`;
+- the command: :mod:`corliss.cli.commands`.
 
 >>> import corliss
 >>> scene = corliss.load_scene(corliss.default_scene_path())
@@ -31,15 +31,15 @@ Its layers, bottom up (a module imports its own layer and those below, never abo
 
 __version__ = "0.2.0"
 
-from corliss import results as _export  # noqa: E402,F401  (registers the export layer)
-from corliss import study_output as _study_export  # noqa: E402,F401  (and the study's)
+from corliss.files import run_output as _export  # noqa: E402,F401  (registers the export layer)
+from corliss.files import study_output as _study_export  # noqa: E402,F401  (and the study's)
 from corliss.engine.model import scene_events  # noqa: E402
 from corliss.engine.result import Result, SteadyResult, SweepResult, TransientResult  # noqa: E402
 from corliss.engine.simulate import simulate  # noqa: E402
 from corliss.errors import InputError  # noqa: E402
-from corliss.fit_output import fit  # noqa: E402
+from corliss.files.fit_output import fit  # noqa: E402
 from corliss.fitting.solver import FitResult  # noqa: E402
-from corliss.scene import Scene, bundled_scenes, default_scene_path, load_scene, scene_from_dict  # noqa: E402
+from corliss.scene.loader import Scene, bundled_scenes, default_scene_path, load_scene, scene_from_dict  # noqa: E402
 from corliss.studies import StudyResult, study  # noqa: E402
 
 __all__ = ["Design", "FitResult", "InputError", "Result", "Scene", "SteadyResult", "StudyResult",
@@ -48,7 +48,7 @@ __all__ = ["Design", "FitResult", "InputError", "Result", "Scene", "SteadyResult
 
 #: Names of the front door loaded when first asked for (PEP 562): the valve design's
 #: module is not imported by a run, so ``corliss run`` does not pay for it.
-_ON_USE = {"Design": "corliss.design_scene", "design": "corliss.design_scene"}
+_ON_USE = {"Design": "corliss.files.design_output", "design": "corliss.files.design_output"}
 
 
 def __getattr__(name: str):

@@ -14,7 +14,7 @@ draws.
 """
 
 import corliss
-from corliss.engine.load_range import load_range
+from corliss.studies.load_range import load_range
 
 scene = corliss.load_scene(corliss.bundled_scenes()["corliss-governor"]).with_fidelity("fast")
 sweep = load_range(scene, "setting", [0.2, 0.4, 0.6, 0.8, 1.0])

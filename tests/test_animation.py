@@ -33,7 +33,7 @@ import pytest  # noqa: E402
 from PIL import Image  # noqa: E402
 
 import corliss  # noqa: E402
-from corliss import cli  # noqa: E402
+from corliss.cli import commands as cli  # noqa: E402
 from corliss.engine.model import build_gear  # noqa: E402
 from corliss.plot.animation import animate_gear, exact_linkage_spec, rod_lengths  # noqa: E402
 from corliss.valves.link_motion import LinkMotion  # noqa: E402

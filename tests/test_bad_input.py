@@ -12,10 +12,10 @@ from pathlib import Path
 
 import pytest
 
-from corliss import cli
+from corliss.cli import commands as cli
 from corliss.engine import kernel
 from corliss.engine import transient as transient_runner
-from corliss.scene import bundled_scenes
+from corliss.scene.loader import bundled_scenes
 
 SCENES = bundled_scenes()
 #: A refusal comes before any work: well under a second; the bound is generous for a

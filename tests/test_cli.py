@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from corliss import cli
+from corliss.cli import commands as cli
 
 SUMMARY_KEYS = ("indicated_power_W", "indicated_power_hp", "mep_head_Pa", "mep_crank_Pa",
                 "mep_mean_Pa", "steam_rate_kg_per_h", "water_rate_kg_per_kWh",
@@ -58,7 +58,7 @@ def test_events_json_matches_the_summary_events(tmp_path, capsys):
 
 
 def test_console_script_is_installed():
-    p = subprocess.run([sys.executable, "-m", "corliss.cli", "list", "gears"],
+    p = subprocess.run([sys.executable, "-m", "corliss.cli.commands", "list", "gears"],
                        capture_output=True, text=True)
     assert p.returncode == 0 and "slide_valve" in p.stdout
 
@@ -156,7 +156,7 @@ def test_a_slow_first_run_step_says_what_it_is_doing_while_it_runs(monkeypatch):
 
     from numba.core import event
 
-    from corliss import heartbeat
+    from corliss.cli import heartbeat
     from corliss.logs import NOTICE
     monkeypatch.setattr(heartbeat, "AFTER_S", 0.5)
     monkeypatch.setattr(heartbeat, "EVERY_S", 0.9)

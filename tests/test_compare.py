@@ -12,12 +12,12 @@ import json
 import numpy as np
 import pytest
 
-from corliss.cli import main
-from corliss.engine.compare import compare, variants
-from corliss.engine.compare_result import POINT_COLUMNS
+from corliss.cli.commands import main
+from corliss.studies.compare import compare, variants
+from corliss.studies.compare_result import POINT_COLUMNS
 from corliss.engine.geometry import CylinderGeometry
 from corliss.errors import InputError
-from corliss.scene import find_scene, load_scene
+from corliss.scene.loader import find_scene, load_scene
 
 LOADS = (0.25, 0.5, 1.0)
 
@@ -234,7 +234,7 @@ def test_a_jacket_is_counted_in_the_studys_steam():
     import dataclasses
 
     import corliss
-    from corliss.engine import compare as cmp
+    from corliss.studies import compare as cmp
     sc = load_scene(find_scene("meyer-cutoff"))
     sc = dataclasses.replace(sc, engine=dataclasses.replace(sc.engine, jacket="barrel"))
     sc = sc.replace_run(effects=tuple(sc.run.effects) + ("wall_heat",)).with_fidelity("fast")

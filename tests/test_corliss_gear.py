@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from corliss.errors import InputError
-from corliss.tables import Table
+from corliss.keys.toml_table import Table
 from corliss.valves.corliss_gear import CorlissGear, CorlissSpec, ValveChain, parse_corliss
 from corliss.valves.events import end_events
 

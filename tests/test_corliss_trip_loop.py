@@ -105,7 +105,7 @@ def test_the_safety_cams_shut_off_steam_when_the_governor_falls():
     import dataclasses
 
     from corliss.engine.load import parse_load
-    from corliss.tables import Table
+    from corliss.keys.toml_table import Table
     scene = corliss.load_scene(SCENE)
     load = parse_load(Table({"power": "250 hp", "kind": "step", "step_time": "2 s",
                              "step_fraction": 1.6}, "load"), scene.run.speed_rad_s, None)

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import corliss
-from corliss import units
+from corliss.keys import units
 from corliss.engine.crank_effort import (combine_cranks, energy_fluctuation_J, inertia_force_N,
                                          torque_N_m)
 from corliss.engine.geometry import CylinderGeometry, EngineSpec

@@ -17,11 +17,12 @@ import math
 import numpy as np
 import pytest
 
-from corliss import cli, scene_events
-from corliss.design_scene import design
+from corliss import scene_events
+from corliss.cli import commands as cli
+from corliss.files.design_output import design
 from corliss.engine.model import build_gear
 from corliss.errors import InputError
-from corliss.scene import find_scene, load_scene
+from corliss.scene.loader import find_scene, load_scene
 from corliss.valves.design import design_slide_valve, zeuner_valve
 from corliss.valves.slide_valve import SlideValveSpec
 

@@ -594,7 +594,7 @@ def test_scene_gear_drawing_and_settings(name, tmp_path, capsys):
     import json
     from pathlib import Path
 
-    from corliss import cli
+    from corliss.cli import commands as cli
     scene = Path(__file__).resolve().parent.parent / "scenes" / f"{name}.toml"
     assert cli.main(["gear", str(scene), "--out", str(tmp_path)]) == 0
     assert (tmp_path / f"{name}.gear.png").read_bytes()[:4] == b"\x89PNG"
@@ -630,7 +630,7 @@ def test_scene_tables_of_the_other_gears(kind):
 
     from corliss.engine.model import build_gear
     from corliss.errors import InputError
-    from corliss.scene import scene_from_dict
+    from corliss.scene.loader import scene_from_dict
     path = Path(__file__).resolve().parent.parent / "scenes" / "meyer-cutoff.toml"
     data = tomllib.loads(path.read_text())
     data["valve_gear"] = {"type": kind, "port_width": "1 in", "port_length": "10 in",
@@ -650,7 +650,7 @@ def test_a_scene_that_admits_twice_warns(caplog):
     from pathlib import Path
 
     from corliss.engine.model import build_gear
-    from corliss.scene import scene_from_dict
+    from corliss.scene.loader import scene_from_dict
     path = Path(__file__).resolve().parent.parent / "scenes" / "meyer-cutoff.toml"
     data = tomllib.loads(path.read_text())
     data["valve_gear"] = {"type": "gridiron", "port_width": "1 in", "port_length": "10 in",

@@ -18,12 +18,13 @@ import numpy as np
 import pytest
 
 import corliss
-from corliss import cli, units
+from corliss.cli import commands as cli
+from corliss.keys import units
 from corliss.errors import InputError
 from corliss.fitting.card import EndCard, MeasuredCard, parse_card, read_card
 from corliss.fitting.solver import fit_card, loop_area
-from corliss.toml_text import dumps
-from corliss.scene_keys import parse_range
+from corliss.keys.toml_text import dumps
+from corliss.keys.edits import parse_range
 from conftest import BASE
 
 PSI = units.PSI_Pa

@@ -1,6 +1,6 @@
 """The light frame a steady run builds reads and writes as pandas would.
 
-A steady run's tables are :class:`corliss.frame.Frame` (no pandas imported) and reach
+A steady run's tables are :class:`corliss.frames.frame.Frame` (no pandas imported) and reach
 users as DataFrames; the CSVs are written from the frame by hand.  The reference for
 each is pandas itself: the same rows give the same DataFrame, and the same table the
 same CSV bytes as ``DataFrame.to_csv(index=False, float_format="%.9g")``.
@@ -12,8 +12,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from corliss.frame import Frame
-from corliss.results import FLOAT_FORMAT, write_csv
+from corliss.frames.frame import Frame
+from corliss.files.run_output import FLOAT_FORMAT, write_csv
 
 ROWS = [{"cycle": 1, "work_J": 1.5, "m_supply_kg": 0.25},
         {"cycle": 2, "work_J": 2.5e-7, "m_supply_kg": 0.125, "Q_head_J": -3.0}]

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from corliss import cli
+from corliss.cli import commands as cli
 from corliss.valves import GEARS, gear_type
 
 SCENES = Path(__file__).resolve().parent.parent / "scenes"
@@ -31,7 +31,7 @@ def test_scene_gear_draws_and_gives_events(path, tmp_path, capsys):
     assert (tmp_path / f"{path.stem}.gear.png").stat().st_size > 10_000
     capsys.readouterr()
     from corliss.engine.model import build_gear
-    from corliss.scene import load_scene
+    from corliss.scene.loader import load_scene
     gear = build_gear(load_scene(path))
     args = ["events", str(path), "--json"]
     if gear.setting_range is not None:

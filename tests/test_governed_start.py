@@ -12,10 +12,10 @@ import numpy as np
 import pytest
 
 import corliss
-from corliss import cli
+from corliss.cli import commands as cli
 from corliss.engine.speed_metrics import SETTLED_SWING
 from corliss.errors import InputError
-from corliss.scene import bundled_scenes, scene_from_dict
+from corliss.scene.loader import bundled_scenes, scene_from_dict
 
 SCENES = bundled_scenes()
 GOVERNED = sorted(n for n, p in SCENES.items()

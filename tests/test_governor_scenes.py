@@ -7,7 +7,7 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from corliss import cli
+from corliss.cli import commands as cli
 from corliss.governors import GOVERNORS
 
 SCENES = Path(__file__).resolve().parent.parent / "scenes"

@@ -17,7 +17,7 @@ import pytest
 from corliss.errors import InputError
 from corliss.governors import GOVERNORS, governor_type
 from corliss.governors.mechanism import GRAVITY_M_S2
-from corliss.tables import Table
+from corliss.keys.toml_table import Table
 
 FT = 0.3048
 IN = 0.0254

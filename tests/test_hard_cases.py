@@ -39,7 +39,7 @@ import tomllib
 import pytest
 
 import corliss
-from corliss.scene import bundled_scenes, scene_from_dict
+from corliss.scene.loader import bundled_scenes, scene_from_dict
 
 MAX_RHS_PER_CYCLE = 100_000
 BALANCE = 1e-3

@@ -15,8 +15,8 @@ import pytest
 
 import corliss
 from corliss.governors import governor_type
-from corliss.scene import bundled_scenes, scene_from_dict
-from corliss.tables import Table
+from corliss.scene.loader import bundled_scenes, scene_from_dict
+from corliss.keys.toml_table import Table
 
 #: Right-hand-side evaluations allowed per turn: the bundled governed scenes take
 #: 2,000 to 6,000; a case that needs twenty times that is stepping through something.

@@ -19,17 +19,13 @@ ROOT = Path(corliss.__file__).parent
 #: Layer of each module by its dotted name's prefix (most specific first), bottom up.
 #: A module may import its own layer and the layers below it, never one above.
 LAYERS = [
-    ("corliss.errors", 0), ("corliss.units", 0), ("corliss.registry", 0),
-    ("corliss.tables", 0), ("corliss.keyspec", 0), ("corliss.columns", 0), ("corliss.logs", 0),
-    ("corliss.textfiles", 0), ("corliss.scene_keys", 0), ("corliss.toml_text", 0),
-    ("corliss.frame", 0), ("corliss.versions", 0),
+    ("corliss.errors", 0), ("corliss.logs", 0), ("corliss.versions", 0),
+    ("corliss.keys", 0), ("corliss.frames", 0),
     ("corliss.thermo", 1), ("corliss.valves", 1), ("corliss.governors", 1),
     ("corliss.engine", 2),
-    ("corliss.scene", 3), ("corliss.section_keys", 3), ("corliss.scene_reference", 3), ("corliss.studies", 3), ("corliss.fitting", 3),
+    ("corliss.scene", 3), ("corliss.studies", 3), ("corliss.fitting", 3),
     ("corliss.plot", 4),
-    ("corliss.results", 5), ("corliss.study_output", 5), ("corliss.design_scene", 5),
-    ("corliss.fit_output", 5),
-    ("corliss.heartbeat", 6),
+    ("corliss.files", 5),
     ("corliss.cli", 6),
 ]
 #: The three physics packages of layer 1 are independent of each other.
@@ -150,5 +146,5 @@ def test_the_import_graph_has_no_circle():
 def test_the_graph_reader_sees_a_hidden_upward_import(tmp_path):
     """The reader itself: an import inside a function is an edge like any other."""
     src = tmp_path / "mod.py"
-    src.write_text("def f():\n    from corliss.results import write\n    return write\n")
-    assert _imports("corliss.engine.mod", src) == [("corliss.results", "write", 2)]
+    src.write_text("def f():\n    from corliss.files.run_output import write\n    return write\n")
+    assert _imports("corliss.engine.mod", src) == [("corliss.files.run_output", "write", 2)]

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 import corliss
-from corliss import cli
-from corliss.engine.load_range import load_range, willans_fit
+from corliss.cli import commands as cli
+from corliss.studies.load_range import load_range, willans_fit
 from corliss.errors import InputError
 
 SCENES = Path(__file__).resolve().parent.parent / "scenes"

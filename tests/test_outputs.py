@@ -18,8 +18,10 @@ import pandas as pd
 import pytest
 
 import corliss
-from corliss import cli, columns, units
-from corliss.scene import bundled_scenes
+from corliss.cli import commands as cli
+from corliss.frames import columns
+from corliss.keys import units
+from corliss.scene.loader import bundled_scenes
 
 SCENES = bundled_scenes()
 ROOT = Path(__file__).resolve().parent.parent
@@ -77,7 +79,7 @@ def _check_table(csv: Path, system: str) -> pd.DataFrame:
         assert not any(col.endswith("_" + s) and not any(col.endswith("_" + t) for t in
                                                          SYSTEM_SUFFIXES[system])
                        for s in ONLY["US" if system == "SI" else "SI"]), (csv.name, col, sfx)
-        # every unit named in a meta file is one corliss.units converts
+        # every unit named in a meta file is one corliss.keys.units converts
         base = unit.replace(" absolute", "")
         if base != columns.DIMENSIONLESS:
             units.to_unit(1.0, base)
@@ -301,7 +303,7 @@ def test_every_result_kind_exports_the_same_way(tmp_path):
                               .with_fidelity("fast"))
     gov = corliss.load_scene(SCENES["porter-allen-governor"]).replace_run(duration_s=0.4)
     transient = corliss.simulate(gov.with_fidelity("fast"))
-    from corliss.engine.load_range import load_range
+    from corliss.studies.load_range import load_range
     sweep = load_range(corliss.load_scene(SCENES["corliss-governor"]).with_fidelity("fast"),
                        "setting", [0.4, 0.8])
     for r in (steady, transient, sweep):
@@ -356,7 +358,7 @@ def test_csv_writer_writes_what_pandas_writes_and_reads_back(tmp_path):
     """The fast CSV writer gives the text pandas' writer gave (nine significant digits,
     NaN as an empty field, integers as integers), for tables of numbers and, through
     pandas, for tables with text; a re-read gives every number back to 5e-9 relative."""
-    from corliss.results import write_csv
+    from corliss.files.run_output import write_csv
     rng = np.random.default_rng(3)
     n = 500
     numbers = pd.DataFrame({

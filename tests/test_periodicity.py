@@ -14,7 +14,7 @@ import tomllib
 import pytest
 
 import corliss
-from corliss.scene import bundled_scenes, scene_from_dict
+from corliss.scene.loader import bundled_scenes, scene_from_dict
 
 
 def _conductance_scene():

@@ -16,7 +16,7 @@ import pytest
 pint = pytest.importorskip("pint")
 
 from corliss.errors import InputError  # noqa: E402
-from corliss.scene import bundled_scenes, scene_from_dict  # noqa: E402
+from corliss.scene.loader import bundled_scenes, scene_from_dict  # noqa: E402
 
 U = pint.UnitRegistry()
 BASE = tomllib.loads(bundled_scenes()["default"].read_text(encoding="utf-8"))

@@ -11,7 +11,7 @@ matplotlib.use("Agg")
 
 from corliss.engine.model import build_gear  # noqa: E402
 from corliss.plot import plot_gear  # noqa: E402
-from corliss.scene import load_scene  # noqa: E402
+from corliss.scene.loader import load_scene  # noqa: E402
 from corliss.valves import GEARS, gear_type  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent

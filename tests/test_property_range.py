@@ -13,7 +13,7 @@ import pytest
 import corliss
 from corliss.engine import kernel
 from corliss.errors import InputError, RunError
-from corliss.scene import bundled_scenes, scene_from_dict
+from corliss.scene.loader import bundled_scenes, scene_from_dict
 from corliss.thermo import steam_table
 from corliss.thermo.steam_table import load_table, lookup_flagged
 

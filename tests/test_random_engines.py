@@ -18,7 +18,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import corliss
-from corliss.scene import scene_from_dict
+from corliss.scene.loader import scene_from_dict
 
 #: Examples per property: enough to land in each corner of the proportions a few
 #: times; each is a short run at the fast preset (about 15 ms).
@@ -97,7 +97,7 @@ def _gear_scenes():
     """Bundled steady scenes whose gear has a setting (a reverse lever, a governor's
     position, a cam), with the setting's range."""
     from corliss.engine.model import build_gear
-    from corliss.scene import bundled_scenes, load_scene
+    from corliss.scene.loader import bundled_scenes, load_scene
     out = []
     for name, path in bundled_scenes().items():
         scene = load_scene(path)

@@ -43,7 +43,7 @@ from pathlib import Path
 
 import pytest
 
-from corliss.cli import main
+from corliss.cli.commands import main
 
 FILES = ("default.timeseries.csv", "default.cycles.csv", "default.cards.csv",
          "default.summary.json")

@@ -57,13 +57,13 @@ def test_cli_bad_scene_exits_2_without_traceback_or_files(tmp_path, base_dict):
         "lead = \"0.25 in\"\nport_width = \"1 in\"\nport_length = \"9 in\"\n"
         "[run]\nspeed = \"120 rpm\"\n")
     out = tmp_path / "out"
-    p = subprocess.run([sys.executable, "-m", "corliss.cli", "run", str(bad), "--out", str(out)],
+    p = subprocess.run([sys.executable, "-m", "corliss.cli.commands", "run", str(bad), "--out", str(out)],
                        capture_output=True, text=True)
     assert p.returncode == 2
     assert "engine.connecting_rod" in p.stderr
     assert "Traceback" not in p.stderr
     assert not out.exists()
-    p = subprocess.run([sys.executable, "-m", "corliss.cli", "events", str(tmp_path / "nope.toml"),
+    p = subprocess.run([sys.executable, "-m", "corliss.cli.commands", "events", str(tmp_path / "nope.toml"),
                         "--json"], capture_output=True, text=True)
     assert p.returncode == 2 and "scene" in p.stderr and "Traceback" not in p.stderr
 

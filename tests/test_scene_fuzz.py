@@ -35,8 +35,9 @@ from pathlib import Path
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from corliss import cli, units
-from corliss.scene import SECTIONS, bundled_scenes
+from corliss.cli import commands as cli
+from corliss.keys import units
+from corliss.scene.loader import SECTIONS, bundled_scenes
 
 SCENES = bundled_scenes()
 DATA = {name: tomllib.loads(path.read_text(encoding="utf-8")) for name, path in SCENES.items()}

@@ -4,10 +4,10 @@ import tomllib
 
 import pytest
 
-from corliss import units
+from corliss.keys import units
 from corliss.errors import InputError
-from corliss.scene import default_scene_path, scene_from_dict
-from corliss.scene_keys import get_key, parse_range, with_keys
+from corliss.scene.loader import default_scene_path, scene_from_dict
+from corliss.keys.edits import get_key, parse_range, with_keys
 
 
 def _default():

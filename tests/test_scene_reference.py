@@ -15,20 +15,21 @@ from pathlib import Path
 
 import pytest
 
-from corliss import cli, units
+from corliss.cli import commands as cli
+from corliss.keys import units
 from corliss.errors import InputError
 from corliss.governors import GOVERNORS
-from corliss.keyspec import REQUIRED, Derived, Key, UndeclaredKeyError, group
-from corliss.scene import bundled_scenes, scene_from_dict
-from corliss.scene_reference import REGENERATE, reference_markdown
-from corliss.section_keys import SECTION_KEYS
-from corliss.tables import Table
+from corliss.keys.declared import REQUIRED, Derived, Key, UndeclaredKeyError, group
+from corliss.scene.loader import bundled_scenes, scene_from_dict
+from corliss.scene.reference import REGENERATE, reference_markdown
+from corliss.scene.sections import SECTION_KEYS
+from corliss.keys.toml_table import Table
 from corliss.valves import GEARS
 
 PAGE = Path(__file__).resolve().parent.parent / "docs" / "scene-reference.md"
 SCENES = {name: tomllib.loads(p.read_text(encoding="utf-8"))
           for name, p in bundled_scenes().items()}
-#: The words of the two refusals :meth:`corliss.tables.Table.finish` makes: a key that
+#: The words of the two refusals :meth:`corliss.keys.toml_table.Table.finish` makes: a key that
 #: no declaration has, and a declared key these settings do not read.
 UNKNOWN, UNREAD = "a known key", "reads it only"
 

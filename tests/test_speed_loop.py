@@ -113,7 +113,7 @@ def test_transient_scene_errors_name_the_key(sections, key):
 def test_schedule_from_csv(tmp_path):
     """A CSV schedule is read piecewise linearly and held beyond its ends."""
     from corliss.engine.load import parse_load
-    from corliss.tables import Table
+    from corliss.keys.toml_table import Table
     f = tmp_path / "loads.csv"
     f.write_text("time_s,load_fraction\n0,1\n2,1\n2,0.5\n4,0.25\n")
     spec = parse_load(Table({"torque": "100 N m", "kind": "schedule", "schedule": "loads.csv"},
@@ -153,7 +153,7 @@ def test_governor_scene_errors_name_the_key(sections, key):
 def test_cli_refuses_cycles_for_a_transient_scene(tmp_path, capsys):
     from pathlib import Path
 
-    from corliss import cli
+    from corliss.cli import commands as cli
     scene = Path(__file__).resolve().parent.parent / "scenes" / "watt-throttling-governor.toml"
     assert cli.main(["run", str(scene), "--cycles", "3", "--out", str(tmp_path)]) == 2
     assert "--duration" in capsys.readouterr().err

@@ -12,7 +12,7 @@ import pytest
 
 import corliss
 from corliss.errors import InputError
-from corliss.scene import bundled_scenes, scene_from_dict
+from corliss.scene.loader import bundled_scenes, scene_from_dict
 
 
 def _from_rest(angle: str, duration: str, **run):

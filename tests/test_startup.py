@@ -3,7 +3,7 @@
 ``corliss run --json --no-plots`` on a machine whose kernels and steam table are cached
 needs numpy and numba, and neither CoolProp (the table tier answers every state of the
 run itself), matplotlib (no figure), scipy's solvers (the compiled integrator does the
-work) nor pandas (a steady run's tables are :class:`corliss.frame.Frame` until a user
+work) nor pandas (a steady run's tables are :class:`corliss.frames.frame.Frame` until a user
 asks for a DataFrame): together they cost over two seconds of start-up.  The run is a
 subprocess, as a user starts it, so that nothing the test session imported counts.
 
@@ -24,7 +24,7 @@ import sys
 #: Runs the command line in a fresh interpreter and writes the modules loaded at exit.
 PROBE = """
 import json, sys
-from corliss.cli import main
+from corliss.cli.commands import main
 code = main(sys.argv[2:])
 with open(sys.argv[1], "w") as f:
     json.dump({"code": code, "modules": sorted(sys.modules)}, f)
@@ -35,7 +35,7 @@ NOT_WITHOUT_PLOTS = ("CoolProp", "matplotlib", "scipy.optimize", "scipy.integrat
                      "scipy.interpolate", "pandas")
 #: Modules a steady run must not import, by their exact names.
 NOT_IN_A_STEADY_RUN = ("scipy.linalg", "corliss.engine.transient", "corliss.engine.mean_value",
-                       "corliss.governors", "corliss.design_scene")
+                       "corliss.governors", "corliss.files.design_output")
 
 
 def _modules_of_run(tmp_path, *args: str) -> list[str]:
@@ -70,7 +70,7 @@ def test_warm_run_with_figures_imports_matplotlib_but_not_coolprop_scipy_solvers
 
 def _json_run(tmp_path, name: str, env: dict, *args: str) -> tuple[dict, str]:
     import os
-    proc = subprocess.run([sys.executable, "-c", "import sys; from corliss.cli import main; "
+    proc = subprocess.run([sys.executable, "-c", "import sys; from corliss.cli.commands import main; "
                            "sys.exit(main(sys.argv[1:]))", "-v", "run", "--json", "--no-plots",
                            "--out", str(tmp_path / name), *args],
                           capture_output=True, text=True, timeout=900, env={**os.environ, **env})

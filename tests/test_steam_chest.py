@@ -128,8 +128,8 @@ def test_the_throttled_engine_does_best_with_a_chest_that_just_refills():
     below 60 % of it (1 ft3 reads 62 psia, 54 %)."""
     import dataclasses
 
-    from corliss import units
-    from corliss.scene import find_scene
+    from corliss.keys import units
+    from corliss.scene.loader import find_scene
 
     watt = corliss.load_scene(find_scene("watt-throttling-governor")).with_fidelity("fast")
     p_s = watt.supply.pressure_Pa

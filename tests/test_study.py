@@ -20,12 +20,12 @@ import pandas as pd
 import pytest
 
 import corliss
-from corliss import study_output
+from corliss.files import study_output
 from corliss.engine.model import steady_scene
 from corliss.engine.steady import run_steady
 from corliss.errors import InputError, RunError
-from corliss.scene import find_scene, scene_from_dict
-from corliss.scene_keys import parse_distribution, with_keys
+from corliss.scene.loader import find_scene, scene_from_dict
+from corliss.keys.edits import parse_distribution, with_keys
 from corliss.studies import make_design, response_keys
 from corliss.studies import runner as study_runner
 from corliss.studies.responses import flatten
@@ -251,7 +251,7 @@ def _no_run(monkeypatch):
 
 
 def test_an_unknown_response_is_refused_naming_the_valid_ones(monkeypatch, tmp_path, capsys):
-    from corliss.cli import main
+    from corliss.cli.commands import main
     _no_run(monkeypatch)
     out = tmp_path / "out"
     rc = main(["study", "default", "--vary", "valve_gear.lap=0.8:1.2in", "--grid",
@@ -264,7 +264,7 @@ def test_an_unknown_response_is_refused_naming_the_valid_ones(monkeypatch, tmp_p
 def test_a_value_the_loader_refuses_is_named_with_its_run(monkeypatch, tmp_path, capsys):
     """Clearance below the loader's least (0.005) at the low end of the range: refused
     before any run, naming the key, the value and the run; nothing written."""
-    from corliss.cli import main
+    from corliss.cli.commands import main
     _no_run(monkeypatch)
     out = tmp_path / "out"
     rc = main(["study", "default", "--vary", "engine.clearance=0.001:0.1", "--lhs", "4",
@@ -336,7 +336,7 @@ def test_the_responses_offered_for_a_compound_and_a_twin(name):
 
 def test_the_command_writes_the_table_and_prints_the_summary_as_json(tmp_path, capsys):
     """``corliss study --json``: the summary on stdout, the files in --out."""
-    from corliss.cli import main
+    from corliss.cli.commands import main
     rc = main(["study", "default", "--vary", "engine.clearance=0.05,0.1", "--vary",
                "run.speed=100:140rpm", "--grid", "--levels", "2", "--fidelity", "fast",
                "--jobs", "1", "--response", "indicated_power_hp", "--json",

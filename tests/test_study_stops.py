@@ -30,7 +30,7 @@ import pytest
 import corliss
 from corliss.errors import InputError, RunError
 from corliss.studies import runner as study_runner
-from corliss.toml_text import dumps
+from corliss.keys.toml_text import dumps
 from conftest import BASE
 
 VARY = ["valve_gear.lap=0.8:1.2in", "run.speed=90:150rpm"]
@@ -53,7 +53,7 @@ def _scene_file(tmp_path: Path) -> Path:
 
 
 def _command(scene: Path, out: Path, *extra) -> list[str]:
-    args = [sys.executable, "-m", "corliss.cli", "study", str(scene)]
+    args = [sys.executable, "-m", "corliss.cli.commands", "study", str(scene)]
     for v in VARY:
         args += ["--vary", v]
     for r in RESPONSES:
@@ -186,7 +186,7 @@ def test_resuming_another_studys_journal_is_refused_before_any_run(tmp_path, mon
 def test_an_output_directory_that_cannot_be_written_is_refused_before_any_run(
         tmp_path, monkeypatch, capsys):
     """``--out`` under a plain file: refused, naming it, before the first run."""
-    from corliss.cli import main
+    from corliss.cli.commands import main
 
     def boom(*a, **k):
         raise AssertionError("a run started")

@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from corliss import units
+from corliss.keys import units
 from corliss.errors import InputError
 
 
@@ -60,7 +60,7 @@ def test_output_frames_convert_rates_torques_and_powers():
     pressures absolute."""
     import pandas as pd
 
-    from corliss.columns import convert_frame
+    from corliss.frames.columns import convert_frame
     df = pd.DataFrame({"steam_rate_kg_per_h": [0.45359237], "torque_N_m": [1.3558179483314004],
                        "power_W": [745.69987158227], "p_head_Pa": [101325.0]})
     us, us_units = convert_frame(df, "US", 101325.0)
@@ -111,7 +111,7 @@ def test_a_misspelt_key_is_reported_missing_with_the_key_the_scene_has():
     misspelling; an unknown key is refused with the nearest key the table takes."""
     import tomllib
 
-    from corliss.scene import default_scene_path, scene_from_dict
+    from corliss.scene.loader import default_scene_path, scene_from_dict
     data = tomllib.loads(default_scene_path().read_text())
     data["engine"]["boer"] = data["engine"].pop("bore")
     with pytest.raises(InputError) as e:

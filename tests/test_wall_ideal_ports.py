@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 from corliss.engine.steady import run_steady
-from corliss.scene import bundled_scenes, scene_from_dict
+from corliss.scene.loader import bundled_scenes, scene_from_dict
 from corliss.thermo.steam import HEOSSteam
 from corliss.thermo.wall_properties import film_enthalpies
 

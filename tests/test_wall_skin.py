@@ -17,7 +17,7 @@ import pytest
 
 import corliss
 from corliss.engine import kernel
-from corliss.scene import bundled_scenes, scene_from_dict
+from corliss.scene.loader import bundled_scenes, scene_from_dict
 from corliss.thermo.steam import HEOSSteam
 from corliss.thermo.steam_table import covers
 

@@ -18,7 +18,7 @@ from __future__ import annotations
 import logging
 import math
 
-from corliss import units
+from corliss.keys import units
 from corliss.thermo.steam import HEOSSteam, latent_heat
 
 log = logging.getLogger(__name__)

@@ -12,7 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from corliss.errors import InputError
-from corliss.tables import Table
+from corliss.keys.toml_table import Table
 
 
 #: The flywheels engines have [SI]: a model engine's rim of a kilogram a few centimetres

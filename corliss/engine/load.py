@@ -27,10 +27,10 @@ from pathlib import Path
 
 import numpy as np
 
-from corliss import units
+from corliss.keys import units
 from corliss.errors import InputError
-from corliss.tables import Table
-from corliss.textfiles import read_text
+from corliss.keys.toml_table import Table
+from corliss.keys.textfiles import read_text
 
 SPEED_LAWS = {"constant": 0, "proportional": 1, "square": 2}
 

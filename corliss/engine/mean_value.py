@@ -28,7 +28,7 @@ import numpy as np
 import pandas as pd
 
 from corliss.engine.model import at_knob, geometry_of, steady_scene
-from corliss.engine.operating_point import OperatingPoint, find_operating_point
+from corliss.governors.operating_point import OperatingPoint, find_operating_point
 from corliss.engine.result import TransientResult
 from corliss.engine.steady import run_steady
 from corliss.governors import governor_type

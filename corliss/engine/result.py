@@ -1,7 +1,7 @@
 """What a run hands back: one result type for every kind of run, computed by the engine.
 
 :class:`Result` is the base: the scene, the run's tables (SI, the unit in every column
-name, see :mod:`corliss.columns`), its summary, and the export methods every kind
+name, see :mod:`corliss.frames.columns`), its summary, and the export methods every kind
 shares (``to_pandas``, ``to_csv``, ``plot``, ``write``).  Its kinds:
 
 - :class:`SteadyResult`: a steady run (crank-resolved or ideal card): the time series of
@@ -13,7 +13,7 @@ shares (``to_pandas``, ``to_csv``, ``plot``, ``write``).  Its kinds:
 
 The physics of a result (cards, crank effort, balances, condensation, metrics) is
 computed here.  Writing files and drawing figures is the export layer's job
-(:mod:`corliss.results`, :mod:`corliss.plot`), which the engine does not import: the
+(:mod:`corliss.files.run_output`, :mod:`corliss.plot`), which the engine does not import: the
 export layer registers itself with :func:`register_exporter` when it is imported (the
 ``corliss`` package imports it), and the export methods hand the result to it.
 """
@@ -27,12 +27,13 @@ from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
-from corliss import columns, units
+from corliss.frames import columns
+from corliss.keys import units
 from corliss.engine import crank_effort as ce
 from corliss.engine.condensation import marks_condensation_kg
 from corliss.engine.options import record_of
 from corliss.engine.speed_metrics import load_step_metrics, step_time_of
-from corliss.frame import Frame
+from corliss.frames.frame import Frame
 from corliss.thermo.steam import HEOSSteam, TableSteam
 
 if TYPE_CHECKING:          # the tables are handed out as DataFrames; pandas is imported then
@@ -49,7 +50,7 @@ _exporter = None
 def register_exporter(exporter) -> None:
     """Register the export layer the export methods of :class:`Result` hand over to.
 
-    :mod:`corliss.results` registers itself on import; the engine never imports it.
+    :mod:`corliss.files.run_output` registers itself on import; the engine never imports it.
 
     Parameters
     ----------
@@ -64,13 +65,13 @@ def register_exporter(exporter) -> None:
 
 def _export():
     if _exporter is None:     # only if the engine is used without the corliss package
-        raise RuntimeError("no export layer registered: import corliss (or corliss.results)")
+        raise RuntimeError("no export layer registered: import corliss (or corliss.files.run_output)")
     return _exporter
 
 
 class _Table:
     """A table field of a result (``timeseries``, ``cycles``): held as the run built it,
-    a :class:`~corliss.frame.Frame` (a steady run: no pandas needed to compute the
+    a :class:`~corliss.frames.frame.Frame` (a steady run: no pandas needed to compute the
     summary and write the CSVs) or a DataFrame, and given out as a DataFrame, converted
     once, on first access.  :meth:`Result.frame` reads it as held."""
 
@@ -211,7 +212,7 @@ class Result:
 
     def frame(self, name: str | None = None):
         """One of the result's tables as the run holds it, SI: a
-        :class:`~corliss.frame.Frame` where the run built one (a steady run's tables:
+        :class:`~corliss.frames.frame.Frame` where the run built one (a steady run's tables:
         read without importing pandas), else the DataFrame of :meth:`table`.
 
         Parameters
@@ -419,7 +420,7 @@ class SteadyResult(Result):
         return {end: f.to_pandas() for end, f in self.card_frames().items()}
 
     def card_frames(self) -> dict[str, Frame]:
-        """The cards of :attr:`cards` as :class:`~corliss.frame.Frame` (no pandas).
+        """The cards of :attr:`cards` as :class:`~corliss.frames.frame.Frame` (no pandas).
 
         Returns
         -------
@@ -897,7 +898,7 @@ def willans_fit(frame) -> tuple[float, float, float]:
 
     Parameters
     ----------
-    frame : pandas.DataFrame or corliss.frame.Frame
+    frame : pandas.DataFrame or corliss.frames.frame.Frame
         At least two rows with ``indicated_power_W`` [W] and ``steam_rate_kg_per_h``
         [kg/h].
 

@@ -26,7 +26,7 @@ from corliss.engine.model import assemble
 from corliss.engine.network import cylinder_prefix, piston_ends
 from corliss.engine.result import SteadyResult
 from corliss.engine.wall import IdealPortWall
-from corliss.frame import Frame
+from corliss.frames.frame import Frame
 from corliss.thermo.steam import HEOSSteam
 
 log = logging.getLogger(__name__)

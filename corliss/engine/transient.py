@@ -29,7 +29,7 @@ from corliss.engine.condensation import MarksLaw
 from corliss.engine.crank_resolved import budget_message
 from corliss.engine.model import build_gear, build_network, geometry_of, reservoir_states
 from corliss.engine.network import throttle_area_m2
-from corliss.engine.operating_point import (BALANCED, LOAD_TOO_HEAVY, SURPLUS_TOL,
+from corliss.governors.operating_point import (BALANCED, LOAD_TOO_HEAVY, SURPLUS_TOL,
                                            OperatingPoint, find_operating_point)
 from corliss.engine.options import TRANSIENT_METHODS, record_of
 from corliss.engine.result import TransientResult

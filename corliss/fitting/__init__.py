@@ -5,7 +5,7 @@
 - :mod:`corliss.fitting.solver`: the least-squares fit, its uncertainties and the
   :class:`~corliss.fitting.solver.FitResult`.
 
-The command and the public function are :func:`corliss.fit` (:mod:`corliss.fit_output`).
+The command and the public function are :func:`corliss.fit` (:mod:`corliss.files.fit_output`).
 """
 
 from corliss.fitting.card import MeasuredCard, parse_card, read_card

@@ -23,7 +23,7 @@ digitiser) went round it.  Two layouts are read:
 A header names a column's unit in brackets (``pressure [psig]``, ``(psig)`` also) or,
 as corliss writes, as the last part of the name (``p_psia``, ``p_kPa_abs``, ``V_ft3``,
 ``piston_frac``).  Quantities: pressure (``p``, ``pressure``: any pressure unit of
-:mod:`corliss.units`, gauge ones read against the scene's barometer), the piston's
+:mod:`corliss.keys.units`, gauge ones read against the scene's barometer), the piston's
 position from head-end dead centre (``piston_position``, ``position``, ``x``: a length,
 or ``piston_frac`` as a fraction of the stroke), volume (``V``, ``volume``: a volume
 unit, the end's whole volume with its clearance), and optionally ``crank_angle``
@@ -41,9 +41,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from corliss import units
+from corliss.keys import units
 from corliss.errors import InputError
-from corliss.textfiles import read_text
+from corliss.keys.textfiles import read_text
 
 #: Ends a card may hold.
 ENDS = ("head", "crank", "lp_head", "lp_crank")

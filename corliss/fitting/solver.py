@@ -136,13 +136,13 @@ from typing import Callable
 
 import numpy as np
 
-from corliss import units
+from corliss.keys import units
 from corliss.engine.options import PRESETS
 from corliss.engine.simulate import simulate
 from corliss.errors import InputError, RunError
 from corliss.fitting.card import MeasuredCard
-from corliss.scene import scene_from_dict
-from corliss.scene_keys import KeyRange, get_key, parse_value, with_keys
+from corliss.scene.loader import scene_from_dict
+from corliss.keys.edits import KeyRange, get_key, parse_value, with_keys
 
 log = logging.getLogger(__name__)
 
@@ -196,7 +196,7 @@ _exporter = None
 def register_exporter(exporter) -> None:
     """Register the writer of fits, to which :class:`FitResult`'s export methods hand it.
 
-    :mod:`corliss.fit_output` registers itself on import, as the results' export
+    :mod:`corliss.files.fit_output` registers itself on import, as the results' export
     layer does.
 
     Parameters
@@ -219,7 +219,7 @@ def _export():
 class FitResult:
     """A fit's outcome (made by :func:`fit_card`).
 
-    Values are in each key's unit (:attr:`corliss.scene_keys.KeyRange.unit`);
+    Values are in each key's unit (:attr:`corliss.keys.edits.KeyRange.unit`);
     pressures SI unless named.
 
     Parameters
@@ -797,7 +797,7 @@ def fit_card(scene, card: MeasuredCard, ranges: list, *, fidelity: str = "fast",
         The measured card (:func:`corliss.fitting.card.read_card`), any of the scene's
         ends.
     ranges : list of KeyRange
-        The keys to fit and their bounds (:func:`corliss.scene_keys.parse_range`).
+        The keys to fit and their bounds (:func:`corliss.keys.edits.parse_range`).
     fidelity : str, optional
         Tier of the search: ``fast`` (default), ``standard`` or ``reference``.
     refine : bool, optional

@@ -47,14 +47,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from corliss import units
+from corliss.keys import units
 from corliss.errors import InputError
 from corliss.governors.mechanism import (GEAR_SETTING_KEYS, GRAVITY_M_S2, RATIO_KEY,
                                          THROTTLE_KEYS, Actuator, Governor, GovernorType,
                                          PointMass, WEIGHT_MASS_KG, parse_actuator,
                                          parse_ratio, register)
-from corliss.keyspec import POSITIVE_LENGTH, REQUIRED, ZERO_OR_MORE, Key, KeyGroup, group
-from corliss.tables import Table
+from corliss.keys.declared import POSITIVE_LENGTH, REQUIRED, ZERO_OR_MORE, Key, KeyGroup, group
+from corliss.keys.toml_table import Table
 
 
 class SleeveLosses:

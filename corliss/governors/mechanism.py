@@ -42,8 +42,8 @@ from typing import ClassVar
 import numpy as np
 
 from corliss.errors import InputError
-from corliss.keyspec import Key, group
-from corliss.registry import Registry, RegistryEntry
+from corliss.keys.declared import Key, group
+from corliss.keys.registry import Registry, RegistryEntry
 
 log = logging.getLogger(__name__)
 
@@ -569,7 +569,7 @@ def parse_ratio(t) -> float:
 
     Parameters
     ----------
-    t : corliss.tables.Table
+    t : corliss.keys.toml_table.Table
         The governor's table.
 
     Returns
@@ -590,7 +590,7 @@ def parse_actuator(t, acts_on: str) -> Actuator:
 
     Parameters
     ----------
-    t : corliss.tables.Table
+    t : corliss.keys.toml_table.Table
         The governor's table, with :data:`THROTTLE_KEYS` or :data:`GEAR_SETTING_KEYS`.
     acts_on : str
         ``"throttle"`` or ``"gear"``.

@@ -52,12 +52,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from corliss import units
+from corliss.keys import units
 from corliss.errors import InputError
 from corliss.governors.mechanism import (GEAR_SETTING_KEYS, Actuator, Governor, GovernorType,
                                          PointMass, WEIGHT_MASS_KG, parse_actuator, register)
-from corliss.keyspec import POSITIVE_LENGTH, ZERO_OR_MORE, Key, group
-from corliss.tables import Table
+from corliss.keys.declared import POSITIVE_LENGTH, ZERO_OR_MORE, Key, group
+from corliss.keys.toml_table import Table
 
 
 @dataclass(frozen=True)

@@ -26,7 +26,7 @@ import math
 
 import numpy as np
 
-from corliss import units
+from corliss.keys import units
 from corliss.valves.corliss_gear import CorlissGear, CorlissSpec
 from corliss.valves.link_motion import LinkMotion, LinkMotionSpec
 from corliss.valves.radial_gear import JoySpec, RadialGear, SimpleRadialSpec, WalschaertsSpec

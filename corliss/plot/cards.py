@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from corliss import units
+from corliss.keys import units
 
 _EVENT_MARK = {"cutoff": ("c/o", "v"), "release": ("rel", "s"), "compression": ("comp", "^"),
                "admission": ("adm", "o")}

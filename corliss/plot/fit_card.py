@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from corliss import units
+from corliss.keys import units
 
 
 def _abscissa(fit, end: str, units_system: str):

@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-from corliss import units
+from corliss.keys import units
 from corliss.valves.buckeye import BuckeyeGear
 from corliss.valves.double_valve import DoubleValve
 from corliss.valves.gridiron import GridironValve

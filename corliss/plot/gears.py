@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from corliss import units
+from corliss.keys import units
 from corliss.plot.gear_panels import (find_by_class, plot_corliss_gear, plot_double_valve,
                                       plot_porter_allen)
 from corliss.valves.corliss_gear import CorlissGear

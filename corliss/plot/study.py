@@ -4,13 +4,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from corliss import columns
-from corliss.frame import Frame
+from corliss.frames import columns
+from corliss.frames.frame import Frame
 
 
 def _axis(frame, column: str, units_system: str | None):
     """A response column's values and axis label, in ``units_system`` when its name
-    ends in a unit :mod:`corliss.columns` converts."""
+    ends in a unit :mod:`corliss.frames.columns` converts."""
     values = frame[column].to_numpy(dtype=float)
     if units_system is None:
         try:
@@ -34,7 +34,7 @@ def plot_study(points, varied: list[dict], responses: list[str], fig=None,
     Parameters
     ----------
     points : pandas.DataFrame
-        A study's table (:attr:`corliss.studies.result.StudyResult.points`).
+        A study's table (:attr:`corliss.studies.study_result.StudyResult.points`).
     varied : list of dict
         The study's varied keys (``key``, ``unit``, ``column``), one panel column each.
     responses : list of str

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from corliss import units
+from corliss.keys import units
 
 
 def plot_load_step(result, units_system: str | None = None) -> dict:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from corliss import units
+from corliss.keys import units
 
 
 def plot_willans(sweeps: dict, ax=None, units_system: str = "US") -> dict:
@@ -17,7 +17,7 @@ def plot_willans(sweeps: dict, ax=None, units_system: str = "US") -> dict:
     ----------
     sweeps : dict of str to pandas.DataFrame
         ``{label: points}``, each the ``points`` table of a
-        :func:`corliss.engine.load_range.load_range` sweep (columns
+        :func:`corliss.studies.load_range.load_range` sweep (columns
         ``indicated_power_W`` and ``steam_rate_kg_per_h``).
     ax : matplotlib.axes.Axes, optional
         Axes to draw on; a new 8 x 5.5 in figure when None.
@@ -71,7 +71,7 @@ def plot_compare(result, units_system: str = "US") -> dict:
     Parameters
     ----------
     result : CompareResult
-        The study (:func:`corliss.engine.compare.compare`): its ``points`` and
+        The study (:func:`corliss.studies.compare.compare`): its ``points`` and
         ``willans`` tables.
     units_system : str, optional
         ``"US"`` (hp, lb/h, lb per ihp-h) or ``"SI"`` (kW, kg/h, kg/kWh).

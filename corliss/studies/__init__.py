@@ -1,16 +1,16 @@
 """Studies: steady runs of one scene over grids, Latin hypercubes and Monte Carlo
 designs of its keys, on local processes or a Dask cluster (``corliss study``).
 
-- :mod:`corliss.studies.design`: the sampling designs (:func:`make_design`);
+- :mod:`corliss.studies.sampling`: the sampling designs (:func:`make_design`);
 - :mod:`corliss.studies.responses`: which summary keys a study may record;
 - :mod:`corliss.studies.runner`: :func:`study`, the runs, local or on Dask;
-- :mod:`corliss.studies.result`: :class:`StudyResult`, one tidy table, and
+- :mod:`corliss.studies.study_result`: :class:`StudyResult`, one tidy table, and
   :func:`scene_data_of`, a row's scene rebuilt from the base scene.
 """
 
-from corliss.studies.design import DESIGNS, Design, make_design
+from corliss.studies.sampling import DESIGNS, Design, make_design
 from corliss.studies.responses import DEFAULT_RESPONSES, response_keys
-from corliss.studies.result import StudyResult, scene_data_of
+from corliss.studies.study_result import StudyResult, scene_data_of
 from corliss.studies.runner import study
 
 __all__ = ["DEFAULT_RESPONSES", "DESIGNS", "Design", "StudyResult", "make_design",

@@ -2,7 +2,7 @@
 Dask cluster.
 
 Each run is the base scene's tables with the run's keys set
-(:func:`corliss.scene_keys.with_keys`), loaded and checked by the scene loader, made
+(:func:`corliss.keys.edits.with_keys`), loaded and checked by the scene loader, made
 steady at its speed and run at the study's fidelity; its row holds the responses
 asked for.  Before any run the scenes of the first runs and of the runs at each key's
 least and greatest value are loaded (every run's, up to :data:`CHECK_ALL_UP_TO`
@@ -57,12 +57,12 @@ import numpy as np
 from corliss.engine.model import steady_scene
 from corliss.engine.steady import run_steady
 from corliss.errors import InputError, RunError, StudyStopped
-from corliss.scene import Scene, find_scene, load_scene, scene_from_dict
-from corliss.scene_keys import KeyValue, with_keys
-from corliss.studies.design import make_design
+from corliss.scene.loader import Scene, find_scene, load_scene, scene_from_dict
+from corliss.keys.edits import KeyValue, with_keys
+from corliss.studies.sampling import make_design
 from corliss.studies.journal import Journal, check_writable, fingerprint, journal_path, read_rows
 from corliss.studies.responses import check_responses, flatten, response_value
-from corliss.studies.result import ERROR, RUN_ID, STATUS, StudyResult
+from corliss.studies.study_result import ERROR, RUN_ID, STATUS, StudyResult
 
 log = logging.getLogger(__name__)
 
@@ -416,7 +416,7 @@ def _base_of(scene) -> tuple[dict, Scene]:
     if isinstance(scene, dict):
         return scene, scene_from_dict(scene, name="scene")
     if scene is None or isinstance(scene, (str, Path)):
-        from corliss.scene import default_scene_path
+        from corliss.scene.loader import default_scene_path
         sc = load_scene(find_scene(scene) if scene is not None else default_scene_path())
         return sc.data, sc
     raise InputError("scene", scene, "a Scene, its tables (dict), a scene file or a bundled "

@@ -51,8 +51,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from corliss.errors import InputError
-from corliss.keyspec import POSITIVE_LENGTH, Derived, Key, group
-from corliss.tables import Table
+from corliss.keys.declared import POSITIVE_LENGTH, Derived, Key, group
+from corliss.keys.toml_table import Table
 from corliss.valves.gear import ValveGear
 from corliss.valves.slide_valve import LAP_KEYS, PORT_KEYS, parse_ports
 

@@ -63,10 +63,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from corliss import units
+from corliss.keys import units
 from corliss.errors import InputError
-from corliss.keyspec import POSITIVE_LENGTH, ZERO_OR_MORE, Derived, Key, group
-from corliss.tables import DISCHARGE_COEFFICIENT, Table
+from corliss.keys.declared import POSITIVE_LENGTH, ZERO_OR_MORE, Derived, Key, group
+from corliss.keys.toml_table import DISCHARGE_COEFFICIENT, Table
 from corliss.valves.gear import GearType, ValveGear, register
 from corliss.valves.slide_valve import ECCENTRICITY, LAP_KEYS, PORT_KEYS, LappedValve, parse_ports
 

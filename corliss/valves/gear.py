@@ -18,7 +18,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from corliss.registry import Registry, RegistryEntry
+from corliss.keys.registry import Registry, RegistryEntry
 
 #: Names of the four ports of a double-acting cylinder, in the order of every array of
 #: openings, widths, lengths and areas.

@@ -53,8 +53,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from corliss.errors import InputError
-from corliss.keyspec import POSITIVE_LENGTH, Derived, Key, group
-from corliss.tables import Table
+from corliss.keys.declared import POSITIVE_LENGTH, Derived, Key, group
+from corliss.keys.toml_table import Table
 from corliss.valves.gear import GearType, register
 from corliss.valves.newton import newton2
 from corliss.valves.slide_valve import (ALLEN_KEYS, ANGULAR_ADVANCE, ECCENTRICITY, LAP_KEYS,

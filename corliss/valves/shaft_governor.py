@@ -52,10 +52,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from corliss import units
+from corliss.keys import units
 from corliss.errors import InputError
-from corliss.keyspec import POSITIVE_LENGTH, Key, group
-from corliss.tables import Table
+from corliss.keys.declared import POSITIVE_LENGTH, Key, group
+from corliss.keys.toml_table import Table
 from corliss.valves.gear import GearType, register
 from corliss.valves.slide_valve import (ANGULAR_ADVANCE, ECCENTRICITY, LAP_KEYS, PORT_KEYS,
                                         LappedValve, parse_ports)

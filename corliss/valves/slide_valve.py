@@ -55,11 +55,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from corliss import units
+from corliss.keys import units
 from corliss.errors import InputError
 from corliss.valves.gear import GearType, ValveGear, register
-from corliss.keyspec import POSITIVE_LENGTH, Key, group
-from corliss.tables import DISCHARGE_COEFFICIENT, Table
+from corliss.keys.declared import POSITIVE_LENGTH, Key, group
+from corliss.keys.toml_table import DISCHARGE_COEFFICIENT, Table
 
 
 @dataclass(frozen=True)

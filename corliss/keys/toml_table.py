@@ -3,8 +3,8 @@
 Every getter records the key it read; :meth:`Table.finish` then refuses any key that
 was not read, so a misspelt key is an error instead of a silent default.
 
-A table bound to a :class:`corliss.keyspec.KeyGroup` reads only the keys the group
-declares (any other read is a :class:`corliss.keyspec.UndeclaredKeyError`, a
+A table bound to a :class:`corliss.keys.declared.KeyGroup` reads only the keys the group
+declares (any other read is a :class:`corliss.keys.declared.UndeclaredKeyError`, a
 programming error), and :meth:`Table.get` reads a key by its declaration: its kind,
 default and range written once, where the scene reference is printed from.
 """
@@ -13,9 +13,9 @@ from __future__ import annotations
 
 import math
 
-from corliss import units
+from corliss.keys import units
 from corliss.errors import InputError
-from corliss.keyspec import MICRON_m, REQUIRED, Derived, KeyGroup, UndeclaredKeyError
+from corliss.keys.declared import MICRON_m, REQUIRED, Derived, KeyGroup, UndeclaredKeyError
 
 _MISSING = object()
 #: The getter each plain kind is read with (a quantity kind is read by its units).
@@ -45,7 +45,7 @@ class Table:
         Atmospheric pressure [Pa] for gauge readings.
     keys : KeyGroup, optional
         The keys the table may hold; bound, a read of any other key is an
-        :class:`~corliss.keyspec.UndeclaredKeyError`, and a getter called without a
+        :class:`~corliss.keys.declared.UndeclaredKeyError`, and a getter called without a
         default or range takes the declared ones.
     """
 
@@ -169,8 +169,8 @@ class Table:
             A key the bound group declares.
         default : object, optional
             For an absent key whose declared default is
-            :class:`~corliss.keyspec.Derived`: the value computed, as a scene would write
-            it; :data:`~corliss.keyspec.REQUIRED`
+            :class:`~corliss.keys.declared.Derived`: the value computed, as a scene would write
+            it; :data:`~corliss.keys.declared.REQUIRED`
             where the settings read make an optional key required.
         within : (float, float), optional
             A range [SI] found from other keys, narrowing the declared one.
@@ -267,7 +267,7 @@ class Table:
     def quantity(self, key: str, kind: str, default=_MISSING, *,
                  within: tuple[float, float] | None = None) -> float:
         """A quantity string in SI, inside its kind's physical range
-        (:data:`corliss.units.RANGES`) narrowed to ``within`` [SI] if given.
+        (:data:`corliss.keys.units.RANGES`) narrowed to ``within`` [SI] if given.
 
         Parameters
         ----------
@@ -277,7 +277,7 @@ class Table:
             The value of an absent key, as a scene writes it; without one, the declared
             default, or the key is required.
         kind : str
-            A kind of :mod:`corliss.units` (the declared one).
+            A kind of :mod:`corliss.keys.units` (the declared one).
         within : (float, float), optional
             The key's own range [SI]; without one, the declared range.
 

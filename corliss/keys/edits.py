@@ -8,7 +8,7 @@ one unit: ``valve_gear.lap=0.8in:1.2in`` or ``valve_gear.lap=0.8:1.2in`` (the un
 written once, at the end, serves both) or ``engine.clearance=0.04:0.12``.
 
 Nothing here knows what a key means: the edited scene is validated by the loader
-(:func:`corliss.scene.scene_from_dict`), which names the key of any bad value.
+(:func:`corliss.scene.loader.scene_from_dict`), which names the key of any bad value.
 """
 
 from __future__ import annotations

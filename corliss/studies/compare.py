@@ -387,7 +387,7 @@ def droop_speeds(scene, loads) -> dict[float, float] | None:
     """
     if scene.governor is None or scene.governor_type is None:
         return None
-    from corliss.engine.operating_point import characteristic_speed, working_travel
+    from corliss.governors.operating_point import characteristic_speed, working_travel
     from corliss.governors import GOVERNORS
     mech = GOVERNORS[scene.governor_type].build(scene.governor).mechanism(201)
     z_lo, z_hi = working_travel(mech)
@@ -461,7 +461,7 @@ def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
         Loads outside (0, 2], an unknown ``condensation``, or what :func:`variants`
         refuses.
     """
-    from corliss.engine.compare_result import CompareResult
+    from corliss.studies.compare_result import CompareResult
 
     t0 = time.perf_counter()
     loads = [float(v) for v in loads]
@@ -511,7 +511,7 @@ def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
 def _solve(scene, loads, var, groups, grid_tasks, grid_keys, rated, brake, tier, pool,
            progress, total, t0, workers, speeds):
     """The two rounds of :func:`compare`: the knob grids, then the operating points."""
-    from corliss.engine.compare_result import CompareResult
+    from corliss.studies.compare_result import CompareResult
 
     conds = sorted({c for _, c in groups})
     grid, done = _map(grid_tasks, pool, progress, 0, total)

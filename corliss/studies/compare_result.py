@@ -1,4 +1,4 @@
-"""The result of the throttling-versus-cut-off study (:func:`corliss.engine.compare.compare`).
+"""The result of the throttling-versus-cut-off study (:func:`corliss.studies.compare.compare`).
 
 Kept apart from :mod:`corliss.engine.result` (whose base class it extends) so the study
 and the steady run's summary change independently.

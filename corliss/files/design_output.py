@@ -21,13 +21,13 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
-from corliss import units
+from corliss.keys import units
 from corliss.engine.model import build_gear, geometry_of, scene_events
 from corliss.errors import InputError
-from corliss.results import OutputFiles
-from corliss.scene import Scene, bundled_scenes, default_scene_path, find_scene, load_scene, scene_from_dict
-from corliss.scene_keys import with_keys
-from corliss.toml_text import dumps
+from corliss.files.run_output import OutputFiles
+from corliss.scene.loader import Scene, bundled_scenes, default_scene_path, find_scene, load_scene, scene_from_dict
+from corliss.keys.edits import with_keys
+from corliss.keys.toml_text import dumps
 from corliss.valves.design import (SettingDesign, SlideValveDesign, design_setting,
                                    design_slide_valve)
 from corliss.valves.slide_valve import LappedValve

@@ -17,17 +17,17 @@ from pathlib import Path
 
 import numpy as np
 
-from corliss import units
+from corliss.keys import units
 from corliss.engine.geometry import EngineSpec
-from corliss.engine.operating_point import working_travel
+from corliss.governors.operating_point import working_travel
 from corliss.engine.options import (COMPILED_METHODS, EFFECT_KEYS, EFFECTS, PLANNED_EFFECTS,
                                     PRESETS, SCIPY_METHODS, Fidelity)
 from corliss.errors import InputError
-from corliss.keyspec import REQUIRED
-from corliss.section_keys import (COMPARE, COMPOUND, ENGINE, EXHAUST, FLYWHEEL, LOAD, OUTPUT,
+from corliss.keys.declared import REQUIRED
+from corliss.scene.sections import (COMPARE, COMPOUND, ENGINE, EXHAUST, FLYWHEEL, LOAD, OUTPUT,
                                   RECORD_CHOICES, RUN, START_CHOICES, SUPPLY)  # noqa: F401
-from corliss.tables import Table
-from corliss.textfiles import read_text
+from corliss.keys.toml_table import Table
+from corliss.keys.textfiles import read_text
 from corliss.thermo.steam import BACKENDS, HEOSSteam, TableSteam
 from corliss.valves import GEARS
 
@@ -226,7 +226,7 @@ class CompoundSpec:
 @dataclass(frozen=True)
 class CompareSpec:
     """The ``[compare]`` section: how `corliss compare` governs the engine both ways
-    (every field None: the study's default, see :mod:`corliss.engine.compare`).
+    (every field None: the study's default, see :mod:`corliss.studies.compare`).
 
     Parameters
     ----------

@@ -43,7 +43,7 @@ A user's mistake exits with code 2 and a one-paragraph message, no traceback, an
 writes nothing.  Messages go through the ``corliss`` logger: once-per-machine notices
 (compiling the kernels, building the steam table) by default, everything with ``-v``;
 other libraries' logs stay quiet.  While such a step runs, a line says what it is doing
-and for how long (:mod:`corliss.heartbeat`), so a first run is never silent for long.
+and for how long (:mod:`corliss.cli.heartbeat`), so a first run is never silent for long.
 Runs that take more than a couple of seconds show a progress line on a terminal.
 """
 
@@ -62,14 +62,14 @@ import tomllib
 from pathlib import Path
 
 import corliss
-from corliss import units
+from corliss.keys import units
 from corliss.engine.model import build_gear, scene_events
 from corliss.engine.simulate import simulate
 from corliss.errors import InputError, RunError, StudyStopped
-from corliss.heartbeat import Heartbeat
+from corliss.cli.heartbeat import Heartbeat
 from corliss.logs import NOTICE
-from corliss.results import OutputFiles, scene_from_meta, summary_json
-from corliss.scene import bundled_scenes, default_scene_path, find_scene, load_scene
+from corliss.files.run_output import OutputFiles, scene_from_meta, summary_json
+from corliss.scene.loader import bundled_scenes, default_scene_path, find_scene, load_scene
 from corliss.studies.journal import check_writable
 
 log = logging.getLogger("corliss")
@@ -490,7 +490,7 @@ def cmd_animate(args) -> int:
 def cmd_design(args) -> int:
     """``corliss design``: a valve (or a gear's setting) for the events asked.
 
-    Writes ``design.toml`` and its diagrams (:func:`corliss.design_scene.design`),
+    Writes ``design.toml`` and its diagrams (:func:`corliss.files.design_output.design`),
     then prints the design, or its summary as JSON with ``--json``.
 
     Parameters
@@ -504,7 +504,7 @@ def cmd_design(args) -> int:
         The exit status: 0 (a user's mistake raises
         :class:`~corliss.errors.InputError`, which :func:`main` turns into 2).
     """
-    from corliss.design_scene import design
+    from corliss.files.design_output import design
     scene = _load(args.scene, args.units)
     d = design(scene, cutoff=args.cutoff, cutoff_crank=args.cutoff_crank, lead=args.lead,
                max_opening=args.max_opening, eccentricity=args.eccentricity, lap=args.lap,
@@ -554,8 +554,8 @@ def cmd_sweep(args) -> int:
         The exit status: 0 (a user's mistake raises
         :class:`~corliss.errors.InputError`, which :func:`main` turns into 2).
     """
-    from corliss.columns import convert_frame
-    from corliss.engine.load_range import load_ranges
+    from corliss.frames.columns import convert_frame
+    from corliss.studies.load_range import load_ranges
     scene = _load(args.scene, args.units)
     if args.fidelity:
         scene = scene.with_fidelity(args.fidelity)
@@ -639,7 +639,7 @@ def print_verdict(result) -> None:
     Parameters
     ----------
     result : CompareResult
-        The throttling-versus-cut-off study (:func:`corliss.engine.compare.compare`).
+        The throttling-versus-cut-off study (:func:`corliss.studies.compare.compare`).
     """
     us = result.scene.output.units == "US"
     rate = (lambda v: v / units.POUND_kg) if us else (lambda v: v)
@@ -692,7 +692,7 @@ def cmd_compare(args) -> int:
         The exit status: 0 (a user's mistake raises
         :class:`~corliss.errors.InputError`, which :func:`main` turns into 2).
     """
-    from corliss.engine.compare import DEFAULT_LOADS, compare
+    from corliss.studies.compare import DEFAULT_LOADS, compare
     scene = _load(args.scene, args.units)
     loads = _loads(args.loads) if args.loads else list(DEFAULT_LOADS)
     result, files = _study(args, scene, lambda bar, out: compare(
@@ -748,7 +748,7 @@ def cmd_fit(args) -> int:
     """``corliss fit``: calibrate scene keys to a measured card.
 
     Writes ``fit.json``, ``fitted.toml`` and the figure, then prints
-    :func:`corliss.fit_output.print_fit` (the fit as JSON with ``--json``).
+    :func:`corliss.files.fit_output.print_fit` (the fit as JSON with ``--json``).
 
     Parameters
     ----------
@@ -761,7 +761,7 @@ def cmd_fit(args) -> int:
         The exit status: 0 (a user's mistake raises
         :class:`~corliss.errors.InputError`, which :func:`main` turns into 2).
     """
-    from corliss.fit_output import fit, print_fit
+    from corliss.files.fit_output import fit, print_fit
     scene = _load(args.scene, args.units)
     with _out_dir(args.out if args.out is not None else scene.output.dir) as out:
         result = fit(scene, args.card, args.vary, fidelity=args.fidelity, refine=args.refine,
@@ -859,7 +859,7 @@ def cmd_explain(args) -> int:
     int
         0 (an unknown name is an InputError: exit 2).
     """
-    from corliss.scene_reference import explain
+    from corliss.scene.reference import explain
     print(explain(args.key), end="")
     return 0
 
@@ -883,7 +883,7 @@ def cmd_list_keys(args) -> int:
             raise InputError(f"list {args.what}", args.name, f"nothing after {args.what} (a "
                              "name follows only list keys)")
         return cmd_list(args)
-    from corliss.scene_reference import type_keys
+    from corliss.scene.reference import type_keys
     if args.name is None:
         raise InputError("list keys", None, "a gear or governor after it, e.g. corliss list "
                          "keys slide_valve (corliss list gears, corliss list governors)")
@@ -1090,7 +1090,7 @@ def configure_logging(verbose: bool) -> Heartbeat:
     Returns
     -------
     Heartbeat
-        The started :class:`~corliss.heartbeat.Heartbeat`, which says what a slow
+        The started :class:`~corliss.cli.heartbeat.Heartbeat`, which says what a slow
         once-per-machine step is doing while it runs (stop it when the command ends).
     """
     handler = _Handler()

@@ -17,8 +17,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from corliss import units
-from corliss.frame import Frame
+from corliss.keys import units
+from corliss.frames.frame import Frame
 
 if TYPE_CHECKING:      # convert_frame's DataFrame: pandas is imported when it is called
     import pandas as pd
@@ -34,7 +34,7 @@ INDEX_COLUMNS = {"cycle": "count (turn or cycle number, from 1)",
                  "winner": "label (the governing that uses less steam at that load)"}
 
 #: Suffix -> (SI unit, US suffix, US unit, SI output suffix, SI output unit).  The
-#: units are names :mod:`corliss.units` converts; suffixes of two parts come first.
+#: units are names :mod:`corliss.keys.units` converts; suffixes of two parts come first.
 SUFFIXES: dict[str, tuple[str, str, str, str, str]] = {
     "kg_per_kWh": ("kg/kWh", "lb_per_hp_h", "lb/hp h", "kg_per_kWh", "kg/kWh"),
     "kg_per_h": ("kg/h", "lb_per_h", "lb/h", "kg_per_h", "kg/h"),
@@ -115,7 +115,7 @@ def convert_frame(df: pd.DataFrame, system: str,
     """A copy of an SI frame in ``system`` and the unit of each of its columns.
 
     :func:`convert_columns` does the work and hands back a
-    :class:`~corliss.frame.Frame`; this is the same as a DataFrame.
+    :class:`~corliss.frames.frame.Frame`; this is the same as a DataFrame.
 
     Parameters
     ----------
@@ -147,7 +147,7 @@ def convert_frame(df: pd.DataFrame, system: str,
 
 def convert_columns(df, system: str, barometer_Pa: float = units.STANDARD_ATMOSPHERE_Pa
                     ) -> tuple[Frame, dict[str, str]]:
-    """An SI table in ``system`` as a :class:`~corliss.frame.Frame` (no pandas), and the
+    """An SI table in ``system`` as a :class:`~corliss.frames.frame.Frame` (no pandas), and the
     unit of each of its columns.
 
     Parameters

@@ -1,7 +1,7 @@
 """Sampling designs of a study: which scenes to run.
 
 A design is a table of values of the varied scene keys, one row a run, each key's
-values in the unit the user wrote (:mod:`corliss.scene_keys`):
+values in the unit the user wrote (:mod:`corliss.keys.edits`):
 
 - ``grid``: the full factorial of every key's levels (``KEY=LOW:HIGH`` at ``levels``
   evenly spaced values, ends included, or ``KEY=a,b,c``), the first key varying
@@ -31,7 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from corliss.errors import InputError
-from corliss.scene_keys import KeyRange, KeyValues, parse_distribution, parse_range, parse_values
+from corliss.keys.edits import KeyRange, KeyValues, parse_distribution, parse_range, parse_values
 
 #: The designs a study knows.
 DESIGNS = ("grid", "lhs", "monte_carlo")
@@ -91,9 +91,9 @@ class Design:
     kind : str
         ``"grid"``, ``"lhs"`` or ``"monte_carlo"``.
     specs : tuple
-        The varied keys, each a :class:`~corliss.scene_keys.KeyRange`,
-        :class:`~corliss.scene_keys.KeyValues` or
-        :class:`~corliss.scene_keys.KeyDistribution`, in the order given.
+        The varied keys, each a :class:`~corliss.keys.edits.KeyRange`,
+        :class:`~corliss.keys.edits.KeyValues` or
+        :class:`~corliss.keys.edits.KeyDistribution`, in the order given.
     values : ndarray, shape (runs, keys)
         Each key's values in its spec's unit, rounded by :func:`quantize`.
     seed : int or None
@@ -128,7 +128,7 @@ class Design:
         dict
             ``{dotted key: scene value}``, each value a quantity string in its key's
             unit (``"0.85 in"``), or a float for a dimensionless key, for
-            :func:`corliss.scene_keys.with_keys`.
+            :func:`corliss.keys.edits.with_keys`.
         """
         return {s.key: s.text(float(v)) for s, v in zip(self.specs, self.values[i])}
 

@@ -1,29 +1,29 @@
 """The scene reference, printed from the declarations the loader reads with.
 
-Every section's keys (:mod:`corliss.section_keys`) and every gear's and governor's
-(their registry entries' :class:`~corliss.keyspec.KeyGroup`), with kind, accepted
+Every section's keys (:mod:`corliss.scene.sections`) and every gear's and governor's
+(their registry entries' :class:`~corliss.keys.declared.KeyGroup`), with kind, accepted
 units, default, range or choices, and which gear, governor or effect reads each key:
 as Markdown (:func:`reference_markdown`, committed as ``docs/scene-reference.md``; a
 test keeps the two equal) and as text for ``corliss explain`` and ``corliss list keys``.
 
-Regenerate the page with ``python -m corliss.scene_reference > docs/scene-reference.md``.
+Regenerate the page with ``python -m corliss.scene.reference > docs/scene-reference.md``.
 """
 
 from __future__ import annotations
 
 import difflib
 
-from corliss import units
+from corliss.keys import units
 from corliss.engine.options import EFFECTS
 from corliss.errors import InputError
 from corliss.governors import GOVERNORS
-from corliss.keyspec import Key, KeyGroup
-from corliss.scene import SECTIONS
-from corliss.section_keys import SECTION_KEYS
+from corliss.keys.declared import Key, KeyGroup
+from corliss.scene.loader import SECTIONS
+from corliss.scene.sections import SECTION_KEYS
 from corliss.valves import GEARS
 
 #: The command that writes the committed page.
-REGENERATE = "python -m corliss.scene_reference > docs/scene-reference.md"
+REGENERATE = "python -m corliss.scene.reference > docs/scene-reference.md"
 #: Sections whose keys are those of the type they name.
 TYPED = {"valve_gear": GEARS, "lp_valve_gear": GEARS, "governor": GOVERNORS}
 _SECTION_DOC = {

@@ -4,7 +4,7 @@ files.
 :func:`fit` takes what the command takes (a scene, a card CSV, ``KEY=LOW:HIGH``
 ranges, the fidelity, refine, bootstrap and seed, an output folder), checks all of it
 before any simulation, runs :func:`corliss.fitting.solver.fit_card` and, given ``out``,
-writes into it as one transaction (:class:`corliss.results.OutputFiles`):
+writes into it as one transaction (:class:`corliss.files.run_output.OutputFiles`):
 
 - ``fit.json``: the fitted values with their standard errors (or why a key is not
   determined), the correlations, the residual r.m.s. in the pressure unit of the
@@ -21,17 +21,17 @@ import hashlib
 import json
 from pathlib import Path
 
-from corliss import units
+from corliss.keys import units
 from corliss.errors import InputError
 from corliss.fitting import solver
 from corliss.fitting.card import MeasuredCard, read_card
 from corliss.fitting.solver import FitResult, fit_card
-from corliss.toml_text import dumps
+from corliss.keys.toml_text import dumps
 from corliss.plot.fit_card import plot_fit_card
-from corliss.results import (DPI, PNG_OPTIONS, OutputFiles, dependency_versions, jsonable,
+from corliss.files.run_output import (DPI, PNG_OPTIONS, OutputFiles, dependency_versions, jsonable,
                              package_version)
-from corliss.scene import Scene, find_scene, load_scene
-from corliss.scene_keys import KeyRange, parse_range
+from corliss.scene.loader import Scene, find_scene, load_scene
+from corliss.keys.edits import KeyRange, parse_range
 
 FILES = {"summary": "fit.json", "scene": "fitted.toml", "card": "fit-card.png"}
 
@@ -62,7 +62,7 @@ def fit(scene, card, vary, *, fidelity: str = "fast", refine: bool = False,
         ``corliss run`` writes, or a digitised card: see :mod:`corliss.fitting.card`);
         gauge pressures are read against the scene's barometer.
     vary : str or list
-        ``KEY=LOW:HIGH`` ranges (or :class:`~corliss.scene_keys.KeyRange`), e.g.
+        ``KEY=LOW:HIGH`` ranges (or :class:`~corliss.keys.edits.KeyRange`), e.g.
         ``["engine.clearance=0.04:0.14", "valve_gear.lap=0.7:1.3in"]``.
     fidelity : str, optional
         Tier of the search (``fast``; ``standard``, ``reference``).

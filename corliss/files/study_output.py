@@ -1,6 +1,6 @@
 """Export of a study (:class:`corliss.StudyResult`): the tidy table as CSV with
 its meta file and as Parquet, the base scene, the summary and the figure, all written
-together or none (:class:`corliss.results.OutputFiles`).
+together or none (:class:`corliss.files.run_output.OutputFiles`).
 
 The table is written as the study made it: the varied keys in the units the user
 wrote them in (the unit in the column's name, ``valve_gear.lap_in``), the responses
@@ -23,11 +23,11 @@ from pathlib import Path
 
 from corliss.errors import InputError
 from corliss.logs import NOTICE
-from corliss.results import DPI, PNG_OPTIONS, OutputFiles, jsonable, meta, summary_json, write_csv
-from corliss.scene import scene_from_dict
-from corliss.studies import result as study_result
-from corliss.studies.result import column_unit, converted, scene_data_of
-from corliss.toml_text import dumps
+from corliss.files.run_output import DPI, PNG_OPTIONS, OutputFiles, jsonable, meta, summary_json, write_csv
+from corliss.scene.loader import scene_from_dict
+from corliss.studies import study_result
+from corliss.studies.study_result import column_unit, converted, scene_data_of
+from corliss.keys.toml_text import dumps
 
 log = logging.getLogger(__name__)
 
@@ -37,7 +37,7 @@ PARQUET_META_KEY = b"corliss"
 REBUILD = ("the scene of a row is the base scene (scene_data, or the .base.toml file) with "
            "each varied key set to the row's value in its unit: "
            "with_keys(scene_data, {key: f'{row[column]:.12g} {unit}'}) (a bare number for "
-           "a key without a unit); corliss.study_output.study_scene(file, run_id) does it")
+           "a key without a unit); corliss.files.study_output.study_scene(file, run_id) does it")
 
 
 def have_parquet() -> bool:
@@ -69,7 +69,7 @@ def study_meta(result, name: str, frame=None, converted_units: dict | None = Non
         The table as written; default the study's ``points`` as made.
     converted_units : dict of str to str, optional
         ``{column: unit}`` of the responses converted into ``units_system`` (from
-        :func:`corliss.studies.result.converted`).
+        :func:`corliss.studies.study_result.converted`).
     units_system : str, optional
         ``"US"`` or ``"SI"`` when the responses were converted; None when the table
         is as made.
@@ -77,7 +77,7 @@ def study_meta(result, name: str, frame=None, converted_units: dict | None = Non
     Returns
     -------
     dict
-        :func:`corliss.results.meta` of the study (scene, versions, ``columns`` with
+        :func:`corliss.files.run_output.meta` of the study (scene, versions, ``columns`` with
         every column's unit), with ``design``, ``seed``, ``varied``, ``responses``,
         ``fidelity`` and ``rebuild_scene`` (:data:`REBUILD`).
     """

@@ -4,24 +4,24 @@ The keys of ``[valve_gear]`` and ``[governor]`` belong to the gear or governor n
 by their ``type`` and are declared on its registry entry
 (:data:`corliss.valves.GEARS`, :data:`corliss.governors.GOVERNORS`); ``[lp_valve_gear]``
 takes the keys of its gear as ``[valve_gear]`` does.  The loader
-(:mod:`corliss.scene`) reads every section through these groups.
+(:mod:`corliss.scene.loader`) reads every section through these groups.
 """
 
 from __future__ import annotations
 
 import math
 
-from corliss import units
+from corliss.keys import units
 from corliss.engine.flywheel import INERTIA_RANGE, RIM_MASS_RANGE, RIM_RADIUS_RANGE
 from corliss.engine.load import SPEED_LAWS
 from corliss.engine.options import EFFECTS, EXPANSION_LAWS, METHODS, MODELS, PRESETS
-from corliss.keyspec import POSITIVE_LENGTH, ZERO_OR_MORE, Derived, Key, group
-from corliss.tables import DISCHARGE_COEFFICIENT
+from corliss.keys.declared import POSITIVE_LENGTH, ZERO_OR_MORE, Derived, Key, group
+from corliss.keys.toml_table import DISCHARGE_COEFFICIENT
 from corliss.thermo.steam import BACKENDS
 
-#: How a transient run's time series is recorded (see :class:`corliss.scene.RunSpec`).
+#: How a transient run's time series is recorded (see :class:`corliss.scene.loader.RunSpec`).
 RECORD_CHOICES = ("step", "degree", "cycle")
-#: How a governed transient run starts (see :class:`corliss.scene.RunSpec`).
+#: How a governed transient run starts (see :class:`corliss.scene.loader.RunSpec`).
 START_CHOICES = ("equilibrium", "run_speed", "rest")
 #: Wall-heat models of the ``wall_heat`` effect.
 WALL_HEAT_MODELS = ("skin", "marks", "conductance", "adair")

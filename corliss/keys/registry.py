@@ -6,7 +6,7 @@ from dataclasses import dataclass, replace
 from typing import Callable
 
 from corliss.errors import InputError
-from corliss.keyspec import Key, KeyGroup, group
+from corliss.keys.declared import Key, KeyGroup, group
 
 
 @dataclass(frozen=True)
@@ -20,7 +20,7 @@ class RegistryEntry:
     summary : str
         One line about it.
     parse : callable
-        :class:`corliss.tables.Table` -> spec.
+        :class:`corliss.keys.toml_table.Table` -> spec.
     build : callable
         Spec -> gear or governor.
     keys : KeyGroup
@@ -30,7 +30,7 @@ class RegistryEntry:
 
     name: str
     summary: str
-    parse: Callable[[object], object]        # corliss.tables.Table -> spec
+    parse: Callable[[object], object]        # corliss.keys.toml_table.Table -> spec
     build: Callable[[object], object]        # spec -> gear or governor
     keys: KeyGroup | None = None
 
@@ -66,7 +66,7 @@ class Registry(dict):
         """
         if entry.keys is None:
             raise TypeError(f"{self.noun} {entry.name!r}: register it with the key group "
-                            "its parser reads (corliss.keyspec)")
+                            "its parser reads (corliss.keys.declared)")
         if "type" not in entry.keys:
             kind = Key("type", "string", f"The {self.noun}'s registry name, "
                        f"\"{entry.name}\" (corliss list {self.noun}s).")

@@ -4,7 +4,7 @@ the figures as PNG; every file of a run written whole or not at all.
 The engine's results (:mod:`corliss.engine.result`) are SI, the unit in each column's
 name.  On output the scene's ``[output] units`` (or the caller) chooses US (psia,
 ft3, degF, lb, ft lbf, hp) or SI (kPa absolute, m3, degC, kg, J, kW); names carry the
-unit either way (:mod:`corliss.columns`).  A ``.meta.json`` beside each CSV holds what
+unit either way (:mod:`corliss.frames.columns`).  A ``.meta.json`` beside each CSV holds what
 reruns the result exactly: the scene (its file's text and SHA-256, the tables as read,
 the resolved values), the run's knobs, the package and dependency versions, the
 property tier, the wall time and the unit of every column; ``corliss run --from-meta``
@@ -32,11 +32,12 @@ from pathlib import Path
 
 import numpy as np
 
-from corliss import columns, plot
+from corliss import plot
+from corliss.frames import columns
 from corliss.engine import result as engine_result
 from corliss.engine.options import Fidelity
 from corliss.errors import InputError
-from corliss.scene import scene_from_dict
+from corliss.scene.loader import scene_from_dict
 from corliss.versions import installed_version
 
 #: Distributions whose versions a meta file records.
@@ -326,7 +327,7 @@ FLOAT_FORMAT = "%.9g"
 
 
 def write_csv(frame, path: Path) -> None:
-    """``frame`` (a DataFrame or a :class:`~corliss.frame.Frame`) as CSV at ``path``: no
+    """``frame`` (a DataFrame or a :class:`~corliss.frames.frame.Frame`) as CSV at ``path``: no
     index, floats as :data:`FLOAT_FORMAT`, NaN as an empty field, lines ended by
     ``\\n``: the text of pandas' ``to_csv(index=False, float_format=FLOAT_FORMAT)``.
 

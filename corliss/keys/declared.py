@@ -1,12 +1,12 @@
 """Declared scene keys: what each key of a section, gear, governor or effect is.
 
 A :class:`Key` states a key's name, the kind of value it takes (a kind of quantity of
-:mod:`corliss.units`, or a plain number, whole number, choice, ...), its default, its
+:mod:`corliss.keys.units`, or a plain number, whole number, choice, ...), its default, its
 valid range or choices, and one line saying what it is.  A :class:`KeyGroup` holds the
 keys of one scene table (a section, or one gear's or governor's ``[valve_gear]`` /
 ``[governor]`` keys); gears and governors carry theirs on their registry entry.
 
-The loader reads a table through its group (:class:`corliss.tables.Table` bound to
+The loader reads a table through its group (:class:`corliss.keys.toml_table.Table` bound to
 it), so the kind, unit, default and range written here are the ones validated, and the
 scene reference (``docs/scene-reference.md``, ``corliss explain``) is printed from the
 same declarations.  Reading a key that the group does not declare is a programming
@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from corliss import units
+from corliss.keys import units
 
 #: The least length of a part that exists [m].
 MICRON_m = 1e-6
@@ -95,13 +95,13 @@ class Key:
         writes it (``"0 in"``, ``0.7``, ``"direct"``).
     within : (float, float) or None
         The valid range [SI for a quantity], narrowing the kind's physical range
-        (:data:`corliss.units.RANGES`); None: the kind's range.
+        (:data:`corliss.keys.units.RANGES`); None: the kind's range.
     choices : tuple of str
         The words a ``choice`` or ``list`` key takes, or words a quantity key takes
         beside a quantity (``"saturated"``).
     unit : str or None
         The unit the reference shows the range in; None: the kind's
-        (:data:`corliss.units.RANGES`).
+        (:data:`corliss.keys.units.RANGES`).
     ends : bool
         True for a value given once for both cylinder ends or as ``[head, crank]``.
     effect : str
@@ -147,7 +147,7 @@ class Key:
         Returns
         -------
         bool
-            Whether ``kind`` is a kind of :mod:`corliss.units`.
+            Whether ``kind`` is a kind of :mod:`corliss.keys.units`.
         """
         return self.kind in units.KINDS
 

@@ -13,9 +13,9 @@ from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
-from corliss import columns
+from corliss.frames import columns
 from corliss.engine.result import Result
-from corliss.scene_keys import KeyValue, with_keys
+from corliss.keys.edits import KeyValue, with_keys
 
 if TYPE_CHECKING:      # annotations only: pandas is not imported by a run
     import pandas as pd
@@ -31,7 +31,7 @@ _exporter = None
 def register_study_exporter(exporter) -> None:
     """Register the study's export layer, to which the export methods hand the result.
 
-    :mod:`corliss.study_output` registers itself when imported (the ``corliss``
+    :mod:`corliss.files.study_output` registers itself when imported (the ``corliss``
     package imports it), so the studies package need not import the export layer.
 
     Parameters
@@ -65,7 +65,7 @@ def column_unit(column: str, varied: list[dict]) -> str:
     str
         A varied key's unit as given (``"-"`` for a dimensionless one); for
         ``run_id``, ``status`` and ``error`` a description; for a response the unit
-        its name ends in (:func:`corliss.columns.unit_of`), else ``"-"``.
+        its name ends in (:func:`corliss.frames.columns.unit_of`), else ``"-"``.
     """
     for v in varied:
         if v["column"] == column:
@@ -177,7 +177,7 @@ class StudyResult(Result):
         Scene
             The run's scene, at the study's fidelity.
         """
-        from corliss.scene import scene_from_dict  # noqa: PLC0415  (same layer)
+        from corliss.scene.loader import scene_from_dict  # noqa: PLC0415  (same layer)
         sc = scene_from_dict(self.scene_data(row), name=self.scene.name)
         return sc.with_fidelity(self.fidelity) if self.fidelity else sc
 
@@ -271,7 +271,7 @@ class StudyResult(Result):
         Returns
         -------
         dict of str to Path
-            ``{kind: path}`` (see :func:`corliss.study_output.write`).
+            ``{kind: path}`` (see :func:`corliss.files.study_output.write`).
         """
         return _export().write(self, out_dir, plots, parquet)
 
@@ -336,7 +336,7 @@ def scene_data_of(base_data: dict, varied: list[dict], row: dict) -> dict:
     """A study row's scene as tables: the base scene with the row's varied keys set.
 
     That is ``with_keys(base, {key: value in its unit})``
-    (:func:`corliss.scene_keys.with_keys`).
+    (:func:`corliss.keys.edits.with_keys`).
 
     Parameters
     ----------
