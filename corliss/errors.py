@@ -56,6 +56,23 @@ class RunError(RuntimeError):
     """
 
 
+#: Exit status of a run that ran but whose result is not one: its mass or energy balance
+#: does not close within tolerance (:mod:`corliss.engine.balance`).  Its files are
+#: written, for a look, and the message says why the run failed.  (2 is a user's
+#: mistake or a run that stopped; 130 and 143 an interrupt and a termination.)
+EXIT_BALANCE_FAILED = 3
+#: Exit status after Ctrl-C (SIGINT), the shell's 128 + 2.
+EXIT_INTERRUPTED = 130
+#: Exit status after SIGTERM, the shell's 128 + 15.
+EXIT_TERMINATED = 143
+
+
+class Terminated(BaseException):
+    """SIGTERM received: raised in the main thread so that a run unwinds (its staged
+    files removed, the output folder as it was) and exits with :data:`EXIT_TERMINATED`.
+    """
+
+
 class StudyStopped(RunError):
     """A study stopped before its last run (Ctrl-C, SIGTERM): its workers ended, the rows
     done kept in its journal when it has one.

@@ -25,7 +25,7 @@ LAYERS = [
     ("corliss.engine", 2),
     ("corliss.scene", 3), ("corliss.studies", 3), ("corliss.fitting", 3),
     ("corliss.plot", 4),
-    ("corliss.files", 5),
+    ("corliss.files", 5), ("corliss.workbench", 5),
     ("corliss.cli", 6),
 ]
 #: The three physics packages of layer 1 are independent of each other.

@@ -31,6 +31,10 @@
     the runnable ``fitted.toml`` and the measured card over the fitted one.
 ``corliss bench [--repeats N] [--out DIR]``
     The accuracy-versus-time study of ``benchmarks/`` (from a source checkout).
+``corliss workbench [SCENE] [--port N] [--no-browser] [--fidelity F]``
+    A local page (127.0.0.1) to set the gear, speed, steam and clearance by hand and
+    watch the card, the events, the Zeuner diagram and the port openings redrawn
+    (needs ``corliss[workbench]``; every asset served locally).
 ``corliss list scenes|gears|effects|governors``
     What the package holds.
 ``corliss list keys GEAR_OR_GOVERNOR``
@@ -56,19 +60,24 @@ import json
 import logging
 import math
 import os
+import signal
 import sys
+import threading
 import time
 import tomllib
 from pathlib import Path
 
 import corliss
-from corliss.keys import units
+from corliss.cli.heartbeat import Heartbeat
+from corliss.engine.balance import balance_failure
 from corliss.engine.model import build_gear, scene_events
 from corliss.engine.simulate import simulate
-from corliss.errors import InputError, RunError, StudyStopped
-from corliss.cli.heartbeat import Heartbeat
+from corliss.errors import (EXIT_BALANCE_FAILED, EXIT_INTERRUPTED, EXIT_TERMINATED, InputError,
+                            RunError, StudyStopped, Terminated)
+from corliss.files.run_output import (OutputFiles, plain_name, plain_text, scene_from_meta,
+                                      summary_json)
+from corliss.keys import limits, units
 from corliss.logs import NOTICE
-from corliss.files.run_output import OutputFiles, scene_from_meta, summary_json
 from corliss.scene.loader import bundled_scenes, default_scene_path, find_scene, load_scene
 from corliss.studies.journal import check_writable
 
@@ -77,6 +86,7 @@ log = logging.getLogger("corliss")
 
 def _load(path: str | None, units_system: str | None = None):
     scene = load_scene(find_scene(path) if path is not None else default_scene_path())
+    plain_name(scene.name, "scene")     # the stem of every file written, checked before work
     if units_system is not None:
         scene = dataclasses.replace(scene, output=dataclasses.replace(scene.output,
                                                                       units=units_system))
@@ -305,11 +315,15 @@ def cmd_run(args) -> int:
         if args.scene is not None:
             raise InputError("--from-meta", args.from_meta, "either a scene or --from-meta, "
                              "not both")
-        scene = scene_from_meta(args.from_meta)
+        scene = scene_from_meta(args.from_meta, edited=args.as_edited)
+        if args.out is None:
+            _inside_working_directory(scene.output.dir)
         if args.units:
             scene = dataclasses.replace(scene, output=dataclasses.replace(scene.output,
                                                                           units=args.units))
     else:
+        if args.as_edited:
+            raise InputError("--as-edited", True, "with --from-meta only")
         scene = _load(args.scene, args.units)
     if args.fidelity:
         scene = scene.with_fidelity(args.fidelity)
@@ -318,15 +332,16 @@ def cmd_run(args) -> int:
         if transient:
             raise InputError("--cycles", args.cycles, "no cycle count for a transient scene: "
                              "give --duration (e.g. \"5 s\")")
-        if args.cycles < 1:
-            raise InputError("--cycles", args.cycles, "a whole number of cycles >= 1")
+        if not 1 <= args.cycles <= limits.MAX_CYCLES:
+            raise InputError("--cycles", args.cycles, "a whole number of cycles from 1 to "
+                             f"{limits.MAX_CYCLES}")
         scene = scene.replace_run(cycles=args.cycles)
     if args.duration is not None:
         if not transient:
             raise InputError("--duration", args.duration, "a steady scene has no duration: "
                              "give --cycles, or run a transient scene")
         d = units.parse(args.duration, "time", "--duration")
-        if not 0.0 < d <= 3600.0:
+        if not 0.0 < d <= limits.MAX_DURATION_S:
             raise InputError("--duration", args.duration, "a time above 0, up to 1 h")
         scene = scene.replace_run(duration_s=d)
     if transient and (args.until_settled or scene.run.until_settled):
@@ -352,7 +367,26 @@ def cmd_run(args) -> int:
         print_transient(result, files)
     else:
         print_steady(result, files)
+    failed = None if transient else balance_failure(result.summary)
+    if failed and scene.run.cycles is None:
+        print(f"corliss: the run is NOT a result: {failed}; it did not converge (a tighter "
+              "fidelity, or more max_cycles, may settle it). Its files are written, for a "
+              "look.", file=sys.stderr)
+        return EXIT_BALANCE_FAILED
+    if failed:
+        log.warning("%s after the %d cycles asked for (--cycles): the run is not periodic",
+                    failed, scene.run.cycles)
     return 0
+
+
+def _inside_working_directory(folder: str) -> None:
+    """A meta file's output folder, used when no --out is given, must be a relative
+    path inside the working directory: a meta file is a thing people send each other."""
+    p = Path(folder)
+    if p.is_absolute() or ".." in p.parts or (p.exists() and not p.resolve().is_relative_to(
+            Path.cwd().resolve())):
+        raise InputError("output.dir", folder, "a folder inside the working directory when "
+                         "the scene comes from a meta file; give --out to write elsewhere")
 
 
 def _numbers(flag: str, text: str) -> list[float]:
@@ -418,7 +452,7 @@ def cmd_gear(args) -> int:
     gear = build_gear(scene)
     out_dir = Path(args.out if args.out is not None else scene.output.dir)
     name = f"{scene.name}.gear.png"
-    with OutputFiles(out_dir) as out:
+    with OutputFiles(out_dir) as out, plain_text():
         fig = plot_gear(gear, units_system=scene.output.units)["figure"]
         try:
             fig.suptitle(f"{scene.title}: {scene.gear_type}", fontsize=11)
@@ -476,8 +510,9 @@ def cmd_animate(args) -> int:
     title = f"{scene.title}: {scene.gear_type}" + (" (the exact linkage)" if changed else "")
     out_dir = Path(args.out if args.out is not None else scene.output.dir)
     name = f"{scene.name}.animation.{args.format}"
-    drawn = animate_gear(gear, result, frames=args.frames, units_system=scene.output.units,
-                         stroke_m=scene.engine.stroke_m, title=title)
+    with plain_text():
+        drawn = animate_gear(gear, result, frames=args.frames, units_system=scene.output.units,
+                             stroke_m=scene.engine.stroke_m, title=title)
     try:
         with OutputFiles(out_dir) as out:
             write_animation(drawn, out.stage(name), args.format)
@@ -830,6 +865,9 @@ def cmd_bench(args) -> int:
         :class:`~corliss.errors.InputError`, which :func:`main` turns into 2).
     """
     import importlib.util
+    if not 1 <= args.repeats <= limits.MAX_BENCH_REPEATS:
+        raise InputError("--repeats", args.repeats, "a whole number of repeats from 1 to "
+                         f"{limits.MAX_BENCH_REPEATS}")
     here = Path(__file__).resolve().parent.parent
     for root in (Path.cwd(), here):
         script = root / "benchmarks" / "accuracy_vs_time.py"
@@ -861,6 +899,29 @@ def cmd_explain(args) -> int:
     """
     from corliss.scene.reference import explain
     print(explain(args.key), end="")
+    return 0
+
+
+def cmd_workbench(args) -> int:
+    """``corliss workbench``: serve the workbench page until interrupted.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        ``scene``, ``port``, ``address``, ``no_browser`` and ``fidelity``.
+
+    Returns
+    -------
+    int
+        0 once stopped (a bad scene or option is an InputError: exit 2).
+    """
+    try:
+        from corliss.workbench.server import serve
+    except ImportError as exc:      # the optional extra is not installed
+        raise InputError("workbench", str(exc), 'the workbench extra: pip install '
+                         '"corliss[workbench]"') from None
+    serve(args.scene, port=args.port, address=args.address,
+          open_browser=not args.no_browser, fidelity=args.fidelity)
     return 0
 
 
@@ -915,13 +976,17 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--units", choices=("US", "SI"), help=units_help)
     r.add_argument("--fidelity", choices=("reference", "standard", "fast"),
                    help="override the scene's fidelity preset")
-    r.add_argument("--cycles", type=int, help="simulate exactly N cycles (steady scenes)")
+    r.add_argument("--cycles", type=int, help="simulate exactly N cycles (steady scenes; "
+                   f"at most {limits.MAX_CYCLES})")
     r.add_argument("--duration", help="simulated time of a transient scene, e.g. \"5 s\"")
     r.add_argument("--until-settled", action="store_true",
                    help="a transient scene: run past its duration until the speed has settled "
                         "(up to run.max_duration, by default ten times the duration)")
     r.add_argument("--from-meta", metavar="FILE",
                    help="rerun the run a .meta.json file records, exactly")
+    r.add_argument("--as-edited", action="store_true",
+                   help="with --from-meta: run the meta file's scene text as it is now, "
+                        "though it no longer matches the SHA-256 and tables recorded")
     r.set_defaults(func=cmd_run)
     e = sub.add_parser("events", help="valve events of each end, without simulating")
     e.add_argument("scene", help="scene TOML or a bundled scene's name")
@@ -1056,6 +1121,17 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--repeats", type=int, default=3, help="repeats per setting (median)")
     b.add_argument("--out", help="directory for the CSV and plot (default benchmarks/results)")
     b.set_defaults(func=cmd_bench)
+    wb = sub.add_parser("workbench", help="a local page to set the gear and steam by hand "
+                        "and watch the card redrawn")
+    wb.add_argument("scene", nargs="?", help="scene TOML or a bundled scene's name "
+                    "(default: the bundled default scene)")
+    wb.add_argument("--port", type=int, help="port (default: a free one)")
+    wb.add_argument("--address", default="127.0.0.1", help="address to listen on "
+                    "(default 127.0.0.1, this machine only)")
+    wb.add_argument("--no-browser", action="store_true", help="serve only; open no browser")
+    wb.add_argument("--fidelity", choices=("reference", "standard", "fast"), default="fast",
+                    help="fidelity the page starts at (default fast)")
+    wb.set_defaults(func=cmd_workbench)
     ls = sub.add_parser("list", help="list bundled scenes and the registries")
     ls.add_argument("what", choices=("scenes", "gears", "effects", "governors", "keys"))
     ls.add_argument("name", nargs="?", help="with keys: the gear or governor")
@@ -1124,15 +1200,27 @@ def main(argv: list[str] | None = None) -> int:
     """
     args = build_parser().parse_args(argv)
     beat = configure_logging(args.verbose)
+    main_thread = threading.current_thread() is threading.main_thread()
+    old_term = signal.signal(signal.SIGTERM, _terminate) if main_thread else None
     try:
         return args.func(args)
+    except KeyboardInterrupt:
+        print("\ncorliss: interrupted; the output folder is as it was before the run (or "
+              "holds the whole of its files, when they were being moved into place).",
+              file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except Terminated:
+        print("corliss: terminated; the output folder is as it was before the run (or holds "
+              "the whole of its files, when they were being moved into place).",
+              file=sys.stderr)
+        return EXIT_TERMINATED
     except InputError as exc:
         print(f"corliss: {exc} Nothing was simulated and no files were written.",
               file=sys.stderr)
         return 2
     except StudyStopped as exc:
         print(f"corliss: {exc}.", file=sys.stderr)
-        return 143 if exc.signal_name == "SIGTERM" else 130
+        return EXIT_TERMINATED if exc.signal_name == "SIGTERM" else EXIT_INTERRUPTED
     except RunError as exc:
         print(f"corliss: the run stopped: {exc}. No files were written.", file=sys.stderr)
         return 2
@@ -1141,6 +1229,12 @@ def main(argv: list[str] | None = None) -> int:
         return 0
     finally:
         beat.stop()
+        if main_thread:
+            signal.signal(signal.SIGTERM, signal.SIG_DFL if old_term is None else old_term)
+
+
+def _terminate(signum, frame):
+    raise Terminated()
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -9,7 +9,8 @@ that the rebuilt scene's events (:func:`corliss.engine.model.scene_events`, what
 ``corliss events`` prints) are those asked.
 
 A plain slide valve (``type = "slide_valve"``) is designed whole: eccentricity,
-angular advance, steam and exhaust laps per end.  A gear with a setting (link and
+angular advance, steam and exhaust laps per end; so is a slip eccentric's valve, in the
+direction it runs (the driving stop's advance).  A gear with a setting (link and
 radial gears, shaft governors, riding cut-off valves, the Corliss cam) keeps its
 linkage and gets the setting that gives the cut-off asked.
 """
@@ -35,6 +36,9 @@ from corliss.valves.slide_valve import LappedValve
 #: The scene keys that hold a gear's setting, when it is not the number ``setting``:
 #: the block's offset as a length (setting x half link).
 BLOCK_KEY = {"link_motion": "block", "fink_motion": "block"}
+#: The gears designed whole as a plain slide valve: the slip eccentric in the direction it
+#: runs (its advance on the stop that drives) is one.
+SLIDE_VALVES = ("slide_valve", "slip_eccentric")
 #: The designed scene's events must be the asked ones to this [deg] after the round
 #: trip through the TOML text (12 significant digits).
 SCENE_CHECK_DEG = 1e-4
@@ -211,7 +215,7 @@ def design(scene=None, *, cutoff, cutoff_crank=None, lead=None, max_opening=None
     def frac(t):
         return float(geo.fraction(t))
 
-    if base.gear_type == "slide_valve":
+    if base.gear_type in SLIDE_VALVES:
         valve = design_slide_valve(
             base.gear, frac, cutoff=cutoff, cutoff_crank=cutoff_crank,
             lead_m=_length("lead", lead), max_opening_m=_length("max_opening", max_opening),
@@ -272,8 +276,20 @@ def _designed_tables(base: Scene, valve) -> dict:
     (every other key as the scene wrote it)."""
     u = _unit(base)
     if isinstance(valve, SlideValveDesign):
+        advance = "angular_advance"
+        if base.gear_type == "slip_eccentric":
+            # the driving stop's advance; the other stop's kept as the scene had it
+            g = base.gear
+            ahead = g.direction == "ahead"
+            advance = "forward_advance" if ahead else "backward_advance"
+            other = g.backward_advance_rad if ahead else g.forward_advance_rad
+            values_other = {f"valve_gear.{'backward' if ahead else 'forward'}_advance":
+                            f"{math.degrees(other):.12g} deg"}
+        else:
+            values_other = {}
         values = {"valve_gear.eccentricity": _q(valve.eccentricity_m, u),
-                  "valve_gear.angular_advance": f"{math.degrees(valve.angular_advance_rad):.12g} deg",
+                  f"valve_gear.{advance}": f"{math.degrees(valve.angular_advance_rad):.12g} deg",
+                  **values_other,
                   "valve_gear.lap": _pair_q(valve.lap_m, u),
                   "valve_gear.exhaust_lap": _pair_q(valve.exhaust_lap_m, u)}
     elif base.gear_type in BLOCK_KEY:

@@ -28,8 +28,8 @@ from corliss.fitting.card import MeasuredCard, read_card
 from corliss.fitting.solver import FitResult, fit_card
 from corliss.keys.toml_text import dumps
 from corliss.plot.fit_card import plot_fit_card
-from corliss.files.run_output import (DPI, PNG_OPTIONS, OutputFiles, dependency_versions, jsonable,
-                             package_version)
+from corliss.files.run_output import (DPI, PNG_OPTIONS, OutputFiles, dependency_versions,
+                                      jsonable, package_version, plain_text)
 from corliss.scene.loader import Scene, find_scene, load_scene
 from corliss.keys.edits import KeyRange, parse_range
 
@@ -203,7 +203,7 @@ def write(fit_result: FitResult, out_dir, plots: bool = True,
     """
     files = {}
     toml_text = fitted_toml(fit_result)
-    with OutputFiles(out_dir) as out:
+    with OutputFiles(out_dir) as out, plain_text():
         out.stage(FILES["summary"]).write_text(json.dumps(fit_json(fit_result, units_system),
                                                           indent=2))
         files["summary"] = out.files[FILES["summary"]]

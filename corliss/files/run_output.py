@@ -18,25 +18,40 @@ failure anywhere leaves the folder as it was.
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import datetime as _dt
+import errno
 import hashlib
 import json
+import logging
 import math
 import os
 import platform
 import shutil
+import signal
 import tempfile
+import threading
+import time
+import tomllib
 from importlib.metadata import PackageNotFoundError
 from pathlib import Path
 
 import numpy as np
 
+try:
+    import fcntl
+except ImportError:  # pragma: no cover - not a POSIX system
+    fcntl = None
+
 from corliss import plot
 from corliss.frames import columns
 from corliss.engine import result as engine_result
-from corliss.engine.options import Fidelity
-from corliss.errors import InputError
+from corliss.engine.options import PRESETS, Fidelity
+from corliss.errors import InputError, RunError
+from corliss.keys import limits
+from corliss.keys.textfiles import read_text
+from corliss.logs import NOTICE
 from corliss.scene.loader import scene_from_dict
 from corliss.versions import installed_version
 
@@ -48,6 +63,8 @@ DPI = 120
 #: it saves about 12 ms of the 190 ms they take to draw and save, for files 7 % larger
 #: (126 kB, not 118 kB): the drawing, not the compression, is the cost.
 PNG_OPTIONS = {"compress_level": 1}
+
+log = logging.getLogger(__name__)
 
 
 def package_version() -> str:
@@ -183,16 +200,111 @@ def meta(result, column_units: dict | None = None, file: str | None = None,
     }
 
 
-def scene_from_meta(path: str | Path):
+def _first_difference(a, b, key: str = "") -> tuple[str, object, object] | None:
+    """The first dotted key where two JSON values differ, with both values."""
+    if isinstance(a, dict) and isinstance(b, dict):
+        for k in sorted(set(a) | set(b), key=str):
+            sub = f"{key}.{k}" if key else str(k)
+            if k not in a or k not in b:
+                return sub, a.get(k), b.get(k)
+            d = _first_difference(a[k], b[k], sub)
+            if d is not None:
+                return d
+        return None
+    if isinstance(a, list) and isinstance(b, list) and len(a) == len(b):
+        for i, (x, y) in enumerate(zip(a, b)):
+            d = _first_difference(x, y, f"{key}[{i}]")
+            if d is not None:
+                return d
+        return None
+    return None if (a == b and type(a) is type(b)) else (key, a, b)
+
+
+#: The run's knobs a command line changes (``--fidelity``, ``--cycles``,
+#: ``--duration``, ``--until-settled``), which a meta file records as run; every other
+#: field of its ``run`` is the scene's own and must agree with its scene.
+RUN_KNOBS = ("fidelity", "cycles", "duration_s", "until_settled", "max_duration_s")
+
+
+def _meta_run(run: object, base, key: str, edited: bool):
+    """The scene's run with the meta file's knobs, each checked; ``base`` the scene's."""
+    names = [f.name for f in dataclasses.fields(base)]
+    if not isinstance(run, dict):
+        raise InputError(key, _short(run), "a table of the run's knobs")
+    unknown = sorted(set(run) - set(names), key=str)
+    if unknown:
+        raise InputError(f"{key}.{unknown[0]}", _short(run[unknown[0]]),
+                         "a field of a run: " + ", ".join(names))
+    missing = [n for n in names if n not in run]
+    if missing:
+        raise InputError(f"{key}.{missing[0]}", None, "every field of the run a meta file "
+                         "records")
+    if run["mode"] == "steady" and base.mode == "transient":
+        base = dataclasses.replace(base, mode="steady", duration_s=None)   # a study's
+    if not edited:
+        for n in names:
+            if n in RUN_KNOBS:
+                continue
+            d = _first_difference(jsonable(run[n]), jsonable(getattr(base, n)))
+            if d is not None:
+                raise InputError(f"{key}.{n}", _short(run[n]), f"the scene's own "
+                                 f"{_short(jsonable(getattr(base, n)))!r}: the meta file's run "
+                                 "disagrees with its scene (edited by hand?)")
+    fid = run["fidelity"]
+    known = [jsonable(base.fidelity)] + [jsonable(f) for f in PRESETS.values()]
+    if fid not in known:
+        raise InputError(f"{key}.fidelity", _short(fid), "the scene's fidelity or one of the "
+                         "presets " + ", ".join(PRESETS) + " (what a run records)")
+    fidelity = base.fidelity if fid == known[0] else Fidelity(**fid)
+    cycles = run["cycles"]
+    if cycles is not None and not (type(cycles) is int and 1 <= cycles <= limits.MAX_CYCLES
+                                   and base.mode == "steady"):
+        raise InputError(f"{key}.cycles", _short(cycles), "null, or in a steady run a whole "
+                         f"number of cycles from 1 to {limits.MAX_CYCLES}")
+    times = {}
+    for n in ("duration_s", "max_duration_s"):
+        v = run[n]
+        ok = (v is None and (base.mode != "transient" or n != "duration_s")) or (
+            type(v) in (int, float) and 0.0 < v <= limits.MAX_DURATION_S
+            and base.mode == "transient")
+        if not ok:
+            raise InputError(f"{key}.{n}", _short(v), "in a transient run a time above 0 "
+                             f"up to {limits.MAX_DURATION_S:g} s [s]; null in a steady one")
+        times[n] = None if v is None else float(v)
+    if type(run["until_settled"]) is not bool:
+        raise InputError(f"{key}.until_settled", _short(run["until_settled"]), "true or false")
+    if run["until_settled"] and (times["max_duration_s"] is None
+                                 or times["max_duration_s"] < times["duration_s"]):
+        raise InputError(f"{key}.max_duration_s", times["max_duration_s"], "a time at least "
+                         "the duration in a run until settled")
+    return dataclasses.replace(base, fidelity=fidelity, cycles=cycles,
+                               until_settled=run["until_settled"], **times)
+
+
+def _short(value: object, chars: int = 80) -> object:
+    """A value for an error message: long text or tables shortened."""
+    text = repr(value)
+    return value if len(text) <= chars else text[:chars] + "..."
+
+
+def scene_from_meta(path: str | Path, edited: bool = False):
     """The scene a meta file records, with the run's knobs as they were.
 
     Fidelity, cycles, duration and the rest: running the scene reproduces the result
-    (``corliss run --from-meta``).
+    (``corliss run --from-meta``).  A meta file is a thing people send each other,
+    so it is read as untrusted input: its scene's text must have the SHA-256 it
+    records and give the tables it records, its run may differ from its scene's only
+    in the knobs a command line sets (:data:`RUN_KNOBS`, each checked), its scene's
+    name must be a plain file name (the output files' stem), and every other field is
+    checked as a scene's.
 
     Parameters
     ----------
     path : str or Path
         A ``.meta.json`` file written beside a result's table.
+    edited : bool, optional
+        Run the meta file's scene text as it is now (edited since the run): its hash
+        and recorded tables are not checked, the text's tables are used.
 
     Returns
     -------
@@ -203,47 +315,271 @@ def scene_from_meta(path: str | Path):
     Raises
     ------
     InputError
-        If the file is not a corliss meta file.
+        If the file is not a corliss meta file, disagrees with itself, or any field is
+        not valid.
     """
     p = Path(path)
+    raw = read_text(p, "--from-meta", "a .meta.json file written by corliss")
     try:
-        m = json.loads(p.read_text(encoding="utf-8"))
-        data, run = m["scene_data"], dict(m["run"])
-    except (OSError, UnicodeDecodeError, ValueError, KeyError, TypeError) as exc:
-        raise InputError("--from-meta", str(path), f"a .meta.json file written by corliss "
-                         f"({type(exc).__name__}: {exc})") from None
+        m = json.loads(raw)
+    except (ValueError, RecursionError) as exc:
+        raise InputError("--from-meta", str(path), "a .meta.json file written by corliss "
+                         f"(not JSON: {str(exc)[:120]})") from None
+    if not isinstance(m, dict):
+        raise InputError("--from-meta", str(path), "a .meta.json file written by corliss (a "
+                         "JSON object)")
+    text, sha = m.get("scene_toml"), m.get("scene_sha256")
+    if text is not None and type(text) is not str:
+        raise InputError("scene_toml", _short(text), "the scene file's text, or null")
+    if sha is not None and not (type(sha) is str and len(sha) == 64
+                                and all(c in "0123456789abcdef" for c in sha)):
+        raise InputError("scene_sha256", _short(sha), "64 lower-case hexadecimal digits, or "
+                         "null")
+    data = m.get("scene_data")
+    if text is not None:
+        actual = hashlib.sha256(text.encode("utf-8", "surrogatepass")).hexdigest()
+        if not edited and sha != actual:
+            raise InputError("scene_sha256", sha, f"the SHA-256 of the meta file's scene "
+                             f"text, {actual}: the text was changed after the run (run "
+                             "it as edited with --as-edited)")
+        try:
+            parsed = tomllib.loads(text)
+        except (tomllib.TOMLDecodeError, RecursionError) as exc:
+            raise InputError("scene_toml", _short(text, 40), f"a scene's TOML text "
+                             f"({str(exc)[:120]})") from None
+        if edited:
+            data = parsed
+        else:
+            d = _first_difference(jsonable(parsed), data)
+            if d is not None:
+                raise InputError(f"scene_data.{d[0]}" if d[0] else "scene_data",
+                                 _short(d[2]), f"{_short(d[1])!r}, as the meta file's scene "
+                                 "text has it: its tables were changed after the run "
+                                 "(run the text as edited with --as-edited)")
+    elif sha is not None:
+        raise InputError("scene_toml", None, "the scene text whose SHA-256 the meta file "
+                         "records")
     if not isinstance(data, dict):
-        raise InputError("--from-meta", str(path), "a meta file that holds its scene's tables")
-    scene = scene_from_dict(data, name=m.get("scene_name") or p.stem.split(".")[0],
-                            source=m.get("scene_file"))
-    run["fidelity"] = Fidelity(**run["fidelity"])
-    run["effects"] = tuple(run["effects"])
-    scene = dataclasses.replace(scene, run=dataclasses.replace(scene.run, **run),
-                                text=m.get("scene_toml"))
-    return scene
+        raise InputError("scene_data", _short(data), "the scene's tables (a JSON object)")
+    name = m.get("scene_name")
+    if name is None:
+        name = p.name.split(".")[0]
+    plain_name(name, "scene_name")
+    source = m.get("scene_file")
+    if source is not None and not (type(source) is str and len(source) <= 4096):
+        raise InputError("scene_file", _short(source), "the scene file's path, or null")
+    try:
+        scene = scene_from_dict(data, name=name, source=source)
+    except RecursionError:
+        raise InputError("scene_data", "(nested too deeply)", "the scene's tables") from None
+    if "run" not in m:
+        raise InputError("run", None, "the run's knobs, as a meta file records them")
+    run = _meta_run(m["run"], scene.run, "run", edited)
+    return dataclasses.replace(scene, run=run, text=text)
 
 
 # --- the transaction -------------------------------------------------------------------
+
+#: Prefix of a run's private staging folder inside the output folder.
+STAGING_PREFIX = ".corliss-"
+#: The staging folder's journal: written (atomically) before the first file is moved
+#: into place, it lists the run's files; a staging folder that holds it belongs to a
+#: run that had decided to commit, and the next run into the folder finishes the moves.
+JOURNAL = ".commit.json"
+#: How long a run waits for another corliss run to finish writing into the same
+#: output folder before it gives up [s].  A run's files take well under a second to
+#: write; a large study's Parquet and figures a few seconds.
+LOCK_WAIT_S = 120.0
+#: The longest output file stem (a scene's name) [characters].
+MAX_STEM_CHARS = 120
+
+
+def plain_name(name: str, key: str = "scene name") -> str:
+    """``name`` if it is a plain file name that stays inside its folder.
+
+    No path separator, no ``..``, not absolute, not hidden (a leading dot: corliss's
+    own staging folders start so), no control character, at most
+    :data:`MAX_STEM_CHARS` characters plus a suffix.
+
+    Parameters
+    ----------
+    name : str
+        A file name or a stem.
+    key : str, optional
+        What named it, for the error.
+
+    Returns
+    -------
+    str
+        ``name``.
+
+    Raises
+    ------
+    InputError
+        If it is not such a name.
+    """
+    ok = (type(name) is str and 0 < len(name) <= MAX_STEM_CHARS + 40
+          and name not in (".", "..") and not name.startswith(".")
+          and not any(c in name for c in "/\\")
+          and name.isprintable() and name == name.strip()
+          and not (len(name) > 1 and name[1] == ":"))       # no Windows drive
+    if not ok:
+        raise InputError(key, name, "a plain file name: no folder separators or '..', not "
+                         "absolute or hidden, printable, at most "
+                         f"{MAX_STEM_CHARS} characters")
+    return name
+
+
+@contextlib.contextmanager
+def _signals_held():
+    """SIGINT and SIGTERM held while the block runs, then delivered.
+
+    The moves of a commit take milliseconds; a Ctrl-C among them is acted on once every
+    file is in place, so the folder holds the new run's whole set.  Only the main
+    thread can set handlers; elsewhere the commit's own roll-back covers an exception.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    caught: list[int] = []
+
+    def hold(signum, frame):
+        caught.append(signum)
+    old = {}
+    try:
+        for s in (signal.SIGINT, signal.SIGTERM):
+            old[s] = signal.signal(s, hold)
+        yield
+    finally:
+        for s, h in old.items():
+            signal.signal(s, h if h is not None else signal.SIG_DFL)
+        if caught:
+            signal.raise_signal(caught[0])
+
+
+class _FolderLock:
+    """One writer per output folder: an exclusive ``flock`` on the folder itself.
+
+    Released by the system when the process ends, however it ends (a killed run holds
+    nothing).  A second run waits up to :data:`LOCK_WAIT_S`, then stops with a
+    :class:`~corliss.errors.RunError`.  Where ``fcntl`` is missing (Windows) there is
+    no lock.
+    """
+
+    def __init__(self, folder: Path, wait_s: float):
+        self.folder = folder
+        self.wait_s = wait_s
+        self.fd: int | None = None
+
+    def acquire(self) -> None:
+        if fcntl is None:      # pragma: no cover - not a POSIX system
+            return
+        self.fd = os.open(self.folder, os.O_RDONLY)
+        t0 = time.monotonic()
+        told = False
+        while True:
+            try:
+                fcntl.flock(self.fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                return
+            except BlockingIOError:
+                pass
+            if not told:
+                log.log(NOTICE, "waiting for another corliss run writing into %s",
+                        self.folder)
+                told = True
+            if time.monotonic() - t0 > self.wait_s:
+                self.release()
+                raise RunError(f"another corliss run has been writing into {self.folder} "
+                               f"for over {self.wait_s:.0f} s; give --out another folder, or "
+                               "wait for that run to finish")
+            time.sleep(0.05)
+
+    def release(self) -> None:
+        if self.fd is not None:
+            os.close(self.fd)           # closing drops the flock
+            self.fd = None
+
+
+def recover_staging(out_dir: Path) -> list[str]:
+    """Finish or remove what killed runs left in ``out_dir``: their staging folders.
+
+    A staging folder with a journal belongs to a run that was moving its files into
+    place when it was killed: its remaining files are moved in, so the folder holds
+    that run's whole set.  One without a journal never began to move anything: it is
+    removed, the folder's files untouched.  Call it holding the folder's lock.
+
+    Parameters
+    ----------
+    out_dir : Path
+        The output folder.
+
+    Returns
+    -------
+    list of str
+        What was done, a line per staging folder (also logged).
+    """
+    done = []
+    for d in sorted(out_dir.glob(STAGING_PREFIX + "*")):
+        if d.is_symlink() or not d.is_dir():
+            continue
+        journal = d / JOURNAL
+        moved = 0
+        if journal.is_file():
+            try:
+                names = json.loads(journal.read_text(encoding="utf-8"))["files"]
+                names = [plain_name(n, "journal") for n in names]
+            except (OSError, ValueError, KeyError, TypeError):
+                names = []
+            for name in names:
+                src = d / name
+                if src.is_file() and not src.is_symlink():
+                    os.replace(src, out_dir / name)
+                    moved += 1
+            line = (f"finished moving the files of a run killed while writing into "
+                    f"{out_dir} ({moved} moved)")
+        else:
+            line = f"removed the staging folder {d.name} of a run killed before writing"
+        shutil.rmtree(d, ignore_errors=True)
+        log.warning(line)
+        done.append(line)
+    return done
+
+
+#: Errors of the folder or the disk, not of the code: a full disk, a quota, a folder
+#: that cannot be written; a run meeting one stops with a message, not a traceback.
+_FOLDER_ERRNOS = {errno.ENOSPC, errno.EDQUOT, errno.EACCES, errno.EROFS, errno.EPERM}
+
 
 class OutputFiles:
     """Files of one run, staged and then moved into ``out_dir`` together.
 
     Use as a context manager: ``stage(name)`` gives the path to write a file to;
-    leaving the block without an exception moves every staged file into place (an
-    earlier file of the same name is replaced only then); an exception leaves
-    ``out_dir`` as it was, the folder itself removed if the run created it.
+    leaving the block without an exception moves every staged file into place;
+    an exception leaves ``out_dir`` as it was, the folder itself removed if the run
+    created it.
+
+    The folder has one writer at a time (a lock on it, held from entering the block to
+    leaving it); entering finishes or removes what a killed run left
+    (:func:`recover_staging`).  The commit never removes an earlier file: each new file
+    is renamed over its old one (an atomic replace), the earlier files hard-linked
+    beside the staged ones first, so a failure part-way puts every earlier file back;
+    a journal written before the first move lets the next run finish the moves of a
+    run killed among them; SIGINT and SIGTERM are held during the moves.
 
     Parameters
     ----------
     out_dir : str or Path
         The output folder (made, with any missing parents, on entering the block).
+    lock_wait_s : float, optional
+        How long to wait for another run writing into the folder [s].
     """
 
-    def __init__(self, out_dir: str | Path):
+    def __init__(self, out_dir: str | Path, lock_wait_s: float = LOCK_WAIT_S):
         self.out_dir = Path(out_dir)
         self.files: dict[str, Path] = {}
         self._created: list[Path] = []
         self._tmp: Path | None = None
+        self._lock = _FolderLock(self.out_dir, lock_wait_s)
 
     def __enter__(self) -> "OutputFiles":
         missing = []
@@ -251,9 +587,27 @@ class OutputFiles:
         while not d.exists():
             missing.append(d)
             d = d.parent
-        self.out_dir.mkdir(parents=True, exist_ok=True)
+        try:
+            self.out_dir.mkdir(parents=True, exist_ok=True)
+            if not self.out_dir.is_dir():
+                raise NotADirectoryError(f"{self.out_dir} is not a folder")
+        except OSError as exc:
+            raise RunError(f"could not make the output folder {self.out_dir} "
+                           f"({exc.strerror or exc}); give --out a folder that can be "
+                           "written to") from None
         self._created = missing        # deepest first: removed in this order on failure
-        self._tmp = Path(tempfile.mkdtemp(dir=self.out_dir, prefix=".corliss-"))
+        try:
+            self._lock.acquire()
+            recover_staging(self.out_dir)
+            self._tmp = Path(tempfile.mkdtemp(dir=self.out_dir, prefix=STAGING_PREFIX))
+        except BaseException as exc:
+            self._lock.release()
+            self._remove_created()
+            if isinstance(exc, OSError):
+                raise RunError(f"could not write into the output folder {self.out_dir} "
+                               f"({exc.strerror or exc}); give --out a folder that can be "
+                               "written to") from None
+            raise
         return self
 
     def stage(self, name: str) -> Path:
@@ -262,14 +616,15 @@ class OutputFiles:
         Parameters
         ----------
         name : str
-            A bare file name; the file ends up as ``out_dir / name`` (recorded in
-            ``files``).
+            A bare file name (:func:`plain_name`); the file ends up as
+            ``out_dir / name`` (recorded in ``files``).
 
         Returns
         -------
         Path
             The staging path to write it to now.
         """
+        plain_name(name, "output file")
         self.files[name] = self.out_dir / name
         return self._tmp / name
 
@@ -277,31 +632,51 @@ class OutputFiles:
         try:
             if exc_type is None:
                 self._commit()
+        except OSError as failed:
+            exc_type, exc = type(failed), failed
+            raise
         finally:
-            shutil.rmtree(self._tmp, ignore_errors=True)
-            if exc_type is not None:
-                self._remove_created()
+            try:
+                shutil.rmtree(self._tmp, ignore_errors=True)
+                if exc_type is not None:
+                    self._remove_created()
+            finally:
+                self._lock.release()
+            if isinstance(exc, OSError) and exc.errno in _FOLDER_ERRNOS:
+                raise RunError(f"could not write the run's files into {self.out_dir} "
+                               f"({exc.strerror or exc}); the folder is as it was") from None
 
     def _commit(self) -> None:
         for target in self.files.values():
-            if target.is_dir():
+            if target.is_dir() and not target.is_symlink():
                 raise IsADirectoryError(f"{target} is a folder: a file of this run goes there")
-        backups, moved = [], []
-        try:
-            for name, target in self.files.items():
-                if target.exists():
-                    backup = self._tmp / f".{name}.before"
-                    os.replace(target, backup)
-                    backups.append((backup, target))
-                os.replace(self._tmp / name, target)
-                moved.append(target)
-        except BaseException:
-            for target in moved:
-                target.unlink(missing_ok=True)
-            for backup, target in backups:
-                os.replace(backup, target)
-            self._remove_created()
-            raise
+        backups: dict[str, Path] = {}
+        for name, target in self.files.items():
+            if os.path.lexists(target):
+                backup = self._tmp / f".{name}.before"
+                try:
+                    os.link(target, backup, follow_symlinks=False)
+                except OSError:       # a file system without hard links
+                    shutil.copy2(target, backup, follow_symlinks=False)
+                backups[name] = backup
+        part = self._tmp / (JOURNAL + ".part")
+        part.write_text(json.dumps({"files": list(self.files)}), encoding="utf-8")
+        os.replace(part, self._tmp / JOURNAL)
+        moved = []
+        with _signals_held():
+            try:
+                for name, target in self.files.items():
+                    os.replace(self._tmp / name, target)
+                    moved.append(name)
+            except BaseException:
+                for name in moved:
+                    if name in backups:
+                        os.replace(backups[name], self.files[name])
+                    else:
+                        self.files[name].unlink(missing_ok=True)
+                (self._tmp / JOURNAL).unlink(missing_ok=True)
+                self._remove_created()
+                raise
 
     def _remove_created(self) -> None:
         for d in self._created:
@@ -472,6 +847,20 @@ def _figures(result) -> list[tuple[str, tuple[float, float]]]:
     return [("willans", (8, 5.5))]
 
 
+def plain_text():
+    """A block whose figures show text as it is: a ``$`` in a scene's title is a
+    dollar, not the start of mathtext (``$\\frac{a}{$`` stopped a run's plot); none
+    of corliss's own labels uses mathtext.
+
+    Returns
+    -------
+    contextlib.AbstractContextManager
+        matplotlib's ``rc_context`` with ``text.parse_math`` off.
+    """
+    import matplotlib
+    return matplotlib.rc_context({"text.parse_math": False})
+
+
 def write(result, out_dir, plots: bool = True) -> dict[str, Path]:
     """Write every file of ``result`` into ``out_dir`` as one transaction.
 
@@ -495,7 +884,7 @@ def write(result, out_dir, plots: bool = True) -> dict[str, Path]:
     """
     stem = result.scene.name
     files: dict[str, Path] = {}
-    with OutputFiles(out_dir) as out:
+    with OutputFiles(out_dir) as out, plain_text():
         for table, suffix in TABLE_FILES[result.kind].items():
             name = f"{stem}.{suffix}.csv"
             staged = out.stage(name)

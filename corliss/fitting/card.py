@@ -41,7 +41,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from corliss.keys import units
+from corliss.keys import limits, units
 from corliss.errors import InputError
 from corliss.keys.textfiles import read_text
 
@@ -194,6 +194,41 @@ def _to_si(values: np.ndarray, kind: str, unit: str, barometer_Pa: float) -> np.
     return np.asarray(units.from_unit(values, unit, barometer_Pa=barometer_Pa), dtype=float)
 
 
+def count_loops(x: np.ndarray) -> int:
+    """How many times a card's points go round its loop.
+
+    A loop goes along the stroke and back once.  The points' position is followed
+    with hysteresis: a traverse counts when the points pass from the lowest third of
+    their range to the highest (or back), so a digitiser's jitter near one place
+    counts nothing.  A loop started anywhere is one traverse each way; ``n`` loops
+    are ``n`` (a start mid-stroke may add a part traverse, which never reaches both
+    thirds).
+
+    Parameters
+    ----------
+    x : ndarray
+        The abscissa of each point, in loop order (position or volume).
+
+    Returns
+    -------
+    int
+        The larger of the traverses out and back [-] (1 for one loop).
+    """
+    lo, hi = float(np.min(x)), float(np.max(x))
+    a, b = lo + (hi - lo) / 3.0, hi - (hi - lo) / 3.0
+    state, ups, downs = None, 0, 0
+    for v in x.tolist():
+        if v <= a:
+            if state == "high":
+                downs += 1
+            state = "low"
+        elif v >= b:
+            if state == "low":
+                ups += 1
+            state = "high"
+    return max(ups, downs, 1)
+
+
 def parse_card(text: str, *, barometer_Pa: float = units.STANDARD_ATMOSPHERE_Pa,
                source: str = "<data>") -> MeasuredCard:
     """A :class:`MeasuredCard` from the text of a card CSV (see the module's layouts).
@@ -221,8 +256,15 @@ def parse_card(text: str, *, barometer_Pa: float = units.STANDARD_ATMOSPHERE_Pa,
         below zero absolute.
     """
     where = f"card {source}"
-    rows = [r for r in csv.reader(io.StringIO(text)) if any(f.strip() for f in r)
-            and not r[0].lstrip().startswith("#")]
+    try:
+        rows = [r for r in csv.reader(io.StringIO(text)) if any(f.strip() for f in r)
+                and not r[0].lstrip().startswith("#")]
+    except csv.Error as exc:
+        raise InputError(where, source, f"a CSV file with a header line and a row per point "
+                         f"({exc})") from None
+    if len(rows) > limits.MAX_CARD_POINTS + 1:
+        raise InputError(where, source, f"a card of at most {limits.MAX_CARD_POINTS} points "
+                         f"(it has {len(rows) - 1} lines)")
     if not rows:
         raise InputError(where, source, "a CSV file with a header line and a row per point")
     header = rows[0]
@@ -317,10 +359,23 @@ def parse_card(text: str, *, barometer_Pa: float = units.STANDARD_ATMOSPHERE_Pa,
         if (p_si <= 0.0).any():
             raise InputError(where, e, "pressures above zero absolute (a gauge reading "
                              "below minus one barometer?)")
+        if (p_si >= units.CRITICAL_PRESSURE_Pa).any():
+            raise InputError(where, e, "pressures below the critical pressure of water, "
+                             f"22.064 MPa, the steam tables' range (the highest is "
+                             f"{p_si.max():.4g} Pa: a unit mistaken?)")
         abscissa = {"piston_frac": "piston_frac", "piston_m": "piston_m", "V": "V_m3"}[kind]
         x_si = _to_si(x, kind, unit, barometer_Pa)
-        if np.ptp(x_si) <= 0.0:
+        if not np.isfinite(x_si).all() or np.ptp(x_si) <= 0.0:
             raise InputError(where, e, "points spread along the stroke")
+        slack = limits.CARD_FRACTION_SLACK
+        if abscissa == "piston_frac" and not (-slack <= x_si.min() and x_si.max() <= 1 + slack):
+            raise InputError(where, e, f"piston fractions of the stroke from 0 to 1 (within "
+                             f"{slack:g}; they run from {x_si.min():.4g} to {x_si.max():.4g})")
+        loops = count_loops(x_si)
+        if loops > 1:
+            raise InputError(where, e, f"one loop round the {e} end's card: its points go "
+                             f"round {loops} times (several cycles digitised?); give one "
+                             "cycle per end")
         if ang is not None:
             _, aunit, _ = slot["angle"]
             ang = _to_si(ang, "angle", aunit, barometer_Pa)
@@ -348,5 +403,5 @@ def read_card(path, *, barometer_Pa: float = units.STANDARD_ATMOSPHERE_Pa) -> Me
     InputError
         If the file cannot be read or is not a card (naming the column or line).
     """
-    text = read_text(path, "card", "a card CSV file")
+    text = read_text(path, "card", "a card CSV file", max_bytes=limits.MAX_CARD_BYTES)
     return parse_card(text, barometer_Pa=barometer_Pa, source=str(path))

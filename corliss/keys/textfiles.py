@@ -12,7 +12,7 @@ from corliss.errors import InputError
 MAX_BYTES = 20_000_000
 
 
-def read_text(path: str | Path, key: str, what: str) -> str:
+def read_text(path: str | Path, key: str, what: str, max_bytes: int = MAX_BYTES) -> str:
     """The UTF-8 text of ``path``.
 
     Parameters
@@ -23,6 +23,8 @@ def read_text(path: str | Path, key: str, what: str) -> str:
         The scene key or option that named it, for the error.
     what : str
         What the file should be, e.g. ``"a scene file (.toml)"``.
+    max_bytes : int, optional
+        The largest file read [bytes] (default :data:`MAX_BYTES`).
 
     Returns
     -------
@@ -39,8 +41,10 @@ def read_text(path: str | Path, key: str, what: str) -> str:
     try:
         if not p.is_file():
             raise InputError(key, str(path), f"the path of an existing file: {what}")
-        if p.stat().st_size > MAX_BYTES:
-            raise InputError(key, str(path), f"{what} of at most {MAX_BYTES // 1_000_000} MB")
+        size = p.stat().st_size
+        if size > max_bytes:
+            raise InputError(key, str(path), f"{what} of at most {max_bytes / 1e6:g} MB (it "
+                             f"has {size / 1e6:.3g} MB)")
         data = p.read_bytes()
     except OSError as exc:
         raise InputError(key, str(path), f"a file that can be read: {what} "

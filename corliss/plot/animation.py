@@ -6,7 +6,9 @@ Every position drawn comes from the gear's own solve: a gear that solves its lin
 exactly gives its joints at a crank angle (``gear.joints(theta)``: the plain slide
 valve's eccentric and rod, the exact Stephenson, Gooch and Allen links, the exact radial
 gears
-(Walschaerts, Joy, Hackworth, Marshall, Angstrom), the Corliss wrist plate with its four
+(Walschaerts, Joy, Hackworth, Marshall, Angstrom) and the Baker gear, the oscillating
+cylinder swinging on its trunnion (its port face drawn developed flat, the cylinder's
+ports over the standard's), the Corliss wrist plate with its four
 valves and trip), the same solve its valve travel and
 port openings come from; any other gear with one lapped valve is drawn from its travel
 alone (the crank, its virtual eccentric and the valve over its ports, the linkage not
@@ -27,8 +29,10 @@ import math
 import numpy as np
 
 from corliss.keys import units
+from corliss.valves.baker import BakerGear
 from corliss.valves.corliss_gear import CorlissGear, CorlissSpec
 from corliss.valves.link_motion import LinkMotion, LinkMotionSpec
+from corliss.valves.oscillating import OscillatingCylinder
 from corliss.valves.radial_gear import JoySpec, RadialGear, SimpleRadialSpec, WalschaertsSpec
 from corliss.valves.slide_valve import LappedValve, SlideValve
 
@@ -70,6 +74,10 @@ def linkage_kind(gear) -> str:
         return "stephenson" if gear.spec.kind.startswith("stephenson") else "gooch_allen"
     if isinstance(gear, RadialGear) and gear.spec.motion == "exact":
         return "walschaerts" if gear.spec.kind == "walschaerts" else "radial"
+    if isinstance(gear, BakerGear):
+        return "radial"
+    if isinstance(gear, OscillatingCylinder):
+        return "oscillating"
     if isinstance(gear, LappedValve):
         return "travel"
     raise ValueError(f"the {gear.name} gear has no single valve to animate")
@@ -214,6 +222,41 @@ def _draw_seat(ax, lay, scale):
     ax.set_ylim(-depth * 1.9, 3.2 * w)
     ax.set_aspect("equal")
     ax.axis("off")
+
+
+def _draw_port_face(ax, gear, scale) -> list:
+    """An oscillating cylinder's port face developed flat along its arc (arc length
+    rho psi to the right): the standard's steam and exhaust ports fixed, one row for
+    each end (the crank end's below, its steam port on the other side of the line of
+    centres, as the swing meets it), and the cylinder's port of each end drawn over them
+    where its travel puts it.  Returns the cylinder's ports (patches to move)."""
+    from matplotlib.patches import Rectangle
+    s = gear.spec
+    rho, h = s.port_radius_m, s.port_length_m
+    rows = [(0.0, s.steam_port_angle_rad, -s.exhaust_port_angle_rad, "head end")]
+    if s.acting == "double":
+        rows.append((-2.2 * h, -s.steam_port_angle_rad, s.exhaust_port_angle_rad, "crank end"))
+    ports = []
+    reach = rho * (s.max_swing_rad + max(s.steam_port_angle_rad, s.exhaust_port_angle_rad)) \
+        + s.standard_port_m
+    for y0, steam, exhaust, label in rows:
+        ax.add_patch(Rectangle((-reach * scale, (y0 - 0.1 * h) * scale), 2 * reach * scale,
+                               1.2 * h * scale, facecolor="0.9", edgecolor=_FIXED, lw=0.6))
+        for beta, colour in ((steam, _STEAM), (exhaust, _EXHAUST)):
+            ax.add_patch(Rectangle(((rho * beta - 0.5 * s.standard_port_m) * scale, y0 * scale),
+                                   s.standard_port_m * scale, h * scale, facecolor=colour,
+                                   alpha=0.45, edgecolor=colour))
+        ax.text(-reach * scale, (y0 + 1.2 * h) * scale, label, fontsize=7, va="bottom")
+        ports.append(ax.add_patch(Rectangle((-0.5 * s.cylinder_port_m * scale, y0 * scale),
+                                            s.cylinder_port_m * scale, h * scale,
+                                            facecolor="none", edgecolor="k", lw=1.6)))
+    ax.set_xlim(-1.1 * reach * scale, 1.1 * reach * scale)
+    ax.set_ylim((rows[-1][0] - 0.6 * h) * scale, 2.4 * h * scale)
+    ax.set_aspect("equal")
+    ax.axis("off")
+    ax.set_title("port face: the cylinder's port (black) over\nthe steam (red) and "
+                 "exhaust (blue) ports", fontsize=8)
+    return ports
 
 
 # ------------------------------------------------------------------ linkages
@@ -465,21 +508,24 @@ class _Walschaerts(_Linkage):
 
 
 class _Radial(_Linkage):
-    """The exact Hackworth, Marshall, Angstrom (a vertical engine) or Joy gear: its rods
-    and links as the joints give them, the guide at its setting, and the crank."""
+    """The exact Hackworth, Marshall, Angstrom (a vertical engine), Joy or Baker gear: its
+    rods and links as the joints give them, the guide at its setting (the Baker gear's:
+    the arc its gear connecting rod's middle pin swings on), and the crank."""
 
     def __init__(self, ax, gear, scale, stroke_m):
         super().__init__(ax, gear, scale, stroke_m)
-        self.joy = gear.spec.kind == "joy"
+        # the Joy and Baker gears draw their main crank among their rods
+        self.joy = getattr(gear.spec, "kind", "baker") in ("joy", "baker")
         j0 = gear.joints(0.0)
         gx, gy = zip(*(_xy(p, scale) for p in j0.guide))
         ax.plot(gx, gy, color=_FIXED, lw=5.0, alpha=0.5, solid_capstyle="butt")
         ax.plot([0], [0], "o", color=_FIXED, ms=5)
         mv = self.moving
         self.crank = None if self.joy else _line(ax, lw=3.0, moving=mv)
-        widths = {"crank": 3.0, "eccentric": 2.0, "connecting rod": 2.4}
+        widths = {"crank": 3.0, "main crank": 3.0, "eccentric": 2.0, "connecting rod": 2.4}
         self.lines = {n: _line(ax, lw=widths.get(n, 1.5), moving=mv,
-                               color=_FIXED if n in ("eccentric", "anchor link") else _ROD)
+                               color=_FIXED if n in ("eccentric", "anchor link", "yoke")
+                               else _ROD)
                       for n in j0.rods_m}
         self.pins = self._mv(ax.plot([], [], "o", color=_ROD, ms=3)[0])
         self.valve = self._mv(ax.plot([], [], "s", color=_STEAM, ms=6)[0])
@@ -513,6 +559,49 @@ class _Radial(_Linkage):
         v = _xy(j.points.get("valve_rod_end", j.points["valve_pin"]), sc)
         self.valve.set_data([v[0]], [v[1]])
         self.rods = {n: (self.lines[n], j.rods_m[n][0]) for n in j.rods_m}
+        return j
+
+
+class _Oscillating(_Linkage):
+    """An oscillating engine: the crank, the piston rod and the cylinder swinging on its
+    trunnion (the cylinder's body drawn schematically, a stroke and a bit long about the
+    trunnion); the valve panel beside it is the port face developed flat."""
+
+    def __init__(self, ax, gear, scale, stroke_m):
+        super().__init__(ax, gear, scale, stroke_m)
+        s = gear.spec
+        R, D = s.crank_m * scale, s.trunnion_distance_m * scale
+        self._circle((0, 0), s.crank_m, color=_FIXED, lw=0.6, ls=":")
+        ax.plot([0], [0], "o", color=_FIXED, ms=5)
+        ax.plot([0], [D], "o", color=_FIXED, ms=6)
+        mv = self.moving
+        self.crank = _line(ax, lw=3.0, moving=mv)
+        self.prod = _line(ax, lw=2.0, moving=mv)
+        self.body = _line(ax, lw=1.4, moving=mv)
+        self.piston = _line(ax, lw=3.0, color=_STEAM, moving=mv)
+        self.half = 1.3 * R
+        self.radius = 0.5 * R
+        ax.set_xlim(-2.2 * R, 2.2 * R)
+        ax.set_ylim(-1.3 * R, D + 1.6 * R)
+        ax.text(0.01, 0.03, "oscillating cylinder: the port face swings with it",
+                transform=ax.transAxes, va="bottom", fontsize=7, color="0.4")
+
+    def update(self, theta):
+        j = self.gear.joints(theta)
+        sc = self.scale
+        pin, tr, pi_ = _xy(j.crank_pin, sc), _xy(j.trunnion, sc), _xy(j.piston, sc)
+        _set(self.crank, (0, 0), pin)
+        _set(self.prod, pin, pi_)
+        ux, uy = tr[0] - pin[0], tr[1] - pin[1]
+        d = math.hypot(ux, uy)
+        ux, uy = ux / d, uy / d
+        nx, ny = -uy * self.radius, ux * self.radius
+        a = (tr[0] - ux * self.half, tr[1] - uy * self.half)
+        b = (tr[0] + ux * self.half, tr[1] + uy * self.half)
+        _set(self.body, (a[0] + nx, a[1] + ny), (b[0] + nx, b[1] + ny), (b[0] - nx, b[1] - ny),
+             (a[0] - nx, a[1] - ny), (a[0] + nx, a[1] + ny))
+        _set(self.piston, (pi_[0] + nx, pi_[1] + ny), (pi_[0] - nx, pi_[1] - ny))
+        self.rods = {"crank": (self.crank, self.gear.spec.crank_m)}
         return j
 
 
@@ -825,7 +914,8 @@ def animate_gear(gear, result=None, *, frames: int = 72, stroke_m: float | None 
     ax_link.axis("off")
     artists = {}
     linkage = {"eccentric": _Eccentric, "stephenson": _Stephenson, "walschaerts": _Walschaerts,
-               "gooch_allen": _GoochAllen, "radial": _Radial, "travel": _Travel}
+               "gooch_allen": _GoochAllen, "radial": _Radial, "travel": _Travel,
+               "oscillating": _Oscillating}
     if kind == "corliss":
         drawer = _Corliss(ax_link, gear, scale, stroke_m, ax_shaft, ax_valves)
         artists["valve_edges"] = [(line, c, b, sn) for line, c, b, sn in
@@ -835,7 +925,13 @@ def animate_gear(gear, result=None, *, frames: int = 72, stroke_m: float | None 
         drawer = linkage[kind](ax_link, gear, scale, stroke_m)
     moving = list(drawer.moving)
     valve_rest, valve_sense, lay = None, None, None
-    if ax_valve is not None:
+    if ax_valve is not None and kind == "oscillating":
+        artists["cylinder_ports"] = _draw_port_face(ax_valve, gear, scale)
+        moving += artists["cylinder_ports"]
+        artists["valve_x"] = ax_valve.text(0.0, 1.6 * gear.spec.port_length_m * scale, "",
+                                           ha="center", va="bottom", fontsize=7)
+        moving.append(artists["valve_x"])
+    elif ax_valve is not None:
         lay = _valve_layout(gear)
         _draw_seat(ax_valve, lay, scale)
         valve_rest = valve_outline(gear, 0.0, lay) * scale
@@ -902,7 +998,11 @@ def animate_gear(gear, result=None, *, frames: int = 72, stroke_m: float | None 
         label.set_text(f"crank {math.degrees(theta):5.1f} deg")
         if ax_valve is not None:
             x_m = joints.valve_m if joints is not None else float(gear.travel(np.array([theta]))[0])
-            artists["valve"].set_xy(valve_outline(gear, x_m, lay) * scale)
+            if kind == "oscillating":
+                for patch in artists["cylinder_ports"]:
+                    patch.set_x((x_m - 0.5 * gear.spec.cylinder_port_m) * scale)
+            else:
+                artists["valve"].set_xy(valve_outline(gear, x_m, lay) * scale)
             artists["valve_x"].set_text(f"x = {x_m * scale:+.3f} {u} (+ opens head steam)")
         d = math.degrees(theta)
         artists["cursor"].set_xdata([d, d])

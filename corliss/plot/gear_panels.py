@@ -1,6 +1,6 @@
 """The panels of gears whose motion is not one lapped valve: the double valves
-(Spangler Chs. XV-XVIII), the Corliss gear (Ch. XX) and the Porter-Allen gear (Arts.
-30, 83).  Each function draws on a figure (a new one when ``fig`` is None), returns
+(Spangler Chs. XV-XVIII), the Corliss gear (Ch. XX), the Porter-Allen gear (Arts.
+30, 83) and the oscillating cylinder's port face.  Each function draws on a figure (a new one when ``fig`` is None), returns
 what it drew and never calls ``show()``; the numbers come from the gears' public
 methods.  :func:`corliss.plot.plot_gear` chooses among them by the gear's class.
 """
@@ -16,6 +16,7 @@ from corliss.valves.buckeye import BuckeyeGear
 from corliss.valves.double_valve import DoubleValve
 from corliss.valves.gridiron import GridironValve
 from corliss.valves.meyer import MeyerValve
+from corliss.valves.oscillating import swing_angle
 
 TWO_PI = 2.0 * math.pi
 #: Size of a new figure of a gear's own panels [in].
@@ -405,4 +406,97 @@ def plot_porter_allen(gear, fig=None, units_system: str = "US") -> dict:
                   fontsize=10)
     ax3.set_xlabel(f"[{u}]")
     ax3.legend(fontsize=7, frameon=False, loc="lower right")
+    return {"figure": fig, "axes": [ax1, ax2, ax3], "lines": lines}
+
+
+# -- oscillating cylinder ---------------------------------------------------------------
+
+def plot_oscillating(gear, fig=None, units_system: str = "US") -> dict:
+    """An oscillating cylinder in three panels.
+
+    The cylinder's swing against crank angle with the angles at which its port meets
+    the standard's (the laps over the port radius), the four port openings, and the port
+    face seen from the trunnion's end: the standard's steam and exhaust ports on their
+    circle, the cylinder's ports at mid swing and at the swing's extremes, asin(R/D)
+    either way (module doc of :mod:`corliss.valves.oscillating`).
+
+    Parameters
+    ----------
+    gear : OscillatingCylinder
+        The gear.
+    fig : matplotlib.figure.Figure, optional
+        Drawn on; a new one of :data:`FIGSIZE` when None.
+    units_system : str, optional
+        ``"US"`` (inches) or ``"SI"`` (mm).
+
+    Returns
+    -------
+    dict
+        ``{"figure": fig, "axes": [swing, openings, port face], "lines": {...}}``.
+    """
+    fig = _figure(fig)
+    u = _unit(units_system)
+    s = gear.spec
+    th = np.linspace(0.0, 2 * math.pi, 721)
+    deg = np.degrees(th)
+    ax1, ax2, ax3 = (fig.add_subplot(1, 3, k) for k in (1, 2, 3))
+    lines = {"swing": ax1.plot(deg, np.degrees(swing_angle(s, th)), color="k", lw=1.4,
+                               label="swing psi")[0]}
+    rho = s.port_radius_m
+    for lam, label, ls in ((s.lap_m[0] / rho, "steam port met", "-"),
+                           (-s.exhaust_lap_m[0] / rho, "exhaust port met", ":")):
+        ax1.axhline(math.degrees(lam), color="0.6", lw=0.7, ls=ls)
+        ax1.text(358, math.degrees(lam), label, fontsize=7, ha="right",
+                 va="bottom" if ls == "-" else "top", color="0.4")
+    ax1.set_ylabel("cylinder's swing from the line of centres [deg]")
+    ax1.set_title(f"Swing, at most asin(R/D) = {math.degrees(s.max_swing_rad):.2f} deg",
+                  fontsize=10)
+    op = units.to_unit(gear.openings(th), u)
+    for port, label, style in ((0, "head steam", dict(color="k", lw=1.3)),
+                               (2, "crank steam", dict(color="0.35", lw=1.3, ls="--")),
+                               (1, "head exhaust", dict(color="0.55", lw=1.0)),
+                               (3, "crank exhaust", dict(color="0.55", lw=1.0, ls="--"))):
+        lines[label] = ax2.plot(deg, op[port], label=label, **style)[0]
+    ax2.set_ylabel(f"port opening [{u}]")
+    ax2.set_title(f"Port openings ({s.acting}-acting)", fontsize=10)
+    for ax in (ax1, ax2):
+        ax.axhline(0, color="0.8", lw=0.5)
+        ax.set_xlim(0, 360)
+        ax.set_xticks(range(0, 361, 90))
+        ax.set_xlabel("crank angle from head-end dead centre [deg]")
+        for side in ("top", "right"):
+            ax.spines[side].set_visible(False)
+    ax2.legend(fontsize=7, frameon=False, loc="upper center")
+    # the port face: angles from the line of centres, the head end's ports up the page
+    r = units.to_unit(rho, u)
+    circ = np.linspace(0, 2 * math.pi, 181)
+    lines["port circle"] = ax3.plot(r * np.cos(circ), r * np.sin(circ), color="0.8", lw=0.6)[0]
+
+    def slot(centre_rad, width_m, up, **style):
+        half = 0.5 * width_m / rho
+        a = np.linspace(centre_rad - half, centre_rad + half, 16) + (0.5 * math.pi if up
+                                                                      else -0.5 * math.pi)
+        return ax3.plot(r * np.cos(a), r * np.sin(a), solid_capstyle="butt", **style)[0]
+
+    crank_too = s.acting == "double"
+    for up in (True, False) if crank_too else (True,):
+        sign = 1.0 if up else -1.0
+        # psi turns the head end's port towards +beta_s; the face is seen with +psi
+        # counter-clockwise, so the crank end's steam port is at -beta_s below
+        lines["steam ports" if up else "crank steam port"] = slot(
+            sign * s.steam_port_angle_rad, s.standard_port_m, up, color="#b03a2e", lw=7,
+            alpha=0.6)
+        lines["exhaust ports" if up else "crank exhaust port"] = slot(
+            -sign * s.exhaust_port_angle_rad, s.standard_port_m, up, color="#2e5fb0", lw=7,
+            alpha=0.6)
+        for psi, ls in ((0.0, "-"), (s.max_swing_rad, ":"), (-s.max_swing_rad, ":")):
+            slot(psi, s.cylinder_port_m, up, color="k", lw=2.5 if psi == 0.0 else 1.5,
+                 ls=ls)
+    ax3.plot([0], [0], "o", color="0.4", ms=5)
+    ax3.set_aspect("equal")
+    ax3.set_xlim(-1.5 * r, 1.5 * r)
+    ax3.set_ylim(-1.5 * r, 1.5 * r)
+    ax3.set_title("Port face: standard's steam (red) and exhaust (blue) ports,\n"
+                  "cylinder's port at mid swing and either extreme", fontsize=9)
+    ax3.set_xlabel(f"[{u}], the trunnion at the centre, the head end up")
     return {"figure": fig, "axes": [ax1, ax2, ax3], "lines": lines}

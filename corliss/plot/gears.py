@@ -9,10 +9,11 @@ import numpy as np
 
 from corliss.keys import units
 from corliss.plot.gear_panels import (find_by_class, plot_corliss_gear, plot_double_valve,
-                                      plot_porter_allen)
+                                      plot_oscillating, plot_porter_allen)
 from corliss.valves.corliss_gear import CorlissGear
 from corliss.valves.double_valve import DoubleValve
 from corliss.valves.fink_motion import PorterAllenGear
+from corliss.valves.oscillating import OscillatingCylinder
 from corliss.valves.slide_valve import LappedValve
 
 
@@ -340,6 +341,7 @@ GEAR_PANELS = {
     DoubleValve: plot_double_valve,
     CorlissGear: plot_corliss_gear,
     PorterAllenGear: plot_porter_allen,
+    OscillatingCylinder: plot_oscillating,
 }
 
 
@@ -350,7 +352,8 @@ def plot_gear(gear, fig=None, units_system: str = "US") -> dict:
     motion) gets valve travel, the Zeuner diagram and the Bilgram diagram; a double
     valve its travels, openings and the book's diagram of its kind; the Corliss gear
     its wrist plate, spindles and port openings with the trip; the Porter-Allen gear
-    its stems, openings and the Zeuner diagram at the radius rod.  The drawing is
+    its stems, openings and the Zeuner diagram at the radius rod; the oscillating
+    cylinder its swing, openings and port face.  The drawing is
     chosen from :data:`GEAR_PANELS` by the gear's class.
 
     Parameters

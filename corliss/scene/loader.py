@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from corliss.keys import units
+from corliss.keys import limits, units
 from corliss.engine.geometry import EngineSpec
 from corliss.governors.operating_point import working_travel
 from corliss.engine.options import (COMPILED_METHODS, EFFECT_KEYS, EFFECTS, PLANNED_EFFECTS,
@@ -783,6 +783,10 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
     title = data.get("title", name)
     if not isinstance(title, str):
         raise InputError("title", title, "a string")
+    if len(title) > limits.MAX_TITLE_CHARS or not title.isprintable():
+        raise InputError("title", title[:80] + ("..." if len(title) > 80 else ""),
+                         f"a line of printable text of at most {limits.MAX_TITLE_CHARS} "
+                         "characters (no control characters: it goes into every file)")
     loop = _speed_loop(data, run, supply, gt, gear, barometer,
                        Path(source).parent if source else None)
     cmp = None
@@ -902,8 +906,10 @@ def load_scene(path: str | Path) -> Scene:
     text = read_text(p, "scene", "a scene file (.toml)")
     try:
         data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise InputError("scene", str(path), f"a TOML file ({exc})") from None
+    except (tomllib.TOMLDecodeError, RecursionError, ValueError) as exc:
+        # (tomllib's RecursionError: tables or arrays nested thousands deep; ValueError:
+        # an integer of more digits than Python converts, 4300)
+        raise InputError("scene", str(path), f"a TOML file ({str(exc)[:200]})") from None
     return dataclasses.replace(scene_from_dict(data, name=p.stem, source=str(p)), text=text)
 
 

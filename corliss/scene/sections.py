@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 
-from corliss.keys import units
+from corliss.keys import limits, units
 from corliss.engine.flywheel import INERTIA_RANGE, RIM_MASS_RANGE, RIM_RADIUS_RANGE
 from corliss.engine.load import SPEED_LAWS
 from corliss.engine.options import EFFECTS, EXPANSION_LAWS, METHODS, MODELS, PRESETS
@@ -129,7 +129,7 @@ RUN = group(
     Key("portmap_points", "integer", "Crank angles the port areas are tabulated at.",
         default=Derived("the fidelity preset's"), within=(90, 100_000)),
     Key("cycles", "integer", "Run exactly this many cycles (steady only); absent: until "
-        "periodic.", default=None, within=(1, 10_000)),
+        "periodic.", default=None, within=(1, limits.MAX_CYCLES)),
     Key("expansion", "choice", "Expansion law of the ideal card.", default="hyperbolic",
         choices=EXPANSION_LAWS),
     Key("duration", "time", "Simulated time of a transient run, above 0 up to 1 h.",

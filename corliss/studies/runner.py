@@ -54,6 +54,7 @@ from typing import Callable
 
 import numpy as np
 
+from corliss.engine.balance import balance_failure
 from corliss.engine.model import steady_scene
 from corliss.engine.steady import run_steady
 from corliss.errors import InputError, RunError, StudyStopped
@@ -157,13 +158,42 @@ def run_chunk(spec: StudySpec, run_ids, values) -> tuple[list, int, str | None]:
             flat = flatten(r.summary)
             nfev += r.rhs_evaluations
             tier = r.property_tier
-            rows.append((int(run_id), "ok", "",
+            why = run_failure(r)
+            rows.append((int(run_id), "failed" if why else "ok", why,
                          *(response_value(flat.get(k)) for k in responses)))
         except Exception as exc:      # noqa: BLE001  a stopped run is a row, not a stopped study
             log.debug("run %d (%s) stopped: %s", run_id, changes, exc)
             rows.append((int(run_id), "failed", f"{type(exc).__name__}: {exc}",
                          *(math.nan for _ in responses)))
     return rows, nfev, tier
+
+
+def run_failure(result) -> str:
+    """Why a study's steady run is not a result, or ``""`` when it is one.
+
+    A run that was to go until periodic and did not get there, or whose mass or
+    energy balance does not close (:func:`corliss.engine.balance.balance_failure`),
+    whatever its cycles: a study's row has no warning beside it, so its status says.
+    Its responses are kept in the row, for a look.
+
+    Parameters
+    ----------
+    result : SteadyResult
+        The run.
+
+    Returns
+    -------
+    str
+        ``"not converged: ..."`` with the reason, or ``""``.
+    """
+    s = result.summary
+    if result.scene.run.cycles is None and s.get("cycles_to_converge") is None:
+        res = s.get("periodicity_residuals") or {}
+        worst = max(res, key=res.get) if res else "work"
+        return (f"not converged: not periodic after {s['cycles_simulated']} cycles (largest "
+                f"residual {res.get(worst, float('nan')):.3g}, {worst})")
+    why = balance_failure(s)
+    return f"not converged: {why}" if why else ""
 
 
 # --- a local pool's workers ----------------------------------------------------------------
@@ -346,12 +376,14 @@ def dask_client(scheduler):
                          "--scheduler, on this machine's cores)") from None
     if isinstance(scheduler, Client):
         return scheduler, False
-    if not isinstance(scheduler, str) or "://" not in scheduler:
-        raise InputError("--scheduler", scheduler, "a Dask scheduler's address, e.g. "
-                         "tcp://10.0.0.5:8786")
+    if not isinstance(scheduler, str) or not scheduler.startswith("tcp://") \
+            or len(scheduler) <= len("tcp://"):
+        raise InputError("--scheduler", scheduler, "a Dask scheduler's address over TCP, e.g. "
+                         "tcp://10.0.0.5:8786 (tls:// needs security settings and ucx:// "
+                         "ucx-py, neither of which corliss sets up)")
     try:
         return Client(scheduler, timeout="10s"), True
-    except (OSError, TimeoutError, ValueError) as exc:
+    except (OSError, TimeoutError, ValueError, TypeError) as exc:
         raise InputError("--scheduler", scheduler, "the address of a running Dask scheduler "
                          f"(none answered: {type(exc).__name__}: {exc})") from None
 

@@ -72,7 +72,8 @@ def column_unit(column: str, varied: list[dict]) -> str:
             return v["unit"] or "-"
     if column in (RUN_ID, STATUS, ERROR):
         return {RUN_ID: "count (the run's number in the design, from 0)",
-                STATUS: "label (ok, or failed: the run stopped, see error)",
+                STATUS: "label (ok, or failed: the run stopped or did not converge, see "
+                        "error)",
                 ERROR: "label (why the run stopped; empty when it did not)"}[column]
     try:
         return columns.unit_of(column.rsplit(".", 1)[-1])
@@ -88,7 +89,9 @@ class StudyResult(Result):
     held as ``timeseries`` and ``cycles``), has ``run_id``, one column per varied key
     in its unit (``valve_gear.lap_in``), one per response in SI as the summary names
     it (``indicated_power_W``, ``events.head.cutoff_frac``), ``status`` (``ok`` or
-    ``failed``) and ``error`` (why a run stopped; its responses are NaN).
+    ``failed``) and ``error`` (why a run stopped, its responses NaN; or ``not
+    converged: ...`` when it ran but is not periodic or its balances do not close, its
+    responses kept for a look).
 
     Parameters
     ----------

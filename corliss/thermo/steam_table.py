@@ -1137,14 +1137,48 @@ def stand_in(table: SteamTable):
 def _save(path: Path, data: dict) -> None:
     """Write the table's arrays to the cache file ``path`` whole (a temporary file moved
     into place), uncompressed: a warm run reads its 10 MB in a few milliseconds, where
-    inflating a compressed file (5 MB less disk) took about 0.1 s of every run."""
+    inflating a compressed file (5 MB less disk) took about 0.1 s of every run.
+
+    The temporary file, in the cache's own folder and named by the process, is removed
+    on any exit from the save (an error, Ctrl-C); one a killed process left is removed
+    by the next save (:func:`_remove_stale_temporaries`)."""
+    tmp = None
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
+        _remove_stale_temporaries(path)
         tmp = path.with_suffix(f".{os.getpid()}.tmp.npz")
         np.savez(tmp, **data)
         os.replace(tmp, path)
+        tmp = None
     except OSError as exc:   # a read-only home: keep it in memory only
         log.warning("could not cache the steam table at %s: %s", path, exc)
+    finally:
+        if tmp is not None:
+            with contextlib.suppress(OSError):
+                tmp.unlink(missing_ok=True)
+
+
+def _remove_stale_temporaries(path: Path) -> None:
+    """Remove the temporary files of ``path`` whose process is gone (killed while saving:
+    10 MB each, never removed before).  POSIX only: elsewhere ``os.kill`` does not ask
+    whether a process lives."""
+    if os.name != "posix":
+        return
+    for f in path.parent.glob(path.stem + ".*.tmp.npz"):
+        try:
+            pid = int(f.name.split(".")[-3])
+        except (ValueError, IndexError):
+            continue
+        if pid == os.getpid():
+            continue
+        try:
+            os.kill(pid, 0)
+        except ProcessLookupError:
+            with contextlib.suppress(OSError):
+                f.unlink()
+                log.debug("removed %s, left by a process killed while saving", f)
+        except OSError:      # alive, another user's (PermissionError), or unknowable
+            pass
 
 
 def load_table() -> SteamTable:

@@ -606,9 +606,23 @@ def exact_valve_position(spec, theta: np.ndarray) -> np.ndarray:
     return _walschaerts(spec, th)
 
 
-def _circles(c1, r1, c2, r2, near):
-    """The intersection of circles (c1, r1) and (c2, r2) nearer the point ``near``
-    (arrays of points, shape (2, n); NaN where they do not meet)."""
+def circle_intersection(c1, r1, c2, r2, near):
+    """The intersection of two circles nearer a given point, at every crank angle.
+
+    Parameters
+    ----------
+    c1, c2 : ndarray
+        The circles' centres, shape (2, n) [m].
+    r1, r2 : float or ndarray
+        Their radii [m].
+    near : ndarray
+        The point, shape (2, n) or (2,) [m], whose nearer intersection is taken.
+
+    Returns
+    -------
+    ndarray
+        The intersection, shape (2, n) [m]; NaN where the circles do not meet.
+    """
     dx, dy = c2[0] - c1[0], c2[1] - c1[1]
     d = np.hypot(dx, dy)
     a = (r1 * r1 - r2 * r2 + d * d) / (2 * d)
@@ -637,7 +651,7 @@ def _on_guide(origin, t, nrm, radius, centre_of, reach, near):
     k = math.copysign(1.0, radius)
     cc = np.array([origin[0] + k * rho * nrm[0], origin[1] + k * rho * nrm[1]])
     cc = np.repeat(cc[:, None], centre_of.shape[1], axis=1)
-    return _circles(cc, rho, centre_of, reach, near)
+    return circle_intersection(cc, rho, centre_of, reach, near)
 
 
 def _simple(spec: SimpleRadialSpec, th):
@@ -712,7 +726,7 @@ def _watt(spec: SimpleRadialSpec, G, t, nrm, E, l1):
 
     def h_of(beta):
         e1 = p1[:, None] - a * (np.outer(nrm, np.cos(beta)) - np.outer(t, np.sin(beta)))
-        e2 = _circles(np.repeat(p2[:, None], beta.size, axis=1), a, e1, b,
+        e2 = circle_intersection(np.repeat(p2[:, None], beta.size, axis=1), a, e1, b,
                       np.repeat(far, beta.size, axis=1))
         return 0.5 * (e1 + e2)
 
@@ -752,7 +766,7 @@ def _joy_points(spec: JoySpec, th) -> dict:
     dmid = b - c
     e0 = np.array([dmid, -math.sqrt(l3 * l3 - R * R)])     # e below the line of stroke
     f = e0 - np.array([spec.anchor_link_m, 0.0])
-    E = _circles(np.repeat(f[:, None], n, axis=1), spec.anchor_link_m, Dp, l3,
+    E = circle_intersection(np.repeat(f[:, None], n, axis=1), spec.anchor_link_m, Dp, l3,
                  np.repeat(e0[:, None], n, axis=1))
     Gp = Dp + (l4 / l3) * (E - Dp)
     g0y = l4 / l3 * e0[1]
@@ -903,6 +917,64 @@ def _walschaerts(spec: WalschaertsSpec, th):
     return -pts["valve_pin"][0] if spec.admission == "outside" else pts["valve_pin"][0]
 
 
+def combination_lever(Dd, XH, rho, a, ell, ul, yv, outside):
+    """The combination lever of a Walschaerts or Baker gear solved at every crank angle:
+    its radius rod (length ``rho``) pinned at ``Dd``, its union link (length ``ul``)
+    at the crosshead arm ``XH`` (points, shape (2, n) [m]), its valve pin on the line
+    ``y = yv``; ``a`` and ``ell`` from the radius rod's pin to the valve pin's and the
+    union link's, the valve pin above the radius rod's (``outside``) or between the two.
+
+    Parameters
+    ----------
+    Dd : ndarray
+        The radius rod's (Baker: valve rod's) far end at each crank angle, shape (2, n) [m].
+    XH : ndarray
+        The union link's pin on the crosshead arm, shape (2, n) [m].
+    rho : float
+        The radius rod's length [m].
+    a, ell : float
+        Along the lever from the radius rod's pin to the valve pin and to the union
+        link's pin [m].
+    ul : float
+        The union link's length [m].
+    yv : float
+        The valve stem's height [m].
+    outside : bool
+        Outside admission (the valve pin above the radius rod's pin).
+
+    Returns
+    -------
+    V : ndarray
+        The valve pin, shape (2, n) [m].
+    w : ndarray
+        The lever's unit vector, valve pin towards the radius rod's pin for outside
+        admission (shape (2, n)).
+    da, dl : float
+        The radius rod's pin at ``V + da w`` and the union link's at ``V + dl w`` [m].
+    """
+    n = Dd.shape[1]
+    # the lever: unknowns the valve pin's x and the lever's angle gamma from the vertical
+    if outside:
+        da, dl = -a, -(a + ell)            # A = V + da w, L = V + dl w
+    else:
+        da, dl = a, -(ell - a)
+
+    def residual(vx, g):
+        wx, wy = np.sin(g), np.cos(g)
+        ax_, ay_ = vx + da * wx, yv + da * wy
+        lx, ly = vx + dl * wx, yv + dl * wy
+        return (np.hypot(ax_ - Dd[0], ay_ - Dd[1]) - rho,
+                np.hypot(lx - XH[0], ly - XH[1]) - ul)
+
+    ax0 = Dd[0] + rho
+    lx0 = XH[0] + ul
+    g = np.arcsin(np.clip((ax0 - lx0) / ell, -0.99, 0.99))
+    vx = ax0 - da * np.sin(g)
+    vx, g = newton2(residual, vx, g, 1e-7 * rho, 1e-8, 1e-13 * rho, 1e-13)
+    w = np.array([np.sin(g), np.cos(g)])
+    return np.array([vx, np.full(n, yv)]), w, da, dl
+
+
 def _walschaerts_points(spec: WalschaertsSpec, th) -> dict:
     """Every joint of the exact Walschaerts gear at crank angles ``th`` (arrays of shape
     (2, n) [m]; see the module doc)."""
@@ -919,7 +991,7 @@ def _walschaerts_points(spec: WalschaertsSpec, th) -> dict:
     Bx, By = R * np.cos(th), -R * np.sin(th)
     Cx = Bx + np.sqrt(b * b - By * By)
     XH = np.array([Cx + lay["arm"], np.full(n, lay["yL"])])
-    F = _circles(np.repeat(T[:, None], n, axis=1), k, Q, er, np.repeat(F0[:, None], n, axis=1))
+    F = circle_intersection(np.repeat(T[:, None], n, axis=1), k, Q, er, np.repeat(F0[:, None], n, axis=1))
     beta = np.arctan2(F[0] - T[0], -(F[1] - T[1]))
 
     def on_link(s):
@@ -929,27 +1001,7 @@ def _walschaerts_points(spec: WalschaertsSpec, th) -> dict:
 
     s = (1.0 if outside else -1.0) * spec.die_m
     Dd = on_link(s)
-    # the lever: unknowns the valve pin's x and the lever's angle gamma from the vertical
-    if outside:
-        da, dl = -a, -(a + ell)            # A = V + da w, L = V + dl w
-    else:
-        da, dl = a, -(ell - a)
-    yv = spec.valve_height_m
-
-    def residual(vx, g):
-        wx, wy = np.sin(g), np.cos(g)
-        ax_, ay_ = vx + da * wx, yv + da * wy
-        lx, ly = vx + dl * wx, yv + dl * wy
-        return (np.hypot(ax_ - Dd[0], ay_ - Dd[1]) - rho,
-                np.hypot(lx - XH[0], ly - XH[1]) - ul)
-
-    ax0 = Dd[0] + rho
-    lx0 = XH[0] + ul
-    g = np.arcsin(np.clip((ax0 - lx0) / ell, -0.99, 0.99))
-    vx = ax0 - da * np.sin(g)
-    vx, g = newton2(residual, vx, g, 1e-7 * rho, 1e-8, 1e-13 * rho, 1e-13)
-    w = np.array([np.sin(g), np.cos(g)])
-    V = np.array([vx, np.full(n, yv)])
+    V, w, da, dl = combination_lever(Dd, XH, rho, a, ell, ul, spec.valve_height_m, outside)
     umax = spec.max_die_m
     return {"axle": np.zeros((2, n)), "crank_pin": np.array([Bx, By]),
             "crosshead": np.array([Cx, np.zeros(n)]), "crosshead_arm": XH,

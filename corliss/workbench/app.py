@@ -1,0 +1,433 @@
+"""The workbench page: a Bokeh document of controls and the drawings they redraw.
+
+One :class:`Workbench` per browser session.  A control's change edits the scene's
+tables; the edited scene is run in the worker process (:class:`Runner`), never on the
+server's event loop, so the page answers while a slow run works (it says it is
+working).  Changes that come while a run is in flight are coalesced: when it ends,
+the newest settings run next.  A scene the loader refuses shows the loader's message
+beside the control it names (or the control just moved), and the last good drawing
+stays.  The page's TOML is the source scene's text with the settings put in place
+(:func:`corliss.workbench.scene_text.edited_text`), saved by the browser itself: the
+server writes no file and takes no path from the page.
+"""
+
+from __future__ import annotations
+
+import html
+import logging
+import multiprocessing
+import threading
+import time
+import tomllib
+from concurrent.futures import Future, ProcessPoolExecutor, ThreadPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
+from dataclasses import dataclass
+from functools import partial
+
+from bokeh.layouts import column, row
+from bokeh import models as bkm         # Div by its module: its docstring upsets numpydoc
+from bokeh.models import (Button, CheckboxGroup, ColumnDataSource, CustomJS, LabelSet,
+                          RadioButtonGroup, Select, Slider, Span, TextAreaInput)
+from bokeh.plotting import figure
+
+from corliss.keys.edits import with_keys
+from corliss.workbench.compute import compute_view
+from corliss.workbench.controls import Control, controls_for, scene_value
+from corliss.workbench.scene_text import edited_text
+
+log = logging.getLogger(__name__)
+
+_NAN = float("nan")
+_PORT_STYLE = {"head_steam": ("black", "solid"), "crank_steam": ("black", "dashed"),
+               "head_exhaust": ("#888888", "solid"), "crank_exhaust": ("#888888", "dashed")}
+
+
+class Runner:
+    """The worker process the runs go to, shared by every session of a server.
+
+    Parameters
+    ----------
+    in_process : bool, optional
+        Run in a thread of this process instead (tests of the page's logic); a run
+        then holds the interpreter while compiled code runs.
+    """
+
+    def __init__(self, in_process: bool = False):
+        self.in_process = in_process
+        self._lock = threading.Lock()
+        self._pool = None
+
+    def _executor(self):
+        if self._pool is None:
+            if self.in_process:
+                self._pool = ThreadPoolExecutor(max_workers=1)
+            else:
+                self._pool = ProcessPoolExecutor(
+                    max_workers=1, mp_context=multiprocessing.get_context("spawn"))
+        return self._pool
+
+    def submit(self, data: dict, name: str, source: str | None) -> Future:
+        """Run :func:`~corliss.workbench.compute.compute_view` of a scene's tables.
+
+        Parameters
+        ----------
+        data : dict
+            The scene's tables.
+        name, source : str
+            The scene's name and file.
+
+        Returns
+        -------
+        concurrent.futures.Future
+            Its view.
+        """
+        with self._lock:
+            try:
+                return self._executor().submit(compute_view, data, name, source)
+            except BrokenProcessPool:       # the worker died (killed): start another
+                log.warning("the workbench's worker process stopped; starting another")
+                self._pool = None
+                return self._executor().submit(compute_view, data, name, source)
+
+    def shutdown(self) -> None:
+        """Stop the worker."""
+        with self._lock:
+            if self._pool is not None:
+                self._pool.shutdown(wait=False, cancel_futures=True)
+                self._pool = None
+
+
+@dataclass
+class _Widget:
+    control: Control
+    widget: object
+    error: bkm.Div
+
+
+def _css(name: str) -> str:
+    return "wb-" + "".join(c if c.isalnum() else "-" for c in name)
+
+
+class Workbench:
+    """The page of one browser session.
+
+    Parameters
+    ----------
+    doc : bokeh.document.Document
+        The session's document, filled here.
+    text : str
+        The source scene's TOML text.
+    name : str
+        The scene's name (the saved file's name).
+    source : str or None
+        The scene's file.
+    runner : Runner
+        Where the runs go.
+    fidelity : str or None
+        A fidelity preset the page starts at (None: the scene's).
+    """
+
+    def __init__(self, doc, text: str, name: str, source: str | None, runner: Runner,
+                 fidelity: str | None = "fast"):
+        self.doc, self.text, self.name, self.source, self.runner = doc, text, name, source, runner
+        self.base = tomllib.loads(text)
+        self.edits: dict = {}
+        if fidelity is not None:
+            self.edits["run.fidelity"] = fidelity
+        self.busy = False
+        self.pending = False
+        self.moved: _Widget | None = None
+        self.changed_at = time.perf_counter()
+        self.latencies_ms: list[float] = []
+        self._build()
+        self.request(None)
+
+    # --- state --------------------------------------------------------------------------
+
+    @property
+    def data(self) -> dict:
+        """The scene's tables with the page's settings.
+
+        Returns
+        -------
+        dict
+            The edited tables.
+        """
+        return with_keys(self.base, self.edits)
+
+    @property
+    def units(self) -> str:
+        """The unit system the page shows (the scene's ``output.units``).
+
+        Returns
+        -------
+        str
+            ``"US"`` or ``"SI"``.
+        """
+        return self.data.get("output", {}).get("units", "US")
+
+    def scene_text(self, edits: dict | None = None) -> str:
+        """The scene as TOML: the source's text, its comments kept, the settings in place.
+
+        Parameters
+        ----------
+        edits : dict, optional
+            ``{dotted key: value}`` (default: the page's settings now).
+
+        Returns
+        -------
+        str
+            The text.
+        """
+        edits = self.edits if edits is None else edits
+        return edited_text(self.text, edits) if edits else self.text
+
+    # --- the page -----------------------------------------------------------------------
+
+    def _control_widget(self, c: Control) -> _Widget:
+        css = [_css(c.name)]
+        if c.widget in ("slider", "superheat"):
+            unit = f" [{c.unit}]" if c.unit else ""
+            w = Slider(start=c.start, end=c.stop, step=c.step, value=c.value,
+                       title=c.label + unit, width=300, css_classes=css, format="0[.][0000]")
+        elif c.widget == "effects":
+            w = CheckboxGroup(labels=list(c.choices), css_classes=css,
+                              active=[i for i, e in enumerate(c.choices) if e in c.value])
+        else:
+            w = Select(title=c.label, options=list(c.choices), value=c.value, width=300,
+                       css_classes=css)
+        err = bkm.Div(text="", visible=False, width=300,
+                      css_classes=[css[0] + "-error", "wb-error"],
+                      styles={"color": "#a00000", "font-size": "12px"})
+        item = _Widget(c, w, err)
+        prop = "active" if c.widget == "effects" else "value"
+        w.on_change(prop, partial(self._on_control, item))
+        return item
+
+    def _controls_column(self):
+        self.widgets = [self._control_widget(c) for c in controls_for(self.data, self.units)]
+        kids = []
+        for it in self.widgets:
+            kids += [it.widget, it.error]
+        return column(*kids, width=320, height=880, styles={"overflow-y": "auto"})
+
+    def _build(self) -> None:
+        self.units_switch = RadioButtonGroup(labels=["US", "SI"], css_classes=["wb-units"],
+                                             active=0 if self.units == "US" else 1)
+        self.units_switch.on_change("active", self._on_units)
+        self.controls = self._controls_column()
+        self.status = bkm.Div(text="working...", css_classes=["wb-status"], width=700)
+        self.summary = bkm.Div(text="", css_classes=["wb-summary"], width=380)
+
+        self.card_src = {e: ColumnDataSource({"x": [], "y": []}) for e in ("head", "crank")}
+        self.marks = ColumnDataSource({"x": [], "y": [], "label": [], "end": []})
+        self.card = figure(width=720, height=430, title="indicator card", toolbar_location=None,
+                           css_classes=["wb-card"])
+        self.card.line("x", "y", source=self.card_src["head"], color="black", line_width=1.6,
+                       legend_label="head end")
+        self.card.line("x", "y", source=self.card_src["crank"], color="#404040",
+                       line_width=1.6, line_dash="dashed", legend_label="crank end")
+        self.card.scatter("x", "y", source=self.marks, size=6, color="#a00000")
+        self.card.add_layout(LabelSet(x="x", y="y", text="label", source=self.marks,
+                                      x_offset=4, y_offset=4, text_font_size="9pt"))
+        self.card.add_layout(Span(location=0.0, dimension="width", line_color="#666666",
+                                  line_width=1))
+        self.vacuum = Span(location=0.0, dimension="width", line_color="#999999",
+                           line_dash="dotted")
+        self.card.add_layout(self.vacuum)
+        self.card.legend.location = "center"
+        self.card.legend.background_fill_alpha = 0.0
+        self.card.legend.border_line_alpha = 0.0
+
+        self.table = bkm.Div(text="", css_classes=["wb-events"], width=380)
+
+        self.zsrc = {e: ColumnDataSource({"x": [], "y": []}) for e in ("head", "crank")}
+        self.zcircles = ColumnDataSource({"xs": [], "ys": []})
+        self.zeuner = figure(width=380, height=380, title="Zeuner diagram", match_aspect=True,
+                             toolbar_location=None, css_classes=["wb-zeuner"])
+        self.zeuner.line("x", "y", source=self.zsrc["head"], color="black", line_width=1.4,
+                         legend_label="head-end valve circle")
+        self.zeuner.line("x", "y", source=self.zsrc["crank"], color="black", line_width=1.4,
+                         line_dash="dashed", legend_label="crank-end valve circle")
+        self.zeuner.multi_line("xs", "ys", source=self.zcircles, color="#888888",
+                               legend_label="lap circles")
+        self.zeuner.legend.label_text_font_size = "8pt"
+        self.zeuner.legend.background_fill_alpha = 0.6
+        self.znote = bkm.Div(text="", visible=False, width=380)
+
+        self.psrc = ColumnDataSource({"deg": [], **{p: [] for p in _PORT_STYLE}})
+        self.ports = figure(width=720, height=280, title="port openings",
+                            toolbar_location=None, css_classes=["wb-ports"],
+                            x_axis_label="crank angle from head-end dead centre [deg]")
+        for p, (color, dash) in _PORT_STYLE.items():
+            self.ports.line("deg", p, source=self.psrc, color=color, line_dash=dash,
+                            line_width=1.4, legend_label=p.replace("_", " "))
+        self.ports.legend.label_text_font_size = "8pt"
+        self.ports.legend.background_fill_alpha = 0.6
+
+        self.toml = TextAreaInput(value=self.scene_text(), rows=12, width=720, title="scene",
+                                  css_classes=["wb-toml"], disabled=True)
+        self.save = Button(label="save scene (TOML)", css_classes=["wb-save"], width=200)
+        self.save.js_on_click(CustomJS(args={"area": self.toml, "name": f"{self.name}.toml"},
+                                       code="""
+            const blob = new Blob([area.value], {type: "application/toml"});
+            const a = document.createElement("a");
+            a.href = URL.createObjectURL(blob);
+            a.download = name;
+            document.body.appendChild(a);
+            a.click();
+            setTimeout(() => { URL.revokeObjectURL(a.href); a.remove(); }, 1000);
+        """))
+
+        head = bkm.Div(text=f"<b>corliss workbench</b>: {html.escape(self.name)}", width=320)
+        self.left = column(head, self.units_switch, self.controls)
+        right = column(self.status,
+                       row(self.card, column(self.summary, self.table)),
+                       row(self.ports, column(self.zeuner, self.znote)),
+                       row(column(self.save, self.toml)))
+        self.layout = row(self.left, right)
+        self.doc.add_root(self.layout)
+        self.doc.title = f"corliss workbench: {self.name}"
+
+    # --- events -------------------------------------------------------------------------
+
+    def _on_control(self, item: _Widget, attr, old, new) -> None:
+        c = item.control
+        if c.widget == "effects":
+            new = [c.choices[i] for i in sorted(new)]
+        self.edits[c.key] = scene_value(c, new, self.data)
+        self.moved = item
+        self.request(item)
+
+    def _on_units(self, attr, old, new) -> None:
+        self.edits["output.units"] = ("US", "SI")[new]
+        self.controls.children = self._controls_column().children
+        self.moved = None
+        self.request(None)
+
+    def request(self, item) -> None:
+        """Run the scene as the controls set it now, or once the run in flight ends.
+
+        Parameters
+        ----------
+        item : object or None
+            The control that changed (None: the page or the units).
+        """
+        self.changed_at = time.perf_counter()
+        self.status.text = "<span class='wb-working'>working...</span>"
+        if self.busy:
+            self.pending = True
+            return
+        self._submit()
+
+    def _submit(self) -> None:
+        self.busy, self.pending = True, False
+        started, edits = self.changed_at, dict(self.edits)
+        fut = self.runner.submit(with_keys(self.base, edits), self.name, self.source)
+        fut.add_done_callback(lambda f: self.doc.add_next_tick_callback(
+            partial(self._apply, f, started, edits)))
+
+    def _apply(self, fut: Future, started: float, edits: dict) -> None:
+        self.busy = False
+        try:
+            view = fut.result()
+        except Exception as exc:            # the worker died: say so, keep the page
+            log.exception("workbench run failed")
+            view = {"ok": False, "message": f"the run failed: {exc}", "key": None}
+        if self.pending:
+            self._submit()
+        if not view["ok"]:
+            self._show_error(view)
+            return
+        for it in self.widgets:
+            it.error.text, it.error.visible = "", False
+        self._draw(view, edits)
+        ms = 1e3 * (time.perf_counter() - started)
+        self.latencies_ms.append(ms)
+        if not self.busy:
+            note = f"; {html.escape(view['note'])}" if view["note"] else ""
+            self.status.text = (f"<span class='wb-done'>redrawn in {ms:.0f} ms</span> "
+                                f"(run and drawing {1e3 * view['compute_s']:.0f} ms){note}")
+
+    def _show_error(self, view: dict) -> None:
+        key = view.get("key")
+        # beside the control just moved, and beside the one the message names where
+        # that is another (an eccentricity moved below the lap names the lap)
+        named = next((it for it in self.widgets if key is not None and
+                      (key == it.control.key or key.startswith(it.control.key + "."))), None)
+        targets = {id(t): t for t in (self.moved, named) if t is not None}
+        for it in self.widgets:
+            it.error.text, it.error.visible = "", False
+        msg = html.escape(view["message"])
+        for t in targets.values():
+            t.error.text, t.error.visible = msg, True
+        if not self.busy:
+            self.status.text = ("<span class='wb-refused'>not redrawn: "
+                                f"{msg}</span> The last good card stays.")
+
+    def _draw(self, v: dict, edits: dict) -> None:
+        card = v["card"]
+        for end in ("head", "crank"):
+            self.card_src[end].data = card[end]
+        self.marks.data = card["marks"]
+        self.vacuum.location = card["vacuum"]
+        self.card.xaxis.axis_label = (f"piston position from head-end dead centre "
+                                      f"[{card['x_unit']}]")
+        self.card.yaxis.axis_label = f"pressure [{card['p_unit']}]"
+        s = v["summary"]
+        self.card.title.text = (f"{v['title']}: {s['indicated power']}, "
+                                f"m.e.p. {s['m.e.p.']}")
+        rows = "".join(f"<tr><td style='padding-right: 1em'>{html.escape(k)}</td>"
+                       f"<td class='wb-num' data-key='"
+                       f"{html.escape(k)}'>{html.escape(t)}</td></tr>" for k, t in s.items())
+        self.summary.text = f"<table class='wb-summary-table'>{rows}</table>"
+        ev = v["events"]
+        td = "<td style='padding: 1px 8px 1px 0'"
+        cells = "".join(f"<tr>{td}>{html.escape(e)}</td>{td} class='wb-head'>{h}</td>"
+                        f"{td} class='wb-crank'>{c}</td></tr>"
+                        for e, h, c in zip(ev["event"], ev["head"], ev["crank"]))
+        self.table.text = ("<table class='wb-events-table' style='border-collapse: collapse'>"
+                           "<tr><th style='text-align:left'>event</th><th>head</th>"
+                           f"<th>crank</th></tr>{cells}</table>")
+        z = v["zeuner"]
+        if z is None:
+            self.zeuner.visible = False
+            self.znote.text = ("No Zeuner diagram: this gear's motion is not one lapped valve "
+                               "(<code>corliss gear</code> draws its own panels).")
+            self.znote.visible = True
+        else:
+            self.zeuner.visible, self.znote.visible = True, False
+            for end in ("head", "crank"):
+                self.zsrc[end].data = z[end]
+            self.zcircles.data = {"xs": z["circles"]["x"], "ys": z["circles"]["y"]}
+        self.psrc.data = v["ports"]
+        u = v["card"]["x_unit"]
+        self.ports.yaxis.axis_label = f"port opening [{u}]"
+        self.toml.value = self.scene_text(edits)      # the scene of the card shown
+
+
+def make_document(text: str, name: str, source: str | None, runner: Runner,
+                  fidelity: str | None = "fast"):
+    """The function a Bokeh application calls to fill each session's document.
+
+    Parameters
+    ----------
+    text : str
+        The scene's TOML text.
+    name : str
+        The scene's name.
+    source : str or None
+        Its file.
+    runner : Runner
+        The worker shared by the sessions.
+    fidelity : str or None, optional
+        The preset the page starts at (None: the scene's).
+
+    Returns
+    -------
+    callable
+        ``modify_doc(doc)``, which builds a :class:`Workbench` in ``doc``.
+    """
+    def modify_doc(doc):
+        Workbench(doc, text, name, source, runner, fidelity)
+    return modify_doc
