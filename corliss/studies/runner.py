@@ -585,17 +585,27 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
     token = fingerprint(base, name, fidelity, responses, design)
     rows: dict[int, tuple] = {}
     journal = None
+    client, own, address = None, False, None
+    if scheduler is not None:           # a scheduler that does not answer: before any file
+        client, own = dask_client(scheduler)
     if out is not None:
-        jpath = journal_path(check_writable(out), name)
-        if resume and jpath.exists():
-            rows = read_rows(jpath, token, 3 + len(responses))
-            log.info("resuming: %d of %d runs read back from %s", len(rows), design.runs, jpath)
-        elif resume:
-            log.info("nothing to resume in %s: every run is made", jpath.parent)
-        journal = Journal(jpath, {"fingerprint": token, "scene": name, "design": design.kind,
-                                  "seed": design.seed, "runs": design.runs,
-                                  "columns": [RUN_ID, STATUS, ERROR, *responses]},
-                          keep=resume)
+        try:
+            jpath = journal_path(check_writable(out), name)
+            if resume and jpath.exists():
+                rows = read_rows(jpath, token, 3 + len(responses))
+                log.info("resuming: %d of %d runs read back from %s", len(rows),
+                         design.runs, jpath)
+            elif resume:
+                log.info("nothing to resume in %s: every run is made", jpath.parent)
+            journal = Journal(jpath, {"fingerprint": token, "scene": name,
+                                      "design": design.kind, "seed": design.seed,
+                                      "runs": design.runs,
+                                      "columns": [RUN_ID, STATUS, ERROR, *responses]},
+                              keep=resume)
+        except BaseException:
+            if own:
+                client.close()
+            raise
     todo = np.array([i for i in range(design.runs) if i not in rows], dtype=np.int64)
     spec = StudySpec(token, base, name, fidelity, tuple(responses),
                      tuple((s.key, s.unit) for s in design.specs))
@@ -613,10 +623,8 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
         if progress:
             progress(len(rows), design.runs)
 
-    client, own, address = None, False, None
     try:
-        if scheduler is not None:
-            client, own = dask_client(scheduler)
+        if client is not None:
             address = str(client.scheduler.address)
             workers = max(1, sum(client.nthreads().values()))
         else:
@@ -640,6 +648,10 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
                                    done=len(rows), runs=design.runs,
                                    journal=None if journal is None else journal.path,
                                    signal_name=why) from None
+    except BaseException:
+        if journal is not None and not rows:
+            journal.remove()            # nothing done: no partial file
+        raise
     finally:
         if journal is not None:
             journal.close()
