@@ -46,11 +46,50 @@ class InputError(ValueError):
         return InputError(key, self.value, self.expected)
 
 
+class InputErrors(InputError):
+    """Several mistakes of one scene, reported together.
+
+    Its ``key``, ``value`` and ``expected`` are the first mistake's, and its message
+    starts with it; ``errors`` holds every one, and the message lists the others, one a
+    line.
+
+    Parameters
+    ----------
+    errors : list of InputError
+        The mistakes, two or more, in the scene's order.
+    """
+
+    def __init__(self, errors: list[InputError]):
+        first = errors[0]
+        self.key = first.key
+        self.value = first.value
+        self.expected = first.expected
+        self.errors = list(errors)
+        ValueError.__init__(self, f"{first}\nThe scene has {len(errors) - 1} more "
+                            f"mistake{'s' if len(errors) > 2 else ''}:\n"
+                            + "\n".join(f"  - {e}" for e in errors[1:]) + "\n")
+
+    def with_prefix(self, prefix: str) -> "InputErrors":
+        """The same errors with their keys under a table's name.
+
+        Parameters
+        ----------
+        prefix : str
+            The dotted name of the table the keys belong to.
+
+        Returns
+        -------
+        InputErrors
+            Each error as :meth:`InputError.with_prefix` gives it.
+        """
+        return InputErrors([e.with_prefix(prefix) for e in self.errors])
+
+
 class RunError(RuntimeError):
     """A run that cannot go on, for a reason in the scene rather than in the code.
 
     The run-time budget exhausted, a state outside the steam properties.  The CLI
-    turns it into a one-paragraph message and exit code 2, with no files written.
+    turns it into a one-paragraph message and exit code 5, with no files written.
     Raised as ``RunError(message)``, the message saying what happened, with the scene
     quantities that likely caused it (the constructor is :class:`RuntimeError`'s).
     """
@@ -59,7 +98,8 @@ class RunError(RuntimeError):
 #: Exit status of a run that ran but whose result is not one: its mass or energy balance
 #: does not close within tolerance (:mod:`corliss.engine.balance`).  Its files are
 #: written, for a look, and the message says why the run failed.  (2 is a user's
-#: mistake or a run that stopped; 130 and 143 an interrupt and a termination.)
+#: mistake, 4 a run that failed physically, 5 a run that stopped; 130 and 143 an
+#: interrupt and a termination: docs/exit-codes.md.)
 EXIT_BALANCE_FAILED = 3
 #: Exit status after Ctrl-C (SIGINT), the shell's 128 + 2.
 EXIT_INTERRUPTED = 130

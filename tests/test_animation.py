@@ -89,6 +89,13 @@ def test_the_card_is_traced_and_html_is_written(tmp_path, capsys):
     text = (tmp_path / "default.animation.html").read_text()
     assert text.count("data:image/png;base64") == 6
     assert text.lstrip().startswith("<!DOCTYPE html>")
+    # self-contained: no request leaves the page (no http(s) or protocol-relative
+    # address in any src, href, url() or import), and no icon-font class is left
+    import re
+    fetched = re.findall(r"(?:src|href)\s*=\s*[\"']?\s*(?:https?:)?//|url\(\s*[\"']?\s*"
+                         r"(?:https?:)?//|@import", text, flags=re.I)
+    assert not fetched, fetched
+    assert "fa fa-" not in text and "http://" not in text and "https://" not in text
 
 
 def _drawn_valve_m(drawn) -> float:

@@ -31,7 +31,7 @@ def small():
 def study(small):
     # a small chest: 6 % of the swept volume (the least a scene may have is 5 %)
     chest = 0.06 * float(CylinderGeometry(small.engine).swept_m3[0])
-    return compare(small, LOADS, fidelity="fast", chest_volume_m3=chest)
+    return compare(small, LOADS, fidelity="fast", chest_volume_m3=chest, droop=True)
 
 
 def test_table_schema(study):
@@ -245,3 +245,22 @@ def test_a_jacket_is_counted_in_the_studys_steam():
         s["steam_rate_kg_per_h"] + s["jacket_steam_kg_per_h"], rel=1e-9)
     assert row["water_rate_kg_per_kWh"] == pytest.approx(
         s["water_rate_with_jacket_kg_per_kWh"], rel=1e-9)
+
+
+def test_constant_speed_is_the_default_said_and_matches_run_at_full_load(small):
+    """By default every load runs at the scene's speed (the summary says so), and the
+    chest's origin is stated.  A governed run of the same scene starts at full load
+    (its load) where its governor balances that load: within 1 % of the speed the
+    study's full-load point runs at (the bundled governor is set for its speed)."""
+    import corliss
+    r = compare(small, [1.0], condensation="off", fidelity="fast", workers=1)
+    s = r.summary
+    assert s["speed_basis"] == "constant" and not s["governor_droop_applied"]
+    assert s["chest_volume_source"] == "default"
+    assert s["willans_negative_intercepts"] == [] or all(
+        w["willans_intercept_kg_per_h"] < 0 for w in s["willans"]
+        if f"{w['variant']}/{w['condensation']}" in s["willans_negative_intercepts"])
+    full = float(r.points["speed_rpm"].iloc[0])
+    run = corliss.simulate(small.with_fidelity("fast").replace_run(duration_s=0.3)).summary
+    assert run["start"]["status"] == "balanced"
+    assert full == pytest.approx(run["start"]["speed_rpm"], rel=0.01)

@@ -504,3 +504,24 @@ def test_cli_bad_design_exits_2_and_writes_nothing(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "max_opening" in err and "port" in err and "Traceback" not in err
     assert not out.exists()
+
+
+def test_the_readmes_design_warns_of_the_end_it_was_not_asked_for(tmp_path, capsys):
+    """``corliss design --cutoff 0.6 --lead 0.25in --max-opening 1.25in --release 0.9``
+    on the default engine (1.25 in ports, a 60 in rod on a 24 in stroke): equal cut-offs
+    with the rod's angularity give the crank end a lap of its own, and with it a lead of
+    some 7/8 in and a greatest opening near 2 in, past its 1.25 in port.  The design
+    says so for that end, in its JSON and its printed account."""
+    import json
+
+    from corliss.cli.commands import main
+    argv = ["design", "--cutoff", "0.6", "--lead", "0.25in", "--max-opening", "1.25in",
+            "--release", "0.9", "--out", str(tmp_path)]
+    assert main(argv + ["--json"]) == 0
+    warnings = json.loads(capsys.readouterr().out)["warnings"]
+    assert any(w.startswith("crank end: lead") for w in warnings), warnings
+    assert any(w.startswith("crank end: greatest opening") and "1.25 in port" in w
+               for w in warnings), warnings
+    assert not any(w.startswith("head end") for w in warnings)   # the end asked for
+    assert main(argv) == 0
+    assert "WARNING          crank end: lead" in capsys.readouterr().out

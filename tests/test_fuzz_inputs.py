@@ -42,6 +42,7 @@ import corliss.studies
 import corliss.studies.compare
 import corliss.studies.load_range
 from corliss.cli import commands as cli
+from corliss.engine.verdict import EXIT_PHYSICAL
 from corliss.errors import EXIT_BALANCE_FAILED, InputError
 from corliss.files.run_output import STAGING_PREFIX
 from corliss.fitting.card import parse_card
@@ -52,8 +53,9 @@ SCENES = bundled_scenes()
 CI_CASES = 40
 CASES = int(os.environ.get("CORLISS_FUZZ_CASES", CI_CASES))
 SEED = int(os.environ.get("CORLISS_FUZZ_SEED", 0))
-#: Exit statuses a command may give: done, refused, a run whose balances fail.
-STATUSES = {0, 2, EXIT_BALANCE_FAILED}
+#: Exit statuses a command may give: done, refused, a run whose balances fail, a run
+#: that failed physically, a run that stopped (docs/exit-codes.md).
+STATUSES = {0, 2, EXIT_BALANCE_FAILED, EXIT_PHYSICAL, cli.EXIT_RUN_STOPPED}
 
 #: Hostile values: huge, tiny, not finite, wrong kinds, paths out, control characters,
 #: deep nesting, long text.

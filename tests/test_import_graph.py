@@ -26,7 +26,7 @@ LAYERS = [
     ("corliss.scene", 3), ("corliss.studies", 3), ("corliss.fitting", 3),
     ("corliss.plot", 4),
     ("corliss.files", 5), ("corliss.workbench", 5),
-    ("corliss.cli", 6),
+    ("corliss.cli", 6), ("corliss.__main__", 6),
 ]
 #: The three physics packages of layer 1 are independent of each other.
 INDEPENDENT = {"corliss.thermo", "corliss.valves", "corliss.governors"}

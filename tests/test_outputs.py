@@ -170,7 +170,8 @@ def test_a_failure_while_moving_files_into_place_restores_the_earlier_run(
     monkeypatch.setattr(os, "replace", failing)
     code = cli.main(["run", "--out", str(tmp_path), "--cycles", "3", "--fidelity", "fast"])
     monkeypatch.setattr(os, "replace", real)
-    assert code == 2        # a full disk is the machine's state, not a traceback
+    # a full disk is the machine's state, not a traceback: a run that stopped (exit 5)
+    assert code == cli.EXIT_RUN_STOPPED
     assert "No space left on device (injected)" in capsys.readouterr().err
     assert failed
     assert _snapshot(tmp_path) == before
@@ -232,7 +233,8 @@ def test_cards_doing_no_work_are_results(change, tmp_path, capsys):
     path.write_text(text)
     out = tmp_path / "out"
     code, printed, err = _run(["run", str(path), "--out", str(out), "--fidelity", "fast"], capsys)
-    assert code == 0, err
+    # a completed run that failed physically: exit 4 (docs/exit-codes.md), every file
+    assert code == 4 and "negative_work" in err, err
     assert {p.name for p in out.iterdir()} == _expected("noworkscene", False)
     s = json.loads((out / "noworkscene.summary.json").read_text())
     assert s["indicated_power_W"] <= 0.0

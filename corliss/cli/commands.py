@@ -43,8 +43,14 @@
     A scene key (``valve_gear.lap``, ``governor.ball_mass``, ``run.effects``), section,
     gear, governor or effect, as the scene reference (``docs/scene-reference.md``) has it.
 
-A user's mistake exits with code 2 and a one-paragraph message, no traceback, and
-writes nothing.  Messages go through the ``corliss`` logger: once-per-machine notices
+Exit statuses (``docs/exit-codes.md``): 0 a good result; 1 an error in corliss itself
+(a traceback); 2 a user's mistake (scene, options, an unusable output folder), with a
+one-paragraph message, no traceback, nothing simulated and nothing written; 3 a steady
+run whose mass or energy balance does not close, its files written; 4 a run that
+completed but failed physically (negative work, not periodic, stalled, run away,
+hunting, not settled when ``--until-settled`` was asked), every file written and the
+reasons in the summary's ``failures`` and on stderr; 5 a run that stopped before its
+end, nothing written; 130 and 143 interrupted or terminated.  Messages go through the ``corliss`` logger: once-per-machine notices
 (compiling the kernels, building the steam table) by default, everything with ``-v``;
 other libraries' logs stay quiet.  While such a step runs, a line says what it is doing
 and for how long (:mod:`corliss.cli.heartbeat`), so a first run is never silent for long.
@@ -72,6 +78,7 @@ from corliss.cli.heartbeat import Heartbeat
 from corliss.engine.balance import balance_failure
 from corliss.engine.model import build_gear, scene_events
 from corliss.engine.simulate import simulate
+from corliss.engine.verdict import EXIT_PHYSICAL
 from corliss.errors import (EXIT_BALANCE_FAILED, EXIT_INTERRUPTED, EXIT_TERMINATED, InputError,
                             RunError, StudyStopped, Terminated)
 from corliss.files.run_output import (OutputFiles, plain_name, plain_text, scene_from_meta,
@@ -83,6 +90,17 @@ from corliss.studies.journal import check_writable
 
 log = logging.getLogger("corliss")
 
+#: Exit statuses (``docs/exit-codes.md``).  1 is left to Python: an error in corliss
+#: itself, with its traceback.
+EXIT_OK = 0
+#: A mistake in the input (scene, options, an unusable output folder): nothing was
+#: simulated and nothing written.  argparse's own mistakes exit 2 too.
+EXIT_INPUT = 2
+#: The run stopped before its end (:class:`~corliss.errors.RunError`): nothing written.
+#: (3 is a steady run whose balances do not close, EXIT_BALANCE_FAILED; 4 a run that
+#: completed but failed physically, EXIT_PHYSICAL; 130 and 143 an interrupt.)
+EXIT_RUN_STOPPED = 5
+
 
 def _load(path: str | None, units_system: str | None = None):
     scene = load_scene(find_scene(path) if path is not None else default_scene_path())
@@ -91,6 +109,45 @@ def _load(path: str | None, units_system: str | None = None):
         scene = dataclasses.replace(scene, output=dataclasses.replace(scene.output,
                                                                       units=units_system))
     return scene
+
+
+def output_dir(args, scene) -> Path:
+    """The output folder of a command (``--out``, or the scene's ``[output] dir``),
+    checked before any work: every part of it that exists is a folder, and the deepest
+    existing one can be written into (so a simulation never ends in a traceback about
+    its folder).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options (``out``).
+    scene : Scene
+        The scene (its ``output.dir``).
+
+    Returns
+    -------
+    Path
+        The folder.
+
+    Raises
+    ------
+    InputError
+        Naming ``--out`` (or ``output.dir``) when a part of the path is a file or the
+        folder cannot be made or written.
+    """
+    given = getattr(args, "out", None)
+    key, value = ("--out", given) if given is not None else ("output.dir", scene.output.dir)
+    out = Path(value)
+    d = out.absolute()
+    while not d.exists():
+        if d.is_symlink():
+            raise InputError(key, value, f"a folder that can be made ({d} is a broken link)")
+        d = d.parent
+    if not d.is_dir():
+        raise InputError(key, value, f"a folder ({d} is a file)")
+    if not os.access(d, os.W_OK | os.X_OK):
+        raise InputError(key, value, f"a folder this user can write into ({d} is read-only)")
+    return out
 
 
 def _fmt(v, unit, digits=4):
@@ -351,7 +408,7 @@ def cmd_run(args) -> int:
     elif args.until_settled:
         raise InputError("--until-settled", True, "a transient scene: a steady run always "
                          "runs until periodic")
-    out = Path(args.out if args.out is not None else scene.output.dir)
+    out = output_dir(args, scene)
     bar = None if args.json else (
         ProgressBar("time") if transient else
         ProgressBar("cycles", tolerance=scene.run.fidelity.convergence_tolerance))
@@ -367,6 +424,7 @@ def cmd_run(args) -> int:
         print_transient(result, files)
     else:
         print_steady(result, files)
+    physical = report_failures(result.summary.get("failures") or [])
     failed = None if transient else balance_failure(result.summary)
     if failed and scene.run.cycles is None:
         print(f"corliss: the run is NOT a result: {failed}; it did not converge (a tighter "
@@ -376,7 +434,28 @@ def cmd_run(args) -> int:
     if failed:
         log.warning("%s after the %d cycles asked for (--cycles): the run is not periodic",
                     failed, scene.run.cycles)
-    return 0
+    return physical
+
+
+def report_failures(failures: list[dict]) -> int:
+    """Say on stderr how a completed run failed physically, and give its exit status.
+
+    Parameters
+    ----------
+    failures : list of dict
+        The summary's ``failures`` (:mod:`corliss.engine.verdict`).
+
+    Returns
+    -------
+    int
+        0 with none, else :data:`~corliss.engine.verdict.EXIT_PHYSICAL`.
+    """
+    if not failures:
+        return EXIT_OK
+    for f in failures:
+        print(f"corliss: the run completed but failed ({f['failure']}): {f['reason']}. "
+              "Its files were written.", file=sys.stderr)
+    return EXIT_PHYSICAL
 
 
 def _inside_working_directory(folder: str) -> None:
@@ -449,8 +528,8 @@ def cmd_gear(args) -> int:
 
     from corliss.plot import plot_gear
     scene = _load(args.scene, args.units)
+    out_dir = output_dir(args, scene)
     gear = build_gear(scene)
-    out_dir = Path(args.out if args.out is not None else scene.output.dir)
     name = f"{scene.name}.gear.png"
     with OutputFiles(out_dir) as out, plain_text():
         fig = plot_gear(gear, units_system=scene.output.units)["figure"]
@@ -493,6 +572,7 @@ def cmd_animate(args) -> int:
     from corliss.engine.model import steady_scene
     from corliss.plot.animation import (animate_gear, exact_linkage_spec, linkage_kind,
                                         write_animation)
+    out_dir = output_dir(args, scene)
     spec, changed = exact_linkage_spec(scene.gear)
     scene = dataclasses.replace(scene, gear=spec)
     gear = build_gear(scene)
@@ -508,7 +588,6 @@ def cmd_animate(args) -> int:
             run = run.replace_run(model="crank_resolved")
         result = simulate(run)
     title = f"{scene.title}: {scene.gear_type}" + (" (the exact linkage)" if changed else "")
-    out_dir = Path(args.out if args.out is not None else scene.output.dir)
     name = f"{scene.name}.animation.{args.format}"
     with plain_text():
         drawn = animate_gear(gear, result, frames=args.frames, units_system=scene.output.units,
@@ -541,6 +620,7 @@ def cmd_design(args) -> int:
     """
     from corliss.files.design_output import design
     scene = _load(args.scene, args.units)
+    out_dir = output_dir(args, scene)
     d = design(scene, cutoff=args.cutoff, cutoff_crank=args.cutoff_crank, lead=args.lead,
                max_opening=args.max_opening, eccentricity=args.eccentricity, lap=args.lap,
                angular_advance=args.angular_advance, lead_angle=args.lead_angle,
@@ -548,9 +628,9 @@ def cmd_design(args) -> int:
                release=args.release,
                compression=args.compression, exhaust_lap=args.exhaust_lap,
                equalise=args.equalise, reference_end=args.reference_end, end=args.end)
-    files = d.write(Path(args.out if args.out is not None else scene.output.dir))
+    files = d.write(out_dir)
     if args.json:
-        print(json.dumps(d.summary(), indent=2))
+        print(json.dumps({"title": d.scene.title, "kind": "design", **d.summary()}, indent=2))
         return 0
     u = "in" if scene.output.units == "US" else "mm"
     q = lambda v: f"{units.to_unit(v, u):.4f} {u}"  # noqa: E731
@@ -564,6 +644,8 @@ def cmd_design(args) -> int:
                   f"lead {q(v.lead_m[k])}, greatest opening {q(v.max_opening_m[k])}")
     else:
         print(f"  setting          {v.setting:.6f} ({v.setting_name})")
+    for w in d.warnings:
+        print(f"  WARNING          {w}")
     for end, ev in d.events.items():
         print(f"  {end:5s} events     cut-off {_fmt(ev['cutoff_frac'], '', 4)}, release "
               f"{_fmt(ev['release_frac'], '', 4)}, compression {_fmt(ev['compression_frac'], '', 4)}"
@@ -616,9 +698,9 @@ def cmd_sweep(args) -> int:
 
 @contextlib.contextmanager
 def _out_dir(path):
-    """The output directory, made and proved writable before the work (a directory
-    that cannot take the files is found before the runs, not after them); made here
-    and left empty by a refused or failed command, it is removed again."""
+    """The output directory (checked by :func:`output_dir`), made and a file written in
+    it before the work, as a study keeps its rows there as they finish; made here and
+    left empty by a refused or failed command, it is removed again."""
     out = Path(path)
     made = not out.exists()
     check_writable(out)
@@ -634,8 +716,9 @@ def _study(args, scene, run):
     """Run a study of many steady runs, ``run(progress, out)``, with a progress bar unless
     ``--json``; write its files; with ``--json`` print its summary instead and return
     no files."""
+    out_dir = output_dir(args, scene)
     bar = None if args.json else ProgressBar("runs")
-    with _out_dir(args.out if args.out is not None else scene.output.dir) as out:
+    with _out_dir(out_dir) as out:
         try:
             result = run(bar, out)
         finally:
@@ -676,18 +759,31 @@ def print_verdict(result) -> None:
     result : CompareResult
         The throttling-versus-cut-off study (:func:`corliss.studies.compare.compare`).
     """
+    from corliss.studies.compare import DEFAULT_CHEST_OF_SWEPT
     us = result.scene.output.units == "US"
     rate = (lambda v: v / units.POUND_kg) if us else (lambda v: v)
     unit = "lb/h" if us else "kg/h"
     s = result.summary
     print(f"{s['title']}: throttling or cut-off?")
-    speeds = result.points["speed_rpm"]
-    print(f"  {speeds.max():.1f} to {speeds.min():.1f} rpm from no load to full (the "
-          f"governor's droop)" if s["governor_droop_applied"] else f"  {s['speed_rpm']:.0f} rpm")
+    pts = result.points
+    lo, hi = min(s["loads"]), max(s["loads"])
+    if s["governor_droop_applied"]:
+        by_load = pts.groupby("load_frac")["speed_rpm"].first()
+        print(f"  {by_load.loc[lo]:.1f} rpm at {100 * lo:.0f} % load to {by_load.loc[hi]:.1f} "
+              f"rpm at {100 * hi:.0f} %: speeds on the governor's static characteristic, "
+              "full load at the bottom of its travel (--droop)")
+    else:
+        print(f"  every load at {s['speed_rpm']:.1f} rpm, the scene's speed: the two "
+              "governings compared at one speed (--droop runs each load on the governor's "
+              "static characteristic instead)")
+    chest_from = {"scene": "the scene's", "compare": "the [compare] section's",
+                  "default": f"none in the scene: {DEFAULT_CHEST_OF_SWEPT:g} of the swept "
+                             "volume, which the throttled engine draws down between "
+                             "admissions"}[s["chest_volume_source"]]
     print(f"  rated {s['rated_power_W'] / (units.HP_W if us else 1e3):.1f} "
           f"{'hp' if us else 'kW'} ({s['power_basis']}), chest "
-          f"{s['chest_volume_m3'] / (units.FOOT_m ** 3 if us else 1.0):.3g} {'ft3' if us else 'm3'}; "
-          f"throttled at setting {s['variants']['throttling']['fixed']:.3g}, cut-off over "
+          f"{s['chest_volume_m3'] / (units.FOOT_m ** 3 if us else 1.0):.3g} {'ft3' if us else 'm3'} "
+          f"({chest_from}); throttled at setting {s['variants']['throttling']['fixed']:.3g}, cut-off over "
           f"settings {s['variants']['cutoff']['knob_range'][0]:.3g} to "
           f"{s['variants']['cutoff']['knob_range'][1]:.3g}; fidelity {s['fidelity']}")
     print(f"  {'load':>5s} {'condensation':>12s} {'throttled':>10s} {'cut-off':>10s} "
@@ -704,6 +800,10 @@ def print_verdict(result) -> None:
               + (f"{r.willans_slope_kg_per_kWh * units.HP_W / 1e3 / units.POUND_kg:.2f} lb/h per ihp"
                  if us else f"{r.willans_slope_kg_per_kWh:.2f} kg/h per kW")
               + f" (R2 {r.willans_r2_frac:.5f})")
+    if s["willans_negative_intercepts"]:
+        print(f"  NEGATIVE INTERCEPT  {', '.join(s['willans_negative_intercepts'])}: no steam "
+              "at no load is less than none, so those points do not lie on a straight "
+              "Willans line (see the table)")
     if s["unreached_points"]:
         print(f"  {s['unreached_points']} operating point(s) beyond the engine's reach "
               "(status 'unreached' in the table)")
@@ -728,11 +828,13 @@ def cmd_compare(args) -> int:
         :class:`~corliss.errors.InputError`, which :func:`main` turns into 2).
     """
     from corliss.studies.compare import DEFAULT_LOADS, compare
+    if args.droop and args.no_droop:
+        raise InputError("--droop", True, "--droop or --no-droop, not both")
     scene = _load(args.scene, args.units)
     loads = _loads(args.loads) if args.loads else list(DEFAULT_LOADS)
     result, files = _study(args, scene, lambda bar, out: compare(
         scene, loads, condensation=args.with_condensation, fidelity=args.fidelity,
-        droop=not args.no_droop, progress=bar))
+        droop=args.droop, progress=bar))
     if files is None:
         return 0
     print_verdict(result)
@@ -798,10 +900,10 @@ def cmd_fit(args) -> int:
     """
     from corliss.files.fit_output import fit, print_fit
     scene = _load(args.scene, args.units)
-    with _out_dir(args.out if args.out is not None else scene.output.dir) as out:
-        result = fit(scene, args.card, args.vary, fidelity=args.fidelity, refine=args.refine,
-                     bootstrap=args.bootstrap, seed=args.seed)
-        files = result.write(out, plots=not args.no_plots)
+    out_dir = output_dir(args, scene)
+    result = fit(scene, args.card, args.vary, fidelity=args.fidelity, refine=args.refine,
+                 bootstrap=args.bootstrap, seed=args.seed)
+    files = result.write(out_dir, plots=not args.no_plots)
     if args.json:
         print(summary_json(result.summary))
     else:
@@ -966,8 +1068,17 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("-v", "--verbose", action="store_true",
                    help="log corliss's progress messages to stderr")
     sub = p.add_subparsers(dest="command", required=True)
+    # -v also after the subcommand (``corliss run -v``); SUPPRESS keeps the top
+    # level's value when it is not given there
+    common = argparse.ArgumentParser(add_help=False)
+    common.add_argument("-v", "--verbose", action="store_true", default=argparse.SUPPRESS,
+                        help="log corliss's progress messages to stderr")
+
+    def _subcommand(subparsers, name, **kw):
+        return subparsers.add_parser(name, parents=[common], **kw)
+
     units_help = "units of the CSVs and figures (default: the scene's [output] units)"
-    r = sub.add_parser("run", help="simulate a scene and write its card, CSV and meta")
+    r = _subcommand(sub, "run", help="simulate a scene and write its card, CSV and meta")
     r.add_argument("scene", nargs="?", help="scene TOML, or a bundled scene's name "
                    "(default: the bundled default scene)")
     r.add_argument("--out", help="output directory (default: the scene's [output] dir)")
@@ -988,17 +1099,17 @@ def build_parser() -> argparse.ArgumentParser:
                    help="with --from-meta: run the meta file's scene text as it is now, "
                         "though it no longer matches the SHA-256 and tables recorded")
     r.set_defaults(func=cmd_run)
-    e = sub.add_parser("events", help="valve events of each end, without simulating")
+    e = _subcommand(sub, "events", help="valve events of each end, without simulating")
     e.add_argument("scene", help="scene TOML or a bundled scene's name")
     e.add_argument("--json", action="store_true", help="print JSON")
     e.add_argument("--settings", help="gear settings to list, e.g. 0,0.5,1 (link block u/c)")
     e.set_defaults(func=cmd_events)
-    gp = sub.add_parser("gear", help="valve travel and Zeuner diagram of a scene's gear")
+    gp = _subcommand(sub, "gear", help="valve travel and Zeuner diagram of a scene's gear")
     gp.add_argument("scene", help="scene TOML or a bundled scene's name")
     gp.add_argument("--out", help="output directory (default: the scene's [output] dir)")
     gp.add_argument("--units", choices=("US", "SI"), help=units_help)
     gp.set_defaults(func=cmd_gear)
-    an = sub.add_parser("animate", help="the gear in motion, its valve over the ports, "
+    an = _subcommand(sub, "animate", help="the gear in motion, its valve over the ports, "
                         "the port openings and the card traced, as GIF or HTML")
     an.add_argument("scene", help="scene TOML or a bundled scene's name")
     an.add_argument("--out", help="output directory (default: the scene's [output] dir)")
@@ -1011,7 +1122,7 @@ def build_parser() -> argparse.ArgumentParser:
                     help="fidelity of the steady run whose card is traced (default fast)")
     an.add_argument("--units", choices=("US", "SI"), help=units_help)
     an.set_defaults(func=cmd_animate)
-    ds = sub.add_parser("design", help="a valve (or a gear's setting) for the events asked: "
+    ds = _subcommand(sub, "design", help="a valve (or a gear's setting) for the events asked: "
                         "a runnable scene and its Zeuner and Bilgram diagrams")
     ds.add_argument("scene", nargs="?", help="scene TOML or a bundled scene's name whose "
                     "engine, ports and rods are kept (default: the bundled default scene)")
@@ -1040,7 +1151,7 @@ def build_parser() -> argparse.ArgumentParser:
                     "the figures (default: the scene's)")
     ds.add_argument("--json", action="store_true", help="print the design as JSON")
     ds.set_defaults(func=cmd_design)
-    sw = sub.add_parser("sweep", help="steady cards across the load range: Willans line")
+    sw = _subcommand(sub, "sweep", help="steady cards across the load range: Willans line")
     sw.add_argument("scene", help="scene TOML or a bundled scene's name (a transient one "
                     "runs steady at its speed)")
     sw.add_argument("--settings", help="gear settings, e.g. 0,0.25,0.5,0.75,1")
@@ -1051,7 +1162,7 @@ def build_parser() -> argparse.ArgumentParser:
                     help="override the scene's fidelity preset")
     sw.add_argument("--json", action="store_true", help="print the summary as JSON")
     sw.set_defaults(func=cmd_sweep)
-    cp = sub.add_parser("compare", help="throttling against cut-off governing across the "
+    cp = _subcommand(sub, "compare", help="throttling against cut-off governing across the "
                         "load range, with and without condensation")
     cp.add_argument("scene", help="scene TOML or a bundled scene's name (its gear needs a "
                     "setting)")
@@ -1061,13 +1172,16 @@ def build_parser() -> argparse.ArgumentParser:
                     help="with the wall-heat effect, without, or both (default)")
     cp.add_argument("--fidelity", choices=("reference", "standard", "fast"),
                     help="the tier the operating points are refined on (default the scene's)")
+    cp.add_argument("--droop", action="store_true", help="each load at a speed on the "
+                    "governor's static characteristic, full load at the bottom of its travel "
+                    "(default: every load at the scene's speed)")
     cp.add_argument("--no-droop", action="store_true", help="every load at the scene's speed "
-                    "(default: at the speed the scene's governor holds at that load)")
+                    "(the default; kept for scripts that ask for it)")
     cp.add_argument("--out", help="output directory (default: the scene's [output] dir)")
     cp.add_argument("--units", choices=("US", "SI"), help=units_help)
     cp.add_argument("--json", action="store_true", help="print the summary as JSON")
     cp.set_defaults(func=cmd_compare)
-    st = sub.add_parser("study", help="steady runs over a grid, Latin hypercube or Monte "
+    st = _subcommand(sub, "study", help="steady runs over a grid, Latin hypercube or Monte "
                         "Carlo design of scene keys, locally or on a Dask cluster")
     st.add_argument("scene", help="scene TOML or a bundled scene's name (a transient one "
                     "runs steady at its speed)")
@@ -1098,7 +1212,7 @@ def build_parser() -> argparse.ArgumentParser:
                     "the rows its partial file in --out lacks")
     st.add_argument("--json", action="store_true", help="print the summary as JSON")
     st.set_defaults(func=cmd_study)
-    ft = sub.add_parser("fit", help="calibrate scene keys to a measured indicator card")
+    ft = _subcommand(sub, "fit", help="calibrate scene keys to a measured indicator card")
     ft.add_argument("scene", help="scene TOML or a bundled scene's name (steady)")
     ft.add_argument("card", help="card CSV, its header naming each column's unit (e.g. "
                     "end,piston_position [in],pressure [psig]; or a card corliss run wrote)")
@@ -1117,11 +1231,11 @@ def build_parser() -> argparse.ArgumentParser:
     ft.add_argument("--no-plots", action="store_true", help="no fit-card.png")
     ft.add_argument("--json", action="store_true", help="print the fit as JSON")
     ft.set_defaults(func=cmd_fit)
-    b = sub.add_parser("bench", help="run the accuracy-versus-time study (source checkout)")
+    b = _subcommand(sub, "bench", help="run the accuracy-versus-time study (source checkout)")
     b.add_argument("--repeats", type=int, default=3, help="repeats per setting (median)")
     b.add_argument("--out", help="directory for the CSV and plot (default benchmarks/results)")
     b.set_defaults(func=cmd_bench)
-    wb = sub.add_parser("workbench", help="a local page to set the gear and steam by hand "
+    wb = _subcommand(sub, "workbench", help="a local page to set the gear and steam by hand "
                         "and watch the card redrawn")
     wb.add_argument("scene", nargs="?", help="scene TOML or a bundled scene's name "
                     "(default: the bundled default scene)")
@@ -1132,11 +1246,11 @@ def build_parser() -> argparse.ArgumentParser:
     wb.add_argument("--fidelity", choices=("reference", "standard", "fast"), default="fast",
                     help="fidelity the page starts at (default fast)")
     wb.set_defaults(func=cmd_workbench)
-    ls = sub.add_parser("list", help="list bundled scenes and the registries")
+    ls = _subcommand(sub, "list", help="list bundled scenes and the registries")
     ls.add_argument("what", choices=("scenes", "gears", "effects", "governors", "keys"))
     ls.add_argument("name", nargs="?", help="with keys: the gear or governor")
     ls.set_defaults(func=cmd_list_keys)
-    ex = sub.add_parser("explain", help="what a scene key, section, gear, governor or "
+    ex = _subcommand(sub, "explain", help="what a scene key, section, gear, governor or "
                         "effect is: kind, units, default, range, who reads it")
     ex.add_argument("key", help="e.g. valve_gear.lap, governor.ball_mass, run.effects, "
                     "slide_valve, engine")
@@ -1193,10 +1307,13 @@ def main(argv: list[str] | None = None) -> int:
     Returns
     -------
     int
-        The exit status: the subcommand's (0), 2 for a user's mistake
-        (:class:`~corliss.errors.InputError`) or a run that cannot go on
+        The exit status (``docs/exit-codes.md``): the subcommand's (0; 3 for a steady
+        run whose balances do not close, 4 for a run that completed but failed
+        physically, their files written), 2 for a user's mistake
+        (:class:`~corliss.errors.InputError`), 5 for a run that cannot go on
         (:class:`~corliss.errors.RunError`), each reported in one paragraph on stderr
-        with nothing written, and 0 when the output pipe closes early.
+        with nothing written, 130 and 143 when interrupted or terminated, and 0 when
+        the output pipe closes early.
     """
     args = build_parser().parse_args(argv)
     beat = configure_logging(args.verbose)
@@ -1217,13 +1334,13 @@ def main(argv: list[str] | None = None) -> int:
     except InputError as exc:
         print(f"corliss: {exc} Nothing was simulated and no files were written.",
               file=sys.stderr)
-        return 2
+        return EXIT_INPUT
     except StudyStopped as exc:
         print(f"corliss: {exc}.", file=sys.stderr)
         return EXIT_TERMINATED if exc.signal_name == "SIGTERM" else EXIT_INTERRUPTED
     except RunError as exc:
         print(f"corliss: the run stopped: {exc}. No files were written.", file=sys.stderr)
-        return 2
+        return EXIT_RUN_STOPPED
     except BrokenPipeError:  # output piped into `head` and the like
         sys.stdout = open(os.devnull, "w")
         return 0

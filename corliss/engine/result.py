@@ -33,6 +33,7 @@ from corliss.engine import crank_effort as ce
 from corliss.engine.condensation import marks_condensation_kg
 from corliss.engine.options import record_of
 from corliss.engine.speed_metrics import load_step_metrics, step_time_of
+from corliss.engine.verdict import steady_failures, transient_failures
 from corliss.frames.frame import Frame
 from corliss.thermo.steam import HEOSSteam, TableSteam
 
@@ -130,8 +131,17 @@ class Result:
     def summary(self) -> dict:
         """The run's summary (SI unless a key names its unit); computed once."""
         if self._summary is None:
-            self._summary = self._make_summary()
+            summary = self._make_summary()
+            failures = self._failures(summary)
+            if failures is not None:
+                summary["failures"] = failures
+            self._summary = summary
         return self._summary
+
+    def _failures(self, summary: dict) -> list[dict] | None:
+        """The ways a completed run failed physically (see :mod:`corliss.engine.verdict`);
+        None for a kind that reports none."""
+        return None
 
     def _end_condensation(self, end, ev, geo, e_idx, shift_deg, row, ts, at, sat) -> dict:
         """The condensation summary of one end (``end`` with its cylinder's prefix; its
@@ -617,6 +627,9 @@ class SteadyResult(Result):
         return {"jacket_heat_W": q * rev_per_s, "jacket_steam_kg_per_h": jacket_kg_h,
                 "water_rate_with_jacket_kg_per_kWh": total / power_kW if power_kW > 0 else None}
 
+    def _failures(self, summary: dict) -> list[dict]:
+        return steady_failures(summary, fixed_cycles=self.scene.run.cycles is not None)
+
     def _make_summary(self) -> dict:
         run = self.scene.run
         row = self._last_row()
@@ -745,6 +758,12 @@ class TransientResult(Result):
     def step_time_s(self) -> float | None:
         """The time of the load's step [s] (None for a load without one)."""
         return step_time_of(self.scene.load)
+
+    def _failures(self, summary: dict) -> list[dict]:
+        z_end = (float(self.cycles["governor_z_frac"].iloc[-1])
+                 if "governor_z_frac" in self.cycles else None)
+        return transient_failures(summary, self.mechanism, z_end,
+                                  until_settled=self.scene.run.until_settled)
 
     @property
     def metrics(self) -> dict:
@@ -887,8 +906,11 @@ class SweepResult(Result):
         for knob, pts in groups:
             a, b, r2 = willans_fit(pts) if len(pts) >= 2 else (None, None, None)
             pre = "" if self.knob != "both" else f"{knob}_"
+            # compare's names for the same line: the slope as kg/kWh (b [kg/h per W]
+            # x 1000 W/kW), the fit's R2 as a fraction
             out.update({f"{pre}willans_intercept_kg_per_h": a,
-                        f"{pre}willans_slope_kg_per_h_per_W": b, f"{pre}willans_r2": r2})
+                        f"{pre}willans_slope_kg_per_kWh": None if b is None else 1e3 * b,
+                        f"{pre}willans_r2_frac": r2})
         out.update({"rhs_evaluations": self.rhs_evaluations, "wall_time_s": self.wall_time_s})
         return out
 

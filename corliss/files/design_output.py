@@ -84,13 +84,56 @@ class Design:
         """
         return write_design(self, out_dir)
 
+    @property
+    def warnings(self) -> list[str]:
+        """What the design gives at an end that was not asked for, in words.
+
+        A slide valve is designed for the lead and opening asked at the reference end;
+        equal cut-offs with a finite rod then give the other end laps of its own, and
+        with them its own lead and opening.  Warned: an end whose lead is more than
+        twice the asked one and 1/16 in (1.6 mm) beyond it, or less than half of it; an
+        end whose greatest opening passes the port's width by more than a quarter of
+        it (the valve overtravels the port, its travel spent past the port's edge).
+
+        Returns
+        -------
+        list of str
+            One sentence per finding (empty for a design without one, and for a gear's
+            setting).
+        """
+        v = self.valve
+        if not isinstance(v, SlideValveDesign):
+            return []
+        us = self.scene.output.units == "US"
+        q = (lambda m: f"{units.to_unit(m, 'in'):.3g} in") if us else \
+            (lambda m: f"{m * 1e3:.3g} mm")
+        ref = 0 if v.reference_end == "head" else 1
+        out = []
+        lead0 = v.lead_m[ref]
+        for k, end in enumerate(("head", "crank")):
+            if k != ref and lead0 > 0.0 and (
+                    (v.lead_m[k] > 2.0 * lead0 and v.lead_m[k] - lead0 > units.INCH_m / 16.0)
+                    or v.lead_m[k] < 0.5 * lead0):
+                out.append(f"{end} end: lead {q(v.lead_m[k])} against the {q(lead0)} asked "
+                           f"at the {v.reference_end} end (equal cut-offs give the ends laps, "
+                           "and so leads, of their own; --equalise laps gives equal laps)")
+        width = getattr(self.scene.gear, "port_width_m", None)
+        if width:
+            for k, end in enumerate(("head", "crank")):
+                if v.max_opening_m[k] > 1.25 * width:
+                    out.append(f"{end} end: greatest opening {q(v.max_opening_m[k])} on a "
+                               f"{q(width)} port: the valve overtravels the port by "
+                               f"{q(v.max_opening_m[k] - width)}")
+        return out
+
     def summary(self) -> dict:
         """The design as plain JSON-able values (SI, unit in every name).
 
         Returns
         -------
         dict
-            ``base_scene``, ``gear`` and ``events``; for a slide valve its
+            ``base_scene``, ``gear``, ``events`` and ``warnings`` (:attr:`warnings`);
+            for a slide valve its
             ``eccentricity_m``, ``angular_advance_deg``, ``lap_m``, ``exhaust_lap_m``,
             ``lead_m`` and ``max_opening_m`` (head, crank), ``equalise``,
             ``reference_end``, its Zeuner (infinite-rod) equivalent and the events
@@ -98,7 +141,8 @@ class Design:
             ``setting_name``, ``end``, ``cutoff_frac`` and ``asked_deg``.
         """
         v = self.valve
-        out = {"base_scene": self.base, "gear": self.scene.gear_type, "events": self.events}
+        out = {"base_scene": self.base, "gear": self.scene.gear_type, "events": self.events,
+               "warnings": self.warnings}
         if isinstance(v, SlideValveDesign):
             out.update(eccentricity_m=v.eccentricity_m,
                        angular_advance_deg=math.degrees(v.angular_advance_rad),

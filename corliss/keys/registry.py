@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import Callable
+from typing import Any, Callable
 
 from corliss.errors import InputError
 from corliss.keys.declared import Key, KeyGroup, group
@@ -30,8 +30,8 @@ class RegistryEntry:
 
     name: str
     summary: str
-    parse: Callable[[object], object]        # corliss.keys.toml_table.Table -> spec
-    build: Callable[[object], object]        # spec -> gear or governor
+    parse: Callable[..., Any]                # corliss.keys.toml_table.Table -> spec
+    build: Callable[..., Any]                # spec -> gear or governor
     keys: KeyGroup | None = None
 
 

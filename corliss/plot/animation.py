@@ -1106,6 +1106,38 @@ def render_frames(drawn: dict) -> list:
     return out
 
 
+#: The player's button icons as characters, in place of the icon font matplotlib's
+#: player loads from a content-delivery network (a page that is blank offline).
+_PLAYER_ICONS = {"fa fa-play fa-flip-horizontal": "&#9664;", "fa fa-fast-backward": "&#9198;",
+                 "fa fa-fast-forward": "&#9197;", "fa fa-step-backward": "&#9204;&#8203;|",
+                 "fa fa-step-forward": "|&#9205;", "fa fa-minus": "&minus;",
+                 "fa fa-plus": "+", "fa fa-pause": "&#10073;&#10073;", "fa fa-play": "&#9654;"}
+
+
+def self_contained_html(html: str) -> str:
+    """matplotlib's ``to_jshtml`` page with nothing fetched from elsewhere.
+
+    The player's stylesheet link (an icon font on a content-delivery network) is
+    removed and each icon written as a character, so the page works offline and makes
+    no request; the frames are already inline (``data:`` URIs).
+
+    Parameters
+    ----------
+    html : str
+        What ``Animation.to_jshtml`` returned.
+
+    Returns
+    -------
+    str
+        The same player, self-contained.
+    """
+    import re
+    html = re.sub(r"<link[^>]*?href=\"https?://[^\"]*\"[^>]*>", "", html, flags=re.S)
+    for cls, char in _PLAYER_ICONS.items():     # longest class first: the flipped play
+        html = html.replace(f'<i class="{cls}"></i>', f"<span>{char}</span>")
+    return html
+
+
 def write_animation(drawn: dict, path, fmt: str = "gif", fps: float = 12.0) -> None:
     """Write an animation from :func:`animate_gear` to ``path``.
 
@@ -1141,7 +1173,7 @@ def write_animation(drawn: dict, path, fmt: str = "gif", fps: float = 12.0) -> N
         q[0].save(str(path), format="GIF", save_all=True, append_images=q[1:],
                   duration=int(round(1000.0 / fps)), loop=0)
     elif fmt == "html":
-        html = drawn["animation"].to_jshtml(fps=fps, default_mode="loop")
+        html = self_contained_html(drawn["animation"].to_jshtml(fps=fps, default_mode="loop"))
         with open(path, "w", encoding="utf-8") as f:
             f.write("<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"></head><body>\n")
             f.write(html)

@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from corliss.keys import units
+from corliss.plot.labels import place_clear
 
 _EVENT_MARK = {"cutoff": ("c/o", "v"), "release": ("rel", "s"), "compression": ("comp", "^"),
                "admission": ("adm", "o")}
@@ -40,7 +41,9 @@ def plot_card(result, ax=None, units_system: str | None = None, prefix: str = ""
     -------
     dict
         ``{"ax": ax, "lines": {"head": Line2D, "crank": Line2D}, "markers": [Line2D,
-        ...]}``, the event markers in the order drawn.
+        ...], "labels": [Annotation, ...]}``, the event markers and their labels in the
+        order drawn (each label placed where neither card line runs,
+        :func:`corliss.plot.labels.place_clear`).
     """
     import matplotlib.pyplot as plt
 
@@ -61,11 +64,18 @@ def plot_card(result, ax=None, units_system: str | None = None, prefix: str = ""
         (lines[end],) = ax.plot(x, y, label=f"{end} end", **style[end])
     xs = units.to_unit(stroke, x_unit)
     ax.axhline(0.0, color="0.35", lw=0.8)
-    ax.text(xs * 0.5, 0.0, "atmosphere", ha="center", va="bottom", fontsize=8, color="0.35")
+    # the two lines named beyond the card's right edge, where no curve runs
+    beside = ax.get_yaxis_transform()       # x in the axes' fraction, y in data
+    ax.annotate("atmosphere", (1.0, 0.0), xycoords=beside, xytext=(3, 0),
+                textcoords="offset points", ha="left", va="center", fontsize=8,
+                color="0.35", annotation_clip=False)
     vac = units.to_unit(0.0, p_unit, barometer_Pa=baro)
     ax.axhline(vac, color="0.6", lw=0.6, ls=":")
-    ax.text(xs * 0.995, vac, "zero pressure", ha="right", va="bottom", fontsize=7, color="0.5")
+    ax.annotate("zero pressure", (1.0, vac), xycoords=beside, xytext=(3, 0),
+                textcoords="offset points", ha="left", va="center", fontsize=7, color="0.5",
+                annotation_clip=False)
     markers = []
+    labels = []
     events = result.events if prefix == "" else (getattr(result, "lp_events", None) or {})
     for end, ev in events.items():
         card = cards[end]
@@ -85,8 +95,8 @@ def plot_card(result, ax=None, units_system: str | None = None, prefix: str = ""
             xm = units.to_unit(frac * stroke, x_unit)
             ym = units.to_unit(p, p_unit, barometer_Pa=baro)
             markers.append(ax.plot([xm], [ym], m, ms=4, color=style[end]["color"])[0])
-            ax.annotate(label, (xm, ym), textcoords="offset points", xytext=(3, 4), fontsize=7,
-                        color=style[end]["color"])
+            labels.append(ax.annotate(label, (xm, ym), textcoords="offset points",
+                                      xytext=(3, 4), fontsize=7, color=style[end]["color"]))
     s = result.summary
     ax.set_xlim(-0.02 * xs, 1.02 * xs)
     ax.set_xlabel(f"piston position from head-end dead centre [{x_unit}]")
@@ -105,10 +115,15 @@ def plot_card(result, ax=None, units_system: str | None = None, prefix: str = ""
                  f"{units.to_unit(mep, 'psia' if system == 'US' else 'bar'):.{1 if system == 'US' else 2}f} "
                  f"{'psi' if system == 'US' else 'bar'}", fontsize=10)
     ax.grid(True, color="0.9", lw=0.5)
-    ax.legend(loc="center", fontsize=8, frameon=False)
+    # the legend outside the diagram, where it crosses no curve
+    ax.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=8, frameon=False)
     for side in ("top", "right"):
         ax.spines[side].set_visible(False)
-    return {"ax": ax, "lines": lines, "markers": markers}
+    # the event labels near their points, where no curve runs (the limits fixed first:
+    # they set where a text lands)
+    ax.set_ylim(*ax.get_ylim())
+    place_clear(labels, list(lines.values()))
+    return {"ax": ax, "lines": lines, "markers": markers, "labels": labels}
 
 
 def plot_crank_effort(result, ax=None, units_system: str | None = None) -> dict:

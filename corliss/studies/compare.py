@@ -418,7 +418,7 @@ def rated_power_W(scene, brake: bool) -> float | None:
 
 
 def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
-            fidelity: str | None = None, workers: int | None = None, droop: bool = True,
+            fidelity: str | None = None, workers: int | None = None, droop: bool = False,
             progress: Callable[[int, int], None] | None = None, **variant_options):
     """Run the throttling-versus-cut-off study of ``scene``'s engine.
 
@@ -438,9 +438,13 @@ def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
     workers : int, optional
         Processes (default: every core).
     droop : bool
-        With a governor in the scene, run each load at the speed the governor holds
-        there (:func:`droop_speeds`); otherwise, and without a governor, at the scene's
-        speed.
+        False (default): every load at the scene's speed, so the two governings are
+        compared at one speed and differ only in how they meet the load (the summary's
+        ``speed_basis`` is ``"constant"``).  True, with a governor in the scene: each
+        load at a speed on the governor's static characteristic, full load at the
+        bottom of its working travel (:func:`droop_speeds`; ``"governor_droop"``), an
+        assumption about where the governor sits that a transient run of the scene
+        need not share.
     progress : callable, optional
         Called with (runs done, runs in all).
     **variant_options
@@ -476,6 +480,8 @@ def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
         for k, v in dataclasses.asdict(scene.compare).items():
             if v is not None:
                 variant_options.setdefault(k, v)
+    chest_source = ("compare" if variant_options.get("chest_volume_m3") is not None else
+                    "scene" if scene.supply.chest_volume_m3 is not None else "default")
     var = variants(scene, **variant_options)
     conds = {"both": (False, True), "on": (True,), "off": (False,)}[condensation]
     brake = scene.run.has("friction")
@@ -501,8 +507,10 @@ def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
     # one pool for both rounds: a worker pays its imports and steam table once
     pool = ProcessPoolExecutor(max_workers=workers) if workers > 1 else None
     try:
-        return _solve(scene, loads, var, groups, grid_tasks, grid_keys, rated, brake, tier,
-                      pool, progress, total, t0, workers, speeds)
+        result = _solve(scene, loads, var, groups, grid_tasks, grid_keys, rated, brake, tier,
+                        pool, progress, total, t0, workers, speeds)
+        result.chest_source = chest_source
+        return result
     finally:
         if pool is not None:
             pool.shutdown()

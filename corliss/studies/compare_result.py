@@ -48,6 +48,10 @@ class CompareResult(Result):
         Processes used [-].
     droop : bool
         Whether each load ran at its governor's speed (``speed_rpm`` in the table).
+    chest_source : str
+        Where the chest volume came from: ``"scene"`` (its supply), ``"compare"`` (the
+        ``[compare]`` section or an argument) or ``"default"``
+        (:data:`~corliss.engine.compare.DEFAULT_CHEST_OF_SWEPT` of the swept volume).
 
     Notes
     -----
@@ -72,6 +76,7 @@ class CompareResult(Result):
     pipe_diameter_m: float = float("nan")
     workers: int = 1
     droop: bool = False
+    chest_source: str = "default"
 
     @property
     def points(self) -> pd.DataFrame:
@@ -139,7 +144,12 @@ class CompareResult(Result):
                 "power_basis": "brake" if self.brake else "indicated",
                 "speed_rpm": s.run.speed_rad_s * 60.0 / (2.0 * np.pi),
                 "governor_droop_applied": self.droop,
+                "speed_basis": "governor_droop" if self.droop else "constant",
                 "variants": self.variants, "chest_volume_m3": self.chest_volume_m3,
+                "chest_volume_source": self.chest_source,
+                "willans_negative_intercepts": [
+                    f"{r.variant}/{r.condensation}" for r in w.itertuples()
+                    if r.willans_intercept_kg_per_h < 0.0],
                 "pipe_diameter_m": self.pipe_diameter_m,
                 "willans": w.replace({np.nan: None}).to_dict(orient="records"),
                 "verdict": v.replace({np.nan: None}).to_dict(orient="records"),
