@@ -275,7 +275,7 @@ def print_transient(result, files) -> None:
               "or --until-settled)")
     if s["hunting"]:
         print(f"  HUNTING          period {s['hunting_period_s']:.2f} s, governor swing "
-              f"{100 * s['governor_swing']:.1f} % of travel")
+              f"{100 * s['governor_swing_frac']:.1f} % of travel")
     if s["stalled"]:
         print("  STALLED          the load stopped the engine")
     print(f"  wall time        {s['wall_time_s']:.2f} s")

@@ -768,7 +768,8 @@ class TransientResult(Result):
     @property
     def metrics(self) -> dict:
         """Regulation, largest deviation, settling and hunting (see speed_metrics)."""
-        return load_step_metrics(self.cycles, self.step_time_s, self.scene.run.settling_band)
+        return load_step_metrics(self.cycles, self.step_time_s, self.scene.run.settling_band,
+                                 self.timeseries)
 
     def _make_summary(self) -> dict:
         s = self.scene
