@@ -84,6 +84,7 @@ from corliss.files.run_output import (OutputFiles, plain_name, plain_text, scene
                                       summary_json)
 from corliss.keys import limits, units
 from corliss.logs import NOTICE
+from corliss.progress import ProgressBar, TqdmHandler
 from corliss.scene.loader import bundled_scenes, default_scene_path, find_scene, load_scene
 
 log = logging.getLogger("corliss")
@@ -287,65 +288,10 @@ def _print_files(files) -> None:
         print(f"  wrote {kind:12s} {path}")
 
 
-class ProgressBar:
-    """A progress line on stderr, shown on a terminal once a run has taken a while.
-
-    Called as ``bar(done, total)`` (the ``progress`` callback of a run or a study);
-    short runs and logs (a stream that is not a terminal) get nothing.  The time to go
-    is shown only once a tenth of the work is done, when the rate it is estimated from
-    has settled.
-
-    Parameters
-    ----------
-    kind : str, optional
-        What the two numbers it is called with are: ``"time"`` (simulated and total
-        seconds), ``"runs"`` (runs done and in all) or ``"cycles"`` (the cycle number
-        and the relative change of work, the total unknown until the run is periodic:
-        no estimate is shown).
-    delay_s : float, optional
-        Nothing is shown before the run has taken this long [s].
-    width : int, optional
-        Characters of the bar.
-    stream : file-like, optional
-        Where to write (default ``sys.stderr``).
-    tolerance : float, optional
-        The periodicity tolerance shown beside a ``"cycles"`` line [-].
-    """
-
-    def __init__(self, kind: str = "time", delay_s: float = 2.0, width: int = 30,
-                 stream=None, tolerance: float | None = None):
-        self.kind = kind
-        self.t0 = time.perf_counter()
-        self.delay = delay_s
-        self.width = width
-        self.stream = stream or sys.stderr
-        self.tolerance = tolerance
-        self.shown = False
-
-    def __call__(self, done: float, total: float) -> None:
-        elapsed = time.perf_counter() - self.t0
-        if elapsed < self.delay or not self.stream.isatty():
-            return
-        if self.kind == "cycles":
-            text = (f"  cycle {int(done)}: work changed {total:.2e} over the last cycle"
-                    + (f" (periodic at {self.tolerance:.0e})" if self.tolerance else "")
-                    + f", {elapsed:5.1f} s elapsed")
-        else:
-            frac = min(max(done / total, 0.0), 1.0) if total > 0 else 1.0
-            n = int(round(frac * self.width))
-            what = (f"{done:7.2f} of {total:g} s simulated" if self.kind == "time" else
-                    f"{int(done)} of {int(total)} runs")
-            eta = (f", ~{elapsed * (1.0 - frac) / frac:4.0f} s to go" if frac >= 0.1 else "")
-            text = f"  [{'#' * n}{'.' * (self.width - n)}] {what}, {elapsed:5.1f} s elapsed{eta}"
-        self.stream.write("\r" + text + " ")
-        self.stream.flush()
-        self.shown = True
-
-    def close(self) -> None:
-        """End the progress line (a newline) if one was shown."""
-        if self.shown:
-            self.stream.write("\n")
-            self.stream.flush()
+def _bar(kind: str, tolerance: float | None = None) -> ProgressBar:
+    """The command line's progress bar: on a terminal only (a log gets none), and only
+    once the work has taken two seconds."""
+    return ProgressBar(kind, delay_s=2.0, disable=None, tolerance=tolerance)
 
 
 def cmd_run(args) -> int:
@@ -408,8 +354,8 @@ def cmd_run(args) -> int:
                          "runs until periodic")
     out = output_dir(args, scene)
     bar = None if args.json else (
-        ProgressBar("time") if transient else
-        ProgressBar("cycles", tolerance=scene.run.fidelity.convergence_tolerance))
+        _bar("time") if transient else
+        _bar("cycles", tolerance=scene.run.fidelity.convergence_tolerance))
     try:
         result = simulate(scene, progress=bar)
     finally:
@@ -699,7 +645,7 @@ def _study(args, scene, run):
     ``--json``; write its files; with ``--json`` print its summary instead and return
     no files."""
     out_dir = output_dir(args, scene)
-    bar = None if args.json else ProgressBar("runs")
+    bar = None if args.json else _bar("runs")
     try:
         result = run(bar)
     finally:
@@ -1235,12 +1181,9 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
-class _Handler(logging.StreamHandler):
-    """Writes to whatever ``sys.stderr`` is at the time (tests capture it)."""
-
-    def emit(self, record):
-        self.stream = sys.stderr
-        super().emit(record)
+class _Handler(TqdmHandler):
+    """Writes to whatever ``sys.stderr`` is at the time (tests capture it), above any
+    progress bar, naming the point of a study a message came from."""
 
 
 def configure_logging(verbose: bool) -> Heartbeat:

@@ -27,13 +27,15 @@ import os
 import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
-from typing import Callable
+from typing import Any
 
 import numpy as np
 
 from corliss.engine.balance import balance_failure
 from corliss.engine.model import steady_scene
 from corliss.engine.steady import run_steady
+from corliss.logs import at_point
+from corliss.progress import progress_for
 from corliss.errors import InputError
 from corliss.scene.loader import Scene, find_scene, load_scene, scene_from_dict
 from corliss.keys.edits import KeyValue, with_keys
@@ -101,8 +103,9 @@ def run_chunk(base: dict, name: str, fidelity: str | None, responses: tuple,
     for run_id, vals in zip(run_ids, values):
         changes = {k: KeyValue(float(v), unit).text() for (k, unit), v in zip(keys, vals)}
         try:
-            r = run_steady(_scene(base, name, fidelity, changes))
-            flat = flatten(r.summary)
+            with at_point(f"run {int(run_id)}: " + ", ".join(f"{k} {v}" for k, v in changes.items())):
+                r = run_steady(_scene(base, name, fidelity, changes))
+                flat = flatten(r.summary)
             nfev += r.rhs_evaluations
             tier = r.property_tier
             why = run_failure(r)
@@ -277,7 +280,7 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
           lhs: int | None = None, monte_carlo: int | None = None, seed: int | None = 0,
           responses=None, fidelity: str | None = None, jobs: int | None = None,
           scheduler=None, chunk_size: int | None = None,
-          progress: Callable[[int, int], None] | None = None) -> StudyResult:
+          progress: Any = None) -> StudyResult:
     """Steady runs of ``scene`` over a design of its keys: ``corliss study``.
 
     Parameters
@@ -311,8 +314,10 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
     chunk_size : int, optional
         Runs per task (default: about four tasks per worker, at most
         :data:`MAX_CHUNK` runs).
-    progress : callable, optional
-        Called with (runs done, runs in all) as tasks finish.
+    progress : None, True, ProgressBar or callable, optional
+        True draws a bar (:mod:`corliss.progress`); a callable is called with (runs
+        done, runs in all) as tasks finish.  Each run's messages name its run and
+        settings.
 
     Returns
     -------
@@ -358,10 +363,11 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
         chunks = _chunks(design, _chunk_size(design.runs, workers, chunk_size))
         args = (base, name, fidelity, responses,
                 tuple((spec.key, spec.unit) for spec in design.specs))
-        if client is not None:
-            parts = _run_dask(client, args, chunks, progress, design.runs)
-        else:
-            parts = _run_local(args, chunks, workers, progress, design.runs)
+        with progress_for(progress, "runs") as bar:
+            if client is not None:
+                parts = _run_dask(client, args, chunks, bar, design.runs)
+            else:
+                parts = _run_local(args, chunks, workers, bar, design.runs)
     finally:
         if own:
             client.close()
