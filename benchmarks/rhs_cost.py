@@ -6,7 +6,7 @@ cycles with dopri5 at rtol 1e-6; the states of the last cycle at 361 shaft angle
 states, repeated ``--reps`` times, timed ``--repeats`` times; the median per call is
 reported in nanoseconds (and the least, the steadier on a shared machine):
 
-* ``rhs``: :func:`corliss.engine.kernel.rhs` as the integrators call it (a compiled
+* ``rhs``: :func:`corliss.engine.kernels.balances.rhs` as the integrators call it (a compiled
   call, the network and table tuples passed to it);
 * ``rhs body inlined``: its two parts inlined into the loop (what the call itself
   costs is the difference);
@@ -52,9 +52,11 @@ import numpy as np
 from numba import njit
 
 import corliss
-from corliss.engine import kernel
+from corliss.engine.kernels import balances, mechanism, properties
 from corliss.engine.crank_resolved import CrankResolved
-from corliss.engine.kernel import balances, node_states, node_volume, port_areas
+from corliss.engine.kernels.balances import balances
+from corliss.engine.kernels.mechanism import node_volume, port_areas
+from corliss.engine.kernels.properties import node_states
 from corliss.engine.steady import assemble
 from corliss.thermo.orifice import port_flow
 from corliss.thermo.steam_table import kappa_at, lookup_flagged, t_sat
@@ -81,7 +83,7 @@ def _loop_rhs(theta, Y, dy, net, tier, tab, perf, pr, cell, reps):
     s = 0.0
     for _ in range(reps):
         for k in range(theta.size):
-            kernel.rhs(theta[k], Y[k], dy, net, tier, tab, perf, pr, cell)
+            balances.rhs(theta[k], Y[k], dy, net, tier, tab, perf, pr, cell)
             s += dy[0]
     return s
 
@@ -189,7 +191,7 @@ def _loop_edges(theta, net, PR, PA, reps):
                     pb, rb, kb = pr[0, b], pr[1, b], pr[3, b]
                 else:
                     pb, rb, kb = res[-1 - b, 0], res[-1 - b, 1], res[-1 - b, 3]
-                s += port_flow(kernel.edge_area(net, e, PA[k]), ecd[e], pa, ra, ka, pb, rb,
+                s += port_flow(mechanism.edge_area(net, e, PA[k]), ecd[e], pa, ra, ka, pb, rb,
                                kb, band, True)
     return s
 
@@ -220,7 +222,7 @@ def per_call(scene_path, reps, repeats, label):
     net, tier, tab, perf, pr, cell = cr.net, cr._tier, cr._tab, cr._perf, cr._pr, cr._cell
     nodes = pr.shape[1]
     dy = np.zeros(Y.shape[1])
-    PR = np.empty((theta.size, kernel.PR_ROWS, nodes))
+    PR = np.empty((theta.size, properties.PR_ROWS, nodes))
     PA = np.empty((theta.size,) + cell.shape)
     _states_of(theta, Y, net, tier, tab, perf, PR, PA)
     RHO = np.ascontiguousarray(PR[:, 1, :])

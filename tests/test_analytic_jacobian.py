@@ -1,6 +1,6 @@
 """The Rosenbrock integrators' analytic Jacobian against differences.
 
-``kernel._jacobian_exact`` builds the Jacobian of the compiled right-hand side over
+``jacobians._jacobian_exact`` builds the Jacobian of the compiled right-hand side over
 the dynamic states (each node's mass and energy) from the derivatives of its parts:
 the steam table's own interpolation in (rho, u) for pressure, enthalpy and the
 port-flow exponent, the closed form of the orifice flow in its two sides' states,
@@ -49,7 +49,7 @@ import pytest
 
 import corliss
 from conftest import make_scene
-from corliss.engine import kernel
+from corliss.engine.kernels import jacobians
 from corliss.engine.crank_resolved import CrankResolved
 from corliss.engine.model import assemble
 from corliss.engine.options import PRESETS
@@ -67,6 +67,14 @@ def _scene(name):
     if name == "steam chest":
         return make_scene(supply={"chest_volume": "3 ft3", "pipe_diameter": "5 in"},
                           run={"effects": ["port_flow", "rod_angularity", "steam_chest"]})
+    if name == "period leak":
+        # the period's linear leaks (chest to exhaust, head to crank), with the chest a
+        # state so that the valve's leak has partials too
+        return make_scene(supply={"chest_volume": "3 ft3", "pipe_diameter": "5 in"},
+                          engine={"leakage_model": "period", "valve_leak_rate": "3 lb/h psi",
+                                  "piston_leak_rate": "1 lb/h psi"},
+                          run={"effects": ["port_flow", "rod_angularity", "steam_chest",
+                                           "leakage"]})
     if name == "perfect steam":
         fid = dataclasses.replace(PRESETS["standard"], name="custom", properties="perfect")
         return make_scene().replace_run(fidelity=fid)
@@ -75,6 +83,7 @@ def _scene(name):
 
 @pytest.mark.parametrize("name, method", [
     ("default", "rosenbrock"), ("steam chest", "rosenbrock"), ("steam chest", "ros4"),
+    ("period leak", "rosenbrock"),
     ("perfect steam", "rosenbrock"), ("high-speed-condensing", "rosenbrock"),
     ("twin-90-degrees", "rosenbrock")])
 def test_analytic_jacobian_matches_central_differences(name, method):
@@ -85,7 +94,7 @@ def test_analytic_jacobian_matches_central_differences(name, method):
     model = assemble(scene, tabulated=True)
     net = model.network(model.portmap)
     crank = CrankResolved(net, model.steam, method, 1e-5)
-    assert kernel._exact_jacobian_holds(crank.net)
+    assert jacobians._exact_jacobian_holds(crank.net)
     # every 10 deg from 3.7 deg: off the PortMap tables' uniform grid of a quarter or
     # half degree, whose nodes are kinks of the areas in crank angle: a sample on one
     # would compare the ports' slopes of one side with differences of the other (a step
@@ -99,19 +108,19 @@ def test_analytic_jacobian_matches_central_differences(name, method):
     for k, th in enumerate(out):
         yk = samples[:, k].copy()
         crank._pr[:] = np.nan         # no evaluation's properties: the full lookups
-        kernel._jacobian_exact(th, yk, J, T, crank.net, crank._tier, crank._tab, crank._perf,
+        jacobians._jacobian_exact(th, yk, J, T, crank.net, crank._tier, crank._tab, crank._perf,
                                crank._pr, crank._cell, jd, slope)
         f0 = crank.rhs(th, yk)
         # after the right-hand side at the same state, as the integrators call it: the
         # node properties taken from that evaluation give the same Jacobian
         J2, T2 = np.zeros_like(J), np.zeros_like(T)
-        kernel._jacobian_exact(th, yk, J2, T2, crank.net, crank._tier, crank._tab,
+        jacobians._jacobian_exact(th, yk, J2, T2, crank.net, crank._tier, crank._tab,
                                crank._perf, crank._pr, crank._cell, jd, slope)
         fresh.append((J2 - J, T2 - T))
         # and after a right-hand side at another state (a rejected step's trial): the
         # Jacobian must not take that evaluation's properties
         crank.rhs(th, yk * (1.0 + 1e-3))
-        kernel._jacobian_exact(th, yk, J2, T2, crank.net, crank._tier, crank._tab,
+        jacobians._jacobian_exact(th, yk, J2, T2, crank.net, crank._tier, crank._tab,
                                crank._perf, crank._pr, crank._cell, jd, slope)
         fresh.append((J2 - J, T2 - T))
         Jf, Jb, Jc = np.zeros_like(J), np.zeros_like(J), np.zeros_like(J)

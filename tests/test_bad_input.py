@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 from corliss.cli import commands as cli
-from corliss.engine import kernel
+from corliss.engine.kernels import stepping
 from corliss.engine import transient as transient_runner
 from corliss.scene.loader import bundled_scenes
 
@@ -195,7 +195,7 @@ def test_a_cycle_that_exhausts_its_budget_stops_with_a_message(tmp_path, capsys,
     than it allows stops the run with a message naming the likely scene quantities, and
     writes nothing.  (A budget of 500 evaluations stands in for a run far outside the
     physical; the default card needs 3,400 a cycle.)"""
-    monkeypatch.setattr(kernel, "MAX_RHS_PER_CYCLE", 500)
+    monkeypatch.setattr(stepping, "MAX_RHS_PER_CYCLE", 500)
     out = tmp_path / "out"
     code = cli.main(["run", "--out", str(out), "--cycles", "2"])
     err = capsys.readouterr().err

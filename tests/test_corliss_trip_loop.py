@@ -10,7 +10,8 @@ import numpy as np
 import pytest
 
 import corliss
-from corliss.engine import transient_kernel as tk
+from corliss.engine.kernels.loop import governed_areas
+from corliss.engine.kernels.mechanism import port_areas
 from corliss.engine.model import build_gear, build_network, geometry_of, reservoir_states
 from corliss.engine.transient import build_tables
 from corliss.thermo.steam import make_steam
@@ -47,8 +48,8 @@ def test_the_loop_trips_the_valve_as_the_gear_does(loop, setting, rpm):
     pa = np.empty((1, 4))
     got = np.empty((4, theta.size))
     for k, th in enumerate(theta):
-        tk.port_areas(th, net, pa)
-        tk.governed_areas(th, setting, omega, net, tables.tr, pa)
+        port_areas(th, net, pa)
+        governed_areas(th, setting, omega, net, tables.tr, pa)
         got[:, k] = pa[0]
     full = gear.port_widths() * gear.port_lengths()
     for port in range(4):

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import corliss
-from corliss.engine import kernel
+from corliss.engine.kernels import properties
 from corliss.errors import InputError, RunError
 from corliss.scene.loader import bundled_scenes, scene_from_dict
 from corliss.thermo import steam_table
@@ -69,8 +69,8 @@ def test_states_off_the_table_are_flagged(tab):
     # dryness 0.5 by volume at the triple point, with the energy of dryness 0.1: no
     # saturation temperature above 273.16 K has both
     assert lookup_flagged(tab, 0.0097, 2.4e5)[4] & steam_table.CLAMP_TRIPLE_POINT
-    assert kernel.admissible_flagged(-0.1, 2.6e6)[2] & steam_table.CLAMP_LOW_DENSITY
-    assert kernel.admissible_flagged(1.0, 2.6e6)[2] == 0
+    assert properties.admissible_flagged(-0.1, 2.6e6)[2] & steam_table.CLAMP_LOW_DENSITY
+    assert properties.admissible_flagged(1.0, 2.6e6)[2] == 0
 
 
 def test_a_29_5_inch_condenser_keeps_every_mass_positive():
@@ -88,7 +88,7 @@ def test_a_29_5_inch_condenser_keeps_every_mass_positive():
         m = last[f"m_{end}_kg"].to_numpy()
         assert np.all(np.isfinite(m))
         assert m.min() > 0.0
-        assert (m / last[f"V_{end}_m3"].to_numpy()).min() > kernel.RHO_MIN
+        assert (m / last[f"V_{end}_m3"].to_numpy()).min() > properties.RHO_MIN
         assert last[f"p_{end}_Pa"].min() < 1.05 * r.exhaust.p
     assert isinstance(s["clamped_trial_evaluations_count"], int)
 
@@ -116,7 +116,7 @@ def test_a_visited_state_off_the_properties_stops_the_run():
     y = crank.initial_state()
     i = net.node("head")
     V = float(net.volume(i, np.array(0.0)))
-    m = 1e-3 * kernel.RHO_MIN * V
+    m = 1e-3 * properties.RHO_MIN * V
     y[2 * i + 1] *= m / y[2 * i]
     y[2 * i] = m
     with pytest.raises(RunError, match="exhaust.pressure"):

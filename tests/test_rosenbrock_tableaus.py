@@ -1,4 +1,4 @@
-"""The Rosenbrock tableaus of the compiled kernel (``kernel.ROS_TABLEAUS``): their
+"""The Rosenbrock tableaus of the compiled kernel (``tableaus.ROS_TABLEAUS``): their
 order and their damping of stiff modes, from their coefficients.
 
 Each tableau is used in the form of Hairer and Wanner (*Solving Ordinary Differential
@@ -7,7 +7,7 @@ Equations II*, Sec. IV.7, eq. 7.25),
     (1/(gamma h) - J) u_i = f(t + c_i h, y + sum_j a_ij u_j) + sum_j c_ij u_j / h
                             + d_i h df/dt,    y1 = y + sum_i b_i u_i,
 
-which is what ``kernel.cycle_ros`` evaluates.  A coefficient copied wrongly shows as
+which is what ``rosenbrock.cycle_ros`` evaluates.  A coefficient copied wrongly shows as
 a lost order or a stability function that does not vanish at infinity; these checks
 read only the coefficients (no compiled code, so they cost nothing to compile).
 """
@@ -19,7 +19,7 @@ import math
 import numpy as np
 import pytest
 
-from corliss.engine.kernel import ROS_TABLEAUS
+from corliss.engine.kernels.tableaus import ROS_TABLEAUS
 
 #: order of the solution, and the stability function at z -> -infinity: Shampine's
 #: 4(3) pair (Press et al., Numerical Recipes, 2nd ed., Sec. 16.6) is A-stable but not
@@ -96,7 +96,7 @@ def test_error_estimate_is_of_lower_order(name):
 
 
 def test_the_compiled_tableau_integrator_gives_the_standard_card():
-    """``kernel.cycle_ros`` itself, on the default scene: RODAS4 at rtol 1e-4 and
+    """``rosenbrock.cycle_ros`` itself, on the default scene: RODAS4 at rtol 1e-4 and
     Shampine's pair at 7e-6 give the indicated power and the steam of the ``standard``
     preset (RODAS4 at 2e-6 on this card, itself within 3e-5 of the converged reference) within the
     accuracy the study measured for them across its three scenes (0.16 % and 0.005 %,

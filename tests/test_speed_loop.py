@@ -25,7 +25,7 @@ def _run(load, flywheel=None, **run):
 
 @pytest.mark.parametrize("method", ["dopri5", "ros4"])
 def test_flywheel_energy_balances_the_torque_integral(method):
-    """Lagrange's equation for the crank train (see transient_kernel) makes
+    """Lagrange's equation for the crank train (see corliss.engine.kernels.loop) makes
     d/dt (1/2 I_e omega^2) = (T_gas - T_friction - T_load) omega, so over whole turns,
     which start and end at a dead centre where the reciprocating parts are at rest
     (ds/dtheta = 0, I_e = I), the change of the flywheel's kinetic energy equals the

@@ -110,10 +110,13 @@ def test_ideal_ports_are_the_limit_of_ever_larger_ports(ideal):
     """The ideal-port model is what the port-flow model tends to as the ports grow
     without bound (corliss.engine.equilibrium): through the gear's ports made 4, 16
     and 64 times larger, the missing water at cut-off of each end comes nearer the
-    ideal ports' at each step, and at 64 times is within 0.02 of it (the head end's
-    0.292, 0.263, 0.243 against 0.231 with ideal ports: with larger ports the
-    admission's wire-drawing, which lowers the pressure at cut-off and so the steam
-    the card shows, shrinks slowly, as the square root of the area or slower)."""
+    ideal ports', the largest gap of the two ends at 64 times under half its value at
+    4 times and within 0.01 (with the default coefficient, Callendar and Nicolson's,
+    the gaps are 0.005 and 0.007 at 4 times, under 0.002 at 16 and 64 times; with the
+    old 3e5 W/(m2 K) the head end's went 0.292, 0.263, 0.243 against 0.231: with
+    larger ports the admission's wire-drawing, which lowers the pressure at cut-off
+    and so the steam the card shows, shrinks slowly, as the square root of the area or
+    slower)."""
     s_ideal = ideal.summary
     gaps = []
     for scale in (4.0, 16.0, 64.0):
@@ -121,17 +124,31 @@ def test_ideal_ports_are_the_limit_of_ever_larger_ports(ideal):
         assert s["cycles_to_converge"] is not None
         gaps.append([s[f"missing_water_fraction_{end}"] - s_ideal[f"missing_water_fraction_{end}"]
                      for end in ("head", "crank")])
-    gaps = np.array(gaps)
-    assert np.all(gaps > 0.0)
-    assert np.all(np.diff(gaps, axis=0) < 0.0)
-    assert np.all(gaps[-1] < 0.02)
-    # the wall's mean surface temperature and heat tend to the same limit
-    s64 = s  # the 64-times run
+    gaps = np.abs(np.array(gaps))
+    assert gaps[-1].max() < 0.5 * gaps[0].max()
+    assert gaps[-1].max() < 0.01
+
+
+@pytest.mark.xfail(strict=True, raises=AssertionError,
+                   reason="issue 31: with the measured coefficient the port-flow wall's "
+                   "surface moves away from the ideal-port wall's as the ports grow")
+def test_the_walls_surface_and_heat_tend_to_the_ideal_ports(ideal):
+    """The wall's mean surface temperature and heat should come nearer the ideal-port
+    wall's as the ports grow (4 and 64 times), and at 64 times lie within 4 K and a
+    fifth.  With the old coefficient, 3e5 W/(m2 K), they came within 1.5 K and 5 %;
+    with Callendar and Nicolson's the head end's surface is 1.3 K off at 4 times and
+    3.5 K at 64 (131.7 against 128.2 degC), its heat 13.2 kJ against 15.4: the
+    ideal-port wall (corliss.engine.equilibrium) and the port-flow wall part where the
+    surface lags the steam.  Strict: this fails once they meet."""
+    s_ideal = ideal.summary
+    runs = [run_steady(_scene(True), portmap_scale=scale).summary for scale in (4.0, 64.0)]
     for end in ("head", "crank"):
-        assert s64[f"wall_surface_mean_{end}_K"] == pytest.approx(
-            s_ideal[f"wall_surface_mean_{end}_K"], abs=2.0)
-        assert s64[f"heat_to_walls_{end}_J_per_cycle"] == pytest.approx(
-            s_ideal[f"heat_to_walls_{end}_J_per_cycle"], rel=0.05)
+        for key, within in ((f"wall_surface_mean_{end}_K", 4.0),
+                            (f"heat_to_walls_{end}_J_per_cycle",
+                             0.2 * s_ideal[f"heat_to_walls_{end}_J_per_cycle"])):
+            far, near = (abs(r[key] - s_ideal[key]) for r in runs)
+            assert near < far, (key, far, near)
+            assert near < within, (key, near)
 
 
 @pytest.mark.parametrize("supply,speed", [("saturated", "10 rpm"), ("wet", "600 rpm"),

@@ -180,13 +180,24 @@ class MarksLaw:
         The supply's saturation temperature [K], the first cycle's cut-off temperature.
     exhaust_T_K : float
         The exhaust's saturation temperature [K].
+    lp_events : dict, optional
+        A compound's low-pressure valve events by end: its ends (``lp_head``,
+        ``lp_crank``) take their rows from these and from the LP cylinder's geometry.
+
+    Notes
+    -----
+    Each end's row is built from its own cylinder's geometry (``network.geometries``)
+    and events, in that cylinder's own crank angle (the kernel adds the cylinder's
+    phase), and its cut-off temperature is sampled at the shaft angle where that
+    cylinder cuts off, so that each end gives back over a cycle what it takes.
     """
 
     def __init__(self, network, geometry, events: dict, speed_rad_s: float, supply_T_K: float,
-                 exhaust_T_K: float):
+                 exhaust_T_K: float, lp_events: dict | None = None):
         self.network = network
         self.geometry = geometry
         self.events = events
+        self.lp_events = lp_events
         self.strokes_per_s = 2.0 * speed_rad_s / (2.0 * math.pi)
         self.t_exhaust = exhaust_T_K
         self._heos = HEOSSteam()
@@ -216,6 +227,15 @@ class MarksLaw:
         """
         return latent_heat(T)
 
+    def _end(self, i: int, end: int):
+        """Node ``i``'s cylinder geometry, valve events and phase [rad]."""
+        net = self.network
+        c = net.node_cyl[i]
+        lp = net.node_names[i].startswith("lp_") and self.lp_events is not None
+        evs = self.lp_events if lp else self.events
+        return (net.geometries[c], evs["head" if end == 0 else "crank"],
+                float(net.phases[c]))
+
     def rows(self) -> dict:
         """The Marks's-law rows for the current cut-off temperatures.
 
@@ -227,8 +247,8 @@ class MarksLaw:
         """
         out = {}
         for i, end in self.ends:
-            ev = self.events["head" if end == 0 else "crank"]
-            row = marks_law_row(self.geometry, end, ev, self.strokes_per_s, self.t_cutoff[i],
+            geo, ev, _ = self._end(i, end)
+            row = marks_law_row(geo, end, ev, self.strokes_per_s, self.t_cutoff[i],
                                 self.t_exhaust, self.latent(self.t_cutoff[i]))
             out[i] = row if row is not None else (0.0, 0.0, 0.0, 0.0, 1.0, 1.0)
         return out
@@ -261,10 +281,12 @@ class MarksLaw:
         import numpy as np
         net = self.network
         for i, end in self.ends:
-            ev = self.events["head" if end == 0 else "crank"]
+            _, ev, phase = self._end(i, end)
             if ev["cutoff_deg"] is None:
                 continue
-            th = math.radians(ev["cutoff_deg"])
+            # the shaft's angle where this cylinder cuts off (its own angle leads by
+            # its phase)
+            th = (math.radians(ev["cutoff_deg"]) - phase) % (2 * math.pi)
             k = int(np.argmin(np.abs(((out_theta - th) + math.pi) % (2 * math.pi) - math.pi)))
             V = float(net.volume(i, np.array([out_theta[k]]))[0])
             m, U = samples[2 * i, k], samples[2 * i + 1, k]

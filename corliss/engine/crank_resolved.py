@@ -1,7 +1,7 @@
 """The crank-resolved filling-and-emptying model: a network integrated cycle by cycle.
 
 The equations are those of :mod:`corliss.engine.network`, evaluated by
-:func:`corliss.engine.kernel.derivatives` whatever the property tier:
+:func:`corliss.engine.kernels.balances.derivatives` whatever the property tier:
 
 * a compiled tier (``table``, ``perfect``) with a compiled integrator (``dopri5``,
   ``rk4``, ``rosenbrock``): one compiled call integrates a whole cycle;
@@ -33,7 +33,10 @@ import math
 
 import numpy as np
 
-from corliss.engine import kernel
+from corliss.engine.kernels import (balances, cache, cycle, jacobians, mechanism, properties,
+                                    stepping)
+from corliss.engine.kernels.clamps import (CL_ACCEPTED, CL_ACCEPTED_CODE, CL_NODE,
+                                           CL_REJECTED, CL_THETA)
 from corliss.engine.network import Network
 from corliss.engine.options import COMPILED_METHODS
 from corliss.errors import RunError
@@ -84,21 +87,21 @@ class CrankResolved:
         #: evaluations that clamped a visited state to the greatest energy, over the run [-]
         self.clamped_hot = 0
         #: the run-time budget of a cycle [right-hand-side evaluations]
-        self.max_rhs = kernel.MAX_RHS_PER_CYCLE
+        self.max_rhs = stepping.MAX_RHS_PER_CYCLE
         self.compiled = method in COMPILED_METHODS
         if self.compiled and steam.kernel_tier is None:
             raise ValueError(f"property tier {steam.name!r} has no compiled form")
         self._tier = steam.kernel_tier if steam.kernel_tier is not None else -1
         if self.compiled:
-            kernel.announce_compile(cycle=COMPILED_CODES[method],
-                                    exact=kernel.exact_jacobian_covers(self.net))
+            cache.announce_compile(cycle=COMPILED_CODES[method],
+                                    exact=jacobians.exact_jacobian_covers(self.net))
         else:
-            kernel.announce_compile(kernel.rhs)
+            cache.announce_compile(balances.rhs)
         from corliss.thermo.steam_table import load_table
         self._tab = steam.table.arrays() if hasattr(steam, "table") else load_table().arrays()
         self._perf = (np.array(steam.perfect_params()) if hasattr(steam, "perfect_params")
                       else np.zeros(3))
-        self._pr = np.empty((kernel.PR_ROWS, network.n_nodes))
+        self._pr = np.empty((properties.PR_ROWS, network.n_nodes))
         self._stops: dict[float, np.ndarray] = {}
         # the states each cycle restarts from zero: the quadratures, and the skin
         # walls' heat quadratures (their other states carry on)
@@ -110,9 +113,9 @@ class CrankResolved:
     def rhs(self, th: float, y: np.ndarray) -> np.ndarray:
         """Derivatives with respect to crank angle (the Python entry, for scipy).
 
-        On a compiled tier the compiled :func:`~corliss.engine.kernel.rhs`; otherwise
+        On a compiled tier the compiled :func:`~corliss.engine.kernels.balances.rhs`; otherwise
         each node's properties from the tier in Python (a clamped evaluation counted as
-        a trial) handed to the compiled :func:`~corliss.engine.kernel.derivatives`.
+        a trial) handed to the compiled :func:`~corliss.engine.kernels.balances.derivatives`.
 
         Parameters
         ----------
@@ -129,14 +132,14 @@ class CrankResolved:
         self.nfev += 1
         dy = np.empty_like(y)
         if self._tier >= 0:
-            kernel.rhs(th, y, dy, self.net, self._tier, self._tab, self._perf, self._pr,
+            balances.rhs(th, y, dy, self.net, self._tier, self._tab, self._perf, self._pr,
                        self._cell)
             return dy
         clamped = False
         for i in range(self.network.n_nodes):
-            V, dV = kernel.node_volume(th, self.net, i)
+            V, dV = mechanism.node_volume(th, self.net, i)
             m = y[2 * i]
-            rho, u, code = kernel.admissible_flagged(m / V, y[2 * i + 1] / m if m > 0.0 else 2.6e6)
+            rho, u, code = properties.admissible_flagged(m / V, y[2 * i + 1] / m if m > 0.0 else 2.6e6)
             try:
                 st = self.steam.du(rho, u)
             except ValueError:   # a trial state with no steam state: take the exhaust's
@@ -152,7 +155,7 @@ class CrankResolved:
         # scipy does not say which evaluations are trials: each clamped one is counted as
         # one, and the accepted solution is checked after the cycle (:meth:`cycle`)
         self.clamped_trials += int(clamped)
-        kernel.derivatives(th, y, self._pr, dy, self.net, self._cell)
+        balances.derivatives(th, y, self._pr, dy, self.net, self._cell)
         return dy
 
     def update_wall(self, y_end: np.ndarray, apply: bool = True,
@@ -276,23 +279,23 @@ class CrankResolved:
         stops = self._stops[theta0]
         out_theta = np.asarray(out_theta, dtype=float)
         if self.compiled:
-            y_end, samples, nfev, ok, clamps = kernel.integrate_cycle(
+            y_end, samples, nfev, ok, clamps = cycle.integrate_cycle(
                 y, stops, out_theta, COMPILED_CODES[self.method], self.rtol, self.atol,
                 self.step, self.net, self._tier, self._tab, self._perf, self.color, self.owner,
                 self.max_rhs)
             self.nfev += nfev
-            self.clamped_trials += int(clamps[kernel.CL_REJECTED])
-            code = int(clamps[kernel.CL_ACCEPTED_CODE])
-            if clamps[kernel.CL_ACCEPTED] > 0:
-                message = clamp_message(self.network, code, int(clamps[kernel.CL_NODE]),
-                                        float(clamps[kernel.CL_THETA] + theta0),
-                                        int(clamps[kernel.CL_ACCEPTED]))
+            self.clamped_trials += int(clamps[CL_REJECTED])
+            code = int(clamps[CL_ACCEPTED_CODE])
+            if clamps[CL_ACCEPTED] > 0:
+                message = clamp_message(self.network, code, int(clamps[CL_NODE]),
+                                        float(clamps[CL_THETA] + theta0),
+                                        int(clamps[CL_ACCEPTED]))
                 if code & ~CLAMP_HIGH_ENERGY:
                     raise RunError(message)
                 if self.clamped_hot == 0:
                     log.warning("%s (the run goes on with the properties at the table's "
                                 "greatest energy)", message)
-                self.clamped_hot += int(clamps[kernel.CL_ACCEPTED])
+                self.clamped_hot += int(clamps[CL_ACCEPTED])
             if not ok and nfev > self.max_rhs:
                 raise RunError(budget_message(self.network, self.max_rhs))
             if not ok:
@@ -330,10 +333,10 @@ class CrankResolved:
             rho = m / V
             u = np.where(m > 0.0, U / np.where(m > 0.0, m, 1.0), np.nan)
             code = np.zeros(m.size, dtype=np.int64)
-            code[~(rho > kernel.RHO_MIN)] |= 1
-            code[rho > kernel.RHO_MAX] |= 2
-            code[~(u > kernel.U_MIN)] |= 4
-            code[u > kernel.U_MAX] |= 8
+            code[~(rho > properties.RHO_MIN)] |= 1
+            code[rho > properties.RHO_MAX] |= 2
+            code[~(u > properties.U_MIN)] |= 4
+            code[u > properties.U_MAX] |= 8
             bad = np.nonzero(code)[0]
             if bad.size:
                 k = bad[0]

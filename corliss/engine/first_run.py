@@ -25,7 +25,7 @@ import sys
 
 import numpy as np
 
-from corliss.engine import kernel
+from corliss.engine.kernels import cache, jacobians, properties, rosenbrock
 from corliss.engine.crank_resolved import COMPILED_CODES
 from corliss.engine.model import steady_scene
 from corliss.engine.steady import assemble, run_steady
@@ -44,7 +44,7 @@ JACOBIAN_COMMAND = ("import sys; from corliss.engine.first_run import compile_ja
 
 def _exact(scene) -> bool:
     """Whether the scene's network has an analytic Jacobian: no wall heat that depends
-    on the state (:func:`corliss.engine.kernel.exact_jacobian_covers`, from the scene)."""
+    on the state (:func:`corliss.engine.kernels.jacobians.exact_jacobian_covers`, from the scene)."""
     return not (scene.run.has("wall_heat") and scene.engine.wall_heat_model != "marks")
 
 
@@ -61,7 +61,7 @@ def _kernels_missing(scene) -> bool:
     method = _steady_method(scene)
     if method not in COMPILED_CODES:
         return False
-    return bool(kernel.cycle_kernel_uncached(COMPILED_CODES[method], _exact(scene)))
+    return bool(cache.cycle_kernel_uncached(COMPILED_CODES[method], _exact(scene)))
 
 
 def _wanted(scene) -> bool:
@@ -90,8 +90,8 @@ def prepare(scene) -> None:
     # a Rosenbrock method's analytic Jacobian (a third of its compile time) is compiled
     # in the second process first, while this one compiles the right-hand side, which
     # the step loop needs before the Jacobian: this one then loads it from the cache
-    jacobian = (_steady_method(scene) in kernel.ROSENBROCK_METHODS and _exact(scene)
-                and bool(kernel.uncached(kernel._jacobian_exact)))
+    jacobian = (_steady_method(scene) in rosenbrock.ROSENBROCK_METHODS and _exact(scene)
+                and bool(cache.uncached(jacobians._jacobian_exact)))
     try:
         # the second process, done with the table before this one is done compiling,
         # compiles and caches the table's lookup for its error check: this one then
@@ -143,9 +143,9 @@ def compile_jacobian(data: bytes) -> None:
     ncyl = net[17].shape[0]
     y = np.ones(n)
     J = np.zeros((n, 2 * nv))
-    kernel._jacobian_exact(0.0, y, J, np.zeros(n), net, kernel.TIER_TABLE,
+    jacobians._jacobian_exact(0.0, y, J, np.zeros(n), net, properties.TIER_TABLE,
                            steam_table.mini_table().arrays(), np.zeros(3),
-                           np.empty((kernel.PR_ROWS, nv)), np.empty((ncyl, 4)),
+                           np.empty((properties.PR_ROWS, nv)), np.empty((ncyl, 4)),
                            np.empty((12, nv)), np.empty((ncyl, 4)))
 
 

@@ -61,6 +61,16 @@ class EngineSpec:
         saturation temperature (skin model).
     wall_thickness_m : float
         The barrel's wall between bore and jacket [m] (skin model, with a jacket).
+    steam_ends : str
+        The ends that take steam: ``"both"`` (double-acting), ``"head"`` or ``"crank"``
+        (single-acting: the other end's exhaust port stands open,
+        :mod:`corliss.valves.single_acting`).
+    leakage_model : str
+        ``"orifice"`` (the leak areas above) or ``"period"`` (the rates of leak below,
+        :mod:`corliss.thermo.leak_law`).
+    valve_leak_rate_kg_s_Pa, piston_leak_rate_kg_s_Pa : float
+        Rates of leak of the valve (chest to exhaust) and past the piston, flow per
+        unit of pressure difference [kg/(s Pa)] (``leakage`` effect, period model).
     """
 
     bore_m: float
@@ -76,9 +86,13 @@ class EngineSpec:
     wall_heat_model: str = "skin"
     marks_constant_W_m2K: float = 6176.8
     crank_angles_rad: tuple[float, ...] = (0.0,)
-    condensing_W_m2K: float | None = 3.0e5
+    condensing_W_m2K: float | None = 16747.2
     jacket: str = "none"
     wall_thickness_m: float = 0.0254
+    steam_ends: str = "both"
+    leakage_model: str = "orifice"
+    valve_leak_rate_kg_s_Pa: float = 0.0
+    piston_leak_rate_kg_s_Pa: float = 0.0
 
 
 @dataclass(frozen=True)

@@ -7,7 +7,7 @@ transient then steps in time with the shaft and the governor only::
     I domega/dt = T_map(a(z), omega) - T_friction(omega) - T_load(t, omega)
     M z'' + 1/2 M' z'^2 = G (ratio omega)^2 - R - c z' - F_f sat(z'/v_e) - J ratio domega/dt
 
-(the governor's common form, as in :mod:`corliss.engine.transient_kernel`; stops at 0
+(the governor's common form, as in :mod:`corliss.engine.kernels.loop`; stops at 0
 and 1 are held by clipping).  The maps are read bilinearly in the actuator and in
 speed, the engine's torque being smooth in both away from the trip's limit.  What the
 mean-value model leaves out is everything inside a turn: the torque's fluctuation (and

@@ -15,12 +15,13 @@ from dataclasses import dataclass
 
 from corliss.engine.geometry import CylinderGeometry
 from corliss.engine.network import (Network, compound, single_cylinder, with_leakage,
-                                    with_steam_chest, with_wall_heat)
+                                    with_period_leakage, with_steam_chest, with_wall_heat)
 from corliss.errors import InputError
 from corliss.thermo.steam import State, Steam, make_steam
 from corliss.thermo.wall_properties import transport_properties
 from corliss.valves import events as valve_events
 from corliss.valves import gear_type, tabulate
+from corliss.valves.single_acting import single_acting
 
 log = logging.getLogger(__name__)
 
@@ -76,7 +77,7 @@ def build_gear(scene):
         The valve gear (:mod:`corliss.valves`), at the run's speed for gears whose
         motion depends on it (those with a ``with_speed``).
     """
-    gear = gear_type(scene.gear_type).build(scene.gear)
+    gear = single_acting(gear_type(scene.gear_type).build(scene.gear), scene.engine.steam_ends)
     return gear.with_speed(scene.run.speed_rad_s) if hasattr(gear, "with_speed") else gear
 
 
@@ -95,7 +96,8 @@ def build_lp_gear(scene):
     """
     if scene.compound is None:
         return None
-    return gear_type(scene.compound.lp_gear_type).build(scene.compound.lp_gear)
+    return single_acting(gear_type(scene.compound.lp_gear_type).build(scene.compound.lp_gear),
+                         scene.compound.lp_engine.steam_ends)
 
 
 def scene_events(scene, settings: list[float] | None = None):
@@ -203,7 +205,10 @@ def build_network(scene, geo, pm, steam: Steam, chest: State, exhaust: State) ->
                        cp.receiver_volume_m3, chest, exhaust, rec, omega)
     if scene.run.has("steam_chest"):
         net = with_steam_chest(net, scene.supply)
-    if scene.run.has("leakage"):
+    if scene.run.has("leakage") and scene.engine.leakage_model == "period":
+        net = with_period_leakage(net, scene.engine.valve_leak_rate_kg_s_Pa,
+                                  scene.engine.piston_leak_rate_kg_s_Pa)
+    elif scene.run.has("leakage"):
         net = with_leakage(net, scene.engine.valve_leakage_area_m2,
                            scene.engine.piston_leakage_area_m2)
     if scene.run.has("wall_heat"):
@@ -223,7 +228,8 @@ def build_network(scene, geo, pm, steam: Steam, chest: State, exhaust: State) ->
         net = with_wall_heat(net, model, eng.marks_constant_W_m2K,
                              transport_properties(chest.p, chest.T),
                              condensing_W_m2K=eng.condensing_W_m2K, jacket_T_K=jacket_T,
-                             wall_thickness_m=eng.wall_thickness_m)
+                             wall_thickness_m=eng.wall_thickness_m,
+                             idle_ends={"both": (), "head": (1,), "crank": (0,)}[eng.steam_ends])
     return net
 
 

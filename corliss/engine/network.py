@@ -27,7 +27,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 PISTON, FIXED = 0, 1
-PORTMAP_EDGE, FIXED_EDGE = 0, 1
+#: Edge kinds: a cylinder's port (area from the PortMap), an orifice of fixed area, and
+#: the period's linear leak (its ``area`` column the rate of leak [kg/(s Pa)],
+#: :mod:`corliss.thermo.leak_law`).
+PORTMAP_EDGE, FIXED_EDGE, LINEAR_EDGE = 0, 1, 2
 
 
 def reservoir(r: int) -> int:
@@ -89,7 +92,8 @@ class Network:
         Each edge's two ends: a node index, or a reservoir's code (:func:`reservoir`);
         flow from ``a`` to ``b`` is positive.
     e_kind : list of int
-        :data:`PORTMAP_EDGE` (a cylinder's port) or :data:`FIXED_EDGE` (an orifice).
+        :data:`PORTMAP_EDGE` (a cylinder's port), :data:`FIXED_EDGE` (an orifice) or
+        :data:`LINEAR_EDGE` (a leak by the period's law, its area the rate of leak).
     e_cyl, e_port : list of int
         A port edge's cylinder and port (0 head steam, 1 head exhaust, 2 crank steam,
         3 crank exhaust); -1 for a fixed orifice.
@@ -177,8 +181,9 @@ class Network:
         cd : float
             Discharge coefficient [-].
         kind : int
-            :data:`FIXED_EDGE` (area ``area``) or :data:`PORTMAP_EDGE` (port ``port``
-            of cylinder ``cyl``).
+            :data:`FIXED_EDGE` (area ``area``), :data:`PORTMAP_EDGE` (port ``port``
+            of cylinder ``cyl``) or :data:`LINEAR_EDGE` (``area`` the rate of leak
+            [kg/(s Pa)]).
         cyl, port : int
             A port edge's cylinder and port (0 head steam, 1 head exhaust, 2 crank
             steam, 3 crank exhaust).
@@ -597,7 +602,7 @@ class Network:
         Returns
         -------
         tuple
-            21 entries, read by index in :mod:`corliss.engine.kernel`: 0 ``[omega]``
+            21 entries, read by index in :mod:`corliss.engine.kernels`: 0 ``[omega]``
             [rad/s]; 1 band [-]; 2 geometry (cylinders, 8): crank radius, rod, stroke
             [m], head and crank piston areas [m2], head and crank clearances [m3],
             rod angularity (1 or 0); 3 phases [rad]; 4-7 node kind, cylinder, end,
@@ -808,6 +813,60 @@ def with_leakage(net: Network, valve_area_m2: float, piston_area_m2: float,
     return net
 
 
+def with_period_leakage(net: Network, valve_rate_kg_s_Pa: float,
+                        piston_rate_kg_s_Pa: float) -> Network:
+    """Leakage by the period's law (:mod:`corliss.thermo.leak_law`): a flow equal to a
+    rate of leak times the pressure difference, independent of speed.
+
+    Past the valve, from the steam side (chest, or the supply) straight to the exhaust
+    (edge ``valve_leak_exhaust``, one for the engine; a compound's HP valve into the
+    receiver, ``valve_leak_receiver``, and its LP valve from there to the exhaust):
+    the path Callendar and Nicolson measured their "rate of leak of the valve" on,
+    the steam ports blocked (DPJ 312, 1899, p. 163; their quadruple engine's HP and
+    LP valves leaked alike, 17.3 and 18.6 kg/h); past the piston, between the two ends
+    of every cylinder (``piston_leak``).  A zero rate adds no edge.
+
+    The leak carries the enthalpy of the side it leaves.  Callendar and Nicolson found
+    it mostly water: steam condensing on the valve's faces, which the water's
+    re-evaporation on the far side cools again (p. 164).  Over a cycle the faces
+    neither gain nor lose heat, so what passes delivers the enthalpy it took, as an
+    adiabatic throttling does; where it arrives as water or steam changes only where
+    it re-evaporates, which for the chest-to-exhaust path is outside the cylinder.
+
+    Parameters
+    ----------
+    net : Network
+        The network, changed in place.
+    valve_rate_kg_s_Pa : float
+        Rate of leak of the valve, chest to exhaust [kg/(s Pa)].
+    piston_rate_kg_s_Pa : float
+        Rate of leak past the piston [kg/(s Pa)].
+
+    Returns
+    -------
+    Network
+        ``net``.
+    """
+    src = net.node("chest") if "chest" in net.node_names else reservoir(0)
+    if valve_rate_kg_s_Pa > 0.0:
+        if "receiver" in net.node_names:
+            # a compound: the HP valve leaks into the receiver, the LP's to the exhaust
+            rec = net.node("receiver")
+            net.add_edge("valve_leak_receiver", src, rec, 1.0, LINEAR_EDGE,
+                         area=valve_rate_kg_s_Pa)
+            src = rec
+        net.add_edge("valve_leak_exhaust", src, reservoir(1), 1.0, LINEAR_EDGE,
+                     area=valve_rate_kg_s_Pa)
+    if piston_rate_kg_s_Pa > 0.0:
+        prefixes = [cylinder_prefix(c) for c in range(len(net.geometries))] + ["lp_"]
+        for pre in dict.fromkeys(prefixes):
+            if f"{pre}head" in net.node_names:
+                net.add_edge(f"{pre}piston_leak", net.node(f"{pre}head"),
+                             net.node(f"{pre}crank"), 1.0, LINEAR_EDGE,
+                             area=piston_rate_kg_s_Pa)
+    return net
+
+
 #: Columns of a node's wall-heat row: model code, conductance, conductivity, viscosity,
 #: Prandtl number (codes 1, 2); heat of a cycle, admission, cut-off and compression
 #: angles, and the wall exposed over admission and over cut-off to compression,
@@ -823,7 +882,7 @@ WALL_MODELS = {"conductance": 1.0, "adair": 2.0, "marks": 3.0, "skin": 4.0}
 
 def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
                    condensing_W_m2K: float | None = None, jacket_T_K: float | None = None,
-                   wall_thickness_m: float = 0.025) -> Network:
+                   wall_thickness_m: float = 0.025, idle_ends: tuple = ()) -> Network:
     """Heat exchange between the steam of each cylinder end and its walls.
 
     ``model``:
@@ -849,8 +908,10 @@ def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
       cycle by cycle; with ``jacket_T_K``, the barrel's outer face (``wall_thickness_m``
       of iron away) is held at that temperature.  Every cylinder has its own wall.
 
-    Every cylinder end gets the model's row in :attr:`Network.node_heat`; vessels
-    (chest, receiver) exchange no heat.
+    Every cylinder end gets the model's row in :attr:`Network.node_heat` but a
+    single-acting cylinder's idle end (``idle_ends``), whose side of the piston stands
+    open to the exhaust and is no part of the engine's steam; vessels (chest,
+    receiver) exchange no heat.
 
     Parameters
     ----------
@@ -871,6 +932,8 @@ def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
         A jacket's temperature [K] (skin model; None: no jacket).
     wall_thickness_m : float
         The barrel's iron between bore and jacket [m] (skin model, with a jacket).
+    idle_ends : tuple of int
+        Ends (0 head, 1 crank) of every cylinder that take no steam: no wall heat.
 
     Returns
     -------
@@ -882,7 +945,7 @@ def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
     k, mu, pr = steam_props
     code = WALL_MODELS[model]
     for i, kind in enumerate(net.node_kind):
-        if kind == PISTON:
+        if kind == PISTON and net.node_end[i] not in idle_ends:
             net.node_heat[i] = (code, h_marks, k, mu, pr) + (0.0,) * (HEAT_COLUMNS - 5)
     if model == "skin":
         h_c = wall.CONDENSING_W_M2K if condensing_W_m2K is None else condensing_W_m2K

@@ -51,8 +51,8 @@ EXPANSION_LAWS = ("hyperbolic", "isentropic")
 SCIPY_METHODS = ("LSODA", "BDF", "Radau", "RK45", "DOP853")
 COMPILED_METHODS = ("dopri5", "rk4", "rosenbrock", "ros4", "rodas3", "rodas4")
 METHODS = SCIPY_METHODS + COMPILED_METHODS
-#: Integrators of the transient loop (:mod:`corliss.engine.transient_kernel`): ``dopri5``,
-#: and the Rosenbrock methods of :data:`corliss.engine.kernel.ROS_TABLEAUS`.
+#: Integrators of the transient loop (:mod:`corliss.engine.kernels.loop`): ``dopri5``,
+#: and the Rosenbrock methods of :data:`corliss.engine.kernels.tableaus.ROS_TABLEAUS`.
 TRANSIENT_METHODS = ("dopri5", "ros4", "rodas3", "rodas4")
 
 
@@ -126,7 +126,7 @@ class Fidelity:
         ----------
         exact_jacobian : bool
             Whether the run's network has an exact Jacobian
-            (:func:`corliss.engine.kernel.exact_jacobian_covers`).
+            (:func:`corliss.engine.kernels.jacobians.exact_jacobian_covers`).
 
         Returns
         -------

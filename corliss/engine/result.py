@@ -171,6 +171,13 @@ class Result:
             return out
         c, k = angle("cutoff_deg"), angle("compression_deg")
         out[f"wet_fraction_at_cutoff_{end}"] = 1.0 - at(f"x_{end}_frac", c)
+        if f"m_film_{end}_kg" in ts:
+            # the period's "wetness at cut-off" counts all the water present, the wall's
+            # film with the mixture's (English, in DPJ 267, 1888, p. 302: what counts is
+            # the water present at the end of admission, wherever it condensed)
+            m, film = at(f"m_{end}_kg", c), at(f"m_film_{end}_kg", c)
+            out[f"wet_fraction_at_cutoff_with_film_{end}"] = (
+                (m * (1.0 - at(f"x_{end}_frac", c)) + film) / (m + film))
         supplied = float(row[f"m_chest_{end}_kg"])
         shown = (at(f"V_{end}_m3", c) * sat.px(at(f"p_{end}_Pa", c), 1.0).rho
                  - at(f"V_{end}_m3", k) * sat.px(at(f"p_{end}_Pa", k), 1.0).rho)
@@ -525,6 +532,15 @@ class SteadyResult(Result):
         valve_leaks = [k for k in row.index if k.startswith("m_valve_leak_")]
         if valve_leaks:
             out["valve_leakage_kg_per_h"] = float(sum(row[k] for k in valve_leaks)) * rev_per_h
+            for k in valve_leaks:       # each path's: the period's law has its own names
+                out[f"{k[2:-3]}_kg_per_h"] = float(row[k]) * rev_per_h
+            # the leak that leaves the steam side, as a fraction of the steam supplied
+            # (a compound's HP valve leaks into the receiver; the LP's is the receiver's)
+            fed = (["m_valve_leak_receiver_kg"] if "m_valve_leak_receiver_kg" in row
+                   else valve_leaks)
+            supplied = float(row["m_supply_kg"])
+            if supplied > 0.0:
+                out["valve_leakage_fraction_of_steam"] = float(sum(row[k] for k in fed)) / supplied
         if "m_piston_leak_kg" in row:
             out["piston_leakage_net_kg_per_cycle"] = float(row["m_piston_leak_kg"])
         if "Q_head_J" in row:
@@ -601,6 +617,16 @@ class SteadyResult(Result):
                 if f"Q_to_wall_{end}_J" in row:
                     out.update(self._end_condensation(
                         end, evs[end0], geo, e_idx, math.degrees(phase), row, ts, at, sat))
+        # the period's "missing quantity of feed water at cut-off" (Willans 1888): the
+        # steam supplied less what the (high-pressure) cylinders hold as steam at
+        # cut-off, of the steam supplied: condensation and leakage together
+        per = [k for k in out if k.startswith("missing_water_per_stroke_")
+               and not k.startswith("missing_water_per_stroke_lp_")]
+        supplied = float(row["m_supply_kg"])
+        if per and supplied > 0.0:
+            steam = sum(float(row[f"m_chest_{k[len('missing_water_per_stroke_'):-3]}_kg"])
+                        - out[k] for k in per)
+            out["missing_water_fraction_of_feed"] = (supplied - steam) / supplied
         if self.scene.engine.jacket != "none":
             out.update(self._jacket_summary(row, sat, work_J))
         return out

@@ -1,6 +1,6 @@
 """A start from rest: the first moments of a transient run, integrated in time.
 
-The speed loop of :mod:`corliss.engine.transient_kernel` integrates in crank angle,
+The speed loop of :mod:`corliss.engine.kernels.loop` integrates in crank angle,
 every rate divided by the speed omega, which cannot start at omega = 0.  From rest the
 engine is integrated in time instead, with the same right-hand side: the loop's
 derivatives with respect to crank angle, evaluated with omega floored at a speed
@@ -24,8 +24,8 @@ import math
 
 import numpy as np
 
-from corliss.engine import transient_kernel as tk
-from corliss.engine.kernel import PR_ROWS
+from corliss.engine.kernels import loop
+from corliss.engine.kernels.properties import PR_ROWS
 
 TWO_PI = 2.0 * math.pi
 #: The speed [fraction of the run speed] past which the crank-angle loop takes over
@@ -53,7 +53,7 @@ def start_from_rest(y0: np.ndarray, theta0: float, omega_run: float, net, tier, 
         The scene's run speed [rad/s] (sets the handover and the creep floor).
     net, tier, tab, perf, tr
         The compiled loop's arrays (see
-        :func:`corliss.engine.transient_kernel.integrate_turn`).
+        :func:`corliss.engine.kernels.dopri5.integrate_turn`).
     rtol : float
         Relative tolerance of the time integration [-].
     atol : ndarray
@@ -72,11 +72,11 @@ def start_from_rest(y0: np.ndarray, theta0: float, omega_run: float, net, tier, 
         ``y`` columns) for the time series.
     """
     sc = tr[0]
-    nn = y0.shape[0] - tk.N_EXTRA
-    i_w = nn + tk.X_OMEGA
-    floor_saved = sc[tk.S_WMIN]
+    nn = y0.shape[0] - loop.N_EXTRA
+    i_w = nn + loop.X_OMEGA
+    floor_saved = sc[loop.S_WMIN]
     w_f = CREEP_FRACTION * omega_run
-    sc[tk.S_WMIN] = w_f
+    sc[loop.S_WMIN] = w_f
     dy = np.empty(y0.shape[0])
     pr = np.empty((PR_ROWS, net[4].shape[0]))
     pa = np.empty((net[17].shape[0], 4))
@@ -91,7 +91,7 @@ def start_from_rest(y0: np.ndarray, theta0: float, omega_run: float, net, tier, 
         if y[i_w] < 0.0:
             y[i_w] = 0.0
         w_eff = max(y[i_w], w_f)
-        tk.transient_rhs(th, y, dy, net, tier, tab, perf, pr, pa, tr, out)
+        loop.transient_rhs(th, y, dy, net, tier, tab, perf, pr, pa, tr, out)
         d = np.empty_like(Y)
         d[0] = w_eff
         d[1:] = dy * w_eff
@@ -133,9 +133,9 @@ def start_from_rest(y0: np.ndarray, theta0: float, omega_run: float, net, tier, 
             Y = sol.y[:, -1].copy()
             stalled = sol.status != 1
     finally:
-        sc[tk.S_WMIN] = floor_saved
+        sc[loop.S_WMIN] = floor_saved
     y = Y[1:].copy()
-    y[nn + tk.X_TIME] = float(np.concatenate(ts)[-1])
+    y[nn + loop.X_TIME] = float(np.concatenate(ts)[-1])
     return {"y": y, "theta_rad": float(Y[0]) if stalled else float(round(Y[0] / TWO_PI) * TWO_PI),
             "stalled": stalled, "nfev": nfev,
             "samples": (np.concatenate(ts), np.concatenate(ths), np.concatenate(ys, axis=1))}

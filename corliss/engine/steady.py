@@ -17,7 +17,7 @@ from typing import Callable
 import numpy as np
 
 from corliss.engine import equilibrium as eq
-from corliss.engine import kernel
+from corliss.engine.kernels import jacobians
 from corliss.engine.calibration import marks_coefficient
 from corliss.engine.condensation import MarksLaw
 from corliss.engine.crank_resolved import CrankResolved
@@ -145,9 +145,10 @@ def _crank_resolved(scene, model, pm, progress, start=None):
     wall_nodes = net.wall_nodes
     marks = None
     if heat and scene.engine.wall_heat_model == "marks":
-        marks = MarksLaw(net, geo, model.events, omega, model.chest.T, model.exhaust.T)
+        marks = MarksLaw(net, geo, model.events, omega, model.chest.T, model.exhaust.T,
+                         lp_events=model.lp_events)
     method, rtol = fid.steady_integrator(steam.kernel_tier is not None
-                                         and kernel.exact_jacobian_covers(net.arrays()))
+                                         and jacobians.exact_jacobian_covers(net.arrays()))
     crank = CrankResolved(net, steam, method, rtol, step_deg=fid.step_deg)
     ends_all = piston_ends(net)
     step = math.radians(fid.output_step_deg)

@@ -1,7 +1,7 @@
 """Transient runs: the engine, its flywheel, its load and its governor, turn by turn.
 
 The scene's network (the same control volumes and effects as a steady run) is handed
-to the compiled loop of :mod:`corliss.engine.transient_kernel` with speed, governor
+to the compiled loop of :mod:`corliss.engine.kernels.loop` with speed, governor
 coordinate and time as states.  Before t = 0 the engine runs ``warmup_cycles`` turns
 at the scene's speed with the governor held at its equilibrium for that speed, so the
 cylinders start from a periodic state; then the shaft is released.
@@ -23,8 +23,10 @@ from typing import Callable
 import numpy as np
 import pandas as pd
 
-from corliss.engine import transient_kernel as tk
-from corliss.engine.kernel import MAX_RHS_PER_CYCLE, ROS_TABLEAUS, announce_compile
+from corliss.engine.kernels import dopri5, loop, rosenbrock
+from corliss.engine.kernels.cache import announce_compile
+from corliss.engine.kernels.stepping import MAX_RHS_PER_CYCLE
+from corliss.engine.kernels.tableaus import ROS_TABLEAUS
 from corliss.engine.condensation import MarksLaw
 from corliss.engine.crank_resolved import budget_message
 from corliss.engine.model import build_gear, build_network, geometry_of, reservoir_states
@@ -66,7 +68,7 @@ class LoopTables:
     Parameters
     ----------
     tr : tuple
-        The loop's parameter tuple (:mod:`corliss.engine.transient_kernel`):
+        The loop's parameter tuple (:mod:`corliss.engine.kernels.loop`):
         ``(sc, lt, lf, sgrid, area_s, governed, gov, trip, thr)``: the scalars
         (indices ``S_*``: inertia [kg m2], reciprocating mass [kg], friction [N m],
         [N m s/rad], the governor's constants, the load's law, torque [N m] and
@@ -237,19 +239,19 @@ def build_tables(scene, net, gear, geo) -> LoopTables:
     fid = scene.run.fidelity
     omega0 = scene.run.speed_rad_s
     ncyl = len(net.geometries)
-    sc = np.zeros(tk.N_SCALARS)
-    sc[tk.S_INERTIA] = scene.flywheel.inertia_kg_m2
+    sc = np.zeros(loop.N_SCALARS)
+    sc[loop.S_INERTIA] = scene.flywheel.inertia_kg_m2
     if scene.run.has("inertia") and scene.engine.reciprocating_mass_kg:
-        sc[tk.S_MREC] = scene.engine.reciprocating_mass_kg
-    sc[tk.S_FRICTION_ON] = 1.0 if scene.run.has("friction") else 0.0
-    sc[tk.S_TF0] = scene.engine.friction_torque_N_m
-    sc[tk.S_TF1] = scene.engine.friction_N_m_s
+        sc[loop.S_MREC] = scene.engine.reciprocating_mass_kg
+    sc[loop.S_FRICTION_ON] = 1.0 if scene.run.has("friction") else 0.0
+    sc[loop.S_TF0] = scene.engine.friction_torque_N_m
+    sc[loop.S_TF1] = scene.engine.friction_N_m_s
     load = scene.load
-    sc[tk.S_KLAW] = load.speed_exponent
-    sc[tk.S_TREF] = load.torque_N_m
-    sc[tk.S_WREF] = omega0
-    sc[tk.S_WMIN] = STALL_FRACTION * omega0
-    sc[tk.S_MAX_RHS] = MAX_RHS_PER_CYCLE
+    sc[loop.S_KLAW] = load.speed_exponent
+    sc[loop.S_TREF] = load.torque_N_m
+    sc[loop.S_WREF] = omega0
+    sc[loop.S_WMIN] = STALL_FRACTION * omega0
+    sc[loop.S_MAX_RHS] = MAX_RHS_PER_CYCLE
     lt = np.asarray(load.times_s, dtype=float)
     lf = np.asarray(load.fractions, dtype=float)
     gov = np.zeros((5, 2))
@@ -267,25 +269,25 @@ def build_tables(scene, net, gear, geo) -> LoopTables:
         g = governor_type(scene.governor_type).build(scene.governor)
         mech = g.mechanism(201)
         gov = _governor_arrays(mech)
-        sc[tk.S_HAS_GOV] = 1.0
-        sc[tk.S_RATIO] = mech.ratio
-        sc[tk.S_DAMP] = mech.c
-        sc[tk.S_FRIC] = mech.F_f
-        sc[tk.S_VEPS] = CREEP_PER_S
-        sc[tk.S_A0] = mech.actuator_at_rest
-        sc[tk.S_A1] = mech.actuator_at_top
+        sc[loop.S_HAS_GOV] = 1.0
+        sc[loop.S_RATIO] = mech.ratio
+        sc[loop.S_DAMP] = mech.c
+        sc[loop.S_FRIC] = mech.F_f
+        sc[loop.S_VEPS] = CREEP_PER_S
+        sc[loop.S_A0] = mech.actuator_at_rest
+        sc[loop.S_A1] = mech.actuator_at_top
         if mech.safety_z > 0.0 and np.isfinite(mech.actuator_safety):
-            sc[tk.S_SAFE_Z] = mech.safety_z
-            sc[tk.S_SAFE_A] = mech.actuator_safety
+            sc[loop.S_SAFE_Z] = mech.safety_z
+            sc[loop.S_SAFE_A] = mech.actuator_safety
         z0 = mech.equilibrium_z(omega0)
         if mech.acts_on == "throttle":
-            sc[tk.S_ACT_GEAR] = 0.0
-            sc[tk.S_THR_EDGE] = net.edge("steam_pipe")
+            sc[loop.S_ACT_GEAR] = 0.0
+            sc[loop.S_THR_EDGE] = net.edge("steam_pipe")
             openings = np.linspace(0.0, 1.0, 201)
             thr = np.array([0.0] + [throttle_area_m2(dataclasses.replace(scene.supply, throttle=x))
                                     for x in openings[1:]])
         else:
-            sc[tk.S_ACT_GEAR] = 1.0
+            sc[loop.S_ACT_GEAR] = 1.0
             governed_gear = gear
             lo, hi = mech.actuator_range()
             governed[:] = 1
@@ -297,7 +299,7 @@ def build_tables(scene, net, gear, geo) -> LoopTables:
                 # the table holds the latched steam valves; the loop trips them itself,
                 # at its own speed
                 trip, latched = _trip_tables(gear, sgrid, fid.portmap_points)
-                sc[tk.S_TRIP] = 1.0
+                sc[loop.S_TRIP] = 1.0
                 w, ln = gear.port_widths(), gear.port_lengths()
                 for c in range(ncyl):
                     if governed[c]:
@@ -355,9 +357,9 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
     perf = (np.array(steam.perfect_params()) if hasattr(steam, "perfect_params") else np.zeros(3))
     nn = network.n_state
     omega0 = run.speed_rad_s
-    y = np.concatenate([network.initial_state(), np.zeros(tk.N_EXTRA)])
-    y[nn + tk.X_OMEGA] = omega0
-    y[nn + tk.X_Z] = tables.z0
+    y = np.concatenate([network.initial_state(), np.zeros(loop.N_EXTRA)])
+    y[nn + loop.X_OMEGA] = omega0
+    y[nn + loop.X_Z] = tables.z0
     atol = np.concatenate([fid.rtol * network.scales(),
                            fid.rtol * np.array([omega0, 1.0, 1.0, 1.0, 1e3, 1e3, 1e3, 1.0, 1.0])])
     sc = tables.tr[0]
@@ -365,22 +367,22 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
     nfev = 0
     integrate_turn = _turn_integrator(method, network)
     # warm-up: speed and governor held, time held at zero
-    announce_compile(tk.integrate_turn if method == "dopri5" else tk.integrate_turn_ros)
-    sc[tk.S_FREEZE] = 1.0
+    announce_compile(dopri5.integrate_turn if method == "dopri5" else rosenbrock.integrate_turn_ros)
+    sc[loop.S_FREEZE] = 1.0
 
     def frozen_turns(y, omega, z, turns, tol=None):
         """Turns at speed ``omega`` with the governor held at ``z``: ``turns`` of them, or
         with ``tol`` [N m] until the turn's mean surplus torque changes by less (at most
         ``turns``).  Returns the state and the last turn's surplus [N m]."""
         nonlocal nfev
-        y[nn + tk.X_OMEGA] = omega
-        y[nn + tk.X_Z] = z
-        y[nn + tk.X_ZDOT] = 0.0
+        y[nn + loop.X_OMEGA] = omega
+        y[nn + loop.X_Z] = z
+        y[nn + loop.X_ZDOT] = 0.0
         last = math.inf
         surplus = 0.0
         for turn in range(turns):
             y[network.n_dyn:nn] = 0.0
-            for q in (tk.X_TIME, tk.X_WLOAD, tk.X_WFRIC, tk.X_WGAS):
+            for q in (loop.X_TIME, loop.X_WLOAD, loop.X_WFRIC, loop.X_WGAS):
                 y[nn + q] = 0.0
             if marks is not None:
                 marks.strokes_per_s = omega / math.pi
@@ -390,13 +392,13 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
                                                         False, math.inf)
             nfev += nf_
             if status == 4:
-                raise RunError(budget_message(network, sc[tk.S_MAX_RHS])
+                raise RunError(budget_message(network, sc[loop.S_MAX_RHS])
                                + " (in the warm-up turns before t = 0)")
             if status == 1:
                 raise RuntimeError("the integrator failed in the warm-up turns before t = 0")
             if marks is None:
                 _update_wall(network, y)
-            surplus = (y[nn + tk.X_WGAS] - y[nn + tk.X_WFRIC] - y[nn + tk.X_WLOAD]) / TWO_PI
+            surplus = (y[nn + loop.X_WGAS] - y[nn + loop.X_WFRIC] - y[nn + loop.X_WLOAD]) / TWO_PI
             if tol is not None and turn >= 1 and abs(surplus - last) <= tol:
                 break
             last = surplus
@@ -406,11 +408,11 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
     k = 0
     if run.start == "rest":
         start = OperatingPoint(0.0, 0.0, math.nan, "rest", 0)
-        sc[tk.S_FREEZE] = 0.0
-        y[nn + tk.X_OMEGA] = 0.0
-        y[nn + tk.X_Z] = 0.0
-        y[nn + tk.X_ZDOT] = 0.0
-        y[nn + tk.X_TIME] = 0.0
+        sc[loop.S_FREEZE] = 0.0
+        y[nn + loop.X_OMEGA] = 0.0
+        y[nn + loop.X_Z] = 0.0
+        y[nn + loop.X_ZDOT] = 0.0
+        y[nn + loop.X_TIME] = 0.0
         begun = start_from_rest(y, run.start_angle_rad, omega0, net, steam.kernel_tier, tab,
                                 perf, tables.tr, rtol, atol,
                                 run.max_duration_s or run.duration_s)
@@ -423,12 +425,12 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
         if begun["stalled"]:
             log.warning("the engine did not start: from rest at %.1f deg of crank it had not "
                         "reached %.0f %% of run.speed by %.3g s", math.degrees(run.start_angle_rad),
-                        100 * HANDOVER_FRACTION, y[nn + tk.X_TIME])
+                        100 * HANDOVER_FRACTION, y[nn + loop.X_TIME])
     else:
         y, _ = frozen_turns(y, omega0, tables.z0, run.warmup_cycles)
         start = OperatingPoint(omega0, tables.z0, math.nan, "run_speed", 0)
         if tables.mechanism is not None and run.start == "equilibrium":
-            t_load = abs(sc[tk.S_TREF] * tk.load_factor(0.0, tables.tr[1], tables.tr[2]))
+            t_load = abs(sc[loop.S_TREF] * loop.load_factor(0.0, tables.tr[1], tables.tr[2]))
             tol = 0.25 * SURPLUS_TOL * max(t_load, 1e-9)
 
             def surplus(omega, z):
@@ -444,24 +446,24 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
         # engine would gain or lose the swing's offset and the governor follow it.  So the
         # speed at dead centre is set, by trial turns with the governor held and the speed
         # free, to give the turn-mean speed of the start.
-        sc[tk.S_FREEZE] = 2.0
+        sc[loop.S_FREEZE] = 2.0
         omega_dc = start.speed_rad_s
         for _ in range(START_TRIALS):
             trial = y.copy()
-            trial[nn + tk.X_OMEGA] = omega_dc
-            trial[nn + tk.X_TIME] = 0.0
+            trial[nn + loop.X_OMEGA] = omega_dc
+            trial[nn + loop.X_TIME] = 0.0
             trial, _, _, _, nf_, status = integrate_turn(trial, 0.0, np.zeros(0), rtol, atol, net,
                                                             steam.kernel_tier, tab, perf, tables.tr,
                                                             False, math.inf)
             nfev += nf_
             if status != 0:
                 break
-            omega_dc *= start.speed_rad_s / (TWO_PI / trial[nn + tk.X_TIME])
-        sc[tk.S_FREEZE] = 0.0
-        y[nn + tk.X_TIME] = 0.0
-        y[nn + tk.X_OMEGA] = omega_dc
-        y[nn + tk.X_Z] = start.governor_z
-        y[nn + tk.X_ZDOT] = 0.0
+            omega_dc *= start.speed_rad_s / (TWO_PI / trial[nn + loop.X_TIME])
+        sc[loop.S_FREEZE] = 0.0
+        y[nn + loop.X_TIME] = 0.0
+        y[nn + loop.X_OMEGA] = omega_dc
+        y[nn + loop.X_Z] = start.governor_z
+        y[nn + loop.X_ZDOT] = 0.0
     duration = run.duration_s
     record = record_of(run)
     step = math.radians(fid.output_step_deg)
@@ -480,10 +482,10 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
         mid = np.array([0.5 * (r["t_start_s"] + r["t_end_s"]) for r in rows])
         return not settled(mid, np.array([r["mean_speed_rpm"] for r in rows]), since)[0]
 
-    while status != 2 and go_on(y[nn + tk.X_TIME]):
+    while status != 2 and go_on(y[nn + loop.X_TIME]):
         th0 = TWO_PI * k
         y[network.n_dyn:nn] = 0.0
-        for q in (tk.X_WLOAD, tk.X_WFRIC, tk.X_WGAS, tk.X_ZDT, tk.X_ADT):
+        for q in (loop.X_WLOAD, loop.X_WFRIC, loop.X_WGAS, loop.X_ZDT, loop.X_ADT):
             y[nn + q] = 0.0
         y_start = y.copy()
         if record == "degree":
@@ -497,8 +499,8 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
             record == "step", longest)
         nfev += nf_
         if status == 4:
-            raise RunError(budget_message(network, sc[tk.S_MAX_RHS]) + f" (in turn {k + 1}, at "
-                           f"{y[nn + tk.X_TIME]:.3f} s)")
+            raise RunError(budget_message(network, sc[loop.S_MAX_RHS]) + f" (in turn {k + 1}, at "
+                           f"{y[nn + loop.X_TIME]:.3f} s)")
         if status == 1:
             raise RuntimeError(f"the integrator failed in turn {k + 1} (step size collapsed)")
         if status != 2 or not rows:
@@ -513,9 +515,9 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
         frames.append({"cycle": np.full(len(frame["time_s"]), k + 1), **frame})
         k += 1
         if progress:
-            progress(float(y[nn + tk.X_TIME]), max(duration, float(y[nn + tk.X_TIME])))
+            progress(float(y[nn + loop.X_TIME]), max(duration, float(y[nn + loop.X_TIME])))
         if status == 2:
-            log.warning("the engine stalled at t = %.3f s", y[nn + tk.X_TIME])
+            log.warning("the engine stalled at t = %.3f s", y[nn + loop.X_TIME])
             break
     timeseries = _concat_columns(frames)
     return TransientResult(scene=scene, property_tier=steam.name, timeseries=timeseries,
@@ -523,8 +525,8 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
                            wall_time_s=time.perf_counter() - t_wall, geometry=geo,
                            stalled=status == 2, mechanism=tables.mechanism,
                            z_start=start.governor_z, chest=chest, exhaust=exhaust,
-                           start=start, clamped_trials=int(sc[tk.S_CLAMPED_TRIALS]),
-                           clamped_hot=int(sc[tk.S_CLAMPED_HOT]))
+                           start=start, clamped_trials=int(sc[loop.S_CLAMPED_TRIALS]),
+                           clamped_hot=int(sc[loop.S_CLAMPED_HOT]))
 
 
 def loop_method(fidelity) -> str:
@@ -554,14 +556,14 @@ def loop_method(fidelity) -> str:
 
 def _turn_integrator(method: str, network) -> Callable:
     """The compiled turn of the loop with a method, as a function of the arguments of
-    :func:`corliss.engine.transient_kernel.integrate_turn`."""
+    :func:`corliss.engine.kernels.dopri5.integrate_turn`."""
     if method == "dopri5":
-        return tk.integrate_turn
+        return dopri5.integrate_turn
     color, owner = network.column_colors()
     tableau = ROS_TABLEAUS[method]
 
     def turn(*args):
-        return tk.integrate_turn_ros(*args, color, owner, *tableau)
+        return rosenbrock.integrate_turn_ros(*args, color, owner, *tableau)
     return turn
 
 
@@ -590,10 +592,10 @@ def _start_record(begun: dict, y0: np.ndarray, network, steam, tables: LoopTable
     dt = max(float(t[-1]), 1e-12)
     row["mean_speed_rpm"] = (theta[-1] - theta[0]) / dt * 60.0 / TWO_PI
     sc = tables.tr[0]
-    z = np.clip(ys[nn + tk.X_Z], 0.0, 1.0)
+    z = np.clip(ys[nn + loop.X_Z], 0.0, 1.0)
     cols = {"cycle": 0, "time_s": t, "crank_angle_deg": np.degrees(theta),
-            "speed_rpm": ys[nn + tk.X_OMEGA] * 60.0 / TWO_PI,
-            "governor_z_frac": z, "actuator_frac": sc[tk.S_A0] + (sc[tk.S_A1] - sc[tk.S_A0]) * z}
+            "speed_rpm": ys[nn + loop.X_OMEGA] * 60.0 / TWO_PI,
+            "governor_z_frac": z, "actuator_frac": sc[loop.S_A0] + (sc[loop.S_A1] - sc[loop.S_A0]) * z}
     for end in ("head", "crank"):
         i = network.node(end)
         V = network.volume(i, theta)
@@ -619,21 +621,21 @@ def _any_table():
 
 def _cycle_row(k: int, y0: np.ndarray, y: np.ndarray, network, tables: LoopTables, nn: int):
     """One turn's totals: speed, powers, steam, governor and what it set."""
-    t0, t1 = y0[nn + tk.X_TIME], y[nn + tk.X_TIME]
+    t0, t1 = y0[nn + loop.X_TIME], y[nn + loop.X_TIME]
     dt = t1 - t0
-    w_gas = y[nn + tk.X_WGAS]
+    w_gas = y[nn + loop.X_WGAS]
     row = {"cycle": k + 1, "t_start_s": t0, "t_end_s": t1,
            "mean_speed_rpm": TWO_PI / dt * 60.0 / TWO_PI,
-           "speed_start_rpm": y0[nn + tk.X_OMEGA] * 60.0 / TWO_PI,
-           "speed_end_rpm": y[nn + tk.X_OMEGA] * 60.0 / TWO_PI,
+           "speed_start_rpm": y0[nn + loop.X_OMEGA] * 60.0 / TWO_PI,
+           "speed_end_rpm": y[nn + loop.X_OMEGA] * 60.0 / TWO_PI,
            "work_J": w_gas, "indicated_power_W": w_gas / dt,
-           "load_work_J": y[nn + tk.X_WLOAD], "load_power_W": y[nn + tk.X_WLOAD] / dt,
-           "friction_work_J": y[nn + tk.X_WFRIC],
-           "governor_z_frac": y[nn + tk.X_ZDT] / dt, "governor_z_end_frac": y[nn + tk.X_Z]}
+           "load_work_J": y[nn + loop.X_WLOAD], "load_power_W": y[nn + loop.X_WLOAD] / dt,
+           "friction_work_J": y[nn + loop.X_WFRIC],
+           "governor_z_frac": y[nn + loop.X_ZDT] / dt, "governor_z_end_frac": y[nn + loop.X_Z]}
     totals = network.boundary_totals(y)
     row["m_supply_kg"] = totals["m_supply_kg"]
     row["steam_rate_kg_per_h"] = totals["m_supply_kg"] / dt * 3600.0
-    act = y[nn + tk.X_ADT] / dt
+    act = y[nn + loop.X_ADT] / dt
     mech = tables.mechanism
     if mech is not None:
         if mech.acts_on == "throttle":
@@ -665,12 +667,12 @@ def _frame(network, steam, tables, out_theta, samples, rec, n_rec, record, nn):
                 "actuator_frac": r[3], "indicated_torque_N_m": r[5],
                 "load_torque_N_m": r[6]}
     s = samples
-    omega = s[nn + tk.X_OMEGA]
-    z = np.clip(s[nn + tk.X_Z], 0.0, 1.0)
+    omega = s[nn + loop.X_OMEGA]
+    z = np.clip(s[nn + loop.X_Z], 0.0, 1.0)
     sc = tables.tr[0]
-    cols = {"time_s": s[nn + tk.X_TIME], "crank_angle_deg": np.degrees(out_theta),
+    cols = {"time_s": s[nn + loop.X_TIME], "crank_angle_deg": np.degrees(out_theta),
             "speed_rpm": omega * 60.0 / TWO_PI, "governor_z_frac": z,
-            "actuator_frac": sc[tk.S_A0] + (sc[tk.S_A1] - sc[tk.S_A0]) * z}
+            "actuator_frac": sc[loop.S_A0] + (sc[loop.S_A1] - sc[loop.S_A0]) * z}
     for end in ("head", "crank"):
         i = network.node(end)
         V = network.volume(i, out_theta)

@@ -10,6 +10,11 @@ second law must therefore carry the surface's temperature: heat flows only from 
 hotter of steam and surface to the colder, and dry steam is heated at most to the
 surface's temperature.
 
+The wall's laws themselves (Adair's convection, the film's and the wet steam's
+coefficients, the film's limits) are written once, in
+:mod:`corliss.engine.kernels.walls`, which this module's reference path and the
+compiled balances both call.
+
 The surface as one lumped node (the choice, argued)
 ---------------------------------------------------
 The temperature wave the cycle drives into the iron dies within the skin depth
@@ -73,16 +78,22 @@ vertical surface (Z. VDI 60, 1916, pp. 541-546, 569-575)::
     h = 0.943 [rho_l (rho_l - rho_v) g h_fg k_l^3 / (mu_l L dT)]^(1/4)
 
 gives about 8 kW/(m2 K) for a 12 in cover and a 20 K drop (``nusselt_film_W_m2K``):
-a lower bound, for a film gravity drains, not a wall the piston wipes.  Cylinder oil
-is the classical promoter of dropwise condensation (E. Schmidt, W. Schurig and W.
-Sellschopp, Tech. Mech. Thermodyn. 1, 1930, pp. 53-63), whose coefficients for steam
-are of order 1e5 W/(m2 K) and more (J. W. Rose, "Dropwise condensation theory and
-experiment: a review", Proc. IMechE A 216, 2002, pp. 115-128).  The default,
-``CONDENSING_W_M2K`` = 3e5 W/(m2 K), is of that order: there the iron's conduction
-(``k / delta``, 2.3e4-5e4 W/(m2 K) at 60-300 rpm) mostly limits the exchange, and
-the missing water depends on the coefficient weakly (on the bundled Meyer engine at
-0.42 cut-off: 0.18 of the steam at 3e4, 0.29 at 1e5, 0.345 at 3e5, 0.36 at 1e6; at
-3e4 the expansion line falls 10 % under the hyperbola, at 3e5 it is within 2 %).  Marks's constant (Art. 82, p. 209,
+a lower bound, for a film gravity drains, not a wall the piston wipes.  The one
+measurement of a cylinder's surface is Callendar and Nicolson's (Min. Proc. ICE 131,
+1897-98; in Freytag's report, Dinglers Polytechnisches Journal 312, 1899, pp.
+161-165): thermo-junctions in the cast iron of a single-acting 10.5 x 12 in engine,
+read to 1/20 degC, gave a coefficient of condensation and re-evaporation of 4 kcal
+per second, m2 and degC on clean dry surfaces (p. 164), the resistance in a film of
+water or oil under 1/40 mm, the surface staying about 15 degC below the steam in
+admission (p. 163).  The default, ``CONDENSING_W_M2K``, is theirs, 16.7 kW/(m2 K)
+(:data:`corliss.thermo.wall_cycle.CALLENDAR_NICOLSON_W_M2K`).  It replaced 3e5
+W/(m2 K), dropwise condensation's order (J. W. Rose, Proc. IMechE A 216, 2002, pp.
+115-128), for which no cylinder measurement speaks: with it the surface swung 50 K
+at 150 rpm on the small engine and 40 K at 44 rpm under a card like theirs, where
+they computed 6 to 11.5 K (``tests/test_period_wall_and_leak.py``), and the water
+missing at cut-off on the Meyer engine at 0.42 cut-off was 0.345 of the steam
+where Marks's eq. 221 gives 0.19 (docs/validation/condensation.md has the
+measurements beside the model with each coefficient).  Marks's constant (Art. 82, p. 209,
 18.13 Btu per ft2, degF and minute) is a period calibration of the whole cycle, not a
 surface coefficient; ``condensing_coefficient = "marks"`` sets ``h_c`` so that the
 missing water at cut-off is what his eq. 221 gives for the same card
@@ -149,21 +160,16 @@ from __future__ import annotations
 
 import math
 
+from corliss.engine.kernels.walls import (FILM_MAX_KG_M2, FILM_WET_KG_M2, adair_h,
+                                          skin_coefficients)
+from corliss.thermo.wall_cycle import CALLENDAR_NICOLSON_W_M2K
+
 #: Grey cast iron (makeitfrom.com, "Grey Cast Iron"): conductivity [W/(m K)], specific
 #: heat [J/(kg K)], density [kg/m3].
 CAST_IRON_K, CAST_IRON_C, CAST_IRON_RHO = 46.0, 490.0, 7500.0
-#: Coefficient of condensation and evaporation on the surface [W/(m2 K)]: dropwise
-#: condensation's order (see the module docstring).
-CONDENSING_W_M2K = 3.0e5
-#: Film of water over which the wall counts as wetted: 10 microns, where a draining
-#: film breaks into drops and rivulets [kg/m2].
-FILM_WET_KG_M2 = 1.0e-2
-#: The thickest film a surface holds before the water runs off into the steam [kg/m2]:
-#: Nusselt's film thickness, [4 mu_l k_l L dT / (rho_l^2 g h_fg)]^(1/4), about 0.1 mm
-#: for a 12 in cover and a 20 K drop.
-FILM_MAX_KG_M2 = 0.1
-#: The mixture's wetness from which wet steam wets the whole wall [-].
-WET_BAND = 0.02
+#: Coefficient of condensation and evaporation on the surface [W/(m2 K)]: Callendar and
+#: Nicolson's, 4 kcal/(s m2 degC) (DPJ 312, 1899, p. 164; see the module docstring).
+CONDENSING_W_M2K = CALLENDAR_NICOLSON_W_M2K
 #: Skin-model columns of a node's wall-heat row (after code, h_c, k, mu, Pr).
 COL_CAPACITY, COL_CONDUCTANCE, COL_AREA, COL_STATE, COL_JACKET_GA, COL_JACKET_T = 5, 6, 7, 8, 9, 10
 
@@ -433,11 +439,6 @@ class ConductionGrid:
             self.theta[i] = a + b * self.theta[i - 1]
 
 
-def _smoothstep(w: float) -> float:
-    w = min(max(w, 0.0), 1.0)
-    return w * w * (3.0 - 2.0 * w)
-
-
 class IdealPortWall:
     """The skin wall of one cylinder end for the ideal-port model (no ``port_flow``).
 
@@ -447,7 +448,7 @@ class IdealPortWall:
     Art. 74: the steam condensed at admission is supplied steam that never shows on the
     card).  The stepping splits each step of the grid in two: first the wall exchanges
     heat and water with the steam over the step's time ``dt = d(theta) / omega`` (the
-    same flows as the compiled kernel's, :func:`corliss.engine.kernel.balances`), then
+    same flows as the compiled kernel's, :func:`corliss.engine.kernels.balances.balances`), then
     the ports act (isentropic while closed; at the reservoir's pressure while open).
 
     The exchange over a step, per end (``A`` the wall the steam touches now, ``A_w``
@@ -571,14 +572,9 @@ class IdealPortWall:
         T = st.T
         x = 1.0 if st.superheated else st.x
         Tsat = steam.t_sat(st.p) if st.superheated else T
-        de = 6.0 * V / A
-        re_ = st.rho * (0.5 * self.omega * de) * de / self.mu
-        hv = 0.053 * self.k / de * re_ ** 0.8 * self.pr ** 0.6
-        hf, hm = self.h_c, 0.0
-        if Tw > Tsat:
-            wf = _smoothstep(self.film / (FILM_WET_KG_M2 * Aw))
-            hm = hf * (1.0 - wf) * _smoothstep((1.0 - x) / WET_BAND)
-            hf *= wf
+        # the wall's laws, the compiled balances' own (corliss.engine.kernels.walls)
+        hv = adair_h(float(st.rho), self.omega, V, A, self.mu, self.k, self.pr)
+        hf, hm = skin_coefficients(Tw, Tsat, self.h_c, float(self.film), Aw, float(x))
         lat_c = max(st.h - self.h_L, 0.5 * self.L)     # condensing, per kg [J/kg]
         # the surface, backward Euler; a flow that would take more than there is
         # within the step (the film's water boiling off, the mixture's water, or,

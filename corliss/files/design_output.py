@@ -31,6 +31,7 @@ from corliss.keys.edits import with_keys
 from corliss.keys.toml_text import dumps
 from corliss.valves.design import (SettingDesign, SlideValveDesign, design_setting,
                                    design_slide_valve)
+from corliss.valves.single_acting import working_gear
 from corliss.valves.slide_valve import LappedValve
 
 #: The scene keys that hold a gear's setting, when it is not the number ``setting``:
@@ -293,6 +294,8 @@ def design(scene=None, *, cutoff, cutoff_crank=None, lead=None, max_opening=None
     designed = dataclasses.replace(scene_from_dict(data, name="design"), text=text)
     ev = scene_events(designed)
     for e, want in valve.asked_deg.items():
+        if designed.engine.steam_ends not in ("both", e):
+            continue        # a single-acting cylinder's idle end: no events to check
         for key, deg in want.items():
             got = ev[e][key]
             if got is None or abs((got - deg + 180.0) % 360.0 - 180.0) > SCENE_CHECK_DEG:
@@ -414,7 +417,8 @@ def write_design(design: Design, out_dir) -> dict:
     with OutputFiles(out_dir) as out:
         out.stage("design.toml").write_text(design.text, encoding="utf-8")
         files["scene"] = Path(out_dir) / "design.toml"
-        if isinstance(gear, LappedValve):
+        if isinstance(working_gear(gear), LappedValve):
+            gear = working_gear(gear)
             for kind, draw, drawn_from in (
                     ("zeuner", plot_zeuner_diagram, "the valve's exact travel"),
                     ("bilgram", plot_bilgram_diagram, "the gear's Zeuner form (infinite rods)")):

@@ -178,6 +178,9 @@ def write(result, out_dir, plots: bool = True, parquet: bool | None = None) -> d
         sname = f"{stem}.summary.json"
         out.stage(sname).write_text(summary_json(result.summary))
         files["summary"] = out.files[sname]
+    journal = getattr(result, "journal", None)
+    if journal and Path(journal).resolve().parent == Path(out_dir).resolve():
+        Path(journal).unlink(missing_ok=True)      # the study's files hold its rows now
     return files
 
 

@@ -57,6 +57,10 @@ _LINEAR: dict[str, dict[str, float]] = {
                 "lbm ft2": POUND_kg * FOOT_m**2, "slug ft2": 14.5939029 * FOOT_m**2},
     "angle": {"rad": 1.0, "deg": math.pi / 180.0},
     "mass_flow": {"kg/s": 1.0, "kg/h": 1.0 / 3600.0, "lb/h": POUND_kg / 3600.0},
+    # a rate of leak: mass flow per unit of pressure difference (Callendar and
+    # Nicolson's 3 lb/h per lbf/in2 of their flat valve)
+    "leak_rate": {"kg/s Pa": 1.0, "kg/h bar": 1.0 / 3600.0 / 1e5,
+                  "kg/h psi": 1.0 / 3600.0 / PSI_Pa, "lb/h psi": POUND_kg / 3600.0 / PSI_Pa},
     "force": {"N": 1.0, "kN": 1e3, "lbf": LBF_N},
     "stiffness": {"N/m": 1.0, "N/mm": 1e3, "kN/m": 1e3, "lbf/in": LBF_N / INCH_m,
                   "lbf/ft": LBF_N / FOOT_m},
@@ -115,6 +119,7 @@ RANGES: dict[str, tuple[float, float, str]] = {
     "inertia": (0.0, 1e8, "kg m2"),
     "angle": (-4.0 * math.pi, 4.0 * math.pi, "deg"),
     "mass_flow": (0.0, 1e3, "kg/s"),
+    "leak_rate": (0.0, 1e-4, "lb/h psi"),
     "force": (-1e6, 1e6, "N"),
     "stiffness": (0.0, 1e9, "N/m"),
     "damping": (0.0, 1e8, "N s/m"),
@@ -201,7 +206,7 @@ SI_UNIT_TEXT = {
     "length": "m", "area": "m**2", "volume": "m**3", "speed": "rad/s", "time": "s",
     "torque": "N*m", "torque_per_speed": "N*m*s", "heat_transfer": "W/(m**2*K)",
     "power": "W", "mass": "kg", "inertia": "kg*m**2", "angle": "rad", "mass_flow": "kg/s",
-    "force": "N", "stiffness": "N/m", "damping": "N*s/m", "specific_energy": "J/kg",
+    "leak_rate": "kg/(s*Pa)", "force": "N", "stiffness": "N/m", "damping": "N*s/m", "specific_energy": "J/kg",
     "energy": "J", "specific_steam_consumption": "kg/J", "temperature": "K",
 }
 

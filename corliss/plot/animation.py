@@ -34,6 +34,7 @@ from corliss.valves.corliss_gear import CorlissGear, CorlissSpec
 from corliss.valves.link_motion import LinkMotion, LinkMotionSpec
 from corliss.valves.oscillating import OscillatingCylinder
 from corliss.valves.radial_gear import JoySpec, RadialGear, SimpleRadialSpec, WalschaertsSpec
+from corliss.valves.single_acting import working_gear
 from corliss.valves.slide_valve import LappedValve, SlideValve
 
 #: Colours: the moving parts black, fixed parts grey, the steam edges and ports marked.
@@ -66,6 +67,7 @@ def linkage_kind(gear) -> str:
         Porter-Allen gear, the Corliss gear's harmonic motion: see
         :func:`exact_linkage_spec`).
     """
+    gear = working_gear(gear)
     if isinstance(gear, CorlissGear) and gear.spec.motion == "exact":
         return "corliss"
     if isinstance(gear, SlideValve):

@@ -13,6 +13,7 @@ import numpy as np
 
 from corliss.keys import units
 from corliss.valves.buckeye import BuckeyeGear
+from corliss.valves.single_acting import working_gear
 from corliss.valves.double_valve import DoubleValve
 from corliss.valves.gridiron import GridironValve
 from corliss.valves.meyer import MeyerValve
@@ -54,7 +55,7 @@ def find_by_class(registry: dict, gear):
     object or None
         The entry of the nearest class; None if no class of ``gear`` has one.
     """
-    for cls in type(gear).__mro__:
+    for cls in type(working_gear(gear)).__mro__:
         if cls in registry:
             return registry[cls]
     return None

@@ -463,8 +463,11 @@ def _engine(t: Table) -> EngineSpec:
                              "a coefficient above 0, or \"marks\"")
     jacket = t.get("jacket")
     thickness = t.get("wall_thickness", within=(1e-3, 0.5 * bore))
+    leak_model = t.get("leakage_model")
+    rates = [t.get(k) for k in ("valve_leak_rate", "piston_leak_rate")]
     spec = EngineSpec(bore, stroke, rod, prd, _pair_fraction(t, "clearance"), mass, f0, f1,
-                      *leaks, model, marks, crank_angles, condensing, jacket, thickness)
+                      *leaks, model, marks, crank_angles, condensing, jacket, thickness,
+                      t.get("steam_ends"), leak_model, *rates)
     t.finish()
     return spec
 
@@ -870,7 +873,13 @@ def _scene_from_dict(data: dict, name: str = "scene", source: str | None = None)
             if run.has(effect) and key not in data[sec or "engine"]:
                 raise InputError(f"{sec or 'engine'}.{key}", None, f"a value: the {effect!r} "
                                  "effect named in run.effects needs it")
-    if run.has("leakage") and not (engine.valve_leakage_area_m2 or engine.piston_leakage_area_m2):
+    if run.has("leakage") and engine.leakage_model == "period":
+        if not (engine.valve_leak_rate_kg_s_Pa or engine.piston_leak_rate_kg_s_Pa):
+            raise InputError("engine.valve_leak_rate", None, "a rate of leak (or "
+                             "engine.piston_leak_rate): the 'leakage' effect by the period's "
+                             "law needs one")
+    elif run.has("leakage") and not (engine.valve_leakage_area_m2
+                                     or engine.piston_leakage_area_m2):
         raise InputError("engine.valve_leakage_area", None, "a leak area (or "
                          "engine.piston_leakage_area): the 'leakage' effect needs one")
     for effect in ("leakage", "steam_chest"):

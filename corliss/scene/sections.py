@@ -18,6 +18,7 @@ from corliss.engine.options import EFFECTS, EXPANSION_LAWS, METHODS, MODELS, PRE
 from corliss.keys.declared import POSITIVE_LENGTH, ZERO_OR_MORE, Derived, Key, group
 from corliss.keys.toml_table import DISCHARGE_COEFFICIENT
 from corliss.thermo.steam import BACKENDS
+from corliss.valves.single_acting import STEAM_ENDS
 
 #: How a transient run's time series is recorded (see :class:`corliss.scene.loader.RunSpec`).
 RECORD_CHOICES = ("step", "degree", "cycle")
@@ -25,6 +26,8 @@ RECORD_CHOICES = ("step", "degree", "cycle")
 START_CHOICES = ("equilibrium", "run_speed", "rest")
 #: Wall-heat models of the ``wall_heat`` effect.
 WALL_HEAT_MODELS = ("skin", "marks", "conductance", "adair")
+#: Models of the ``leakage`` effect.
+LEAKAGE_MODELS = ("orifice", "period")
 #: Cylinder sizes: a model's half-inch cylinder to the largest engines built [m].
 CYLINDER_RANGE = (1e-3, 5.0)
 
@@ -55,17 +58,29 @@ ENGINE = group(
         "each end, up to 5 % of the piston area.", default="0 in2", effect="leakage"),
     Key("piston_leakage_area", "area", "Equivalent orifice of the leak past the piston, up "
         "to 5 % of the piston area.", default="0 in2", effect="leakage"),
+    Key("leakage_model", "choice", "How the leaks flow: as orifices of equivalent area, or "
+        "by the period's law (a rate of leak times the pressure difference, Callendar and "
+        "Nicolson 1897).", default="orifice", choices=LEAKAGE_MODELS, effect="leakage"),
+    Key("valve_leak_rate", "leak_rate", "Rate of leak of the valve, chest to exhaust, per "
+        "unit of pressure difference (Callendar and Nicolson's flat slide valve: "
+        "3 lb/h psi).", default="0 lb/h psi", effect="leakage"),
+    Key("piston_leak_rate", "leak_rate", "Rate of leak past the piston per unit of "
+        "pressure difference.", default="0 lb/h psi", effect="leakage"),
     Key("wall_heat_model", "choice", "How heat passes between steam and cylinder walls.",
         default="skin", choices=WALL_HEAT_MODELS, effect="wall_heat"),
     Key("marks_constant", "heat_transfer", "Marks's constant of condensation (Art. 82), "
         "above zero.", default="18.13 Btu/ft2 degF min", effect="wall_heat"),
     Key("condensing_coefficient", "heat_transfer", "Film coefficient of condensing steam "
-        "on the wall (above zero), or \"marks\" (Marks's eq. 221).", default="300 kW/m2 K",
+        "on the wall (above zero), or \"marks\" (Marks's eq. 221); the default is Callendar and "
+        "Nicolson's measured 4 kcal/s m2 degC.", default="16747.2 W/m2 K",
         choices=("marks",), effect="wall_heat"),
     Key("jacket", "choice", "A steam jacket round the barrel.", default="none",
         choices=("none", "barrel"), effect="wall_heat"),
     Key("wall_thickness", "length", "Cylinder wall thickness, 1 mm to half the bore.",
         default="1 in", within=(1e-3, math.inf), unit="in", effect="wall_heat"),
+    Key("steam_ends", "choice", "The ends that take steam: both (double-acting), or head or "
+        "crank alone (single-acting: the other end's exhaust port stands open).",
+        default="both", choices=STEAM_ENDS),
 )
 
 SUPPLY = group(

@@ -48,6 +48,7 @@ WALL_KEYS = ("heat_to_walls_{end}_J_per_cycle", "wall_temperature_{end}_K",
              "marks_missing_water_fraction_{end}")
 #: Per end with the skin wall model, whose surface temperature is a state.
 SKIN_KEYS = ("wall_surface_swing_{end}_K", "wall_surface_mean_{end}_K",
+             "wet_fraction_at_cutoff_with_film_{end}",
              "heat_into_steam_admission_{end}_J", "heat_into_steam_expansion_{end}_J",
              "heat_into_steam_exhaust_{end}_J", "heat_into_steam_compression_{end}_J")
 
@@ -97,13 +98,24 @@ def response_keys(scene) -> tuple[str, ...]:
     run = scene.run
     keys = list(BASE_KEYS)
     eng = scene.engine
-    if run.has("leakage"):
+    if run.has("leakage") and eng.leakage_model == "period":
+        if eng.valve_leak_rate_kg_s_Pa:
+            keys += ["valve_leakage_kg_per_h", "valve_leak_exhaust_kg_per_h",
+                     "valve_leakage_fraction_of_steam"]
+            if scene.compound is not None:
+                keys.append("valve_leak_receiver_kg_per_h")
+        if eng.piston_leak_rate_kg_s_Pa:
+            keys.append("piston_leakage_net_kg_per_cycle")
+    elif run.has("leakage"):
         if eng.valve_leakage_area_m2:
             keys.append("valve_leakage_kg_per_h")
         if eng.piston_leakage_area_m2:
             keys.append("piston_leakage_net_kg_per_cycle")
-    ends = ["head", "crank"] + (["lp_head", "lp_crank"] if scene.compound is not None else [])
+    # a single-acting cylinder's idle end has no wall and no events
+    ends = [e for e in ("head", "crank") if eng.steam_ends in ("both", e)]
+    ends += ["lp_" + e for e in ends] if scene.compound is not None else []
     if run.has("wall_heat"):
+        keys.append("missing_water_fraction_of_feed")
         for end in ends:
             keys += [k.format(end=end) for k in WALL_KEYS]
             if eng.wall_heat_model == "skin":

@@ -124,6 +124,10 @@ class StudyResult(Result):
         Processes (local) or Dask workers' threads that ran them [-].
     scheduler : str or None
         The Dask scheduler's address, or None for local processes.
+    journal : str or None
+        The journal its rows were appended to as they finished
+        (:mod:`corliss.studies.journal`); writing the study into its directory
+        removes it.  None when the study had no output directory.
     """
 
     kind: ClassVar[str] = "study"
@@ -140,6 +144,7 @@ class StudyResult(Result):
     failed: int = 0
     workers: int = 1
     scheduler: str | None = None
+    journal: str | None = None
 
     @property
     def points(self) -> pd.DataFrame:

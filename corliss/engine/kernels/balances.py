@@ -1,0 +1,327 @@
+"""The crank-resolved model's right-hand side: mass and energy balances of every node,
+the wall heat of each node's model, the port flows
+(:func:`corliss.thermo.orifice.port_flow`), and :func:`rhs`, the one compiled function
+every integrator calls.
+
+:func:`rhs` is compiled without numba's reference counting (``_nrt=False``; see
+:mod:`corliss.engine.kernels`); the functions that take the network or the table tuple
+are inlined into it (a call passing those tuples costs more than a small one's work).
+"""
+
+from __future__ import annotations
+
+import math
+
+
+from corliss.engine.kernels.compiled import njit
+from corliss.engine.kernels.mechanism import TWO_PI, edge_area, port_areas
+from corliss.engine.kernels.properties import PR_X, node_states
+from corliss.engine.kernels.walls import (FILM_MAX_KG_M2, FILM_WET_KG_M2, adair_h,
+                                          skin_coefficients)
+from corliss.thermo.leak_law import linear_leak
+from corliss.thermo.orifice import port_flow
+
+
+@njit(cache=True, inline="always")
+def edge_side(x, pr, res):
+    """The state at one end of an edge: a node's (from the node properties) or a
+    reservoir's.
+
+    Parameters
+    ----------
+    x : int
+        The end: a node index (0 and up) or a reservoir's code (``-1 - r``).
+    pr : ndarray
+        The node properties, shape (:data:`PR_ROWS`, nodes) (rows pressure, density,
+        enthalpy, port-flow exponent read).
+    res : ndarray
+        The reservoirs' states, shape (reservoirs, 4): p [Pa], rho [kg/m3], h [J/kg],
+        the port-flow exponent [-].
+
+    Returns
+    -------
+    p, rho, h, kappa : float
+        Pressure [Pa], density [kg/m3], enthalpy [J/kg] and port-flow exponent [-].
+    """
+    if x >= 0:
+        return pr[0, x], pr[1, x], pr[2, x], pr[3, x]
+    r = -1 - x
+    return res[r, 0], res[r, 1], res[r, 2], res[r, 3]
+
+
+@njit(cache=True, inline="always")
+def derivatives(th, y, pr, dy, net, pa):
+    """Derivatives with respect to crank angle, given each node's properties.
+
+    The port areas (:func:`port_areas`) and then the balances (:func:`balances`); the
+    reference path (HEOS, from Python) fills ``pr`` itself, the compiled tiers through
+    :func:`node_states`.
+
+    Parameters
+    ----------
+    th : float
+        Shaft crank angle [rad].
+    y : ndarray
+        The state, shape (n_state,), laid out as
+        :class:`~corliss.engine.network.Network` says (masses [kg] and internal
+        energies [J] of the nodes first).
+    pr : ndarray
+        Node properties, shape (:data:`PR_ROWS`, nodes): rows pressure [Pa], density
+        [kg/m3], enthalpy [J/kg], port-flow exponent [-], dV/dtheta [m3/rad], volume
+        [m3], temperature [K], wetted-wall temperature [K], clamp code
+        (:data:`PR_CLAMP`), dryness [-]
+        (:data:`PR_X`), whether superheated (:data:`PR_SUP`) and the state
+        they are of (:data:`PR_AT`).
+    dy : ndarray
+        Written: the derivatives with respect to crank angle (per radian), shape
+        (n_state,).
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    pa : ndarray
+        Scratch for the port areas [m2], shape (cylinders, 4).
+    """
+    port_areas(th, net, pa)
+    balances(th, y, pr, dy, net, pa)
+
+
+@njit(cache=True, inline="always")
+def balances(th, y, pr, dy, net, areas):
+    """Mass and energy balances of every node per radian of crank angle.
+
+    The first law for each node (``- p dV``, the wall heat of its model, the flows
+    through its edges from :func:`corliss.thermo.orifice.port_flow` carrying the
+    enthalpy of the side they leave), the quadratures of every edge and node, the skin
+    model's wall states, and the film swept out (:func:`sweep_films`).  The shaft
+    speed is read from ``net[0][0]`` [rad/s].
+
+    Parameters
+    ----------
+    th : float
+        Shaft crank angle [rad].
+    y : ndarray
+        The state, shape (n_state,), laid out as
+        :class:`~corliss.engine.network.Network` says (masses [kg] and internal
+        energies [J] of the nodes first).
+    pr : ndarray
+        Node properties, shape (:data:`PR_ROWS`, nodes): rows pressure [Pa], density
+        [kg/m3], enthalpy [J/kg], port-flow exponent [-], dV/dtheta [m3/rad], volume
+        [m3], temperature [K], wetted-wall temperature [K], clamp code
+        (:data:`PR_CLAMP`), dryness [-]
+        (:data:`PR_X`), whether superheated (:data:`PR_SUP`) and the state
+        they are of (:data:`PR_AT`).
+    dy : ndarray
+        Written: the derivatives with respect to crank angle (per radian), shape
+        (n_state,).
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    areas : ndarray
+        The port areas [m2], shape (cylinders, 4).
+    """
+    omega, band, res = net[0][0], net[1], net[8]
+    P, RHO, H = pr[0], pr[1], pr[2]
+    geo, ncyl_, end_, heat, wallT = net[2], net[5], net[6], net[19], net[20]
+    ea, eb, ecd, ekind = net[9], net[10], net[15], net[11]
+    nv = P.shape[0]
+    ne = ea.shape[0]
+    ndyn = 2 * nv
+    for i in range(dy.shape[0]):
+        dy[i] = 0.0
+    for i in range(nv):
+        dV = pr[4, i]
+        q0 = ndyn + 2 * ne + 5 * i
+        dy[2 * i + 1] -= P[i] * dV
+        dy[q0] = P[i] * dV
+        model = heat[i, 0]
+        if model > 0.0:
+            # wall area: piston face and cover, and the barrel uncovered (with the
+            # clearance as its equivalent length): 2 A_p + pi D V / A_p
+            c = ncyl_[i]
+            ap = geo[c, 3] if end_[i] == 0 else geo[c, 4]
+            bore = math.sqrt(4.0 * geo[c, 3] / math.pi)
+            V = pr[5, i]
+            A = 2.0 * ap + math.pi * bore * V / ap
+            Ts = pr[6, i]
+            if model == 4.0:
+                # the skin model (corliss.engine.wall): states y[k] = T_w - T_deep and
+                # y[k + 1] = the film's water; the film's flow goes down T_w - T_sat,
+                # the convection's down T_w - T
+                k = int(heat[i, 8])
+                Tw = wallT[i] + y[k]
+                mf = y[k + 1]
+                Aw = heat[i, 7]
+                Tsat = pr[7, i]
+                hv = adair_h(RHO[i], omega, V, A, heat[i, 3], heat[i, 2], heat[i, 4])
+                hf, hm = skin_coefficients(Tw, Tsat, heat[i, 1], mf, Aw, pr[PR_X, i])
+                qf = hf * (Tw - Tsat) * A            # [W] from the wall into the film
+                qm = hm * (Tw - Tsat) * A            # [W] into the mixture's water
+                qc = hv * (Tw - Ts) * A              # [W] into the steam by convection
+                qv = qm + qc
+                hL, L = heat[i, 11], heat[i, 12]
+                # evaporated (+, as vapour of h_L + L) or condensed (-, the steam
+                # giving up its own enthalpy, superheat and all, down to the film's
+                # h_L) [kg/s]; water beyond the film the wall holds runs off into
+                # the steam (its excess per radian)
+                if qf < 0.0:
+                    lat = max(H[i] - hL, 0.5 * L)
+                else:
+                    lat = L
+                mdot = qf / lat
+                held = FILM_MAX_KG_M2 * Aw
+                run = (mf - held) * omega if mf > held else 0.0
+                dy[2 * i] += (mdot + run) / omega
+                dy[2 * i + 1] += ((mdot + run) * hL + qf + qv) / omega
+                dy[k + 1] = -(mdot + run) / omega
+                q = (qf + qv) / omega
+                dy[q0 + 1] = q
+                dy[q0 + 2] = -q if q < 0.0 else 0.0
+                # for the deep wall's update (T_deep <- hAT / hA, a Newton step on the
+                # wall's, or with a jacket the wall and jacket's, balance over a cycle)
+                d = (hv + hf + hm) * A / omega
+                ga = heat[i, 9] / omega
+                dy[q0 + 3] = d + ga
+                dy[q0 + 4] = d * wallT[i] - q + ga * heat[i, 10]
+                dy[k] = (-(qf + qv) + heat[i, 6] * Aw * (wallT[i] - Tw)) / (
+                    heat[i, 5] * Aw * omega)
+                dy[k + 2] = (qf + qm) / omega
+                dy[k + 3] = qc / omega
+                continue
+            if model == 3.0:
+                # Marks's law (Art. 75): the heat of eq. 221 leaves the steam during
+                # admission and comes back from cut-off to compression, each spread
+                # over the crank angle in proportion to the wall exposed
+                t = (th + net[3][c]) % TWO_PI
+                q = 0.0
+                if (t - heat[i, 6]) % TWO_PI < (heat[i, 7] - heat[i, 6]) % TWO_PI:
+                    q = -heat[i, 5] * A / heat[i, 9]
+                elif (t - heat[i, 7]) % TWO_PI < (heat[i, 8] - heat[i, 7]) % TWO_PI:
+                    q = heat[i, 5] * A / heat[i, 10]
+                dy[2 * i + 1] += q
+                dy[q0 + 1] = q
+                dy[q0 + 2] = -q if q < 0.0 else 0.0
+                continue
+            if model == 1.0:
+                h = heat[i, 1]
+                # a wall hotter than the steam gives its heat to the water film that
+                # the admission condensed on it, which boils at the saturation
+                # temperature of the cylinder's pressure (pr[7]), however superheated
+                # the thin exhaust steam around it (Marks Art. 74, 3-4)
+                if wallT[i] > Ts:
+                    Ts = pr[7, i]
+            else:
+                h = adair_h(RHO[i], omega, V, A, heat[i, 3], heat[i, 2], heat[i, 4])
+            q = h * A * (wallT[i] - Ts) / omega
+            dy[2 * i + 1] += q
+            dy[q0 + 1] = q
+            dy[q0 + 2] = -q if q < 0.0 else 0.0
+            dy[q0 + 3] = h * A / omega
+            dy[q0 + 4] = h * A * Ts / omega
+    for e in range(ne):
+        ar = edge_area(net, e, areas)
+        if ar <= 0.0:
+            # a shut port: no flow (its quadratures' zeros are written above); the
+            # test is port_flow's own, which would return 0 before reading either side
+            continue
+        a = ea[e]
+        b = eb[e]
+        pa, ra, ha, ka = edge_side(a, pr, res)
+        pb, rb, hb, kb = edge_side(b, pr, res)
+        if ekind[e] == 2:
+            # the period's leak (corliss.thermo.leak_law): the rate of leak times the
+            # pressure difference, carrying the enthalpy of the side it leaves
+            md = linear_leak(ar, pa, pb)
+        else:
+            md = port_flow(ar, ecd[e], pa, ra, ka, pb, rb, kb, band, True)
+        hd = md * (ha if md > 0.0 else hb)
+        md /= omega
+        hd /= omega
+        if a >= 0:
+            dy[2 * a] -= md
+            dy[2 * a + 1] -= hd
+        if b >= 0:
+            dy[2 * b] += md
+            dy[2 * b + 1] += hd
+        dy[ndyn + 2 * e] = md
+        dy[ndyn + 2 * e + 1] = hd
+    sweep_films(y, pr, dy, net)
+
+
+@njit(cache=True, inline="always")
+def sweep_films(y, pr, dy, net):
+    """The skin model's film swept out with the steam (:mod:`corliss.engine.wall`).
+
+    While an end's steam flows out, the film beyond
+    :data:`~corliss.engine.kernels.walls.FILM_WET_KG_M2` goes with it in the proportion of the steam leaving, into the steam as water of the film's
+    enthalpy.
+
+    Parameters
+    ----------
+    y : ndarray
+        The state, shape (n_state,), laid out as
+        :class:`~corliss.engine.network.Network` says (masses [kg] and internal
+        energies [J] of the nodes first).
+    pr : ndarray
+        Node properties, shape (:data:`PR_ROWS`, nodes): rows pressure [Pa], density
+        [kg/m3], enthalpy [J/kg], port-flow exponent [-], dV/dtheta [m3/rad], volume
+        [m3], temperature [K], wetted-wall temperature [K], clamp code
+        (:data:`PR_CLAMP`), dryness [-]
+        (:data:`PR_X`), whether superheated (:data:`PR_SUP`) and the state
+        they are of (:data:`PR_AT`).
+    dy : ndarray
+        The derivatives with respect to crank angle (per radian), shape (n_state,),
+        updated in place.
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    """
+    heat = net[19]
+    for i in range(heat.shape[0]):
+        if heat[i, 0] != 4.0 or not dy[2 * i] < 0.0:
+            continue
+        k = int(heat[i, 8])
+        extra = y[k + 1] - FILM_WET_KG_M2 * heat[i, 7]
+        m = y[2 * i]
+        if extra > 0.0 and m > 0.0:
+            sw = extra * (-dy[2 * i]) / m
+            dy[2 * i] += sw
+            dy[2 * i + 1] += sw * heat[i, 11]
+            dy[k + 1] -= sw
+
+
+@njit(cache=True, _nrt=False)
+def rhs(th, y, dy, net, tier, tab, perf, pr, cell):
+    """Derivatives with respect to crank angle on a compiled property tier.
+
+    :func:`node_states` then :func:`derivatives`: the one compiled right-hand side
+    the integrators call.
+
+    Parameters
+    ----------
+    th : float
+        Shaft crank angle [rad].
+    y : ndarray
+        The state, shape (n_state,), laid out as
+        :class:`~corliss.engine.network.Network` says (masses [kg] and internal
+        energies [J] of the nodes first).
+    dy : ndarray
+        Written: the derivatives with respect to crank angle (per radian), shape
+        (n_state,).
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    tier : int
+        The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.
+    tab : tuple
+        The steam table's arrays (:meth:`corliss.thermo.steam_table.SteamTable.arrays`).
+    perf : ndarray
+        The perfect tier's gas constant [J/(kg K)], ``cv`` [J/(kg K)] and ``u_ref``
+        [J/kg]; shape (3,) (unused on the table tier).
+    pr : ndarray
+        Scratch, written: node properties, shape (:data:`PR_ROWS`, nodes): rows
+        pressure [Pa], density [kg/m3], enthalpy [J/kg], port-flow exponent [-],
+        dV/dtheta [m3/rad], volume [m3], temperature [K], wetted-wall temperature
+        [K], clamp code (:data:`PR_CLAMP`), dryness [-]
+        (:data:`PR_X`), whether superheated (:data:`PR_SUP`) and the state
+        they are of (:data:`PR_AT`).
+    cell : ndarray
+        Scratch for the port areas [m2], shape (cylinders, 4).
+    """
+    node_states(th, y, net, tier, tab, perf, pr)
+    derivatives(th, y, pr, dy, net, cell)

@@ -1,0 +1,99 @@
+"""Numba's on-disk cache of the kernels: whether a kernel is compiled for the types a run
+will pass (:func:`uncached`), and the notice that a run is about to compile.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+
+from corliss.engine.kernels.cycle import CYCLE_KERNELS, ROS_FINITE_ARG, ROS_PAIR_ARG
+from corliss.engine.kernels.rosenbrock import _ros_steps
+from corliss.logs import NOTICE
+
+log = logging.getLogger(__name__)
+
+
+def uncached(dispatcher, nones: dict[int, bool] | None = None) -> bool | None:
+    """Whether a compiled function's first call will compile it.
+
+    Parameters
+    ----------
+    dispatcher : numba Dispatcher
+        The compiled function (``@njit(cache=True)``).
+    nones : dict of int to bool, optional
+        For a function compiled in versions by whether arguments are None: each such
+        argument's position, and whether the version wanted takes None there; only
+        that version counts.
+
+    Returns
+    -------
+    bool or None
+        True when it is neither compiled in this process nor in numba's disk cache;
+        None when this numba does not show its cache (internals this reads are gone).
+    """
+    def counts(sig) -> bool:
+        return all((str(sig[k]) == "none") == v for k, v in (nones or {}).items())
+    try:
+        if any(counts(sig) for sig in dispatcher.signatures):
+            return False
+        cache_file = dispatcher._cache._cache_file
+        if not os.path.exists(cache_file._index_path):
+            return True
+        if not nones:
+            return False
+        return not any(counts(key[0]) for key in cache_file._load_index())
+    except (AttributeError, IndexError, TypeError):
+        return None
+
+
+def cycle_kernel_uncached(code: int, exact: bool = True) -> bool | None:
+    """:func:`uncached` of the compiled cycle integrator of a method code, in the
+    version that method runs on the network (:data:`ROS_PAIR_ARG`,
+    :data:`ROS_FINITE_ARG`).
+
+    Parameters
+    ----------
+    code : int
+        The method's code (:data:`CYCLE_KERNELS`).
+    exact : bool
+        Whether the network's Jacobian is analytic (:func:`exact_jacobian_covers`).
+
+    Returns
+    -------
+    bool or None
+        As :func:`uncached`.
+    """
+    dispatcher = CYCLE_KERNELS[code]
+    if dispatcher is _ros_steps:
+        return uncached(dispatcher, {ROS_PAIR_ARG: code != 2, ROS_FINITE_ARG: exact})
+    return uncached(dispatcher)
+
+
+def announce_compile(*dispatchers, cycle: int | None = None, exact: bool = True) -> None:
+    """Say so before compiled functions not yet in numba's disk cache are first called.
+
+    The first run on a machine spends some seconds compiling them; a NOTICE names the
+    functions to be compiled (nothing when all are cached, or this numba does not show
+    its cache).
+
+    Parameters
+    ----------
+    *dispatchers : numba Dispatcher
+        The compiled functions about to be called.
+    cycle : int, optional
+        A method's code (:data:`CYCLE_KERNELS`) whose cycle integrator is about to be
+        called, in that method's version (:func:`cycle_kernel_uncached`).
+    exact : bool
+        With ``cycle``: whether the network's Jacobian is analytic.
+    """
+    state = [uncached(d) for d in dispatchers]
+    if cycle is not None:
+        dispatchers = dispatchers + (CYCLE_KERNELS[cycle],)
+        state.append(cycle_kernel_uncached(cycle, exact))
+    if None in state:          # a numba without these internals: say nothing
+        return
+    missing = [d.__name__ for d, m in zip(dispatchers, state) if m]
+    if missing:
+        log.log(NOTICE, "compiling the kernels once for this machine (%s; 10 to 15 s); "
+                "later runs load them from the cache", ", ".join(missing))

@@ -1,0 +1,412 @@
+"""The explicit step loops: Dormand-Prince 5(4) over a steady cycle (:func:`cycle_dopri5`,
+restarted at every kink of the port areas) and over a turn of the governed loop
+(:func:`integrate_turn`), and the classical fourth-order Runge-Kutta method at a fixed
+step (:func:`cycle_rk4`).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from corliss.engine.kernels.balances import rhs
+from corliss.engine.kernels.clamps import (CL_ACCEPTED, CL_NODE, settle_clamps,
+                                           settle_trial, settle_visited, tally_clamps,
+                                           visited_clamp_off)
+from corliss.engine.kernels.compiled import njit
+from corliss.engine.kernels.loop import (N_EXTRA, N_REC, S_MAX_RHS, S_WMIN, X_OMEGA, X_Z,
+                                         _project, _record, _turn_end, _visited_clamps,
+                                         transient_rhs)
+from corliss.engine.kernels.mechanism import TWO_PI
+from corliss.engine.kernels.properties import PR_ROWS
+from corliss.engine.kernels.stepping import (copy_into, emit_samples, initial_step,
+                                             put_column, segment_start, step_factor)
+from corliss.engine.kernels.tableaus import DOPRI_NODES, dopri_error, dopri_stage
+
+
+def cycle_dopri5(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, max_rhs):
+    """:func:`integrate_cycle` with Dormand-Prince 5(4) (see the module docstring).
+
+    Allocates the scratch (in Python: no compiled function to compile for it) and hands
+    over to the compiled step loop :func:`_dopri5_steps`.
+
+    Parameters
+    ----------
+    y0 : ndarray
+        The state at ``stops[0]``; shape (n_state,).
+    stops : ndarray
+        Shaft angles [rad], increasing: the segments between them are integrated
+        with a restart at each (:meth:`corliss.engine.network.Network.stops`).
+    out_theta : ndarray
+        Shaft angles [rad] where the state is sampled, increasing.
+    rtol : float
+        Relative tolerance [-].
+    atol : ndarray
+        Absolute tolerances, in each component's unit; shape (n_state,).
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    tier : int
+        The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.
+    tab : tuple
+        The steam table's arrays (:meth:`corliss.thermo.steam_table.SteamTable.arrays`).
+    perf : ndarray
+        The perfect tier's gas constant [J/(kg K)], ``cv`` [J/(kg K)] and ``u_ref``
+        [J/kg]; shape (3,) (unused on the table tier).
+    max_rhs : int
+        The run-time budget: most right-hand-side evaluations.
+
+    Returns
+    -------
+    y_end : ndarray
+        The state at ``stops[-1]``; shape (n_state,).
+    samples : ndarray
+        ``samples[:, k]`` the state at ``out_theta[k]``; shape (n_state, outputs).
+    nfev : int
+        Right-hand-side evaluations spent.
+    ok : bool
+        False when the step size collapsed, the state went non-finite or more than
+        ``max_rhs`` evaluations were spent.
+    clamps : ndarray
+        Evaluations that clamped a state, shape (6,), indexed by ``CL_*``: at visited
+        states (the ends of accepted steps) and at trial states (stages, probes,
+        rejected steps) apart.
+    """
+    n = y0.shape[0]
+    y = y0.copy()
+    samples = np.full((n, out_theta.shape[0]), np.nan)
+    vec = np.empty((3, n))
+    K = np.empty((7, n))
+    pr = np.empty((PR_ROWS, net[4].shape[0]))
+    cell = np.empty((net[17].shape[0], 4))
+    clamps = np.zeros(6)
+    clamps[CL_NODE] = -1.0
+    tally = np.zeros((2, 4))
+    nfev, ok = _dopri5_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf,
+                             max_rhs, vec, K, pr, cell, clamps, tally)
+    return y, samples, nfev, ok, clamps
+
+
+@njit(cache=True, _nrt=False)
+def _dopri5_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, max_rhs,
+                  vec, K, pr, cell, clamps, tally):
+    """:func:`cycle_dopri5`'s steps, on scratch it allocated (no reference counts).
+    ``y`` is advanced to the cycle's end, ``samples`` and ``clamps`` written; returns
+    the evaluations spent and whether the cycle ended well."""
+    f0, ytmp, tmp = vec[0], vec[1], vec[2]
+    att, att_end = tally[0], tally[1]
+    nfev = 0
+    io = 0
+    while io < out_theta.shape[0] and out_theta[io] <= stops[0]:
+        put_column(samples, io, y)
+        io += 1
+    h_prev = 0.0
+    for seg in range(stops.shape[0] - 1):
+        a = stops[seg]
+        b = stops[seg + 1]
+        if b - a <= 0.0:
+            continue
+        t = a
+        segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att)
+        nfev += 1
+        h = min(h_prev, b - a) if h_prev > 0.0 else initial_step(f0, y, atol, rtol, b - a)
+        while t < b:
+            if t + h > b or b - (t + h) < 1e-12:
+                h = b - t
+            copy_into(K[0], f0)
+            for s_ in range(1, 7):
+                dopri_stage(y, K, s_, h, ytmp)
+                rhs(t + DOPRI_NODES[s_] * h, ytmp, K[s_], net, tier, tab, perf, pr, cell)
+                tally_clamps(pr, t + DOPRI_NODES[s_] * h, att_end if s_ == 6 else att)
+            nfev += 6
+            err = dopri_error(y, ytmp, K, h, atol, rtol)
+            # ytmp: the new state; K[6]: the derivative there (FSAL).  A step whose end
+            # needed the properties clamped (a volume emptied below their least density,
+            # say) is no step of the physical path: it is retried shorter, as an
+            # inaccurate one is (positivity by step control).
+            accepted = (err <= 1.0 and visited_clamp_off(att_end) == 0) or h < 1e-12
+            settle_trial(att, clamps)
+            settle_clamps(att_end, accepted, clamps)
+            if accepted:
+                t1 = t + h
+                io = emit_samples(io, out_theta, t, y, f0, t1, ytmp, K[6], samples, tmp)
+                t = t1
+                copy_into(y, ytmp)
+                copy_into(f0, K[6])
+                h_prev = h * step_factor(err, 0.9, -0.2)
+                h = h_prev
+            elif err <= 1.0:
+                h = 0.5 * h      # accurate, but through a state the properties do not hold
+            else:
+                h = h * max(0.2, 0.9 * err ** -0.2)
+            if not (h > 0.0) or not math.isfinite(y[0]) or nfev > max_rhs:
+                return nfev, False
+    while io < out_theta.shape[0]:
+        put_column(samples, io, y)
+        io += 1
+    return nfev, True
+
+
+@njit(cache=True)
+def cycle_rk4(y0, stops, out_theta, step, net, tier, tab, perf, max_rhs):
+    """:func:`integrate_cycle` with the classical Runge-Kutta method at a fixed step.
+
+    Each segment between stops is divided into equal steps no longer than ``step``.
+
+    Parameters
+    ----------
+    y0 : ndarray
+        The state at ``stops[0]``; shape (n_state,).
+    stops : ndarray
+        Shaft angles [rad], increasing: the segments between them are integrated
+        with a restart at each (:meth:`corliss.engine.network.Network.stops`).
+    out_theta : ndarray
+        Shaft angles [rad] where the state is sampled, increasing.
+    step : float
+        The largest fixed step [rad].
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    tier : int
+        The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.
+    tab : tuple
+        The steam table's arrays (:meth:`corliss.thermo.steam_table.SteamTable.arrays`).
+    perf : ndarray
+        The perfect tier's gas constant [J/(kg K)], ``cv`` [J/(kg K)] and ``u_ref``
+        [J/kg]; shape (3,) (unused on the table tier).
+    max_rhs : int
+        The run-time budget: most right-hand-side evaluations.
+
+    Returns
+    -------
+    y_end : ndarray
+        The state at ``stops[-1]``; shape (n_state,).
+    samples : ndarray
+        ``samples[:, k]`` the state at ``out_theta[k]``; shape (n_state, outputs).
+    nfev : int
+        Right-hand-side evaluations spent.
+    ok : bool
+        False when the step size collapsed, the state went non-finite or more than
+        ``max_rhs`` evaluations were spent.
+    clamps : ndarray
+        Evaluations that clamped a state, shape (6,), indexed by ``CL_*``: at visited
+        states (the ends of accepted steps) and at trial states (stages, probes,
+        rejected steps) apart.
+    """
+    n = y0.shape[0]
+    y = y0.copy()
+    samples = np.full((n, out_theta.shape[0]), np.nan)
+    f0 = np.empty(n)
+    f1 = np.empty(n)
+    K = np.empty((4, n))
+    ynew = np.empty(n)
+    ytmp = np.empty(n)
+    tmp = np.empty(n)
+    pr = np.empty((PR_ROWS, net[4].shape[0]))
+    cell = np.empty((net[17].shape[0], 4))
+    nfev = 0
+    clamps = np.zeros(6)
+    clamps[CL_NODE] = -1.0
+    att = np.zeros(4)
+    att_end = np.zeros(4)
+    io = 0
+    while io < out_theta.shape[0] and out_theta[io] <= stops[0]:
+        put_column(samples, io, y)
+        io += 1
+    for seg in range(stops.shape[0] - 1):
+        a = stops[seg]
+        b = stops[seg + 1]
+        if b - a <= 0.0:
+            continue
+        t = a
+        segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att)
+        nfev += 1
+        nstep = int(math.ceil((b - a) / step - 1e-9))
+        if nstep < 1:
+            nstep = 1
+        h = (b - a) / nstep
+        for k_ in range(nstep):
+            for i in range(n):
+                ytmp[i] = y[i] + 0.5 * h * f0[i]
+            rhs(t + 0.5 * h, ytmp, K[1], net, tier, tab, perf, pr, cell)
+            tally_clamps(pr, t + 0.5 * h, att)
+            for i in range(n):
+                ytmp[i] = y[i] + 0.5 * h * K[1, i]
+            rhs(t + 0.5 * h, ytmp, K[2], net, tier, tab, perf, pr, cell)
+            tally_clamps(pr, t + 0.5 * h, att)
+            for i in range(n):
+                ytmp[i] = y[i] + h * K[2, i]
+            rhs(t + h, ytmp, K[3], net, tier, tab, perf, pr, cell)
+            tally_clamps(pr, t + h, att)
+            for i in range(n):
+                ynew[i] = y[i] + h / 6.0 * (f0[i] + 2 * K[1, i] + 2 * K[2, i] + K[3, i])
+            t1 = b if k_ == nstep - 1 else t + h
+            rhs(t1, ynew, f1, net, tier, tab, perf, pr, cell)
+            tally_clamps(pr, t1, att_end)
+            settle_trial(att, clamps)
+            settle_visited(att_end, clamps)
+            nfev += 4
+            io = emit_samples(io, out_theta, t, y, f0, t1, ynew, f1, samples, tmp)
+            t = t1
+            copy_into(y, ynew)
+            copy_into(f0, f1)
+        if not math.isfinite(y[0]) or nfev > max_rhs:
+            return y, samples, nfev, False, clamps
+    while io < out_theta.shape[0]:
+        put_column(samples, io, y)
+        io += 1
+    return y, samples, nfev, True, clamps
+
+
+@njit(cache=True)
+def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, record, t_end):
+    """Integrate one turn, from ``th0`` to ``th0 + 2 pi`` (dopri5, dense Hermite output).
+
+    Evaluations that clamped a state to the range of the steam properties are counted:
+    at trial states (stages, rejected steps) into ``sc[S_CLAMPED_TRIALS]``; at a state
+    the run visits (an accepted step's end) they stop the run
+    (:class:`~corliss.errors.RunError`, naming the scene quantity to look at), but for
+    steam heated beyond the greatest energy (into ``sc[S_CLAMPED_HOT]``).
+
+    Parameters
+    ----------
+    y0 : ndarray
+        The state at ``th0`` (see :func:`transient_rhs`).
+    th0 : float
+        Shaft angle at the turn's start [rad].
+    out_theta : ndarray
+        Shaft angles [rad] where the state is sampled, increasing.
+    rtol : float
+        Relative tolerance [-].
+    atol : ndarray
+        Absolute tolerances, in each component's unit, of ``y0``'s shape.
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    tier : int
+        The compiled property tier.
+    tab : tuple
+        The steam table's arrays.
+    perf : ndarray
+        The perfect tier's parameters, shape (3,).
+    tr : tuple
+        The loop's tables (:attr:`corliss.engine.transient.LoopTables.tr`): scalars
+        ``sc`` (indices ``S_*``; the clamp counts
+        written), load times [s] and fractions [-], setting grid [-],
+        port areas over (setting, crank angle) [m2], governed cylinders, governor
+        tables (M, M', G, R, J on a uniform z grid), trip tables, throttle areas [m2].
+    record : bool
+        Whether to record every accepted step.
+    t_end : float
+        The run's end time [s].
+
+    Returns
+    -------
+    y_end : ndarray
+        The state at the turn's end (or where it stopped).
+    samples : ndarray
+        ``samples[:, k]`` the state at ``out_theta[k]``; shape (n, outputs).
+    rec : ndarray
+        Shape (:data:`N_REC`, at most 40000): per accepted step (and the start), shaft
+        angle [rad], speed [rad/s], z [-], actuator [-], time [s], indicated torque
+        [N m] and load torque [N m]; filled up to ``n_rec`` when ``record``.
+    n_rec : int
+        Columns of ``rec`` filled.
+    nfev : int
+        Right-hand-side evaluations.
+    status : int
+        0 ok; 1 the step size collapsed; 2 the engine stalled (speed below
+        ``sc[S_WMIN]``); 3 time ``t_end`` passed (the turn was finished anyway); 4 the
+        turn exceeded the run-time budget (``sc[S_MAX_RHS]`` evaluations).
+
+    Raises
+    ------
+    RunError
+        A visited state needed a clamp other than the greatest energy's.
+    """
+    n = y0.shape[0]
+    nn = n - N_EXTRA
+    y = y0.copy()
+    samples = np.full((n, out_theta.shape[0]), np.nan)
+    nrec_max = 40000 if record else 1
+    rec = np.empty((N_REC, nrec_max))
+    n_rec = 0
+    f0 = np.empty(n)
+    K = np.empty((7, n))
+    ytmp = np.empty(n)
+    tmp = np.empty(n)
+    pr = np.empty((PR_ROWS, net[4].shape[0]))
+    pa = np.empty((net[17].shape[0], 4))
+    out = np.empty(4)
+    sc = tr[0]
+    clamps = np.zeros(6)
+    att = np.zeros(4)
+    att_end = np.zeros(4)
+    a = th0
+    b = th0 + TWO_PI
+    t = a
+    transient_rhs(t, y, f0, net, tier, tab, perf, pr, pa, tr, out)
+    tally_clamps(pr, t, att)
+    settle_visited(att, clamps)
+    nfev = 1
+    io = 0
+    while io < out_theta.shape[0] and out_theta[io] <= a:
+        put_column(samples, io, y)
+        io += 1
+    if record:
+        _record(rec, 0, t, y, nn, out)
+        n_rec = 1
+    scale = 0.0
+    for i in range(n):
+        v = abs(f0[i]) / (atol[i] + rtol * abs(y[i]))
+        if v > scale:
+            scale = v
+    h = 0.01 * (rtol ** 0.2) / scale if scale > 0.0 else 0.01
+    h = min(max(h, 1e-7), 0.05)
+    status = 0
+    while t < b:
+        if t + h > b or b - (t + h) < 1e-12:
+            h = b - t
+        copy_into(K[0], f0)
+        for s_ in range(1, 7):
+            dopri_stage(y, K, s_, h, ytmp)
+            transient_rhs(t + DOPRI_NODES[s_] * h, ytmp, K[s_], net, tier, tab, perf, pr, pa, tr, out)
+            tally_clamps(pr, t + DOPRI_NODES[s_] * h, att_end if s_ == 6 else att)
+        nfev += 6
+        err = dopri_error(y, ytmp, K, h, atol, rtol)
+        accepted = err <= 1.0 or h < 1e-10
+        settle_trial(att, clamps)
+        settle_clamps(att_end, accepted, clamps)
+        if clamps[CL_ACCEPTED] > 0.0:
+            _visited_clamps(clamps, sc)
+        if accepted:
+            t1 = t + h
+            io = emit_samples(io, out_theta, t, y, f0, t1, ytmp, K[6], samples, tmp)
+            t = t1
+            copy_into(y, ytmp)
+            before = y[nn + X_Z]
+            _project(y, nn)
+            if y[nn + X_Z] != before:   # a stop was struck: restart the derivative
+                transient_rhs(t, y, K[6], net, tier, tab, perf, pr, pa, tr, out)
+                tally_clamps(pr, t, att)
+                settle_visited(att, clamps)
+                if clamps[CL_ACCEPTED] > 0.0:
+                    _visited_clamps(clamps, sc)
+                nfev += 1
+            copy_into(f0, K[6])
+            if record and n_rec < nrec_max:
+                # out[] holds the values at the last stage, which is the step's end (FSAL)
+                _record(rec, n_rec, t, y, nn, out)
+                n_rec += 1
+            h = h * step_factor(err, 0.9, -0.2)
+            if y[nn + X_OMEGA] < sc[S_WMIN]:
+                status = 2
+                break
+        else:
+            h = h * max(0.2, 0.9 * err ** -0.2)
+        if not (h > 0.0) or not math.isfinite(y[0]):
+            status = 1
+            break
+        if nfev > sc[S_MAX_RHS]:
+            status = 4
+            break
+    status = _turn_end(io, out_theta, samples, y, nn, status, t_end, clamps, sc)
+    return y, samples, rec, n_rec, nfev, status

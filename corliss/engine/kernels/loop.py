@@ -1,0 +1,509 @@
+"""The compiled speed loop: cylinders, shaft, flywheel, load and governor integrated together.
+
+The engine's control volumes are those of :mod:`corliss.engine.network`, with their
+balances from :func:`corliss.engine.kernels.balances.balances`; here the crank speed omega is a
+state instead of a constant, and three more states join it: the governor's coordinate
+z in [0, 1], its rate dz/dt, and the time t.  Crank angle stays the independent
+variable (a cycle is a fixed span of it, so per-cycle quantities are integrals over
+one turn), and every rate is divided by omega.
+
+Shaft (the crank train as one degree of freedom, Lagrange's equation for theta)::
+
+    I_e(theta) domega/dt + 1/2 I_e'(theta) omega^2 = T_gas - T_friction - T_load
+    I_e = I_flywheel + sum_c m_rec (ds_c/dtheta)^2          (``inertia`` effect)
+    T_gas = sum_i p_i dV_i/dtheta                             (indicated torque)
+
+so that d/dt (1/2 I_e omega^2) = (T_gas - T_friction - T_load) omega: the flywheel's
+energy balances the torque integral (a test checks this).  Friction, when the scene
+names it, is T_f0 + T_f1 omega; the load is T_ref f(t) (omega/omega_ref)^k with f
+piecewise linear in time (steps are two points at one time) and k = 0, 1 or 2.
+
+Governor (the common form of :mod:`corliss.governors`; spindle speed w_g = ratio
+omega)::
+
+    M(z) z'' + 1/2 M'(z) z'^2 = G(z) w_g^2 - R(z) - c z' - F_f sat(z'/v_e) - J(z) dw_g/dt
+
+with M, M', G, R, J tabulated on a uniform grid of z and read linearly.  Coulomb
+friction is regularised over a creep speed v_e (a governor held by friction creeps at
+less than v_e, small against its travel in a cycle).  Stops at z = 0 and z = 1 are
+inelastic: the right-hand side does not push past a stop, and after every step z is
+clipped to [0, 1] with the velocity into the stop removed.
+
+The governor's actuator value a = a0 + (a1 - a0) z either opens the throttle (the
+steam pipe's effective area read from a table of opening) or sets the valve gear,
+whose port areas come from a table over (setting, crank angle), both uniform grids,
+read bilinearly.  Integration: Dormand-Prince 5(4)
+(:func:`corliss.engine.kernels.dopri5.integrate_turn`), or a Rosenbrock tableau of
+:data:`corliss.engine.kernels.tableaus.ROS_TABLEAUS`
+(:func:`corliss.engine.kernels.rosenbrock.integrate_turn_ros`, the ``fast`` preset's
+``ros4``), with no stops inside a cycle (port kinks move with the setting).
+
+:func:`transient_rhs` is compiled without numba's reference counting
+(``_nrt=False``), as :func:`corliss.engine.kernels.balances.rhs` is and for its reason: it
+allocates nothing, and the counts on the arrays read from the network and table tuples
+were most of its cost; the small helpers it calls are inlined into it, and so compiled
+the same way.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from corliss.engine.kernels.balances import balances
+from corliss.engine.kernels.clamps import (CL_ACCEPTED, CL_ACCEPTED_CODE, CL_REJECTED,
+                                           CL_REJECTED_CODE)
+from corliss.engine.kernels.compiled import njit
+from corliss.engine.kernels.mechanism import TWO_PI, piston_kinematics, port_areas
+from corliss.engine.kernels.properties import node_states
+from corliss.engine.kernels.stepping import put_column
+from corliss.errors import RunError
+
+
+# layout of the scalar parameters ``sc``
+S_INERTIA, S_MREC, S_TF0, S_TF1, S_RATIO, S_DAMP, S_FRIC, S_VEPS = 0, 1, 2, 3, 4, 5, 6, 7
+
+
+S_KLAW, S_TREF, S_WREF, S_ACT_GEAR, S_A0, S_A1, S_HAS_GOV, S_THR_EDGE = 8, 9, 10, 11, 12, 13, 14, 15
+
+
+S_FREEZE, S_FRICTION_ON, S_WMIN, S_TRIP, S_SAFE_Z, S_SAFE_A, S_MAX_RHS = 16, 17, 18, 19, 20, 21, 22
+
+
+#: written by :func:`integrate_turn`, summed over the turns: evaluations that clamped a
+#: trial state to the steam properties' range, and the OR of their codes
+S_CLAMPED_TRIALS, S_CLAMPED_TRIAL_CODE = 23, 24
+
+
+#: and evaluations at visited states heated beyond the properties' greatest energy,
+#: evaluated at it (the one clamp that does not stop a run; see
+#: :mod:`corliss.engine.crank_resolved`)
+S_CLAMPED_HOT = 25
+
+
+#: the Rosenbrock loop's next step [rad], carried from turn to turn (0: none yet)
+S_STEP = 26
+
+
+N_SCALARS = 27
+
+
+# the extra states after the network's, relative to its length
+X_OMEGA, X_Z, X_ZDOT, X_TIME, X_WLOAD, X_WFRIC, X_WGAS, X_ZDT, X_ADT = 0, 1, 2, 3, 4, 5, 6, 7, 8
+
+
+N_EXTRA = 9
+
+
+#: what a recorded step keeps: theta, omega, z, actuator, t, T_gas, T_load, then
+#: p of every node
+N_REC = 7
+
+
+@njit(cache=True, inline="always")
+def _lin(grid0, dgrid, table, x):
+    """Linear interpolation in a table on a uniform grid, clamped at its ends."""
+    n = table.shape[0]
+    f = (x - grid0) / dgrid
+    if f <= 0.0:
+        return table[0]
+    if f >= n - 1:
+        return table[n - 1]
+    k = int(f)
+    w = f - k
+    return table[k] * (1.0 - w) + table[k + 1] * w
+
+
+@njit(cache=True, inline="always")
+def uniform_cell(x, x0, x1, n):
+    """The cell of a value on a uniform grid, and its weight, clamped to the grid.
+
+    Parameters
+    ----------
+    x : float
+        The value.
+    x0, x1 : float
+        The grid's first and last points (``x1 > x0`` when ``n >= 2``).
+    n : int
+        Points of the grid.
+
+    Returns
+    -------
+    k : int
+        The cell: ``x`` lies between points ``k`` and ``k + 1``.
+    w : float
+        The weight of point ``k + 1`` [-], 0 to 1 ((0, 0) for a single point).
+    """
+    if n < 2:
+        return 0, 0.0
+    f = (x - x0) / (x1 - x0) * (n - 1)
+    if f < 0.0:
+        f = 0.0
+    if f > n - 1:
+        f = n - 1.0
+    k = int(f)
+    if k > n - 2:
+        k = n - 2
+    return k, f - k
+
+
+@njit(cache=True, inline="always")
+def load_factor(t, lt, lf):
+    """The load schedule ``f(t)``: piecewise linear, constant beyond its ends.
+
+    At a step (two points at one time) the value after it.
+
+    Parameters
+    ----------
+    t : float
+        Time [s].
+    lt : ndarray
+        The schedule's times [s], non-decreasing.
+    lf : ndarray
+        The load fractions at those times [-].
+
+    Returns
+    -------
+    float
+        ``f(t)`` [-].
+    """
+    n = lt.shape[0]
+    if t <= lt[0]:
+        return lf[0]
+    if t >= lt[n - 1]:
+        return lf[n - 1]
+    k = np.searchsorted(lt, t, side="right") - 1
+    dt = lt[k + 1] - lt[k]
+    if dt <= 0.0:
+        return lf[k + 1]
+    return lf[k] + (lf[k + 1] - lf[k]) * (t - lt[k]) / dt
+
+
+@njit(cache=True, inline="always")
+def governed_areas(th, s, omega, net, tr, pa):
+    """Port areas of the governed cylinders at a gear setting.
+
+    Bilinear in the (setting, crank angle) table; with a trip gear, the steam valves
+    released at the setting's cam and closed by the dash-pot in its own time
+    (:func:`trip_areas`).
+
+    Parameters
+    ----------
+    th : float
+        Shaft crank angle [rad].
+    s : float
+        The gear's setting [-] (the governor's actuator value).
+    omega : float
+        Shaft speed [rad/s] (the dash-pot closes in time, not angle).
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    tr : tuple
+        The loop's tables (:attr:`corliss.engine.transient.LoopTables.tr`): scalars
+        ``sc`` (indices ``S_*``), load times [s] and fractions [-], setting grid [-],
+        port areas over (setting, crank angle) [m2], governed cylinders, governor
+        tables (M, M', G, R, J on a uniform z grid), trip tables, throttle areas [m2].
+    pa : ndarray
+        The port areas [m2], shape (cylinders, 4), overwritten for the governed
+        cylinders.
+    """
+    sc, sgrid, area_s, governed = tr[0], tr[3], tr[4], tr[5]
+    phase = net[3]
+    ns = sgrid.shape[0]
+    nth = area_s.shape[3] - 1
+    j, ws = uniform_cell(s, sgrid[0], sgrid[ns - 1], ns)
+    j1 = j + 1 if ns > 1 else j
+    for c in range(governed.shape[0]):
+        if governed[c] == 0:
+            continue
+        t = (th + phase[c]) % TWO_PI
+        ft = t / TWO_PI * nth
+        k = int(ft)
+        if k > nth - 1:
+            k = nth - 1
+        wt = ft - k
+        for p in range(4):
+            a0 = area_s[c, p, j, k] * (1.0 - wt) + area_s[c, p, j, k + 1] * wt
+            a1 = area_s[c, p, j1, k] * (1.0 - wt) + area_s[c, p, j1, k + 1] * wt
+            pa[c, p] = a0 * (1.0 - ws) + a1 * ws
+        if sc[S_TRIP] > 0.0:
+            trip_areas(t, s, omega, tr, c, pa)
+
+
+@njit(cache=True, inline="always")
+def trip_areas(t, s, omega, tr, c, pa):
+    """A trip gear's steam ports (0: head, 2: crank) after the release.
+
+    The latched opening (as tabulated) until the cam releases the valve at its release
+    angle, then at most the opening at release times the dash-pot's closing fraction
+    of the time since release, until the latched valve would have closed anyway.
+
+    Parameters
+    ----------
+    t : float
+        The cylinder's own crank angle, within one turn [rad].
+    s : float
+        The gear's setting [-].
+    omega : float
+        Shaft speed [rad/s].
+    tr : tuple
+        The loop's tables (:attr:`corliss.engine.transient.LoopTables.tr`): scalars
+        ``sc`` (indices ``S_*``), load times [s] and fractions [-], setting grid [-],
+        port areas over (setting, crank angle) [m2], governed cylinders, governor
+        tables (M, M', G, R, J on a uniform z grid), trip tables, throttle areas [m2].
+    c : int
+        The cylinder.
+    pa : ndarray
+        The port areas [m2], shape (cylinders, 4), the steam ports' reduced in place.
+    """
+    trip = tr[7]
+    # trip rows: 0 setting grid, 1/2 head/crank release angle per setting (nan: none),
+    # 3/4 head/crank latched opening area at release, 5 closing-fraction table over
+    # time (uniform from 0 to the closing time), scalars in row 6: closing time,
+    # head/crank latched closing angle, head/crank latched opening angle, the number
+    # of settings, the number of points of the closing table
+    sg = trip[0]
+    n = int(trip[6, 5])
+    nf = int(trip[6, 6])
+    tclose = trip[6, 0]
+    for e in range(2):
+        port = 2 * e
+        k, w = uniform_cell(s, sg[0], sg[n - 1], n)
+        k1 = k + 1 if n > 1 else k
+        r0 = trip[1 + e, k]
+        r1 = trip[1 + e, k1]
+        if math.isnan(r0) or math.isnan(r1):
+            continue
+        rel = r0 * (1.0 - w) + r1 * w
+        open_ang = trip[6, 3 + e]
+        close_ang = trip[6, 1 + e]
+        # angles measured from the latched opening, so the window does not wrap
+        since_open = (t - open_ang) % TWO_PI
+        rel_from_open = (rel - open_ang) % TWO_PI
+        window = (close_ang - open_ang) % TWO_PI
+        if rel_from_open >= window:
+            continue
+        if since_open < rel_from_open or since_open > window:
+            continue
+        a_rel = trip[3 + e, k] * (1.0 - w) + trip[3 + e, k1] * w
+        tau = (since_open - rel_from_open) / omega
+        frac = _lin(0.0, tclose / (nf - 1), trip[5, :nf], tau) if tau < tclose else 0.0
+        lim = a_rel * frac
+        if pa[c, port] > lim:
+            pa[c, port] = lim
+
+
+@njit(cache=True, _nrt=False)
+def transient_rhs(th, y, dy, net, tier, tab, perf, pr, pa, tr, out):
+    """Derivatives with respect to crank angle of the whole loop.
+
+    The network's balances at the state's speed (written into ``net[0][0]``), the
+    governor's actuator applied to the throttle's area or the gear's ports, the shaft
+    and the governor as in the module's docstring, and the work quadratures.
+
+    Parameters
+    ----------
+    th : float
+        Shaft crank angle [rad].
+    y : ndarray
+        The state: the network's (:class:`~corliss.engine.network.Network`), then the
+        :data:`N_EXTRA` loop states (``X_*``: speed [rad/s], z [-], dz/dt [1/s], time
+        [s], load, friction and gas work [J], integrals of z and actuator over time
+        [s]).
+    dy : ndarray
+        Written: the derivatives per radian, of ``y``'s shape.
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    tier : int
+        The compiled property tier (:data:`corliss.engine.kernels.properties.TIER_TABLE` or
+        ``TIER_PERFECT``).
+    tab : tuple
+        The steam table's arrays (:meth:`corliss.thermo.steam_table.SteamTable.arrays`).
+    perf : ndarray
+        The perfect tier's gas constant [J/(kg K)], ``cv`` [J/(kg K)] and ``u_ref``
+        [J/kg]; shape (3,).
+    pr : ndarray
+        Scratch, written: the node properties (rows as in
+        :func:`corliss.engine.kernels.properties.node_states`), shape (PR_ROWS, nodes).
+    pa : ndarray
+        Scratch for the port areas [m2], shape (cylinders, 4).
+    tr : tuple
+        The loop's tables (:attr:`corliss.engine.transient.LoopTables.tr`): scalars
+        ``sc`` (indices ``S_*``), load times [s] and fractions [-], setting grid [-],
+        port areas over (setting, crank angle) [m2], governed cylinders, governor
+        tables (M, M', G, R, J on a uniform z grid), trip tables, throttle areas [m2].
+    out : ndarray
+        Written, for recording: indicated torque ``T_gas`` [N m], load torque [N m],
+        actuator value [-] and ``domega/dt`` [rad/s2]; shape (4,).
+    """
+    sc, lt, lf, gov = tr[0], tr[1], tr[2], tr[6]
+    nv = net[4].shape[0]
+    nn = y.shape[0] - N_EXTRA
+    omega = y[nn + X_OMEGA]
+    if omega < sc[S_WMIN]:
+        omega = sc[S_WMIN]
+    z = y[nn + X_Z]
+    zd = y[nn + X_ZDOT]
+    zc = min(max(z, 0.0), 1.0)
+    act = sc[S_A0] + (sc[S_A1] - sc[S_A0]) * zc
+    if zc < sc[S_SAFE_Z]:      # the safety cams (a Corliss governor fallen below its range)
+        act = sc[S_SAFE_A]
+    net[0][0] = omega
+    node_states(th, y, net, tier, tab, perf, pr)
+    port_areas(th, net, pa)
+    if sc[S_HAS_GOV] > 0.0:
+        if sc[S_ACT_GEAR] > 0.0:
+            governed_areas(th, act, omega, net, tr, pa)
+        else:
+            e = int(sc[S_THR_EDGE])
+            net[14][e] = _lin(0.0, 1.0 / (tr[8].shape[0] - 1), tr[8], act)
+    balances(th, y, pr, dy, net, pa)
+    # shaft
+    tgas = 0.0
+    for i in range(nv):
+        tgas += pr[0, i] * pr[4, i]
+    ie = sc[S_INERTIA]
+    die = 0.0
+    mrec = sc[S_MREC]
+    if mrec > 0.0:
+        for c in range(net[2].shape[0]):
+            ds, d2s = piston_kinematics(th, net, c)
+            ie += mrec * ds * ds
+            die += 2.0 * mrec * ds * d2s
+    t = y[nn + X_TIME]
+    tload = sc[S_TREF] * load_factor(t, lt, lf)
+    k = sc[S_KLAW]
+    if k > 0.0:
+        tload *= (omega / sc[S_WREF]) ** k
+    tf = 0.0
+    if sc[S_FRICTION_ON] > 0.0:
+        tf = sc[S_TF0] + sc[S_TF1] * omega
+    wdot = (tgas - tf - tload - 0.5 * die * omega * omega) / ie
+    if sc[S_FREEZE] == 1.0:    # 1: speed and governor held; 2: the governor only
+        wdot = 0.0
+    dy[nn + X_OMEGA] = wdot / omega
+    dy[nn + X_TIME] = 1.0 / omega
+    dy[nn + X_WLOAD] = tload
+    dy[nn + X_WFRIC] = tf
+    dy[nn + X_WGAS] = tgas
+    dy[nn + X_ZDT] = zc / omega
+    dy[nn + X_ADT] = act / omega
+    # governor
+    zdd = 0.0
+    if sc[S_HAS_GOV] > 0.0 and sc[S_FREEZE] == 0.0:
+        ng = gov.shape[1]
+        dz = 1.0 / (ng - 1)
+        M = _lin(0.0, dz, gov[0], zc)
+        dM = _lin(0.0, dz, gov[1], zc)
+        G = _lin(0.0, dz, gov[2], zc)
+        R = _lin(0.0, dz, gov[3], zc)
+        J = _lin(0.0, dz, gov[4], zc)
+        wg = sc[S_RATIO] * omega
+        v = zd / sc[S_VEPS]
+        if v > 1.0:
+            v = 1.0
+        if v < -1.0:
+            v = -1.0
+        force = (G * wg * wg - R - sc[S_DAMP] * zd - sc[S_FRIC] * v
+                 - J * sc[S_RATIO] * wdot - 0.5 * dM * zd * zd)
+        zdd = force / M
+        if (z <= 0.0 and zdd < 0.0 and zd <= 0.0) or (z >= 1.0 and zdd > 0.0 and zd >= 0.0):
+            zdd = 0.0
+            zd = 0.0
+        dy[nn + X_Z] = zd / omega
+        dy[nn + X_ZDOT] = zdd / omega
+    else:
+        dy[nn + X_Z] = 0.0
+        dy[nn + X_ZDOT] = 0.0
+    out[0] = tgas
+    out[1] = tload
+    out[2] = act
+    out[3] = wdot
+
+
+@njit(cache=True)
+def _project(y, nn):
+    """Inelastic stops of the governor: z in [0, 1], no velocity into a stop."""
+    z = y[nn + X_Z]
+    if z < 0.0:
+        y[nn + X_Z] = 0.0
+        if y[nn + X_ZDOT] < 0.0:
+            y[nn + X_ZDOT] = 0.0
+    elif z > 1.0:
+        y[nn + X_Z] = 1.0
+        if y[nn + X_ZDOT] > 0.0:
+            y[nn + X_ZDOT] = 0.0
+
+
+@njit(cache=True, inline="always")
+def _record(rec, k, t, y, nn, out):
+    """Column ``k`` of a turn's record (:func:`integrate_turn`'s ``rec``): the shaft
+    angle [rad], speed [rad/s], z [-], actuator [-], time [s], indicated and load
+    torques [N m] (``out`` holds the actuator and the torques of the evaluation at
+    ``t``, ``y``)."""
+    rec[0, k] = t
+    rec[1, k] = y[nn + X_OMEGA]
+    rec[2, k] = y[nn + X_Z]
+    rec[3, k] = out[2]
+    rec[4, k] = y[nn + X_TIME]
+    rec[5, k] = out[0]
+    rec[6, k] = out[1]
+
+
+@njit(cache=True, inline="always")
+def _turn_end(io, out_theta, samples, y, nn, status, t_end, clamps, sc):
+    """A turn's end, for both loops: the samples not reached take the last state, the
+    status says when the run's time has passed, and the turn's clamped trials go into
+    ``sc``; returns the status."""
+    while io < out_theta.shape[0]:
+        put_column(samples, io, y)
+        io += 1
+    if status == 0 and y[nn + X_TIME] >= t_end:
+        status = 3
+    sc[S_CLAMPED_TRIALS] += clamps[CL_REJECTED]
+    sc[S_CLAMPED_TRIAL_CODE] = float(int(sc[S_CLAMPED_TRIAL_CODE]) | int(clamps[CL_REJECTED_CODE]))
+    return status
+
+
+@njit(cache=True)
+def _visited_clamps(clamps, sc):
+    """A visited state needed a clamp: stop the run, unless it was only heated beyond
+    the greatest energy (counted into ``sc[S_CLAMPED_HOT]``)."""
+    code = int(clamps[CL_ACCEPTED_CODE])
+    if code & ~8:
+        _clamp_error(code)
+    sc[S_CLAMPED_HOT] += clamps[CL_ACCEPTED]
+    clamps[CL_ACCEPTED] = 0.0
+    clamps[CL_ACCEPTED_CODE] = 0.0
+
+
+@njit(cache=True)
+def _clamp_error(code):
+    """Stop the run: an accepted step needed a state clamped to the range of the steam
+    properties (the bits of :data:`corliss.thermo.steam_table.CLAMP_CODES`); the
+    message names the scene quantity that most likely caused it."""
+    if code & 1 or code & 16 or code & 32:
+        raise RunError("the steam in a cylinder left the range of the steam properties in an "
+                       "accepted step (below their least density, or colder than the triple "
+                       "point): a condenser vacuum deeper than they reach.  The run was "
+                       "stopped rather than continue on clamped properties; check "
+                       "exhaust.pressure")
+    if code & 2:
+        raise RunError("the steam in a cylinder was compressed above the greatest density the "
+                       "steam properties cover, in an accepted step.  The run was stopped "
+                       "rather than continue on clamped properties; check supply.pressure")
+    if code & 8:
+        raise RunError("the steam in a cylinder was heated beyond the range of the steam "
+                       "properties in an accepted step.  The run was stopped rather than "
+                       "continue on clamped properties; check supply.temperature")
+    raise RunError("the steam in a cylinder became wetter than the range of the steam "
+                   "properties in an accepted step.  The run was stopped rather than continue "
+                   "on clamped properties; check supply.dryness")
+
+
+@njit(cache=True, inline="always")
+def _node_torques(pr, tq):
+    """Each node's share of the indicated torque, p dV/dtheta [N m], of the latest
+    evaluation (as :func:`transient_rhs` sums it)."""
+    for i in range(tq.shape[0]):
+        tq[i] = pr[0, i] * pr[4, i]

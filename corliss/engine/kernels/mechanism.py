@@ -1,0 +1,238 @@
+"""The crank train and the ports as the compiled kernels see them: piston position and
+its derivatives by the slider crank, each node's volume and its rate, and the port
+areas read from the tabulated port map (:class:`corliss.engine.network.Network`).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from corliss.engine.kernels.compiled import njit
+
+
+TWO_PI = 2.0 * math.pi
+
+
+@njit(cache=True, inline="always")
+def piston_position(th, net, c):
+    """Piston travel from head dead centre and its derivative with crank angle.
+
+    The slider crank of :mod:`corliss.engine.geometry`, at the cylinder's own angle
+    ``th + phase``.
+
+    Parameters
+    ----------
+    th : float
+        Shaft crank angle [rad].
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    c : int
+        The cylinder.
+
+    Returns
+    -------
+    s : float
+        Travel [m].
+    ds : float
+        ds/dtheta [m/rad].
+    """
+    geo, phase = net[2], net[3]
+    R, L, ang = geo[c, 0], geo[c, 1], geo[c, 7]
+    a = th + phase[c]
+    sn = math.sin(a)
+    cs = math.cos(a)
+    s = R * (1.0 - cs)
+    ds = R * sn
+    if ang > 0.0:
+        root = math.sqrt(L * L - R * R * sn * sn)
+        s += L - root
+        ds += R * R * sn * cs / root
+    return s, ds
+
+
+@njit(cache=True, inline="always")
+def piston_kinematics(th, net, c):
+    """Piston velocity and acceleration per crank angle of one cylinder.
+
+    The slider crank of :mod:`corliss.engine.geometry` at the cylinder's own angle
+    (an infinite rod without rod angularity).
+
+    Parameters
+    ----------
+    th : float
+        Shaft crank angle [rad].
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    c : int
+        The cylinder.
+
+    Returns
+    -------
+    ds : float
+        ``ds/dtheta`` [m/rad].
+    d2s : float
+        ``d2s/dtheta2`` [m/rad2].
+    """
+    geo, phase = net[2], net[3]
+    R, L, ang = geo[c, 0], geo[c, 1], geo[c, 7]
+    a = th + phase[c]
+    sn = math.sin(a)
+    cs = math.cos(a)
+    ds = R * sn
+    d2s = R * cs
+    if ang > 0.0:
+        root = math.sqrt(L * L - R * R * sn * sn)
+        ds += R * R * sn * cs / root
+        d2s += R * R * (cs * cs - sn * sn) / root + (R * R * sn * cs) ** 2 / root ** 3
+    return ds, d2s
+
+
+@njit(cache=True, inline="always")
+def end_volume(net, c, end, s, ds):
+    """Volume of one end of a cylinder and its derivative, from the piston's travel.
+
+    Parameters
+    ----------
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    c : int
+        The cylinder.
+    end : int
+        0 the head end, 1 the crank end.
+    s : float
+        Piston travel from head dead centre [m] (:func:`piston_position`).
+    ds : float
+        ds/dtheta [m/rad].
+
+    Returns
+    -------
+    V : float
+        Volume [m3].
+    dV : float
+        dV/dtheta [m3/rad].
+    """
+    geo = net[2]
+    if end == 0:
+        return geo[c, 5] + geo[c, 3] * s, geo[c, 3] * ds
+    return geo[c, 6] + geo[c, 4] * (geo[c, 2] - s), -geo[c, 4] * ds
+
+
+@njit(cache=True, inline="always")
+def node_volume(th, net, i):
+    """Volume of a node and its derivative with crank angle.
+
+    The slider crank of :mod:`corliss.engine.geometry`, at the cylinder's own angle
+    ``th + phase`` (:func:`piston_position`, :func:`end_volume`); a vessel's volume is
+    fixed.
+
+    Parameters
+    ----------
+    th : float
+        Shaft crank angle [rad].
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    i : int
+        The node.
+
+    Returns
+    -------
+    V : float
+        Volume [m3].
+    dV : float
+        dV/dtheta [m3/rad].
+    """
+    kind, cyl, end, fixedV = net[4], net[5], net[6], net[7]
+    if kind[i] == 1:
+        return fixedV[i], 0.0
+    s, ds = piston_position(th, net, cyl[i])
+    return end_volume(net, cyl[i], end[i], s, ds)
+
+
+@njit(cache=True, inline="always")
+def port_areas(th, net, pa):
+    """Open area of every port of every cylinder, from the PortMap tables.
+
+    Linear interpolation at the cylinder's own angle, one search per cylinder.
+
+    Parameters
+    ----------
+    th : float
+        Shaft crank angle [rad].
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    pa : ndarray
+        Written: the areas [m2], shape (cylinders, 4), ports in PortMap order (head
+        steam, head exhaust, crank steam, crank exhaust).
+    """
+    phase, grid, npts, area = net[3], net[16], net[17], net[18]
+    for c in range(npts.shape[0]):
+        n = npts[c]
+        t = (th + phase[c]) % TWO_PI
+        k = np.searchsorted(grid[c, :n], t) - 1
+        if k < 0:
+            k = 0
+        if k > n - 2:
+            k = n - 2
+        g0 = grid[c, k]
+        w = (t - g0) / (grid[c, k + 1] - g0)
+        for p in range(4):
+            pa[c, p] = area[c, p, k] * (1.0 - w) + area[c, p, k + 1] * w
+
+
+@njit(cache=True, inline="always")
+def edge_area(net, e, pa):
+    """Open area of an edge: a fixed orifice's, or its port's; for a linear leak
+    (:data:`corliss.engine.network.LINEAR_EDGE`), its rate of leak [kg/(s Pa)].
+
+    Parameters
+    ----------
+    net : tuple
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    e : int
+        The edge.
+    pa : ndarray
+        The port areas [m2], shape (cylinders, 4) (:func:`port_areas`).
+
+    Returns
+    -------
+    float
+        The area [m2] (a linear leak's rate [kg/(s Pa)]).
+    """
+    ekind, ecyl, eport, earea = net[11], net[12], net[13], net[14]
+    if ekind[e] >= 1:
+        return earea[e]
+    return pa[ecyl[e], eport[e]]
+
+
+@njit(cache=True, inline="always")
+def _port_area_slopes(th, net, out):
+    """d(area)/dtheta [m2/rad] of every port, shape (cylinders, 4), on the cell of the
+    PortMap table that lies ahead of ``th`` (the side a forward step takes at a kink)."""
+    phase, grid, npts, area = net[3], net[16], net[17], net[18]
+    for c in range(npts.shape[0]):
+        n = npts[c]
+        t = (th + phase[c]) % TWO_PI
+        k = np.searchsorted(grid[c, :n], t, side="right") - 1
+        if k < 0:
+            k = 0
+        if k > n - 2:
+            k = n - 2
+        dg = grid[c, k + 1] - grid[c, k]
+        for p in range(4):
+            out[c, p] = (area[c, p, k + 1] - area[c, p, k]) / dg
+
+
+@njit(cache=True, inline="always")
+def _volume_curvature(th, net, i):
+    """d2V/dtheta2 of a node [m3/rad2]: the slider crank of :func:`node_volume`
+    differentiated once more (:func:`piston_kinematics`; 0 for a vessel)."""
+    geo, kind, cyl, end = net[2], net[4], net[5], net[6]
+    if kind[i] == 1:
+        return 0.0
+    c = cyl[i]
+    d2s = piston_kinematics(th, net, c)[1]
+    if end[i] == 0:
+        return geo[c, 3] * d2s
+    return -geo[c, 4] * d2s
