@@ -49,7 +49,10 @@ def current_point() -> str | None:
 
 
 class PointFilter(logging.Filter):
-    """Puts the point now being run (:func:`at_point`) before a record's message.
+    """Puts the point now being run (:func:`at_point`) before a warning's message.
+
+    Only warnings and errors are marked: a notice (a compile, the steam table built)
+    is about the machine, not the point that happened to set it off.
 
     For a handler: ``handler.addFilter(PointFilter())``.  A record logged outside any
     point passes unchanged; one already marked is not marked twice.
@@ -57,7 +60,8 @@ class PointFilter(logging.Filter):
 
     def filter(self, record: logging.LogRecord) -> bool:
         point = _POINT.get()
-        if point is not None and not getattr(record, "point", None):
+        if (point is not None and record.levelno >= logging.WARNING
+                and not getattr(record, "point", None)):
             record.point = point
             record.msg = f"[{point}] {record.getMessage()}"
             record.args = None

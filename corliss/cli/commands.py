@@ -83,6 +83,7 @@ from corliss.errors import (EXIT_BALANCE_FAILED, EXIT_INTERRUPTED, EXIT_TERMINAT
                             RunError, StudyStopped, Terminated)
 from corliss.files.run_output import (OutputFiles, plain_name, plain_text, scene_from_meta,
                                       summary_json)
+from corliss.frames.columns import convert_record
 from corliss.keys import limits, units
 from corliss.logs import NOTICE
 from corliss.progress import ProgressBar, TqdmHandler
@@ -449,9 +450,15 @@ def cmd_events(args) -> int:
         The exit status: 0 (a user's mistake raises
         :class:`~corliss.errors.InputError`, which :func:`main` turns into 2).
     """
-    scene = _load(args.scene)
+    scene = _load(args.scene, args.units)
     settings = None if args.settings is None else _numbers("--settings", args.settings)
     ev = scene_events(scene, settings)
+    if args.units is not None:      # lengths in the system's unit, named by it (lead_in)
+        baro = scene.supply.barometer_Pa
+        ev = ([{**row, **{end: convert_record(row[end], args.units, baro)
+                          for end in row if isinstance(row[end], dict)}} for row in ev]
+              if isinstance(ev, list) else
+              {end: convert_record(e, args.units, baro) for end, e in ev.items()})
     if args.json or settings is not None:
         print(json.dumps(ev, indent=2))
         return 0
@@ -825,9 +832,17 @@ def cmd_study(args) -> int:
     s = result.summary
     print(f"{s['title']}: {s['design']} of {s['runs']} runs over "
           + ", ".join(v["key"] for v in s["varied"]) + f", fidelity {s['fidelity']}")
+    system = args.units or scene.output.units
     for r, rng in s["response_ranges"].items():
-        print(f"  {r:32s} " + ("no run gave it" if rng is None else
-                               f"{rng['min']:.5g} to {rng['max']:.5g} (median {rng['median']:.5g})"))
+        if rng is None:
+            print(f"  {r:32s} no run gave it")
+            continue
+        # each response in the asked units, named by them (a name without a unit as it is)
+        conv = {q: convert_record({r: rng[q]}, system, scene.supply.barometer_Pa)
+                for q in ("min", "max", "median")}
+        name = next(iter(conv["min"]))
+        print(f"  {name:32s} {conv['min'][name]:.5g} to {conv['max'][name]:.5g} "
+              f"(median {conv['median'][name]:.5g})")
     if s["failed"]:
         print(f"  {s['failed']} run(s) stopped: status 'failed', the reason in 'error'")
     where = s["scheduler"] or f"{s['workers']} local process(es)"
@@ -1057,6 +1072,9 @@ def build_parser() -> argparse.ArgumentParser:
     e.add_argument("scene", help="scene TOML or a bundled scene's name")
     e.add_argument("--json", action="store_true", help="print JSON")
     e.add_argument("--settings", help="gear settings to list, e.g. 0,0.5,1 (link block u/c)")
+    e.add_argument("--units", choices=("US", "SI"),
+                   help="lengths in inches (US) or millimetres (SI), each key named by its "
+                        "unit (lead_in, lead_mm); default: metres, lead_m")
     e.set_defaults(func=cmd_events)
     gp = _subcommand(sub, "gear", help="valve travel and Zeuner diagram of a scene's gear")
     gp.add_argument("scene", help="scene TOML or a bundled scene's name")
@@ -1165,6 +1183,9 @@ def build_parser() -> argparse.ArgumentParser:
     st.add_argument("--resume", action="store_true", help="finish a stopped study: run only "
                     "the rows its partial file in --out lacks")
     st.add_argument("--json", action="store_true", help="print the summary as JSON")
+    st.add_argument("--units", choices=("US", "SI"), help="units of the responses' ranges "
+                    "printed (default: the scene's [output] units; the files and --json "
+                    "keep the names the summary gives, SI unless they say otherwise)")
     st.set_defaults(func=cmd_study)
     ft = _subcommand(sub, "fit", help="calibrate scene keys to a measured indicator card")
     ft.add_argument("scene", help="scene TOML or a bundled scene's name (steady)")
