@@ -19,6 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from corliss.keys import limits, units
+from corliss.engine import first_run
 from corliss.engine.geometry import EngineSpec
 from corliss.governors.operating_point import working_travel
 from corliss.engine.options import (COMPILED_METHODS, EFFECT_KEYS, EFFECTS, PLANNED_EFFECTS,
@@ -1232,3 +1233,12 @@ def find_scene(name_or_path: str | Path) -> Path:
     raise InputError("scene", str(name_or_path), "the path of an existing scene file (.toml) "
                      "or the name of a bundled scene (corliss list scenes): "
                      + ", ".join(scenes))
+
+
+def _governed_scene() -> Scene:
+    """The bundled governed scene whose transient turn a first run's background process
+    compiles (:data:`corliss.engine.first_run.TRANSIENT_SCENE`)."""
+    return load_scene(find_scene(first_run.TRANSIENT_SCENE))
+
+
+first_run.transient_probe = _governed_scene
