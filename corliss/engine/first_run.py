@@ -220,8 +220,10 @@ def _start_reachable(scene) -> None:
     missing = reachable_uncached(scene)
     if not missing:
         return
-    log.log(NOTICE, "compiling the kernels' other versions in a background process (%s), "
-            "so that later commands load them from the cache", ", ".join(missing))
+    # INFO, not NOTICE: a NOTICE opens a step the command line's heartbeat reports as
+    # running until the next record, and this one runs beside the run, not before it
+    log.info("compiling the kernels' other versions in a background process (%s), "
+             "so that later commands load them from the cache", ", ".join(missing))
     try:
         governed = (transient_probe() if transient_probe is not None and transient_uncached()
                     else None)
