@@ -91,6 +91,9 @@ PRESETS_REACHED = ("standard", "fast")
 #: The lock file, beside numba's cache of the cycle kernels, held by the process that
 #: compiles the other versions (a second such process, of a second run, leaves at once).
 LOCK_NAME = "corliss-first-use.lock"
+#: The niceness the background process adds to its own: on a machine with a core free
+#: it takes that core, on a busy one it yields to the run that started it.
+BACKGROUND_NICE = 10
 #: The processes this one started to compile the other versions (kept so that they
 #: are not reaped as garbage while they run; they end by themselves).
 _background: list = []
@@ -184,6 +187,8 @@ def compile_reachable(data: bytes) -> None:
     path = _lock_path()
     if path is None:
         return
+    # beside the run that started it: the run's process goes first where cores are few
+    os.nice(BACKGROUND_NICE)
     os.makedirs(os.path.dirname(path), exist_ok=True)
     with open(path, "a+b") as lock:
         try:
