@@ -175,7 +175,7 @@ def compile_reachable(data: bytes) -> None:
 
     Each is compiled by running it once on the miniature table (its values are no
     result): one cycle of each steady variant (:func:`_steady_variants`), and a
-    turn of :data:`TRANSIENT_SCENE` at each preset, started at its run speed.  Only one
+    turn of :data:`TRANSIENT_SCENE` at each preset, from its own start.  Only one
     such process runs at a time: a second leaves at once.
 
     Parameters
@@ -211,7 +211,8 @@ def _compile_transient(table, base) -> None:
     from corliss.engine.transient import run_transient
     turn_s = 60.0 / base.run.speed_rpm
     for name in PRESETS_REACHED:
-        sc = base.with_fidelity(name).replace_run(duration_s=2.0 * turn_s, start="run_speed")
+        # its own start (the governor's equilibrium: the load schedule's lookup compiles)
+        sc = base.with_fidelity(name).replace_run(duration_s=2.0 * turn_s)
         with steam_table.stand_in(table):
             try:
                 run_transient(sc)
