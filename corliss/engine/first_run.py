@@ -37,7 +37,7 @@ import sys
 
 import numpy as np
 
-from corliss.engine.kernels import cache, dopri5, jacobians, properties, rosenbrock
+from corliss.engine.kernels import cache, dopri5, jacobians, loop, properties, rosenbrock
 from corliss.engine.crank_resolved import COMPILED_CODES
 from corliss.engine.model import steady_scene
 from corliss.engine.steady import assemble, run_steady
@@ -115,9 +115,11 @@ def _steady_variants(scene) -> list:
 
 
 def transient_uncached() -> list:
-    """The transient loop's turn integrators not in numba's disk cache (by name); empty
-    when this numba does not show its cache."""
-    return [d.__name__ for d in (dopri5.integrate_turn, rosenbrock.integrate_turn_ros)
+    """The transient loop's turn integrators, and the load schedule's lookup its start
+    calls, not in numba's disk cache (by name); empty when this numba does not show
+    its cache."""
+    return [d.__name__ for d in (dopri5.integrate_turn, rosenbrock.integrate_turn_ros,
+                                 loop.load_factor)
             if cache.uncached(d)]
 
 
