@@ -82,9 +82,9 @@ REACHABLE_COMMAND = ("import sys; from corliss.engine.first_run import compile_r
                      "compile_reachable(sys.stdin.buffer.read())")
 #: The bundled governed scene whose transient turn compiles the transient loop's kernels.
 TRANSIENT_SCENE = "corliss-governor"
-#: Makes that scene (a callable of no argument returning a Scene), set by the scene
-#: layer, which loads bundled scenes (:mod:`corliss.scene.loader`); None: the
-#: transient loop is left to compile on its first use.
+#: Makes that scene (a callable of no argument returning a Scene), set by the command
+#: line (:mod:`corliss.cli.commands`), which loads bundled scenes; None (a run from
+#: Python): the transient loop is left to compile on its first use.
 transient_probe = None
 #: The presets a user reaches from the command line with the table tier.
 PRESETS_REACHED = ("standard", "fast")
