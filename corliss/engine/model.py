@@ -308,9 +308,10 @@ def _tabulated(scene, gear, n: int):
         return tabulate(gear, n)
     if pm is None:
         pm = tabulate(gear, n)
-        if len(_portmaps) >= PORTMAPS_KEPT:
+        while _portmaps and len(_portmaps) >= PORTMAPS_KEPT:
             _portmaps.pop(next(iter(_portmaps)))
-        _portmaps[key] = pm
+        if PORTMAPS_KEPT > 0:
+            _portmaps[key] = pm
     return pm
 
 
