@@ -75,6 +75,7 @@ from pathlib import Path
 
 import corliss
 from corliss.cli.heartbeat import Heartbeat
+from corliss.engine import first_run
 from corliss.engine.balance import balance_failure
 from corliss.engine.model import build_gear, scene_events
 from corliss.engine.simulate import simulate
@@ -91,6 +92,16 @@ from corliss.scene.loader import bundled_scenes, default_scene_path, find_scene,
 from corliss.studies.journal import check_writable
 
 log = logging.getLogger("corliss")
+
+
+def _governed_scene():
+    """The bundled governed scene whose transient turn a first run's background process
+    compiles (:data:`corliss.engine.first_run.TRANSIENT_SCENE`): the command line's
+    first run leaves the transient loop compiled too."""
+    return load_scene(find_scene(first_run.TRANSIENT_SCENE))
+
+
+first_run.transient_probe = _governed_scene
 
 #: Exit statuses (``docs/exit-codes.md``).  1 is left to Python: an error in corliss
 #: itself, with its traceback.
