@@ -65,8 +65,8 @@ def test_beyond_the_trip_the_valve_closes_with_the_wrist_plate(loop):
     latched = np.clip(gear.latched_signed_openings(theta), 0.0, gear.port_widths()[:, None]) \
         * gear.port_lengths()[:, None]
     assert gear.release_angle_rad(1.2)[0] is None
-    sg = tables.tr[7]
-    rel = tables.tr[7][1, : int(sg[6, 5])]
+    sg = tables.tr.trip
+    rel = tables.tr.trip[1, : int(sg[6, 5])]
     assert np.all(np.isfinite(rel))             # the governor's range trips at every setting
     ev_trip = corliss.valves.events(gear.with_setting(1.0).with_speed(scene.run.speed_rad_s),
                                     lambda t: (1 - math.cos(t)) / 2)

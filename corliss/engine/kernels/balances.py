@@ -75,7 +75,7 @@ def derivatives(th, y, pr, dy, net, pa):
     dy : ndarray
         Written: the derivatives with respect to crank angle (per radian), shape
         (n_state,).
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     pa : ndarray
         Scratch for the port areas [m2], shape (cylinders, 4).
@@ -92,7 +92,7 @@ def balances(th, y, pr, dy, net, areas):
     through its edges from :func:`corliss.thermo.orifice.port_flow` carrying the
     enthalpy of the side they leave), the quadratures of every edge and node, the skin
     model's wall states, and the film swept out (:func:`sweep_films`).  The shaft
-    speed is read from ``net[0][0]`` [rad/s].
+    speed is read from ``net.omega[0]`` [rad/s].
 
     Parameters
     ----------
@@ -112,15 +112,15 @@ def balances(th, y, pr, dy, net, areas):
     dy : ndarray
         Written: the derivatives with respect to crank angle (per radian), shape
         (n_state,).
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     areas : ndarray
         The port areas [m2], shape (cylinders, 4).
     """
-    omega, band, res = net[0][0], net[1], net[8]
+    omega, band, res = net.omega[0], net.band, net.reservoirs
     P, RHO, H = pr[0], pr[1], pr[2]
-    geo, ncyl_, end_, heat, wallT = net[2], net[5], net[6], net[19], net[20]
-    ea, eb, ecd, ekind = net[9], net[10], net[15], net[11]
+    geo, ncyl_, end_, heat, wallT = net.geometry, net.node_cyl, net.node_end, net.heat, net.wall_T
+    ea, eb, ecd, ekind = net.edge_a, net.edge_b, net.edge_cd, net.edge_kind
     nv = P.shape[0]
     ne = ea.shape[0]
     ndyn = 2 * nv
@@ -189,7 +189,7 @@ def balances(th, y, pr, dy, net, areas):
                 # Marks's law (Art. 75): the heat of eq. 221 leaves the steam during
                 # admission and comes back from cut-off to compression, each spread
                 # over the crank angle in proportion to the wall exposed
-                t = (th + net[3][c]) % TWO_PI
+                t = (th + net.phase[c]) % TWO_PI
                 q = 0.0
                 if (t - heat[i, 6]) % TWO_PI < (heat[i, 7] - heat[i, 6]) % TWO_PI:
                     q = -heat[i, 5] * A / heat[i, 9]
@@ -269,10 +269,10 @@ def sweep_films(y, pr, dy, net):
     dy : ndarray
         The derivatives with respect to crank angle (per radian), shape (n_state,),
         updated in place.
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     """
-    heat = net[19]
+    heat = net.heat
     for i in range(heat.shape[0]):
         if heat[i, 0] != 4.0 or not dy[2 * i] < 0.0:
             continue
@@ -304,7 +304,7 @@ def rhs(th, y, dy, net, tier, tab, perf, pr, cell):
     dy : ndarray
         Written: the derivatives with respect to crank angle (per radian), shape
         (n_state,).
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     tier : int
         The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.

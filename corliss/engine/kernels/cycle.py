@@ -53,7 +53,7 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
         Absolute tolerances, in each component's unit; shape (n_state,).
     step : float
         The largest step of rk4 [rad].
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     tier : int
         The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.

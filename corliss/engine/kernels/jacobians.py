@@ -28,7 +28,7 @@ def _exact_jacobian_holds(net):
     """Whether :func:`_jacobian_exact` covers the network's right-hand side: no wall
     heat that depends on the state (none, or Marks's schedule); the film and wall
     temperature models are differentiated by finite differences."""
-    heat = net[19]
+    heat = net.heat
     for i in range(heat.shape[0]):
         if heat[i, 0] != 0.0 and heat[i, 0] != 3.0:
             return False
@@ -43,7 +43,7 @@ def exact_jacobian_covers(net) -> bool:
 
     Parameters
     ----------
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
 
     Returns
@@ -82,7 +82,7 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
     (:func:`corliss.thermo.steam_table.pressure_partials`: the same numbers, without
     the lookup's iteration, about a third of this function's time).
     """
-    nv = net[4].shape[0]
+    nv = net.node_kind.shape[0]
     n = y.shape[0]
     ndyn = 2 * nv
     for i in range(n):
@@ -154,15 +154,15 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
         jd[9, i] = r_t
         jd[10, i] = h_r * r_t
         jd[11, i] = k_r * r_t
-        q0 = ndyn + 2 * net[9].shape[0] + 5 * i
+        q0 = ndyn + 2 * net.edge_a.shape[0] + 5 * i
         for v in range(2):
             J[2 * i + 1, 2 * i + v] = -jd[v, i] * dV
             J[q0, 2 * i + v] = jd[v, i] * dV
         w_t = jd[8, i] * dV + p * _volume_curvature(t, net, i)
         T[2 * i + 1] = -w_t
         T[q0] = w_t
-    omega, band, res = net[0][0], net[1], net[8]
-    ea, eb, ecd, ekind, ecyl, eport = net[9], net[10], net[15], net[11], net[12], net[13]
+    omega, band, res = net.omega[0], net.band, net.reservoirs
+    ea, eb, ecd, ekind, ecyl, eport = net.edge_a, net.edge_b, net.edge_cd, net.edge_kind, net.edge_cyl, net.edge_port
     port_areas(t, net, cell)
     _port_area_slopes(t, net, slope)
     for e in range(ea.shape[0]):

@@ -196,9 +196,9 @@ def governed_areas(th, s, omega, net, tr, pa):
         The gear's setting [-] (the governor's actuator value).
     omega : float
         Shaft speed [rad/s] (the dash-pot closes in time, not angle).
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
-    tr : tuple
+    tr : LoopArrays
         The loop's tables (:attr:`corliss.engine.transient.LoopTables.tr`): scalars
         ``sc`` (indices ``S_*``), load times [s] and fractions [-], setting grid [-],
         port areas over (setting, crank angle) [m2], governed cylinders, governor
@@ -207,8 +207,8 @@ def governed_areas(th, s, omega, net, tr, pa):
         The port areas [m2], shape (cylinders, 4), overwritten for the governed
         cylinders.
     """
-    sc, sgrid, area_s, governed = tr[0], tr[3], tr[4], tr[5]
-    phase = net[3]
+    sc, sgrid, area_s, governed = tr.sc, tr.setting_grid, tr.area_s, tr.governed
+    phase = net.phase
     ns = sgrid.shape[0]
     nth = area_s.shape[3] - 1
     j, ws = uniform_cell(s, sgrid[0], sgrid[ns - 1], ns)
@@ -246,7 +246,7 @@ def trip_areas(t, s, omega, tr, c, pa):
         The gear's setting [-].
     omega : float
         Shaft speed [rad/s].
-    tr : tuple
+    tr : LoopArrays
         The loop's tables (:attr:`corliss.engine.transient.LoopTables.tr`): scalars
         ``sc`` (indices ``S_*``), load times [s] and fractions [-], setting grid [-],
         port areas over (setting, crank angle) [m2], governed cylinders, governor
@@ -256,7 +256,7 @@ def trip_areas(t, s, omega, tr, c, pa):
     pa : ndarray
         The port areas [m2], shape (cylinders, 4), the steam ports' reduced in place.
     """
-    trip = tr[7]
+    trip = tr.trip
     # trip rows: 0 setting grid, 1/2 head/crank release angle per setting (nan: none),
     # 3/4 head/crank latched opening area at release, 5 closing-fraction table over
     # time (uniform from 0 to the closing time), scalars in row 6: closing time,
@@ -297,7 +297,7 @@ def trip_areas(t, s, omega, tr, c, pa):
 def transient_rhs(th, y, dy, net, tier, tab, perf, pr, pa, tr, out):
     """Derivatives with respect to crank angle of the whole loop.
 
-    The network's balances at the state's speed (written into ``net[0][0]``), the
+    The network's balances at the state's speed (written into ``net.omega[0]``), the
     governor's actuator applied to the throttle's area or the gear's ports, the shaft
     and the governor as in the module's docstring, and the work quadratures.
 
@@ -312,7 +312,7 @@ def transient_rhs(th, y, dy, net, tier, tab, perf, pr, pa, tr, out):
         [s]).
     dy : ndarray
         Written: the derivatives per radian, of ``y``'s shape.
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     tier : int
         The compiled property tier (:data:`corliss.engine.kernels.properties.TIER_TABLE` or
@@ -327,7 +327,7 @@ def transient_rhs(th, y, dy, net, tier, tab, perf, pr, pa, tr, out):
         :func:`corliss.engine.kernels.properties.node_states`), shape (PR_ROWS, nodes).
     pa : ndarray
         Scratch for the port areas [m2], shape (cylinders, 4).
-    tr : tuple
+    tr : LoopArrays
         The loop's tables (:attr:`corliss.engine.transient.LoopTables.tr`): scalars
         ``sc`` (indices ``S_*``), load times [s] and fractions [-], setting grid [-],
         port areas over (setting, crank angle) [m2], governed cylinders, governor
@@ -336,8 +336,8 @@ def transient_rhs(th, y, dy, net, tier, tab, perf, pr, pa, tr, out):
         Written, for recording: indicated torque ``T_gas`` [N m], load torque [N m],
         actuator value [-] and ``domega/dt`` [rad/s2]; shape (4,).
     """
-    sc, lt, lf, gov = tr[0], tr[1], tr[2], tr[6]
-    nv = net[4].shape[0]
+    sc, lt, lf, gov = tr.sc, tr.load_t, tr.load_f, tr.gov
+    nv = net.node_kind.shape[0]
     nn = y.shape[0] - N_EXTRA
     omega = y[nn + X_OMEGA]
     if omega < sc[S_WMIN]:
@@ -348,7 +348,7 @@ def transient_rhs(th, y, dy, net, tier, tab, perf, pr, pa, tr, out):
     act = sc[S_A0] + (sc[S_A1] - sc[S_A0]) * zc
     if zc < sc[S_SAFE_Z]:      # the safety cams (a Corliss governor fallen below its range)
         act = sc[S_SAFE_A]
-    net[0][0] = omega
+    net.omega[0] = omega
     node_states(th, y, net, tier, tab, perf, pr)
     port_areas(th, net, pa)
     if sc[S_HAS_GOV] > 0.0:
@@ -356,7 +356,7 @@ def transient_rhs(th, y, dy, net, tier, tab, perf, pr, pa, tr, out):
             governed_areas(th, act, omega, net, tr, pa)
         else:
             e = int(sc[S_THR_EDGE])
-            net[14][e] = _lin(0.0, 1.0 / (tr[8].shape[0] - 1), tr[8], act)
+            net.edge_area[e] = _lin(0.0, 1.0 / (tr.throttle.shape[0] - 1), tr.throttle, act)
     balances(th, y, pr, dy, net, pa)
     # shaft
     tgas = 0.0
@@ -366,7 +366,7 @@ def transient_rhs(th, y, dy, net, tier, tab, perf, pr, pa, tr, out):
     die = 0.0
     mrec = sc[S_MREC]
     if mrec > 0.0:
-        for c in range(net[2].shape[0]):
+        for c in range(net.geometry.shape[0]):
             ds, d2s = piston_kinematics(th, net, c)
             ie += mrec * ds * ds
             die += 2.0 * mrec * ds * d2s

@@ -186,7 +186,7 @@ def node_states(th, y, net, tier, tab, perf, pr):
         The state, shape (n_state,), laid out as
         :class:`~corliss.engine.network.Network` says (masses [kg] and internal
         energies [J] of the nodes first).
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     tier : int
         The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.
@@ -203,12 +203,12 @@ def node_states(th, y, net, tier, tab, perf, pr):
         (:data:`PR_X`), whether superheated (:data:`PR_SUP`) and the state
         they are of (:data:`PR_AT`).
     """
-    nv = net[4].shape[0]
+    nv = net.node_kind.shape[0]
     if tier == TIER_PERFECT:
-        res = net[8]
+        res = net.reservoirs
         for r in range(res.shape[0]):
             res[r, 3] = 1.0 + perf[0] / perf[1]
-    kind, cyl, end, fixedV = net[4], net[5], net[6], net[7]
+    kind, cyl, end, fixedV = net.node_kind, net.node_cyl, net.node_end, net.node_V
     # the piston's travel once per cylinder, not once per end: the nodes of a
     # cylinder's two ends are adjacent (it is computed again for one that is not)
     last = -1
@@ -244,5 +244,5 @@ def node_states(th, y, net, tier, tab, perf, pr):
         pr[PR_AT + 1, i] = m
         pr[PR_AT + 2, i] = y[2 * i + 1]
         # the temperature of a wetted wall at this pressure, for the wall-heat effect only
-        if net[19][i, 0] > 0.0:
+        if net.heat[i, 0] > 0.0:
             pr[7, i] = t_sat(tab, p) if (sup and tier != TIER_PERFECT) else T

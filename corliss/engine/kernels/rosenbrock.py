@@ -68,7 +68,7 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
         Relative tolerance [-].
     atol : ndarray
         Absolute tolerances, in each component's unit; shape (n_state,).
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     tier : int
         The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.
@@ -137,9 +137,9 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
     J = np.zeros((n, ndyn))
     mats = np.empty((2, ndyn, ndyn))
     dl = np.empty(ndyn)
-    pr = np.empty((PR_ROWS, net[4].shape[0]))
-    jd = np.empty((max(12, PR_ROWS), net[4].shape[0]))   # also holds pr's rows (starting_step)
-    cyl = np.empty((2, net[17].shape[0], 4))
+    pr = np.empty((PR_ROWS, net.node_kind.shape[0]))
+    jd = np.empty((max(12, PR_ROWS), net.node_kind.shape[0]))   # also holds pr's rows (starting_step)
+    cyl = np.empty((2, net.port_npts.shape[0], 4))
     clamps = np.zeros(6)
     clamps[CL_NODE] = -1.0
     tally = np.zeros((2, 4))
@@ -368,7 +368,7 @@ def integrate_turn_ros(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr,
         Relative tolerance [-].
     atol : ndarray
         Absolute tolerances, in each component's unit, of ``y0``'s shape.
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     tier : int
         The compiled property tier.
@@ -376,7 +376,7 @@ def integrate_turn_ros(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr,
         The steam table's arrays.
     perf : ndarray
         The perfect tier's parameters, shape (3,).
-    tr : tuple
+    tr : LoopArrays
         The loop's tables (:attr:`corliss.engine.transient.LoopTables.tr`), as
         :func:`integrate_turn`; ``sc[S_STEP]`` read and written.
     record : bool
@@ -427,7 +427,7 @@ def integrate_turn_ros(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr,
     nn = n - N_EXTRA
     ndyn = color.shape[0]
     ns = tb.shape[0]
-    nv = net[4].shape[0]
+    nv = net.node_kind.shape[0]
     y = y0.copy()
     samples = np.full((n, out_theta.shape[0]), np.nan)
     nrec_max = 40000 if record else 1
@@ -453,10 +453,10 @@ def integrate_turn_ros(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr,
     tq1 = np.empty(nv)
     dtq = np.empty(nv)
     pr = np.empty((PR_ROWS, nv))
-    pa = np.empty((net[17].shape[0], 4))
+    pa = np.empty((net.port_npts.shape[0], 4))
     out = np.empty(4)
     out1 = np.empty(4)
-    sc = tr[0]
+    sc = tr.sc
     clamps = np.zeros(6)
     att = np.zeros(4)
     att_end = np.zeros(4)

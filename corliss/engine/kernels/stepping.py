@@ -149,7 +149,7 @@ def starting_step(t, y, f0, atol, rtol, span, expo, net, tier, tab, perf, pr, ce
         The segment's length [rad].
     expo : float
         The exponent, ``-1 / (order + 1)`` of the method's error estimate [-].
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     tier : int
         The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.
@@ -280,7 +280,7 @@ def segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att):
         energies [J] of the nodes first).
     f0 : ndarray
         Written: the derivative there (per radian); shape (n_state,).
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     tier : int
         The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.
