@@ -25,7 +25,7 @@ import pandas as pd
 
 from corliss.engine.kernels import dopri5, loop, rosenbrock
 from corliss.engine.kernels.cache import announce_compile
-from corliss.engine.kernels.data import LoopArrays
+from corliss.engine.kernels.data import LoopArrays, Physics, Tableau
 from corliss.engine.kernels.stepping import MAX_RHS_PER_CYCLE
 from corliss.engine.kernels.tableaus import ROS_TABLEAUS
 from corliss.engine.condensation import MarksLaw
@@ -563,8 +563,10 @@ def _turn_integrator(method: str, network) -> Callable:
     color, owner = network.column_colors()
     tableau = ROS_TABLEAUS[method]
 
-    def turn(*args):
-        return rosenbrock.integrate_turn_ros(*args, color, owner, *tableau)
+    def turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, record, t_end):
+        return rosenbrock.integrate_turn_ros(y0, th0, out_theta, rtol, atol,
+                                             Physics(net, tier, tab, perf), tr, record, t_end,
+                                             color, owner, Tableau(*tableau))
     return turn
 
 

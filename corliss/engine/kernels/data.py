@@ -56,3 +56,77 @@ class LoopArrays(NamedTuple):
     gov: np.ndarray         # the governor's M, M', G, R, J on a uniform z grid
     trip: np.ndarray        # the trip gear's tables, rows TRIP_* (kernels.loop)
     throttle: np.ndarray    # the throttle's area over a uniform grid of opening [m2]
+
+
+class Physics(NamedTuple):
+    """What the right-hand side needs besides the state: the network and the steam's
+    compiled properties (the quadruple ``net, tier, tab, perf`` of the kernels)."""
+
+    net: NetworkArrays
+    tier: int               # the property tier: TIER_TABLE or TIER_PERFECT (kernels.properties)
+    tab: tuple              # the steam table's arrays (corliss.thermo.steam_table.TableArrays)
+    perf: np.ndarray        # the perfect tier's R, cv [J/(kg K)], u_ref [J/kg]; PERF_* (kernels.properties)
+
+
+class StepControl(NamedTuple):
+    """A steady cycle's step control."""
+
+    rtol: float             # relative tolerance [-]
+    atol: np.ndarray        # absolute tolerances, in each component's unit
+    max_rhs: int            # the run-time budget: most right-hand-side evaluations
+    jac_age: int            # accepted steps a Jacobian serves (Rosenbrock methods; 0 else)
+
+
+class Tableau(NamedTuple):
+    """A Rosenbrock method's tableau (:data:`corliss.engine.kernels.tableaus.ROS_TABLEAUS`)."""
+
+    gamma: float            # the diagonal gamma [-]
+    A: np.ndarray           # stage coefficients a_ij, (stages, stages) [-]
+    C: np.ndarray           # stage coefficients c_ij, (stages, stages) [-]
+    c: np.ndarray           # stage angles, fractions of the step [-]
+    d: np.ndarray           # coefficients of the time derivative [-]
+    b: np.ndarray           # weights of the solution [-]
+    e: np.ndarray           # weights of the error [-]
+    same: np.ndarray        # int64 per stage: 0 evaluate, 1 the step's start, 2 the stage before's
+    expo: float             # exponent of the step's ratio to its error [-]
+
+
+class StepScratch(NamedTuple):
+    """Scratch of the Rosenbrock cycle's starting step and Jacobian."""
+
+    pr: np.ndarray          # node properties (PR_ROWS, nodes)
+    cell: np.ndarray        # port areas (cylinders, 4) [m2]
+    att: np.ndarray         # a trial's clamp tally (4,)
+    yp: np.ndarray          # a probe state (n,)
+    fp: np.ndarray          # its derivative (n,)
+    dl: np.ndarray          # the dynamic columns' increments (ndyn,)
+    jd: np.ndarray          # the analytic Jacobian's rows, also a copy of pr's
+    slope: np.ndarray       # port areas' slopes in crank angle (cylinders, 4) [m2/rad]
+
+
+class RosScratch(NamedTuple):
+    """Scratch of the Rosenbrock cycle's step loop, allocated by its caller."""
+
+    vec: np.ndarray         # nine state vectors (9, n)
+    U: np.ndarray           # the stages (stages, n)
+    J: np.ndarray           # the Jacobian (n, ndyn)
+    mats: np.ndarray        # W's inverse and its factor (2, ndyn, ndyn)
+    dl: np.ndarray          # (ndyn,)
+    pr: np.ndarray          # node properties (PR_ROWS, nodes)
+    jd: np.ndarray          # (max(12, PR_ROWS), nodes)
+    cyl: np.ndarray         # port-area slopes and areas (2, cylinders, 4)
+    clamps: np.ndarray      # the clamp counts (6,), CL_* (kernels.clamps)
+    tally: np.ndarray       # a trial's and a step end's clamp tally (2, 4)
+
+
+class LoopScratch(NamedTuple):
+    """Scratch of the governed loop's Jacobian."""
+
+    pr: np.ndarray          # node properties (PR_ROWS, nodes)
+    pa: np.ndarray          # port areas (cylinders, 4) [m2]
+    out: np.ndarray         # the loop's outputs (4,)
+    att: np.ndarray         # a trial's clamp tally (4,)
+    yp: np.ndarray          # a probe state (n,)
+    fp: np.ndarray          # its derivative (n,)
+    dl: np.ndarray          # the columns' increments
+    dtq: np.ndarray         # the nodes' torque change (nodes,)

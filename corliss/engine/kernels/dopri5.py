@@ -15,6 +15,7 @@ from corliss.engine.kernels.clamps import (CL_ACCEPTED, CL_NODE, settle_clamps,
                                            settle_trial, settle_visited, tally_clamps,
                                            visited_clamp_off)
 from corliss.engine.kernels.compiled import njit
+from corliss.engine.kernels.data import Physics, StepControl
 from corliss.engine.kernels.loop import (N_EXTRA, N_REC, S_MAX_RHS, S_WMIN, X_OMEGA, X_Z,
                                          _project, _record, _turn_end, _visited_clamps,
                                          transient_rhs)
@@ -82,17 +83,20 @@ def cycle_dopri5(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, max_rhs
     clamps = np.zeros(6)
     clamps[CL_NODE] = -1.0
     tally = np.zeros((2, 4))
-    nfev, ok = _dopri5_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf,
-                             max_rhs, vec, K, pr, cell, clamps, tally)
+    nfev, ok = _dopri5_steps(y, samples, stops, out_theta, StepControl(rtol, atol, max_rhs, 0),
+                             Physics(net, tier, tab, perf), vec, K, pr, cell, clamps, tally)
     return y, samples, nfev, ok, clamps
 
 
 @njit(cache=True, _nrt=False)
-def _dopri5_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, max_rhs,
-                  vec, K, pr, cell, clamps, tally):
+def _dopri5_steps(y, samples, stops, out_theta, ctl, phys, vec, K, pr, cell, clamps, tally):
     """:func:`cycle_dopri5`'s steps, on scratch it allocated (no reference counts).
     ``y`` is advanced to the cycle's end, ``samples`` and ``clamps`` written; returns
-    the evaluations spent and whether the cycle ended well."""
+    the evaluations spent and whether the cycle ended well.  ``ctl``
+    (:class:`~corliss.engine.kernels.data.StepControl`, its ``jac_age`` unused) and
+    ``phys`` (:class:`~corliss.engine.kernels.data.Physics`) are :func:`cycle_dopri5`'s."""
+    rtol, atol, max_rhs = ctl.rtol, ctl.atol, ctl.max_rhs
+    net, tier, tab, perf = phys.net, phys.tier, phys.tab, phys.perf
     f0, ytmp, tmp = vec[0], vec[1], vec[2]
     att, att_end = tally[0], tally[1]
     nfev = 0

@@ -233,8 +233,7 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
 
 
 @njit(cache=True, _nrt=False, no_cpython_wrapper=True)
-def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, cell, att,
-              yp, fp, dl, jd, slope):
+def _jacobian(t, y, f0, J, T, yscale, color, owner, phys, scratch):
     """Jacobian of the dynamic columns, and the time derivative, for both Rosenbrock
     integrators.
 
@@ -244,8 +243,14 @@ def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, ce
     and the time derivative a forward difference, one more.  Clamped evaluations go
     into the step's tally ``att``; ``yp``, ``fp`` (length of the state), ``dl`` (of
     the dynamic states), ``jd`` (shape (12, nodes)) and ``slope`` (shape (cylinders,
-    4)) are scratch.  Returns the evaluations of :func:`rhs` spent.
+    4)) are scratch, the fields of ``scratch``
+    (:class:`~corliss.engine.kernels.data.StepScratch`); ``phys`` is
+    :class:`~corliss.engine.kernels.data.Physics`.  Returns the evaluations of
+    :func:`rhs` spent.
     """
+    net, tier, tab, perf = phys.net, phys.tier, phys.tab, phys.perf
+    pr, cell, att, yp, fp = scratch.pr, scratch.cell, scratch.att, scratch.yp, scratch.fp
+    dl, jd, slope = scratch.dl, scratch.jd, scratch.slope
     if _exact_jacobian_holds(net):
         _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope)
         return 0
@@ -349,8 +354,7 @@ LOOP_COLUMNS = np.array([X_OMEGA, X_Z, X_ZDOT])
 
 
 @njit(cache=True, inline="always")
-def _loop_jacobian(t, y, f0, tq0, J, T, yscale, color, owner, net, tier, tab, perf, pr, pa,
-                   tr, out, att, yp, fp, dl, dtq):
+def _loop_jacobian(t, y, f0, tq0, J, T, yscale, color, owner, phys, tr, scratch):
     """Finite-difference Jacobian of the loop, and its derivative in crank angle.
 
     Columns: the network's dynamic states (``ndyn``), then speed, governor coordinate
@@ -364,9 +368,15 @@ def _loop_jacobian(t, y, f0, tq0, J, T, yscale, color, owner, net, tier, tab, pe
     three columns are perturbed one at a time.  Without them the method lost its
     order: the flywheel's energy and the work integrals parted by 1e-5 of the change
     even at rtol 1e-7 (tests/test_speed_loop.py).  Clamped evaluations go into
-    ``att``; ``yp``, ``fp`` and ``dl`` (of ``J``'s columns) are scratch.  Returns the
-    evaluations spent.
+    ``att``; ``yp``, ``fp`` and ``dl`` (of ``J``'s columns) are scratch.  ``phys``
+    (:class:`~corliss.engine.kernels.data.Physics`) is the network and the steam's
+    properties, ``tr`` the loop's tables, ``scratch``
+    (:class:`~corliss.engine.kernels.data.LoopScratch`) ``pr``, ``pa``, ``out``,
+    ``att``, ``yp``, ``fp``, ``dl`` and ``dtq``.  Returns the evaluations spent.
     """
+    net, tier, tab, perf = phys.net, phys.tier, phys.tab, phys.perf
+    pr, pa, out, att = scratch.pr, scratch.pa, scratch.out, scratch.att
+    yp, fp, dl, dtq = scratch.yp, scratch.fp, scratch.dl, scratch.dtq
     n = y.shape[0]
     nn = n - N_EXTRA
     ndyn = color.shape[0]
