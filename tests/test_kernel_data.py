@@ -10,6 +10,9 @@ knows what it is; reading ``net[19]`` they had to count.  These tests hold that:
 - no kernel tuple is read by an integer index (``net[19]``, ``tables.tr[7]``,
   ``tab[15]``) in the package, the benchmarks or the tests, outside the module that
   defines it, and the reader sees such a read when one is planted;
+- no row or column of the kernels' 2-D data (node properties, wall-heat rows,
+  geometry, the trip gear's tables) is read at a literal number in the engine: the
+  wall-heat row's columns mean other things under each model code (``WALL_*``);
 - no compiled function takes more than :data:`MAX_ARGUMENTS` arguments (the step
   loops take their control, physics, tableau and scratch as named structures: the
   ode23s loop took 35);
@@ -68,6 +71,46 @@ def test_no_kernel_tuple_is_read_by_position():
     reads = [f"{rel}:{r}" for rel, path in _files()
              for r in positional_reads(path.read_text(encoding="utf-8"))]
     assert not reads, "read the field by name instead:\n" + "\n".join(reads)
+
+
+#: The kernels' 2-D data whose rows or columns have names (``PR_*``, ``H_*``, ``GEO_*``,
+#: ``TRIP_*``/``TS_*``, ``PERF_*``): node properties, wall-heat rows, geometry, the trip
+#: gear's tables, the perfect tier's parameters.
+NAMED_ROWS = frozenset({"pr", "heat", "node_heat", "geo", "trip", "perf"})
+
+
+def literal_rows(source: str) -> list[str]:
+    """Reads of :data:`NAMED_ROWS` data at a literal row or column (``heat[i, 8]``,
+    ``pr[4, i]``, ``node_heat[i][9]``, ``perf[0]``), as ``line: text``."""
+    found = []
+    for node in ast.walk(ast.parse(source)):
+        if not isinstance(node, ast.Subscript):
+            continue
+        v = node.value
+        if isinstance(v, ast.Subscript):            # node_heat[i][9]
+            v = v.value
+        name = v.id if isinstance(v, ast.Name) else v.attr if isinstance(v, ast.Attribute) else None
+        if name not in NAMED_ROWS:
+            continue
+        s = node.slice
+        idx = s.elts if isinstance(s, ast.Tuple) else [s]
+        if any(isinstance(e, ast.Constant) and type(e.value) is int for e in idx):
+            found.append(f"{node.lineno}: {ast.unparse(node)}")
+    return found
+
+
+def test_no_row_or_column_of_the_kernels_data_is_a_literal():
+    """Rows and columns by name: the wall-heat row's columns mean other things under
+    each model code, which a literal hid."""
+    reads = [f"{rel}:{r}" for rel, path in _files() if rel.startswith("corliss/engine/")
+             for r in literal_rows(path.read_text(encoding="utf-8"))]
+    assert not reads, "name the row or column (corliss.engine.kernels.data):\n" + "\n".join(reads)
+
+
+def test_the_reader_sees_a_literal_row():
+    planted = "a = heat[i, 8]\nb = pr[4, i]\nc = net.node_heat[i][9]\nd = heat[i, H_MODEL]\n"
+    assert [r.split(": ")[1] for r in literal_rows(planted)] == [
+        "heat[i, 8]", "pr[4, i]", "net.node_heat[i][9]"]
 
 
 def test_the_reader_sees_a_positional_read():

@@ -26,7 +26,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from corliss.engine.kernels.data import NetworkArrays
+from corliss.engine.kernels.data import (HEAT_COLUMNS, H_MODEL, WALL_ADAIR, WALL_CONDUCTANCE,
+                                         WALL_MARKS, WALL_SKIN, NetworkArrays)
 
 PISTON, FIXED = 0, 1
 #: Edge kinds: a cylinder's port (area from the PortMap), an orifice of fixed area, and
@@ -239,7 +240,7 @@ class Network:
     @property
     def wall_nodes(self) -> list[int]:
         """Nodes whose wall surface temperature is a state (the skin model), in order."""
-        return [i for i, row in enumerate(self.node_heat) if row[0] == WALL_MODELS["skin"]]
+        return [i for i, row in enumerate(self.node_heat) if row[H_MODEL] == WALL_SKIN]
 
     #: States of a skin-model wall: the surface temperature less the deep wall's [K],
     #: the water film [kg], and two quadratures restarted each cycle: the heat from the
@@ -873,17 +874,11 @@ def with_period_leakage(net: Network, valve_rate_kg_s_Pa: float,
     return net
 
 
-#: Columns of a node's wall-heat row: model code, conductance, conductivity, viscosity,
-#: Prandtl number (codes 1, 2); heat of a cycle, admission, cut-off and compression
-#: angles, and the wall exposed over admission and over cut-off to compression,
-#: integrated in crank angle (code 3, Marks's law); the surface node's capacity and
-#: conductance to the deep wall, its mean area, the index of its state, the jacket's
-#: conductance and temperature, the film's enthalpy and latent heat (code 4, the skin
-#: model, :mod:`corliss.engine.wall`).
-#: The skin model's film: the water's specific enthalpy and the latent heat it takes to
-#: evaporate [J/kg] (columns 11, 12).
-HEAT_COLUMNS = 13
-WALL_MODELS = {"conductance": 1.0, "adair": 2.0, "marks": 3.0, "skin": 4.0}
+#: Columns of a node's wall-heat row (:data:`HEAT_COLUMNS`, named ``H_*`` in
+#: :mod:`corliss.engine.kernels.data`): the model code, then the model's own columns.
+#: The wall models by name, and their codes (``WALL_*`` there).
+WALL_MODELS = {"conductance": WALL_CONDUCTANCE, "adair": WALL_ADAIR, "marks": WALL_MARKS,
+               "skin": WALL_SKIN}
 
 
 def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,

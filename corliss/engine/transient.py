@@ -25,7 +25,10 @@ import pandas as pd
 
 from corliss.engine.kernels import dopri5, loop, rosenbrock
 from corliss.engine.kernels.cache import announce_compile
-from corliss.engine.kernels.data import LoopArrays, Physics, Tableau
+from corliss.engine.kernels.data import (TRIP_AREA, TRIP_CLOSING, TRIP_GRID, TRIP_RELEASE,
+                                         TRIP_SCALARS, TS_CLOSE_ANGLE, TS_CLOSE_TIME,
+                                         TS_N_CLOSING, TS_N_SETTINGS, TS_OPEN_ANGLE, LoopArrays,
+                                         Physics, Tableau)
 from corliss.engine.kernels.stepping import MAX_RHS_PER_CYCLE
 from corliss.engine.kernels.tableaus import ROS_TABLEAUS
 from corliss.engine.condensation import MarksLaw
@@ -185,13 +188,13 @@ def _trip_tables(gear, grid: np.ndarray, nth: int):
     lengths = gear.port_lengths()
     t_close = float(gear.closing_time_s)
     nf = 101
-    rows = np.full((7, max(grid.size, nf)), np.nan)
-    rows[0, :grid.size] = grid
-    rows[5, :nf] = gear.closing_fraction(np.linspace(0.0, t_close, nf))
-    rows[6, :] = 0.0
-    rows[6, 0] = t_close
-    rows[6, 5] = grid.size
-    rows[6, 6] = nf
+    rows = np.full((TRIP_SCALARS + 1, max(grid.size, nf)), np.nan)
+    rows[TRIP_GRID, :grid.size] = grid
+    rows[TRIP_CLOSING, :nf] = gear.closing_fraction(np.linspace(0.0, t_close, nf))
+    rows[TRIP_SCALARS, :] = 0.0
+    rows[TRIP_SCALARS, TS_CLOSE_TIME] = t_close
+    rows[TRIP_SCALARS, TS_N_SETTINGS] = grid.size
+    rows[TRIP_SCALARS, TS_N_CLOSING] = nf
     for e, port in enumerate((0, 2)):
         op = latched[port]
         opened = op > 0.0
@@ -200,14 +203,14 @@ def _trip_tables(gear, grid: np.ndarray, nth: int):
         fall = np.nonzero(opened[:-1] & ~opened[1:])[0]
         if rise.size == 0 or fall.size == 0:
             raise ValueError("a trip gear's latched steam valve must open and close once a turn")
-        rows[6, 3 + e] = theta[rise[0]]
-        rows[6, 1 + e] = theta[fall[0] + 1]
+        rows[TRIP_SCALARS, TS_OPEN_ANGLE + e] = theta[rise[0]]
+        rows[TRIP_SCALARS, TS_CLOSE_ANGLE + e] = theta[fall[0] + 1]
         for j, s in enumerate(grid):
             rel = gear.release_angle_rad(float(s))[e]
-            rows[1 + e, j] = np.nan if rel is None else rel
+            rows[TRIP_RELEASE + e, j] = np.nan if rel is None else rel
             if rel is not None:
                 x = float(np.interp(rel % TWO_PI, theta, op))
-                rows[3 + e, j] = min(max(x, 0.0), widths[port]) * lengths[port]
+                rows[TRIP_AREA + e, j] = min(max(x, 0.0), widths[port]) * lengths[port]
     return rows, latched
 
 

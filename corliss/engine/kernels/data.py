@@ -14,6 +14,51 @@ from typing import NamedTuple
 import numpy as np
 
 
+#: Columns of :attr:`NetworkArrays.geometry`, per cylinder: crank radius, connecting
+#: rod and stroke [m], head and crank piston areas [m2], head and crank clearances
+#: [m3], rod angularity (1.0 or 0.0).
+GEO_CRANK, GEO_ROD, GEO_STROKE, GEO_AREA_HEAD, GEO_AREA_CRANK = 0, 1, 2, 3, 4
+GEO_CLEAR_HEAD, GEO_CLEAR_CRANK, GEO_ANGULARITY = 5, 6, 7
+
+#: The wall-heat models' codes, column :data:`H_MODEL` of a node's wall-heat row
+#: (:attr:`NetworkArrays.heat`; floats, as the row is): no wall heat, Marks's constant
+#: as a conductance, Adair's correlation, Marks's law of condensation, the skin model
+#: (:func:`corliss.engine.network.with_wall_heat`).
+WALL_NONE, WALL_CONDUCTANCE, WALL_ADAIR, WALL_MARKS, WALL_SKIN = 0.0, 1.0, 2.0, 3.0, 4.0
+
+#: Columns of a node's wall-heat row; their meaning after the model code's depends on
+#: the model.  Every model: the code.
+H_MODEL = 0
+#: Conductance and Adair (and the skin's convection): Marks's constant as a conductance
+#: [W/(m2 K)] (the skin model: its coefficient of condensation and evaporation), the
+#: supply steam's conductivity [W/(m K)], viscosity [Pa s] and Prandtl number [-].
+H_CONDUCTANCE, H_K, H_MU, H_PRANDTL = 1, 2, 3, 4
+#: Marks's law, as :func:`corliss.engine.condensation.marks_law_rows` writes them: the
+#: heat of a cycle, the admission, cut-off and compression angles [rad], the wall
+#: exposed over admission and over cut-off to compression, integrated in crank angle.
+H_MARKS_Q, H_MARKS_ADMIT, H_MARKS_CUTOFF, H_MARKS_COMPRESS = 5, 6, 7, 8
+H_MARKS_WALL_ADMIT, H_MARKS_WALL_EXPAND = 9, 10
+#: The skin model (:mod:`corliss.engine.wall`): the surface node's capacity
+#: [J/(m2 K)] and conductance to the deep wall [W/(m2 K)], its mean area [m2], the
+#: index of its first state, the jacket's conductance [W/K] and temperature [K], the
+#: film's water's specific enthalpy and the latent heat it takes to evaporate [J/kg].
+H_SKIN_CAPACITY, H_SKIN_DEEP, H_SKIN_AREA, H_SKIN_STATE = 5, 6, 7, 8
+H_SKIN_JACKET_G, H_SKIN_JACKET_T, H_SKIN_FILM_H, H_SKIN_LATENT = 9, 10, 11, 12
+#: Columns of the row.
+HEAT_COLUMNS = 13
+
+#: Rows of :attr:`LoopArrays.trip` (a trip gear's tables, over the settings): the
+#: setting grid [-]; the head end's release angle per setting [rad] (nan: none), the
+#: crank end's the row after; the head end's latched opening area at release [m2], the
+#: crank end's after; the dash-pot's closing fraction over a uniform grid of time from 0
+#: to the closing time [-]; the scalars (columns ``TS_*``).
+TRIP_GRID, TRIP_RELEASE, TRIP_AREA, TRIP_CLOSING, TRIP_SCALARS = 0, 1, 3, 5, 6
+#: Columns of the trip's scalars row: the closing time [s]; the head end's latched
+#: closing angle [rad], the crank end's after; the head end's latched opening angle
+#: [rad], the crank end's after; the number of settings; the closing table's points.
+TS_CLOSE_TIME, TS_CLOSE_ANGLE, TS_OPEN_ANGLE, TS_N_SETTINGS, TS_N_CLOSING = 0, 1, 3, 5, 6
+
+
 class NetworkArrays(NamedTuple):
     """The network as plain arrays (:meth:`corliss.engine.network.Network.arrays`).
 

@@ -15,8 +15,10 @@ from corliss.engine.kernels.compiled import njit
 from corliss.engine.kernels.loop import N_EXTRA, X_OMEGA, X_Z, X_ZDOT, transient_rhs
 from corliss.engine.kernels.mechanism import (_port_area_slopes, _volume_curvature,
                                               edge_area, node_volume, port_areas)
-from corliss.engine.kernels.properties import (PR_AT, PR_CLAMP, PR_SUP, TIER_PERFECT,
-                                               admissible_flagged)
+from corliss.engine.kernels.data import H_MODEL, WALL_MARKS, WALL_NONE
+from corliss.engine.kernels.properties import (PERF_CV, PERF_R, PERF_U_REF, PR_AT, PR_CLAMP,
+                                               PR_DV, PR_H, PR_KAPPA, PR_P, PR_RHO, PR_SUP, PR_T,
+                                               PR_V, TIER_PERFECT, admissible_flagged)
 from corliss.engine.kernels.stepping import copy_into
 from corliss.thermo.leak_law import linear_leak
 from corliss.thermo.orifice import port_flow_partials
@@ -30,7 +32,7 @@ def _exact_jacobian_holds(net):
     temperature models are differentiated by finite differences."""
     heat = net.heat
     for i in range(heat.shape[0]):
-        if heat[i, 0] != 0.0 and heat[i, 0] != 3.0:
+        if heat[i, H_MODEL] != WALL_NONE and heat[i, H_MODEL] != WALL_MARKS:
             return False
     return True
 
@@ -93,11 +95,11 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
         known = (pr[PR_CLAMP, i] == 0.0 and pr[PR_AT, i] == t
                  and pr[PR_AT + 1, i] == y[2 * i] and pr[PR_AT + 2, i] == y[2 * i + 1])
         if known:
-            V, dV = pr[5, i], pr[4, i]
+            V, dV = pr[PR_V, i], pr[PR_DV, i]
         else:
             V, dV = node_volume(t, net, i)
-            pr[4, i] = dV
-            pr[5, i] = V
+            pr[PR_DV, i] = dV
+            pr[PR_V, i] = V
         m = y[2 * i]
         if m > 0.0:
             u = y[2 * i + 1] / m
@@ -117,7 +119,7 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
             u_m = 0.0
             u_e = 0.0
         if tier == TIER_PERFECT:
-            R, cv, u_ref = perf[0], perf[1], perf[2]
+            R, cv, u_ref = perf[PERF_R], perf[PERF_CV], perf[PERF_U_REF]
             Tk = (u - u_ref) / cv
             if Tk < 1.0:
                 Tk = 1.0
@@ -128,19 +130,19 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
             k, k_r, k_u = 1.0 + R / cv, 0.0, 0.0
         else:
             if known:
-                p, Tk, sup, c2 = pr[0, i], pr[6, i], pr[PR_SUP, i] != 0.0, 0
+                p, Tk, sup, c2 = pr[PR_P, i], pr[PR_T, i], pr[PR_SUP, i] != 0.0, 0
             else:
-                p, Tk, x, sup, c2 = lookup_near(tab, rho, u, pr[6, i])
+                p, Tk, x, sup, c2 = lookup_near(tab, rho, u, pr[PR_T, i])
             # (the lookup skipped for a known node: one copy of the partials' code,
             # which numba inlines)
             p_r, p_u = pressure_partials(tab, rho, u, p, Tk, sup, c2)
             k, k_r, k_u = kappa_partials(tab, rho, u)
         h_r = p_r / rho - p / (rho * rho)
         h_u = 1.0 + p_u / rho
-        pr[0, i] = p
-        pr[1, i] = rho
-        pr[2, i] = u + p / rho
-        pr[3, i] = k
+        pr[PR_P, i] = p
+        pr[PR_RHO, i] = rho
+        pr[PR_H, i] = u + p / rho
+        pr[PR_KAPPA, i] = k
         # rows: d(p, rho, h, kappa) / d(m, E), then / dtheta
         jd[0, i] = p_r * r_m + p_u * u_m
         jd[1, i] = p_u * u_e
@@ -401,7 +403,7 @@ def _loop_jacobian(t, y, f0, tq0, J, T, yscale, color, owner, phys, tr, scratch)
                 J[i, j] = (fp[i] - f0[i]) / dl[j]
         total = 0.0
         for i in range(nv):
-            dtq[i] = pr[0, i] * pr[4, i] - tq0[i]
+            dtq[i] = pr[PR_P, i] * pr[PR_DV, i] - tq0[i]
             total += dtq[i]
         if total != 0.0:
             for j in range(ndyn):

@@ -56,7 +56,10 @@ from corliss.engine.kernels.clamps import (CL_ACCEPTED, CL_ACCEPTED_CODE, CL_REJ
                                            CL_REJECTED_CODE)
 from corliss.engine.kernels.compiled import njit
 from corliss.engine.kernels.mechanism import TWO_PI, piston_kinematics, port_areas
-from corliss.engine.kernels.properties import node_states
+from corliss.engine.kernels.data import (TRIP_AREA, TRIP_CLOSING, TRIP_GRID, TRIP_RELEASE,
+                                         TRIP_SCALARS, TS_CLOSE_ANGLE, TS_CLOSE_TIME,
+                                         TS_N_CLOSING, TS_N_SETTINGS, TS_OPEN_ANGLE)
+from corliss.engine.kernels.properties import PR_DV, PR_P, node_states
 from corliss.engine.kernels.stepping import put_column
 from corliss.errors import RunError
 
@@ -257,26 +260,22 @@ def trip_areas(t, s, omega, tr, c, pa):
         The port areas [m2], shape (cylinders, 4), the steam ports' reduced in place.
     """
     trip = tr.trip
-    # trip rows: 0 setting grid, 1/2 head/crank release angle per setting (nan: none),
-    # 3/4 head/crank latched opening area at release, 5 closing-fraction table over
-    # time (uniform from 0 to the closing time), scalars in row 6: closing time,
-    # head/crank latched closing angle, head/crank latched opening angle, the number
-    # of settings, the number of points of the closing table
-    sg = trip[0]
-    n = int(trip[6, 5])
-    nf = int(trip[6, 6])
-    tclose = trip[6, 0]
+    # trip rows TRIP_*, its scalars' columns TS_* (kernels.data)
+    sg = trip[TRIP_GRID]
+    n = int(trip[TRIP_SCALARS, TS_N_SETTINGS])
+    nf = int(trip[TRIP_SCALARS, TS_N_CLOSING])
+    tclose = trip[TRIP_SCALARS, TS_CLOSE_TIME]
     for e in range(2):
         port = 2 * e
         k, w = uniform_cell(s, sg[0], sg[n - 1], n)
         k1 = k + 1 if n > 1 else k
-        r0 = trip[1 + e, k]
-        r1 = trip[1 + e, k1]
+        r0 = trip[TRIP_RELEASE + e, k]
+        r1 = trip[TRIP_RELEASE + e, k1]
         if math.isnan(r0) or math.isnan(r1):
             continue
         rel = r0 * (1.0 - w) + r1 * w
-        open_ang = trip[6, 3 + e]
-        close_ang = trip[6, 1 + e]
+        open_ang = trip[TRIP_SCALARS, TS_OPEN_ANGLE + e]
+        close_ang = trip[TRIP_SCALARS, TS_CLOSE_ANGLE + e]
         # angles measured from the latched opening, so the window does not wrap
         since_open = (t - open_ang) % TWO_PI
         rel_from_open = (rel - open_ang) % TWO_PI
@@ -285,9 +284,9 @@ def trip_areas(t, s, omega, tr, c, pa):
             continue
         if since_open < rel_from_open or since_open > window:
             continue
-        a_rel = trip[3 + e, k] * (1.0 - w) + trip[3 + e, k1] * w
+        a_rel = trip[TRIP_AREA + e, k] * (1.0 - w) + trip[TRIP_AREA + e, k1] * w
         tau = (since_open - rel_from_open) / omega
-        frac = _lin(0.0, tclose / (nf - 1), trip[5, :nf], tau) if tau < tclose else 0.0
+        frac = _lin(0.0, tclose / (nf - 1), trip[TRIP_CLOSING, :nf], tau) if tau < tclose else 0.0
         lim = a_rel * frac
         if pa[c, port] > lim:
             pa[c, port] = lim
@@ -361,7 +360,7 @@ def transient_rhs(th, y, dy, net, tier, tab, perf, pr, pa, tr, out):
     # shaft
     tgas = 0.0
     for i in range(nv):
-        tgas += pr[0, i] * pr[4, i]
+        tgas += pr[PR_P, i] * pr[PR_DV, i]
     ie = sc[S_INERTIA]
     die = 0.0
     mrec = sc[S_MREC]
@@ -506,4 +505,4 @@ def _node_torques(pr, tq):
     """Each node's share of the indicated torque, p dV/dtheta [N m], of the latest
     evaluation (as :func:`transient_rhs` sums it)."""
     for i in range(tq.shape[0]):
-        tq[i] = pr[0, i] * pr[4, i]
+        tq[i] = pr[PR_P, i] * pr[PR_DV, i]

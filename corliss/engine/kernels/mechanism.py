@@ -10,6 +10,9 @@ import math
 import numpy as np
 
 from corliss.engine.kernels.compiled import njit
+from corliss.engine.kernels.data import (GEO_ANGULARITY, GEO_AREA_CRANK, GEO_AREA_HEAD,
+                                         GEO_CLEAR_CRANK, GEO_CLEAR_HEAD, GEO_CRANK, GEO_ROD,
+                                         GEO_STROKE)
 
 
 TWO_PI = 2.0 * math.pi
@@ -39,7 +42,7 @@ def piston_position(th, net, c):
         ds/dtheta [m/rad].
     """
     geo, phase = net.geometry, net.phase
-    R, L, ang = geo[c, 0], geo[c, 1], geo[c, 7]
+    R, L, ang = geo[c, GEO_CRANK], geo[c, GEO_ROD], geo[c, GEO_ANGULARITY]
     a = th + phase[c]
     sn = math.sin(a)
     cs = math.cos(a)
@@ -76,7 +79,7 @@ def piston_kinematics(th, net, c):
         ``d2s/dtheta2`` [m/rad2].
     """
     geo, phase = net.geometry, net.phase
-    R, L, ang = geo[c, 0], geo[c, 1], geo[c, 7]
+    R, L, ang = geo[c, GEO_CRANK], geo[c, GEO_ROD], geo[c, GEO_ANGULARITY]
     a = th + phase[c]
     sn = math.sin(a)
     cs = math.cos(a)
@@ -115,8 +118,9 @@ def end_volume(net, c, end, s, ds):
     """
     geo = net.geometry
     if end == 0:
-        return geo[c, 5] + geo[c, 3] * s, geo[c, 3] * ds
-    return geo[c, 6] + geo[c, 4] * (geo[c, 2] - s), -geo[c, 4] * ds
+        return geo[c, GEO_CLEAR_HEAD] + geo[c, GEO_AREA_HEAD] * s, geo[c, GEO_AREA_HEAD] * ds
+    return (geo[c, GEO_CLEAR_CRANK] + geo[c, GEO_AREA_CRANK] * (geo[c, GEO_STROKE] - s),
+            -geo[c, GEO_AREA_CRANK] * ds)
 
 
 @njit(cache=True, inline="always")
@@ -234,5 +238,5 @@ def _volume_curvature(th, net, i):
     c = cyl[i]
     d2s = piston_kinematics(th, net, c)[1]
     if end[i] == 0:
-        return geo[c, 3] * d2s
-    return -geo[c, 4] * d2s
+        return geo[c, GEO_AREA_HEAD] * d2s
+    return -geo[c, GEO_AREA_CRANK] * d2s
