@@ -1,46 +1,51 @@
-"""How ``corliss study`` scales: runs per second on one core and on every core, and what
-a Dask cluster costs per task.
+"""How ``corliss study`` scales: runs a second on one process, the parent's share of the
+work, two processes against one, and the speed-up the serial share allows on many.
 
-Measured, each ``--repeats`` times after one warm-up (the kernels loaded from numba's
-cache, the steam table built), medians reported with the fastest and slowest:
+The study is the issue's: a Latin hypercube over the default engine's port width,
+clearance, lap and speed at the ``fast`` fidelity (``--runs``, default 1000).  Each
+measurement runs in a fresh Python process (``--worker``), after a warm-up study in
+that process (kernels loaded from numba's cache, the steam table read), so each
+sitting pays what a user's second study pays.  Given ``--baseline DIR`` (a checkout of
+another version, e.g. ``git worktree add ../base main``), the same measurements run on
+that code too, alternating with this tree's, ``--repeats`` times each: an A/B in one
+sitting on a machine whose load moves.
 
-* the Latin hypercube of the issue: ``--lhs 1000`` over the default engine's port
-  width, clearance, lap and speed at the ``fast`` tier, on one process (in this one)
-  and on every core (a process pool, its start-up counted: a study pays it);
-* the same study's first ``--dask-runs`` runs on a local Dask cluster (one worker
-  process per core, one thread each), one run a task, against the local process pool
-  with one run a task: the difference per task is what Dask adds to a task over a
-  process pool;
-* CPU time per run of the local studies (this process and its pool's workers): on a
-  machine whose cores other work keeps busy the wall times cannot show the scaling,
-  and equal CPU per run on one process and on several says the parallel path adds no
-  work of its own;
-* Dask's own round trip: ``--noop-tasks`` tasks that carry a real task's arguments (the
-  base scene's tables) and run nothing, per task, on the same cluster.
+Measured per study:
+
+* wall time and runs a second on one process (``jobs=1``) and on two (``jobs=2``);
+* CPU per run: this process's (the parent: checks, set-up, its first run, sending
+  chunks, collecting rows) and its pool's workers' (read when the pool is shut down
+  and its workers reaped);
+* the serial fraction ``s``: the parent's CPU over the parent's and the workers'
+  (the workers' start-up counted in theirs), and the parent's CPU to start one more
+  worker (a fork of the process as it is after the study); from them Amdahl's
+  speed-up on N processes, ``(P + W) / (P + (N - 2) F + W / N)`` (:func:`amdahl`), for
+  16 and 64 (derived, not measured: no machine with that many free cores was at hand).
+
+On a machine shared with other work, two processes cannot show their speed-up in
+wall time alone: the CPU figures say whether the parallel path adds work of its own.
+The load average before and after is recorded.
 
 Usage::
 
-    python benchmarks/study_scaling.py [--repeats 3] [--runs 1000] [--out benchmarks/results]
+    python benchmarks/study_scaling.py [--runs 1000] [--repeats 3] [--baseline DIR]
+                                       [--out benchmarks/results]
 
-Writes ``study_scaling.csv`` and the 1000-run study's figure ``study_lhs_1000.png``.
-The machine's load average before and after is recorded, since a shared machine is
-noisy.
+Writes ``study_scaling.csv`` (one row per study run) and prints the medians.
 """
 
 from __future__ import annotations
 
 import argparse
 import csv
+import json
 import os
 import resource
 import statistics
+import subprocess
+import sys
 import time
 from pathlib import Path
-
-import numpy as np
-
-import corliss
-from corliss.studies import runner
 
 HERE = Path(__file__).resolve().parent
 #: The study of the issue: the default engine's port width, clearance, lap and speed.
@@ -48,111 +53,136 @@ VARY = ["valve_gear.port_width=1.0:1.5in", "engine.clearance=0.04:0.12",
         "valve_gear.lap=0.8:1.2in", "run.speed=90:150rpm"]
 RESPONSES = ["indicated_power_W", "mep_mean_Pa", "steam_rate_kg_per_h",
              "water_rate_kg_per_kWh", "events.head.cutoff_frac"]
+#: Forks timed to find what one more worker's start costs the parent.
+FORKS = 5
 
 
-def _cpu_s() -> float:
-    """CPU time [s] of this process and of its children that have ended (a study's
-    process pool is shut down, its workers reaped, when the study returns)."""
-    a, b = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
-    return a.ru_utime + a.ru_stime + b.ru_utime + b.ru_stime
+def _cpu(who) -> float:
+    r = resource.getrusage(who)
+    return r.ru_utime + r.ru_stime
 
 
-def _timed(fn, repeats: int):
-    """Wall times [s] of ``repeats`` calls after a warm-up, the CPU seconds of each
-    (this process and the pools it started) and the last call's result."""
-    fn()                                        # warm-up, not counted
-    times, cpu, last = [], [], None
-    for _ in range(repeats):
-        c0, t0 = _cpu_s(), time.perf_counter()
-        last = fn()
-        times.append(time.perf_counter() - t0)
-        cpu.append(_cpu_s() - c0)
-    return times, cpu, last
+def measure(runs: int, jobs: int) -> dict:
+    """One study in this process, after a warm-up: its wall time and CPU [s].
+
+    Parameters
+    ----------
+    runs : int
+        Runs of the Latin hypercube.
+    jobs : int
+        Local processes.
+
+    Returns
+    -------
+    dict
+        ``wall_s``, ``parent_cpu_s``, ``workers_cpu_s``, ``failed``.
+    """
+    import corliss
+    corliss.study("default", VARY, lhs=8, seed=1, fidelity="fast", responses=RESPONSES,
+                  jobs=1)
+    p0, c0, t0 = _cpu(resource.RUSAGE_SELF), _cpu(resource.RUSAGE_CHILDREN), time.perf_counter()
+    res = corliss.study("default", VARY, lhs=runs, seed=0, fidelity="fast",
+                        responses=RESPONSES, jobs=jobs)
+    wall = time.perf_counter() - t0
+    out = {"wall_s": wall, "parent_cpu_s": _cpu(resource.RUSAGE_SELF) - p0,
+           "workers_cpu_s": _cpu(resource.RUSAGE_CHILDREN) - c0, "failed": int(res.failed)}
+    # what starting one more worker costs this process: a fork of it as it is now
+    f0 = _cpu(resource.RUSAGE_SELF)
+    for _ in range(FORKS):
+        pid = os.fork()
+        if pid == 0:
+            os._exit(0)
+        os.waitpid(pid, 0)
+    out["fork_cpu_s"] = (_cpu(resource.RUSAGE_SELF) - f0) / FORKS
+    return out
 
 
-def _study(n, **kw):
-    return corliss.study("default", VARY, lhs=n, seed=0, fidelity="fast",
-                         responses=RESPONSES, **kw)
+def _sitting(code: Path, runs: int, jobs: int) -> dict:
+    """:func:`measure` in a fresh process importing corliss from ``code``."""
+    env = dict(os.environ, PYTHONPATH=str(code))
+    out = subprocess.run([sys.executable, str(Path(__file__).resolve()), "--worker",
+                          "--runs", str(runs), "--jobs", str(jobs)],
+                         capture_output=True, text=True, env=env, cwd=str(code), check=True)
+    return json.loads(out.stdout.strip().splitlines()[-1])
 
 
-def _noop(n_tasks: int, client):
-    base = corliss.load_scene(corliss.default_scene_path()).data
-    keys = (("valve_gear.lap", "in"),)
-    futs = client.map(runner.run_chunk, [base] * n_tasks, ["default"] * n_tasks,
-                      ["fast"] * n_tasks, [tuple(RESPONSES)] * n_tasks, [keys] * n_tasks,
-                      [range(0)] * n_tasks, [np.zeros((0, 1))] * n_tasks, pure=False)
-    client.gather(futs)
+def amdahl(parent_s: float, workers_s: float, fork_s: float, n: int) -> float:
+    """Speed-up on ``n`` processes (Amdahl) of a study whose parent spent
+    ``parent_s`` [s] of CPU with two workers, its workers ``workers_s`` [s], and whose
+    every further worker costs the parent ``fork_s`` [s] to start.
+
+    ``(P + W) / (P + (n - 2) F + W / n)``: the parent's work is serial, the workers'
+    divides among them, and a worker's start (a fork) is serial in the parent.
+    """
+    return (parent_s + workers_s) / (parent_s + (n - 2) * fork_s + workers_s / n)
 
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--runs", type=int, default=1000)
-    ap.add_argument("--dask-runs", type=int, default=200)
-    ap.add_argument("--noop-tasks", type=int, default=500)
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--baseline", help="a checkout of the code to compare against")
     ap.add_argument("--out", default=str(HERE / "results"))
+    ap.add_argument("--worker", action="store_true", help=argparse.SUPPRESS)
+    ap.add_argument("--jobs", type=int, default=1, help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    cores = os.cpu_count() or 1
+    if args.worker:
+        print(json.dumps(measure(args.runs, args.jobs)))
+        return 0
+    trees = {"this": HERE.parent}
+    if args.baseline:
+        trees["baseline"] = Path(args.baseline).resolve()
     load0 = os.getloadavg()
     rows = []
-
-    def record(what, workers, runs, times, cpu=None, note=""):
-        med = statistics.median(times)
-        rows.append({"measurement": what, "workers": workers, "runs": runs,
-                     "median_s": round(med, 3), "min_s": round(min(times), 3),
-                     "max_s": round(max(times), 3),
-                     "runs_per_s": round(runs / med, 1) if runs else "",
-                     "per_task_ms": round(1e3 * med / runs, 2) if runs else "",
-                     "cpu_ms_per_run": (round(1e3 * statistics.median(cpu) / runs, 2)
-                                        if cpu else ""),
-                     "repeats": len(times), "note": note})
-        print(rows[-1], flush=True)
-
-    n = args.runs
-    for jobs in (1, cores):
-        times, cpu, res = _timed(lambda j=jobs: _study(n, jobs=j), args.repeats)
-        record(f"lhs {n} runs, fast, local", jobs, n, times, cpu,
-               f"{res.failed} failed; {res.rhs_evaluations / n:.0f} rhs evaluations a run")
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig = res.plot()["figure"]
-    fig.savefig(out / f"study_lhs_{n}.png", dpi=60, bbox_inches="tight")
-    plt.close(fig)
-
-    try:
-        import distributed
-    except ImportError:
-        print("dask.distributed is not installed: the Dask measurements are left out")
-    else:
-        m = args.dask_runs
-        times, cpu, _ = _timed(lambda: _study(m, jobs=cores, chunk_size=1), args.repeats)
-        record(f"lhs {m} runs, one a task, local pool", cores, m, times, cpu)
-        with distributed.LocalCluster(n_workers=cores, processes=True, threads_per_worker=1,
-                                      dashboard_address=None) as cluster, \
-                distributed.Client(cluster) as client:
-            times, _, _ = _timed(lambda: _study(m, scheduler=client, chunk_size=1),
-                                 args.repeats)
-            record(f"lhs {m} runs, one a task, Dask LocalCluster", cores, m, times)
-            times, _, _ = _timed(lambda: _study(m, scheduler=client), args.repeats)
-            record(f"lhs {m} runs, default chunks, Dask LocalCluster", cores, m, times)
-            k = args.noop_tasks
-            times, _, _ = _timed(lambda: _noop(k, client), args.repeats)
-            record(f"{k} tasks that run nothing, Dask LocalCluster", cores, k, times,
-                   note="each carries the base scene's tables, as a real task")
+    for rep in range(args.repeats):
+        for jobs in (1, 2):
+            for name, code in trees.items():
+                m = _sitting(code, args.runs, jobs)
+                row = {"code": name, "jobs": jobs, "repeat": rep, "runs": args.runs, **m,
+                       "load": round(os.getloadavg()[0], 2)}
+                rows.append(row)
+                print(json.dumps(row), flush=True)
     load1 = os.getloadavg()
-    for r in rows:
-        r["load_before"] = f"{load0[0]:.2f}"
-        r["load_after"] = f"{load1[0]:.2f}"
-    path = out / "study_scaling.csv"
-    with open(path, "w", newline="") as f:
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    with open(out / "study_scaling.csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)
-    print(f"wrote {path}; load average {load0[0]:.2f} before, {load1[0]:.2f} after, "
-          f"{cores} cores")
+
+    def med(code, jobs, key):
+        return statistics.median(r[key] for r in rows if r["code"] == code and r["jobs"] == jobs)
+
+    n = args.runs
+    print(f"\n{n} runs a study, fast, medians of {args.repeats}; load average "
+          f"{load0[0]:.2f} before, {load1[0]:.2f} after, {os.cpu_count()} cores")
+    summary = {}
+    for name in trees:
+        w1, w2 = med(name, 1, "wall_s"), med(name, 2, "wall_s")
+        cpu1 = med(name, 1, "parent_cpu_s") / n
+        par, wrk = med(name, 2, "parent_cpu_s"), med(name, 2, "workers_cpu_s")
+        fork = med(name, 2, "fork_cpu_s")
+        s = par / (par + wrk)
+        summary[name] = {"runs_per_s_1": n / w1, "cpu_ms_per_run_1": 1e3 * cpu1,
+                         "two_over_one": w1 / w2, "parent_ms_per_run": 1e3 * par / n,
+                         "workers_ms_per_run": 1e3 * wrk / n, "serial_fraction": s,
+                         "parent_share_of_run": (par / n) / cpu1,
+                         "fork_ms": 1e3 * fork,
+                         "speedup_16": amdahl(par, wrk, fork, 16),
+                         "speedup_64": amdahl(par, wrk, fork, 64)}
+        x = summary[name]
+        print(f"{name:9s} 1 process: {x['runs_per_s_1']:6.1f} runs/s, "
+              f"{x['cpu_ms_per_run_1']:.2f} ms CPU a run | 2 processes: "
+              f"{x['two_over_one']:.2f} x one (wall) | parent {x['parent_ms_per_run']:.3f} ms "
+              f"a run = {100 * x['parent_share_of_run']:.1f} % of a run, workers "
+              f"{x['workers_ms_per_run']:.2f} ms a run | serial fraction {s:.4f}, "
+              f"{x['fork_ms']:.1f} ms a worker's start: {x['speedup_16']:.1f} x on 16, "
+              f"{x['speedup_64']:.1f} x on 64 (Amdahl, derived)")
+    if "baseline" in summary:
+        a, b = summary["this"], summary["baseline"]
+        print(f"this / baseline, runs a second on one process: "
+              f"{a['runs_per_s_1'] / b['runs_per_s_1']:.2f}; CPU a run: "
+              f"{b['cpu_ms_per_run_1'] / a['cpu_ms_per_run_1']:.2f} x less")
     return 0
 
 

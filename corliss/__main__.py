@@ -1,4 +1,4 @@
-"""``python -m corliss``: the ``corliss`` command (:func:`corliss.cli.main`)."""
+"""``python -m corliss``: the ``corliss`` command (:func:`corliss.cli.commands.main`)."""
 
 import sys
 

@@ -111,3 +111,28 @@ class Terminated(BaseException):
     """SIGTERM received: raised in the main thread so that a run unwinds (its staged
     files removed, the output folder as it was) and exits with :data:`EXIT_TERMINATED`.
     """
+
+
+class StudyStopped(RunError):
+    """A study stopped before its last run (Ctrl-C, SIGTERM): its workers ended, the rows
+    done kept in its journal when it has one.
+
+    The CLI turns it into a one-paragraph message naming the rows kept and how to
+    resume, and the exit status of the signal (130 for Ctrl-C, 143 for SIGTERM).
+
+    Parameters
+    ----------
+    message : str
+        What stopped and what was kept.
+    done, runs : int
+        Rows finished, and runs in the study [-].
+    journal : Path or None
+        The journal holding the finished rows (None: they were not kept).
+    signal_name : str
+        ``"Ctrl-C"`` or ``"SIGTERM"``.
+    """
+
+    def __init__(self, message: str, done: int = 0, runs: int = 0, journal=None,
+                 signal_name: str = "Ctrl-C"):
+        super().__init__(message)
+        self.done, self.runs, self.journal, self.signal_name = done, runs, journal, signal_name

@@ -22,7 +22,7 @@
     Throttling against cut-off governing of one engine across its load range, with
     and without condensation: the table (CSV with its meta), the Willans lines and
     steam rates (PNG), and a verdict printed: which governing uses less steam where.
-``corliss study SCENE --vary KEY=LOW:HIGH ... (--grid [--levels N] | --lhs N | --monte-carlo N) [--response KEY] [--jobs N | --scheduler ADDR] [--json] [--out DIR]``
+``corliss study SCENE --vary KEY=LOW:HIGH ... (--grid [--levels N] | --lhs N | --monte-carlo N) [--response KEY] [--jobs N | --scheduler ADDR] [--json] [--out DIR] [--resume]``
     Steady runs over a design of scene keys: one tidy table (CSV with its meta, and
     Parquet), the base scene, the figure of responses against keys.
 ``corliss fit SCENE CARD.csv --vary KEY=LOW:HIGH ... [--refine] [--bootstrap N] [--out DIR]``
@@ -60,6 +60,7 @@ Runs that take more than a couple of seconds show a progress line on a terminal.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import dataclasses
 import json
 import logging
@@ -79,12 +80,13 @@ from corliss.engine.model import build_gear, scene_events
 from corliss.engine.simulate import simulate
 from corliss.engine.verdict import EXIT_PHYSICAL
 from corliss.errors import (EXIT_BALANCE_FAILED, EXIT_INTERRUPTED, EXIT_TERMINATED, InputError,
-                            RunError, Terminated)
+                            RunError, StudyStopped, Terminated)
 from corliss.files.run_output import (OutputFiles, plain_name, plain_text, scene_from_meta,
                                       summary_json)
 from corliss.keys import limits, units
 from corliss.logs import NOTICE
 from corliss.scene.loader import bundled_scenes, default_scene_path, find_scene, load_scene
+from corliss.studies.journal import check_writable
 
 log = logging.getLogger("corliss")
 
@@ -693,7 +695,7 @@ def cmd_sweep(args) -> int:
             if len(values[knob]) < 2:
                 raise InputError(flag, text, "two values or more")
     # values checked before work
-    result, files = _study(args, scene, lambda bar: load_ranges(scene, values, progress=bar))
+    result, files = _study(args, scene, lambda bar, out: load_ranges(scene, values, progress=bar))
     if files is None:
         return 0
     frame = convert_frame(result.points, scene.output.units, scene.supply.barometer_Pa)[0]
@@ -702,18 +704,35 @@ def cmd_sweep(args) -> int:
     return 0
 
 
+@contextlib.contextmanager
+def _out_dir(path):
+    """The output directory (checked by :func:`output_dir`), made and a file written in
+    it before the work, as a study keeps its rows there as they finish; made here and
+    left empty by a refused or failed command, it is removed again."""
+    out = Path(path)
+    made = not out.exists()
+    check_writable(out)
+    try:
+        yield out
+    except BaseException:
+        if made and out.is_dir() and not any(out.iterdir()):
+            out.rmdir()
+        raise
+
+
 def _study(args, scene, run):
-    """Run a study of many steady runs, ``run(progress)``, with a progress bar unless
+    """Run a study of many steady runs, ``run(progress, out)``, with a progress bar unless
     ``--json``; write its files; with ``--json`` print its summary instead and return
     no files."""
     out_dir = output_dir(args, scene)
     bar = None if args.json else ProgressBar("runs")
-    try:
-        result = run(bar)
-    finally:
-        if bar:
-            bar.close()
-    files = result.write(out_dir)
+    with _out_dir(out_dir) as out:
+        try:
+            result = run(bar, out)
+        finally:
+            if bar:
+                bar.close()
+        files = result.write(out)
     if args.json:
         print(summary_json(result.summary))
         return result, None
@@ -821,7 +840,7 @@ def cmd_compare(args) -> int:
         raise InputError("--droop", True, "--droop or --no-droop, not both")
     scene = _load(args.scene, args.units)
     loads = _loads(args.loads) if args.loads else list(DEFAULT_LOADS)
-    result, files = _study(args, scene, lambda bar: compare(
+    result, files = _study(args, scene, lambda bar, out: compare(
         scene, loads, condensation=args.with_condensation, fidelity=args.fidelity,
         droop=args.droop, progress=bar))
     if files is None:
@@ -850,10 +869,11 @@ def cmd_study(args) -> int:
     """
     from corliss.studies import study
     scene = _load(args.scene)
-    result, files = _study(args, scene, lambda bar: study(
+    result, files = _study(args, scene, lambda bar, out: study(
         scene, args.vary, grid=args.grid, levels=args.levels, lhs=args.lhs,
         monte_carlo=args.monte_carlo, seed=args.seed, responses=args.response,
-        fidelity=args.fidelity, jobs=args.jobs, scheduler=args.scheduler, progress=bar))
+        fidelity=args.fidelity, jobs=args.jobs, scheduler=args.scheduler, progress=bar,
+        out=out, resume=args.resume))
     if files is None:
         return 0
     s = result.summary
@@ -1194,7 +1214,10 @@ def build_parser() -> argparse.ArgumentParser:
     st.add_argument("--jobs", type=int, help="local processes (default: every core)")
     st.add_argument("--scheduler", metavar="ADDR", help="run on the Dask cluster whose "
                     "scheduler is at ADDR, e.g. tcp://10.0.0.5:8786 (needs corliss[dask])")
-    st.add_argument("--out", help="output directory (default: the scene's [output] dir)")
+    st.add_argument("--out", help="output directory (default: the scene's [output] dir); "
+                    "rows are kept in it as runs finish, so a stopped study keeps them")
+    st.add_argument("--resume", action="store_true", help="finish a stopped study: run only "
+                    "the rows its partial file in --out lacks")
     st.add_argument("--json", action="store_true", help="print the summary as JSON")
     st.set_defaults(func=cmd_study)
     ft = _subcommand(sub, "fit", help="calibrate scene keys to a measured indicator card")
@@ -1320,6 +1343,9 @@ def main(argv: list[str] | None = None) -> int:
         print(f"corliss: {exc} Nothing was simulated and no files were written.",
               file=sys.stderr)
         return EXIT_INPUT
+    except StudyStopped as exc:
+        print(f"corliss: {exc}.", file=sys.stderr)
+        return EXIT_TERMINATED if exc.signal_name == "SIGTERM" else EXIT_INTERRUPTED
     except RunError as exc:
         print(f"corliss: the run stopped: {exc}. No files were written.", file=sys.stderr)
         return EXIT_RUN_STOPPED

@@ -157,8 +157,8 @@ class Fidelity:
 #: on the accuracy study's three scenes; at 7e-5 12 % fewer evaluations and 0.30 %, at
 #: 1e-4 0.37 % on the short cut-off, and the crank end's admission pressure of the
 #: default card 0.31 % of supply off a converged run (tests/test_rosenbrock_tableaus.py
-#: holds it within 0.25 %).  Its measured price is in the README
-#: (benchmarks/accuracy_vs_time.py).  (Before the predictive controller, at 1e-4 its
+#: holds it within 0.25 %).  Its measured price is on the accuracy page (docs/accuracy.md,
+#: benchmarks/accuracy_vs_time.py).  (Before the predictive controller, at 1e-4 its
 #: steam on the default card scattered between +0.11 % and +0.29 % of a converged run
 #: as the tolerance moved by a thousandth: the error-only control walked onto a false
 #: solution of the pair at that admission, and its cycle was not periodic.)  The

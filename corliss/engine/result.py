@@ -12,14 +12,14 @@ shares (``to_pandas``, ``to_csv``, ``plot``, ``write``).  Its kinds:
 - :class:`SweepResult`: steady runs across the load range (the Willans line).
 
 The physics of a result (cards, crank effort, balances, condensation, metrics) is
-computed here.  Writing files and drawing figures is the export layer's job
-(:mod:`corliss.files.run_output`, :mod:`corliss.plot`), which the engine does not import: the
-export layer registers itself with :func:`register_exporter` when it is imported (the
-``corliss`` package imports it), and the export methods hand the result to it.
+computed here.  Writing files and drawing figures is the files layer's job
+(:mod:`corliss.files.run_output`, which draws with :mod:`corliss.plot`): the export
+methods hand the result to it, loaded by name on first use (:data:`WRITER`).
 """
 
 from __future__ import annotations
 
+import importlib
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -45,29 +45,16 @@ TWO_PI = 2.0 * math.pi
 NO_WORK_REASON = ("undefined: the card does no net work, so there is no stroke's work to "
                   "refer the fluctuation to (Marks Art. 57)")
 
-_exporter = None
+#: The module that writes a result's files and draws its figures (the files layer, above
+#: this one): loaded by name the first time an export method is called, as
+#: python-control's ``TimeResponseData`` hands its plots to a module of their own, so
+#: that the engine imports no file writer and ``import corliss`` loads none.
+WRITER = "corliss.files.run_output"
 
 
-def register_exporter(exporter) -> None:
-    """Register the export layer the export methods of :class:`Result` hand over to.
-
-    :mod:`corliss.files.run_output` registers itself on import; the engine never imports it.
-
-    Parameters
-    ----------
-    exporter : object
-        An object with ``to_csv(result, path, table, units_system)``, ``plot(result,
-        kind, ax, units_system)`` and ``write(result, out_dir, plots)``; it replaces any
-        registered before.
-    """
-    global _exporter
-    _exporter = exporter
-
-
-def _export():
-    if _exporter is None:     # only if the engine is used without the corliss package
-        raise RuntimeError("no export layer registered: import corliss (or corliss.files.run_output)")
-    return _exporter
+def _writer():
+    """The module :data:`WRITER`, imported on first use."""
+    return importlib.import_module(WRITER)
 
 
 class _Table:
@@ -276,8 +263,7 @@ class Result:
                units_system: str | None = None) -> Path:
         """Write a table as CSV in the output units with its ``.meta.json`` beside it.
 
-        Both files are written whole or not at all (by the registered export layer,
-        :func:`register_exporter`).
+        Both files are written whole or not at all (by :data:`WRITER`).
 
         Parameters
         ----------
@@ -293,7 +279,7 @@ class Result:
         Path
             The CSV file written.
         """
-        return _export().to_csv(self, path, table or self.TABLES[0], units_system)
+        return _writer().to_csv(self, path, table or self.TABLES[0], units_system)
 
     def plot(self, kind: str | None = None, ax=None, units_system: str | None = None) -> dict:
         """Draw one of :attr:`FIGURES` in period style.
@@ -313,7 +299,7 @@ class Result:
         dict
             The matplotlib objects drawn (``"ax"`` or ``"figure"`` and the lines).
         """
-        return _export().plot(self, kind or self.FIGURES[0], ax, units_system)
+        return _writer().plot_result(self, kind or self.FIGURES[0], ax, units_system)
 
     def write(self, out_dir: str | Path, *, plots: bool = True) -> dict[str, Path]:
         """Write every file of the run into a directory.
@@ -335,7 +321,7 @@ class Result:
             Each file written, keyed by the table, figure or summary it holds (the meta
             files beside the tables).
         """
-        return _export().write(self, out_dir, plots)
+        return _writer().write(self, out_dir, plots)
 
 
 def _last(ts):

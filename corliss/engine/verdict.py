@@ -12,7 +12,6 @@ settled did not settle.  Each is reported in the summary's ``failures`` list
 from __future__ import annotations
 
 from corliss.keys import units
-from corliss.governors.operating_point import characteristic_speed
 
 #: Exit status of a run that completed, its files written, but failed physically.
 EXIT_PHYSICAL = 4
@@ -95,6 +94,8 @@ def transient_failures(summary: dict, mechanism, z_end: float | None,
         out.append(_fail("stalled", "the load stopped the engine"))
     n = summary["final_speed_rpm"]
     if mechanism is not None and z_end is not None and z_end >= TOP_STOP_Z:
+        # a governed run only: a steady run's verdict loads no governor
+        from corliss.governors.operating_point import characteristic_speed
         top = characteristic_speed(mechanism, 1.0) / units.RPM_RAD_S
         if n > (1.0 + RUN_AWAY_MARGIN) * top:
             out.append(_fail("run_away", f"the governor is at its top stop and the speed "

@@ -22,10 +22,15 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
+import matplotlib.pyplot as plt
+from matplotlib.figure import Figure
+
 from corliss.keys import units
 from corliss.engine.model import build_gear, geometry_of, scene_events
 from corliss.errors import InputError
 from corliss.files.run_output import OutputFiles
+from corliss.plot import plot_gear
+from corliss.plot.gears import plot_bilgram_diagram, plot_zeuner_diagram
 from corliss.scene.loader import Scene, bundled_scenes, default_scene_path, find_scene, load_scene, scene_from_dict
 from corliss.keys.edits import with_keys
 from corliss.keys.toml_text import dumps
@@ -404,13 +409,6 @@ def write_design(design: Design, out_dir) -> dict:
         ``{kind: path}`` of the files written: ``scene``, and ``zeuner`` and
         ``bilgram`` or ``gear``.
     """
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from corliss.plot import plot_gear
-    from corliss.plot.gears import plot_bilgram_diagram, plot_zeuner_diagram
-
     gear = build_gear(design.scene)
     units_system = design.scene.output.units
     files = {}
@@ -422,19 +420,18 @@ def write_design(design: Design, out_dir) -> dict:
             for kind, draw, drawn_from in (
                     ("zeuner", plot_zeuner_diagram, "the valve's exact travel"),
                     ("bilgram", plot_bilgram_diagram, "the gear's Zeuner form (infinite rods)")):
-                fig, ax = plt.subplots(figsize=(7, 7))
-                try:
-                    drawn = draw(gear, ax=ax, units_system=units_system)
-                    lim = ax.get_xlim()[1]
-                    _mark_asked(ax, design.valve, 0.95 * lim, drawn_from)
-                    ax.set_title(f"{drawn['ax'].get_title()}: {design.scene.title}", fontsize=9)
-                    name = f"design-{kind}.png"
-                    fig.savefig(out.stage(name), dpi=120, bbox_inches="tight", format="png")
-                    files[kind] = Path(out_dir) / name
-                finally:
-                    plt.close(fig)
+                fig = Figure(figsize=(7, 7))      # no pyplot: the user's backend untouched
+                ax = fig.add_subplot()
+                drawn = draw(gear, ax=ax, units_system=units_system)
+                lim = ax.get_xlim()[1]
+                _mark_asked(ax, design.valve, 0.95 * lim, drawn_from)
+                ax.set_title(f"{drawn['ax'].get_title()}: {design.scene.title}", fontsize=9)
+                name = f"design-{kind}.png"
+                fig.savefig(out.stage(name), dpi=120, bbox_inches="tight", format="png")
+                files[kind] = Path(out_dir) / name
         else:
-            fig = plot_gear(gear, units_system=units_system)["figure"]
+            with plt.ioff():
+                fig = plot_gear(gear, units_system=units_system)["figure"]
             try:
                 fig.suptitle(f"{design.scene.title}: setting {design.valve.setting:.4f}", fontsize=10)
                 fig.savefig(out.stage("design-gear.png"), dpi=120, bbox_inches="tight", format="png")

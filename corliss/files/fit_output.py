@@ -203,24 +203,19 @@ def write(fit_result: FitResult, out_dir, plots: bool = True,
     """
     files = {}
     toml_text = fitted_toml(fit_result)
-    with OutputFiles(out_dir) as out, plain_text():
+    with OutputFiles(out_dir) as out, plain_text(plots):
         out.stage(FILES["summary"]).write_text(json.dumps(fit_json(fit_result, units_system),
                                                           indent=2))
         files["summary"] = out.files[FILES["summary"]]
         out.stage(FILES["scene"]).write_text(toml_text, encoding="utf-8")
         files["scene"] = out.files[FILES["scene"]]
         if plots:
-            import matplotlib
-            matplotlib.use("Agg")
-            import matplotlib.pyplot as plt
-            fig, ax = plt.subplots(figsize=(9, 5.8))
-            try:
-                plot_fit_card(fit_result, ax=ax, units_system=units_system)
-                fig.savefig(out.stage(FILES["card"]), dpi=DPI, bbox_inches="tight",
-                            format="png", pil_kwargs=PNG_OPTIONS)
-                files["card"] = out.files[FILES["card"]]
-            finally:
-                plt.close(fig)
+            from matplotlib.figure import Figure  # only when drawing
+            fig = Figure(figsize=(9, 5.8))        # no pyplot: the user's backend untouched
+            plot_fit_card(fit_result, ax=fig.add_subplot(), units_system=units_system)
+            fig.savefig(out.stage(FILES["card"]), dpi=DPI, bbox_inches="tight",
+                        format="png", pil_kwargs=PNG_OPTIONS)
+            files["card"] = out.files[FILES["card"]]
     return files
 
 
@@ -284,16 +279,25 @@ def print_fit(fit_result: FitResult, files: dict | None = None,
         print(f"  wrote {kind:12s} {path}")
 
 
-class _Exporter:
-    """What a FitResult's ``write`` and ``plot`` call."""
+def plot(fit_result: FitResult, ax=None, units_system: str | None = None) -> dict:
+    """Draw a fit's card: the measured card against the fitted one (what
+    :meth:`FitResult.plot <corliss.fitting.solver.FitResult.plot>` calls).
 
-    write = staticmethod(write)
+    Parameters
+    ----------
+    fit_result : FitResult
+        The fit.
+    ax : matplotlib Axes, optional
+        The axes to draw on (default: a new figure).
+    units_system : str, optional
+        ``"US"`` or ``"SI"`` (default: the scene's output units).
 
-    @staticmethod
-    def plot(fit_result, ax=None, units_system=None):
-        return plot_fit_card(fit_result, ax=ax, units_system=units_system)
+    Returns
+    -------
+    dict
+        The matplotlib objects drawn.
+    """
+    return plot_fit_card(fit_result, ax=ax, units_system=units_system)
 
 
-solver.register_exporter(_Exporter())
-
-__all__ = ["FILES", "fit", "fit_json", "fitted_toml", "print_fit", "write"]
+__all__ = ["FILES", "fit", "fit_json", "fitted_toml", "plot", "print_fit", "write"]

@@ -44,9 +44,8 @@ try:
 except ImportError:  # pragma: no cover - not a POSIX system
     fcntl = None
 
-from corliss import plot
+from corliss import __version__, plot
 from corliss.frames import columns
-from corliss.engine import result as engine_result
 from corliss.engine.options import PRESETS, Fidelity
 from corliss.errors import InputError, RunError
 from corliss.keys import limits
@@ -79,8 +78,7 @@ def package_version() -> str:
     try:
         return installed_version("corliss")
     except PackageNotFoundError:  # pragma: no cover - running from a source tree
-        import corliss
-        return corliss.__version__
+        return __version__
 
 
 def dependency_versions() -> dict[str, str | None]:
@@ -847,16 +845,24 @@ def _figures(result) -> list[tuple[str, tuple[float, float]]]:
     return [("willans", (8, 5.5))]
 
 
-def plain_text():
+def plain_text(plots: bool = True):
     """A block whose figures show text as it is: a ``$`` in a scene's title is a
     dollar, not the start of mathtext (``$\\frac{a}{$`` stopped a run's plot); none
     of corliss's own labels uses mathtext.
 
+    Parameters
+    ----------
+    plots : bool, optional
+        Whether the block draws; without figures it imports no matplotlib.
+
     Returns
     -------
     contextlib.AbstractContextManager
-        matplotlib's ``rc_context`` with ``text.parse_math`` off.
+        matplotlib's ``rc_context`` with ``text.parse_math`` off, or a block that
+        does nothing when ``plots`` is false.
     """
+    if not plots:
+        return contextlib.nullcontext()
     import matplotlib
     return matplotlib.rc_context({"text.parse_math": False})
 
@@ -884,7 +890,7 @@ def write(result, out_dir, plots: bool = True) -> dict[str, Path]:
     """
     stem = result.scene.name
     files: dict[str, Path] = {}
-    with OutputFiles(out_dir) as out, plain_text():
+    with OutputFiles(out_dir) as out, plain_text(plots):
         for table, suffix in TABLE_FILES[result.kind].items():
             name = f"{stem}.{suffix}.csv"
             staged = out.stage(name)
@@ -892,13 +898,16 @@ def write(result, out_dir, plots: bool = True) -> dict[str, Path]:
             _write_table(result, table, staged, name, None)
             files[table] = out.files[name]
         if plots:
-            import matplotlib
-            matplotlib.use("Agg")
-            import matplotlib.pyplot as plt
+            import matplotlib.pyplot as plt     # only when drawing: a run without
+            from matplotlib.figure import Figure  # figures imports no matplotlib
             for kind, size in _figures(result):
-                fig, ax = (plt.subplots(figsize=size) if size[0] else (None, None))
+                # a one-axes figure is drawn on a Figure of its own (no pyplot, no
+                # backend); a figure of several axes is made by its plot function
+                fig = Figure(figsize=size) if size[0] else None
+                ax = fig.add_subplot() if fig is not None else None
                 try:
-                    drawn = plot_result(result, kind, ax)
+                    with plt.ioff():
+                        drawn = plot_result(result, kind, ax)
                     fig = drawn.get("figure", fig)
                     name = f"{stem}.{kind}.png"
                     fig.savefig(out.stage(name), dpi=DPI, bbox_inches="tight", format="png",
@@ -912,13 +921,3 @@ def write(result, out_dir, plots: bool = True) -> dict[str, Path]:
         files["summary"] = out.files[name]
     return files
 
-
-class _Exporter:
-    """What the engine's results call for their export methods."""
-
-    to_csv = staticmethod(to_csv)
-    plot = staticmethod(plot_result)
-    write = staticmethod(write)
-
-
-engine_result.register_exporter(_Exporter())

@@ -23,9 +23,9 @@ from pathlib import Path
 
 from corliss.errors import InputError
 from corliss.logs import NOTICE
+from corliss.plot import plot_study
 from corliss.files.run_output import DPI, PNG_OPTIONS, OutputFiles, jsonable, meta, summary_json, write_csv
 from corliss.scene.loader import scene_from_dict
-from corliss.studies import study_result
 from corliss.studies.study_result import column_unit, converted, scene_data_of
 from corliss.keys.toml_text import dumps
 
@@ -160,10 +160,9 @@ def write(result, out_dir, plots: bool = True, parquet: bool | None = None) -> d
         out.stage(bname).write_text(text, encoding="utf-8")
         files["base"] = out.files[bname]
         if plots:
-            import matplotlib
-            matplotlib.use("Agg")
-            import matplotlib.pyplot as plt
-            drawn = plot(result, None, None)
+            import matplotlib.pyplot as plt       # only when drawing
+            with plt.ioff():
+                drawn = plot(result, None, None)
             try:
                 fname = f"{stem}.png"
                 drawn["figure"].savefig(out.stage(fname), dpi=DPI, bbox_inches="tight",
@@ -174,6 +173,9 @@ def write(result, out_dir, plots: bool = True, parquet: bool | None = None) -> d
         sname = f"{stem}.summary.json"
         out.stage(sname).write_text(summary_json(result.summary))
         files["summary"] = out.files[sname]
+    journal = getattr(result, "journal", None)
+    if journal and Path(journal).resolve().parent == Path(out_dir).resolve():
+        Path(journal).unlink(missing_ok=True)      # the study's files hold its rows now
     return files
 
 
@@ -224,7 +226,6 @@ def plot(result, ax=None, units_system: str | None = None) -> dict:
     dict
         ``{"figure": fig, "axes": axes}`` (:func:`corliss.plot.plot_study`).
     """
-    from corliss.plot import plot_study
     return plot_study(result.points, result.varied, list(result.responses),
                       units_system=units_system or result.scene.output.units)
 
@@ -295,11 +296,3 @@ def study_scene(path, run_id: int):
     sc = scene_from_dict(data, name=m.get("scene_name") or "scene")
     return sc.with_fidelity(m["fidelity"]) if m.get("fidelity") else sc
 
-
-class _StudyExporter:
-    write = staticmethod(write)
-    to_csv = staticmethod(to_csv)
-    plot = staticmethod(plot)
-
-
-study_result.register_study_exporter(_StudyExporter())

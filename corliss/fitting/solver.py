@@ -128,6 +128,7 @@ beside the Jacobian's errors.
 from __future__ import annotations
 
 import dataclasses
+import importlib
 import logging
 import math
 import time
@@ -190,29 +191,16 @@ XTOL, FTOL = 1e-4, 1e-8
 MAX_NFEV_PER_KEY = 60
 
 
-_exporter = None
+#: The module that writes a fit's files and draws its card (the files layer, above this
+#: one): loaded by name the first time an export method is called, as python-control's
+#: ``TimeResponseData`` hands its plots to a module of their own, so that the fitting
+#: package imports no file writer and ``import corliss`` loads none.
+WRITER = "corliss.files.fit_output"
 
 
-def register_exporter(exporter) -> None:
-    """Register the writer of fits, to which :class:`FitResult`'s export methods hand it.
-
-    :mod:`corliss.files.fit_output` registers itself on import, as the results' export
-    layer does.
-
-    Parameters
-    ----------
-    exporter : object
-        An object with ``write(fit, out_dir, plots, units_system)`` and
-        ``plot(fit, ax, units_system)``.
-    """
-    global _exporter
-    _exporter = exporter
-
-
-def _export():
-    if _exporter is None:
-        raise RuntimeError("no export layer registered: import corliss")
-    return _exporter
+def _writer():
+    """The module :data:`WRITER`, imported on first use."""
+    return importlib.import_module(WRITER)
 
 
 @dataclass
@@ -335,7 +323,7 @@ class FitResult:
         dict of str to Path
             ``{kind: path}``: ``summary``, ``scene`` and ``card`` (when drawn).
         """
-        return _export().write(self, out_dir, plots, units_system)
+        return _writer().write(self, out_dir, plots, units_system)
 
     def plot(self, ax=None, units_system: str | None = None) -> dict:
         """The measured card over the fitted one.
@@ -352,7 +340,7 @@ class FitResult:
         dict
             The matplotlib objects drawn (:func:`corliss.plot.fit_card.plot_fit_card`).
         """
-        return _export().plot(self, ax, units_system)
+        return _writer().plot(self, ax, units_system)
 
     @property
     def keys(self) -> list[str]:

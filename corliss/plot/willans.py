@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from corliss.engine.result import willans_fit
 from corliss.keys import units
 
 
@@ -30,8 +31,6 @@ def plot_willans(sweeps: dict, ax=None, units_system: str = "US") -> dict:
         ``{"ax": ax, "lines": {label: Line2D}}``.
     """
     import matplotlib.pyplot as plt
-
-    from corliss.engine.result import willans_fit
 
     if ax is None:
         _, ax = plt.subplots(figsize=(8, 5.5))

@@ -3,7 +3,7 @@
 Every dimensional value is a quantity string with its unit; unknown keys, missing
 units and impossible geometry are :class:`~corliss.errors.InputError` naming the key,
 the value and what would be valid, raised before any work starts.  The format is
-described in the README and ``docs/architecture.md`` and shown by
+described in ``docs/scenes.md`` and ``docs/scene-reference.md`` and shown by
 ``scenes/default.toml``.
 """
 
@@ -19,8 +19,9 @@ from pathlib import Path
 import numpy as np
 
 from corliss.keys import limits, units
+from corliss.engine.flywheel import parse_flywheel
 from corliss.engine.geometry import EngineSpec
-from corliss.governors.operating_point import working_travel
+from corliss.engine.load import parse_load
 from corliss.engine.options import (COMPILED_METHODS, EFFECT_KEYS, EFFECTS, PLANNED_EFFECTS,
                                     PRESETS, SCIPY_METHODS, Fidelity)
 from corliss.errors import InputError, InputErrors
@@ -29,6 +30,7 @@ from corliss.scene.sections import (COMPARE, COMPOUND, ENGINE, EXHAUST, FLYWHEEL
                                   RECORD_CHOICES, RUN, START_CHOICES, SUPPLY)  # noqa: F401
 from corliss.keys.toml_table import Table
 from corliss.keys.textfiles import read_text
+from corliss.thermo import steam_table
 from corliss.thermo.steam import BACKENDS, HEOSSteam, TableSteam
 from corliss.valves import GEARS
 
@@ -526,7 +528,6 @@ def _check_states(data: dict, supply: SupplySpec, exhaust: ExhaustSpec, run: Run
     before any work: below the critical pressure (IAPWS: 22.064 MPa; no steam and
     water apart above it), and for the ``table`` tier inside the table's density and
     energy, with room for the exhaust steam to expand a little below back pressure."""
-    from corliss.thermo import steam_table
     raw_p = data["supply"].get("pressure")
     if supply.pressure_Pa >= units.CRITICAL_PRESSURE_Pa:
         raise InputError("supply.pressure", raw_p, "a pressure below the critical pressure of "
@@ -934,8 +935,6 @@ def _speed_loop(data: dict, run: RunSpec, supply: SupplySpec, gt, gear, baromete
                 scene_dir: Path | None, engine: EngineSpec) -> dict:
     """The [flywheel], [load] and [governor] sections of a transient run, checked against
     the rest of the scene (what the governor moves must exist)."""
-    from corliss.engine.flywheel import parse_flywheel
-    from corliss.engine.load import parse_load
     present = [k for k in ("governor", "flywheel", "load") if k in data]
     if run.mode != "transient":
         if present:
@@ -952,6 +951,7 @@ def _speed_loop(data: dict, run: RunSpec, supply: SupplySpec, gt, gear, baromete
     load = parse_load(Table(data["load"], "load", barometer, LOAD), run.speed_rad_s, scene_dir)
     out = {"flywheel": flywheel, "load": load}
     if "governor" in data:
+        # the governors are loaded for a governed scene only: a steady run imports none
         from corliss.governors import GOVERNORS
         g = Table(data["governor"], "governor", barometer)
         gov_t = _registered(g, GOVERNORS)
@@ -1088,6 +1088,7 @@ def _check_governor_spring(gov_t, spec, mech, g: Table, run: RunSpec) -> None:
     and the preload (stiffness kept) that would balance it there."""
     if not (hasattr(spec, "spring_stiffness_N_m") and hasattr(spec, "spring_preload_N")):
         return
+    from corliss.governors.operating_point import working_travel   # a governed scene only
     lo, hi = working_travel(mech)
     z_mid = np.array([0.5 * (lo + hi)])
     target = run.speed_rad_s
@@ -1135,6 +1136,7 @@ def _check_governed_speed(gov, mech, g: Table, run: RunSpec) -> None:
     """Refuse a governor ``gov`` (tabulated as ``mech``) whose static characteristic
     balances nowhere near the run speed (a drive ratio that puts its working speed far
     from the engine's), naming the key and the speed it would govern at."""
+    from corliss.governors.operating_point import working_travel   # a governed scene only
     ends = np.array(working_travel(mech))
     lo, hi = gov.equilibrium_speed_rad_s(ends) / units.RPM_RAD_S
     rpm = run.speed_rpm

@@ -38,6 +38,9 @@ from corliss.engine.model import at_knob, build_gear, geometry_of, steady_scene
 from corliss.engine.result import willans_fit
 from corliss.engine.steady import run_steady
 from corliss.errors import InputError, RunError
+from corliss.governors import GOVERNORS
+from corliss.governors.operating_point import characteristic_speed, working_travel
+from corliss.studies.compare_result import CompareResult
 
 log = logging.getLogger(__name__)
 TWO_PI = 2.0 * math.pi
@@ -387,8 +390,6 @@ def droop_speeds(scene, loads) -> dict[float, float] | None:
     """
     if scene.governor is None or scene.governor_type is None:
         return None
-    from corliss.governors.operating_point import characteristic_speed, working_travel
-    from corliss.governors import GOVERNORS
     mech = GOVERNORS[scene.governor_type].build(scene.governor).mechanism(201)
     z_lo, z_hi = working_travel(mech)
     w_lo, w_hi = sorted(characteristic_speed(mech, z) for z in (z_lo, z_hi))
@@ -465,8 +466,6 @@ def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
         Loads outside (0, 2], an unknown ``condensation``, or what :func:`variants`
         refuses.
     """
-    from corliss.studies.compare_result import CompareResult
-
     t0 = time.perf_counter()
     loads = [float(v) for v in loads]
     if not loads or any(not (0.0 < v <= 2.0) for v in loads):
@@ -519,8 +518,6 @@ def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
 def _solve(scene, loads, var, groups, grid_tasks, grid_keys, rated, brake, tier, pool,
            progress, total, t0, workers, speeds):
     """The two rounds of :func:`compare`: the knob grids, then the operating points."""
-    from corliss.studies.compare_result import CompareResult
-
     conds = sorted({c for _, c in groups})
     grid, done = _map(grid_tasks, pool, progress, 0, total)
     curves = {key: [] for key in groups}

@@ -4,28 +4,51 @@ Dask cluster.
 Each run is the base scene's tables with the run's keys set
 (:func:`corliss.keys.edits.with_keys`), loaded and checked by the scene loader, made
 steady at its speed and run at the study's fidelity; its row holds the responses
-asked for.  Every run's scene is checked before any run (up to
-:data:`CHECK_ALL_UP_TO` runs), so a key or a value the loader refuses is an
-:class:`~corliss.errors.InputError` naming it and nothing runs; a run that stops
-inside (a solver that does not converge, a state beyond the steam properties) is a
-row with ``status = "failed"`` and its error, not a stopped study.
+asked for.  Before any run the scenes of the first runs and of the runs at each key's
+least and greatest value are loaded (every run's, up to :data:`CHECK_ALL_UP_TO`
+runs), so a key or a value the loader refuses is an
+:class:`~corliss.errors.InputError` naming it and nothing runs; a later run whose
+scene the loader refuses, or that stops inside (a solver that does not converge, a
+state beyond the steam properties), is a row with ``status = "failed"`` and its
+error, not a stopped study.
 
-Runs go in chunks (:func:`run_chunk`, one task: the base tables once and each run's
-values of the varied keys) to a local process pool on every core, or, given a scheduler's address,
-to a Dask cluster (:mod:`dask.distributed`, the optional extra ``corliss[dask]``).  A
-worker process imports corliss once, loads the compiled kernels from numba's cache
-and the steam table from its file once, and keeps them for every later task; the
-same inputs give the same numbers on any worker, so a study's table does not depend
-on where it ran.
+What every run shares (:class:`StudySpec`: the base tables, the fidelity, the
+responses, the varied keys) goes to each worker once: to a local process pool's
+workers as they start, to a Dask cluster's workers scattered once.  A task carries
+only its runs' numbers and their keys' values (:func:`run_chunk`).  The pool's
+workers are started once for the study, after this process has loaded the compiled
+kernels and the steam table (its first run), so on Linux each forks with them
+loaded.  Rows come back a chunk at a time; given an output directory they are
+appended to its journal (:mod:`corliss.studies.journal`) as they come.
+
+A study stopped by Ctrl-C or SIGTERM ends its workers at once and raises
+:class:`~corliss.errors.StudyStopped` naming the rows kept; a pool's workers also
+end when this process is killed outright (they watch for it).  ``resume=True``
+reads the journal back and runs only the rows it lacks.  A local worker that is
+lost (killed, out of memory) breaks its pool: a new pool runs the unfinished chunks
+again (up to :data:`POOL_RESTARTS` times).  On Dask, a lost worker's tasks run again
+on another (Dask's own rescheduling); a cluster left with no worker for
+:data:`NO_WORKERS_GRACE_S` is an error, not a wait for ever.
+
+The same inputs give the same numbers on any worker, so a study's table does not
+depend on where, in what order or in how many sittings it ran.
 """
 
 from __future__ import annotations
 
+import ctypes
+import dataclasses
+import json
 import logging
 import math
+import multiprocessing
 import os
+import signal
+import sys
+import threading
 import time
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures import FIRST_COMPLETED, CancelledError, ProcessPoolExecutor, wait
+from concurrent.futures.process import BrokenProcessPool
 from pathlib import Path
 from typing import Callable
 
@@ -34,42 +57,46 @@ import numpy as np
 from corliss.engine.balance import balance_failure
 from corliss.engine.model import steady_scene
 from corliss.engine.steady import run_steady
-from corliss.errors import InputError
+from corliss.errors import InputError, RunError, StudyStopped
 from corliss.scene.loader import Scene, find_scene, load_scene, scene_from_dict
 from corliss.keys.edits import KeyValue, with_keys
 from corliss.studies.sampling import make_design
+from corliss.studies.journal import Journal, check_writable, fingerprint, journal_path, read_rows
 from corliss.studies.responses import check_responses, flatten, response_value
 from corliss.studies.study_result import ERROR, RUN_ID, STATUS, StudyResult
 
 log = logging.getLogger(__name__)
 
-__all__ = ["study", "run_chunk", "CHECK_ALL_UP_TO"]
+__all__ = ["study", "run_chunk", "StudySpec", "CHECK_ALL_UP_TO", "NO_WORKERS_GRACE_S"]
 
 #: Studies of up to this many runs have every run's scene checked before any run
-#: (0.5 ms each); a larger one has these first runs and the runs at each key's least
-#: and greatest value checked, and a later scene the loader refuses is a failed row.
-CHECK_ALL_UP_TO = 20_000
+#: (a fraction of a run's cost each, in this process); a larger one has its first
+#: runs and the runs at each key's least and greatest value checked, and a later
+#: scene the loader refuses is a failed row (checking all would cost this process a
+#: share of every run, and the workers wait for it).
+CHECK_ALL_UP_TO = 32
 #: Most runs in one task: few enough that the work spreads over the workers and the
 #: progress moves, enough that a task's overhead is small beside its runs.
 MAX_CHUNK = 50
 #: Chunks per worker, at least, when the runs allow (for balance: runs differ in cost).
 CHUNKS_PER_WORKER = 4
+#: Times a local pool is started again when one of its workers is lost (killed, out
+#: of memory), its unfinished tasks resent, before the study stops with an error.
+POOL_RESTARTS = 2
+#: Seconds a Dask cluster may have no worker before the study stops with an error.
+NO_WORKERS_GRACE_S = 30.0
+#: Seconds between looks at a Dask cluster's workers while tasks are out.
+POLL_S = 1.0
 
 
-def _scene(base: dict, name: str, fidelity: str | None, changes: dict):
-    """One run's steady scene, loaded and checked."""
-    sc = scene_from_dict(with_keys(base, changes), name=name)
-    if fidelity is not None:
-        sc = sc.with_fidelity(fidelity)
-    return steady_scene(sc)
-
-
-def run_chunk(base: dict, name: str, fidelity: str | None, responses: tuple,
-              keys: tuple, run_ids, values) -> tuple[list, int, str | None]:
-    """Run one task's runs (in a worker process, or here).
+@dataclasses.dataclass(frozen=True)
+class StudySpec:
+    """What every run of a study shares: sent to each worker once.
 
     Parameters
     ----------
+    token : str
+        The study's fingerprint (:func:`corliss.studies.journal.fingerprint`).
     base : dict
         The base scene's tables.
     name : str
@@ -80,6 +107,31 @@ def run_chunk(base: dict, name: str, fidelity: str | None, responses: tuple,
         Dotted summary keys to return.
     keys : tuple of (str, str)
         Each varied key and its unit.
+    """
+
+    token: str
+    base: dict
+    name: str
+    fidelity: str | None
+    responses: tuple
+    keys: tuple
+
+
+def _scene(base: dict, name: str, fidelity: str | None, changes: dict):
+    """One run's steady scene, loaded and checked."""
+    sc = scene_from_dict(with_keys(base, changes), name=name)
+    if fidelity is not None:
+        sc = sc.with_fidelity(fidelity)
+    return steady_scene(sc)
+
+
+def run_chunk(spec: StudySpec, run_ids, values) -> tuple[list, int, str | None]:
+    """Run one task's runs (in a worker process, or here).
+
+    Parameters
+    ----------
+    spec : StudySpec
+        What the study's runs share.
     run_ids : sequence of int
         The runs' numbers in the design.
     values : ndarray
@@ -98,10 +150,11 @@ def run_chunk(base: dict, name: str, fidelity: str | None, responses: tuple,
         The property tier of its runs (None when every run failed).
     """
     rows, nfev, tier = [], 0, None
+    responses = spec.responses
     for run_id, vals in zip(run_ids, values):
-        changes = {k: KeyValue(float(v), unit).text() for (k, unit), v in zip(keys, vals)}
+        changes = {k: KeyValue(float(v), unit).text() for (k, unit), v in zip(spec.keys, vals)}
         try:
-            r = run_steady(_scene(base, name, fidelity, changes))
+            r = run_steady(_scene(spec.base, spec.name, spec.fidelity, changes))
             flat = flatten(r.summary)
             nfev += r.rhs_evaluations
             tier = r.property_tier
@@ -143,75 +196,154 @@ def run_failure(result) -> str:
     return f"not converged: {why}" if why else ""
 
 
-def _base_of(scene) -> tuple[dict, Scene]:
-    """The base scene's tables and the scene, from a Scene, tables, a file or a name."""
-    if isinstance(scene, Scene):
-        if scene.data is None:
-            raise InputError("scene", scene.name, "a scene loaded from tables or a file (a "
-                             "study changes its tables)")
-        return scene.data, scene
-    if isinstance(scene, dict):
-        return scene, scene_from_dict(scene, name="scene")
-    if scene is None or isinstance(scene, (str, Path)):
-        from corliss.scene.loader import default_scene_path
-        sc = load_scene(find_scene(scene) if scene is not None else default_scene_path())
-        return sc.data, sc
-    raise InputError("scene", scene, "a Scene, its tables (dict), a scene file or a bundled "
-                     "scene's name")
+# --- a local pool's workers ----------------------------------------------------------------
+
+#: The base scenes and fidelities this process has run a study of (its kernels for
+#: them loaded): a later study of one starts its workers without a run here first.
+_WARMED: set = set()
+#: In a worker process: the study it serves (set once, as it starts).
+_WORKER_SPEC: StudySpec | None = None
+#: The signals that stop a study.
+_STOPS = {signal.SIGINT, signal.SIGTERM}
+#: prctl's option that sends the child a signal when its parent dies (Linux).
+_PR_SET_PDEATHSIG = 1
 
 
-def _check_scenes(design, base, name, fidelity) -> None:
-    """Load every run's scene (or, for a large study, a sample) before any run."""
-    n = design.runs
-    if n <= CHECK_ALL_UP_TO:
-        ids = range(n)
-    else:
-        ext = {int(i) for j in range(design.values.shape[1])
-               for i in (np.argmin(design.values[:, j]), np.argmax(design.values[:, j]))}
-        ids = sorted(set(range(CHECK_ALL_UP_TO)) | ext)
-    for i in ids:
-        changes = design.changes(i)
+def _watch_parent(parent_pid: int) -> None:
+    """End this worker when the process that started it is gone."""
+    while True:
+        if os.getppid() != parent_pid:
+            os._exit(1)
+        time.sleep(0.5)
+
+
+def _init_worker(spec: StudySpec, parent_pid: int) -> None:
+    """Start a pool worker: keep the study's spec; leave Ctrl-C to the parent (which
+    ends the workers itself); die with the parent, however it ends."""
+    global _WORKER_SPEC
+    _WORKER_SPEC = spec
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    if hasattr(signal, "pthread_sigmask"):
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, _STOPS)
+    if sys.platform.startswith("linux"):
         try:
-            _scene(base, name, fidelity, changes)
-        except InputError as exc:
-            raise InputError(exc.key, exc.value, f"{exc.expected} (run {i} of the study "
-                             "sets " + ", ".join(f"{k} = {v!r}" for k, v in changes.items())
-                             + ")") from None
+            ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGKILL)
+        except (OSError, AttributeError):
+            pass
+    if os.getppid() != parent_pid:          # the parent died before the line above
+        os._exit(1)
+    threading.Thread(target=_watch_parent, args=(parent_pid,), daemon=True,
+                     name="corliss-parent-watch").start()
 
 
-def _chunks(design, size: int) -> list[tuple]:
-    """``(run_ids, values)`` of each task: ``size`` consecutive runs."""
-    return [(range(a, min(a + size, design.runs)), design.values[a:a + size])
-            for a in range(0, design.runs, size)]
+def _pool_chunk(run_ids, values):
+    """A pool worker's task: :func:`run_chunk` of the study it serves."""
+    return run_chunk(_WORKER_SPEC, run_ids, values)
 
 
-def _chunk_size(n: int, workers: int, chunk_size: int | None) -> int:
-    if chunk_size is not None:
-        if isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 1:
-            raise InputError("chunk_size", chunk_size, "a whole number of runs per task, 1 or more")
-        return chunk_size
-    return max(1, min(MAX_CHUNK, math.ceil(n / (workers * CHUNKS_PER_WORKER))))
+def _stop_pool(pool: ProcessPoolExecutor) -> None:
+    """End a pool's workers now (SIGKILL: their runs are abandoned, not finished)."""
+    procs = list((getattr(pool, "_processes", None) or {}).values())
+    for p in procs:
+        try:
+            p.kill()
+        except (OSError, ValueError):
+            pass
+    pool.shutdown(wait=True, cancel_futures=True)
+    for p in procs:
+        p.join(timeout=5)
 
 
-def _run_local(args, chunks, jobs, progress, total):
-    out = [None] * len(chunks)
-    done = 0
-    if jobs == 1:
-        for i, c in enumerate(chunks):
-            out[i] = run_chunk(*args, *c)
-            done += len(c[0])
-            if progress:
-                progress(done, total)
-        return out
-    with ProcessPoolExecutor(max_workers=jobs) as pool:
-        futs = {pool.submit(run_chunk, *args, *c): i for i, c in enumerate(chunks)}
-        for fut in as_completed(futs):
-            i = futs[fut]
-            out[i] = fut.result()
-            done += len(chunks[i][0])
-            if progress:
-                progress(done, total)
-    return out
+class _Interrupt(BaseException):
+    """SIGTERM, raised in the main thread as Ctrl-C raises KeyboardInterrupt."""
+
+
+def _on_sigterm(signum, frame):
+    raise _Interrupt()
+
+
+class _Signals:
+    """While a study runs (in the main thread): SIGTERM raises :class:`_Interrupt`."""
+
+    def __enter__(self):
+        self.old = None
+        if threading.current_thread() is threading.main_thread():
+            self.old = signal.signal(signal.SIGTERM, _on_sigterm)
+        return self
+
+    def __exit__(self, *exc):
+        if self.old is not None:
+            signal.signal(signal.SIGTERM, self.old)
+        return False
+
+
+def _run_local(spec, chunks, jobs, collect):
+    warm = (spec.name, spec.fidelity, json.dumps(spec.base, sort_keys=True, default=str))
+    if jobs == 1 or len(chunks) <= 1:
+        for ids, vals in chunks:
+            collect(ids, run_chunk(spec, ids, vals))
+            _WARMED.add(warm)
+        return
+    # this process's first run of the scene loads the compiled kernels and the steam
+    # table: forked workers start with them (spawned ones load them from their caches)
+    rest = chunks
+    if warm not in _WARMED:
+        first, rest = chunks[0], chunks[1:]
+        collect(first[0][:1], run_chunk(spec, first[0][:1], first[1][:1]))
+        if len(first[0]) > 1:
+            rest = [(first[0][1:], first[1][1:])] + rest
+        _WARMED.add(warm)
+        if not rest:
+            return
+    for _ in range(POOL_RESTARTS + 1):
+        rest = _pool_pass(spec, rest, jobs, collect)
+        if not rest:
+            return
+        log.warning("a worker process was lost: %d task(s) run again on a new pool",
+                    len(rest))
+    raise RunError(f"the study's worker processes were lost {POOL_RESTARTS + 1} times, with "
+                   f"{sum(len(c[0]) for c in rest)} runs left (out of memory? a run that "
+                   "crashes its process?); run it with --jobs 1 to see")
+
+
+def _pool_pass(spec, chunks, jobs, collect) -> list:
+    """Run ``chunks`` on a fresh pool; the chunks left when a worker was lost."""
+    methods = multiprocessing.get_all_start_methods()
+    ctx = multiprocessing.get_context("fork" if "fork" in methods else None)
+    # Ctrl-C and SIGTERM wait while the workers start (a signal in the middle of a fork
+    # is lost in its handlers), and are taken at once after
+    masked = hasattr(signal, "pthread_sigmask")
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, _STOPS) if masked else None
+    pool = None
+    futs = {}
+    try:
+        pool = ProcessPoolExecutor(max_workers=jobs, mp_context=ctx, initializer=_init_worker,
+                                   initargs=(spec, os.getpid()))
+        futs = {pool.submit(_pool_chunk, ids, vals): (ids, vals) for ids, vals in chunks}
+        if masked:
+            signal.pthread_sigmask(signal.SIG_SETMASK, old)
+            masked = False
+        pending, lost = set(futs), set()
+        while pending and not lost:
+            done, pending = wait(pending, return_when=FIRST_COMPLETED)
+            for fut in done:
+                if isinstance(fut.exception(), BrokenProcessPool):
+                    lost.add(fut)
+                else:
+                    collect(futs[fut][0], fut.result())
+        if lost:
+            _stop_pool(pool)
+            return [futs[f] for f in futs if f in lost or f in pending]
+    except BaseException:
+        if pool is not None:
+            _stop_pool(pool)
+        raise
+    finally:
+        if masked:
+            signal.pthread_sigmask(signal.SIG_SETMASK, old)
+    pool.shutdown(wait=True)
+    return []
 
 
 def dask_client(scheduler):
@@ -256,28 +388,112 @@ def dask_client(scheduler):
                          f"(none answered: {type(exc).__name__}: {exc})") from None
 
 
-def _run_dask(client, args, chunks, progress, total):
-    from distributed import as_completed as dask_completed
-    n = len(chunks)
-    futs = client.map(run_chunk, *([a] * n for a in args), [c[0] for c in chunks],
+def _dask_chunk(spec, run_ids, values):
+    """A Dask task: :func:`run_chunk` of the scattered spec."""
+    return run_chunk(spec, run_ids, values)
+
+
+def _hold(spec):
+    """A Dask task that gives the study's spec: its tasks depend on it, so the spec
+    goes to each worker once, and is made again if every worker holding it is lost
+    (data scattered to the workers would be lost with them)."""
+    return spec
+
+
+def _run_dask(client, spec, chunks, collect):
+    import distributed
+    shared = client.submit(_hold, spec, pure=False)
+    futs = client.map(_dask_chunk, [shared] * len(chunks), [c[0] for c in chunks],
                       [c[1] for c in chunks], pure=False)
-    index = {f.key: i for i, f in enumerate(futs)}
-    out = [None] * len(chunks)
-    done = 0
-    for fut in dask_completed(futs):
-        i = index[fut.key]
-        out[i] = fut.result()
-        done += len(chunks[i][0])
-        if progress:
-            progress(done, total)
-    return out
+    ids = {f.key: c[0] for f, c in zip(futs, chunks)}
+    pending = set(futs)
+    alone_since = None
+    try:
+        while pending:
+            try:
+                res = distributed.wait(pending, timeout=POLL_S, return_when="FIRST_COMPLETED")
+                done, pending = set(res.done), set(res.not_done)
+                for fut in done:
+                    collect(ids[fut.key], fut.result())
+            except (TimeoutError, distributed.TimeoutError):
+                done = set()
+            except CancelledError as exc:      # dask.distributed's are these
+                raise RunError(f"the Dask cluster at {client.scheduler.address} dropped the "
+                               f"study's tasks ({type(exc).__name__}), with {len(pending)} "
+                               "left: were its workers lost?") from None
+            if done:
+                alone_since = None
+                continue
+            if client.nthreads():
+                alone_since = None
+            elif alone_since is None:
+                alone_since = time.monotonic()
+            elif time.monotonic() - alone_since > NO_WORKERS_GRACE_S:
+                raise RunError(f"the Dask cluster at {client.scheduler.address} has had no "
+                               f"worker for {NO_WORKERS_GRACE_S:.0f} s, with {len(pending)} "
+                               "task(s) left (start workers, or run without --scheduler)")
+    finally:
+        client.cancel(list(pending) + [shared])
+
+
+# --- the study ------------------------------------------------------------------------------
+
+def _base_of(scene) -> tuple[dict, Scene]:
+    """The base scene's tables and the scene, from a Scene, tables, a file or a name."""
+    if isinstance(scene, Scene):
+        if scene.data is None:
+            raise InputError("scene", scene.name, "a scene loaded from tables or a file (a "
+                             "study changes its tables)")
+        return scene.data, scene
+    if isinstance(scene, dict):
+        return scene, scene_from_dict(scene, name="scene")
+    if scene is None or isinstance(scene, (str, Path)):
+        from corliss.scene.loader import default_scene_path
+        sc = load_scene(find_scene(scene) if scene is not None else default_scene_path())
+        return sc.data, sc
+    raise InputError("scene", scene, "a Scene, its tables (dict), a scene file or a bundled "
+                     "scene's name")
+
+
+def _check_scenes(design, base, name, fidelity) -> None:
+    """Load the scenes of the runs most likely refused before any run: every run's in
+    a small study; in a larger one the first runs' and those at each key's extremes."""
+    n = design.runs
+    if n <= CHECK_ALL_UP_TO:
+        ids = range(n)
+    else:
+        ext = {int(i) for j in range(design.values.shape[1])
+               for i in (np.argmin(design.values[:, j]), np.argmax(design.values[:, j]))}
+        ids = sorted(set(range(min(n, 4))) | ext)
+    for i in ids:
+        changes = design.changes(i)
+        try:
+            _scene(base, name, fidelity, changes)
+        except InputError as exc:
+            raise InputError(exc.key, exc.value, f"{exc.expected} (run {i} of the study "
+                             "sets " + ", ".join(f"{k} = {v!r}" for k, v in changes.items())
+                             + ")") from None
+
+
+def _chunks(ids: np.ndarray, values: np.ndarray, size: int) -> list[tuple]:
+    """``(run_ids, values)`` of each task: ``size`` runs of ``ids`` in order."""
+    return [(ids[a:a + size], values[a:a + size]) for a in range(0, len(ids), size)]
+
+
+def _chunk_size(n: int, workers: int, chunk_size: int | None) -> int:
+    if chunk_size is not None:
+        if isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 1:
+            raise InputError("chunk_size", chunk_size, "a whole number of runs per task, 1 or more")
+        return chunk_size
+    return max(1, min(MAX_CHUNK, math.ceil(n / (workers * CHUNKS_PER_WORKER))))
 
 
 def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
           lhs: int | None = None, monte_carlo: int | None = None, seed: int | None = 0,
           responses=None, fidelity: str | None = None, jobs: int | None = None,
           scheduler=None, chunk_size: int | None = None,
-          progress: Callable[[int, int], None] | None = None) -> StudyResult:
+          progress: Callable[[int, int], None] | None = None,
+          out=None, resume: bool = False) -> StudyResult:
     """Steady runs of ``scene`` over a design of its keys: ``corliss study``.
 
     Parameters
@@ -313,6 +529,14 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
         :data:`MAX_CHUNK` runs).
     progress : callable, optional
         Called with (runs done, runs in all) as tasks finish.
+    out : str or Path, optional
+        The output directory: checked (made, and a file written in it) before any
+        run, and the rows appended to its journal
+        (``<scene>.study.partial.jsonl``) as they finish, so a stopped study keeps
+        them; :meth:`StudyResult.write` into it replaces the journal.
+    resume : bool, optional
+        With ``out``: read the journal there back and run only the rows it lacks
+        (a journal of another study is refused; none there runs them all).
 
     Returns
     -------
@@ -325,7 +549,13 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
     InputError
         Before any run: a bad option, an unknown response (the valid ones listed), a
         run's scene the loader refuses (its key and value named), no scheduler at the
-        address.
+        address, an output directory that cannot be written, a journal of another
+        study to resume.
+    StudyStopped
+        Ctrl-C or SIGTERM during the runs: the workers are ended, the rows done kept
+        in the journal (with ``out``).
+    RunError
+        A Dask cluster left without workers.
     """
     t0 = time.perf_counter()
     base, scene0 = _base_of(scene)
@@ -344,32 +574,93 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
     if scheduler is not None and jobs is not None:
         raise InputError("--jobs", jobs, "no --jobs with --scheduler: the cluster's workers "
                          "run the study")
+    if resume and out is None:
+        raise InputError("--resume", True, "an output directory (--out) whose partial file "
+                         "to resume")
+    if scheduler is None:
+        workers = jobs if jobs is not None else (os.cpu_count() or 1)
+        if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
+            raise InputError("--jobs", jobs, "a whole number of processes, 1 or more")
     _check_scenes(design, base, name, fidelity)
-    client, own = (dask_client(scheduler) if scheduler is not None else (None, False))
+    token = fingerprint(base, name, fidelity, responses, design)
+    rows: dict[int, tuple] = {}
+    journal = None
+    client, own, address = None, False, None
+    if scheduler is not None:           # a scheduler that does not answer: before any file
+        client, own = dask_client(scheduler)
+    if out is not None:
+        try:
+            jpath = journal_path(check_writable(out), name)
+            if resume and jpath.exists():
+                rows = read_rows(jpath, token, 3 + len(responses))
+                log.info("resuming: %d of %d runs read back from %s", len(rows),
+                         design.runs, jpath)
+            elif resume:
+                log.info("nothing to resume in %s: every run is made", jpath.parent)
+            journal = Journal(jpath, {"fingerprint": token, "scene": name,
+                                      "design": design.kind, "seed": design.seed,
+                                      "runs": design.runs,
+                                      "columns": [RUN_ID, STATUS, ERROR, *responses]},
+                              keep=resume)
+        except BaseException:
+            if own:
+                client.close()
+            raise
+    todo = np.array([i for i in range(design.runs) if i not in rows], dtype=np.int64)
+    spec = StudySpec(token, base, name, fidelity, tuple(responses),
+                     tuple((s.key, s.unit) for s in design.specs))
+    nfev, tiers = [0], []
+
+    def collect(ids, part):
+        got, n, tier = part
+        if journal is not None:
+            journal.append(got)
+        for r in got:
+            rows[r[0]] = r
+        nfev[0] += n
+        if tier is not None:
+            tiers.append(tier)
+        if progress:
+            progress(len(rows), design.runs)
+
     try:
         if client is not None:
             address = str(client.scheduler.address)
             workers = max(1, sum(client.nthreads().values()))
         else:
-            workers = jobs if jobs is not None else (os.cpu_count() or 1)
-            if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
-                raise InputError("--jobs", jobs, "a whole number of processes, 1 or more")
-            workers = min(workers, design.runs)
-        chunks = _chunks(design, _chunk_size(design.runs, workers, chunk_size))
-        args = (base, name, fidelity, responses,
-                tuple((spec.key, spec.unit) for spec in design.specs))
-        if client is not None:
-            parts = _run_dask(client, args, chunks, progress, design.runs)
-        else:
-            parts = _run_local(args, chunks, workers, progress, design.runs)
+            workers = max(1, min(workers, len(todo)))
+        chunks = _chunks(todo, design.values[todo], _chunk_size(len(todo), workers, chunk_size))
+        with _Signals():
+            try:
+                if not chunks:
+                    pass
+                elif client is not None:
+                    _run_dask(client, spec, chunks, collect)
+                else:
+                    _run_local(spec, chunks, workers, collect)
+            except (KeyboardInterrupt, _Interrupt) as exc:
+                why = "Ctrl-C" if isinstance(exc, KeyboardInterrupt) else "SIGTERM"
+                kept = (f"kept in {journal.path}; the same command with --resume finishes it"
+                        if journal is not None else "not kept (give an output directory to "
+                        "keep them)")
+                raise StudyStopped(f"the study stopped ({why}) after {len(rows)} of "
+                                   f"{design.runs} runs: their rows are {kept}",
+                                   done=len(rows), runs=design.runs,
+                                   journal=None if journal is None else journal.path,
+                                   signal_name=why) from None
+    except BaseException:
+        if journal is not None and not rows:
+            journal.remove()            # nothing done: no partial file
+        raise
     finally:
+        if journal is not None:
+            journal.close()
         if own:
             client.close()
-    rows = [row for rws, _, _ in parts for row in rws]
-    nfev = sum(p[1] for p in parts)
-    tier = next((p[2] for p in parts if p[2] is not None), probe.run.fidelity.properties)
+    ordered = [rows[i] for i in range(design.runs)]
+    tier = tiers[0] if tiers else probe.run.fidelity.properties
     import pandas as pd     # a study's table; not imported by the package (a run needs none)
-    got = pd.DataFrame(rows, columns=[RUN_ID, STATUS, ERROR, *responses])
+    got = pd.DataFrame(ordered, columns=[RUN_ID, STATUS, ERROR, *responses])
     table = pd.concat([got[[RUN_ID]],
                        pd.DataFrame(design.values, columns=columns),
                        got[list(responses)], got[[STATUS, ERROR]]], axis=1)
@@ -379,9 +670,10 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
         log.warning("%d of %d runs stopped (status 'failed', the reason in 'error')",
                     failed, design.runs)
     return StudyResult(scene=scene0, property_tier=tier, timeseries=table, cycles=table,
-                       rhs_evaluations=nfev, wall_time_s=time.perf_counter() - t0,
+                       rhs_evaluations=nfev[0], wall_time_s=time.perf_counter() - t0,
                        design=design.kind, varied=design.describe(),
                        responses=list(responses), seed=design.seed, base_data=base,
                        fidelity=fidelity or scene_from_dict(base).run.fidelity.name,
                        runs=design.runs, failed=failed, workers=workers,
-                       scheduler=None if client is None else address)
+                       scheduler=address,
+                       journal=None if journal is None else str(journal.path))

@@ -6,6 +6,7 @@ is made of scenes (the scene layer), not of one engine's model.
 
 from __future__ import annotations
 
+import importlib
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -16,6 +17,7 @@ import numpy as np
 from corliss.frames import columns
 from corliss.engine.result import Result
 from corliss.keys.edits import KeyValue, with_keys
+from corliss.scene.loader import scene_from_dict
 
 if TYPE_CHECKING:      # annotations only: pandas is not imported by a run
     import pandas as pd
@@ -25,29 +27,16 @@ RUN_ID = "run_id"
 STATUS = "status"
 ERROR = "error"
 
-_exporter = None
+#: The module that writes a study's files and draws its figure (the files layer, above
+#: this one): loaded by name the first time an export method is called, as
+#: python-control's ``TimeResponseData`` hands its plots to a module of their own, so
+#: that the studies package imports no file writer and ``import corliss`` loads none.
+WRITER = "corliss.files.study_output"
 
 
-def register_study_exporter(exporter) -> None:
-    """Register the study's export layer, to which the export methods hand the result.
-
-    :mod:`corliss.files.study_output` registers itself when imported (the ``corliss``
-    package imports it), so the studies package need not import the export layer.
-
-    Parameters
-    ----------
-    exporter : object
-        An object with ``write(result, out_dir, plots, parquet)``,
-        ``to_csv(result, path, units_system)`` and ``plot(result, ax, units_system)``.
-    """
-    global _exporter
-    _exporter = exporter
-
-
-def _export():
-    if _exporter is None:       # only if the study is used without the corliss package
-        raise RuntimeError("no study export layer registered: import corliss")
-    return _exporter
+def _writer():
+    """The module :data:`WRITER`, imported on first use."""
+    return importlib.import_module(WRITER)
 
 
 def column_unit(column: str, varied: list[dict]) -> str:
@@ -124,6 +113,10 @@ class StudyResult(Result):
         Processes (local) or Dask workers' threads that ran them [-].
     scheduler : str or None
         The Dask scheduler's address, or None for local processes.
+    journal : str or None
+        The journal its rows were appended to as they finished
+        (:mod:`corliss.studies.journal`); writing the study into its directory
+        removes it.  None when the study had no output directory.
     """
 
     kind: ClassVar[str] = "study"
@@ -140,6 +133,7 @@ class StudyResult(Result):
     failed: int = 0
     workers: int = 1
     scheduler: str | None = None
+    journal: str | None = None
 
     @property
     def points(self) -> pd.DataFrame:
@@ -175,7 +169,6 @@ class StudyResult(Result):
         Scene
             The run's scene, at the study's fidelity.
         """
-        from corliss.scene.loader import scene_from_dict  # noqa: PLC0415  (same layer)
         sc = scene_from_dict(self.scene_data(row), name=self.scene.name)
         return sc.with_fidelity(self.fidelity) if self.fidelity else sc
 
@@ -247,7 +240,7 @@ class StudyResult(Result):
         Path
             ``path``.
         """
-        return _export().to_csv(self, path, units_system)
+        return _writer().to_csv(self, path, units_system)
 
     def write(self, out_dir: str | Path, *, plots: bool = True,
               parquet: bool | None = None) -> dict[str, Path]:
@@ -271,7 +264,7 @@ class StudyResult(Result):
         dict of str to Path
             ``{kind: path}`` (see :func:`corliss.files.study_output.write`).
         """
-        return _export().write(self, out_dir, plots, parquet)
+        return _writer().write(self, out_dir, plots, parquet)
 
     def plot(self, kind: str | None = None, ax=None, units_system: str | None = None) -> dict:
         """Each response against each varied key, as scatter plots.
@@ -290,7 +283,7 @@ class StudyResult(Result):
         dict
             ``{"figure": fig, "axes": axes}`` (:func:`corliss.plot.plot_study`).
         """
-        return _export().plot(self, ax, units_system)
+        return _writer().plot(self, ax, units_system)
 
 
 def converted(frame: pd.DataFrame, responses, units_system: str | None,

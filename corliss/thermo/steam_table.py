@@ -1066,9 +1066,24 @@ def table_path() -> Path:
         ``steam-table-<hash>.npz`` in :func:`cache_dir`, the hash of the parameters
         and the CoolProp version.
     """
-    key = hashlib.sha1((json.dumps(PARAMS, sort_keys=True) + _coolprop_version())
-                       .encode()).hexdigest()[:12]
-    return cache_dir() / f"steam-table-{key}.npz"
+    env = os.environ
+    return _table_path(env.get("CORLISS_CACHE"), env.get("XDG_CACHE_HOME"), env.get("HOME"))
+
+
+@functools.lru_cache(maxsize=8)
+def _table_path(corliss_cache, xdg_cache_home, home) -> Path:
+    """:func:`table_path` for the environment's cache variables (the arguments, which
+    key the cache: a changed variable names another file)."""
+    return cache_dir() / f"steam-table-{_table_key()}.npz"
+
+
+@functools.lru_cache(maxsize=1)
+def _table_key() -> str:
+    """The hash of :data:`PARAMS` and the CoolProp version naming the table's file,
+    made once per process (its JSON and hash took 40 us, and a study's every run asks
+    for the table several times)."""
+    return hashlib.sha1((json.dumps(PARAMS, sort_keys=True) + _coolprop_version())
+                        .encode()).hexdigest()[:12]
 
 
 #: The miniature table, shipped with the package (its port-flow exponent is the shipped

@@ -77,7 +77,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.interpolate import CubicSpline
 
 from corliss.keys import units
 from corliss.errors import InputError
@@ -328,7 +327,8 @@ class BakerGear(LappedValve):
         self._zero = 0.5 * (raw[0] + raw[N_TABLE // 2])
         x = raw - self._zero
         x[-1] = x[0]
-        self._spline = CubicSpline(th, x, bc_type="periodic")
+        from scipy.interpolate import CubicSpline   # a Baker gear only: a run of another
+        self._spline = CubicSpline(th, x, bc_type="periodic")  # gear imports no scipy solver
 
     def travel(self, theta):
         return self._spline(np.asarray(theta, dtype=float) % (2 * math.pi))

@@ -76,6 +76,8 @@ def crossing_table(gear: ValveGear, levels: np.ndarray) -> list[list[list[tuple[
 
 #: The crossings' bracket is closed to this width [rad].
 CROSSING_TOL_RAD = 1e-13
+#: The step off an end the secant falls on, as a fraction of the tolerance [-].
+CROSSING_NUDGE = 0.4
 #: Most evaluations of the gear in the solve (bisection alone needs 43 from a sample's
 #: bracket to 1e-13 rad).
 CROSSING_MAX_ROUNDS = 60
@@ -95,18 +97,33 @@ def _solve_crossings(gear: ValveGear, ports: np.ndarray, lev: np.ndarray, a: np.
     a, b, fa, fb = (np.array(v, dtype=float) for v in (a, b, fa, fb))
     cols = np.arange(a.size)
     width0 = np.abs(b - a)
+    nudge_ok = np.ones(a.size, dtype=bool)
+    nudged = np.zeros(a.size, dtype=bool)
     for rnd in range(CROSSING_MAX_ROUNDS):
         # a bracket closed stays as it is, whatever the others still need, so that each
         # crossing is the same however many it is solved beside
         active = np.abs(b - a) > CROSSING_TOL_RAD
         if not np.any(active):
             break
+        nudge_ok &= ~(nudged & active)      # a step off an end that did not close it
         with np.errstate(divide="ignore", invalid="ignore"):
             c = b - fb * (b - a) / (fb - fa)
         lo, hi = np.minimum(a, b), np.maximum(a, b)
+        outside = ~((c > lo) & (c < hi))
         check = rnd % 3 == 2
-        bisect = ~((c > lo) & (c < hi)) | (check & (np.abs(b - a) > 0.25 * width0))
+        bisect = outside | (check & (np.abs(b - a) > 0.25 * width0))
         c = np.where(bisect, 0.5 * (a + b), c)
+        # a secant that falls on an end (that end is on the crossing to the last bits,
+        # and the other far off; or its difference is zero) would leave bisection alone
+        # to close the bracket, some 30 rounds: a step of a fraction of the tolerance
+        # off that end, towards the other, closes it in one where the crossing is
+        # there; where it is not (an opening resting at the level), bisection goes on
+        nudged = outside & nudge_ok & active
+        if np.any(nudged):
+            near_b = (np.abs(fb) <= np.abs(fa))
+            end, other = np.where(near_b, b, a), np.where(near_b, a, b)
+            step = np.minimum(CROSSING_NUDGE * CROSSING_TOL_RAD, 0.5 * np.abs(other - end))
+            c = np.where(nudged, end + np.copysign(step, other - end), c)
         fc = gear.signed_openings(c)[ports, cols] - lev
         # the new point replaces the end on its side; the kept end's value is halved
         # when it was kept on a secant step (Illinois), so that both ends move
@@ -162,7 +179,7 @@ def _interval_near(cross: list[tuple[float, bool]], anchor: float):
 
 
 def end_events(gear: ValveGear, end: str, piston_fraction: Callable[[float], float],
-               table: list | None = None) -> dict:
+               table: list | None = None, sampled: tuple | None = None) -> dict:
     """Events of one end (``"head"`` or ``"crank"``) as the JSON contract names them.
 
     Admission and cut-off are the opening and closing of the steam port nearest the
@@ -181,6 +198,10 @@ def end_events(gear: ValveGear, end: str, piston_fraction: Callable[[float], flo
     table : list or None, optional
         A crossing table already found, whose first level is zero (a PortMap's
         ``crossings``); found here when None.
+    sampled : tuple of ndarray, optional
+        ``(gear.openings(th), gear.signed_openings(th))`` over a turn's samples
+        (both ends read the same samples: :func:`events` finds them once); found
+        here when None.
 
     Returns
     -------
@@ -207,10 +228,11 @@ def end_events(gear: ValveGear, end: str, piston_fraction: Callable[[float], flo
         table = crossing_table(gear, np.zeros((4, 1)))
     adm, cut = _interval_near(table[steam][0], dead)
     rel, comp = _interval_near(table[exhaust][0], dead + math.pi)
-    th = np.linspace(0.0, TWO_PI, _SAMPLES, endpoint=False)
-    opening = gear.openings(th)[steam]
+    if sampled is None:
+        sampled = _sampled(gear)
+    opening = sampled[0][steam]
     width = gear.port_widths()[steam]
-    signed_max = float(gear.signed_openings(th)[steam].max())
+    signed_max = float(sampled[1][steam].max())
 
     def deg(t):
         return None if t is None else float(math.degrees(t) % 360.0)
@@ -252,4 +274,12 @@ def events(gear: ValveGear, piston_fraction: Callable[[float], float],
     """
     if table is None:
         table = crossing_table(gear, np.zeros((4, 1)))
-    return {end: end_events(gear, end, piston_fraction, table) for end in ("head", "crank")}
+    sampled = _sampled(gear)
+    return {end: end_events(gear, end, piston_fraction, table, sampled)
+            for end in ("head", "crank")}
+
+
+def _sampled(gear: ValveGear) -> tuple[np.ndarray, np.ndarray]:
+    """The gear's openings and signed openings over :data:`_SAMPLES` angles a turn."""
+    th = np.linspace(0.0, TWO_PI, _SAMPLES, endpoint=False)
+    return gear.openings(th), gear.signed_openings(th)

@@ -2,7 +2,7 @@
 declarations, and how a control's value is written back into the scene.
 
 Each control edits one scene key (one end of a key given per end).  Its kind, unit
-and valid range come from the key's declaration (:mod:`corliss.keyspec`): the gear's
+and valid range come from the key's declaration (:mod:`corliss.keys.declared`): the gear's
 own keys from its registry entry, and the engine's speed, supply pressure and
 superheat, exhaust pressure, clearance, effects and fidelity from the sections'.  A
 slider spans the declared range where it is finite, else the current value to either
@@ -60,7 +60,7 @@ class Control:
     end : int or None
         0 (head) or 1 (crank) for one end of a key given per end, else None.
     kind : str
-        The key's kind (:data:`corliss.keyspec.KINDS`).
+        The key's kind (:data:`corliss.keys.declared.KINDS`).
     unit : str
         The unit the slider shows (empty for a plain number).
     start, stop, step : float

@@ -1,7 +1,7 @@
 """A scene's TOML text with some keys set, its comments and layout kept.
 
 The workbench saves the scene a person has set by hand.  Written again from its
-tables (:func:`corliss.toml_text.dumps`) it would lose the source's comments, which
+tables (:func:`corliss.keys.toml_text.dumps`) it would lose the source's comments, which
 cite where each dimension came from; so the source text is edited in place: a key
 that is there has its value replaced (a comment after it kept), a key that is not is
 added at the end of its table, a table that is not is added at the end.  The text is
