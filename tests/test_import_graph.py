@@ -19,7 +19,7 @@ ROOT = Path(corliss.__file__).parent
 #: Layer of each module by its dotted name's prefix (most specific first), bottom up.
 #: A module may import its own layer and the layers below it, never one above.
 LAYERS = [
-    ("corliss.errors", 0), ("corliss.logs", 0), ("corliss.versions", 0),
+    ("corliss.errors", 0), ("corliss.logs", 0), ("corliss.progress", 0), ("corliss.versions", 0),
     ("corliss.keys", 0), ("corliss.frames", 0),
     ("corliss.thermo", 1), ("corliss.valves", 1), ("corliss.governors", 1),
     ("corliss.engine", 2),

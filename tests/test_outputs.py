@@ -326,37 +326,6 @@ def test_every_result_kind_exports_the_same_way(tmp_path):
     assert "rhs_evaluations" in steady.summary and "rhs_evaluations" in transient.summary
 
 
-class _Terminal:
-    """A stream that says it is a terminal, keeping what was written."""
-
-    def __init__(self, tty=True):
-        self.text, self.tty = "", tty
-
-    def isatty(self):
-        return self.tty
-
-    def write(self, s):
-        self.text += s
-
-    def flush(self):
-        pass
-
-
-def test_progress_line_estimates_only_once_a_tenth_is_done():
-    term = _Terminal()
-    bar = cli.ProgressBar("time", delay_s=0.0, stream=term)
-    bar(0.5, 10.0)
-    assert "s simulated" in term.text and "to go" not in term.text
-    bar(2.0, 10.0)
-    assert "to go" in term.text
-    steady = _Terminal()
-    cli.ProgressBar("cycles", delay_s=0.0, stream=steady, tolerance=1e-6)(3, 2e-4)
-    assert "cycle 3" in steady.text and "to go" not in steady.text
-    piped = _Terminal(tty=False)
-    cli.ProgressBar("runs", delay_s=0.0, stream=piped)(1, 4)
-    assert piped.text == ""
-
-
 def test_csv_writer_writes_what_pandas_writes_and_reads_back(tmp_path):
     """The fast CSV writer gives the text pandas' writer gave (nine significant digits,
     NaN as an empty field, integers as integers), for tables of numbers and, through

@@ -75,6 +75,7 @@ from pathlib import Path
 
 import corliss
 from corliss.cli.heartbeat import Heartbeat
+from corliss.engine import first_run
 from corliss.engine.balance import balance_failure
 from corliss.engine.model import build_gear, scene_events
 from corliss.engine.simulate import simulate
@@ -83,12 +84,24 @@ from corliss.errors import (EXIT_BALANCE_FAILED, EXIT_INTERRUPTED, EXIT_TERMINAT
                             RunError, StudyStopped, Terminated)
 from corliss.files.run_output import (OutputFiles, plain_name, plain_text, scene_from_meta,
                                       summary_json)
+from corliss.frames.columns import convert_record
 from corliss.keys import limits, units
 from corliss.logs import NOTICE
+from corliss.progress import ProgressBar, TqdmHandler
 from corliss.scene.loader import bundled_scenes, default_scene_path, find_scene, load_scene
 from corliss.studies.journal import check_writable
 
 log = logging.getLogger("corliss")
+
+
+def _governed_scene():
+    """The bundled governed scene whose transient turn a first run's background process
+    compiles (:data:`corliss.engine.first_run.TRANSIENT_SCENE`): the command line's
+    first run leaves the transient loop compiled too."""
+    return load_scene(find_scene(first_run.TRANSIENT_SCENE))
+
+
+first_run.transient_probe = _governed_scene
 
 #: Exit statuses (``docs/exit-codes.md``).  1 is left to Python: an error in corliss
 #: itself, with its traceback.
@@ -285,7 +298,7 @@ def print_transient(result, files) -> None:
               "or --until-settled)")
     if s["hunting"]:
         print(f"  HUNTING          period {s['hunting_period_s']:.2f} s, governor swing "
-              f"{100 * s['governor_swing']:.1f} % of travel")
+              f"{100 * s['governor_swing_frac']:.1f} % of travel")
     if s["stalled"]:
         print("  STALLED          the load stopped the engine")
     print(f"  wall time        {s['wall_time_s']:.2f} s")
@@ -297,65 +310,10 @@ def _print_files(files) -> None:
         print(f"  wrote {kind:12s} {path}")
 
 
-class ProgressBar:
-    """A progress line on stderr, shown on a terminal once a run has taken a while.
-
-    Called as ``bar(done, total)`` (the ``progress`` callback of a run or a study);
-    short runs and logs (a stream that is not a terminal) get nothing.  The time to go
-    is shown only once a tenth of the work is done, when the rate it is estimated from
-    has settled.
-
-    Parameters
-    ----------
-    kind : str, optional
-        What the two numbers it is called with are: ``"time"`` (simulated and total
-        seconds), ``"runs"`` (runs done and in all) or ``"cycles"`` (the cycle number
-        and the relative change of work, the total unknown until the run is periodic:
-        no estimate is shown).
-    delay_s : float, optional
-        Nothing is shown before the run has taken this long [s].
-    width : int, optional
-        Characters of the bar.
-    stream : file-like, optional
-        Where to write (default ``sys.stderr``).
-    tolerance : float, optional
-        The periodicity tolerance shown beside a ``"cycles"`` line [-].
-    """
-
-    def __init__(self, kind: str = "time", delay_s: float = 2.0, width: int = 30,
-                 stream=None, tolerance: float | None = None):
-        self.kind = kind
-        self.t0 = time.perf_counter()
-        self.delay = delay_s
-        self.width = width
-        self.stream = stream or sys.stderr
-        self.tolerance = tolerance
-        self.shown = False
-
-    def __call__(self, done: float, total: float) -> None:
-        elapsed = time.perf_counter() - self.t0
-        if elapsed < self.delay or not self.stream.isatty():
-            return
-        if self.kind == "cycles":
-            text = (f"  cycle {int(done)}: work changed {total:.2e} over the last cycle"
-                    + (f" (periodic at {self.tolerance:.0e})" if self.tolerance else "")
-                    + f", {elapsed:5.1f} s elapsed")
-        else:
-            frac = min(max(done / total, 0.0), 1.0) if total > 0 else 1.0
-            n = int(round(frac * self.width))
-            what = (f"{done:7.2f} of {total:g} s simulated" if self.kind == "time" else
-                    f"{int(done)} of {int(total)} runs")
-            eta = (f", ~{elapsed * (1.0 - frac) / frac:4.0f} s to go" if frac >= 0.1 else "")
-            text = f"  [{'#' * n}{'.' * (self.width - n)}] {what}, {elapsed:5.1f} s elapsed{eta}"
-        self.stream.write("\r" + text + " ")
-        self.stream.flush()
-        self.shown = True
-
-    def close(self) -> None:
-        """End the progress line (a newline) if one was shown."""
-        if self.shown:
-            self.stream.write("\n")
-            self.stream.flush()
+def _bar(kind: str, tolerance: float | None = None) -> ProgressBar:
+    """The command line's progress bar: on a terminal only (a log gets none), and only
+    once the work has taken two seconds."""
+    return ProgressBar(kind, delay_s=2.0, disable=None, tolerance=tolerance)
 
 
 def cmd_run(args) -> int:
@@ -418,8 +376,8 @@ def cmd_run(args) -> int:
                          "runs until periodic")
     out = output_dir(args, scene)
     bar = None if args.json else (
-        ProgressBar("time") if transient else
-        ProgressBar("cycles", tolerance=scene.run.fidelity.convergence_tolerance))
+        _bar("time") if transient else
+        _bar("cycles", tolerance=scene.run.fidelity.convergence_tolerance))
     try:
         result = simulate(scene, progress=bar)
     finally:
@@ -503,9 +461,15 @@ def cmd_events(args) -> int:
         The exit status: 0 (a user's mistake raises
         :class:`~corliss.errors.InputError`, which :func:`main` turns into 2).
     """
-    scene = _load(args.scene)
+    scene = _load(args.scene, args.units)
     settings = None if args.settings is None else _numbers("--settings", args.settings)
     ev = scene_events(scene, settings)
+    if args.units is not None:      # lengths in the system's unit, named by it (lead_in)
+        baro = scene.supply.barometer_Pa
+        ev = ([{**row, **{end: convert_record(row[end], args.units, baro)
+                          for end in row if isinstance(row[end], dict)}} for row in ev]
+              if isinstance(ev, list) else
+              {end: convert_record(e, args.units, baro) for end, e in ev.items()})
     if args.json or settings is not None:
         print(json.dumps(ev, indent=2))
         return 0
@@ -725,7 +689,7 @@ def _study(args, scene, run):
     ``--json``; write its files; with ``--json`` print its summary instead and return
     no files."""
     out_dir = output_dir(args, scene)
-    bar = None if args.json else ProgressBar("runs")
+    bar = None if args.json else _bar("runs")
     with _out_dir(out_dir) as out:
         try:
             result = run(bar, out)
@@ -879,9 +843,17 @@ def cmd_study(args) -> int:
     s = result.summary
     print(f"{s['title']}: {s['design']} of {s['runs']} runs over "
           + ", ".join(v["key"] for v in s["varied"]) + f", fidelity {s['fidelity']}")
+    system = args.units or scene.output.units
     for r, rng in s["response_ranges"].items():
-        print(f"  {r:32s} " + ("no run gave it" if rng is None else
-                               f"{rng['min']:.5g} to {rng['max']:.5g} (median {rng['median']:.5g})"))
+        if rng is None:
+            print(f"  {r:32s} no run gave it")
+            continue
+        # each response in the asked units, named by them (a name without a unit as it is)
+        conv = {q: convert_record({r: rng[q]}, system, scene.supply.barometer_Pa)
+                for q in ("min", "max", "median")}
+        name = next(iter(conv["min"]))
+        print(f"  {name:32s} {conv['min'][name]:.5g} to {conv['max'][name]:.5g} "
+              f"(median {conv['median'][name]:.5g})")
     if s["failed"]:
         print(f"  {s['failed']} run(s) stopped: status 'failed', the reason in 'error'")
     where = s["scheduler"] or f"{s['workers']} local process(es)"
@@ -1111,6 +1083,9 @@ def build_parser() -> argparse.ArgumentParser:
     e.add_argument("scene", help="scene TOML or a bundled scene's name")
     e.add_argument("--json", action="store_true", help="print JSON")
     e.add_argument("--settings", help="gear settings to list, e.g. 0,0.5,1 (link block u/c)")
+    e.add_argument("--units", choices=("US", "SI"),
+                   help="lengths in inches (US) or millimetres (SI), each key named by its "
+                        "unit (lead_in, lead_mm); default: metres, lead_m")
     e.set_defaults(func=cmd_events)
     gp = _subcommand(sub, "gear", help="valve travel and Zeuner diagram of a scene's gear")
     gp.add_argument("scene", help="scene TOML or a bundled scene's name")
@@ -1219,6 +1194,9 @@ def build_parser() -> argparse.ArgumentParser:
     st.add_argument("--resume", action="store_true", help="finish a stopped study: run only "
                     "the rows its partial file in --out lacks")
     st.add_argument("--json", action="store_true", help="print the summary as JSON")
+    st.add_argument("--units", choices=("US", "SI"), help="units of the responses' ranges "
+                    "printed (default: the scene's [output] units; the files and --json "
+                    "keep the names the summary gives, SI unless they say otherwise)")
     st.set_defaults(func=cmd_study)
     ft = _subcommand(sub, "fit", help="calibrate scene keys to a measured indicator card")
     ft.add_argument("scene", help="scene TOML or a bundled scene's name (steady)")
@@ -1266,12 +1244,9 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
-class _Handler(logging.StreamHandler):
-    """Writes to whatever ``sys.stderr`` is at the time (tests capture it)."""
-
-    def emit(self, record):
-        self.stream = sys.stderr
-        super().emit(record)
+class _Handler(TqdmHandler):
+    """Writes to whatever ``sys.stderr`` is at the time (tests capture it), above any
+    progress bar, naming the point of a study a message came from."""
 
 
 def configure_logging(verbose: bool) -> Heartbeat:

@@ -76,15 +76,7 @@ def inertia_force_N(geometry, theta, omega: float, mass_kg: float):
     ndarray
         The force towards the shaft [N], of ``theta``'s shape.
     """
-    th = np.asarray(theta, dtype=float)
-    R = geometry.crank_m
-    d2s = R * np.cos(th)
-    if geometry.rod_angularity:
-        L = geometry.spec.connecting_rod_m
-        sn, cs = np.sin(th), np.cos(th)
-        root = np.sqrt(L * L - (R * sn) ** 2)
-        d2s = d2s + R * R * (cs * cs - sn * sn) / root + R ** 4 * sn * sn * cs * cs / root ** 3
-    return -mass_kg * omega ** 2 * d2s
+    return -mass_kg * omega ** 2 * geometry.d2piston_m_per_rad2(theta)
 
 
 def torque_N_m(geometry, theta, force_N):

@@ -150,13 +150,7 @@ class CylinderGeometry:
             ``s = R (1 - cos theta) + L - sqrt(L^2 - R^2 sin^2 theta)`` [m] (without
             rod angularity, ``R (1 - cos theta)``, eq. 239), of ``theta``'s shape.
         """
-        R = self.crank_m
-        th = np.asarray(theta, dtype=float)
-        s = R * (1.0 - np.cos(th))
-        if self.rod_angularity:
-            L = self.spec.connecting_rod_m
-            s = s + L - np.sqrt(L * L - (R * np.sin(th)) ** 2)
-        return s
+        return self._slider_crank(theta)[0]
 
     def dpiston_m_per_rad(self, theta):
         """Derivative of the piston displacement with crank angle.
@@ -172,13 +166,46 @@ class CylinderGeometry:
             ``ds/dtheta = R sin theta + R^2 sin theta cos theta / sqrt(L^2 - R^2
             sin^2 theta)`` [m/rad], of ``theta``'s shape.
         """
+        return self._slider_crank(theta)[1]
+
+    def d2piston_m_per_rad2(self, theta):
+        """Second derivative of the piston displacement with crank angle.
+
+        Parameters
+        ----------
+        theta : float or array_like
+            Crank angle from head-end dead centre [rad].
+
+        Returns
+        -------
+        ndarray
+            ``d2s/dtheta2`` [m/rad2], of ``theta``'s shape.
+        """
+        return self._slider_crank(theta)[2]
+
+    def _slider_crank(self, theta):
+        """``(s, ds/dtheta, d2s/dtheta2)`` on arrays [m, m/rad, m/rad2].
+
+        The slider crank's array form: the compiled kernels' scalar form is
+        :func:`corliss.engine.kernels.mechanism.slider_crank`, the same law (Marks Art.
+        96 III, eqs. 239-241) with its operations in another order, which this one keeps
+        so that the numbers computed from it (a run's initial masses, its valve events)
+        keep their last bits; tests/test_slider_crank.py holds the two forms equal to
+        round-off at random states.
+        """
         R = self.crank_m
         th = np.asarray(theta, dtype=float)
-        ds = R * np.sin(th)
+        sn, cs = np.sin(th), np.cos(th)
+        s = R * (1.0 - cs)
+        ds = R * sn
+        d2s = R * cs
         if self.rod_angularity:
             L = self.spec.connecting_rod_m
-            ds = ds + R * R * np.sin(th) * np.cos(th) / np.sqrt(L * L - (R * np.sin(th)) ** 2)
-        return ds
+            root = np.sqrt(L * L - (R * sn) ** 2)
+            s = s + L - root
+            ds = ds + R * R * sn * cs / root
+            d2s = d2s + R * R * (cs * cs - sn * sn) / root + R ** 4 * sn * sn * cs * cs / root ** 3
+        return s, ds, d2s
 
     def fraction(self, theta):
         """Piston position as a fraction of the stroke from head-end dead centre.

@@ -7,7 +7,8 @@ transient then steps in time with the shaft and the governor only::
     I domega/dt = T_map(a(z), omega) - T_friction(omega) - T_load(t, omega)
     M z'' + 1/2 M' z'^2 = G (ratio omega)^2 - R - c z' - F_f sat(z'/v_e) - J ratio domega/dt
 
-(the governor's common form, as in :mod:`corliss.engine.kernels.loop`; stops at 0
+(the governor's common form, as in :mod:`corliss.engine.kernels.loop`, one equation of
+motion for both: :func:`corliss.engine.kernels.governor.governor_motion`; stops at 0
 and 1 are held by clipping).  The maps are read bilinearly in the actuator and in
 speed, the engine's torque being smooth in both away from the trip's limit.  What the
 mean-value model leaves out is everything inside a turn: the torque's fluctuation (and
@@ -27,6 +28,7 @@ import time
 import numpy as np
 import pandas as pd
 
+from corliss.engine.kernels.governor import governor_motion
 from corliss.engine.model import at_knob, geometry_of, steady_scene
 from corliss.governors.operating_point import OperatingPoint, find_operating_point
 from corliss.engine.result import TransientResult
@@ -202,13 +204,8 @@ def run_mean_value(scene, *, progress=None) -> TransientResult:
         if mech is not None:
             zc = min(max(z, 0.0), 1.0)
             M, dM, G, R, J = (float(np.interp(zc, zg, tab)) for tab in tabs)
-            wg = mech.ratio * w
-            f = (G * wg * wg - R - mech.c * zd - mech.F_f * np.clip(zd / CREEP_PER_S, -1, 1)
-                 - J * mech.ratio * wdot - 0.5 * dM * zd * zd)
-            zdd = f / M
-            if (z <= 0.0 and zdd < 0.0 and zd <= 0.0) or (z >= 1.0 and zdd > 0.0 and zd >= 0.0):
-                zdd, zd = 0.0, 0.0
-            out[2], out[3] = zd, zdd
+            out[2], out[3] = governor_motion.py_func(z, zd, M, dM, G, R, J, mech.ratio, mech.c,
+                                                     mech.F_f, CREEP_PER_S, w, wdot)
         return out
 
     start = OperatingPoint(w_ref, mech.equilibrium_z(w_ref) if mech is not None else 0.0,

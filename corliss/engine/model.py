@@ -284,6 +284,37 @@ class Model:
                              self.chest, self.exhaust)
 
 
+#: How many port maps :func:`_tabulated` keeps (a study's runs share one where its
+#: gear's keys are not varied; a few, so that alternating scenes share theirs too).
+PORTMAPS_KEPT = 8
+_portmaps: dict = {}
+
+
+def _tabulated(scene, gear, n: int):
+    """:func:`~corliss.valves.portmap.tabulate` of the scene's gear on ``n`` intervals,
+    kept for the next run of a gear built from the same keys (a study's runs that vary
+    no key of the gear: the same map, found once instead of every run).
+
+    The gear is a function of the scene's gear type and table, its steam ends and, for
+    a gear whose motion depends on it, the run's speed (:func:`build_gear`): those are
+    the key.  A table that cannot be hashed is tabulated each time.  The map is shared:
+    nothing changes one in place (:meth:`PortMap.scaled` makes a new one).
+    """
+    speed = scene.run.speed_rad_s if hasattr(gear, "with_speed") else None
+    key = (scene.gear_type, scene.gear, scene.engine.steam_ends, speed, n)
+    try:
+        pm = _portmaps.get(key)
+    except TypeError:              # a gear table with an unhashable value
+        return tabulate(gear, n)
+    if pm is None:
+        pm = tabulate(gear, n)
+        while _portmaps and len(_portmaps) >= PORTMAPS_KEPT:
+            _portmaps.pop(next(iter(_portmaps)))
+        if PORTMAPS_KEPT > 0:
+            _portmaps[key] = pm
+    return pm
+
+
 def assemble(scene, *, tabulated: bool = True) -> Model:
     """Build the model of a scene.
 
@@ -307,7 +338,7 @@ def assemble(scene, *, tabulated: bool = True) -> Model:
     chest, exhaust = reservoir_states(scene, steam)
     geo = geometry_of(scene)
     gear = build_gear(scene)
-    pm = tabulate(gear, fid.portmap_points) if tabulated else None
+    pm = _tabulated(scene, gear, fid.portmap_points) if tabulated else None
     ev = valve_events(gear, lambda t: float(geo.fraction(t)), pm.crossings if pm else None)
     lp_events = None
     if scene.compound is not None:

@@ -780,7 +780,8 @@ class TransientResult(Result):
     @property
     def metrics(self) -> dict:
         """Regulation, largest deviation, settling and hunting (see speed_metrics)."""
-        return load_step_metrics(self.cycles, self.step_time_s, self.scene.run.settling_band)
+        return load_step_metrics(self.cycles, self.step_time_s, self.scene.run.settling_band,
+                                 self.timeseries)
 
     def _make_summary(self) -> dict:
         s = self.scene
@@ -811,10 +812,34 @@ class TransientResult(Result):
             **self.metrics,
             "final_indicated_power_W": float(c["indicated_power_W"].iloc[-5:].mean()),
             "final_steam_rate_kg_per_h": float(c["steam_rate_kg_per_h"].iloc[-5:].mean()),
+            **self._final_state(),
             "clamped_trial_evaluations_count": self.clamped_trials,
             "clamped_hot_state_evaluations_count": self.clamped_hot,
             "rhs_evaluations": self.rhs_evaluations, "wall_time_s": self.wall_time_s,
         }
+
+    def _final_state(self) -> dict:
+        """The steady contract's keys (:class:`SteadyResult`'s summary) for the run's
+        final state: power, steam and water rates over the last five turns (as
+        ``final_indicated_power_W``), the mean effective pressure over both ends from
+        their work, and each end's from the area of its card in the last turn
+        (None without pressures: a ``"cycle"`` record, the mean-value model)."""
+        c = self.cycles
+        power = float(c["indicated_power_W"].iloc[-5:].mean())
+        steam = float(c["steam_rate_kg_per_h"].iloc[-5:].mean())
+        ihp = power / units.HP_W
+        sw_h, sw_c = self.geometry.swept_m3
+        mep = {"mep_head_Pa": None, "mep_crank_Pa": None,
+               "mep_mean_Pa": float(c["work_J"].iloc[-5:].mean()) / (sw_h + sw_c)}
+        cards = self.cards()
+        if cards:
+            for end, swept in (("head", sw_h), ("crank", sw_c)):
+                mep[f"mep_{end}_Pa"] = _loop_work(cards["after"][end]) / swept
+        return {"indicated_power_W": power, "indicated_power_hp": ihp,
+                "steam_rate_kg_per_h": steam,
+                "water_rate_kg_per_kWh": steam / (power / 1000.0) if power > 0 else None,
+                "water_rate_lb_per_ihp_h": steam / units.POUND_kg / ihp if ihp > 0 else None,
+                **mep}
 
     def cards(self) -> dict:
         """Head and crank cards of the turn before the step and of the last turn.
@@ -859,6 +884,14 @@ class TransientResult(Result):
                   for end, df in d.items() if end != "cycle"]
         return (pd.concat(frames, ignore_index=True) if frames else
                 pd.DataFrame({"phase": [], "end": [], "V_m3": [], "p_Pa": []}))
+
+
+def _loop_work(card) -> float:
+    """The work of one end over a turn, the area of its card [J]: the closed loop's
+    integral of p dV by the trapezoidal rule, the last sample joined to the first."""
+    v = card["V_m3"].to_numpy()
+    p = card["p_Pa"].to_numpy()
+    return float(np.sum(0.5 * (p + np.roll(p, -1)) * (np.roll(v, -1) - v)))
 
 
 @dataclass

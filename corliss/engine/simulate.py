@@ -8,18 +8,19 @@ model in :mod:`corliss.engine.model` and returning a result of
 
 from __future__ import annotations
 
-from typing import Callable
+from typing import Any
 
 from corliss.engine import first_run
 from corliss.engine.model import scene_events
 from corliss.engine.result import Result
 from corliss.engine.steady import run_steady
+from corliss.progress import progress_for
 
 __all__ = ["scene_events", "simulate"]
 
 
 def simulate(scene, *, portmap_scale: float = 1.0,
-             progress: Callable[[float, float], None] | None = None) -> Result:
+             progress: Any = None) -> Result:
     """Run a scene.
 
     Parameters
@@ -28,9 +29,11 @@ def simulate(scene, *, portmap_scale: float = 1.0,
         A scene from :func:`corliss.load_scene`.
     portmap_scale : float
         Steady runs: multiply every port area by this factor [-].
-    progress : callable, optional
-        Steady runs: called after each cycle with (cycle number, relative change of work
-        [-]); transient runs: with (simulated time [s], duration [s]).
+    progress : None, True, ProgressBar or callable, optional
+        True draws a bar (:mod:`corliss.progress`: a terminal or a notebook); a
+        callable is called, for steady runs after each cycle with (cycle number,
+        relative change of work [-]), for transient runs with (simulated time [s],
+        duration [s]).
 
     Returns
     -------
@@ -39,6 +42,14 @@ def simulate(scene, *, portmap_scale: float = 1.0,
         :class:`~corliss.engine.result.TransientResult` for a transient one.
     """
     first_run.prepare(scene)
+    transient = scene.run.mode == "transient"
+    with progress_for(progress, "time" if transient else "cycles",
+                      tolerance=None if transient else
+                      scene.run.fidelity.convergence_tolerance) as bar:
+        return _dispatch(scene, portmap_scale, bar)
+
+
+def _dispatch(scene, portmap_scale, progress):
     if scene.run.mode == "transient":
         # the transient runners (and the governors they import) are loaded by the runs
         # that use them: a steady run's start is spared their import (no circle here)

@@ -20,10 +20,24 @@ governor's doing.
 * **Settling time**: from the step to the last entry of the turn-mean speed into the
   band (a fraction of the final speed) about the final speed; None when not settled.
 * **Hunting**: a sustained oscillation of the governor.  Over the last half of the time
-  after the step (of the run, without a step), the governor's turn-mean position less
-  its mean must swing by more than 1 % of its travel, cross its mean at least four
-  times, and the swing of the last half of that window must be at least 70 % of the
-  first half's (not decaying).  The period is twice the mean spacing of the crossings.
+  after the step (of the run, without a step), the governor's position less its mean
+  must swing by more than 1 % of its travel, cross its mean at least four times, and
+  the swing of the last half of that window must be at least 70 % of the first half's
+  (not decaying).  The period is twice the mean spacing of the crossings.
+
+  The position is read from the crank-resolved time series where the run recorded one
+  (``record = "degree"`` or ``"step"``): a turn-mean position samples the motion once a
+  turn, so a hunt shorter than two turns aliases into a slower, smaller one (Shannon's
+  sampling theorem; a slow Corliss engine's hunt is about one and a half turns).  The
+  governor also follows the speed's fluctuation within each turn (the flywheel's
+  coefficient of steadiness, Marks Art. 62), a ripple periodic in the crank angle; it
+  is removed by a least-squares fit of the turn's first :data:`RIPPLE_HARMONICS`
+  harmonics in the crank angle (a motion at a period that is not a whole number of
+  turns averages out of that fit over the window's many turns), and the crossings are
+  counted with a hysteresis of :data:`HUNT_HYSTERESIS` of the half-swing, so what is
+  left of the ripple cannot count as a crossing.  Without a crank-resolved series (a
+  ``"cycle"`` record, the mean-value model), the turn means serve, and a period under
+  two turns cannot be told there.
 """
 
 from __future__ import annotations
@@ -50,6 +64,14 @@ SETTLE_MIN_TURNS = 12
 HUNT_SWING = 0.01      # of the governor's travel
 HUNT_CROSSINGS = 4
 HUNT_PERSISTENCE = 0.7
+#: Harmonics of the turn fitted to the crank-resolved position and taken off it (the
+#: torque of a double-acting engine pulses twice a turn, and its harmonics follow).
+RIPPLE_HARMONICS = 4
+#: Crossings of the mean counted only after the position has gone this fraction of its
+#: half-swing beyond it on the other side (a Schmitt trigger).
+HUNT_HYSTERESIS = 0.25
+#: Samples a turn below which a time series is not crank-resolved.
+MIN_SAMPLES_PER_TURN = 8
 
 
 def _mid_times(cycles: pd.DataFrame) -> np.ndarray:
@@ -100,11 +122,67 @@ def settled(t_mid_s: np.ndarray, speed_rpm: np.ndarray, since_s: float) -> tuple
     return bool(swing <= SETTLED_SWING), swing
 
 
-def hunting(cycles: pd.DataFrame, since_s: float = 0.0) -> dict:
+def _crossings(t: np.ndarray, d: np.ndarray, hysteresis: float) -> np.ndarray:
+    """Times [s] at which ``d`` crosses zero, counted only where it goes beyond
+    ``+hysteresis`` and ``-hysteresis`` in turn (each interpolated linearly at the
+    last change of sign between the two)."""
+    beyond = np.nonzero(np.abs(d) > hysteresis)[0]
+    if beyond.size < 2:
+        return np.zeros(0)
+    side = np.sign(d[beyond])
+    turn = np.nonzero(side[1:] != side[:-1])[0]
+    times = []
+    for j in turn:
+        i0, i1 = beyond[j], beyond[j + 1]
+        seg = np.sign(d[i0:i1 + 1])
+        seg[seg == 0] = side[j]
+        k = i0 + int(np.nonzero(seg[1:] != seg[:-1])[0][-1])
+        times.append(t[k] - d[k] * (t[k + 1] - t[k]) / (d[k + 1] - d[k]))
+    return np.asarray(times)
+
+
+def _without_ripple(theta_rad: np.ndarray, z: np.ndarray, t_s: np.ndarray | None = None,
+                    period_s: float | None = None) -> np.ndarray:
+    """``z`` less its mean and less its part periodic in the crank angle.
+
+    The least-squares fit of a constant and the first :data:`RIPPLE_HARMONICS`
+    harmonics of the turn, taken off.  Given the hunt's period (from a first pass),
+    the hunt's own first :data:`RIPPLE_HARMONICS` harmonics in time are fitted beside
+    them and kept: over a window of a few beats between the two, a hunt near a whole
+    number of turns would otherwise leak into the turn's harmonics (by a few per cent
+    of its swing over twenty turns)."""
+    cols = [np.ones_like(theta_rad)]
+    for h in range(1, RIPPLE_HARMONICS + 1):
+        cols += [np.cos(h * theta_rad), np.sin(h * theta_rad)]
+    n_ripple = len(cols)
+    if period_s is not None and t_s is not None:
+        w = 2.0 * math.pi / period_s
+        for h in range(1, RIPPLE_HARMONICS + 1):
+            cols += [np.cos(h * w * t_s), np.sin(h * w * t_s)]
+    a = np.column_stack(cols)
+    coef, *_ = np.linalg.lstsq(a, z, rcond=None)
+    return z - a[:, :n_ripple] @ coef[:n_ripple]
+
+
+def _resolved(timeseries, t0: float, turns: int):
+    """The crank-resolved governor position from ``t0`` on: (time [s], crank angle
+    [rad], position [-]), or None where the series is not crank-resolved."""
+    if timeseries is None or "governor_z_frac" not in timeseries or len(timeseries) == 0:
+        return None
+    t = timeseries["time_s"].to_numpy()
+    keep = t >= t0
+    if keep.sum() < MIN_SAMPLES_PER_TURN * turns:
+        return None
+    return (t[keep], np.radians(timeseries["crank_angle_deg"].to_numpy()[keep]),
+            timeseries["governor_z_frac"].to_numpy()[keep])
+
+
+def hunting(cycles: pd.DataFrame, since_s: float = 0.0, timeseries=None) -> dict:
     """Whether the governor hunts at the end of the run, its period and swing.
 
     Over the last half of the time after ``since_s`` (at least 12 turns), by the test
-    of the module's docstring.
+    of the module's docstring, on the crank-resolved position where ``timeseries``
+    holds one, else on the turn means.
 
     Parameters
     ----------
@@ -114,40 +192,52 @@ def hunting(cycles: pd.DataFrame, since_s: float = 0.0) -> dict:
     since_s : float
         The last change of load [s] (0 without one; the whole run when fewer than 12
         turns follow it).
+    timeseries : DataFrame, optional
+        The run's time series (``time_s``, ``crank_angle_deg``, ``governor_z_frac``);
+        used where it has at least :data:`MIN_SAMPLES_PER_TURN` samples a turn.
 
     Returns
     -------
     dict
         ``hunting`` (bool), ``hunting_period_s`` (twice the mean spacing of the
-        crossings of the mean [s], None unless hunting) and ``governor_swing`` (the
-        swing of the governor's position [-], a fraction of its travel); no hunting
+        crossings of the mean [s], None unless hunting), ``governor_swing_frac`` (the
+        swing of the governor's position, peak to peak, a fraction of its travel [-])
+        and ``hunting_read_from`` (``"crank_angle"`` or ``"turn_means"``); no hunting
         without a governor or with fewer than 12 turns.
     """
     t = _mid_times(cycles)
     if "governor_z_frac" not in cycles or len(cycles) < 12:
-        return {"hunting": False, "hunting_period_s": None, "governor_swing": 0.0}
-    z = cycles["governor_z_frac"].to_numpy()
+        return {"hunting": False, "hunting_period_s": None, "governor_swing_frac": 0.0,
+                "hunting_read_from": None}
     since = since_s if (t > since_s).sum() >= 12 else t[0]
     window = _window(t, since, 0.5, 12)
-    tw, zw = t[window], z[window]
-    d = zw - zw.mean()
+    start = float(cycles["t_start_s"].to_numpy()[window][0])
+    resolved = _resolved(timeseries, start, int(window.sum()))
+    if resolved is not None:
+        tw, theta, z = resolved
+        d = _without_ripple(theta, z)
+        swing = float(d.max() - d.min())
+        cross = _crossings(tw, d, HUNT_HYSTERESIS * 0.5 * swing)
+        if cross.size >= 2:      # second pass: the hunt fitted beside the ripple
+            d = _without_ripple(theta, z, tw, float(2.0 * np.mean(np.diff(cross))))
+        read_from = "crank_angle"
+    else:
+        tw, z = t[window], cycles["governor_z_frac"].to_numpy()[window]
+        d = z - z.mean()
+        read_from = "turn_means"
     swing = float(d.max() - d.min())
-    sign = np.sign(d)
-    sign[sign == 0] = 1
-    cross = np.nonzero(sign[1:] != sign[:-1])[0]
-    half = tw.size // 2
-    first, last = d[:half], d[half:]
+    cross = _crossings(tw, d, HUNT_HYSTERESIS * 0.5 * swing)
+    mid = 0.5 * (tw[0] + tw[-1])
+    first, last = d[tw < mid], d[tw >= mid]
     persist = (np.ptp(last) / np.ptp(first)) if first.size and np.ptp(first) > 0 else 0.0
     hunt = bool(swing > HUNT_SWING and cross.size >= HUNT_CROSSINGS and persist >= HUNT_PERSISTENCE)
-    period = None
-    if cross.size >= 2:
-        tc = tw[cross]
-        period = float(2.0 * np.mean(np.diff(tc)))
-    return {"hunting": hunt, "hunting_period_s": period if hunt else None,
-            "governor_swing": swing}
+    period = float(2.0 * np.mean(np.diff(cross))) if hunt else None
+    return {"hunting": hunt, "hunting_period_s": period, "governor_swing_frac": swing,
+            "hunting_read_from": read_from}
 
 
-def load_step_metrics(cycles: pd.DataFrame, step_time_s: float | None, band: float) -> dict:
+def load_step_metrics(cycles: pd.DataFrame, step_time_s: float | None, band: float,
+                      timeseries=None) -> dict:
     """Regulation, largest deviation and settling after a load change at ``step_time_s``.
 
     Parameters
@@ -159,6 +249,8 @@ def load_step_metrics(cycles: pd.DataFrame, step_time_s: float | None, band: flo
         whether it settled and the final speed are reported).
     band : float
         Settling band, a fraction of the final speed [-].
+    timeseries : DataFrame, optional
+        The run's time series, for the hunting test (see :func:`hunting`).
 
     Returns
     -------
@@ -174,7 +266,7 @@ def load_step_metrics(cycles: pd.DataFrame, step_time_s: float | None, band: flo
     ok, swing = settled(t, n, since)
     out = {"final_speed_rpm": float(np.mean(n[-STEADY_TURNS:])), "settled": ok,
            "settled_swing_frac": None if math.isnan(swing) else swing,
-           **hunting(cycles, since)}
+           **hunting(cycles, since, timeseries)}
     if step_time_s is None:
         return out
     before = cycles["t_end_s"].to_numpy() <= step_time_s

@@ -33,7 +33,7 @@ from corliss.engine.kernels.stepping import MAX_RHS_PER_CYCLE
 from corliss.engine.kernels.tableaus import ROS_TABLEAUS
 from corliss.engine.condensation import MarksLaw
 from corliss.engine.crank_resolved import budget_message
-from corliss.engine.model import build_gear, build_network, geometry_of, reservoir_states
+from corliss.engine.model import assemble, build_network
 from corliss.engine.network import throttle_area_m2
 from corliss.governors.operating_point import (BALANCED, LOAD_TOO_HEAVY, SURPLUS_TOL,
                                            OperatingPoint, find_operating_point)
@@ -44,10 +44,8 @@ from corliss.engine.start_from_rest import HANDOVER_FRACTION, start_from_rest
 from corliss.errors import InputError, RunError
 from corliss.governors import governor_type
 from corliss.governors.mechanism import CREEP_PER_S
-from corliss.thermo.steam import make_steam
 from corliss.thermo.steam_table import load_table
 from corliss.valves import events as gear_events
-from corliss.valves import tabulate
 from corliss.valves.portmap import tabulate_settings
 
 log = logging.getLogger(__name__)
@@ -335,16 +333,15 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
     t_wall = time.perf_counter()
     run = scene.run
     fid = run.fidelity
-    steam = make_steam(fid.properties)
+    model = assemble(scene)
+    steam = model.steam
     if steam.kernel_tier is None:
         raise InputError("run.fidelity", fid.name, "a fidelity on a compiled property tier "
                          "(\"standard\" or \"fast\", or properties = \"table\"): the transient "
                          "loop is compiled")
     method = loop_method(fid)
-    chest, exhaust = reservoir_states(scene, steam)
-    geo = geometry_of(scene)
-    gear = build_gear(scene)
-    pm = tabulate(gear, fid.portmap_points)
+    chest, exhaust = model.chest, model.exhaust
+    geo, gear, pm = model.geometry, model.gear, model.portmap
     network = build_network(scene, geo, pm, steam, chest, exhaust)
     tables = build_tables(scene, network, gear, geo)
     net = network.arrays()
@@ -353,9 +350,7 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
         # Marks's law from the gear's events at the start, with the supply's saturation
         # temperature as the cut-off temperature; the heat follows the speed turn by
         # turn, but not a governor's moving cut-off (the windows stay the start's)
-        marks = MarksLaw(network, geo, gear_events(gear, lambda t: float(geo.fraction(t)),
-                                                   pm.crossings),
-                         run.speed_rad_s, chest.T, exhaust.T)
+        marks = MarksLaw(network, geo, model.events, run.speed_rad_s, chest.T, exhaust.T)
         marks.apply(net.heat)
     tab = steam.table.arrays() if hasattr(steam, "table") else _any_table()
     perf = (np.array(steam.perfect_params()) if hasattr(steam, "perfect_params") else np.zeros(3))

@@ -149,8 +149,33 @@ def summary_json(summary: dict) -> str:
 
 # --- meta files and reruns ------------------------------------------------------------
 
+def relative_source(source: str | None, folder) -> str | None:
+    """A scene file's path as a meta file in ``folder`` records it: relative to that
+    folder (``/``-separated), so that the folder and the scene moved together still
+    find each other and no absolute path of the machine is written; as it is where no
+    relative path exists (another drive) or without a folder or a file.
+
+    Parameters
+    ----------
+    source : str or None
+        The scene's file.
+    folder : str or Path or None
+        The folder the meta file is written in.
+
+    Returns
+    -------
+    str or None
+    """
+    if not source or folder is None:
+        return source
+    try:
+        return Path(os.path.relpath(Path(source).absolute(), Path(folder).absolute())).as_posix()
+    except ValueError:          # on another drive
+        return source
+
+
 def meta(result, column_units: dict | None = None, file: str | None = None,
-         units_system: str | None = None) -> dict:
+         units_system: str | None = None, folder=None) -> dict:
     """The meta file of a table of a result: what reruns it and what its columns are.
 
     Parameters
@@ -163,6 +188,10 @@ def meta(result, column_units: dict | None = None, file: str | None = None,
         The table file's name.
     units_system : str, optional
         The table's units, recorded as ``units_system``; default the scene's.
+
+    folder : str or Path, optional
+        The folder the meta file is written in: the scene's file is recorded relative
+        to it (:func:`relative_source`).
 
     Returns
     -------
@@ -188,14 +217,21 @@ def meta(result, column_units: dict | None = None, file: str | None = None,
         "pressure": "absolute",
         "columns": column_units,
         "scene_name": scene.name,
-        "scene_file": scene.source,
+        "scene_file": relative_source(scene.source, folder),
         "scene_sha256": hashlib.sha256(text.encode("utf-8")).hexdigest() if text else None,
         "scene_toml": text,
         "scene_data": jsonable(scene.data),
         "run": jsonable(scene.run),
-        "scene": jsonable(scene.resolved()),
+        "scene": _with_source(jsonable(scene.resolved()), relative_source(scene.source, folder)),
         "summary": jsonable(result.summary),
     }
+
+
+def _with_source(resolved, source):
+    """The resolved scene with its file recorded as the meta file records it."""
+    if isinstance(resolved, dict) and "source" in resolved:
+        return {**resolved, "source": source}
+    return resolved
 
 
 def _first_difference(a, b, key: str = "") -> tuple[str, object, object] | None:
@@ -366,6 +402,8 @@ def scene_from_meta(path: str | Path, edited: bool = False):
     source = m.get("scene_file")
     if source is not None and not (type(source) is str and len(source) <= 4096):
         raise InputError("scene_file", _short(source), "the scene file's path, or null")
+    if source is not None and not Path(source).is_absolute():
+        source = str(p.absolute().parent / source)    # recorded relative to the meta file
     try:
         scene = scene_from_dict(data, name=name, source=source)
     except RecursionError:
@@ -747,13 +785,15 @@ def write_csv(frame, path: Path) -> None:
         f.write("".join([fmt % row for row in zip(*cols)]))
 
 
-def _write_table(result, table: str, path: Path, name: str, units_system: str | None) -> None:
-    """Write one table as CSV and its meta file beside it (``path`` is the staged CSV)."""
+def _write_table(result, table: str, path: Path, name: str, units_system: str | None,
+                 folder) -> None:
+    """Write one table as CSV and its meta file beside it (``path`` is the staged CSV,
+    ``folder`` the one it is moved into)."""
     system = units_system or result.scene.output.units
     frame, col_units = columns.convert_columns(result.frame(table), system,
                                                result.scene.supply.barometer_Pa)
     write_csv(frame, path)
-    m = meta(result, col_units, name, system)
+    m = meta(result, col_units, name, system, folder)
     path.with_suffix(".meta.json").write_text(json.dumps(m, indent=2))
 
 
@@ -781,7 +821,7 @@ def to_csv(result, path, table: str, units_system: str | None = None) -> Path:
     with OutputFiles(path.parent) as out:
         staged = out.stage(path.name)
         out.stage(path.with_suffix(".meta.json").name)
-        _write_table(result, table, staged, path.name, units_system)
+        _write_table(result, table, staged, path.name, units_system, path.parent)
     return path
 
 
@@ -895,7 +935,7 @@ def write(result, out_dir, plots: bool = True) -> dict[str, Path]:
             name = f"{stem}.{suffix}.csv"
             staged = out.stage(name)
             out.stage(Path(name).with_suffix(".meta.json").name)
-            _write_table(result, table, staged, name, None)
+            _write_table(result, table, staged, name, None, out_dir)
             files[table] = out.files[name]
         if plots:
             import matplotlib.pyplot as plt     # only when drawing: a run without

@@ -56,7 +56,7 @@ def have_parquet() -> bool:
 
 
 def study_meta(result, name: str, frame=None, converted_units: dict | None = None,
-               units_system: str | None = None) -> dict:
+               units_system: str | None = None, folder=None) -> dict:
     """The meta file of a study's table: what rebuilds each row's scene, and the units.
 
     Parameters
@@ -74,6 +74,10 @@ def study_meta(result, name: str, frame=None, converted_units: dict | None = Non
         ``"US"`` or ``"SI"`` when the responses were converted; None when the table
         is as made.
 
+    folder : str or Path, optional
+        The folder the meta file is written in (the scene's file is recorded relative
+        to it).
+
     Returns
     -------
     dict
@@ -88,7 +92,7 @@ def study_meta(result, name: str, frame=None, converted_units: dict | None = Non
     m = meta(result, col_units, name,
              f"varied keys in their own units, responses in {units_system}"
              if units_system else "varied keys in their own units, responses as the "
-             "summary names them (SI unless the name says otherwise)")
+             "summary names them (SI unless the name says otherwise)", folder)
     m.update({"design": result.design, "seed": result.seed, "varied": result.varied,
               "responses": list(result.responses), "fidelity": result.fidelity,
               "rebuild_scene": REBUILD})
@@ -145,7 +149,7 @@ def write(result, out_dir, plots: bool = True, parquet: bool | None = None) -> d
     pts = result.points
     with OutputFiles(out_dir) as out:
         name = f"{stem}.csv"
-        m = study_meta(result, name)
+        m = study_meta(result, name, folder=out_dir)
         write_csv(pts, out.stage(name))
         files["points"] = out.files[name]
         out.stage(f"{stem}.meta.json").write_text(json.dumps(m, indent=2))
@@ -203,7 +207,7 @@ def to_csv(result, path, units_system: str | None = None) -> Path:
     with OutputFiles(path.parent) as out:
         staged = out.stage(path.name)
         meta_name = path.name[:-len(".csv")] if path.name.endswith(".csv") else path.name
-        m = study_meta(result, path.name, frame, renamed, units_system)
+        m = study_meta(result, path.name, frame, renamed, units_system, path.parent)
         write_csv(frame, staged)
         out.stage(f"{meta_name}.meta.json").write_text(json.dumps(m, indent=2))
     return path

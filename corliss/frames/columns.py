@@ -183,3 +183,49 @@ def convert_columns(df, system: str, barometer_Pa: float = units.STANDARD_ATMOSP
         out[name] = values
         col_units[name] = unit + (" absolute" if sfx == "Pa" else "")
     return Frame(out), col_units
+
+
+def convert_record(record: dict, system: str,
+                   barometer_Pa: float = units.STANDARD_ATMOSPHERE_Pa) -> dict:
+    """A mapping of named quantities (a row, an end's valve events) in a unit system.
+
+    Each key ending in a known unit (:data:`SUFFIXES`) is renamed to the system's unit
+    and its value converted, as :func:`convert_frame` does a table's columns; None
+    stays None, and other keys pass unchanged.  A mean effective pressure, a
+    difference of pressures, is named ``_psi`` or ``_kPa`` (not absolute).
+
+    Parameters
+    ----------
+    record : dict
+        ``{name: value}``, SI as the package names it (``lead_m``).
+    system : str
+        ``"US"`` or ``"SI"``.
+    barometer_Pa : float, optional
+        For gauge pressures [Pa].
+
+    Returns
+    -------
+    dict
+        The converted mapping (``lead_in``, or ``lead_mm``), in the same order.
+    """
+    if system not in ("US", "SI"):
+        raise ValueError(f"units system {system!r}: 'US' or 'SI'")
+    out = {}
+    for key, value in record.items():
+        try:
+            base, sfx = split(key)
+        except KeyError:            # not a quantity (a label, a count)
+            out[key] = value
+            continue
+        if sfx is None:
+            out[key] = value
+            continue
+        si_unit, us_sfx, us_unit, si_sfx, si_out = SUFFIXES[sfx]
+        out_sfx, unit = (us_sfx, us_unit) if system == "US" else (si_sfx, si_out)
+        if value is not None and unit != si_unit and unit != DIMENSIONLESS:
+            value = float(units.to_unit(units.from_unit(float(value), si_unit), unit,
+                                        barometer_Pa=barometer_Pa))
+        if sfx == "Pa" and base.startswith("mep"):
+            out_sfx = "psi" if system == "US" else "kPa"    # a difference: not absolute
+        out[f"{base}_{out_sfx}"] = value
+    return out

@@ -264,14 +264,16 @@ class KeyGroup:
                 raise ValueError(f"{self.name}: key {k.name} declared twice, differently")
             seen[k.name] = k
         object.__setattr__(self, "keys", tuple(seen.values()))
+        # read by name for every key of every scene a study loads: a dict, not a scan
+        object.__setattr__(self, "_by_name", seen)
 
     def __contains__(self, name: object) -> bool:
-        return any(k.name == name for k in self.keys)
+        return isinstance(name, str) and name in self._by_name
 
     def __getitem__(self, name: str) -> Key:
-        for k in self.keys:
-            if k.name == name:
-                return k
+        k = self._by_name.get(name)
+        if k is not None:
+            return k
         raise UndeclaredKeyError(f"{self.name} declares no key {name!r}: declare it (with its "
                                  "doc line) in the key group its parser reads")
 

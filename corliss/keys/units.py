@@ -14,6 +14,7 @@ as written.  Speeds in ``rpm``, ``RPM``, ``rev/min``, ``r/min``, ``rev/s`` or ``
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 from dataclasses import dataclass
@@ -329,6 +330,22 @@ def parse(text: object, kind: str, key: str = "value", *,
     """
     if is_quantity_object(text):
         return _from_object(text, kind, key, within)
+    if isinstance(text, str) and (within is None or isinstance(within, tuple)):
+        # a study reads the same texts run after run: a text read once is not read again
+        return _parse_str(text, kind, key, barometer_Pa, within)
+    return _parse(text, kind, key, barometer_Pa, within)
+
+
+@functools.lru_cache(maxsize=4096)
+def _parse_str(text: str, kind: str, key: str, barometer_Pa: float,
+               within: tuple[float, float] | None) -> float:
+    """:func:`parse` of a text, remembered (a refused text raises each time: an
+    exception is not remembered)."""
+    return _parse(text, kind, key, barometer_Pa, within)
+
+
+def _parse(text, kind: str, key: str, barometer_Pa: float,
+           within: tuple[float, float] | None) -> float:
     q = _parse_text(text, key)
     if q.unit == "":
         raise InputError(key, text, f"a {kind} with its unit; one of "

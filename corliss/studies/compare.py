@@ -29,7 +29,7 @@ import math
 import os
 import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
-from typing import Callable
+from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -40,6 +40,8 @@ from corliss.engine.steady import run_steady
 from corliss.errors import InputError, RunError
 from corliss.governors import GOVERNORS
 from corliss.governors.operating_point import characteristic_speed, working_travel
+from corliss.logs import at_point
+from corliss.progress import progress_for
 from corliss.studies.compare_result import CompareResult
 
 log = logging.getLogger(__name__)
@@ -318,18 +320,20 @@ def _point_task(scene, knob, bracket, target_W, brake, tier, guess=None, exact=T
 
 
 def _map(tasks, pool, progress, done0: int, total: int):
-    """Run ``tasks`` [(fn, args)] on the process ``pool`` (here, serially, when None);
-    results in order, an exception in place of a task's result when it failed."""
+    """Run ``tasks`` [(fn, args, label)] on the process ``pool`` (here, serially, when
+    None); results in order, an exception in place of a task's result when it failed.
+    The messages of each task name its point, ``label``."""
     out = [None] * len(tasks)
     done = done0
     if pool is None:
-        for i, (fn, args) in enumerate(tasks):
-            out[i] = _safe(fn, *args)
+        for i, (fn, args, label) in enumerate(tasks):
+            out[i] = _safe(label, fn, *args)
             done += 1
             if progress:
                 progress(done, total)
         return out, done
-    futs = {pool.submit(_safe, fn, *args): i for i, (fn, args) in enumerate(tasks)}
+    futs = {pool.submit(_safe, label, fn, *args): i
+            for i, (fn, args, label) in enumerate(tasks)}
     for fut in as_completed(futs):
         out[futs[fut]] = fut.result()
         done += 1
@@ -360,9 +364,16 @@ def _guess(curve, bracket, target_W):
         return None
 
 
-def _safe(fn, *args):
+def _group_label(key) -> str:
+    """A group's name for a message: its variant, and whether its walls take heat."""
+    name, walled = key
+    return f"{name}, {'with' if walled else 'without'} condensation"
+
+
+def _safe(label, fn, *args):
     try:
-        return fn(*args)
+        with at_point(label):
+            return fn(*args)
     except (RunError, ValueError) as exc:
         return exc
 
@@ -420,7 +431,7 @@ def rated_power_W(scene, brake: bool) -> float | None:
 
 def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
             fidelity: str | None = None, workers: int | None = None, droop: bool = False,
-            progress: Callable[[int, int], None] | None = None, **variant_options):
+            progress: Any = None, **variant_options):
     """Run the throttling-versus-cut-off study of ``scene``'s engine.
 
     Parameters
@@ -446,8 +457,9 @@ def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
         bottom of its working travel (:func:`droop_speeds`; ``"governor_droop"``), an
         assumption about where the governor sits that a transient run of the scene
         need not share.
-    progress : callable, optional
-        Called with (runs done, runs in all).
+    progress : None, True, ProgressBar or callable, optional
+        True draws a bar (:mod:`corliss.progress`); a callable is called with (runs
+        done, runs in all).  Each run's messages name its variant and load.
     **variant_options
         ``throttled_setting``, ``setting_range``, ``chest_volume_m3``,
         ``pipe_diameter_m`` (see :func:`variants`); by default the scene's ``[compare]``
@@ -500,14 +512,16 @@ def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
         grid = (np.geomspace if v.knob == "throttle" else np.linspace)(*v.knob_range,
                                                                        GRID_POINTS)
         for chain in np.array_split(grid, GRID_CHAINS):
-            grid_tasks.append((_grid_task, (v.scene, v.knob, [float(k) for k in chain])))
+            grid_tasks.append((_grid_task, (v.scene, v.knob, [float(k) for k in chain]),
+                               f"{_group_label(key)}, {v.knob} {chain[0]:g} to {chain[-1]:g}"))
             grid_keys.append(key)
     total = len(grid_tasks) + len(groups) * len(loads)
     # one pool for both rounds: a worker pays its imports and steam table once
     pool = ProcessPoolExecutor(max_workers=workers) if workers > 1 else None
     try:
-        result = _solve(scene, loads, var, groups, grid_tasks, grid_keys, rated, brake, tier,
-                        pool, progress, total, t0, workers, speeds)
+        with progress_for(progress, "runs") as bar:
+            result = _solve(scene, loads, var, groups, grid_tasks, grid_keys, rated, brake,
+                            tier, pool, bar, total, t0, workers, speeds)
         result.chest_source = chest_source
         return result
     finally:
@@ -562,7 +576,8 @@ def _solve(scene, loads, var, groups, grid_tasks, grid_keys, rated, brake, tier,
                 point_tasks.append((_point_task, (sc, v.knob, bracket, target, brake,
                                                   None if tier == "fast" else tier,
                                                   guess, speeds is None, wider,
-                                                  states[key][near])))
+                                                  states[key][near]),
+                                    f"{_group_label(key)} at {100 * load:g} % load"))
     found, _ = _map(point_tasks, pool, progress, done, total)
     found = iter(found)
     rows = []

@@ -12,19 +12,21 @@ cut-off, Marks Art. 2).
 from __future__ import annotations
 
 import time
-from typing import Callable
+from typing import Any
 
 import pandas as pd
 
 from corliss.engine.model import KNOBS, at_knob
 from corliss.engine.result import SweepResult, willans_fit
 from corliss.engine.steady import run_steady
+from corliss.logs import at_point
+from corliss.progress import progress_for
 
 __all__ = ["KNOBS", "load_range", "load_ranges", "willans_fit"]
 
 
 def load_range(scene, knob: str, values, *,
-               progress: Callable[[float, float], None] | None = None) -> SweepResult:
+               progress: Any = None) -> SweepResult:
     """Steady runs at each value of ``knob``, one row each.
 
     Parameters
@@ -36,8 +38,10 @@ def load_range(scene, knob: str, values, *,
         ``"throttle"`` (opening of the throttle, 0..1).
     values : sequence of float
         The settings [-] or openings [-]; every one is checked before any run.
-    progress : callable, optional
-        Called after each run with (runs done, runs in all).
+    progress : None, True, ProgressBar or callable, optional
+        True draws a bar (:mod:`corliss.progress`); a callable is called after each
+        run with (runs done, runs in all).  Each run's messages name its point
+        (``setting 0.4``).
 
     Returns
     -------
@@ -57,26 +61,32 @@ def load_range(scene, knob: str, values, *,
     rows = []
     nfev = 0
     tier = scene.run.fidelity.properties
-    for n, (v, sc) in enumerate(zip(values, scenes), start=1):
-        r = run_steady(sc)
-        s = r.summary
-        nfev += r.rhs_evaluations
-        tier = r.property_tier
-        rows.append({"knob_frac": v, "indicated_power_W": s["indicated_power_W"],
-                     "steam_rate_kg_per_h": s["steam_rate_kg_per_h"],
-                     "water_rate_kg_per_kWh": s["water_rate_kg_per_kWh"],
-                     "cutoff_head_frac": s["events"]["head"]["cutoff_frac"],
-                     **({"brake_power_W": s["brake_power_W"]} if "brake_power_W" in s else {})})
-        if progress:
-            progress(n, len(values))
+    with progress_for(progress, "runs") as bar:
+        for n, (v, sc) in enumerate(zip(values, scenes), start=1):
+            with at_point(f"{knob} {v:g}"):
+                r = run_steady(sc)
+                s = r.summary
+            nfev += r.rhs_evaluations
+            tier = r.property_tier
+            rows.append(_row(v, s))
+            if bar:
+                bar(n, len(values))
     points = pd.DataFrame(rows)
+
     return SweepResult(scene=scene, property_tier=tier, timeseries=points, cycles=points,
                        rhs_evaluations=nfev, wall_time_s=time.perf_counter() - t0, knob=knob,
                        values=values)
 
 
-def load_ranges(scene, values_by_knob: dict, *,
-                progress: Callable[[float, float], None] | None = None) -> SweepResult:
+def _row(v: float, s: dict) -> dict:
+    return {"knob_frac": v, "indicated_power_W": s["indicated_power_W"],
+            "steam_rate_kg_per_h": s["steam_rate_kg_per_h"],
+            "water_rate_kg_per_kWh": s["water_rate_kg_per_kWh"],
+            "cutoff_head_frac": s["events"]["head"]["cutoff_frac"],
+            **({"brake_power_W": s["brake_power_W"]} if "brake_power_W" in s else {})}
+
+
+def load_ranges(scene, values_by_knob: dict, *, progress: Any = None) -> SweepResult:
     """Steady runs at each value of several knobs, in one table with a ``knob`` column.
 
     Parameters
@@ -86,8 +96,8 @@ def load_ranges(scene, values_by_knob: dict, *,
     values_by_knob : dict
         ``{"setting": [...], "throttle": [...]}`` (either or both); every value is
         checked before any run.
-    progress : callable, optional
-        Called after each run with (runs done, runs in all).
+    progress : None, True, ProgressBar or callable, optional
+        As :func:`load_range`'s, over all the runs.
 
     Returns
     -------
@@ -109,15 +119,16 @@ def load_ranges(scene, values_by_knob: dict, *,
     t0 = time.perf_counter()
     total = sum(len(v) for v in values_by_knob.values())
     parts, nfev, done, tier = [], 0, 0, scene.run.fidelity.properties
-    for knob, values in values_by_knob.items():
-        def step(n, _total, base=done):
-            if progress:
-                progress(base + n, total)
-        r = load_range(scene, knob, values, progress=step)
-        done += len(values)
-        nfev += r.rhs_evaluations
-        tier = r.property_tier
-        parts.append(r.points.assign(knob=knob))
+    with progress_for(progress, "runs") as bar:
+        for knob, values in values_by_knob.items():
+            def step(n, _total, base=done):
+                if bar:
+                    bar(base + n, total)
+            r = load_range(scene, knob, values, progress=step)
+            done += len(values)
+            nfev += r.rhs_evaluations
+            tier = r.property_tier
+            parts.append(r.points.assign(knob=knob))
     points = pd.concat(parts, ignore_index=True)
     points = points[["knob"] + [c for c in points.columns if c != "knob"]]
     return SweepResult(scene=scene, property_tier=tier, timeseries=points, cycles=points,

@@ -50,7 +50,7 @@ import time
 from concurrent.futures import FIRST_COMPLETED, CancelledError, ProcessPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
 from pathlib import Path
-from typing import Callable
+from typing import Any
 
 import numpy as np
 
@@ -58,6 +58,8 @@ from corliss.engine.balance import balance_failure
 from corliss.engine.model import steady_scene
 from corliss.engine.steady import run_steady
 from corliss.errors import InputError, RunError, StudyStopped
+from corliss.logs import at_point
+from corliss.progress import progress_for
 from corliss.scene.loader import Scene, find_scene, load_scene, scene_from_dict
 from corliss.keys.edits import KeyValue, with_keys
 from corliss.studies.sampling import make_design
@@ -154,8 +156,10 @@ def run_chunk(spec: StudySpec, run_ids, values) -> tuple[list, int, str | None]:
     for run_id, vals in zip(run_ids, values):
         changes = {k: KeyValue(float(v), unit).text() for (k, unit), v in zip(spec.keys, vals)}
         try:
-            r = run_steady(_scene(spec.base, spec.name, spec.fidelity, changes))
-            flat = flatten(r.summary)
+            with at_point(f"run {int(run_id)}: "
+                          + ", ".join(f"{k} {v}" for k, v in changes.items())):
+                r = run_steady(_scene(spec.base, spec.name, spec.fidelity, changes))
+                flat = flatten(r.summary)
             nfev += r.rhs_evaluations
             tier = r.property_tier
             why = run_failure(r)
@@ -492,7 +496,7 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
           lhs: int | None = None, monte_carlo: int | None = None, seed: int | None = 0,
           responses=None, fidelity: str | None = None, jobs: int | None = None,
           scheduler=None, chunk_size: int | None = None,
-          progress: Callable[[int, int], None] | None = None,
+          progress: Any = None,
           out=None, resume: bool = False) -> StudyResult:
     """Steady runs of ``scene`` over a design of its keys: ``corliss study``.
 
@@ -527,8 +531,10 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
     chunk_size : int, optional
         Runs per task (default: about four tasks per worker, at most
         :data:`MAX_CHUNK` runs).
-    progress : callable, optional
-        Called with (runs done, runs in all) as tasks finish.
+    progress : None, True, ProgressBar or callable, optional
+        True draws a bar (:mod:`corliss.progress`); a callable is called with (runs
+        done, runs in all) as tasks finish.  Each run's messages name its run and
+        settings.
     out : str or Path, optional
         The output directory: checked (made, and a file written in it) before any
         run, and the rows appended to its journal
@@ -620,9 +626,10 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
         nfev[0] += n
         if tier is not None:
             tiers.append(tier)
-        if progress:
-            progress(len(rows), design.runs)
+        if bar[0]:
+            bar[0](len(rows), design.runs)
 
+    bar: list = [None]
     try:
         if client is not None:
             address = str(client.scheduler.address)
@@ -630,7 +637,7 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
         else:
             workers = max(1, min(workers, len(todo)))
         chunks = _chunks(todo, design.values[todo], _chunk_size(len(todo), workers, chunk_size))
-        with _Signals():
+        with _Signals(), progress_for(progress, "runs") as bar[0]:
             try:
                 if not chunks:
                     pass

@@ -18,7 +18,8 @@ energy balances the torque integral (a test checks this).  Friction, when the sc
 names it, is T_f0 + T_f1 omega; the load is T_ref f(t) (omega/omega_ref)^k with f
 piecewise linear in time (steps are two points at one time) and k = 0, 1 or 2.
 
-Governor (the common form of :mod:`corliss.governors`; spindle speed w_g = ratio
+Governor (the common form of :mod:`corliss.governors`, its equation of motion
+:func:`corliss.engine.kernels.governor.governor_motion`; spindle speed w_g = ratio
 omega)::
 
     M(z) z'' + 1/2 M'(z) z'^2 = G(z) w_g^2 - R(z) - c z' - F_f sat(z'/v_e) - J(z) dw_g/dt
@@ -55,6 +56,7 @@ from corliss.engine.kernels.balances import balances
 from corliss.engine.kernels.clamps import (CL_ACCEPTED, CL_ACCEPTED_CODE, CL_REJECTED,
                                            CL_REJECTED_CODE)
 from corliss.engine.kernels.compiled import njit
+from corliss.engine.kernels.governor import governor_motion
 from corliss.engine.kernels.mechanism import TWO_PI, piston_kinematics, port_areas
 from corliss.engine.kernels.data import (TRIP_AREA, TRIP_CLOSING, TRIP_GRID, TRIP_RELEASE,
                                          TRIP_SCALARS, TS_CLOSE_ANGLE, TS_CLOSE_TIME,
@@ -397,18 +399,8 @@ def transient_rhs(th, y, dy, net, tier, tab, perf, pr, pa, tr, out):
         G = _lin(0.0, dz, gov[2], zc)
         R = _lin(0.0, dz, gov[3], zc)
         J = _lin(0.0, dz, gov[4], zc)
-        wg = sc[S_RATIO] * omega
-        v = zd / sc[S_VEPS]
-        if v > 1.0:
-            v = 1.0
-        if v < -1.0:
-            v = -1.0
-        force = (G * wg * wg - R - sc[S_DAMP] * zd - sc[S_FRIC] * v
-                 - J * sc[S_RATIO] * wdot - 0.5 * dM * zd * zd)
-        zdd = force / M
-        if (z <= 0.0 and zdd < 0.0 and zd <= 0.0) or (z >= 1.0 and zdd > 0.0 and zd >= 0.0):
-            zdd = 0.0
-            zd = 0.0
+        zd, zdd = governor_motion(z, zd, M, dM, G, R, J, sc[S_RATIO], sc[S_DAMP],
+                                  sc[S_FRIC], sc[S_VEPS], omega, wdot)
         dy[nn + X_Z] = zd / omega
         dy[nn + X_ZDOT] = zdd / omega
     else:

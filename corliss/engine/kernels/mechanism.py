@@ -19,11 +19,54 @@ TWO_PI = 2.0 * math.pi
 
 
 @njit(cache=True, inline="always")
+def slider_crank(R, L, sn, cs, angular):
+    """The slider crank, written once: piston travel and its first two derivatives.
+
+    Marks, *The Steam Engine*, Art. 96 III, eqs. 239-241: with crank radius R,
+    connecting rod L and crank angle a from head dead centre,
+    ``s = R (1 - cos a) + L - sqrt(L^2 - R^2 sin^2 a)`` (without rod angularity, an
+    infinite rod, ``R (1 - cos a)``), and its derivatives with a.  The compiled kernels
+    call it on floats (:func:`piston_position`, :func:`piston_kinematics`); the
+    Python paths (:class:`corliss.engine.geometry.CylinderGeometry`,
+    :mod:`corliss.engine.crank_effort`) call its Python form (``slider_crank.py_func``)
+    on arrays: the same operations in the same order, so the same bits.
+
+    Parameters
+    ----------
+    R : float
+        Crank radius [m].
+    L : float
+        Connecting rod [m].
+    sn, cs : float or ndarray
+        ``sin a``, ``cos a`` of the cylinder's crank angle [-].
+    angular : bool or float
+        True (non-zero): the exact slider crank; False (0): an infinite rod.
+
+    Returns
+    -------
+    s : float or ndarray
+        Travel from head dead centre [m].
+    ds : float or ndarray
+        ``ds/da`` [m/rad].
+    d2s : float or ndarray
+        ``d2s/da2`` [m/rad2].
+    """
+    s = R * (1.0 - cs)
+    ds = R * sn
+    d2s = R * cs
+    if angular:
+        root = np.sqrt(L * L - R * R * sn * sn)
+        s = s + (L - root)
+        ds = ds + R * R * sn * cs / root
+        d2s = d2s + (R * R * (cs * cs - sn * sn) / root + (R * R * sn * cs) ** 2 / root ** 3)
+    return s, ds, d2s
+
+
+@njit(cache=True, inline="always")
 def piston_position(th, net, c):
     """Piston travel from head dead centre and its derivative with crank angle.
 
-    The slider crank of :mod:`corliss.engine.geometry`, at the cylinder's own angle
-    ``th + phase``.
+    :func:`slider_crank` at the cylinder's own angle ``th + phase``.
 
     Parameters
     ----------
@@ -42,16 +85,9 @@ def piston_position(th, net, c):
         ds/dtheta [m/rad].
     """
     geo, phase = net.geometry, net.phase
-    R, L, ang = geo[c, GEO_CRANK], geo[c, GEO_ROD], geo[c, GEO_ANGULARITY]
     a = th + phase[c]
-    sn = math.sin(a)
-    cs = math.cos(a)
-    s = R * (1.0 - cs)
-    ds = R * sn
-    if ang > 0.0:
-        root = math.sqrt(L * L - R * R * sn * sn)
-        s += L - root
-        ds += R * R * sn * cs / root
+    s, ds, _ = slider_crank(geo[c, GEO_CRANK], geo[c, GEO_ROD], math.sin(a), math.cos(a),
+                            geo[c, GEO_ANGULARITY] > 0.0)
     return s, ds
 
 
@@ -59,8 +95,7 @@ def piston_position(th, net, c):
 def piston_kinematics(th, net, c):
     """Piston velocity and acceleration per crank angle of one cylinder.
 
-    The slider crank of :mod:`corliss.engine.geometry` at the cylinder's own angle
-    (an infinite rod without rod angularity).
+    :func:`slider_crank` at the cylinder's own angle ``th + phase``.
 
     Parameters
     ----------
@@ -79,16 +114,9 @@ def piston_kinematics(th, net, c):
         ``d2s/dtheta2`` [m/rad2].
     """
     geo, phase = net.geometry, net.phase
-    R, L, ang = geo[c, GEO_CRANK], geo[c, GEO_ROD], geo[c, GEO_ANGULARITY]
     a = th + phase[c]
-    sn = math.sin(a)
-    cs = math.cos(a)
-    ds = R * sn
-    d2s = R * cs
-    if ang > 0.0:
-        root = math.sqrt(L * L - R * R * sn * sn)
-        ds += R * R * sn * cs / root
-        d2s += R * R * (cs * cs - sn * sn) / root + (R * R * sn * cs) ** 2 / root ** 3
+    _, ds, d2s = slider_crank(geo[c, GEO_CRANK], geo[c, GEO_ROD], math.sin(a), math.cos(a),
+                            geo[c, GEO_ANGULARITY] > 0.0)
     return ds, d2s
 
 
