@@ -105,10 +105,16 @@ def test_condensation_narrows_the_advantage_of_early_cutoff(study):
     """Marks (Arts. 74-75, the law of condensation): initial condensation grows as the
     cut-off shortens, so it takes back part of what early cut-off saves; at the lightest
     load the cut-off engine's saving over the throttled one is smaller with the walls'
-    heat than without."""
+    heat than without.  Marks gives the direction, not the size: the size is the wall's.
+    With the skin wall at Callendar and Nicolson's measured condensing coefficient
+    (16.7 kW/(m2 K), DPJ 312, 1899, p. 164) the walls take about 30 % of the saving at a
+    quarter load (0.358 without them, 0.252 with them; the dropwise 3e5 they replaced took
+    more than 40 %, which the old bound 0.6 held).  The bound 0.8 asks for a narrowing of
+    at least a fifth: about 0.07 of saving here, several times the fast tier's
+    operating-point error (each point within 1 % of its power, 0.02 of saving at most)."""
     v = study.verdict.set_index(["condensation", "load_frac"])["cutoff_saving_frac"]
     light = min(LOADS)
-    assert v[("on", light)] < 0.6 * v[("off", light)]
+    assert v[("on", light)] < 0.8 * v[("off", light)]
     # the cut-off engine's missing water is the larger at light load (its cut-off the
     # earlier), the throttled engine's the same at its fixed cut-off
     pts = study.points.set_index(["variant", "condensation", "load_frac"])
@@ -191,26 +197,31 @@ def test_scene_names_the_variants(tmp_path):
         load_scene(bad)
 
 
-def test_condensation_takes_most_of_early_cutoffs_advantage_on_a_small_engine(small):
+def test_condensation_takes_much_of_early_cutoffs_advantage_on_a_small_engine(small):
     """Marks (*Relative Proportions of the Steam-Engine*) argues that a small engine may
     do better throttled: its walls are large for its steam, and the very short cut-off a
     cut-off governor gives it at light load condenses much of what it admits (Marks
-    Arts. 74-75, 78).  The model (the skin wall, its default) bears out the mechanism
-    but not the verdict: on the small high-speed engine at a tenth of its load, the
-    cut-off governor's saving over throttling at a cut-off near half stroke (setting
-    0.75) falls from about 29 % without the walls to about 12 % with them, its own
-    missing water 0.84 against the throttled engine's 0.49, yet cut-off governing still
-    wins (the closing note gives the numbers).  The test holds the mechanism: the
-    walls take at least half of the saving at light load, and the missing water is
-    far greater at the short cut-off."""
+    Arts. 74-75, 78).  The model (the skin wall, its default, at Callendar and Nicolson's
+    measured condensing coefficient, 16.7 kW/(m2 K), DPJ 312, 1899, p. 164) bears out the
+    mechanism but not the verdict: on the small high-speed engine at a tenth of its load,
+    the cut-off governor's saving over throttling at a cut-off near half stroke (setting
+    0.75) falls from 29 % without the walls to 16 % with them, its own missing water
+    0.39 against the throttled engine's 0.31, and cut-off governing still wins.  Marks
+    gives the direction, not the size, which is the wall's: with the dropwise 3e5
+    W/(m2 K) the measured coefficient replaced, the walls took more than half (29 % ->
+    12 %, missing water 0.84 against 0.49; the old bounds 0.5 and 1.3).  The test holds
+    the mechanism with bounds the measured wall clears: the walls take at least two
+    fifths of the saving (0.47 measured; 0.4 of 0.29 is 0.12 of saving, far above the
+    fast tier's operating points, each within 1 % of its power), and the missing water
+    is the greater at the short cut-off by more than a tenth (1.27 times measured)."""
     r = compare(small, [0.1], fidelity="fast", throttled_setting=0.75)
     pts = r.points.set_index(["variant", "condensation", "load_frac"])
     assert 0.4 < pts.loc[("throttling", "on", 0.1), "cutoff_head_frac"] < 0.6
     v = r.verdict.set_index(["condensation", "load_frac"])
     dry, wet = (v.loc[(c, 0.1), "cutoff_saving_frac"] for c in ("off", "on"))
-    assert dry > 0.2 and wet < 0.5 * dry
+    assert dry > 0.2 and wet < 0.6 * dry
     assert (pts.loc[("cutoff", "on", 0.1), "missing_water_frac"]
-            > 1.3 * pts.loc[("throttling", "on", 0.1), "missing_water_frac"])
+            > 1.1 * pts.loc[("throttling", "on", 0.1), "missing_water_frac"])
 
 
 def test_governor_droop_sets_the_speed_of_each_load(study, small):
