@@ -175,8 +175,8 @@ def _loop_balances(theta, Y, dy, net, PR, PA, reps):
 @njit(_nrt=False)
 def _loop_edges(theta, net, PR, PA, reps):
     s = 0.0
-    res, band, ea, eb = net[8], net[1], net[9], net[10]
-    ecd = net[15]
+    res, band, ea, eb = net.reservoirs, net.band, net.edge_a, net.edge_b
+    ecd = net.edge_cd
     for _ in range(reps):
         for k in range(theta.size):
             pr = PR[k]
@@ -244,7 +244,7 @@ def per_call(scene_path, reps, repeats, label):
         med, least = timed(fn, args, reps, repeats, theta.size)
         print(json.dumps({"version": label, "scene": Path(scene_path).stem, "part": name,
                           "ns_per_call": round(med, 1), "least_ns": round(least, 1),
-                          "nodes": nodes, "edges": int(net[9].shape[0]),
+                          "nodes": nodes, "edges": int(net.edge_a.shape[0]),
                           "load": round(os.getloadavg()[0], 2)}), flush=True)
 
 

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 import corliss
+from corliss.engine.kernels.data import TRIP_RELEASE, TRIP_SCALARS, TS_N_SETTINGS
 from corliss.engine.kernels.loop import governed_areas
 from corliss.engine.kernels.mechanism import port_areas
 from corliss.engine.model import build_gear, build_network, geometry_of, reservoir_states
@@ -65,8 +66,8 @@ def test_beyond_the_trip_the_valve_closes_with_the_wrist_plate(loop):
     latched = np.clip(gear.latched_signed_openings(theta), 0.0, gear.port_widths()[:, None]) \
         * gear.port_lengths()[:, None]
     assert gear.release_angle_rad(1.2)[0] is None
-    sg = tables.tr[7]
-    rel = tables.tr[7][1, : int(sg[6, 5])]
+    trip = tables.tr.trip
+    rel = trip[TRIP_RELEASE, : int(trip[TRIP_SCALARS, TS_N_SETTINGS])]
     assert np.all(np.isfinite(rel))             # the governor's range trips at every setting
     ev_trip = corliss.valves.events(gear.with_setting(1.0).with_speed(scene.run.speed_rad_s),
                                     lambda t: (1 - math.cos(t)) / 2)

@@ -18,6 +18,7 @@ from __future__ import annotations
 import logging
 import math
 
+from corliss.engine.kernels.data import H_MARKS_Q, H_MARKS_WALL_EXPAND, H_MODEL, WALL_MARKS
 from corliss.keys import units
 from corliss.thermo.steam import HEOSSteam, latent_heat
 
@@ -202,7 +203,7 @@ class MarksLaw:
         self.t_exhaust = exhaust_T_K
         self._heos = HEOSSteam()
         self.ends = [(i, 0 if network.node_end[i] == 0 else 1)
-                     for i, row in enumerate(network.node_heat) if row[0] == 3.0]
+                     for i, row in enumerate(network.node_heat) if row[H_MODEL] == WALL_MARKS]
         self.t_cutoff = {i: supply_T_K for i, _ in self.ends}
         if self.ends:
             log.warning("wall_heat_model = \"marks\" imposes eq. 221's heat as a schedule, "
@@ -264,7 +265,7 @@ class MarksLaw:
             each kept node are overwritten in place.
         """
         for i, row in self.rows().items():
-            heat_array[i, 5:11] = row
+            heat_array[i, H_MARKS_Q:H_MARKS_WALL_EXPAND + 1] = row
 
     def update(self, steam, samples, out_theta) -> None:
         """Take the cut-off temperatures from a cycle's samples.

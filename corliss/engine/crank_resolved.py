@@ -37,6 +37,8 @@ from corliss.engine.kernels import (balances, cache, cycle, jacobians, mechanism
                                     stepping)
 from corliss.engine.kernels.clamps import (CL_ACCEPTED, CL_ACCEPTED_CODE, CL_NODE,
                                            CL_REJECTED, CL_THETA)
+from corliss.engine.kernels.data import (H_MODEL, H_SKIN_JACKET_G, H_SKIN_JACKET_T, WALL_NONE,
+                                         WALL_SKIN)
 from corliss.engine.network import Network
 from corliss.engine.options import COMPILED_METHODS
 from corliss.errors import RunError
@@ -147,7 +149,7 @@ class CrankResolved:
                 code |= 32
             clamped = clamped or code != 0
             t_wet = st.T
-            if st.superheated and self.network.node_heat[i][0] > 0.0:
+            if st.superheated and self.network.node_heat[i][H_MODEL] > WALL_NONE:
                 t_wet = self.steam.t_sat(st.p)
             self._pr[:, i] = (st.p, rho, u + st.p / rho, kappa_at(self._tab, rho, u), dV, V,
                               st.T, t_wet, code, 1.0 if st.superheated else st.x,
@@ -206,10 +208,10 @@ class CrankResolved:
             ha = y_end[net.i_node_quad(i, "hA")]
             if not ha > 0.0:
                 continue
-            if net.node_heat[i][0] != 4.0:
+            if net.node_heat[i][H_MODEL] != WALL_SKIN:
                 net.wall_T[i] = y_end[net.i_node_quad(i, "hAT")] / ha
                 continue
-            gap = net.node_heat[i][9] * 2.0 * math.pi / net.omega
+            gap = net.node_heat[i][H_SKIN_JACKET_G] * 2.0 * math.pi / net.omega
             d_full = ha - gap
             T = float(net.wall_T[i])
             Q = float(y_end[net.i_node_quad(i, "heat")])
@@ -217,7 +219,7 @@ class CrankResolved:
             prev, lo, hi = hist.get(i, (None, -math.inf, math.inf))
             if prev is not None and abs(T - prev[0]) > 1e-9:
                 slope = min(max((Q - prev[1]) / (T - prev[0]), 0.01 * d_full), d_full)
-            r = -Q + gap * (net.node_heat[i][10] - T)
+            r = -Q + gap * (net.node_heat[i][H_SKIN_JACKET_T] - T)
             step = min(max(r / (slope + gap), -20.0), 20.0)
             largest = max(largest, abs(step))
             scale = heat_scale or float(y_end[net.i_node_quad(i, "heat_to_wall")])

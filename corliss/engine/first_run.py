@@ -326,8 +326,8 @@ def compile_jacobian(data: bytes) -> None:
         its state.
     """
     net, n = pickle.loads(data)
-    nv = net[4].shape[0]
-    ncyl = net[17].shape[0]
+    nv = net.node_kind.shape[0]
+    ncyl = net.port_npts.shape[0]
     y = np.ones(n)
     J = np.zeros((n, 2 * nv))
     jacobians._jacobian_exact(0.0, y, J, np.zeros(n), net, properties.TIER_TABLE,

@@ -26,6 +26,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from corliss.engine.kernels.data import (HEAT_COLUMNS, H_MODEL, WALL_ADAIR, WALL_CONDUCTANCE,
+                                         WALL_MARKS, WALL_SKIN, NetworkArrays)
+
 PISTON, FIXED = 0, 1
 #: Edge kinds: a cylinder's port (area from the PortMap), an orifice of fixed area, and
 #: the period's linear leak (its ``area`` column the rate of leak [kg/(s Pa)],
@@ -237,7 +240,7 @@ class Network:
     @property
     def wall_nodes(self) -> list[int]:
         """Nodes whose wall surface temperature is a state (the skin model), in order."""
-        return [i for i, row in enumerate(self.node_heat) if row[0] == WALL_MODELS["skin"]]
+        return [i for i, row in enumerate(self.node_heat) if row[H_MODEL] == WALL_SKIN]
 
     #: States of a skin-model wall: the surface temperature less the deep wall's [K],
     #: the water film [kg], and two quadratures restarted each cycle: the heat from the
@@ -593,25 +596,26 @@ class Network:
         return color, owner
 
     # --- arrays for the kernel ------------------------------------------------------
-    def arrays(self) -> tuple:
-        """The tuple of plain arrays the compiled right-hand side reads.
+    def arrays(self) -> NetworkArrays:
+        """The plain arrays the compiled right-hand side reads, by name.
 
         Sets :attr:`wall_T` to the mean of supply and exhaust temperatures when it is
         unset (or of another length than the nodes).
 
         Returns
         -------
-        tuple
-            21 entries, read by index in :mod:`corliss.engine.kernels`: 0 ``[omega]``
-            [rad/s]; 1 band [-]; 2 geometry (cylinders, 8): crank radius, rod, stroke
-            [m], head and crank piston areas [m2], head and crank clearances [m3],
-            rod angularity (1 or 0); 3 phases [rad]; 4-7 node kind, cylinder, end,
-            vessel volume [m3]; 8 reservoirs (reservoirs, 4): p [Pa], rho [kg/m3],
-            h [J/kg], the port-flow exponent [-]; 9-15 edge ends a and b, kind,
-            cylinder, port, area [m2], discharge coefficient [-]; 16 the PortMaps'
-            angle grids (cylinders, points) [rad]; 17 their lengths; 18 their areas
-            (cylinders, 4, points) [m2]; 19 the wall-heat rows (nodes,
-            :data:`HEAT_COLUMNS`); 20 :attr:`wall_T` [K].
+        NetworkArrays
+            21 fields (:class:`corliss.engine.kernels.data.NetworkArrays`): ``omega``
+            ``[omega]`` [rad/s]; ``band`` [-]; ``geometry`` (cylinders, 8): crank
+            radius, rod, stroke [m], head and crank piston areas [m2], head and crank
+            clearances [m3], rod angularity (1 or 0); ``phase`` [rad]; ``node_kind``,
+            ``node_cyl``, ``node_end``, ``node_V`` [m3]; ``reservoirs`` (reservoirs, 4):
+            p [Pa], rho [kg/m3], h [J/kg], the port-flow exponent [-]; ``edge_a``,
+            ``edge_b``, ``edge_kind``, ``edge_cyl``, ``edge_port``, ``edge_area`` [m2],
+            ``edge_cd`` [-]; ``port_grid`` the PortMaps' angle grids (cylinders, points)
+            [rad], ``port_npts`` their lengths, ``port_area`` their areas (cylinders, 4,
+            points) [m2]; ``heat`` the wall-heat rows (nodes, :data:`HEAT_COLUMNS`);
+            ``wall_T`` :attr:`wall_T` [K].
         """
         from corliss.thermo.steam_table import kappa_at, load_table
         tab = load_table().arrays()
@@ -637,11 +641,14 @@ class Network:
         if self.wall_T is None or self.wall_T.size != self.n_nodes:
             t0 = 0.5 * (self.reservoirs[0].T + self.reservoirs[-1].T)
             self.wall_T = np.full(self.n_nodes, t0)
-        return (np.array([float(self.omega)]), float(self.band), geo, f64(self.phases), i64(self.node_kind),
-                i64(self.node_cyl), i64(self.node_end), f64(self.node_V), res, i64(self.e_a),
-                i64(self.e_b), i64(self.e_kind), i64(self.e_cyl), i64(self.e_port),
-                f64(self.e_area), f64(self.e_cd), grid, npts, area, f64(self.node_heat),
-                self.wall_T)
+        return NetworkArrays(
+            omega=np.array([float(self.omega)]), band=float(self.band), geometry=geo,
+            phase=f64(self.phases), node_kind=i64(self.node_kind), node_cyl=i64(self.node_cyl),
+            node_end=i64(self.node_end), node_V=f64(self.node_V), reservoirs=res,
+            edge_a=i64(self.e_a), edge_b=i64(self.e_b), edge_kind=i64(self.e_kind),
+            edge_cyl=i64(self.e_cyl), edge_port=i64(self.e_port), edge_area=f64(self.e_area),
+            edge_cd=f64(self.e_cd), port_grid=grid, port_npts=npts, port_area=area,
+            heat=f64(self.node_heat), wall_T=self.wall_T)
 
 
 def _band(band: float | None) -> float:
@@ -867,17 +874,11 @@ def with_period_leakage(net: Network, valve_rate_kg_s_Pa: float,
     return net
 
 
-#: Columns of a node's wall-heat row: model code, conductance, conductivity, viscosity,
-#: Prandtl number (codes 1, 2); heat of a cycle, admission, cut-off and compression
-#: angles, and the wall exposed over admission and over cut-off to compression,
-#: integrated in crank angle (code 3, Marks's law); the surface node's capacity and
-#: conductance to the deep wall, its mean area, the index of its state, the jacket's
-#: conductance and temperature, the film's enthalpy and latent heat (code 4, the skin
-#: model, :mod:`corliss.engine.wall`).
-#: The skin model's film: the water's specific enthalpy and the latent heat it takes to
-#: evaporate [J/kg] (columns 11, 12).
-HEAT_COLUMNS = 13
-WALL_MODELS = {"conductance": 1.0, "adair": 2.0, "marks": 3.0, "skin": 4.0}
+#: Columns of a node's wall-heat row (:data:`HEAT_COLUMNS`, named ``H_*`` in
+#: :mod:`corliss.engine.kernels.data`): the model code, then the model's own columns.
+#: The wall models by name, and their codes (``WALL_*`` there).
+WALL_MODELS = {"conductance": WALL_CONDUCTANCE, "adair": WALL_ADAIR, "marks": WALL_MARKS,
+               "skin": WALL_SKIN}
 
 
 def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,

@@ -71,15 +71,15 @@ def start_from_rest(y0: np.ndarray, theta0: float, omega_run: float, net, tier, 
         ``nfev``, and ``samples``: the solver's accepted points (``t``, ``theta``,
         ``y`` columns) for the time series.
     """
-    sc = tr[0]
+    sc = tr.sc
     nn = y0.shape[0] - loop.N_EXTRA
     i_w = nn + loop.X_OMEGA
     floor_saved = sc[loop.S_WMIN]
     w_f = CREEP_FRACTION * omega_run
     sc[loop.S_WMIN] = w_f
     dy = np.empty(y0.shape[0])
-    pr = np.empty((PR_ROWS, net[4].shape[0]))
-    pa = np.empty((net[17].shape[0], 4))
+    pr = np.empty((PR_ROWS, net.node_kind.shape[0]))
+    pa = np.empty((net.port_npts.shape[0], 4))
     out = np.empty(4)
     nfev = 0
 

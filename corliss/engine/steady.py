@@ -175,7 +175,7 @@ def _crank_resolved(scene, model, pm, progress, start=None):
     lay = _layout(net, ends_all, heat, marks)
     for k in range(1, n_max + 1):
         if marks is not None:
-            marks.apply(crank.net[19])
+            marks.apply(crank.net.heat)
         y_start = y.copy()
         wall_start = None if net.wall_T is None else np.array(net.wall_T, dtype=float)
         y, samples = crank.cycle(y, 0.0, out_theta)

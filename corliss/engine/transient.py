@@ -25,6 +25,10 @@ import pandas as pd
 
 from corliss.engine.kernels import dopri5, loop, rosenbrock
 from corliss.engine.kernels.cache import announce_compile
+from corliss.engine.kernels.data import (TRIP_AREA, TRIP_CLOSING, TRIP_GRID, TRIP_RELEASE,
+                                         TRIP_SCALARS, TS_CLOSE_ANGLE, TS_CLOSE_TIME,
+                                         TS_N_CLOSING, TS_N_SETTINGS, TS_OPEN_ANGLE, LoopArrays,
+                                         Physics, Tableau)
 from corliss.engine.kernels.stepping import MAX_RHS_PER_CYCLE
 from corliss.engine.kernels.tableaus import ROS_TABLEAUS
 from corliss.engine.condensation import MarksLaw
@@ -65,8 +69,8 @@ class LoopTables:
 
     Parameters
     ----------
-    tr : tuple
-        The loop's parameter tuple (:mod:`corliss.engine.kernels.loop`):
+    tr : LoopArrays
+        The loop's tables (:class:`corliss.engine.kernels.data.LoopArrays`):
         ``(sc, lt, lf, sgrid, area_s, governed, gov, trip, thr)``: the scalars
         (indices ``S_*``: inertia [kg m2], reciprocating mass [kg], friction [N m],
         [N m s/rad], the governor's constants, the load's law, torque [N m] and
@@ -88,7 +92,7 @@ class LoopTables:
         The governor in its common form.
     """
 
-    tr: tuple
+    tr: LoopArrays
     governed_gear: object | None
     setting_grid: np.ndarray | None
     cutoff_table: CutoffTable | None     # head and crank cut-off over the settings
@@ -182,13 +186,13 @@ def _trip_tables(gear, grid: np.ndarray, nth: int):
     lengths = gear.port_lengths()
     t_close = float(gear.closing_time_s)
     nf = 101
-    rows = np.full((7, max(grid.size, nf)), np.nan)
-    rows[0, :grid.size] = grid
-    rows[5, :nf] = gear.closing_fraction(np.linspace(0.0, t_close, nf))
-    rows[6, :] = 0.0
-    rows[6, 0] = t_close
-    rows[6, 5] = grid.size
-    rows[6, 6] = nf
+    rows = np.full((TRIP_SCALARS + 1, max(grid.size, nf)), np.nan)
+    rows[TRIP_GRID, :grid.size] = grid
+    rows[TRIP_CLOSING, :nf] = gear.closing_fraction(np.linspace(0.0, t_close, nf))
+    rows[TRIP_SCALARS, :] = 0.0
+    rows[TRIP_SCALARS, TS_CLOSE_TIME] = t_close
+    rows[TRIP_SCALARS, TS_N_SETTINGS] = grid.size
+    rows[TRIP_SCALARS, TS_N_CLOSING] = nf
     for e, port in enumerate((0, 2)):
         op = latched[port]
         opened = op > 0.0
@@ -197,14 +201,14 @@ def _trip_tables(gear, grid: np.ndarray, nth: int):
         fall = np.nonzero(opened[:-1] & ~opened[1:])[0]
         if rise.size == 0 or fall.size == 0:
             raise ValueError("a trip gear's latched steam valve must open and close once a turn")
-        rows[6, 3 + e] = theta[rise[0]]
-        rows[6, 1 + e] = theta[fall[0] + 1]
+        rows[TRIP_SCALARS, TS_OPEN_ANGLE + e] = theta[rise[0]]
+        rows[TRIP_SCALARS, TS_CLOSE_ANGLE + e] = theta[fall[0] + 1]
         for j, s in enumerate(grid):
             rel = gear.release_angle_rad(float(s))[e]
-            rows[1 + e, j] = np.nan if rel is None else rel
+            rows[TRIP_RELEASE + e, j] = np.nan if rel is None else rel
             if rel is not None:
                 x = float(np.interp(rel % TWO_PI, theta, op))
-                rows[3 + e, j] = min(max(x, 0.0), widths[port]) * lengths[port]
+                rows[TRIP_AREA + e, j] = min(max(x, 0.0), widths[port]) * lengths[port]
     return rows, latched
 
 
@@ -304,7 +308,7 @@ def build_tables(scene, net, gear, geo) -> LoopTables:
                         for port in (0, 2):
                             area_s[c, port, :, :] = (np.clip(latched[port], 0.0, w[port])
                                                      * ln[port])[None, :]
-    tr = (sc, lt, lf, sgrid, area_s, governed, gov, trip, thr)
+    tr = LoopArrays(sc, lt, lf, sgrid, area_s, governed, gov, trip, thr)
     return LoopTables(tr, governed_gear, sgrid if governed_gear is not None else None, cut,
                       z0, mech)
 
@@ -347,7 +351,7 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
         # temperature as the cut-off temperature; the heat follows the speed turn by
         # turn, but not a governor's moving cut-off (the windows stay the start's)
         marks = MarksLaw(network, geo, model.events, run.speed_rad_s, chest.T, exhaust.T)
-        marks.apply(net[19])
+        marks.apply(net.heat)
     tab = steam.table.arrays() if hasattr(steam, "table") else _any_table()
     perf = (np.array(steam.perfect_params()) if hasattr(steam, "perfect_params") else np.zeros(3))
     nn = network.n_state
@@ -357,7 +361,7 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
     y[nn + loop.X_Z] = tables.z0
     atol = np.concatenate([fid.rtol * network.scales(),
                            fid.rtol * np.array([omega0, 1.0, 1.0, 1.0, 1e3, 1e3, 1e3, 1.0, 1.0])])
-    sc = tables.tr[0]
+    sc = tables.tr.sc
     rtol = fid.rtol
     nfev = 0
     integrate_turn = _turn_integrator(method, network)
@@ -381,7 +385,7 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
                 y[nn + q] = 0.0
             if marks is not None:
                 marks.strokes_per_s = omega / math.pi
-                marks.apply(net[19])
+                marks.apply(net.heat)
             y, _, _, _, nf_, status = integrate_turn(y, 0.0, np.zeros(0), rtol, atol, net,
                                                         steam.kernel_tier, tab, perf, tables.tr,
                                                         False, math.inf)
@@ -425,7 +429,7 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
         y, _ = frozen_turns(y, omega0, tables.z0, run.warmup_cycles)
         start = OperatingPoint(omega0, tables.z0, math.nan, "run_speed", 0)
         if tables.mechanism is not None and run.start == "equilibrium":
-            t_load = abs(sc[loop.S_TREF] * loop.load_factor(0.0, tables.tr[1], tables.tr[2]))
+            t_load = abs(sc[loop.S_TREF] * loop.load_factor(0.0, tables.tr.load_t, tables.tr.load_f))
             tol = 0.25 * SURPLUS_TOL * max(t_load, 1e-9)
 
             def surplus(omega, z):
@@ -503,7 +507,7 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
             rows.append(_cycle_row(k, y_start, y, network, tables, nn))
         if marks is not None:
             marks.strokes_per_s = 2.0 / (rows[-1]["t_end_s"] - rows[-1]["t_start_s"])
-            marks.apply(net[19])
+            marks.apply(net.heat)
         else:
             _update_wall(network, y)
         frame = _frame(network, steam, tables, out_theta, samples, rec, n_rec, record, nn)
@@ -557,8 +561,10 @@ def _turn_integrator(method: str, network) -> Callable:
     color, owner = network.column_colors()
     tableau = ROS_TABLEAUS[method]
 
-    def turn(*args):
-        return rosenbrock.integrate_turn_ros(*args, color, owner, *tableau)
+    def turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, record, t_end):
+        return rosenbrock.integrate_turn_ros(y0, th0, out_theta, rtol, atol,
+                                             Physics(net, tier, tab, perf), tr, record, t_end,
+                                             color, owner, Tableau(*tableau))
     return turn
 
 
@@ -586,7 +592,7 @@ def _start_record(begun: dict, y0: np.ndarray, network, steam, tables: LoopTable
     row = _cycle_row(-1, y0, y, network, tables, nn)
     dt = max(float(t[-1]), 1e-12)
     row["mean_speed_rpm"] = (theta[-1] - theta[0]) / dt * 60.0 / TWO_PI
-    sc = tables.tr[0]
+    sc = tables.tr.sc
     z = np.clip(ys[nn + loop.X_Z], 0.0, 1.0)
     cols = {"cycle": 0, "time_s": t, "crank_angle_deg": np.degrees(theta),
             "speed_rpm": ys[nn + loop.X_OMEGA] * 60.0 / TWO_PI,
@@ -664,7 +670,7 @@ def _frame(network, steam, tables, out_theta, samples, rec, n_rec, record, nn):
     s = samples
     omega = s[nn + loop.X_OMEGA]
     z = np.clip(s[nn + loop.X_Z], 0.0, 1.0)
-    sc = tables.tr[0]
+    sc = tables.tr.sc
     cols = {"time_s": s[nn + loop.X_TIME], "crank_angle_deg": np.degrees(out_theta),
             "speed_rpm": omega * 60.0 / TWO_PI, "governor_z_frac": z,
             "actuator_frac": sc[loop.S_A0] + (sc[loop.S_A1] - sc[loop.S_A0]) * z}

@@ -160,6 +160,7 @@ from __future__ import annotations
 
 import math
 
+from corliss.engine.kernels.data import WALL_SKIN
 from corliss.engine.kernels.walls import (FILM_MAX_KG_M2, FILM_WET_KG_M2, adair_h,
                                           skin_coefficients)
 from corliss.thermo.wall_cycle import CALLENDAR_NICOLSON_W_M2K
@@ -307,7 +308,7 @@ def skin_row(geometry, end: int, omega_rad_s: float, h_c: float, steam_props,
         th = np.linspace(0.0, 2.0 * math.pi, 361)
         barrel = math.pi * geometry.spec.bore_m * float(np.mean(geometry.volumes_m3(th)[end])) / ap
         ga, tj = CAST_IRON_K / wall_thickness_m * barrel, jacket_T_K
-    return (4.0, h_c, k, mu, pr, cap, cond, area, float(state_index), ga, tj)
+    return (WALL_SKIN, h_c, k, mu, pr, cap, cond, area, float(state_index), ga, tj)
 
 
 #: Nodes of the conduction grid under the surface (:class:`ConductionGrid`) [-].

@@ -54,6 +54,7 @@ import time
 import zipfile
 from dataclasses import dataclass
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 from numba import njit
@@ -110,6 +111,37 @@ def covers(rho: float, u: float) -> bool:
     """
     return (PARAMS["rho_min"] <= rho <= PARAMS["rho_max"]
             and PARAMS["u_min"] <= u <= PARAMS["u_max"])
+
+
+class TableArrays(NamedTuple):
+    """The steam table as the compiled lookup reads it, by name (:meth:`SteamTable.arrays`).
+
+    Numba compiles a module-level :class:`typing.NamedTuple` as a tuple and caches the
+    functions taking it; attribute access compiles to the same code as an index.  The
+    fields are :class:`SteamTable`'s, with the same units.
+    """
+
+    lnrho0: float
+    dlnrho: float
+    u0: float
+    du: float
+    q: np.ndarray
+    T: np.ndarray
+    ug_row: np.ndarray
+    Tg_row: np.ndarray
+    sT0: float
+    sdT: float
+    s_lnp: np.ndarray
+    s_vf: np.ndarray
+    s_lnvg: np.ndarray
+    s_uf: np.ndarray
+    s_ug: np.ndarray
+    k_lnrho0: float
+    k_dlnrho: float
+    k_u0: float
+    k_du: float
+    kappa: np.ndarray
+
 
 
 @dataclass(frozen=True)
@@ -195,16 +227,17 @@ class SteamTable:
     error: dict          # measured error against HEOS
 
     def arrays(self):
-        """The tuple the compiled lookup takes.
+        """The arrays the compiled lookup takes, by name.
 
         Returns
         -------
-        tuple
-            The fields in their order above, ``error`` left out (20 items).
+        TableArrays
+            The fields above, ``error`` left out (20 fields).
         """
-        return (self.lnrho0, self.dlnrho, self.u0, self.du, self.q, self.T, self.ug_row,
-                self.Tg_row, self.sT0, self.sdT, self.s_lnp, self.s_vf, self.s_lnvg, self.s_uf,
-                self.s_ug, self.k_lnrho0, self.k_dlnrho, self.k_u0, self.k_du, self.kappa)
+        return TableArrays(self.lnrho0, self.dlnrho, self.u0, self.du, self.q, self.T,
+                           self.ug_row, self.Tg_row, self.sT0, self.sdT, self.s_lnp, self.s_vf,
+                           self.s_lnvg, self.s_uf, self.s_ug, self.k_lnrho0, self.k_dlnrho,
+                           self.k_u0, self.k_du, self.kappa)
 
 
 # --- compiled lookup ------------------------------------------------------------------
@@ -339,10 +372,10 @@ def lookup_near(tab, rho, u, T_near):
     code : int
         0 when the state is inside the table, else the bits of :data:`CLAMP_CODES`.
     """
-    lnrho0, dlnrho, u0, du, q, TT, ug_row, Tg_row = (tab[0], tab[1], tab[2], tab[3], tab[4],
-                                                     tab[5], tab[6], tab[7])
-    sT0, sdT, s_lnp, s_vf, s_lnvg, s_uf, s_ug = (tab[8], tab[9], tab[10], tab[11], tab[12],
-                                                 tab[13], tab[14])
+    lnrho0, dlnrho, u0, du, q, TT, ug_row, Tg_row = (tab.lnrho0, tab.dlnrho, tab.u0, tab.du, tab.q,
+                                                     tab.T, tab.ug_row, tab.Tg_row)
+    sT0, sdT, s_lnp, s_vf, s_lnvg, s_uf, s_ug = (tab.sT0, tab.sdT, tab.s_lnp, tab.s_vf, tab.s_lnvg,
+                                                 tab.s_uf, tab.s_ug)
     nr, nu = q.shape
     code = 0
     if not rho > 0.0:
@@ -479,7 +512,7 @@ def kappa_at(tab, rho, u):
     float
         kappa [-], for :func:`corliss.thermo.orifice.mass_flux`.
     """
-    k_lnrho0, k_dlnrho, k_u0, k_du, kap = tab[15], tab[16], tab[17], tab[18], tab[19]
+    k_lnrho0, k_dlnrho, k_u0, k_du, kap = tab.k_lnrho0, tab.k_dlnrho, tab.k_u0, tab.k_du, tab.kappa
     nr, nu = kap.shape
     fr = (math.log(rho) - k_lnrho0) / k_dlnrho if rho > 0.0 else 0.0
     if not fr > 0.0:
@@ -541,7 +574,7 @@ def pressure_partials(tab, rho, u, p, T, superheated, code):
         dp/du at constant rho [Pa kg/J] (0 in a clamped energy).
     """
     if superheated:
-        lnrho0, dlnrho, u0, du, q = tab[0], tab[1], tab[2], tab[3], tab[4]
+        lnrho0, dlnrho, u0, du, q = tab.lnrho0, tab.dlnrho, tab.u0, tab.du, tab.q
         nr, nu = q.shape
         fr = (math.log(rho) - lnrho0) / dlnrho if rho > 0.0 else 0.0
         fr = min(max(fr, 0.0), nr - 1.0)
@@ -559,8 +592,8 @@ def pressure_partials(tab, rho, u, p, T, superheated, code):
         return p_rho, p_u
     if code != 0:
         return 0.0, 0.0
-    sT0, sdT, s_lnp, s_vf, s_lnvg, s_uf, s_ug = (tab[8], tab[9], tab[10], tab[11], tab[12],
-                                                 tab[13], tab[14])
+    sT0, sdT, s_lnp, s_vf, s_lnvg, s_uf, s_ug = (tab.sT0, tab.sdT, tab.s_lnp, tab.s_vf, tab.s_lnvg,
+                                                 tab.s_uf, tab.s_ug)
     f = max((T - sT0) / sdT, 0.0)
     k = min(int(f), s_lnp.shape[0] - 2)
     w = min(f - k, 1.0)
@@ -599,7 +632,7 @@ def kappa_partials(tab, rho, u):
     k_u : float
         dkappa/du at constant rho [kg/J].
     """
-    k_lnrho0, k_dlnrho, k_u0, k_du, kap = tab[15], tab[16], tab[17], tab[18], tab[19]
+    k_lnrho0, k_dlnrho, k_u0, k_du, kap = tab.k_lnrho0, tab.k_dlnrho, tab.k_u0, tab.k_du, tab.kappa
     nr, nu = kap.shape
     fr = (math.log(rho) - k_lnrho0) / k_dlnrho if rho > 0.0 else 0.0
     in_r = fr > 0.0 and fr < nr - 1.0
@@ -1247,7 +1280,7 @@ def t_sat(tab, p):
     float
         Saturation temperature [K], clamped to the saturation table's range.
     """
-    sT0, sdT, s_lnp = tab[8], tab[9], tab[10]
+    sT0, sdT, s_lnp = tab.sT0, tab.sdT, tab.s_lnp
     lp = math.log(p)
     n = s_lnp.shape[0]
     if lp <= s_lnp[0]:

@@ -15,7 +15,15 @@ import math
 
 from corliss.engine.kernels.compiled import njit
 from corliss.engine.kernels.mechanism import TWO_PI, edge_area, port_areas
-from corliss.engine.kernels.properties import PR_X, node_states
+from corliss.engine.kernels.data import (GEO_AREA_CRANK, GEO_AREA_HEAD, H_CONDUCTANCE, H_K,
+                                         H_MARKS_ADMIT, H_MARKS_COMPRESS, H_MARKS_CUTOFF,
+                                         H_MARKS_Q, H_MARKS_WALL_ADMIT, H_MARKS_WALL_EXPAND,
+                                         H_MODEL, H_MU, H_PRANDTL, H_SKIN_AREA,
+                                         H_SKIN_CAPACITY, H_SKIN_DEEP, H_SKIN_FILM_H,
+                                         H_SKIN_JACKET_G, H_SKIN_JACKET_T, H_SKIN_LATENT,
+                                         H_SKIN_STATE, WALL_CONDUCTANCE, WALL_MARKS, WALL_SKIN)
+from corliss.engine.kernels.properties import (PR_DV, PR_H, PR_KAPPA, PR_P, PR_RHO, PR_T,
+                                               PR_TSAT, PR_V, PR_X, node_states)
 from corliss.engine.kernels.walls import (FILM_MAX_KG_M2, FILM_WET_KG_M2, adair_h,
                                           skin_coefficients)
 from corliss.thermo.leak_law import linear_leak
@@ -44,7 +52,7 @@ def edge_side(x, pr, res):
         Pressure [Pa], density [kg/m3], enthalpy [J/kg] and port-flow exponent [-].
     """
     if x >= 0:
-        return pr[0, x], pr[1, x], pr[2, x], pr[3, x]
+        return pr[PR_P, x], pr[PR_RHO, x], pr[PR_H, x], pr[PR_KAPPA, x]
     r = -1 - x
     return res[r, 0], res[r, 1], res[r, 2], res[r, 3]
 
@@ -75,7 +83,7 @@ def derivatives(th, y, pr, dy, net, pa):
     dy : ndarray
         Written: the derivatives with respect to crank angle (per radian), shape
         (n_state,).
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     pa : ndarray
         Scratch for the port areas [m2], shape (cylinders, 4).
@@ -92,7 +100,7 @@ def balances(th, y, pr, dy, net, areas):
     through its edges from :func:`corliss.thermo.orifice.port_flow` carrying the
     enthalpy of the side they leave), the quadratures of every edge and node, the skin
     model's wall states, and the film swept out (:func:`sweep_films`).  The shaft
-    speed is read from ``net[0][0]`` [rad/s].
+    speed is read from ``net.omega[0]`` [rad/s].
 
     Parameters
     ----------
@@ -112,51 +120,51 @@ def balances(th, y, pr, dy, net, areas):
     dy : ndarray
         Written: the derivatives with respect to crank angle (per radian), shape
         (n_state,).
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     areas : ndarray
         The port areas [m2], shape (cylinders, 4).
     """
-    omega, band, res = net[0][0], net[1], net[8]
-    P, RHO, H = pr[0], pr[1], pr[2]
-    geo, ncyl_, end_, heat, wallT = net[2], net[5], net[6], net[19], net[20]
-    ea, eb, ecd, ekind = net[9], net[10], net[15], net[11]
+    omega, band, res = net.omega[0], net.band, net.reservoirs
+    P, RHO, H = pr[PR_P], pr[PR_RHO], pr[PR_H]
+    geo, ncyl_, end_, heat, wallT = net.geometry, net.node_cyl, net.node_end, net.heat, net.wall_T
+    ea, eb, ecd, ekind = net.edge_a, net.edge_b, net.edge_cd, net.edge_kind
     nv = P.shape[0]
     ne = ea.shape[0]
     ndyn = 2 * nv
     for i in range(dy.shape[0]):
         dy[i] = 0.0
     for i in range(nv):
-        dV = pr[4, i]
+        dV = pr[PR_DV, i]
         q0 = ndyn + 2 * ne + 5 * i
         dy[2 * i + 1] -= P[i] * dV
         dy[q0] = P[i] * dV
-        model = heat[i, 0]
+        model = heat[i, H_MODEL]
         if model > 0.0:
             # wall area: piston face and cover, and the barrel uncovered (with the
             # clearance as its equivalent length): 2 A_p + pi D V / A_p
             c = ncyl_[i]
-            ap = geo[c, 3] if end_[i] == 0 else geo[c, 4]
-            bore = math.sqrt(4.0 * geo[c, 3] / math.pi)
-            V = pr[5, i]
+            ap = geo[c, GEO_AREA_HEAD] if end_[i] == 0 else geo[c, GEO_AREA_CRANK]
+            bore = math.sqrt(4.0 * geo[c, GEO_AREA_HEAD] / math.pi)
+            V = pr[PR_V, i]
             A = 2.0 * ap + math.pi * bore * V / ap
-            Ts = pr[6, i]
-            if model == 4.0:
+            Ts = pr[PR_T, i]
+            if model == WALL_SKIN:
                 # the skin model (corliss.engine.wall): states y[k] = T_w - T_deep and
                 # y[k + 1] = the film's water; the film's flow goes down T_w - T_sat,
                 # the convection's down T_w - T
-                k = int(heat[i, 8])
+                k = int(heat[i, H_SKIN_STATE])
                 Tw = wallT[i] + y[k]
                 mf = y[k + 1]
-                Aw = heat[i, 7]
-                Tsat = pr[7, i]
-                hv = adair_h(RHO[i], omega, V, A, heat[i, 3], heat[i, 2], heat[i, 4])
-                hf, hm = skin_coefficients(Tw, Tsat, heat[i, 1], mf, Aw, pr[PR_X, i])
+                Aw = heat[i, H_SKIN_AREA]
+                Tsat = pr[PR_TSAT, i]
+                hv = adair_h(RHO[i], omega, V, A, heat[i, H_MU], heat[i, H_K], heat[i, H_PRANDTL])
+                hf, hm = skin_coefficients(Tw, Tsat, heat[i, H_CONDUCTANCE], mf, Aw, pr[PR_X, i])
                 qf = hf * (Tw - Tsat) * A            # [W] from the wall into the film
                 qm = hm * (Tw - Tsat) * A            # [W] into the mixture's water
                 qc = hv * (Tw - Ts) * A              # [W] into the steam by convection
                 qv = qm + qc
-                hL, L = heat[i, 11], heat[i, 12]
+                hL, L = heat[i, H_SKIN_FILM_H], heat[i, H_SKIN_LATENT]
                 # evaporated (+, as vapour of h_L + L) or condensed (-, the steam
                 # giving up its own enthalpy, superheat and all, down to the film's
                 # h_L) [kg/s]; water beyond the film the wall holds runs off into
@@ -177,38 +185,40 @@ def balances(th, y, pr, dy, net, areas):
                 # for the deep wall's update (T_deep <- hAT / hA, a Newton step on the
                 # wall's, or with a jacket the wall and jacket's, balance over a cycle)
                 d = (hv + hf + hm) * A / omega
-                ga = heat[i, 9] / omega
+                ga = heat[i, H_SKIN_JACKET_G] / omega
                 dy[q0 + 3] = d + ga
-                dy[q0 + 4] = d * wallT[i] - q + ga * heat[i, 10]
-                dy[k] = (-(qf + qv) + heat[i, 6] * Aw * (wallT[i] - Tw)) / (
-                    heat[i, 5] * Aw * omega)
+                dy[q0 + 4] = d * wallT[i] - q + ga * heat[i, H_SKIN_JACKET_T]
+                dy[k] = (-(qf + qv) + heat[i, H_SKIN_DEEP] * Aw * (wallT[i] - Tw)) / (
+                    heat[i, H_SKIN_CAPACITY] * Aw * omega)
                 dy[k + 2] = (qf + qm) / omega
                 dy[k + 3] = qc / omega
                 continue
-            if model == 3.0:
+            if model == WALL_MARKS:
                 # Marks's law (Art. 75): the heat of eq. 221 leaves the steam during
                 # admission and comes back from cut-off to compression, each spread
                 # over the crank angle in proportion to the wall exposed
-                t = (th + net[3][c]) % TWO_PI
+                t = (th + net.phase[c]) % TWO_PI
                 q = 0.0
-                if (t - heat[i, 6]) % TWO_PI < (heat[i, 7] - heat[i, 6]) % TWO_PI:
-                    q = -heat[i, 5] * A / heat[i, 9]
-                elif (t - heat[i, 7]) % TWO_PI < (heat[i, 8] - heat[i, 7]) % TWO_PI:
-                    q = heat[i, 5] * A / heat[i, 10]
+                if ((t - heat[i, H_MARKS_ADMIT]) % TWO_PI
+                        < (heat[i, H_MARKS_CUTOFF] - heat[i, H_MARKS_ADMIT]) % TWO_PI):
+                    q = -heat[i, H_MARKS_Q] * A / heat[i, H_MARKS_WALL_ADMIT]
+                elif ((t - heat[i, H_MARKS_CUTOFF]) % TWO_PI
+                      < (heat[i, H_MARKS_COMPRESS] - heat[i, H_MARKS_CUTOFF]) % TWO_PI):
+                    q = heat[i, H_MARKS_Q] * A / heat[i, H_MARKS_WALL_EXPAND]
                 dy[2 * i + 1] += q
                 dy[q0 + 1] = q
                 dy[q0 + 2] = -q if q < 0.0 else 0.0
                 continue
-            if model == 1.0:
-                h = heat[i, 1]
+            if model == WALL_CONDUCTANCE:
+                h = heat[i, H_CONDUCTANCE]
                 # a wall hotter than the steam gives its heat to the water film that
                 # the admission condensed on it, which boils at the saturation
-                # temperature of the cylinder's pressure (pr[7]), however superheated
+                # temperature of the cylinder's pressure (pr[PR_TSAT]), however superheated
                 # the thin exhaust steam around it (Marks Art. 74, 3-4)
                 if wallT[i] > Ts:
-                    Ts = pr[7, i]
+                    Ts = pr[PR_TSAT, i]
             else:
-                h = adair_h(RHO[i], omega, V, A, heat[i, 3], heat[i, 2], heat[i, 4])
+                h = adair_h(RHO[i], omega, V, A, heat[i, H_MU], heat[i, H_K], heat[i, H_PRANDTL])
             q = h * A * (wallT[i] - Ts) / omega
             dy[2 * i + 1] += q
             dy[q0 + 1] = q
@@ -269,20 +279,20 @@ def sweep_films(y, pr, dy, net):
     dy : ndarray
         The derivatives with respect to crank angle (per radian), shape (n_state,),
         updated in place.
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     """
-    heat = net[19]
+    heat = net.heat
     for i in range(heat.shape[0]):
-        if heat[i, 0] != 4.0 or not dy[2 * i] < 0.0:
+        if heat[i, H_MODEL] != WALL_SKIN or not dy[2 * i] < 0.0:
             continue
-        k = int(heat[i, 8])
-        extra = y[k + 1] - FILM_WET_KG_M2 * heat[i, 7]
+        k = int(heat[i, H_SKIN_STATE])
+        extra = y[k + 1] - FILM_WET_KG_M2 * heat[i, H_SKIN_AREA]
         m = y[2 * i]
         if extra > 0.0 and m > 0.0:
             sw = extra * (-dy[2 * i]) / m
             dy[2 * i] += sw
-            dy[2 * i + 1] += sw * heat[i, 11]
+            dy[2 * i + 1] += sw * heat[i, H_SKIN_FILM_H]
             dy[k + 1] -= sw
 
 
@@ -304,7 +314,7 @@ def rhs(th, y, dy, net, tier, tab, perf, pr, cell):
     dy : ndarray
         Written: the derivatives with respect to crank angle (per radian), shape
         (n_state,).
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     tier : int
         The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.

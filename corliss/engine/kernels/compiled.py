@@ -34,6 +34,9 @@ _IMPORT = re.compile(r"^[ \t]*(?:from[ \t]+(corliss(?:\.\w+)*)[ \t]+import[ \t]+
                      r"(?:\(([^)]*)\)|([\w \t,]+))|import[ \t]+(corliss(?:\.\w+)*))", re.M)
 #: What marks a module as defining compiled code (its functions may be inlined).
 _COMPILED = re.compile(r"\bnjit\b")
+#: Modules whose constants the kernels compile in without defining compiled code
+#: (the named rows, columns and model codes of the kernels' data): hashed all the same.
+_COMPILED_IN = ("corliss.engine.kernels.data",)
 
 
 def module_file(module: str, root: Path = PACKAGE_ROOT) -> Path | None:
@@ -67,7 +70,8 @@ def _read(module: str, root: Path) -> tuple[frozenset, bool]:
     if path is None:
         return frozenset(), False
     text = path.read_text(encoding="utf-8")
-    return frozenset(_imported(module, text, root)), bool(_COMPILED.search(text))
+    return (frozenset(_imported(module, text, root)),
+            bool(_COMPILED.search(text)) or module in _COMPILED_IN)
 
 
 def _imported(module: str, text: str, root: Path) -> set[str]:
@@ -86,7 +90,8 @@ def inlined_modules(module: str, root: Path = PACKAGE_ROOT) -> list[str]:
     """The modules whose compiled code ``module``'s kernels may call or inline.
 
     ``module`` itself and every module of the package it imports, directly or through
-    another, that defines compiled code (names ``njit``), sorted.
+    another, that defines compiled code (names ``njit``) or constants compiled in
+    (:data:`_COMPILED_IN`), sorted.
 
     Parameters
     ----------

@@ -21,12 +21,12 @@ CYCLE_KERNELS = (_dopri5_steps, cycle_rk4, _ros_steps, _ros_steps, _ros_steps, _
 #: The position of :func:`_ros_steps`'s ``pair`` among its arguments, and the type it
 #: takes by code (True: boolean for the ode23s pair; None for the tableaus): numba
 #: compiles and caches one version for each (:func:`cycle_kernel_uncached`).
-ROS_PAIR_ARG = 23
+ROS_PAIR_ARG = 9
 
 
 #: The position of its ``finite`` (True: the Jacobian by finite differences; None: the
 #: analytic one), also a version each.
-ROS_FINITE_ARG = 24
+ROS_FINITE_ARG = 10
 
 
 def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, tab, perf,
@@ -53,7 +53,7 @@ def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, t
         Absolute tolerances, in each component's unit; shape (n_state,).
     step : float
         The largest step of rk4 [rad].
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     tier : int
         The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.

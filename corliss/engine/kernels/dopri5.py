@@ -15,6 +15,7 @@ from corliss.engine.kernels.clamps import (CL_ACCEPTED, CL_NODE, settle_clamps,
                                            settle_trial, settle_visited, tally_clamps,
                                            visited_clamp_off)
 from corliss.engine.kernels.compiled import njit
+from corliss.engine.kernels.data import Physics, StepControl
 from corliss.engine.kernels.loop import (N_EXTRA, N_REC, S_MAX_RHS, S_WMIN, X_OMEGA, X_Z,
                                          _project, _record, _turn_end, _visited_clamps,
                                          transient_rhs)
@@ -44,7 +45,7 @@ def cycle_dopri5(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, max_rhs
         Relative tolerance [-].
     atol : ndarray
         Absolute tolerances, in each component's unit; shape (n_state,).
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     tier : int
         The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.
@@ -77,22 +78,25 @@ def cycle_dopri5(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, max_rhs
     samples = np.full((n, out_theta.shape[0]), np.nan)
     vec = np.empty((3, n))
     K = np.empty((7, n))
-    pr = np.empty((PR_ROWS, net[4].shape[0]))
-    cell = np.empty((net[17].shape[0], 4))
+    pr = np.empty((PR_ROWS, net.node_kind.shape[0]))
+    cell = np.empty((net.port_npts.shape[0], 4))
     clamps = np.zeros(6)
     clamps[CL_NODE] = -1.0
     tally = np.zeros((2, 4))
-    nfev, ok = _dopri5_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf,
-                             max_rhs, vec, K, pr, cell, clamps, tally)
+    nfev, ok = _dopri5_steps(y, samples, stops, out_theta, StepControl(rtol, atol, max_rhs, 0),
+                             Physics(net, tier, tab, perf), vec, K, pr, cell, clamps, tally)
     return y, samples, nfev, ok, clamps
 
 
 @njit(cache=True, _nrt=False)
-def _dopri5_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, max_rhs,
-                  vec, K, pr, cell, clamps, tally):
+def _dopri5_steps(y, samples, stops, out_theta, ctl, phys, vec, K, pr, cell, clamps, tally):
     """:func:`cycle_dopri5`'s steps, on scratch it allocated (no reference counts).
     ``y`` is advanced to the cycle's end, ``samples`` and ``clamps`` written; returns
-    the evaluations spent and whether the cycle ended well."""
+    the evaluations spent and whether the cycle ended well.  ``ctl``
+    (:class:`~corliss.engine.kernels.data.StepControl`, its ``jac_age`` unused) and
+    ``phys`` (:class:`~corliss.engine.kernels.data.Physics`) are :func:`cycle_dopri5`'s."""
+    rtol, atol, max_rhs = ctl.rtol, ctl.atol, ctl.max_rhs
+    net, tier, tab, perf = phys.net, phys.tier, phys.tab, phys.perf
     f0, ytmp, tmp = vec[0], vec[1], vec[2]
     att, att_end = tally[0], tally[1]
     nfev = 0
@@ -164,7 +168,7 @@ def cycle_rk4(y0, stops, out_theta, step, net, tier, tab, perf, max_rhs):
         Shaft angles [rad] where the state is sampled, increasing.
     step : float
         The largest fixed step [rad].
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     tier : int
         The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.
@@ -201,8 +205,8 @@ def cycle_rk4(y0, stops, out_theta, step, net, tier, tab, perf, max_rhs):
     ynew = np.empty(n)
     ytmp = np.empty(n)
     tmp = np.empty(n)
-    pr = np.empty((PR_ROWS, net[4].shape[0]))
-    cell = np.empty((net[17].shape[0], 4))
+    pr = np.empty((PR_ROWS, net.node_kind.shape[0]))
+    cell = np.empty((net.port_npts.shape[0], 4))
     nfev = 0
     clamps = np.zeros(6)
     clamps[CL_NODE] = -1.0
@@ -279,7 +283,7 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
         Relative tolerance [-].
     atol : ndarray
         Absolute tolerances, in each component's unit, of ``y0``'s shape.
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     tier : int
         The compiled property tier.
@@ -287,7 +291,7 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
         The steam table's arrays.
     perf : ndarray
         The perfect tier's parameters, shape (3,).
-    tr : tuple
+    tr : LoopArrays
         The loop's tables (:attr:`corliss.engine.transient.LoopTables.tr`): scalars
         ``sc`` (indices ``S_*``; the clamp counts
         written), load times [s] and fractions [-], setting grid [-],
@@ -333,10 +337,10 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
     K = np.empty((7, n))
     ytmp = np.empty(n)
     tmp = np.empty(n)
-    pr = np.empty((PR_ROWS, net[4].shape[0]))
-    pa = np.empty((net[17].shape[0], 4))
+    pr = np.empty((PR_ROWS, net.node_kind.shape[0]))
+    pa = np.empty((net.port_npts.shape[0], 4))
     out = np.empty(4)
-    sc = tr[0]
+    sc = tr.sc
     clamps = np.zeros(6)
     att = np.zeros(4)
     att_end = np.zeros(4)

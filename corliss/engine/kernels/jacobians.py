@@ -15,8 +15,10 @@ from corliss.engine.kernels.compiled import njit
 from corliss.engine.kernels.loop import N_EXTRA, X_OMEGA, X_Z, X_ZDOT, transient_rhs
 from corliss.engine.kernels.mechanism import (_port_area_slopes, _volume_curvature,
                                               edge_area, node_volume, port_areas)
-from corliss.engine.kernels.properties import (PR_AT, PR_CLAMP, PR_SUP, TIER_PERFECT,
-                                               admissible_flagged)
+from corliss.engine.kernels.data import H_MODEL, WALL_MARKS, WALL_NONE
+from corliss.engine.kernels.properties import (PERF_CV, PERF_R, PERF_U_REF, PR_AT, PR_CLAMP,
+                                               PR_DV, PR_H, PR_KAPPA, PR_P, PR_RHO, PR_SUP, PR_T,
+                                               PR_V, TIER_PERFECT, admissible_flagged)
 from corliss.engine.kernels.stepping import copy_into
 from corliss.thermo.leak_law import linear_leak
 from corliss.thermo.orifice import port_flow_partials
@@ -28,9 +30,9 @@ def _exact_jacobian_holds(net):
     """Whether :func:`_jacobian_exact` covers the network's right-hand side: no wall
     heat that depends on the state (none, or Marks's schedule); the film and wall
     temperature models are differentiated by finite differences."""
-    heat = net[19]
+    heat = net.heat
     for i in range(heat.shape[0]):
-        if heat[i, 0] != 0.0 and heat[i, 0] != 3.0:
+        if heat[i, H_MODEL] != WALL_NONE and heat[i, H_MODEL] != WALL_MARKS:
             return False
     return True
 
@@ -43,7 +45,7 @@ def exact_jacobian_covers(net) -> bool:
 
     Parameters
     ----------
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
 
     Returns
@@ -82,7 +84,7 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
     (:func:`corliss.thermo.steam_table.pressure_partials`: the same numbers, without
     the lookup's iteration, about a third of this function's time).
     """
-    nv = net[4].shape[0]
+    nv = net.node_kind.shape[0]
     n = y.shape[0]
     ndyn = 2 * nv
     for i in range(n):
@@ -93,11 +95,11 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
         known = (pr[PR_CLAMP, i] == 0.0 and pr[PR_AT, i] == t
                  and pr[PR_AT + 1, i] == y[2 * i] and pr[PR_AT + 2, i] == y[2 * i + 1])
         if known:
-            V, dV = pr[5, i], pr[4, i]
+            V, dV = pr[PR_V, i], pr[PR_DV, i]
         else:
             V, dV = node_volume(t, net, i)
-            pr[4, i] = dV
-            pr[5, i] = V
+            pr[PR_DV, i] = dV
+            pr[PR_V, i] = V
         m = y[2 * i]
         if m > 0.0:
             u = y[2 * i + 1] / m
@@ -117,7 +119,7 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
             u_m = 0.0
             u_e = 0.0
         if tier == TIER_PERFECT:
-            R, cv, u_ref = perf[0], perf[1], perf[2]
+            R, cv, u_ref = perf[PERF_R], perf[PERF_CV], perf[PERF_U_REF]
             Tk = (u - u_ref) / cv
             if Tk < 1.0:
                 Tk = 1.0
@@ -128,19 +130,19 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
             k, k_r, k_u = 1.0 + R / cv, 0.0, 0.0
         else:
             if known:
-                p, Tk, sup, c2 = pr[0, i], pr[6, i], pr[PR_SUP, i] != 0.0, 0
+                p, Tk, sup, c2 = pr[PR_P, i], pr[PR_T, i], pr[PR_SUP, i] != 0.0, 0
             else:
-                p, Tk, x, sup, c2 = lookup_near(tab, rho, u, pr[6, i])
+                p, Tk, x, sup, c2 = lookup_near(tab, rho, u, pr[PR_T, i])
             # (the lookup skipped for a known node: one copy of the partials' code,
             # which numba inlines)
             p_r, p_u = pressure_partials(tab, rho, u, p, Tk, sup, c2)
             k, k_r, k_u = kappa_partials(tab, rho, u)
         h_r = p_r / rho - p / (rho * rho)
         h_u = 1.0 + p_u / rho
-        pr[0, i] = p
-        pr[1, i] = rho
-        pr[2, i] = u + p / rho
-        pr[3, i] = k
+        pr[PR_P, i] = p
+        pr[PR_RHO, i] = rho
+        pr[PR_H, i] = u + p / rho
+        pr[PR_KAPPA, i] = k
         # rows: d(p, rho, h, kappa) / d(m, E), then / dtheta
         jd[0, i] = p_r * r_m + p_u * u_m
         jd[1, i] = p_u * u_e
@@ -154,15 +156,15 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
         jd[9, i] = r_t
         jd[10, i] = h_r * r_t
         jd[11, i] = k_r * r_t
-        q0 = ndyn + 2 * net[9].shape[0] + 5 * i
+        q0 = ndyn + 2 * net.edge_a.shape[0] + 5 * i
         for v in range(2):
             J[2 * i + 1, 2 * i + v] = -jd[v, i] * dV
             J[q0, 2 * i + v] = jd[v, i] * dV
         w_t = jd[8, i] * dV + p * _volume_curvature(t, net, i)
         T[2 * i + 1] = -w_t
         T[q0] = w_t
-    omega, band, res = net[0][0], net[1], net[8]
-    ea, eb, ecd, ekind, ecyl, eport = net[9], net[10], net[15], net[11], net[12], net[13]
+    omega, band, res = net.omega[0], net.band, net.reservoirs
+    ea, eb, ecd, ekind, ecyl, eport = net.edge_a, net.edge_b, net.edge_cd, net.edge_kind, net.edge_cyl, net.edge_port
     port_areas(t, net, cell)
     _port_area_slopes(t, net, slope)
     for e in range(ea.shape[0]):
@@ -233,8 +235,7 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
 
 
 @njit(cache=True, _nrt=False, no_cpython_wrapper=True)
-def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, cell, att,
-              yp, fp, dl, jd, slope):
+def _jacobian(t, y, f0, J, T, yscale, color, owner, phys, scratch):
     """Jacobian of the dynamic columns, and the time derivative, for both Rosenbrock
     integrators.
 
@@ -244,8 +245,14 @@ def _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab, perf, pr, ce
     and the time derivative a forward difference, one more.  Clamped evaluations go
     into the step's tally ``att``; ``yp``, ``fp`` (length of the state), ``dl`` (of
     the dynamic states), ``jd`` (shape (12, nodes)) and ``slope`` (shape (cylinders,
-    4)) are scratch.  Returns the evaluations of :func:`rhs` spent.
+    4)) are scratch, the fields of ``scratch``
+    (:class:`~corliss.engine.kernels.data.StepScratch`); ``phys`` is
+    :class:`~corliss.engine.kernels.data.Physics`.  Returns the evaluations of
+    :func:`rhs` spent.
     """
+    net, tier, tab, perf = phys.net, phys.tier, phys.tab, phys.perf
+    pr, cell, att, yp, fp = scratch.pr, scratch.cell, scratch.att, scratch.yp, scratch.fp
+    dl, jd, slope = scratch.dl, scratch.jd, scratch.slope
     if _exact_jacobian_holds(net):
         _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope)
         return 0
@@ -349,8 +356,7 @@ LOOP_COLUMNS = np.array([X_OMEGA, X_Z, X_ZDOT])
 
 
 @njit(cache=True, inline="always")
-def _loop_jacobian(t, y, f0, tq0, J, T, yscale, color, owner, net, tier, tab, perf, pr, pa,
-                   tr, out, att, yp, fp, dl, dtq):
+def _loop_jacobian(t, y, f0, tq0, J, T, yscale, color, owner, phys, tr, scratch):
     """Finite-difference Jacobian of the loop, and its derivative in crank angle.
 
     Columns: the network's dynamic states (``ndyn``), then speed, governor coordinate
@@ -364,9 +370,15 @@ def _loop_jacobian(t, y, f0, tq0, J, T, yscale, color, owner, net, tier, tab, pe
     three columns are perturbed one at a time.  Without them the method lost its
     order: the flywheel's energy and the work integrals parted by 1e-5 of the change
     even at rtol 1e-7 (tests/test_speed_loop.py).  Clamped evaluations go into
-    ``att``; ``yp``, ``fp`` and ``dl`` (of ``J``'s columns) are scratch.  Returns the
-    evaluations spent.
+    ``att``; ``yp``, ``fp`` and ``dl`` (of ``J``'s columns) are scratch.  ``phys``
+    (:class:`~corliss.engine.kernels.data.Physics`) is the network and the steam's
+    properties, ``tr`` the loop's tables, ``scratch``
+    (:class:`~corliss.engine.kernels.data.LoopScratch`) ``pr``, ``pa``, ``out``,
+    ``att``, ``yp``, ``fp``, ``dl`` and ``dtq``.  Returns the evaluations spent.
     """
+    net, tier, tab, perf = phys.net, phys.tier, phys.tab, phys.perf
+    pr, pa, out, att = scratch.pr, scratch.pa, scratch.out, scratch.att
+    yp, fp, dl, dtq = scratch.yp, scratch.fp, scratch.dl, scratch.dtq
     n = y.shape[0]
     nn = n - N_EXTRA
     ndyn = color.shape[0]
@@ -391,7 +403,7 @@ def _loop_jacobian(t, y, f0, tq0, J, T, yscale, color, owner, net, tier, tab, pe
                 J[i, j] = (fp[i] - f0[i]) / dl[j]
         total = 0.0
         for i in range(nv):
-            dtq[i] = pr[0, i] * pr[4, i] - tq0[i]
+            dtq[i] = pr[PR_P, i] * pr[PR_DV, i] - tq0[i]
             total += dtq[i]
         if total != 0.0:
             for j in range(ndyn):

@@ -58,7 +58,10 @@ from corliss.engine.kernels.clamps import (CL_ACCEPTED, CL_ACCEPTED_CODE, CL_REJ
 from corliss.engine.kernels.compiled import njit
 from corliss.engine.kernels.governor import governor_motion
 from corliss.engine.kernels.mechanism import TWO_PI, piston_kinematics, port_areas
-from corliss.engine.kernels.properties import node_states
+from corliss.engine.kernels.data import (TRIP_AREA, TRIP_CLOSING, TRIP_GRID, TRIP_RELEASE,
+                                         TRIP_SCALARS, TS_CLOSE_ANGLE, TS_CLOSE_TIME,
+                                         TS_N_CLOSING, TS_N_SETTINGS, TS_OPEN_ANGLE)
+from corliss.engine.kernels.properties import PR_DV, PR_P, node_states
 from corliss.engine.kernels.stepping import put_column
 from corliss.errors import RunError
 
@@ -198,9 +201,9 @@ def governed_areas(th, s, omega, net, tr, pa):
         The gear's setting [-] (the governor's actuator value).
     omega : float
         Shaft speed [rad/s] (the dash-pot closes in time, not angle).
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
-    tr : tuple
+    tr : LoopArrays
         The loop's tables (:attr:`corliss.engine.transient.LoopTables.tr`): scalars
         ``sc`` (indices ``S_*``), load times [s] and fractions [-], setting grid [-],
         port areas over (setting, crank angle) [m2], governed cylinders, governor
@@ -209,8 +212,8 @@ def governed_areas(th, s, omega, net, tr, pa):
         The port areas [m2], shape (cylinders, 4), overwritten for the governed
         cylinders.
     """
-    sc, sgrid, area_s, governed = tr[0], tr[3], tr[4], tr[5]
-    phase = net[3]
+    sc, sgrid, area_s, governed = tr.sc, tr.setting_grid, tr.area_s, tr.governed
+    phase = net.phase
     ns = sgrid.shape[0]
     nth = area_s.shape[3] - 1
     j, ws = uniform_cell(s, sgrid[0], sgrid[ns - 1], ns)
@@ -248,7 +251,7 @@ def trip_areas(t, s, omega, tr, c, pa):
         The gear's setting [-].
     omega : float
         Shaft speed [rad/s].
-    tr : tuple
+    tr : LoopArrays
         The loop's tables (:attr:`corliss.engine.transient.LoopTables.tr`): scalars
         ``sc`` (indices ``S_*``), load times [s] and fractions [-], setting grid [-],
         port areas over (setting, crank angle) [m2], governed cylinders, governor
@@ -258,27 +261,23 @@ def trip_areas(t, s, omega, tr, c, pa):
     pa : ndarray
         The port areas [m2], shape (cylinders, 4), the steam ports' reduced in place.
     """
-    trip = tr[7]
-    # trip rows: 0 setting grid, 1/2 head/crank release angle per setting (nan: none),
-    # 3/4 head/crank latched opening area at release, 5 closing-fraction table over
-    # time (uniform from 0 to the closing time), scalars in row 6: closing time,
-    # head/crank latched closing angle, head/crank latched opening angle, the number
-    # of settings, the number of points of the closing table
-    sg = trip[0]
-    n = int(trip[6, 5])
-    nf = int(trip[6, 6])
-    tclose = trip[6, 0]
+    trip = tr.trip
+    # trip rows TRIP_*, its scalars' columns TS_* (kernels.data)
+    sg = trip[TRIP_GRID]
+    n = int(trip[TRIP_SCALARS, TS_N_SETTINGS])
+    nf = int(trip[TRIP_SCALARS, TS_N_CLOSING])
+    tclose = trip[TRIP_SCALARS, TS_CLOSE_TIME]
     for e in range(2):
         port = 2 * e
         k, w = uniform_cell(s, sg[0], sg[n - 1], n)
         k1 = k + 1 if n > 1 else k
-        r0 = trip[1 + e, k]
-        r1 = trip[1 + e, k1]
+        r0 = trip[TRIP_RELEASE + e, k]
+        r1 = trip[TRIP_RELEASE + e, k1]
         if math.isnan(r0) or math.isnan(r1):
             continue
         rel = r0 * (1.0 - w) + r1 * w
-        open_ang = trip[6, 3 + e]
-        close_ang = trip[6, 1 + e]
+        open_ang = trip[TRIP_SCALARS, TS_OPEN_ANGLE + e]
+        close_ang = trip[TRIP_SCALARS, TS_CLOSE_ANGLE + e]
         # angles measured from the latched opening, so the window does not wrap
         since_open = (t - open_ang) % TWO_PI
         rel_from_open = (rel - open_ang) % TWO_PI
@@ -287,9 +286,9 @@ def trip_areas(t, s, omega, tr, c, pa):
             continue
         if since_open < rel_from_open or since_open > window:
             continue
-        a_rel = trip[3 + e, k] * (1.0 - w) + trip[3 + e, k1] * w
+        a_rel = trip[TRIP_AREA + e, k] * (1.0 - w) + trip[TRIP_AREA + e, k1] * w
         tau = (since_open - rel_from_open) / omega
-        frac = _lin(0.0, tclose / (nf - 1), trip[5, :nf], tau) if tau < tclose else 0.0
+        frac = _lin(0.0, tclose / (nf - 1), trip[TRIP_CLOSING, :nf], tau) if tau < tclose else 0.0
         lim = a_rel * frac
         if pa[c, port] > lim:
             pa[c, port] = lim
@@ -299,7 +298,7 @@ def trip_areas(t, s, omega, tr, c, pa):
 def transient_rhs(th, y, dy, net, tier, tab, perf, pr, pa, tr, out):
     """Derivatives with respect to crank angle of the whole loop.
 
-    The network's balances at the state's speed (written into ``net[0][0]``), the
+    The network's balances at the state's speed (written into ``net.omega[0]``), the
     governor's actuator applied to the throttle's area or the gear's ports, the shaft
     and the governor as in the module's docstring, and the work quadratures.
 
@@ -314,7 +313,7 @@ def transient_rhs(th, y, dy, net, tier, tab, perf, pr, pa, tr, out):
         [s]).
     dy : ndarray
         Written: the derivatives per radian, of ``y``'s shape.
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     tier : int
         The compiled property tier (:data:`corliss.engine.kernels.properties.TIER_TABLE` or
@@ -329,7 +328,7 @@ def transient_rhs(th, y, dy, net, tier, tab, perf, pr, pa, tr, out):
         :func:`corliss.engine.kernels.properties.node_states`), shape (PR_ROWS, nodes).
     pa : ndarray
         Scratch for the port areas [m2], shape (cylinders, 4).
-    tr : tuple
+    tr : LoopArrays
         The loop's tables (:attr:`corliss.engine.transient.LoopTables.tr`): scalars
         ``sc`` (indices ``S_*``), load times [s] and fractions [-], setting grid [-],
         port areas over (setting, crank angle) [m2], governed cylinders, governor
@@ -338,8 +337,8 @@ def transient_rhs(th, y, dy, net, tier, tab, perf, pr, pa, tr, out):
         Written, for recording: indicated torque ``T_gas`` [N m], load torque [N m],
         actuator value [-] and ``domega/dt`` [rad/s2]; shape (4,).
     """
-    sc, lt, lf, gov = tr[0], tr[1], tr[2], tr[6]
-    nv = net[4].shape[0]
+    sc, lt, lf, gov = tr.sc, tr.load_t, tr.load_f, tr.gov
+    nv = net.node_kind.shape[0]
     nn = y.shape[0] - N_EXTRA
     omega = y[nn + X_OMEGA]
     if omega < sc[S_WMIN]:
@@ -350,7 +349,7 @@ def transient_rhs(th, y, dy, net, tier, tab, perf, pr, pa, tr, out):
     act = sc[S_A0] + (sc[S_A1] - sc[S_A0]) * zc
     if zc < sc[S_SAFE_Z]:      # the safety cams (a Corliss governor fallen below its range)
         act = sc[S_SAFE_A]
-    net[0][0] = omega
+    net.omega[0] = omega
     node_states(th, y, net, tier, tab, perf, pr)
     port_areas(th, net, pa)
     if sc[S_HAS_GOV] > 0.0:
@@ -358,17 +357,17 @@ def transient_rhs(th, y, dy, net, tier, tab, perf, pr, pa, tr, out):
             governed_areas(th, act, omega, net, tr, pa)
         else:
             e = int(sc[S_THR_EDGE])
-            net[14][e] = _lin(0.0, 1.0 / (tr[8].shape[0] - 1), tr[8], act)
+            net.edge_area[e] = _lin(0.0, 1.0 / (tr.throttle.shape[0] - 1), tr.throttle, act)
     balances(th, y, pr, dy, net, pa)
     # shaft
     tgas = 0.0
     for i in range(nv):
-        tgas += pr[0, i] * pr[4, i]
+        tgas += pr[PR_P, i] * pr[PR_DV, i]
     ie = sc[S_INERTIA]
     die = 0.0
     mrec = sc[S_MREC]
     if mrec > 0.0:
-        for c in range(net[2].shape[0]):
+        for c in range(net.geometry.shape[0]):
             ds, d2s = piston_kinematics(th, net, c)
             ie += mrec * ds * ds
             die += 2.0 * mrec * ds * d2s
@@ -498,4 +497,4 @@ def _node_torques(pr, tq):
     """Each node's share of the indicated torque, p dV/dtheta [N m], of the latest
     evaluation (as :func:`transient_rhs` sums it)."""
     for i in range(tq.shape[0]):
-        tq[i] = pr[0, i] * pr[4, i]
+        tq[i] = pr[PR_P, i] * pr[PR_DV, i]

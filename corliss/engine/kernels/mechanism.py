@@ -10,6 +10,9 @@ import math
 import numpy as np
 
 from corliss.engine.kernels.compiled import njit
+from corliss.engine.kernels.data import (GEO_ANGULARITY, GEO_AREA_CRANK, GEO_AREA_HEAD,
+                                         GEO_CLEAR_CRANK, GEO_CLEAR_HEAD, GEO_CRANK, GEO_ROD,
+                                         GEO_STROKE)
 
 
 TWO_PI = 2.0 * math.pi
@@ -69,7 +72,7 @@ def piston_position(th, net, c):
     ----------
     th : float
         Shaft crank angle [rad].
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     c : int
         The cylinder.
@@ -81,9 +84,10 @@ def piston_position(th, net, c):
     ds : float
         ds/dtheta [m/rad].
     """
-    geo, phase = net[2], net[3]
+    geo, phase = net.geometry, net.phase
     a = th + phase[c]
-    s, ds, _ = slider_crank(geo[c, 0], geo[c, 1], math.sin(a), math.cos(a), geo[c, 7] > 0.0)
+    s, ds, _ = slider_crank(geo[c, GEO_CRANK], geo[c, GEO_ROD], math.sin(a), math.cos(a),
+                            geo[c, GEO_ANGULARITY] > 0.0)
     return s, ds
 
 
@@ -97,7 +101,7 @@ def piston_kinematics(th, net, c):
     ----------
     th : float
         Shaft crank angle [rad].
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     c : int
         The cylinder.
@@ -109,9 +113,10 @@ def piston_kinematics(th, net, c):
     d2s : float
         ``d2s/dtheta2`` [m/rad2].
     """
-    geo, phase = net[2], net[3]
+    geo, phase = net.geometry, net.phase
     a = th + phase[c]
-    _, ds, d2s = slider_crank(geo[c, 0], geo[c, 1], math.sin(a), math.cos(a), geo[c, 7] > 0.0)
+    _, ds, d2s = slider_crank(geo[c, GEO_CRANK], geo[c, GEO_ROD], math.sin(a), math.cos(a),
+                            geo[c, GEO_ANGULARITY] > 0.0)
     return ds, d2s
 
 
@@ -121,7 +126,7 @@ def end_volume(net, c, end, s, ds):
 
     Parameters
     ----------
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     c : int
         The cylinder.
@@ -139,10 +144,11 @@ def end_volume(net, c, end, s, ds):
     dV : float
         dV/dtheta [m3/rad].
     """
-    geo = net[2]
+    geo = net.geometry
     if end == 0:
-        return geo[c, 5] + geo[c, 3] * s, geo[c, 3] * ds
-    return geo[c, 6] + geo[c, 4] * (geo[c, 2] - s), -geo[c, 4] * ds
+        return geo[c, GEO_CLEAR_HEAD] + geo[c, GEO_AREA_HEAD] * s, geo[c, GEO_AREA_HEAD] * ds
+    return (geo[c, GEO_CLEAR_CRANK] + geo[c, GEO_AREA_CRANK] * (geo[c, GEO_STROKE] - s),
+            -geo[c, GEO_AREA_CRANK] * ds)
 
 
 @njit(cache=True, inline="always")
@@ -157,7 +163,7 @@ def node_volume(th, net, i):
     ----------
     th : float
         Shaft crank angle [rad].
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     i : int
         The node.
@@ -169,7 +175,7 @@ def node_volume(th, net, i):
     dV : float
         dV/dtheta [m3/rad].
     """
-    kind, cyl, end, fixedV = net[4], net[5], net[6], net[7]
+    kind, cyl, end, fixedV = net.node_kind, net.node_cyl, net.node_end, net.node_V
     if kind[i] == 1:
         return fixedV[i], 0.0
     s, ds = piston_position(th, net, cyl[i])
@@ -186,13 +192,13 @@ def port_areas(th, net, pa):
     ----------
     th : float
         Shaft crank angle [rad].
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     pa : ndarray
         Written: the areas [m2], shape (cylinders, 4), ports in PortMap order (head
         steam, head exhaust, crank steam, crank exhaust).
     """
-    phase, grid, npts, area = net[3], net[16], net[17], net[18]
+    phase, grid, npts, area = net.phase, net.port_grid, net.port_npts, net.port_area
     for c in range(npts.shape[0]):
         n = npts[c]
         t = (th + phase[c]) % TWO_PI
@@ -214,7 +220,7 @@ def edge_area(net, e, pa):
 
     Parameters
     ----------
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     e : int
         The edge.
@@ -226,7 +232,7 @@ def edge_area(net, e, pa):
     float
         The area [m2] (a linear leak's rate [kg/(s Pa)]).
     """
-    ekind, ecyl, eport, earea = net[11], net[12], net[13], net[14]
+    ekind, ecyl, eport, earea = net.edge_kind, net.edge_cyl, net.edge_port, net.edge_area
     if ekind[e] >= 1:
         return earea[e]
     return pa[ecyl[e], eport[e]]
@@ -236,7 +242,7 @@ def edge_area(net, e, pa):
 def _port_area_slopes(th, net, out):
     """d(area)/dtheta [m2/rad] of every port, shape (cylinders, 4), on the cell of the
     PortMap table that lies ahead of ``th`` (the side a forward step takes at a kink)."""
-    phase, grid, npts, area = net[3], net[16], net[17], net[18]
+    phase, grid, npts, area = net.phase, net.port_grid, net.port_npts, net.port_area
     for c in range(npts.shape[0]):
         n = npts[c]
         t = (th + phase[c]) % TWO_PI
@@ -254,11 +260,11 @@ def _port_area_slopes(th, net, out):
 def _volume_curvature(th, net, i):
     """d2V/dtheta2 of a node [m3/rad2]: the slider crank of :func:`node_volume`
     differentiated once more (:func:`piston_kinematics`; 0 for a vessel)."""
-    geo, kind, cyl, end = net[2], net[4], net[5], net[6]
+    geo, kind, cyl, end = net.geometry, net.node_kind, net.node_cyl, net.node_end
     if kind[i] == 1:
         return 0.0
     c = cyl[i]
     d2s = piston_kinematics(th, net, c)[1]
     if end[i] == 0:
-        return geo[c, 3] * d2s
-    return -geo[c, 4] * d2s
+        return geo[c, GEO_AREA_HEAD] * d2s
+    return -geo[c, GEO_AREA_CRANK] * d2s

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 
 from corliss.engine.kernels.compiled import njit
+from corliss.engine.kernels.data import H_MODEL, WALL_NONE
 from corliss.engine.kernels.mechanism import end_volume, piston_position
 from corliss.thermo.steam_table import PARAMS, kappa_at, lookup_near, t_sat
 
@@ -39,6 +40,17 @@ U_MAX = PARAMS["u_max"]         # [J/kg], superheated steam beyond 1273 K
 
 #: Rows of the node-property scratch ``pr`` (see :func:`node_states`).
 PR_ROWS = 14
+
+
+#: rows of the node properties: pressure [Pa], density [kg/m3], specific enthalpy
+#: [J/kg], the port flow's exponent [-], the volume's rate dV/dtheta [m3/rad], the
+#: volume [m3], the temperature [K] and the saturation temperature at the pressure [K]
+PR_P, PR_RHO, PR_H, PR_KAPPA, PR_DV, PR_V, PR_T, PR_TSAT = 0, 1, 2, 3, 4, 5, 6, 7
+
+
+#: entries of the perfect tier's parameters ``perf``: gas constant [J/(kg K)], cv
+#: [J/(kg K)] and the energy at 0 K [J/kg]
+PERF_R, PERF_CV, PERF_U_REF = 0, 1, 2
 
 
 #: row of the node properties holding each node's clamp code of the latest evaluation
@@ -158,7 +170,7 @@ def props(tier, tab, perf, rho, u, T_near):
     """
     rho, u, code = admissible_flagged(rho, u)
     if tier == TIER_PERFECT:
-        R, cv, u_ref = perf[0], perf[1], perf[2]
+        R, cv, u_ref = perf[PERF_R], perf[PERF_CV], perf[PERF_U_REF]
         T = (u - u_ref) / cv
         if T < 1.0:
             T = 1.0
@@ -186,7 +198,7 @@ def node_states(th, y, net, tier, tab, perf, pr):
         The state, shape (n_state,), laid out as
         :class:`~corliss.engine.network.Network` says (masses [kg] and internal
         energies [J] of the nodes first).
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     tier : int
         The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.
@@ -203,12 +215,12 @@ def node_states(th, y, net, tier, tab, perf, pr):
         (:data:`PR_X`), whether superheated (:data:`PR_SUP`) and the state
         they are of (:data:`PR_AT`).
     """
-    nv = net[4].shape[0]
+    nv = net.node_kind.shape[0]
     if tier == TIER_PERFECT:
-        res = net[8]
+        res = net.reservoirs
         for r in range(res.shape[0]):
-            res[r, 3] = 1.0 + perf[0] / perf[1]
-    kind, cyl, end, fixedV = net[4], net[5], net[6], net[7]
+            res[r, 3] = 1.0 + perf[PERF_R] / perf[PERF_CV]
+    kind, cyl, end, fixedV = net.node_kind, net.node_cyl, net.node_end, net.node_V
     # the piston's travel once per cylinder, not once per end: the nodes of a
     # cylinder's two ends are adjacent (it is computed again for one that is not)
     last = -1
@@ -223,20 +235,21 @@ def node_states(th, y, net, tier, tab, perf, pr):
                 s, ds = piston_position(th, net, c)
                 last = c
             V, dV = end_volume(net, c, end[i], s, ds)
-        pr[4, i] = dV
-        pr[5, i] = V
+        pr[PR_DV, i] = dV
+        pr[PR_V, i] = V
         m = y[2 * i]
         u = y[2 * i + 1] / m if m > 0.0 else 2.6e6
         # the node's temperature at the evaluation before (the scratch's; anything
         # outside the wet bracket, garbage or NaN included, is ignored) starts the
         # table's wet iteration near its answer
-        p, T, x, sup, code = props(tier, tab, perf, m / V, u, pr[6, i])
+        p, T, x, sup, code = props(tier, tab, perf, m / V, u, pr[PR_T, i])
         rho, u = admissible(m / V, u)
-        pr[0, i] = p
-        pr[1, i] = rho
-        pr[2, i] = u + p / rho
-        pr[3, i] = 1.0 + perf[0] / perf[1] if tier == TIER_PERFECT else kappa_at(tab, rho, u)
-        pr[6, i] = T
+        pr[PR_P, i] = p
+        pr[PR_RHO, i] = rho
+        pr[PR_H, i] = u + p / rho
+        pr[PR_KAPPA, i] = (1.0 + perf[PERF_R] / perf[PERF_CV] if tier == TIER_PERFECT
+                           else kappa_at(tab, rho, u))
+        pr[PR_T, i] = T
         pr[PR_CLAMP, i] = code
         pr[PR_X, i] = 1.0 if sup else x
         pr[PR_SUP, i] = 1.0 if sup else 0.0
@@ -244,5 +257,5 @@ def node_states(th, y, net, tier, tab, perf, pr):
         pr[PR_AT + 1, i] = m
         pr[PR_AT + 2, i] = y[2 * i + 1]
         # the temperature of a wetted wall at this pressure, for the wall-heat effect only
-        if net[19][i, 0] > 0.0:
-            pr[7, i] = t_sat(tab, p) if (sup and tier != TIER_PERFECT) else T
+        if net.heat[i, H_MODEL] > WALL_NONE:
+            pr[PR_TSAT, i] = t_sat(tab, p) if (sup and tier != TIER_PERFECT) else T

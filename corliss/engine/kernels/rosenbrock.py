@@ -15,6 +15,8 @@ from corliss.engine.kernels.clamps import (CL_ACCEPTED, CL_NODE, settle_clamps,
                                            settle_trial, settle_visited, tally_clamps,
                                            visited_clamp_off)
 from corliss.engine.kernels.compiled import njit
+from corliss.engine.kernels.data import (LoopScratch, Physics, RosScratch, StepControl,
+                                         StepScratch, Tableau)
 from corliss.engine.kernels.jacobians import (LOOP_COLUMNS, _exact_jacobian_holds,
                                               _jacobian, _jacobian_exact, _loop_jacobian,
                                               _loop_w_inverse, _loop_w_solve, _w_inverse,
@@ -68,7 +70,7 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
         Relative tolerance [-].
     atol : ndarray
         Absolute tolerances, in each component's unit; shape (n_state,).
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     tier : int
         The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.
@@ -137,31 +139,42 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
     J = np.zeros((n, ndyn))
     mats = np.empty((2, ndyn, ndyn))
     dl = np.empty(ndyn)
-    pr = np.empty((PR_ROWS, net[4].shape[0]))
-    jd = np.empty((max(12, PR_ROWS), net[4].shape[0]))   # also holds pr's rows (starting_step)
-    cyl = np.empty((2, net[17].shape[0], 4))
+    pr = np.empty((PR_ROWS, net.node_kind.shape[0]))
+    jd = np.empty((max(12, PR_ROWS), net.node_kind.shape[0]))   # also holds pr's rows (starting_step)
+    cyl = np.empty((2, net.port_npts.shape[0], 4))
     clamps = np.zeros(6)
     clamps[CL_NODE] = -1.0
     tally = np.zeros((2, 4))
-    nfev, ok = _ros_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf,
-                          color, owner, max_rhs, jac_age, gam, tA, tC, tc, td, tb, te, same,
-                          expo, True if kind == KIND_ODE23S else None,
-                          None if _exact_jacobian_holds.py_func(net) else True, vec, U, J,
-                          mats, dl, pr, jd, cyl, clamps, tally)
+    nfev, ok = _ros_steps(y, samples, stops, out_theta,
+                          StepControl(rtol, atol, max_rhs, jac_age),
+                          Physics(net, tier, tab, perf), color, owner,
+                          Tableau(gam, tA, tC, tc, td, tb, te, same, expo),
+                          True if kind == KIND_ODE23S else None,
+                          None if _exact_jacobian_holds.py_func(net) else True,
+                          RosScratch(vec, U, J, mats, dl, pr, jd, cyl, clamps, tally))
     return y, samples, nfev, ok, clamps
 
 
 @njit(cache=True, _nrt=False)
-def _ros_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, color, owner,
-               max_rhs, jac_age, gam, tA, tC, tc, td, tb, te, same, expo, pair, finite, vec,
-               U, J, mats, dl, pr, jd, cyl, clamps, tally):
+def _ros_steps(y, samples, stops, out_theta, ctl, phys, color, owner, tableau, pair, finite,
+               scratch):
     """:func:`cycle_ros`'s steps, on scratch it allocated (no reference counts:
     the views of the scratch taken here cost nothing).  ``y`` is advanced to the
     cycle's end, ``samples`` and ``clamps`` written; returns the evaluations spent
     and whether the cycle ended well.  ``pair``: True for the ode23s pair, None for a
     tableau's method; ``finite``: True for a network whose Jacobian is taken by finite
     differences (:func:`_exact_jacobian_holds` false), None for the analytic one.  Each
-    is a separate compiled version without the other's code."""
+    is a separate compiled version without the other's code.  ``ctl``
+    (:class:`~corliss.engine.kernels.data.StepControl`), ``phys``
+    (:class:`~corliss.engine.kernels.data.Physics`), ``tableau``
+    (:class:`~corliss.engine.kernels.data.Tableau`) and ``scratch``
+    (:class:`~corliss.engine.kernels.data.RosScratch`) are :func:`cycle_ros`'s."""
+    rtol, atol, max_rhs, jac_age = ctl.rtol, ctl.atol, ctl.max_rhs, ctl.jac_age
+    net, tier, tab, perf = phys.net, phys.tier, phys.tab, phys.perf
+    gam, tA, tC, tc, td = tableau.gamma, tableau.A, tableau.C, tableau.c, tableau.d
+    tb, te, same, expo = tableau.b, tableau.e, tableau.same, tableau.expo
+    vec, U, J, mats, dl = scratch.vec, scratch.U, scratch.J, scratch.mats, scratch.dl
+    pr, jd, cyl, clamps, tally = scratch.pr, scratch.jd, scratch.cyl, scratch.clamps, scratch.tally
     n = y.shape[0]
     ns = tb.shape[0]
     safety = 0.9
@@ -175,6 +188,7 @@ def _ros_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, c
     Winv, A = mats[0], mats[1]
     slope, cell = cyl[0], cyl[1]
     att, att_end = tally[0], tally[1]
+    steps = StepScratch(pr, cell, att, yp, fp, dl, jd, slope)
     nfev = 0
     io = 0
     while io < out_theta.shape[0] and out_theta[io] <= stops[0]:
@@ -200,8 +214,7 @@ def _ros_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, c
         if h_prev > 0.0:
             h = min(h_prev, b - a)
         elif predictive:
-            h = starting_step(t, y, f0, atol, rtol, b - a, expo, net, tier, tab, perf, pr,
-                              cell, att, yp, fp, jd)
+            h = starting_step(t, y, f0, atol, rtol, b - a, expo, phys, steps)
             nfev += 1
         else:
             h = initial_step(f0, y, atol, rtol, b - a)
@@ -217,8 +230,7 @@ def _ros_steps(y, samples, stops, out_theta, rtol, atol, net, tier, tab, perf, c
                     # function that passes the network and table tuples on, it seems)
                     _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope)
                 else:
-                    nfev += _jacobian(t, y, f0, J, T, yscale, color, owner, net, tier, tab,
-                                      perf, pr, cell, att, yp, fp, dl, jd, slope)
+                    nfev += _jacobian(t, y, f0, J, T, yscale, color, owner, phys, steps)
                 age = 0
                 h_w = -1.0
             hd = h * gam
@@ -331,13 +343,13 @@ ROSENBROCK_METHODS = ("rosenbrock",) + ROS_METHODS
 
 #: :func:`cycle_ros`'s tableau arguments for the ode23s pair: its gamma and four
 #: stages' scratch (its stages are its own formulas), its safety and exponent.
-_ODE23S_ARGS = (_D, np.zeros((4, 4)), np.zeros((4, 4)), np.zeros(4), np.zeros(4),
-                np.zeros(4), np.zeros(4), np.zeros(4, dtype=np.int64), -1.0 / 3.0)
+_ODE23S_ARGS = Tableau(_D, np.zeros((4, 4)), np.zeros((4, 4)), np.zeros(4), np.zeros(4),
+                       np.zeros(4), np.zeros(4), np.zeros(4, dtype=np.int64), -1.0 / 3.0)
 
 
 @njit(cache=True)
-def integrate_turn_ros(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, record, t_end,
-                       color, owner, gam, tA, tC, tc, td, tb, te, same, expo):
+def integrate_turn_ros(y0, th0, out_theta, rtol, atol, phys, tr, record, t_end, color, owner,
+                       tableau):
     """Integrate one turn as :func:`integrate_turn`, with a Rosenbrock method.
 
     The tableau's method of :func:`corliss.engine.kernels.rosenbrock.cycle_ros` (one of
@@ -368,15 +380,10 @@ def integrate_turn_ros(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr,
         Relative tolerance [-].
     atol : ndarray
         Absolute tolerances, in each component's unit, of ``y0``'s shape.
-    net : tuple
-        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
-    tier : int
-        The compiled property tier.
-    tab : tuple
-        The steam table's arrays.
-    perf : ndarray
-        The perfect tier's parameters, shape (3,).
-    tr : tuple
+    phys : Physics
+        The network's arrays and the steam's compiled properties
+        (:class:`corliss.engine.kernels.data.Physics`).
+    tr : LoopArrays
         The loop's tables (:attr:`corliss.engine.transient.LoopTables.tr`), as
         :func:`integrate_turn`; ``sc[S_STEP]`` read and written.
     record : bool
@@ -389,18 +396,11 @@ def integrate_turn_ros(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr,
     owner : ndarray of int64
         Which column of each colour moves each of the network's rows; shape (colours,
         n_state of the network).
-    gam : float
-        The tableau's diagonal gamma [-].
-    tA, tC : ndarray
-        Its stage coefficients a_ij and c_ij, shape (stages, stages) [-].
-    tc, td, tb, te : ndarray
-        Its stage angles (fractions of the step), coefficients of the derivative in
-        crank angle, weights of the solution and of the error [-]; shape (stages,).
-    same : ndarray of int64
-        Per stage: 0 evaluate, 1 its argument is the step's start, 2 the stage
-        before's; shape (stages,).
-    expo : float
-        The exponent of the step's ratio to its error [-].
+    tableau : Tableau
+        The method's tableau (:class:`corliss.engine.kernels.data.Tableau`): gamma,
+        stage coefficients a_ij and c_ij, stage angles, coefficients of the derivative
+        in crank angle, weights of the solution and of the error, which stages are
+        evaluated, and the exponent of the step's ratio to its error [-].
 
     Returns
     -------
@@ -423,11 +423,14 @@ def integrate_turn_ros(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr,
     RunError
         A visited state needed a clamp other than the greatest energy's.
     """
+    net, tier, tab, perf = phys.net, phys.tier, phys.tab, phys.perf
+    gam, tA, tC, tc, td = tableau.gamma, tableau.A, tableau.C, tableau.c, tableau.d
+    tb, te, same, expo = tableau.b, tableau.e, tableau.same, tableau.expo
     n = y0.shape[0]
     nn = n - N_EXTRA
     ndyn = color.shape[0]
     ns = tb.shape[0]
-    nv = net[4].shape[0]
+    nv = net.node_kind.shape[0]
     y = y0.copy()
     samples = np.full((n, out_theta.shape[0]), np.nan)
     nrec_max = 40000 if record else 1
@@ -453,13 +456,14 @@ def integrate_turn_ros(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr,
     tq1 = np.empty(nv)
     dtq = np.empty(nv)
     pr = np.empty((PR_ROWS, nv))
-    pa = np.empty((net[17].shape[0], 4))
+    pa = np.empty((net.port_npts.shape[0], 4))
     out = np.empty(4)
     out1 = np.empty(4)
-    sc = tr[0]
+    sc = tr.sc
     clamps = np.zeros(6)
     att = np.zeros(4)
     att_end = np.zeros(4)
+    loop_scratch = LoopScratch(pr, pa, out1, att, yp, fp, dl, dtq)
     a = th0
     b = th0 + TWO_PI
     t = a
@@ -491,8 +495,8 @@ def integrate_turn_ros(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr,
         if t + h > b or b - (t + h) < 1e-12:
             h = b - t
         if fresh:
-            nfev += _loop_jacobian(t, y, f0, tq0, J, T, yscale, color, owner, net, tier, tab,
-                                   perf, pr, pa, tr, out1, att, yp, fp, dl, dtq)
+            nfev += _loop_jacobian(t, y, f0, tq0, J, T, yscale, color, owner, phys, tr,
+                                   loop_scratch)
             fresh = False
             h_w = -1.0
         hd = h * gam

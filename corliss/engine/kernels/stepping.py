@@ -121,8 +121,7 @@ def initial_step(f0, y, atol, rtol, span):
 
 
 @njit(cache=True, _nrt=False)
-def starting_step(t, y, f0, atol, rtol, span, expo, net, tier, tab, perf, pr, cell, att,
-                  yp, fp, prs):
+def starting_step(t, y, f0, atol, rtol, span, expo, phys, scratch):
     """A first step from the derivative and its change over a trial Euler step.
 
     Hairer, Norsett and Wanner's starting step (*Solving Ordinary Differential
@@ -149,32 +148,24 @@ def starting_step(t, y, f0, atol, rtol, span, expo, net, tier, tab, perf, pr, ce
         The segment's length [rad].
     expo : float
         The exponent, ``-1 / (order + 1)`` of the method's error estimate [-].
-    net : tuple
-        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
-    tier : int
-        The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.
-    tab : tuple
-        The steam table's arrays (:meth:`corliss.thermo.steam_table.SteamTable.arrays`).
-    perf : ndarray
-        The perfect tier's gas constant [J/(kg K)], ``cv`` [J/(kg K)] and ``u_ref``
-        [J/kg]; shape (3,) (unused on the table tier).
-    pr : ndarray
-        The node properties at ``t``, ``y``, shape (:data:`PR_ROWS`, nodes); used as
-        scratch and restored.
-    cell : ndarray
-        Scratch for the port areas [m2], shape (cylinders, 4).
-    att : ndarray
-        A step attempt's clamp tally, shape (4,), added to.
-    yp, fp : ndarray
-        Scratch, shape (n_state,).
-    prs : ndarray
-        Scratch of at least ``pr``'s rows, shape (rows, nodes).
+    phys : Physics
+        The network's arrays and the steam's compiled properties
+        (:class:`corliss.engine.kernels.data.Physics`).
+    scratch : StepScratch
+        (:class:`corliss.engine.kernels.data.StepScratch`): ``pr`` the node properties
+        at ``t``, ``y``, shape (:data:`PR_ROWS`, nodes), used as scratch and restored;
+        ``cell`` scratch for the port areas [m2], shape (cylinders, 4); ``att`` a step
+        attempt's clamp tally, shape (4,), added to; ``yp``, ``fp`` scratch, shape
+        (n_state,); ``jd`` scratch of at least ``pr``'s rows, shape (rows, nodes).
 
     Returns
     -------
     float
         The step [rad], within [1e-9, ``span``].
     """
+    net, tier, tab, perf = phys.net, phys.tier, phys.tab, phys.perf
+    pr, cell, att, yp, fp = scratch.pr, scratch.cell, scratch.att, scratch.yp, scratch.fp
+    prs = scratch.jd
     n = y.shape[0]
     d0 = 0.0
     d1 = 0.0
@@ -280,7 +271,7 @@ def segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att):
         energies [J] of the nodes first).
     f0 : ndarray
         Written: the derivative there (per radian); shape (n_state,).
-    net : tuple
+    net : NetworkArrays
         The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
     tier : int
         The compiled property tier: :data:`TIER_TABLE` or :data:`TIER_PERFECT`.

@@ -1,0 +1,177 @@
+"""The kernels' data, by name: the network's arrays and the governed loop's tables.
+
+Numba compiles a :class:`typing.NamedTuple` as a heterogeneous tuple whose fields it
+reads by name at no cost (attribute access compiles to the same code as an index), and
+caches functions taking one like any tuple.  The classes live here, at module level,
+so a second process finds the same types in numba's cache.  Outside this module a
+kernel tuple is read by name only (``tests/test_kernel_data.py`` holds it).
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+
+#: Columns of :attr:`NetworkArrays.geometry`, per cylinder: crank radius, connecting
+#: rod and stroke [m], head and crank piston areas [m2], head and crank clearances
+#: [m3], rod angularity (1.0 or 0.0).
+GEO_CRANK, GEO_ROD, GEO_STROKE, GEO_AREA_HEAD, GEO_AREA_CRANK = 0, 1, 2, 3, 4
+GEO_CLEAR_HEAD, GEO_CLEAR_CRANK, GEO_ANGULARITY = 5, 6, 7
+
+#: The wall-heat models' codes, column :data:`H_MODEL` of a node's wall-heat row
+#: (:attr:`NetworkArrays.heat`; floats, as the row is): no wall heat, Marks's constant
+#: as a conductance, Adair's correlation, Marks's law of condensation, the skin model
+#: (:func:`corliss.engine.network.with_wall_heat`).
+WALL_NONE, WALL_CONDUCTANCE, WALL_ADAIR, WALL_MARKS, WALL_SKIN = 0.0, 1.0, 2.0, 3.0, 4.0
+
+#: Columns of a node's wall-heat row; their meaning after the model code's depends on
+#: the model.  Every model: the code.
+H_MODEL = 0
+#: Conductance and Adair (and the skin's convection): Marks's constant as a conductance
+#: [W/(m2 K)] (the skin model: its coefficient of condensation and evaporation), the
+#: supply steam's conductivity [W/(m K)], viscosity [Pa s] and Prandtl number [-].
+H_CONDUCTANCE, H_K, H_MU, H_PRANDTL = 1, 2, 3, 4
+#: Marks's law, as :func:`corliss.engine.condensation.marks_law_rows` writes them: the
+#: heat of a cycle, the admission, cut-off and compression angles [rad], the wall
+#: exposed over admission and over cut-off to compression, integrated in crank angle.
+H_MARKS_Q, H_MARKS_ADMIT, H_MARKS_CUTOFF, H_MARKS_COMPRESS = 5, 6, 7, 8
+H_MARKS_WALL_ADMIT, H_MARKS_WALL_EXPAND = 9, 10
+#: The skin model (:mod:`corliss.engine.wall`): the surface node's capacity
+#: [J/(m2 K)] and conductance to the deep wall [W/(m2 K)], its mean area [m2], the
+#: index of its first state, the jacket's conductance [W/K] and temperature [K], the
+#: film's water's specific enthalpy and the latent heat it takes to evaporate [J/kg].
+H_SKIN_CAPACITY, H_SKIN_DEEP, H_SKIN_AREA, H_SKIN_STATE = 5, 6, 7, 8
+H_SKIN_JACKET_G, H_SKIN_JACKET_T, H_SKIN_FILM_H, H_SKIN_LATENT = 9, 10, 11, 12
+#: Columns of the row.
+HEAT_COLUMNS = 13
+
+#: Rows of :attr:`LoopArrays.trip` (a trip gear's tables, over the settings): the
+#: setting grid [-]; the head end's release angle per setting [rad] (nan: none), the
+#: crank end's the row after; the head end's latched opening area at release [m2], the
+#: crank end's after; the dash-pot's closing fraction over a uniform grid of time from 0
+#: to the closing time [-]; the scalars (columns ``TS_*``).
+TRIP_GRID, TRIP_RELEASE, TRIP_AREA, TRIP_CLOSING, TRIP_SCALARS = 0, 1, 3, 5, 6
+#: Columns of the trip's scalars row: the closing time [s]; the head end's latched
+#: closing angle [rad], the crank end's after; the head end's latched opening angle
+#: [rad], the crank end's after; the number of settings; the closing table's points.
+TS_CLOSE_TIME, TS_CLOSE_ANGLE, TS_OPEN_ANGLE, TS_N_SETTINGS, TS_N_CLOSING = 0, 1, 3, 5, 6
+
+
+class NetworkArrays(NamedTuple):
+    """The network as plain arrays (:meth:`corliss.engine.network.Network.arrays`).
+
+    Fields are arrays of float64 unless said; per cylinder ``c``, node ``i``, edge
+    ``e``, reservoir ``r``.
+    """
+
+    omega: np.ndarray       # [omega] [rad/s], shape (1,): the speed, written by the loop
+    band: float             # the port flow's regularisation band [-]
+    geometry: np.ndarray    # (cylinders, 8): GEO_* columns (kernels.mechanism)
+    phase: np.ndarray       # (cylinders,) crank phase [rad]
+    node_kind: np.ndarray   # (nodes,) int64: node kind (cylinder end, vessel)
+    node_cyl: np.ndarray    # (nodes,) int64: its cylinder
+    node_end: np.ndarray    # (nodes,) int64: its end (0 head, 1 crank)
+    node_V: np.ndarray      # (nodes,) a vessel's volume [m3]
+    reservoirs: np.ndarray  # (reservoirs, 4): p [Pa], rho [kg/m3], h [J/kg], kappa [-]
+    edge_a: np.ndarray      # (edges,) int64: end a (node, or -1 - reservoir)
+    edge_b: np.ndarray      # (edges,) int64: end b
+    edge_kind: np.ndarray   # (edges,) int64: edge kind
+    edge_cyl: np.ndarray    # (edges,) int64: its cylinder (port edges)
+    edge_port: np.ndarray   # (edges,) int64: its port (port edges)
+    edge_area: np.ndarray   # (edges,) fixed area [m2] (the throttle's, written by the loop)
+    edge_cd: np.ndarray     # (edges,) discharge coefficient [-]
+    port_grid: np.ndarray   # (cylinders, points): the PortMaps' angle grids [rad]
+    port_npts: np.ndarray   # (cylinders,) int64: their lengths
+    port_area: np.ndarray   # (cylinders, 4, points): their areas [m2]
+    heat: np.ndarray        # (nodes, HEAT_COLUMNS): the wall-heat rows
+    wall_T: np.ndarray      # (nodes,) wall temperature [K]
+
+
+class LoopArrays(NamedTuple):
+    """The governed loop's tables (:attr:`corliss.engine.transient.LoopTables.tr`)."""
+
+    sc: np.ndarray          # the scalars, indices S_* (kernels.loop)
+    load_t: np.ndarray      # the load's times [s]
+    load_f: np.ndarray      # the load's fractions [-]
+    setting_grid: np.ndarray  # the settings tabulated [-]
+    area_s: np.ndarray      # port areas over (cylinder, port, setting, crank angle) [m2]
+    governed: np.ndarray    # (cylinders,) int64: 1 where the governor moves the gear
+    gov: np.ndarray         # the governor's M, M', G, R, J on a uniform z grid
+    trip: np.ndarray        # the trip gear's tables, rows TRIP_* (kernels.loop)
+    throttle: np.ndarray    # the throttle's area over a uniform grid of opening [m2]
+
+
+class Physics(NamedTuple):
+    """What the right-hand side needs besides the state: the network and the steam's
+    compiled properties (the quadruple ``net, tier, tab, perf`` of the kernels)."""
+
+    net: NetworkArrays
+    tier: int               # the property tier: TIER_TABLE or TIER_PERFECT (kernels.properties)
+    tab: tuple              # the steam table's arrays (corliss.thermo.steam_table.TableArrays)
+    perf: np.ndarray        # the perfect tier's R, cv [J/(kg K)], u_ref [J/kg]; PERF_* (kernels.properties)
+
+
+class StepControl(NamedTuple):
+    """A steady cycle's step control."""
+
+    rtol: float             # relative tolerance [-]
+    atol: np.ndarray        # absolute tolerances, in each component's unit
+    max_rhs: int            # the run-time budget: most right-hand-side evaluations
+    jac_age: int            # accepted steps a Jacobian serves (Rosenbrock methods; 0 else)
+
+
+class Tableau(NamedTuple):
+    """A Rosenbrock method's tableau (:data:`corliss.engine.kernels.tableaus.ROS_TABLEAUS`)."""
+
+    gamma: float            # the diagonal gamma [-]
+    A: np.ndarray           # stage coefficients a_ij, (stages, stages) [-]
+    C: np.ndarray           # stage coefficients c_ij, (stages, stages) [-]
+    c: np.ndarray           # stage angles, fractions of the step [-]
+    d: np.ndarray           # coefficients of the time derivative [-]
+    b: np.ndarray           # weights of the solution [-]
+    e: np.ndarray           # weights of the error [-]
+    same: np.ndarray        # int64 per stage: 0 evaluate, 1 the step's start, 2 the stage before's
+    expo: float             # exponent of the step's ratio to its error [-]
+
+
+class StepScratch(NamedTuple):
+    """Scratch of the Rosenbrock cycle's starting step and Jacobian."""
+
+    pr: np.ndarray          # node properties (PR_ROWS, nodes)
+    cell: np.ndarray        # port areas (cylinders, 4) [m2]
+    att: np.ndarray         # a trial's clamp tally (4,)
+    yp: np.ndarray          # a probe state (n,)
+    fp: np.ndarray          # its derivative (n,)
+    dl: np.ndarray          # the dynamic columns' increments (ndyn,)
+    jd: np.ndarray          # the analytic Jacobian's rows, also a copy of pr's
+    slope: np.ndarray       # port areas' slopes in crank angle (cylinders, 4) [m2/rad]
+
+
+class RosScratch(NamedTuple):
+    """Scratch of the Rosenbrock cycle's step loop, allocated by its caller."""
+
+    vec: np.ndarray         # nine state vectors (9, n)
+    U: np.ndarray           # the stages (stages, n)
+    J: np.ndarray           # the Jacobian (n, ndyn)
+    mats: np.ndarray        # W's inverse and its factor (2, ndyn, ndyn)
+    dl: np.ndarray          # (ndyn,)
+    pr: np.ndarray          # node properties (PR_ROWS, nodes)
+    jd: np.ndarray          # (max(12, PR_ROWS), nodes)
+    cyl: np.ndarray         # port-area slopes and areas (2, cylinders, 4)
+    clamps: np.ndarray      # the clamp counts (6,), CL_* (kernels.clamps)
+    tally: np.ndarray       # a trial's and a step end's clamp tally (2, 4)
+
+
+class LoopScratch(NamedTuple):
+    """Scratch of the governed loop's Jacobian."""
+
+    pr: np.ndarray          # node properties (PR_ROWS, nodes)
+    pa: np.ndarray          # port areas (cylinders, 4) [m2]
+    out: np.ndarray         # the loop's outputs (4,)
+    att: np.ndarray         # a trial's clamp tally (4,)
+    yp: np.ndarray          # a probe state (n,)
+    fp: np.ndarray          # its derivative (n,)
+    dl: np.ndarray          # the columns' increments
+    dtq: np.ndarray         # the nodes' torque change (nodes,)
