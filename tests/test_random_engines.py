@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import math
 
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 import corliss
@@ -68,9 +68,27 @@ def _in_order(ev: dict) -> bool:
     return rel == sorted(rel)
 
 
+#: The smallest corner of the draw, where an end's content at exhaust is below the fast
+#: preset's tolerance on what the cylinder holds (the shrunk example of a failure seen
+#: when the masses were held above zero exactly): run on every pass.
+SMALLEST_CORNER = {
+    "title": "random slide-valve engine",
+    "engine": {"bore": "4.0000 in", "stroke": "4.0000 in", "connecting_rod": "8.0000 in",
+               "clearance": 0.021484375},
+    "supply": {"pressure": "40.000 psig", "temperature": "saturated"},
+    "exhaust": {"pressure": "26 inHg vacuum"},
+    "valve_gear": {"type": "slide_valve", "eccentricity": "3.8873 in", "lap": "0.9111 in",
+                   "exhaust_lap": "0.0000 in", "lead": "0.0000 in", "port_width": "0.5000 in",
+                   "port_length": "2.5133 in", "discharge_coefficient": 0.7},
+    "run": {"mode": "steady", "speed": "30.000 rpm", "effects": ["port_flow", "rod_angularity"],
+            "fidelity": "fast"},
+}
+
+
 @settings(max_examples=EXAMPLES, deadline=None, derandomize=True, database=None,
           suppress_health_check=[HealthCheck.too_slow])
 @given(slide_valve_engines())
+@example(SMALLEST_CORNER)
 def test_random_engines_run_balanced_with_events_in_order(data):
     scene = scene_from_dict(data)
     r = corliss.simulate(scene)
@@ -90,7 +108,19 @@ def test_random_engines_run_balanced_with_events_in_order(data):
     flows = [float(row["H_supply_J"]), float(row["H_exhaust_J"]), float(row["work_J"])]
     assert (abs(flows[0] + flows[1] - flows[2])
             < 10 * tol * max(map(abs, flows)) + tol * held * r.chest.h)
-    assert last["m_head_kg"].min() > 0 and last["m_crank_kg"].min() > 0
+    # each end keeps steam in its clearance.  The fast preset knows an end's content to
+    # its tolerance on what the cylinder holds (the allowance the mass balance has
+    # above); in the smallest corner of the draw (4 in bore, 2 % clearance, vacuum
+    # exhaust, 30 rpm) that is as large as the content itself: the end holds 2.8e-6 kg
+    # at the standard preset, the fast run's least is -6.7e-7 kg, within tol * held =
+    # 3.2e-6 kg.  Not round-off but the preset's accuracy: the fast run is held to it,
+    # and a scene whose fast run dips to zero must keep steam at the standard preset.
+    least = min(last["m_head_kg"].min(), last["m_crank_kg"].min())
+    assert least > -tol * held
+    if least <= 0:
+        fine = corliss.simulate(scene.with_fidelity("standard")).timeseries
+        fine = fine[fine["cycle"] == fine["cycle"].max()]
+        assert fine["m_head_kg"].min() > 0 and fine["m_crank_kg"].min() > 0
 
 
 def _gear_scenes():

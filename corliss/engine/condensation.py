@@ -232,8 +232,9 @@ class MarksLaw:
         """Node ``i``'s cylinder geometry, valve events and phase [rad]."""
         net = self.network
         c = net.node_cyl[i]
-        lp = net.node_names[i].startswith("lp_") and self.lp_events is not None
-        evs = self.lp_events if lp else self.events
+        lp_events = self.lp_events
+        evs = (lp_events if lp_events is not None and net.node_names[i].startswith("lp_")
+               else self.events)
         return (net.geometries[c], evs["head" if end == 0 else "crank"],
                 float(net.phases[c]))
 

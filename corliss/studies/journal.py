@@ -179,6 +179,8 @@ class Journal:
 
     def __init__(self, path: Path, head: dict, keep: bool):
         self.path = Path(path)
+        #: The open file's descriptor; None once closed.
+        self._fd: int | None
         if keep and self.path.exists():
             self._fd = os.open(self.path, os.O_WRONLY | os.O_APPEND)
             with open(self.path, "rb") as f:
@@ -200,6 +202,8 @@ class Journal:
         rows : iterable of tuple
             ``(run_id, status, error, *responses)``.
         """
+        if self._fd is None:
+            raise ValueError(f"journal {self.path} is closed: no rows can be appended")
         text = "".join(json.dumps(list(r)) + "\n" for r in rows)
         if text:
             os.write(self._fd, text.encode("utf-8"))

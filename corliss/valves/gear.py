@@ -14,7 +14,6 @@ Port order everywhere: head steam, head exhaust, crank steam, crank exhaust.
 from __future__ import annotations
 
 import dataclasses
-from typing import ClassVar
 
 import numpy as np
 
@@ -32,11 +31,14 @@ class ValveGear:
     :meth:`port_widths` and :meth:`port_lengths`.
     """
 
-    name: ClassVar[str] = "abstract"
-    summary: ClassVar[str] = ""
+    # Each gear class sets these four; an instance may hold its own (a gear whose
+    # setting's meaning depends on its spec's kind, a wrapper round another gear), so
+    # they are instance attributes with class defaults, not class variables.
+    name: str = "abstract"
+    summary: str = ""
     #: What a reverse lever or governor moves, in its natural normalised form, or None.
-    setting_name: ClassVar[str | None] = None
-    setting_range: ClassVar[tuple[float, float] | None] = None
+    setting_name: str | None = None
+    setting_range: tuple[float, float] | None = None
 
     def with_setting(self, value: float) -> "ValveGear":
         """The same gear at another setting of its reverse lever or governor.

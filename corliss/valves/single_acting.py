@@ -47,7 +47,7 @@ class SingleActing(ValveGear):
         self.summary = gear.summary
         self.setting_name = gear.setting_name
         self.setting_range = gear.setting_range
-        self.spec = gear.spec
+        # ``spec`` and the rest of the inner gear's attributes come through __getattr__
         #: The idle end's ports in :data:`corliss.valves.gear.PORTS` order: steam, exhaust.
         self.idle_ports = (2, 3) if steam_end == "head" else (0, 1)
 
