@@ -35,6 +35,11 @@ def at_point(label: str) -> Iterator[None]:
     ----------
     label : str
         The point, as a reader knows it: ``"setting 0.4"``, ``"throttled at 60 % load"``.
+
+    Yields
+    ------
+    None
+        The block runs with the point named; the name before it is restored after.
     """
     token = _POINT.set(label)
     try:
@@ -44,7 +49,13 @@ def at_point(label: str) -> Iterator[None]:
 
 
 def current_point() -> str | None:
-    """The label of the point now being run (see :func:`at_point`), or None."""
+    """The label of the point now being run (see :func:`at_point`).
+
+    Returns
+    -------
+    str or None
+        The label, or None outside every point.
+    """
     return _POINT.get()
 
 
@@ -56,6 +67,12 @@ class PointFilter(logging.Filter):
 
     For a handler: ``handler.addFilter(PointFilter())``.  A record logged outside any
     point passes unchanged; one already marked is not marked twice.
+
+    Parameters
+    ----------
+    name : str, optional
+        :class:`logging.Filter`'s: only records of this logger and its children pass
+        (all when empty).
     """
 
     def filter(self, record: logging.LogRecord) -> bool:

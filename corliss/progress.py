@@ -38,6 +38,8 @@ class TqdmHandler(logging.Handler):
     ----------
     stream : file-like, optional
         Where to write; ``sys.stderr`` as it is at each record when None.
+    level : int, optional
+        The least level written (:mod:`logging`'s levels); all when ``NOTSET``.
     """
 
     def __init__(self, stream=None, level: int = logging.NOTSET):

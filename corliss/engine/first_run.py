@@ -116,8 +116,14 @@ def _steady_variants(scene) -> list:
 
 def transient_uncached() -> list:
     """The transient loop's turn integrators, and the load schedule's lookup its start
-    calls, not in numba's disk cache (by name); empty when this numba does not show
-    its cache."""
+    calls, not in numba's disk cache.
+
+    Returns
+    -------
+    list of str
+        Their names; empty when every one is cached, or when this numba does not show
+        its cache.
+    """
     return [d.__name__ for d in (dopri5.integrate_turn, rosenbrock.integrate_turn_ros,
                                  loop.load_factor)
             if cache.uncached(d)]

@@ -119,6 +119,54 @@ class TableArrays(NamedTuple):
     Numba compiles a module-level :class:`typing.NamedTuple` as a tuple and caches the
     functions taking it; attribute access compiles to the same code as an index.  The
     fields are :class:`SteamTable`'s, with the same units.
+
+    Parameters
+    ----------
+    lnrho0 : float
+        ln of the vapour grid's first row density [ln(kg/m3)].
+    dlnrho : float
+        Step of the rows in ln density [-].
+    u0 : float
+        The vapour grid's first column energy [J/kg].
+    du : float
+        Step of the columns in energy [J/kg].
+    q : ndarray
+        ``p / rho`` on the vapour grid [J/kg], shape ``(n_rho, n_u)``.
+    T : ndarray
+        Temperature on the vapour grid [K], shape ``(n_rho, n_u)``.
+    ug_row : ndarray
+        Saturated-vapour energy at each row's density [J/kg], shape ``(n_rho,)``;
+        NaN above the critical density, -1 below the triple point's vapour density
+        (all vapour there).
+    Tg_row : ndarray
+        Saturation temperature at each row's density [K], shape ``(n_rho,)``; NaN
+        above the critical density.
+    sT0 : float
+        The saturation table's first temperature [K].
+    sdT : float
+        Its step in temperature [K].
+    s_lnp : ndarray
+        ln of the saturation pressure [ln Pa], shape ``(n_sat,)``.
+    s_vf : ndarray
+        Specific volume of saturated liquid [m3/kg], shape ``(n_sat,)``.
+    s_lnvg : ndarray
+        ln of the specific volume of saturated vapour [ln(m3/kg)], shape
+        ``(n_sat,)``.
+    s_uf : ndarray
+        Internal energy of saturated liquid [J/kg], shape ``(n_sat,)``.
+    s_ug : ndarray
+        Internal energy of saturated vapour [J/kg], shape ``(n_sat,)``.
+    k_lnrho0 : float
+        ln of the port-flow exponent's first row density [ln(kg/m3)].
+    k_dlnrho : float
+        Its step in ln density [-].
+    k_u0 : float
+        Its first column energy [J/kg].
+    k_du : float
+        Its step in energy [J/kg].
+    kappa : ndarray
+        Isentropic exponent of the choked flux [-], shape ``(kappa_n_rho,
+        kappa_n_u)`` (see the module doc).
     """
 
     lnrho0: float

@@ -64,114 +64,291 @@ class NetworkArrays(NamedTuple):
 
     Fields are arrays of float64 unless said; per cylinder ``c``, node ``i``, edge
     ``e``, reservoir ``r``.
+
+    Parameters
+    ----------
+    omega : ndarray
+        The speed [rad/s], shape (1,), written by the loop.
+    band : float
+        The port flow's regularisation band [-].
+    geometry : ndarray
+        (cylinders, 8): GEO_* columns (kernels.mechanism).
+    phase : ndarray
+        (cylinders,) crank phase [rad].
+    node_kind : ndarray
+        (nodes,) int64: node kind (cylinder end, vessel).
+    node_cyl : ndarray
+        (nodes,) int64: its cylinder.
+    node_end : ndarray
+        (nodes,) int64: its end (0 head, 1 crank).
+    node_V : ndarray
+        (nodes,) a vessel's volume [m3].
+    reservoirs : ndarray
+        (reservoirs, 4): p [Pa], rho [kg/m3], h [J/kg], kappa [-].
+    edge_a : ndarray
+        (edges,) int64: end a (node, or -1 - reservoir).
+    edge_b : ndarray
+        (edges,) int64: end b.
+    edge_kind : ndarray
+        (edges,) int64: edge kind.
+    edge_cyl : ndarray
+        (edges,) int64: its cylinder (port edges).
+    edge_port : ndarray
+        (edges,) int64: its port (port edges).
+    edge_area : ndarray
+        (edges,) fixed area [m2] (the throttle's, written by the loop).
+    edge_cd : ndarray
+        (edges,) discharge coefficient [-].
+    port_grid : ndarray
+        (cylinders, points): the PortMaps' angle grids [rad].
+    port_npts : ndarray
+        (cylinders,) int64: their lengths.
+    port_area : ndarray
+        (cylinders, 4, points): their areas [m2].
+    heat : ndarray
+        (nodes, HEAT_COLUMNS): the wall-heat rows.
+    wall_T : ndarray
+        (nodes,) wall temperature [K].
     """
 
-    omega: np.ndarray       # [omega] [rad/s], shape (1,): the speed, written by the loop
-    band: float             # the port flow's regularisation band [-]
-    geometry: np.ndarray    # (cylinders, 8): GEO_* columns (kernels.mechanism)
-    phase: np.ndarray       # (cylinders,) crank phase [rad]
-    node_kind: np.ndarray   # (nodes,) int64: node kind (cylinder end, vessel)
-    node_cyl: np.ndarray    # (nodes,) int64: its cylinder
-    node_end: np.ndarray    # (nodes,) int64: its end (0 head, 1 crank)
-    node_V: np.ndarray      # (nodes,) a vessel's volume [m3]
-    reservoirs: np.ndarray  # (reservoirs, 4): p [Pa], rho [kg/m3], h [J/kg], kappa [-]
-    edge_a: np.ndarray      # (edges,) int64: end a (node, or -1 - reservoir)
-    edge_b: np.ndarray      # (edges,) int64: end b
-    edge_kind: np.ndarray   # (edges,) int64: edge kind
-    edge_cyl: np.ndarray    # (edges,) int64: its cylinder (port edges)
-    edge_port: np.ndarray   # (edges,) int64: its port (port edges)
-    edge_area: np.ndarray   # (edges,) fixed area [m2] (the throttle's, written by the loop)
-    edge_cd: np.ndarray     # (edges,) discharge coefficient [-]
-    port_grid: np.ndarray   # (cylinders, points): the PortMaps' angle grids [rad]
-    port_npts: np.ndarray   # (cylinders,) int64: their lengths
-    port_area: np.ndarray   # (cylinders, 4, points): their areas [m2]
-    heat: np.ndarray        # (nodes, HEAT_COLUMNS): the wall-heat rows
-    wall_T: np.ndarray      # (nodes,) wall temperature [K]
+    omega: np.ndarray
+    band: float
+    geometry: np.ndarray
+    phase: np.ndarray
+    node_kind: np.ndarray
+    node_cyl: np.ndarray
+    node_end: np.ndarray
+    node_V: np.ndarray
+    reservoirs: np.ndarray
+    edge_a: np.ndarray
+    edge_b: np.ndarray
+    edge_kind: np.ndarray
+    edge_cyl: np.ndarray
+    edge_port: np.ndarray
+    edge_area: np.ndarray
+    edge_cd: np.ndarray
+    port_grid: np.ndarray
+    port_npts: np.ndarray
+    port_area: np.ndarray
+    heat: np.ndarray
+    wall_T: np.ndarray
 
 
 class LoopArrays(NamedTuple):
-    """The governed loop's tables (:attr:`corliss.engine.transient.LoopTables.tr`)."""
+    """The governed loop's tables (:attr:`corliss.engine.transient.LoopTables.tr`).
 
-    sc: np.ndarray          # the scalars, indices S_* (kernels.loop)
-    load_t: np.ndarray      # the load's times [s]
-    load_f: np.ndarray      # the load's fractions [-]
-    setting_grid: np.ndarray  # the settings tabulated [-]
-    area_s: np.ndarray      # port areas over (cylinder, port, setting, crank angle) [m2]
-    governed: np.ndarray    # (cylinders,) int64: 1 where the governor moves the gear
-    gov: np.ndarray         # the governor's M, M', G, R, J on a uniform z grid
-    trip: np.ndarray        # the trip gear's tables, rows TRIP_* (kernels.loop)
-    throttle: np.ndarray    # the throttle's area over a uniform grid of opening [m2]
+    Parameters
+    ----------
+    sc : ndarray
+        The scalars, indices S_* (kernels.loop).
+    load_t : ndarray
+        The load's times [s].
+    load_f : ndarray
+        The load's fractions [-].
+    setting_grid : ndarray
+        The settings tabulated [-].
+    area_s : ndarray
+        Port areas over (cylinder, port, setting, crank angle) [m2].
+    governed : ndarray
+        (cylinders,) int64: 1 where the governor moves the gear.
+    gov : ndarray
+        The governor's M, M', G, R, J on a uniform z grid.
+    trip : ndarray
+        The trip gear's tables, rows TRIP_* (kernels.loop).
+    throttle : ndarray
+        The throttle's area over a uniform grid of opening [m2].
+    """
+
+    sc: np.ndarray
+    load_t: np.ndarray
+    load_f: np.ndarray
+    setting_grid: np.ndarray
+    area_s: np.ndarray
+    governed: np.ndarray
+    gov: np.ndarray
+    trip: np.ndarray
+    throttle: np.ndarray
 
 
 class Physics(NamedTuple):
     """What the right-hand side needs besides the state: the network and the steam's
-    compiled properties (the quadruple ``net, tier, tab, perf`` of the kernels)."""
+    compiled properties (the quadruple ``net, tier, tab, perf`` of the kernels).
+
+    Parameters
+    ----------
+    net : NetworkArrays
+        
+    tier : int
+        The property tier: TIER_TABLE or TIER_PERFECT (kernels.properties).
+    tab : TableArrays
+        The steam table's arrays (corliss.thermo.steam_table.TableArrays).
+    perf : ndarray
+        The perfect tier's R, cv [J/(kg K)], u_ref [J/kg]; PERF_* (kernels.properties).
+    """
 
     net: NetworkArrays
-    tier: int               # the property tier: TIER_TABLE or TIER_PERFECT (kernels.properties)
-    tab: tuple              # the steam table's arrays (corliss.thermo.steam_table.TableArrays)
-    perf: np.ndarray        # the perfect tier's R, cv [J/(kg K)], u_ref [J/kg]; PERF_* (kernels.properties)
+    tier: int
+    tab: tuple
+    perf: np.ndarray
 
 
 class StepControl(NamedTuple):
-    """A steady cycle's step control."""
+    """A steady cycle's step control.
 
-    rtol: float             # relative tolerance [-]
-    atol: np.ndarray        # absolute tolerances, in each component's unit
-    max_rhs: int            # the run-time budget: most right-hand-side evaluations
-    jac_age: int            # accepted steps a Jacobian serves (Rosenbrock methods; 0 else)
+    Parameters
+    ----------
+    rtol : float
+        Relative tolerance [-].
+    atol : ndarray
+        Absolute tolerances, in each component's unit.
+    max_rhs : int
+        The run-time budget: most right-hand-side evaluations.
+    jac_age : int
+        Accepted steps a Jacobian serves (Rosenbrock methods; 0 else).
+    """
+
+    rtol: float
+    atol: np.ndarray
+    max_rhs: int
+    jac_age: int
 
 
 class Tableau(NamedTuple):
-    """A Rosenbrock method's tableau (:data:`corliss.engine.kernels.tableaus.ROS_TABLEAUS`)."""
+    """A Rosenbrock method's tableau (:data:`corliss.engine.kernels.tableaus.ROS_TABLEAUS`).
 
-    gamma: float            # the diagonal gamma [-]
-    A: np.ndarray           # stage coefficients a_ij, (stages, stages) [-]
-    C: np.ndarray           # stage coefficients c_ij, (stages, stages) [-]
-    c: np.ndarray           # stage angles, fractions of the step [-]
-    d: np.ndarray           # coefficients of the time derivative [-]
-    b: np.ndarray           # weights of the solution [-]
-    e: np.ndarray           # weights of the error [-]
-    same: np.ndarray        # int64 per stage: 0 evaluate, 1 the step's start, 2 the stage before's
-    expo: float             # exponent of the step's ratio to its error [-]
+    Parameters
+    ----------
+    gamma : float
+        The diagonal gamma [-].
+    A : ndarray
+        Stage coefficients a_ij, (stages, stages) [-].
+    C : ndarray
+        Stage coefficients c_ij, (stages, stages) [-].
+    c : ndarray
+        Stage angles, fractions of the step [-].
+    d : ndarray
+        Coefficients of the time derivative [-].
+    b : ndarray
+        Weights of the solution [-].
+    e : ndarray
+        Weights of the error [-].
+    same : ndarray
+        Int64 per stage: 0 evaluate, 1 the step's start, 2 the stage before's.
+    expo : float
+        Exponent of the step's ratio to its error [-].
+    """
+
+    gamma: float
+    A: np.ndarray
+    C: np.ndarray
+    c: np.ndarray
+    d: np.ndarray
+    b: np.ndarray
+    e: np.ndarray
+    same: np.ndarray
+    expo: float
 
 
 class StepScratch(NamedTuple):
-    """Scratch of the Rosenbrock cycle's starting step and Jacobian."""
+    """Scratch of the Rosenbrock cycle's starting step and Jacobian.
 
-    pr: np.ndarray          # node properties (PR_ROWS, nodes)
-    cell: np.ndarray        # port areas (cylinders, 4) [m2]
-    att: np.ndarray         # a trial's clamp tally (4,)
-    yp: np.ndarray          # a probe state (n,)
-    fp: np.ndarray          # its derivative (n,)
-    dl: np.ndarray          # the dynamic columns' increments (ndyn,)
-    jd: np.ndarray          # the analytic Jacobian's rows, also a copy of pr's
-    slope: np.ndarray       # port areas' slopes in crank angle (cylinders, 4) [m2/rad]
+    Parameters
+    ----------
+    pr : ndarray
+        Node properties (PR_ROWS, nodes).
+    cell : ndarray
+        Port areas (cylinders, 4) [m2].
+    att : ndarray
+        A trial's clamp tally (4,).
+    yp : ndarray
+        A probe state (n,).
+    fp : ndarray
+        Its derivative (n,).
+    dl : ndarray
+        The dynamic columns' increments (ndyn,).
+    jd : ndarray
+        The analytic Jacobian's rows, also a copy of pr's.
+    slope : ndarray
+        Port areas' slopes in crank angle (cylinders, 4) [m2/rad].
+    """
+
+    pr: np.ndarray
+    cell: np.ndarray
+    att: np.ndarray
+    yp: np.ndarray
+    fp: np.ndarray
+    dl: np.ndarray
+    jd: np.ndarray
+    slope: np.ndarray
 
 
 class RosScratch(NamedTuple):
-    """Scratch of the Rosenbrock cycle's step loop, allocated by its caller."""
+    """Scratch of the Rosenbrock cycle's step loop, allocated by its caller.
 
-    vec: np.ndarray         # nine state vectors (9, n)
-    U: np.ndarray           # the stages (stages, n)
-    J: np.ndarray           # the Jacobian (n, ndyn)
-    mats: np.ndarray        # W's inverse and its factor (2, ndyn, ndyn)
-    dl: np.ndarray          # (ndyn,)
-    pr: np.ndarray          # node properties (PR_ROWS, nodes)
-    jd: np.ndarray          # (max(12, PR_ROWS), nodes)
-    cyl: np.ndarray         # port-area slopes and areas (2, cylinders, 4)
-    clamps: np.ndarray      # the clamp counts (6,), CL_* (kernels.clamps)
-    tally: np.ndarray       # a trial's and a step end's clamp tally (2, 4)
+    Parameters
+    ----------
+    vec : ndarray
+        Nine state vectors (9, n).
+    U : ndarray
+        The stages (stages, n).
+    J : ndarray
+        The Jacobian (n, ndyn).
+    mats : ndarray
+        W's inverse and its factor (2, ndyn, ndyn).
+    dl : ndarray
+        (ndyn,).
+    pr : ndarray
+        Node properties (PR_ROWS, nodes).
+    jd : ndarray
+        (max(12, PR_ROWS), nodes).
+    cyl : ndarray
+        Port-area slopes and areas (2, cylinders, 4).
+    clamps : ndarray
+        The clamp counts (6,), CL_* (kernels.clamps).
+    tally : ndarray
+        A trial's and a step end's clamp tally (2, 4).
+    """
+
+    vec: np.ndarray
+    U: np.ndarray
+    J: np.ndarray
+    mats: np.ndarray
+    dl: np.ndarray
+    pr: np.ndarray
+    jd: np.ndarray
+    cyl: np.ndarray
+    clamps: np.ndarray
+    tally: np.ndarray
 
 
 class LoopScratch(NamedTuple):
-    """Scratch of the governed loop's Jacobian."""
+    """Scratch of the governed loop's Jacobian.
 
-    pr: np.ndarray          # node properties (PR_ROWS, nodes)
-    pa: np.ndarray          # port areas (cylinders, 4) [m2]
-    out: np.ndarray         # the loop's outputs (4,)
-    att: np.ndarray         # a trial's clamp tally (4,)
-    yp: np.ndarray          # a probe state (n,)
-    fp: np.ndarray          # its derivative (n,)
-    dl: np.ndarray          # the columns' increments
-    dtq: np.ndarray         # the nodes' torque change (nodes,)
+    Parameters
+    ----------
+    pr : ndarray
+        Node properties (PR_ROWS, nodes).
+    pa : ndarray
+        Port areas (cylinders, 4) [m2].
+    out : ndarray
+        The loop's outputs (4,).
+    att : ndarray
+        A trial's clamp tally (4,).
+    yp : ndarray
+        A probe state (n,).
+    fp : ndarray
+        Its derivative (n,).
+    dl : ndarray
+        The columns' increments.
+    dtq : ndarray
+        The nodes' torque change (nodes,).
+    """
+
+    pr: np.ndarray
+    pa: np.ndarray
+    out: np.ndarray
+    att: np.ndarray
+    yp: np.ndarray
+    fp: np.ndarray
+    dl: np.ndarray
+    dtq: np.ndarray
