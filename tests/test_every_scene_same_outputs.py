@@ -36,6 +36,7 @@ import hashlib
 import json
 import math
 import platform
+import subprocess
 import sys
 from pathlib import Path
 
@@ -119,13 +120,29 @@ def _saved() -> dict:
     return json.loads(FINGERPRINT_PATH.read_text())
 
 
+@pytest.fixture(scope="module")
+def prints_now() -> dict:
+    """Every scene's fingerprint now, taken in a fresh process, in the order and the way
+    the saved one was taken (this file run as a script).
+
+    A fresh process, because a run in the test's worker has been seen to take another
+    number of steps after other test files ran in that worker (a throttling governor's
+    transient at ``fast``: 110,868 evaluations against 150,472; the same scene alone
+    gives 150,472 every time): what carries over is not found yet, and it is no change
+    of the kernels' arithmetic, which is what this test guards.
+    """
+    out = subprocess.run([sys.executable, str(Path(__file__))], capture_output=True,
+                         text=True, check=True, cwd=Path(__file__).parent.parent)
+    return json.loads(out.stdout)
+
+
 @pytest.mark.parametrize("fidelity", FIDELITIES)
 @pytest.mark.parametrize("name", sorted(bundled_scenes()))
-def test_scene_computes_what_it_computed_before(name, fidelity):
+def test_scene_computes_what_it_computed_before(name, fidelity, prints_now):
     saved = _saved()
-    exact = saved["platform"] == platform_key()
-    compare(saved["runs"][f"{name}/{fidelity}"], run_print(name, fidelity), exact,
-            f"{name}/{fidelity}")
+    exact = saved["platform"] == prints_now["platform"]
+    compare(saved["runs"][f"{name}/{fidelity}"], prints_now["runs"][f"{name}/{fidelity}"],
+            exact, f"{name}/{fidelity}")
 
 
 def test_every_bundled_scene_is_fingerprinted():
