@@ -46,10 +46,12 @@ from __future__ import annotations
 import contextlib
 import functools
 import hashlib
+import inspect
 import json
 import logging
 import math
 import os
+import re
 import time
 import zipfile
 from dataclasses import dataclass
@@ -118,55 +120,8 @@ class TableArrays(NamedTuple):
 
     Numba compiles a module-level :class:`typing.NamedTuple` as a tuple and caches the
     functions taking it; attribute access compiles to the same code as an index.  The
-    fields are :class:`SteamTable`'s, with the same units.
-
-    Parameters
-    ----------
-    lnrho0 : float
-        ln of the vapour grid's first row density [ln(kg/m3)].
-    dlnrho : float
-        Step of the rows in ln density [-].
-    u0 : float
-        The vapour grid's first column energy [J/kg].
-    du : float
-        Step of the columns in energy [J/kg].
-    q : ndarray
-        ``p / rho`` on the vapour grid [J/kg], shape ``(n_rho, n_u)``.
-    T : ndarray
-        Temperature on the vapour grid [K], shape ``(n_rho, n_u)``.
-    ug_row : ndarray
-        Saturated-vapour energy at each row's density [J/kg], shape ``(n_rho,)``;
-        NaN above the critical density, -1 below the triple point's vapour density
-        (all vapour there).
-    Tg_row : ndarray
-        Saturation temperature at each row's density [K], shape ``(n_rho,)``; NaN
-        above the critical density.
-    sT0 : float
-        The saturation table's first temperature [K].
-    sdT : float
-        Its step in temperature [K].
-    s_lnp : ndarray
-        ln of the saturation pressure [ln Pa], shape ``(n_sat,)``.
-    s_vf : ndarray
-        Specific volume of saturated liquid [m3/kg], shape ``(n_sat,)``.
-    s_lnvg : ndarray
-        ln of the specific volume of saturated vapour [ln(m3/kg)], shape
-        ``(n_sat,)``.
-    s_uf : ndarray
-        Internal energy of saturated liquid [J/kg], shape ``(n_sat,)``.
-    s_ug : ndarray
-        Internal energy of saturated vapour [J/kg], shape ``(n_sat,)``.
-    k_lnrho0 : float
-        ln of the port-flow exponent's first row density [ln(kg/m3)].
-    k_dlnrho : float
-        Its step in ln density [-].
-    k_u0 : float
-        Its first column energy [J/kg].
-    k_du : float
-        Its step in energy [J/kg].
-    kappa : ndarray
-        Isentropic exponent of the choked flux [-], shape ``(kappa_n_rho,
-        kappa_n_u)`` (see the module doc).
+    fields are :class:`SteamTable`'s, with the same units; their parameters below are
+    read from its docstring (written once, there).
     """
 
     lnrho0: float
@@ -289,6 +244,19 @@ class SteamTable:
 
 
 # --- compiled lookup ------------------------------------------------------------------
+
+def _fields_of(doc: str, fields: tuple) -> str:
+    """The entries of ``fields`` from a numpydoc Parameters section, as a section."""
+    text = inspect.cleandoc(doc).split("Parameters\n----------\n", 1)[1]
+    entries = re.split(r"\n(?=\S)", text.split("\n\n")[0])
+    kept = [e for f in fields for e in entries if e.split(" : ")[0] == f]
+    return "\n    Parameters\n    ----------\n" + "\n".join(
+        "    " + line for e in kept for line in e.split("\n")) + "\n"
+
+
+TableArrays.__doc__ = (TableArrays.__doc__.rstrip() + "\n"
+                       + _fields_of(SteamTable.__doc__, TableArrays._fields) + "    ")
+
 
 @njit(cache=True)
 def _sat_at(T, sT0, sdT, arr):
