@@ -46,3 +46,22 @@ def make_scene(**sections):
 @pytest.fixture
 def base_dict():
     return copy.deepcopy(BASE)
+
+
+#: The test files marked ``slow``: ``pytest -m "not slow"`` runs the rest, the quick
+#: subset.  Chosen by the time each file took in a whole run of the suite on two
+#: cores (``--durations``): the files whose tests together took the most.
+SLOW_FILES = frozenset({
+    "test_every_scene_same_outputs.py", "test_notebooks.py", "test_docs.py",
+    "test_workbench.py", "test_random_engines.py", "test_outputs.py",
+    "test_hard_cases.py", "test_hard_cases_transient.py", "test_scene_fuzz.py",
+    "test_fuzz_inputs.py", "test_compare.py", "test_study.py", "test_study_stops.py",
+    "test_fit.py", "test_governor_scenes.py", "test_same_outputs.py",
+})
+
+
+def pytest_collection_modifyitems(config, items):
+    """Mark every test of :data:`SLOW_FILES` ``slow``."""
+    for item in items:
+        if item.path.name in SLOW_FILES:
+            item.add_marker(pytest.mark.slow)
