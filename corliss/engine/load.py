@@ -95,8 +95,8 @@ class LoadSpec:
         return sorted(set(self.times_s[1:-1])) if len(self.times_s) > 2 else []
 
 
-def _fraction(t: Table, key: str) -> float:
-    v = t.number(key)
+def _fraction(t: Table, key: str, default=None) -> float:
+    v = t.number(key) if default is None else t.number(key, default)
     if not 0.0 <= v <= 5.0:
         raise InputError(t.key(key), v, "a load fraction from 0 to 5 (of the reference load)")
     return v
@@ -148,7 +148,7 @@ def parse_load(t: Table, speed_rad_s: float, scene_dir: Path | None) -> LoadSpec
         ts = t.quantity("step_time", "time")
         if ts < 0.0:
             raise InputError(t.key("step_time"), t.raw("step_time"), "a time of zero or more")
-        f0 = _fraction(t, "initial_fraction")
+        f0 = _fraction(t, "initial_fraction", 1.0)
         f = _fraction(t, "step_fraction")
         times, fracs = (0.0, ts, ts, ts + 1.0), (f0, f0, f, f)
     elif kind == "ramp":
@@ -157,7 +157,7 @@ def parse_load(t: Table, speed_rad_s: float, scene_dir: Path | None) -> LoadSpec
         if not 0.0 <= a < b:
             raise InputError(t.key("ramp_end"), t.raw("ramp_end"),
                              "a ramp end after its start (both zero or more)")
-        f0 = _fraction(t, "initial_fraction")
+        f0 = _fraction(t, "initial_fraction", 1.0)
         f = _fraction(t, "ramp_fraction")
         times, fracs = (0.0, a, b, b + 1.0), (f0, f0, f, f)
     else:
