@@ -129,6 +129,101 @@ def test_slip_eccentric_load_step_running_astern():
     assert np.all(np.isfinite(rpm)) and after < before
 
 
+def _reversing_run():
+    """The launch engine (Zeuner's motion: no eccentric rod; advances 30 deg ahead, 20
+    deg astern, so the slip is 130 deg) hauling a constant-torque load that steps to
+    2.5 times at 0.25 s: more than the engine can carry, the load overhauls it (a
+    weight being lowered), stops it and turns it backward."""
+    from corliss.engine.simulate import simulate
+    data = _slip_scene(forward_advance="30 deg", backward_advance="20 deg")
+    data["valve_gear"].pop("eccentric_rod")
+    data["flywheel"] = {"rim_weight": "60 lb", "mean_radius": "7 in"}
+    data["load"] = {"torque": "55 N*m", "kind": "step", "step_time": "0.25 s",
+                    "step_fraction": 2.5}
+    data["run"] = dict(data["run"], mode="transient", duration="1.8 s")
+    scene = scene_from_dict(data, name="reversing")
+    return scene, simulate(scene)
+
+
+@pytest.fixture(scope="module")
+def reversing():
+    return _reversing_run()
+
+
+def test_overhauling_load_reverses_the_slip_eccentric(reversing):
+    """Through the change of direction, the valve is where the stops put the eccentric
+    (module doc of corliss.valves.slip_eccentric; Zeuner's valve x = r sin(angle +
+    advance), Spangler Art. 13).  Ahead, on the forward stop: x = r sin(theta +
+    delta_f).  Where the speed crosses zero, at theta_r, the shaft turns back inside
+    the sheave, which stands: x stays r sin(theta_r + delta_f) while the shaft turns
+    back through the slip, 180 - delta_f - delta_b = 130 deg, computed here from the
+    scene's advances.  From there the backward stop drives: x = r sin(-theta +
+    delta_b) (theta positive ahead, so -theta is the angle in the direction of
+    rotation).  The valve is the gear's own travel at the sheave's place, so 1e-12 m
+    is rounding; the angle where the backward stop takes over is found by the
+    integrator's event to far better than 1e-6 deg, as is the zero of the speed."""
+    scene, res = reversing
+    ts = res.timeseries
+    rev = ts[ts["valve_m"].notna()]
+    th = np.radians(rev["crank_angle_deg"].to_numpy())
+    w = rev["speed_rpm"].to_numpy()
+    x = rev["valve_m"].to_numpy()
+    slip_deg = rev["eccentric_slip_deg"].to_numpy()
+    r = 0.3 * IN
+    df, db = math.radians(30.0), math.radians(20.0)
+    slip = math.pi - df - db
+    # the speed crosses zero once, from ahead to astern
+    i = int(np.nonzero((w[:-1] > 0.0) & (w[1:] <= 0.0))[0][0])
+    assert np.all(w[:i + 1] > 0.0) and np.all(w[i + 1:] < 0.0)
+    # where it turned back: the sample of least speed, the first past zero (within
+    # 1e-6 of the run speed, where the shaft stands still to far below 1e-9 rad)
+    assert abs(w[i + 1]) < 1e-6 * 500.0
+    th_r = th[i + 1]
+    ahead = slip_deg == 0.0
+    back = np.isclose(slip_deg, math.degrees(slip), rtol=0.0, atol=1e-9)
+    standing = ~ahead & ~back
+    assert ahead[:i + 1].all() and standing.any() and back.any()
+    np.testing.assert_allclose(x[ahead], r * np.sin(th[ahead] + df), atol=1e-12)
+    np.testing.assert_allclose(x[standing], r * math.sin(th_r + df), atol=1e-12)
+    np.testing.assert_allclose(x[back], r * np.sin(-th[back] + db), atol=1e-12)
+    # the backward stop takes the sheave where the shaft has turned back the slip
+    th_e = th[np.argmax(back)]
+    assert math.degrees(th_r - th_e) == pytest.approx(math.degrees(slip), abs=1e-6)
+    assert np.all(th[standing] <= th_r + 1e-9) and np.all(th[standing] >= th_e - 1e-9)
+
+
+def test_engine_runs_backward_under_steam_after_the_slip(reversing):
+    """After the change of direction the turns run backward (negative mean speeds,
+    growing), the steam doing positive work in the direction of rotation on the
+    backward stop's valve, and the flywheel's energy across the change of direction
+    balances the work: 1/2 I (w1^2 - w0^2) = W_gas - W_load - W_friction over the
+    span from the start of the turn that stalled to the dead centre where the loop
+    runs on backward (the shaft equation integrated; the loop's tolerance, 1e-6
+    relative at the standard fidelity, gives far better than the 1e-3 asked).  The
+    constant load's work over the span is its torque times the net angle turned ahead
+    (negative: the span ends behind where it began), to rounding."""
+    scene, res = reversing
+    c = res.cycles
+    k = int(np.nonzero((c["speed_start_rpm"] > 0) & (c["speed_end_rpm"] < 0))[0][0])
+    row = c.iloc[k]
+    after = c.iloc[k + 1:]
+    assert len(after) >= 2
+    assert np.all(after["mean_speed_rpm"] < 0.0) and np.all(np.diff(after["mean_speed_rpm"]) < 0.0)
+    assert np.all(after["work_J"] > 0.0)
+    assert res.timeseries["eccentric_slip_deg"].iloc[-1] == pytest.approx(130.0, abs=1e-9)
+    # continuous speed at the handover
+    assert after["speed_start_rpm"].iloc[0] == pytest.approx(row["speed_end_rpm"], rel=1e-12)
+    I = scene.flywheel.inertia_kg_m2
+    w0, w1 = (row[key] * 2 * math.pi / 60 for key in ("speed_start_rpm", "speed_end_rpm"))
+    work = row["work_J"] - row["load_work_J"] - row["friction_work_J"]
+    assert 0.5 * I * (w1 ** 2 - w0 ** 2) == pytest.approx(work, rel=1e-3)
+    # the constant load's work is its torque times the net angle turned ahead
+    span = res.timeseries[res.timeseries["cycle"] == row["cycle"]]["crank_angle_deg"]
+    turned = math.radians(span.iloc[-1] - span.iloc[0])
+    assert row["load_work_J"] == pytest.approx(2.5 * scene.load.torque_N_m * turned, rel=1e-9)
+    assert res.summary["stalled"] is False
+
+
 # ----------------------------------------------------------------------- oscillating
 
 def _osc(angle_deg, exh_deg=None, acting="double"):
