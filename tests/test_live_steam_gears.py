@@ -130,18 +130,13 @@ def test_slip_eccentric_load_step_running_astern():
 
 
 def _reversing_run():
-    """The launch engine (Zeuner's motion: no eccentric rod; advances 30 deg ahead, 20
-    deg astern, so the slip is 130 deg) hauling a constant-torque load that steps to
-    2.5 times at 0.25 s: more than the engine can carry, the load overhauls it (a
-    weight being lowered), stops it and turns it backward."""
+    """The bundled scene slip-eccentric-reversing: the launch engine's cylinder (Zeuner's
+    motion: no eccentric rod; advances 30 deg ahead, 20 deg astern, so the slip is 130
+    deg) hauling a constant-torque load that steps to 2.5 times at 0.25 s: more than
+    the engine can carry, the load overhauls it (a weight being lowered), stops it and
+    turns it backward."""
     from corliss.engine.simulate import simulate
-    data = _slip_scene(forward_advance="30 deg", backward_advance="20 deg")
-    data["valve_gear"].pop("eccentric_rod")
-    data["flywheel"] = {"rim_weight": "60 lb", "mean_radius": "7 in"}
-    data["load"] = {"torque": "55 N*m", "kind": "step", "step_time": "0.25 s",
-                    "step_fraction": 2.5}
-    data["run"] = dict(data["run"], mode="transient", duration="1.8 s")
-    scene = scene_from_dict(data, name="reversing")
+    scene = load_scene(find_scene("slip-eccentric-reversing"))
     return scene, simulate(scene)
 
 

@@ -10,7 +10,8 @@ speed; then the speed loop takes over again at the next head-end dead centre, ru
 the other way with the gear driven by the backward stop.
 
 *Derived here*: the engine's own frame.  The crank angle ``theta`` is reckoned
-positive ahead.  Running backward, the angle in the direction of rotation is
+positive the way the engine runs at the start ("ahead" below; for a scene that starts
+astern, on its backward stop, the same holds with the stops' names exchanged).  Running backward, the angle in the direction of rotation is
 ``phi = -theta``; a single cylinder's volumes are even in the crank angle (the slider
 crank's piston stands at the same place at ``theta`` and ``-theta``), so the cylinder
 running backward at speed ``omega < 0`` is the same cylinder running ahead in ``phi``
