@@ -61,6 +61,12 @@ CREEP_FRACTION = 1e-6
 FORWARD, STANDING, BACKWARD = 0, 1, 2
 
 
+def _terminal(event, direction: int) -> None:
+    """Make ``event`` a terminal event of ``solve_ivp`` crossing zero in ``direction``."""
+    setattr(event, "terminal", True)
+    setattr(event, "direction", direction)
+
+
 def reversible(scene, gear) -> bool:
     """Whether a stalled turn of this scene is carried on through a change of direction.
 
@@ -218,27 +224,27 @@ def run_reversal(y0: np.ndarray, theta0: float, omega_run: float, net, gear, tie
             if mode == FORWARD:
                 def stop(t, Y, *_):
                     return Y[1 + i_w] + 0.5 * w_f      # a little past zero: turned back
-                stop.terminal, stop.direction = True, -1
+                _terminal(stop, -1)
                 events = [stop]
             elif mode == STANDING:
                 def forward_stop(t, Y, *_, a=anchor):
                     return Y[0] - a
-                forward_stop.terminal, forward_stop.direction = True, 1
+                _terminal(forward_stop, 1)
 
                 def backward_stop(t, Y, *_, a=anchor):
                     return Y[0] - (a - slip)
-                backward_stop.terminal, backward_stop.direction = True, -1
+                _terminal(backward_stop, -1)
                 events = [forward_stop, backward_stop]
             elif -Y[1 + i_w] >= HANDOVER_FRACTION * omega_run:
                 events = None                   # fast enough already: to the dead centre
             else:
                 def ahead_again(t, Y, *_):
                     return Y[1 + i_w] - 0.5 * w_f
-                ahead_again.terminal, ahead_again.direction = True, 1
+                _terminal(ahead_again, 1)
 
                 def fast_enough(t, Y, *_):
                     return -Y[1 + i_w] - HANDOVER_FRACTION * omega_run
-                fast_enough.terminal, fast_enough.direction = True, 1
+                _terminal(fast_enough, 1)
                 events = [ahead_again, fast_enough]
             if events is None:
                 hit = [1]
@@ -272,7 +278,7 @@ def run_reversal(y0: np.ndarray, theta0: float, omega_run: float, net, gear, tie
 
                 def dead_centre(t, Y, *_):
                     return Y[0] - theta_dc
-                dead_centre.terminal, dead_centre.direction = True, -1
+                _terminal(dead_centre, -1)
                 sol = solve_ivp(rhs, (t, t_max), Y, method="LSODA", rtol=rtol, atol=tol,
                                 events=[dead_centre], args=(mode, anchor))
                 keep(sol, mode, anchor, False)

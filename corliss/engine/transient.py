@@ -48,6 +48,7 @@ from corliss.governors.mechanism import CREEP_PER_S
 from corliss.thermo.steam_table import load_table
 from corliss.valves import events as gear_events
 from corliss.valves.portmap import tabulate, tabulate_settings
+from corliss.valves.single_acting import single_acting
 
 log = logging.getLogger(__name__)
 TWO_PI = 2.0 * math.pi
@@ -526,7 +527,9 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
                      "its backward stop at %.3f s", slip_deg, float(rev["samples"]["t"][-1]))
             sense, status = -1.0, 0
             th_offset = rev["phi_rad"] - TWO_PI * k
-            pm_back = tabulate(gear.reversed(), fid.portmap_points)
+            # the backward stop's gear (a single-acting cylinder's kept single-acting)
+            pm_back = tabulate(single_acting(gear.reversed(), scene.engine.steam_ends),
+                               fid.portmap_points)
             back = build_network(scene, geo, pm_back, steam, chest, exhaust).arrays()
             net = net._replace(port_grid=back.port_grid, port_npts=back.port_npts,
                                port_area=back.port_area)
@@ -664,13 +667,14 @@ def _reversal_record(rev: dict, k: int, y0: np.ndarray, network, steam, tables: 
 
 
 def _to_fixed_frame(row: dict, frame: dict) -> None:
-    """A turn run backward (the loop's angle and speed in the direction of rotation)
-    reported in the fixed frame: crank angle and speeds negated."""
+    """A turn run backward (the loop's angle, speed and torques in the direction of
+    rotation) reported in the fixed frame: crank angle, speeds and torques negated."""
     for key in ("mean_speed_rpm", "speed_start_rpm", "speed_end_rpm"):
         if key in row:
             row[key] = -row[key]
-    for key in ("crank_angle_deg", "speed_rpm"):
-        frame[key] = -np.asarray(frame[key])
+    for key in ("crank_angle_deg", "speed_rpm", "indicated_torque_N_m", "load_torque_N_m"):
+        if key in frame:
+            frame[key] = -np.asarray(frame[key])
 
 
 def _update_wall(network, y: np.ndarray) -> None:
