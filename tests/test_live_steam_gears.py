@@ -543,8 +543,10 @@ def test_bundled_scene_runs_animates_and_designs(name, tmp_path, capsys):
         assert rc != 0 and "oscillating" in capsys.readouterr().err
     else:
         assert rc == 0
-        designed = scene_events(load_scene(tmp_path / "d" / "design.toml"))
-        assert designed["head"]["cutoff_frac"] == pytest.approx(0.6, abs=1e-6)
+        designed = scene_events(load_scene(tmp_path / "d" / f"{name}.design.toml"))
+        # the scene written rounds its lengths to 0.001 in: on these small valves a
+        # thou moves the cut-off by some 1e-4 of the stroke (5e-5 measured)
+        assert designed["head"]["cutoff_frac"] == pytest.approx(0.6, abs=5e-4)
 
 
 def test_gears_build_their_kinds():

@@ -297,7 +297,10 @@ class Result:
         Returns
         -------
         dict
-            The matplotlib objects drawn (``"ax"`` or ``"figure"`` and the lines).
+            The matplotlib objects drawn, one shape for every kind
+            (:func:`corliss.plot.shape.one_shape`): ``figure``, ``axes`` (a list, the
+            main first), ``ax`` (the main axes), ``lines`` (``{name: Line2D}``), and
+            the plotting function's own entries beside them.
         """
         return _writer().plot_result(self, kind or self.FIGURES[0], ax, units_system)
 
