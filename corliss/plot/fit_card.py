@@ -10,7 +10,7 @@ from corliss.keys import units
 from corliss.plot.cards import card_abscissa
 
 
-def _position_m(geometry, end: str, abscissa: str, x) -> np.ndarray:
+def _position_m(geometry, end: str, abscissa: str, x):
     """A measured card's abscissa as piston position from head-end dead centre [m]:
     a fraction of the stroke, a position, or the end's volume (the head end's grows
     from its clearance as the piston leaves head-end dead centre, the crank end's from
