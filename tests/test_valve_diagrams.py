@@ -22,23 +22,24 @@ import pytest  # noqa: E402
 
 from corliss.engine.model import build_gear, scene_events  # noqa: E402
 from corliss.plot import plot_bilgram_diagram, plot_zeuner_diagram  # noqa: E402
-from corliss.plot.gear_panels import find_by_class  # noqa: E402
+from corliss.plot.gear_panels import find_by_class, plot_porter_allen  # noqa: E402
 from corliss.plot.gears import GEAR_PANELS, EVENT_WORDS, plot_lapped_valve  # noqa: E402
 from corliss.plot.labels import crosses  # noqa: E402
 from corliss.scene.loader import bundled_scenes, load_scene  # noqa: E402
 
 
-def _diagram_scenes() -> list[str]:
-    """The bundled scenes whose gear is drawn with the Zeuner and Bilgram diagrams."""
+def _diagram_scenes(drawing) -> list[str]:
+    """The bundled scenes whose gear is drawn by ``drawing``."""
     out = []
     for name, path in sorted(bundled_scenes().items()):
         scene = load_scene(path)
-        if find_by_class(GEAR_PANELS, build_gear(scene)) is plot_lapped_valve:
+        if find_by_class(GEAR_PANELS, build_gear(scene)) is drawing:
             out.append(name)
     return out
 
 
-SCENES = _diagram_scenes()
+SCENES = _diagram_scenes(plot_lapped_valve)
+PORTER_ALLEN = _diagram_scenes(plot_porter_allen)
 DRAW = {"zeuner": plot_zeuner_diagram, "bilgram": plot_bilgram_diagram}
 
 
@@ -62,8 +63,10 @@ def _diff(a: float, b: float) -> float:
 
 def test_the_lapped_valve_scenes_are_many():
     """The parametrised tests below see the slide valves, link motions, radial gears and
-    shaft governors of the bundled scenes (a guard against an empty parametrisation)."""
+    shaft governors of the bundled scenes, and the Porter-Allen scenes (a guard against
+    an empty parametrisation)."""
     assert len(SCENES) >= 15, SCENES
+    assert len(PORTER_ALLEN) >= 1
 
 
 @pytest.mark.parametrize("name", SCENES)
@@ -93,6 +96,33 @@ def test_each_zeuner_crank_line_is_the_event_the_events_table_reports(name):
                 assert _diff(_angle_deg(line), want) < 1e-6, (end, event, _angle_deg(line), want)
                 # the legend names the line with the table's angle, to its decimal
                 assert f"{end} {EVENT_WORDS[event]}, {want:.1f}" in line.get_label()
+    finally:
+        plt.close(fig)
+
+
+@pytest.mark.parametrize("name", PORTER_ALLEN)
+def test_the_porter_allen_steam_diagram_has_the_steam_events_of_the_events_table(name):
+    """The Porter-Allen gear's Zeuner diagram of its steam motion (the radius rod's
+    travel against the laps referred to the rod, Arts. 30, 83) carries a crank line at
+    each steam admission and cut-off the events table reports, to the same 1e-6 deg
+    (the steam valve's opening is ``R_v sin(phi - beta)``, zero exactly where the rod's
+    travel equals its equivalent lap); release and compression belong to the exhaust
+    valves' own motion and are not on it.  Its labels clear every line."""
+    scene = load_scene(bundled_scenes()[name])
+    out = plot_porter_allen(build_gear(scene), None, scene.output.units)
+    fig = out["figure"]
+    try:
+        fig.canvas.draw()
+        table = scene_events(scene)
+        drawn = out["lines"]["crank_lines"]
+        for end in ("head", "crank"):
+            for event in ("admission", "cutoff"):
+                want = table[end][f"{event}_deg"]
+                assert _diff(_angle_deg(drawn[end][event]), want) < 1e-6, (end, event)
+            assert set(drawn[end]) == {"admission", "cutoff"}
+        ax = out["axes"][2]
+        renderer = fig.canvas.get_renderer()
+        assert not [t.get_text() for t in out["labels"] if crosses(t, list(ax.lines), renderer)]
     finally:
         plt.close(fig)
 

@@ -8,7 +8,9 @@ from __future__ import annotations
 import numpy as np
 
 from corliss.keys import units
-from corliss.plot.labels import fit_inside, merge_rays, place_clear, ray_labels
+from corliss.plot.crank_lines import (EVENT_WORDS, POLAR_EVENTS, crank_lines,  # noqa: F401
+                                      dead_centre_lines, period_frame, polar_events)
+from corliss.plot.labels import fit_inside, place_clear
 from corliss.plot.gear_panels import (find_by_class, plot_corliss_gear, plot_double_valve,
                                       plot_oscillating, plot_porter_allen)
 from corliss.valves.corliss_gear import CorlissGear
@@ -70,11 +72,6 @@ def plot_valve_travel(gear, ax=None, units_system: str = "US") -> dict:
     return {"ax": ax, "lines": lines}
 
 
-#: The events' names in the diagrams' labels.
-EVENT_WORDS = {"admission": "admission", "cutoff": "cut-off", "release": "release",
-               "compression": "compression"}
-
-
 def _idle_end(gear) -> str | None:
     """The end of a single-acting cylinder that takes no steam (it has no events)."""
     ports = getattr(gear, "idle_ports", None)
@@ -114,101 +111,8 @@ def zeuner_events(gear) -> dict:
     opposite one (exhaust), and the closing the first after it, as the events table
     takes them (:func:`corliss.valves.events.end_events`).
     """
-    from scipy.optimize import brentq
-
-    th = np.linspace(0.0, 2.0 * np.pi, 7201)
-    x = np.asarray(gear.travel(th), dtype=float)
-    laps, elaps = gear.spec.lap_m, gear.spec.exhaust_lap_m
-    idle = _idle_end(gear)
-    out: dict = {"head": {}, "crank": {}}
-    for end, name, level, rising in _BILGRAM_EVENTS:
-        out[end][f"{name}_deg"] = None
-    two_pi = 2.0 * np.pi
-
-    def meetings(level, up):
-        """Angles [rad] where x passes ``level`` upwards (``up``) or downwards."""
-        above = x - level > 0.0
-        idx = np.nonzero(above[1:] != above[:-1])[0]
-        found = []
-        for i in idx:
-            if bool(above[i + 1]) != up:
-                continue
-            found.append(brentq(lambda t: float(gear.travel(np.array([t]))[0]) - level,
-                                th[i], th[i + 1], xtol=1e-12) % two_pi)
-        return found
-
-    def near(angles, anchor):
-        return min(angles, key=lambda t: min((t - anchor) % two_pi, (anchor - t) % two_pi))
-
-    for end, dead in (("head", 0.0), ("crank", np.pi)):
-        if end == idle:
-            continue
-        rows = [r for r in _BILGRAM_EVENTS if r[0] == end]
-        for opening, closing, anchor in ((rows[0], rows[1], dead), (rows[2], rows[3], dead + np.pi)):
-            # the port opens where its opening rises: for the steam port the
-            # admission's crossing, for the exhaust the release's
-            L = opening[2](laps, elaps)
-            opens = meetings(L, opening[3])
-            shuts = meetings(closing[2](laps, elaps), closing[3])
-            if not opens or not shuts:
-                continue
-            t0 = near(opens, anchor % two_pi)
-            t1 = min(shuts, key=lambda t: (t - t0) % two_pi)
-            out[end][f"{opening[1]}_deg"] = float(np.degrees(t0) % 360.0)
-            out[end][f"{closing[1]}_deg"] = float(np.degrees(t1) % 360.0)
-    return out
-
-
-def _event_rays(ev, ends=("head", "crank")) -> list:
-    """``(angle [deg], end, event)`` of every event an events dict holds."""
-    return [(ev[end][f"{name}_deg"], end, name) for end in ends for name in EVENT_WORDS
-            if ev[end].get(f"{name}_deg") is not None]
-
-
-#: The events' numbers on the crank lines, as Spangler numbers them (Art. 17, Figs.
-#: 12-13: 1 admission, 2 cut-off, 3 release, 4 compression at one end), the crank
-#: end's following on.
-EVENT_NUMBERS = {("head", name): str(i + 1) for i, name in enumerate(EVENT_WORDS)} | \
-    {("crank", name): str(i + 5) for i, name in enumerate(EVENT_WORDS)}
-
-
-def _crank_lines(ax, ev, radius: float, lines: dict) -> list:
-    """The crank line of every event from o to ``radius`` (head end solid, crank end
-    dashed), each numbered beyond its end (lines of near angles share a label) and
-    named with its angle in the legend.  Returns the labels."""
-    rays = []
-    drawn: dict = {"head": {}, "crank": {}}
-    for a, end, name in _event_rays(ev):
-        p = np.radians(a)
-        c, s = np.cos(p), np.sin(p)
-        n = EVENT_NUMBERS[(end, name)]
-        (drawn[end][name],) = ax.plot(
-            [0.0, radius * c], [0.0, radius * s], color="0.2", lw=0.8,
-            ls="-" if end == "head" else "--",
-            label=f"{n}  {end} {EVENT_WORDS[name]}, {a:.1f}\N{DEGREE SIGN}")
-        rays.append((a, n))
-    lines["crank_lines"] = drawn
-    return ray_labels(ax, merge_rays([(a, n) for a, n in rays], within_deg=4.0), radius,
-                      fontsize=7.5)
-
-
-def _dead_centre_lines(ax, radius: float) -> None:
-    """The dead-centre line and the line square to it through o, to ``radius``."""
-    ax.plot([-radius, radius], [0.0, 0.0], color="0.6", lw=0.6)
-    ax.plot([0.0, 0.0], [-radius, radius], color="0.6", lw=0.6)
-
-
-def _period_frame(ax, u: str, title: str) -> None:
-    """Equal aspect, no box, the legend under the diagram (where no curve runs)."""
-    ax.set_aspect("equal")
-    ax.set_title(title, fontsize=10)
-    ax.set_xlabel(f"[{u}]  crank turning counter-clockwise from head dead centre (right)",
-                  fontsize=7)
-    ax.tick_params(labelsize=7)
-    ax.legend(fontsize=7, frameon=False, loc="upper center", bbox_to_anchor=(0.5, -0.16),
-              ncol=2)
-    for side in ("top", "right"):
-        ax.spines[side].set_visible(False)
+    return polar_events(gear.travel, gear.spec.lap_m, gear.spec.exhaust_lap_m,
+                        _idle_end(gear))
 
 
 def plot_zeuner_diagram(gear, ax=None, units_system: str = "US") -> dict:
@@ -277,12 +181,12 @@ def plot_zeuner_diagram(gear, ax=None, units_system: str = "US") -> dict:
                                    ls=ls, label=label)[0]
     rmax = float(np.nanmax(np.abs(x)))
     radius = 1.08 * rmax
-    _dead_centre_lines(ax, radius)
+    dead_centre_lines(ax, radius)
     ev = zeuner_events(gear)
-    labels = _crank_lines(ax, ev, radius, lines)
+    labels = crank_lines(ax, ev, radius, lines)
     ax.set_xlim(-1.1 * radius, 1.1 * radius)
     ax.set_ylim(-1.1 * radius, 1.1 * radius)
-    _period_frame(ax, u, "Zeuner diagram (Arts. 11-17)")
+    period_frame(ax, u, "Zeuner diagram (Arts. 11-17)")
     fit_inside(ax, labels)
     return {"ax": ax, "lines": lines, "labels": labels, "events": ev, "crank_radius": radius}
 
@@ -293,20 +197,6 @@ def _bilgram_point(gear) -> tuple[float, float]:
     zt = getattr(gear, "zeuner_travel", None) or gear.travel
     C, S = (float(v) for v in np.asarray(zt(np.array([0.0, 0.5 * np.pi])), dtype=float))
     return C, S
-
-
-# (end, event, signed level x = L of the valve's displacement as a function of the laps,
-#  whether x rises through it there): the opening of each port is zero where x = L.
-_BILGRAM_EVENTS = (
-    ("head", "admission", lambda l, e: l[0], True),
-    ("head", "cutoff", lambda l, e: l[0], False),
-    ("head", "release", lambda l, e: -e[0], False),
-    ("head", "compression", lambda l, e: -e[0], True),
-    ("crank", "admission", lambda l, e: -l[1], False),
-    ("crank", "cutoff", lambda l, e: -l[1], True),
-    ("crank", "release", lambda l, e: e[1], True),
-    ("crank", "compression", lambda l, e: e[1], False),
-)
 
 
 def bilgram_events(gear) -> dict:
@@ -348,7 +238,7 @@ def bilgram_events(gear) -> dict:
     rho, alpha = float(np.hypot(dx, dy)), float(np.arctan2(dy, dx))
     laps, elaps = gear.spec.lap_m, gear.spec.exhaust_lap_m
     out = {"head": {}, "crank": {}}
-    for end, name, level, rising in _BILGRAM_EVENTS:
+    for end, name, level, rising in POLAR_EVENTS:
         L = level(laps, elaps)
         angle = None
         if abs(L) < rho:
@@ -432,13 +322,13 @@ def plot_bilgram_diagram(gear, ax=None, units_system: str = "US") -> dict:
         ev = {**ev, idle: {k: (None if k.endswith("_deg") else v) for k, v in ev[idle].items()}}
     # the crank lines reach past every circle, so their labels lie clear of all
     radius = max(1.1 * r, r + biggest + 0.06 * r)
-    _dead_centre_lines(ax, radius)
-    labels = _crank_lines(ax, ev, radius, lines)
+    dead_centre_lines(ax, radius)
+    labels = crank_lines(ax, ev, radius, lines)
     letters = [ax.annotate(name, xy, textcoords="offset points", xytext=(4, 3), fontsize=8)
                for name, xy in (("d", (dx, dy)), ("k", (dx, 0.0)), ("o", (0.0, 0.0)))]
     ax.set_xlim(-1.1 * radius, 1.1 * radius)
     ax.set_ylim(-1.1 * radius, 1.1 * radius)
-    _period_frame(ax, u, "Bilgram diagram (Art. 149)")
+    period_frame(ax, u, "Bilgram diagram (Art. 149)")
     fit_inside(ax, labels)
     # the letters where no line runs (the limits now fixed)
     place_clear(letters, [ln for ln in ax.lines if ln is not lines["d"]])
