@@ -49,10 +49,11 @@ def _chain(ax, chain, u: str, kind: str, lap_text: str) -> dict:
     t = np.linspace(0, 2 * math.pi, 181)
     lines["valve face"] = ax.plot(D + Rv * np.cos(t), Rv * np.sin(t), color="0.35", lw=1.0)[0]
     ax.plot([0, D, j[0], l_[0]], [0, 0, j[1], l_[1]], "o", color="k", ms=3.5, mfc="white")
-    ax.text(-0.04 * D, 0.0, "o", fontsize=8, ha="right", va="center")
-    ax.text(D + 0.03 * D, -0.03 * D, "q", fontsize=8, ha="left", va="top")
-    ax.text(j[0], j[1] + 0.03 * D, "j", fontsize=8, ha="center", va="bottom")
-    ax.text(l_[0], l_[1] + 0.03 * D, "l", fontsize=8, ha="center", va="bottom")
+    letter = dict(fontsize=9, fontstyle="italic", family="serif")
+    ax.text(0.0, -0.03 * D, "o", ha="center", va="top", **letter)
+    ax.text(D + 0.03 * D, -0.03 * D, "q", ha="left", va="top", **letter)
+    ax.text(j[0] + 0.02 * D, j[1], "j", ha="left", va="bottom", **letter)
+    ax.text(l_[0] - 0.02 * D, l_[1], "l", ha="right", va="center", **letter)
     k = f"{kind}_"
     h = 0.025 * D                      # a text's clearance from its line [units]
     ax.text(0.5 * j[0] - h, 0.5 * j[1] + h, f"{k}stud_radius = {rho:.3g} {u}",
@@ -64,15 +65,22 @@ def _chain(ax, chain, u: str, kind: str, lap_text: str) -> dict:
     # the arm's angle counts from q -> o (angle pi in this frame), the same side as j
     _arc(ax, q, 0.6 * arm, math.pi, math.pi - g0, "", text_r=1.0)
     side = 1.0 if g0 >= 0 else -1.0
-    ax.text(q[0] - 0.75 * arm, side * 0.35 * arm, f"{k}arm_angle = "
-            f"{math.degrees(g0):.3g}\N{DEGREE SIGN} (from q\N{RIGHTWARDS ARROW}o, + on j's side)",
-            fontsize=7, ha="right", va="center")
-    ax.text(0.5 * (q[0] + l_[0]) + h, 0.5 * (q[1] + l_[1]), f"{k}arm = {arm:.3g} {u}",
-            fontsize=7, ha="left", va="center")
-    ax.text(0.6 * l_[0] + 0.4 * j[0] + h, 0.6 * l_[1] + 0.4 * j[1] + h,
+    # the arm's angle and length named under (or over) the arm, led to it
+    ax.annotate(f"{k}arm_angle = {math.degrees(g0):.3g}\N{DEGREE SIGN} "
+                f"(from q\N{RIGHTWARDS ARROW}o, + on j's side)",
+                (q[0] + 0.6 * arm * math.cos(math.pi - 0.5 * g0),
+                 0.6 * arm * math.sin(math.pi - 0.5 * g0)),
+                (q[0] - 0.5 * arm, side * 2.6 * arm), fontsize=7, ha="left",
+                va="bottom" if side > 0 else "top",
+                arrowprops=dict(arrowstyle="-", color="0.5", lw=0.5))
+    ax.annotate(f"{k}arm = {arm:.3g} {u}", (0.5 * (q[0] + l_[0]), 0.5 * (q[1] + l_[1])),
+                (q[0] + Rv + 2 * h, side * 1.6 * arm), fontsize=7, ha="left",
+                va="bottom" if side > 0 else "top",
+                arrowprops=dict(arrowstyle="-", color="0.5", lw=0.5))
+    ax.text(0.75 * j[0] + 0.25 * l_[0], 0.75 * j[1] + 0.25 * l_[1] + h,
             "valve rod (its length set at mid position)", fontsize=6.5, color="0.3",
             ha="left", va="bottom")
-    y = -max(Rv, arm, 0.2 * D) - 2 * h
+    y = -max(Rv, 2.6 * arm, 0.2 * D) - 4 * h
     ax.plot([0, D], [y, y], color="0.3", lw=0.7, marker="|", ms=8)
     ax.text(0.5 * D, y - h, f"{k}spindle_distance = {D:.3g} {u}", fontsize=7,
             ha="center", va="top")
@@ -142,18 +150,25 @@ def plot_corliss_keys(gear, fig=None, units_system: str = "US") -> dict:
     plate["plate arm"] = ax0.plot([o[0], f[0]], [o[1], f[1]], color="k", lw=2.0)[0]
     ax0.plot([0, ecc[0], o[0], f[0]], [0, ecc[1], o[1], f[1]], "o", color="k", ms=3.5,
              mfc="white")
-    ax0.text(-0.1 * r, -0.1 * r, "shaft", fontsize=7, ha="right", va="top")
-    ax0.text(o[0] - 0.06 * R, o[1] + 0.06 * R, "o", fontsize=8, ha="right")
-    ax0.text(f[0] + 0.06 * R, f[1] - 0.06 * R, "f", fontsize=8, va="top")
+    ax0.text(0.0, -0.15 * r, "shaft", fontsize=7, ha="center", va="top")
+    letter = dict(fontsize=9, fontstyle="italic", family="serif")
+    ax0.text(o[0] - 0.06 * R, o[1] + 0.06 * R, "o", ha="right", **letter)
+    ax0.text(f[0] + 0.06 * R, f[1] - 0.06 * R, "f", va="top", **letter)
     ax0.text(o[0] + 0.1 * R, 0.5 * R, f"wrist_plate_radius\n= {R:.3g} {u}", fontsize=7,
              ha="left", va="center")
-    ax0.text(0.5 * ecc[0] + 0.1 * r, 0.5 * ecc[1] - 0.05 * r,
-             f"eccentricity\n= {r:.3g} {u}", fontsize=7, ha="left", va="top")
-    _arc(ax0, (0.0, 0.0), 0.75 * r, 0.5 * math.pi, 0.5 * math.pi - delta,
-         f"angular_advance\n= {math.degrees(delta):.3g}\N{DEGREE SIGN}", text_r=1.75)
-    ax0.text(-1.2 * r, -0.5 * r, "crank on head-end dead centre, turning counter-clockwise\n"
-             "eccentric 90 deg + angular_advance ahead of it", fontsize=6.5, color="0.3",
-             ha="left", va="top")
+    ax0.annotate(f"eccentricity = {r:.3g} {u}", (0.5 * ecc[0], 0.5 * ecc[1]),
+                 (-1.3 * r, 0.9 * r), fontsize=7, ha="right", va="center",
+                 arrowprops=dict(arrowstyle="-", color="0.5", lw=0.5))
+    _arc(ax0, (0.0, 0.0), 0.75 * r, 0.5 * math.pi, 0.5 * math.pi - delta, "")
+    mid_a = 0.5 * math.pi - 0.5 * delta
+    ax0.annotate(f"angular_advance = {math.degrees(delta):.3g}\N{DEGREE SIGN}\n"
+                 "(+ ahead, the way the crank turns)",
+                 (0.75 * r * math.cos(mid_a), 0.75 * r * math.sin(mid_a)), (-1.3 * r, 1.9 * r),
+                 fontsize=7, ha="right", va="center",
+                 arrowprops=dict(arrowstyle="-", color="0.5", lw=0.5))
+    ax0.text(-1.2 * r, -0.6 * r, "the crank on head-end dead centre, turning "
+             "counter-clockwise;\nthe eccentric 90 deg + angular_advance ahead of it",
+             fontsize=6.5, color="0.3", ha="left", va="top")
     ax0.set_aspect("equal")
     ax0.axis("off")
     ax0.set_title("Eccentric, hook rod and wrist plate at mid position", fontsize=9)
