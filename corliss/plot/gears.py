@@ -55,18 +55,26 @@ def plot_valve_travel(gear, ax=None, units_system: str = "US") -> dict:
                                   lw=1.0, ls="--", label="Zeuner (infinite rod)")[0]
     lh, lc = gear.spec.lap_m
     eh, ec = gear.spec.exhaust_lap_m
+    names, places = [], []
     for y, label, ls in ((lh, "head steam lap", "-"), (-lc, "crank steam lap", "-"),
                          (-eh, "head exhaust lap", ":"), (ec, "crank exhaust lap", ":")):
         if y == 0.0:
             continue
-        ax.axhline(units.to_unit(y, u), color="0.6", lw=0.7, ls=ls)
-        ax.text(362, units.to_unit(y, u), label, fontsize=7, va="center", color="0.4")
+        yu = float(units.to_unit(y, u))
+        ax.axhline(yu, color="0.6", lw=0.7, ls=ls)
+        # named inside the panel, just above or below its line, where no curve runs
+        va = "bottom" if y > 0 else "top"
+        names.append(ax.text(357, yu, label, fontsize=7, ha="right", va=va, color="0.4"))
+        places.append([(x_, yu) for x_ in (357, 300, 240, 180, 120, 60)])
     ax.axhline(0, color="0.8", lw=0.5)
     ax.set_xlim(0, 360)
     ax.set_xticks(range(0, 361, 45))
     ax.set_xlabel("crank angle from head-end dead centre [deg]")
     ax.set_ylabel(f"valve displacement, + opens head steam [{u}]")
-    ax.legend(fontsize=8, frameon=False, loc="lower left")
+    ax.legend(fontsize=8, frameon=False, loc="upper center", bbox_to_anchor=(0.5, -0.16),
+              ncol=2)
+    ax.set_ylim(*ax.get_ylim())
+    place_clear(names, list(lines.values()), positions=places)
     for side in ("top", "right"):
         ax.spines[side].set_visible(False)
     return {"ax": ax, "lines": lines}
