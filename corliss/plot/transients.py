@@ -37,8 +37,8 @@ def plot_load_step(result, units_system: str | None = None) -> dict:
 
     system = units_system or result.scene.output.units
     ts, cyc = result.timeseries, result.cycles
-    fig = plt.figure(figsize=(13, 8.5))
-    gs = fig.add_gridspec(3, 2, width_ratios=(1.8, 1.0), hspace=0.45, wspace=0.25)
+    fig = plt.figure(figsize=(13, 9.5))
+    gs = fig.add_gridspec(3, 2, width_ratios=(1.8, 1.0), hspace=0.7, wspace=0.3)
     ax_n = fig.add_subplot(gs[0, 0])
     ax_g = fig.add_subplot(gs[1, 0], sharex=ax_n)
     ax_l = fig.add_subplot(gs[2, 0], sharex=ax_n)
