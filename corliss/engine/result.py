@@ -854,7 +854,9 @@ class TransientResult(Result):
         -------
         dict
             ``{"before": {"head": frame, "crank": frame, "cycle": k}, "after": ...}``,
-            each frame with ``V_m3`` [m3] and ``p_Pa`` [Pa] over the turn ``k``; empty
+            each frame with ``piston_frac`` (the piston's position as a fraction of the
+            stroke from head-end dead centre, the cards' abscissa) [-], ``V_m3`` [m3]
+            and ``p_Pa`` [Pa] over the turn ``k``; empty
             when the time series has no pressures (``record`` = cycle, or the
             mean-value model).
         """
@@ -874,9 +876,10 @@ class TransientResult(Result):
             rows = ts[ts["cycle"] == k]
             th = np.radians(rows["crank_angle_deg"].to_numpy())
             vh, vc = self.geometry.volumes_m3(th)
-            out[label] = {"head": pd.DataFrame({"V_m3": vh,
+            frac = self.geometry.fraction(th % TWO_PI)
+            out[label] = {"head": pd.DataFrame({"piston_frac": frac, "V_m3": vh,
                                                 "p_Pa": rows["p_head_Pa"].to_numpy()}),
-                          "crank": pd.DataFrame({"V_m3": vc,
+                          "crank": pd.DataFrame({"piston_frac": frac, "V_m3": vc,
                                                  "p_Pa": rows["p_crank_Pa"].to_numpy()}),
                           "cycle": k}
         return out
