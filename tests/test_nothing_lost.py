@@ -526,6 +526,67 @@ def test_a_cycle_count_beyond_the_ceiling_is_refused_before_work(tmp_path, capsy
     assert not (tmp_path / "o").exists()
 
 
+def test_a_duration_beyond_the_ceiling_is_refused_before_work(tmp_path, capsys):
+    """An hour of an engine's life is the most a transient runs: ``--duration 2 h`` and
+    a scene's ``[run] duration = "2 h"`` are refused naming the key, nothing written."""
+    code, _, err = _run(["run", "porter-throttling-governor", "--duration", "2 h", "--out",
+                         str(tmp_path / "o")], capsys)
+    assert code == 2 and "--duration" in err and "1 h" in err
+    text = SCENES["porter-throttling-governor"].read_text()
+    scene = tmp_path / "long.toml"
+    assert 'duration = "30 s"' in text
+    scene.write_text(text.replace('duration = "30 s"', 'duration = "2 h"'))
+    code, _, err = _run(["run", str(scene), "--out", str(tmp_path / "o")], capsys)
+    assert code == 2 and "run.duration" in err
+    assert not (tmp_path / "o").exists()
+
+
+@pytest.mark.parametrize("how, key", [(["--lhs", "10000001"], "--lhs"),
+                                      (["--monte-carlo", "10000001"], "--monte-carlo"),
+                                      (["--grid", "--levels", "4000"], "--levels")])
+def test_a_study_beyond_the_ceiling_is_refused_before_work(how, key, tmp_path, capsys):
+    """A study's runs are at most ten million (a grid of two keys at 4,000 levels is
+    sixteen million): refused naming the option, nothing written."""
+    code, _, err = _run(["study", "default", "--vary", "valve_gear.lap=0.8:1.2in",
+                         "--vary", "engine.bore=11:13in", *how, "--out", str(tmp_path / "o")],
+                        capsys)
+    assert code == 2 and key in err and "10,000,000" in err, err
+    assert not (tmp_path / "o").exists()
+
+
+def test_a_text_file_over_the_size_limit_is_refused_unread(tmp_path, capsys):
+    """A scene is a few kilobytes: a file over the 20 MB of docs/limits.md (a valid
+    scene with a comment making up the rest) is refused naming the scene and its size,
+    before it is read."""
+    big = tmp_path / "big.toml"
+    big.write_text(SCENES["default"].read_text() + "#" * 20_000_000 + "\n")
+    code, _, err = _run(["events", str(big)], capsys)
+    assert code == 2 and "scene" in err and "MB" in err, err
+
+
+def test_an_output_folder_that_cannot_be_made_or_written_is_a_message(tmp_path, capsys,
+                                                                     monkeypatch):
+    """``--out`` beneath a file (a folder that cannot be made): refused before any work
+    naming ``--out`` (exit 2); a folder that fails as the run's files are staged (made
+    unwritable after the check) is one line saying so (exit 5); no traceback, nothing
+    written (before: a traceback)."""
+    blocker = tmp_path / "a-file"
+    blocker.write_text("the user's own file")
+    code, _, err = _run(["run", "--out", str(blocker / "out"), "--cycles", "2", *FAST], capsys)
+    assert code == 2 and "--out" in err and "is a file" in err
+    assert blocker.read_text() == "the user's own file"
+    out = tmp_path / "out"
+
+    def unwritable(*a, **k):
+        raise PermissionError(13, "Permission denied", str(out))
+    import tempfile
+    monkeypatch.setattr(tempfile, "mkdtemp", unwritable)
+    code, _, err = _run(["run", "--out", str(out), "--cycles", "2", *FAST], capsys)
+    monkeypatch.undo()
+    assert code == cli.EXIT_RUN_STOPPED and "could not write into the output folder" in err
+    assert not out.exists()
+
+
 def _card_text(loops: int = 1, p_psia: float = 100.0, frac_max: float = 1.0,
                n: int = 72) -> str:
     """A head-end loop of ``n`` points: admission along the top, expansion, exhaust
