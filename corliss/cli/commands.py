@@ -80,6 +80,7 @@ from corliss.cli.heartbeat import Heartbeat
 from corliss.engine import first_run
 from corliss.engine.balance import balance_failure
 from corliss.engine.model import build_gear, scene_events
+from corliss.engine.output_size import check_output_samples
 from corliss.engine.simulate import simulate
 from corliss.engine.verdict import EXIT_PHYSICAL
 from corliss.errors import (EXIT_BALANCE_FAILED, EXIT_INTERRUPTED, EXIT_TERMINATED, InputError,
@@ -376,6 +377,10 @@ def cmd_run(args) -> int:
     elif args.until_settled:
         raise InputError("--until-settled", True, "a transient scene: a steady run always "
                          "runs until periodic")
+    check_output_samples(scene.run, {"cycles": "--cycles" if args.cycles is not None
+                                     else "run.cycles",
+                                     "duration": "--duration" if args.duration is not None
+                                     else "run.duration"})
     out = output_dir(args, scene)
     bar = None if args.json else (
         _bar("time") if transient else
