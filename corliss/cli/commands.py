@@ -372,7 +372,7 @@ def cmd_run(args) -> int:
         scene = scene.replace_run(duration_s=d)
     if transient and (args.until_settled or scene.run.until_settled):
         d = scene.run.duration_s
-        longest = max(scene.run.max_duration_s or 0.0, min(10.0 * d, 3600.0), d)
+        longest = max(scene.run.max_duration_s or 0.0, min(10.0 * d, limits.MAX_DURATION_S), d)
         scene = scene.replace_run(until_settled=True, max_duration_s=longest)
     elif args.until_settled:
         raise InputError("--until-settled", True, "a transient scene: a steady run always "

@@ -664,7 +664,7 @@ def _run(t: Table) -> RunSpec:
     duration = None
     if mode == "transient":
         duration = t.get("duration", REQUIRED)
-        if not 0.0 < duration <= 3600.0:
+        if not 0.0 < duration <= limits.MAX_DURATION_S:
             raise InputError(t.key("duration"), t.raw("duration"), "a time above 0, up to 1 h")
         if cycles is not None:
             raise InputError(t.key("cycles"), cycles, "no cycles in a transient run: give "
@@ -699,8 +699,8 @@ def _run(t: Table) -> RunSpec:
         if mode != "transient":
             raise InputError(t.key("until_settled"), until, "a transient run (mode = "
                              "\"transient\"): a steady run always runs until periodic")
-        longest = t.get("max_duration", f"{min(10.0 * duration, 3600.0)} s",
-                        within=(duration, 3600.0))
+        longest = t.get("max_duration", f"{min(10.0 * duration, limits.MAX_DURATION_S)} s",
+                        within=(duration, limits.MAX_DURATION_S))
     t.finish()
     spec = RunSpec(mode, model, speed, tuple(dict.fromkeys(effects)), fid, cycles, expansion,
                    duration, record, band, warm, start, until, longest, start_angle)
