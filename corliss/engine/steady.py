@@ -24,7 +24,7 @@ from corliss.engine.crank_resolved import CrankResolved
 from corliss.engine.ideal_card import card_area, hyperbolic_card, indicated_steam_kg
 from corliss.engine.model import assemble
 from corliss.engine.network import cylinder_prefix, piston_ends
-from corliss.engine.result import SteadyResult
+from corliss.engine.result import Deferred, SteadyResult
 from corliss.engine.wall import IdealPortWall
 from corliss.frames.frame import Frame
 from corliss.thermo.steam import HEOSSteam
@@ -221,8 +221,10 @@ def _crank_resolved(scene, model, pm, progress, start=None):
                     "a tolerance of %.2g; the card is the last cycle's (a tighter fidelity, or "
                     "more max_cycles, may settle it)", n_max, change,
                     max(residuals, key=residuals.get), fid.convergence_tolerance)
-    timeseries = _crank_timeseries(net, steam, ends_all, out_theta, omega, samples_all,
-                                   walls_used)
+    # the time series is built when first read (the summary's cards, a file, a plot): a
+    # study's run that records the summary's balances and rates never needs it
+    timeseries = Deferred(lambda: _crank_timeseries(net, steam, ends_all, out_theta, omega,
+                                                    samples_all, walls_used))
     final = SteadyStart(y.copy(), None if net.wall_T is None else np.array(net.wall_T, dtype=float))
     return {"timeseries": timeseries, "cycles": Frame.from_rows(rows), "final_state": final,
             "cycles_to_converge": converged, "periodicity": residuals, "portmap": pm, "nfev": crank.nfev,

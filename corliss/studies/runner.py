@@ -159,7 +159,7 @@ def run_chunk(spec: StudySpec, run_ids, values) -> tuple[list, int, str | None]:
             with at_point(f"run {int(run_id)}: "
                           + ", ".join(f"{k} {v}" for k, v in changes.items())):
                 r = run_steady(_scene(spec.base, spec.name, spec.fidelity, changes))
-                flat = flatten(r.summary)
+                flat = flatten(r.summary_with(responses))
             nfev += r.rhs_evaluations
             tier = r.property_tier
             why = run_failure(r)
@@ -190,7 +190,7 @@ def run_failure(result) -> str:
     str
         ``"not converged: ..."`` with the reason, or ``""``.
     """
-    s = result.summary
+    s = result.summary_with(FAILURE_KEYS)
     if result.scene.run.cycles is None and s.get("cycles_to_converge") is None:
         res = s.get("periodicity_residuals") or {}
         worst = max(res, key=res.get) if res else "work"
@@ -198,6 +198,12 @@ def run_failure(result) -> str:
                 f"residual {res.get(worst, float('nan')):.3g}, {worst})")
     why = balance_failure(s)
     return f"not converged: {why}" if why else ""
+
+
+#: The summary's keys :func:`run_failure` reads.
+FAILURE_KEYS = ("cycles_to_converge", "periodicity_residuals", "cycles_simulated",
+                "steam_per_cycle_kg", "convergence_tolerance", "mass_balance_error",
+                "energy_balance_error")
 
 
 # --- a local pool's workers ----------------------------------------------------------------
