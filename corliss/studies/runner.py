@@ -2,7 +2,7 @@
 Dask cluster.
 
 Each run is the base scene's tables with the run's keys set
-(:func:`corliss.keys.edits.with_keys`), loaded and checked by the scene loader, made
+(:func:`corliss.keys.edits.edited`), loaded and checked by the scene loader, made
 steady at its speed and run at the study's fidelity; its row holds the responses
 asked for.  Before any run the scenes of the first runs and of the runs at each key's
 least and greatest value are loaded (every run's, up to :data:`CHECK_ALL_UP_TO`
@@ -61,7 +61,7 @@ from corliss.errors import InputError, RunError, StudyStopped
 from corliss.logs import at_point
 from corliss.progress import progress_for
 from corliss.scene.loader import Scene, find_scene, load_scene, scene_from_dict
-from corliss.keys.edits import KeyValue, with_keys
+from corliss.keys.edits import KeyValue, edited
 from corliss.studies.sampling import make_design
 from corliss.studies.journal import Journal, check_writable, fingerprint, journal_path, read_rows
 from corliss.studies.responses import check_responses, flatten, response_value
@@ -121,7 +121,7 @@ class StudySpec:
 
 def _scene(base: dict, name: str, fidelity: str | None, changes: dict):
     """One run's steady scene, loaded and checked."""
-    sc = scene_from_dict(with_keys(base, changes), name=name)
+    sc = scene_from_dict(edited(base, changes), name=name)
     if fidelity is not None:
         sc = sc.with_fidelity(fidelity)
     return steady_scene(sc)
