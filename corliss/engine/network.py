@@ -560,6 +560,18 @@ class Network:
             ``owner[c, row]``: the column of colour ``c`` that moves ``row``, or -1;
             shape (colours, :attr:`n_state`).
         """
+        key = (type(self), self.n_nodes, tuple(self.e_a), tuple(self.e_b),
+               tuple(self.wall_nodes))
+        got = _COLORS.get(key)
+        if got is None:
+            got = self._column_colors()
+            if len(_COLORS) >= COLORS_KEPT:
+                _COLORS.clear()
+            _COLORS[key] = got
+        return got[0].copy(), got[1].copy()
+
+    def _column_colors(self) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`column_colors`, found."""
         nv = self.n_nodes
         nbr = [set() for _ in range(nv)]
         for a, b in zip(self.e_a, self.e_b):
@@ -649,6 +661,13 @@ class Network:
             edge_cyl=i64(self.e_cyl), edge_port=i64(self.e_port), edge_area=f64(self.e_area),
             edge_cd=f64(self.e_cd), port_grid=grid, port_npts=npts, port_area=area,
             heat=f64(self.node_heat), wall_T=self.wall_T)
+
+
+#: The column colours of the networks of each layout (:meth:`Network.column_colors`):
+#: a study's runs share their network's layout, found once.
+_COLORS: dict = {}
+#: How many layouts it keeps.
+COLORS_KEPT = 64
 
 
 def _band(band: float | None) -> float:

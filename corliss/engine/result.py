@@ -686,7 +686,9 @@ class SteadyResult(Result):
         """
         if self._summary is not None:
             return self._summary
-        part = self._make_summary(light=True)
+        part = self.__dict__.get("_light")
+        if part is None:
+            part = self.__dict__["_light"] = self._make_summary(light=True)
         for key in keys:
             node = part
             for name in key.split("."):

@@ -147,9 +147,10 @@ def _crank_resolved(scene, model, pm, progress, start=None):
     if heat and scene.engine.wall_heat_model == "marks":
         marks = MarksLaw(net, geo, model.events, omega, model.chest.T, model.exhaust.T,
                          lp_events=model.lp_events)
+    arrays = net.arrays()
     method, rtol = fid.steady_integrator(steam.kernel_tier is not None
-                                         and jacobians.exact_jacobian_covers(net.arrays()))
-    crank = CrankResolved(net, steam, method, rtol, step_deg=fid.step_deg)
+                                         and jacobians.exact_jacobian_covers(arrays))
+    crank = CrankResolved(net, steam, method, rtol, step_deg=fid.step_deg, arrays=arrays)
     ends_all = piston_ends(net)
     step = math.radians(fid.output_step_deg)
     out_theta = np.linspace(0.0, TWO_PI, int(round(TWO_PI / step)) + 1)

@@ -282,4 +282,4 @@ def events(gear: ValveGear, piston_fraction: Callable[[float], float],
 def _sampled(gear: ValveGear) -> tuple[np.ndarray, np.ndarray]:
     """The gear's openings and signed openings over :data:`_SAMPLES` angles a turn."""
     th = np.linspace(0.0, TWO_PI, _SAMPLES, endpoint=False)
-    return gear.openings(th), gear.signed_openings(th)
+    return gear.sampled(th)
