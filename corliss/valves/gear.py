@@ -160,7 +160,8 @@ class ValveGear:
         """:meth:`openings` from the signed openings ``s`` [m], shape ``(4, n)``."""
         return np.clip(s, 0.0, self.port_widths()[:, None])
 
-    def sampled(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def sampled(self, theta: np.ndarray,
+                signed: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
         """:meth:`openings` and :meth:`signed_openings` at the same angles, the gear's
         motion found once where its openings are its signed ones clipped (a gear whose
         class has its own :meth:`openings` has both found as each finds them).
@@ -169,6 +170,8 @@ class ValveGear:
         ----------
         theta : ndarray
             Crank angles [rad], shape ``(n,)``.
+        signed : ndarray, optional
+            ``signed_openings(theta)`` when the caller has them [m], shape ``(4, n)``.
 
         Returns
         -------
@@ -178,9 +181,10 @@ class ValveGear:
             Signed openings [m], shape ``(4, n)``, as :meth:`signed_openings` gives them.
         """
         if type(self).openings in OPENINGS_OF_SIGNED:
-            s = self.signed_openings(np.atleast_1d(theta))
+            s = self.signed_openings(np.atleast_1d(theta)) if signed is None else signed
             return self._openings_of(s), s
-        return self.openings(theta), self.signed_openings(theta)
+        return self.openings(theta), (self.signed_openings(theta) if signed is None
+                                      else signed)
 
     def areas(self, theta: np.ndarray) -> np.ndarray:
         """Open area of each port: the opening times the effective port length.
