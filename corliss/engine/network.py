@@ -525,8 +525,19 @@ class Network:
             One scale per state component, in its unit; shape (:attr:`n_state`,).
         """
         ref = max(self.reservoirs, key=lambda s: s.p)
-        vmax = sum(float(np.max(self.volume(i, np.linspace(0, 2 * math.pi, 73))))
-                   for i in range(self.n_nodes))
+        # each cylinder's volumes found once for both its ends (the same values as
+        # :meth:`volume` node by node)
+        per_cyl: dict = {}
+        vmax = 0.0
+        for i in range(self.n_nodes):
+            if self.node_kind[i] == FIXED:
+                v = np.full(_SCALE_THETA.shape, self.node_V[i])
+            else:
+                c = self.node_cyl[i]
+                if c not in per_cyl:
+                    per_cyl[c] = self.geometries[c].volumes_m3(_SCALE_THETA + self.phases[c])
+                v = per_cyl[c][self.node_end[i]]
+            vmax += float(np.max(v))
         m = vmax * ref.rho
         sc = np.empty(self.n_state)
         sc[0:self.n_dyn:2] = m
@@ -663,6 +674,8 @@ class Network:
             heat=f64(self.node_heat), wall_T=self.wall_T)
 
 
+#: The crank angles a network's volumes are sampled at for its states' scales [rad].
+_SCALE_THETA = np.linspace(0, 2 * math.pi, 73)
 #: The column colours of the networks of each layout (:meth:`Network.column_colors`):
 #: a study's runs share their network's layout, found once.
 _COLORS: dict = {}
