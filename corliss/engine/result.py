@@ -139,6 +139,12 @@ class Result:
     wall_time_s: float
     _summary: dict | None = field(default=None, init=False, repr=False)
 
+    def __getstate__(self):
+        # a pickled result holds its tables built (a deferred one is a closure)
+        for name in list(self.__dict__.get("_held", {})):
+            _held(self, name)
+        return self.__dict__
+
     @property
     def summary(self) -> dict:
         """The run's summary (SI unless a key names its unit); computed once."""
