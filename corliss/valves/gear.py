@@ -205,7 +205,7 @@ class ValveGear:
 
 #: The :meth:`ValveGear.openings` methods that are ``_openings_of(signed_openings(theta))``
 #: (:meth:`ValveGear.sampled` finds the motion once for those).
-OPENINGS_OF_SIGNED = {ValveGear.openings}
+OPENINGS_OF_SIGNED: set = {ValveGear.openings}
 
 #: A registry entry: how to read a gear's scene table and build the gear.
 GearType = RegistryEntry

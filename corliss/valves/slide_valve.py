@@ -192,7 +192,7 @@ class LappedValve(ValveGear):
         """
         return self._openings_of(self.signed_openings(np.atleast_1d(theta)))
 
-    def _openings_of(self, s: np.ndarray) -> np.ndarray:
+    def _openings_of(self, s):
         """:meth:`openings` from the signed openings ``s`` [m], shape ``(4, n)``."""
         w = self.spec.port_width_m
         out = np.clip(s, 0.0, w)
