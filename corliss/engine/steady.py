@@ -26,7 +26,7 @@ from corliss.engine.model import assemble
 from corliss.engine.network import cylinder_prefix, piston_ends
 from corliss.engine.options import record_of
 from corliss.engine.output_size import EQUILIBRIUM_STEP_DEG
-from corliss.engine.result import SteadyResult
+from corliss.engine.result import Deferred, SteadyResult
 from corliss.engine.wall import IdealPortWall
 from corliss.frames.frame import Frame
 from corliss.thermo.steam import HEOSSteam
@@ -149,9 +149,10 @@ def _crank_resolved(scene, model, pm, progress, start=None):
     if heat and scene.engine.wall_heat_model == "marks":
         marks = MarksLaw(net, geo, model.events, omega, model.chest.T, model.exhaust.T,
                          lp_events=model.lp_events)
+    arrays = net.arrays()
     method, rtol = fid.steady_integrator(steam.kernel_tier is not None
-                                         and jacobians.exact_jacobian_covers(net.arrays()))
-    crank = CrankResolved(net, steam, method, rtol, step_deg=fid.step_deg)
+                                         and jacobians.exact_jacobian_covers(arrays))
+    crank = CrankResolved(net, steam, method, rtol, step_deg=fid.step_deg, arrays=arrays)
     ends_all = piston_ends(net)
     step = math.radians(fid.output_step_deg)
     out_theta = np.linspace(0.0, TWO_PI, int(round(TWO_PI / step)) + 1)
@@ -228,8 +229,10 @@ def _crank_resolved(scene, model, pm, progress, start=None):
                     "a tolerance of %.2g; the card is the last cycle's (a tighter fidelity, or "
                     "more max_cycles, may settle it)", n_max, change,
                     max(residuals, key=residuals.get), fid.convergence_tolerance)
-    timeseries = _crank_timeseries(net, steam, ends_all, out_theta, omega, samples_all,
-                                   walls_used)
+    # the time series is built when first read (the summary's cards, a file, a plot): a
+    # study's run that records the summary's balances and rates never needs it
+    timeseries = Deferred(lambda: _crank_timeseries(net, steam, ends_all, out_theta, omega,
+                                                    samples_all, walls_used))
     final = SteadyStart(y.copy(), None if net.wall_T is None else np.array(net.wall_T, dtype=float))
     return {"timeseries": timeseries, "cycles": Frame.from_rows(rows), "final_state": final,
             "cycles_to_converge": converged, "periodicity": residuals, "portmap": pm, "nfev": crank.nfev,

@@ -526,11 +526,33 @@ def _compound(t: Table, hp: EngineSpec, lp_gear_data, hp_gear_type, hp_gear,
     return CompoundSpec(lp, name, lp_gear, -follows, receiver)
 
 
+#: The reservoir states :func:`_check_states` found inside the properties' range (a
+#: study's runs share their supply and exhaust: checked once, not once a run).
+_STATES_PASSED: set = set()
+#: How many it keeps.
+STATES_KEPT = 256
+
+
 def _check_states(data: dict, supply: SupplySpec, exhaust: ExhaustSpec, run: RunSpec) -> None:
     """Supply and exhaust steam inside the range of the steam properties the run uses,
     before any work: below the critical pressure (IAPWS: 22.064 MPa; no steam and
     water apart above it), and for the ``table`` tier inside the table's density and
-    energy, with room for the exhaust steam to expand a little below back pressure."""
+    energy, with room for the exhaust steam to expand a little below back pressure.
+    States that passed are kept, and pass again without a look (a refusal is found
+    again each time, to name the key as written)."""
+    key = (supply.pressure_Pa, supply.temperature_K, supply.dryness, exhaust.pressure_Pa,
+           run.fidelity.properties, steam_table.table_path().is_file())
+    if key in _STATES_PASSED:
+        return
+    _check_states_once(data, supply, exhaust, run)
+    if len(_STATES_PASSED) >= STATES_KEPT:
+        _STATES_PASSED.clear()
+    _STATES_PASSED.add(key)
+
+
+def _check_states_once(data: dict, supply: SupplySpec, exhaust: ExhaustSpec,
+                       run: RunSpec) -> None:
+    """:func:`_check_states`, looked at."""
     raw_p = data["supply"].get("pressure")
     if supply.pressure_Pa >= units.CRITICAL_PRESSURE_Pa:
         raise InputError("supply.pressure", raw_p, "a pressure below the critical pressure of "
