@@ -660,7 +660,8 @@ class IdealPortWall:
         apply : bool
             Take the step (else only measure it).
         heat_scale : float
-            The enthalpy supplied over the cycle [J], the imbalance's scale.
+            The imbalance's scale [J]: the heat the steam gave the wall over the cycle
+            (the runner's, :mod:`corliss.engine.equilibrium`).
 
         Returns
         -------
