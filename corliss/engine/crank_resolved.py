@@ -189,8 +189,8 @@ class CrankResolved:
             Whether a skin model's deep wall takes its step (else it is only
             measured).
         heat_scale : float
-            The scale of the imbalance [J]; 0 (the runner's, :mod:`corliss.engine.steady`)
-            for each wall's own, the heat the steam gave it over the cycle.
+            The scale of the imbalance [J]: the enthalpy supplied over the cycle; 0 for
+            the heat the steam gave the wall.
 
         Returns
         -------
@@ -198,7 +198,8 @@ class CrankResolved:
             The largest step of a skin model's deep wall [K] (0 without one).
         imbalance : float
             The largest imbalance of a skin model's wall over the cycle, ``|r|``
-            against ``heat_scale`` [-] (0 without one).
+            against ``heat_scale`` (so that it reads as an error of the engine's
+            energy balance) [-] (0 without one).
         """
         net = self.network
         hist = self.__dict__.setdefault("_wall_history", {})

@@ -322,17 +322,16 @@ def run_cycles(steam: Steam, theta: np.ndarray, volumes: tuple[np.ndarray, np.nd
         w = out[0].work_J + out[1].work_J
         change = abs(w - w_prev) / max(abs(w), 1e-300) if w_prev is not None else math.inf
         if walls:
+            h_in = abs(out[0].H_chest_J + out[1].H_chest_J)
             inner = change
             for (t0, f0), wl, tr in zip(start, walls, out):
                 inner = max(inner, abs(wl.T_deep + wl.dT - t0) / dT_scale,
                             abs(wl.film - f0) / max(float(np.max(tr.m_kg)), 1e-300))
-            # each wall's balance against the heat it took, its own scale (as the
-            # crank-resolved runner's, corliss.engine.steady)
-            steps = [wl.deep_step(False, wl.Q_to_wall) for wl in walls]
+            steps = [wl.deep_step(False, h_in) for wl in walls]
             settled = inner <= max(10.0 * tol, 0.1 * max(abs(s[0]) for s in steps) / dT_scale)
             if settled:
                 for wl in walls:
-                    wl.deep_step(True, wl.Q_to_wall)
+                    wl.deep_step(True, h_in)
             change = max(inner, max(s[1] for s in steps))
         if cycles is None and change <= tol:
             converged = k

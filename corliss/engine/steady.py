@@ -196,15 +196,14 @@ def _crank_resolved(scene, model, pm, progress, start=None):
             # (or, while the wall's own step is large, once the cycle's other residuals
             # are a tenth of it)
             # the wall is periodic when its heat over the cycle balances (what it took
-            # less what it gave, and the jacket's) to the tolerance of the heat it took,
-            # its own scale: against the enthalpy supplied (some 30 times more) the
-            # fast preset's 1e-3 left the wall up to 0.6 K from periodic, for the
-            # wall's heat moves only about 1.4 kJ a cycle per kelvin
+            # less what it gave, and the jacket's) to the tolerance of the enthalpy
+            # supplied, the energy balance's scale
             inner = max(v for n, v in residuals.items() if n != "wall_temperature")
-            step, imbalance = crank.update_wall(y, apply=False)
+            h_in = abs(float(row["H_supply_J"]))
+            step, imbalance = crank.update_wall(y, apply=False, heat_scale=h_in)
             settled = inner <= max(10.0 * fid.convergence_tolerance, 0.1 * step / dT_scale)
             if settled:
-                crank.update_wall(y, apply=True)
+                crank.update_wall(y, apply=True, heat_scale=h_in)
             residuals["wall_temperature"] = max(residuals.get("wall_temperature", 0.0),
                                                 imbalance)
         change = max(residuals.values())

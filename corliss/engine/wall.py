@@ -660,8 +660,7 @@ class IdealPortWall:
         apply : bool
             Take the step (else only measure it).
         heat_scale : float
-            The imbalance's scale [J]: the heat the steam gave the wall over the cycle
-            (the runner's, :mod:`corliss.engine.equilibrium`).
+            The enthalpy supplied over the cycle [J], the imbalance's scale.
 
         Returns
         -------
