@@ -423,8 +423,9 @@ def plot_oscillating(gear, fig=None, units_system: str = "US") -> dict:
 
     Parameters
     ----------
-    gear : OscillatingCylinder
-        The gear.
+    gear : OscillatingCylinder or SingleActing
+        The gear (single-acting: wrapped by ``[engine] steam_ends``, its head end's
+        ports drawn alone).
     fig : matplotlib.figure.Figure, optional
         Drawn on; a new one of :data:`FIGSIZE` when None.
     units_system : str, optional
@@ -459,7 +460,9 @@ def plot_oscillating(gear, fig=None, units_system: str = "US") -> dict:
                                (3, "crank exhaust", dict(color="0.55", lw=1.0, ls="--"))):
         lines[label] = ax2.plot(deg, op[port], label=label, **style)[0]
     ax2.set_ylabel(f"port opening [{u}]")
-    ax2.set_title(f"Port openings ({s.acting}-acting)", fontsize=10)
+    # a single-acting oscillator ([engine] steam_ends) works its head end only
+    crank_too = getattr(gear, "steam_end", "both") != "head"
+    ax2.set_title(f"Port openings ({'double' if crank_too else 'single'}-acting)", fontsize=10)
     for ax in (ax1, ax2):
         ax.axhline(0, color="0.8", lw=0.5)
         ax.set_xlim(0, 360)
@@ -479,7 +482,6 @@ def plot_oscillating(gear, fig=None, units_system: str = "US") -> dict:
                                                                       else -0.5 * math.pi)
         return ax3.plot(r * np.cos(a), r * np.sin(a), solid_capstyle="butt", **style)[0]
 
-    crank_too = s.acting == "double"
     for up in (True, False) if crank_too else (True,):
         sign = 1.0 if up else -1.0
         # psi turns the head end's port towards +beta_s; the face is seen with +psi
