@@ -31,8 +31,10 @@ from bokeh.models import (Button, CheckboxGroup, ColumnDataSource, CustomJS, Lab
 from bokeh.plotting import figure
 
 from corliss.keys.edits import with_keys
+from corliss.workbench.address import address_query, read_address
 from corliss.workbench.compute import compute_view
 from corliss.workbench.controls import Control, controls_for, scene_value
+from corliss.workbench.motion import motion_view
 from corliss.workbench.scene_text import edited_text
 
 log = logging.getLogger(__name__)
@@ -43,28 +45,39 @@ _PORT_STYLE = {"head_steam": ("black", "solid"), "crank_steam": ("black", "dashe
 
 
 class Runner:
-    """The worker process the runs go to, shared by every session of a server.
+    """The worker processes the runs go to, shared by every session of a server: one
+    for the cards, one for the gear in motion (so that an animation being drawn never
+    holds up a card).
 
     Parameters
     ----------
     in_process : bool, optional
-        Run in a thread of this process instead (tests of the page's logic); a run
+        Run in threads of this process instead (tests of the page's logic); a run
         then holds the interpreter while compiled code runs.
     """
 
     def __init__(self, in_process: bool = False):
         self.in_process = in_process
         self._lock = threading.Lock()
-        self._pool = None
+        self._pools: dict = {}
 
-    def _executor(self):
-        if self._pool is None:
+    def _executor(self, which: str):
+        if which not in self._pools:
             if self.in_process:
-                self._pool = ThreadPoolExecutor(max_workers=1)
+                self._pools[which] = ThreadPoolExecutor(max_workers=1)
             else:
-                self._pool = ProcessPoolExecutor(
+                self._pools[which] = ProcessPoolExecutor(
                     max_workers=1, mp_context=multiprocessing.get_context("spawn"))
-        return self._pool
+        return self._pools[which]
+
+    def _submit(self, which: str, fn, *args) -> Future:
+        with self._lock:
+            try:
+                return self._executor(which).submit(fn, *args)
+            except BrokenProcessPool:       # the worker died (killed): start another
+                log.warning("the workbench's worker process stopped; starting another")
+                del self._pools[which]
+                return self._executor(which).submit(fn, *args)
 
     def submit(self, data: dict, name: str, source: str | None) -> Future:
         """Run :func:`~corliss.workbench.compute.compute_view` of a scene's tables.
@@ -81,20 +94,32 @@ class Runner:
         concurrent.futures.Future
             Its view.
         """
-        with self._lock:
-            try:
-                return self._executor().submit(compute_view, data, name, source)
-            except BrokenProcessPool:       # the worker died (killed): start another
-                log.warning("the workbench's worker process stopped; starting another")
-                self._pool = None
-                return self._executor().submit(compute_view, data, name, source)
+        return self._submit("card", compute_view, data, name, source)
+
+    def submit_motion(self, data: dict, name: str, source: str | None) -> Future:
+        """Draw :func:`~corliss.workbench.motion.motion_view` of a scene's tables, in
+        the second worker.
+
+        Parameters
+        ----------
+        data : dict
+            The scene's tables.
+        name, source : str
+            The scene's name and file.
+
+        Returns
+        -------
+        concurrent.futures.Future
+            Its frames.
+        """
+        return self._submit("motion", motion_view, data, name, source)
 
     def shutdown(self) -> None:
-        """Stop the worker."""
+        """Stop the workers."""
         with self._lock:
-            if self._pool is not None:
-                self._pool.shutdown(wait=False, cancel_futures=True)
-                self._pool = None
+            for pool in self._pools.values():
+                pool.shutdown(wait=False, cancel_futures=True)
+            self._pools = {}
 
 
 @dataclass
@@ -125,15 +150,30 @@ class Workbench:
         Where the runs go.
     fidelity : str or None
         A fidelity preset the page starts at (None: the scene's).
+    settings : dict, optional
+        ``{control name: value as text}``: settings the page starts with, as its
+        address writes them (:mod:`corliss.workbench.address`); the loader's message
+        beside each one it refuses.
+    address : bool, optional
+        Keep the browser's address showing the page's settings (False in a notebook,
+        whose address is the notebook's).
     """
 
     def __init__(self, doc, text: str, name: str, source: str | None, runner: Runner,
-                 fidelity: str | None = "fast"):
+                 fidelity: str | None = "fast", settings: dict | None = None,
+                 address: bool = True):
         self.doc, self.text, self.name, self.source, self.runner = doc, text, name, source, runner
         self.base = tomllib.loads(text)
         self.edits: dict = {}
         if fidelity is not None:
             self.edits["run.fidelity"] = fidelity
+        read = read_address(settings or {}, self.base, self.edits, name)
+        self.edits = read.edits
+        self.address_errors: dict = read.errors
+        self.address_notes: list = read.notes
+        self.sync_address = address
+        self.motion_busy = False
+        self.motion_edits: dict | None = None
         self.busy = False
         self.pending = False
         self.moved: _Widget | None = None
@@ -200,11 +240,13 @@ class Workbench:
                       css_classes=[css[0] + "-error", "wb-error"],
                       styles={"color": "#a00000", "font-size": "12px"})
         item = _Widget(c, w, err)
+        self.values[c.name] = c.value
         prop = "active" if c.widget == "effects" else "value"
         w.on_change(prop, partial(self._on_control, item))
         return item
 
     def _controls_column(self):
+        self.values: dict = {}
         self.widgets = [self._control_widget(c) for c in controls_for(self.data, self.units)]
         kids = []
         for it in self.widgets:
@@ -217,6 +259,21 @@ class Workbench:
         self.units_switch.on_change("active", self._on_units)
         self.controls = self._controls_column()
         self.status = bkm.Div(text="working...", css_classes=["wb-status"], width=700)
+        self.notes = bkm.Div(text="".join(f"<div>{html.escape(n)}</div>"
+                                          for n in self.address_notes),
+                             visible=bool(self.address_notes), css_classes=["wb-notes"],
+                             width=700, styles={"color": "#a00000", "font-size": "12px"})
+        # the page's settings as an address query; the browser shows it in its address
+        # bar (history.replaceState: no reload, no request)
+        self.address = bkm.Div(text="", visible=False, css_classes=["wb-address"])
+        if self.sync_address:
+            to_bar = CustomJS(args={"address": self.address}, code="""
+                if (address.text && window.history && window.history.replaceState)
+                    window.history.replaceState(window.history.state, "",
+                                                window.location.pathname + address.text);
+            """)
+            self.address.js_on_change("text", to_bar)
+            self.doc.js_on_event("document_ready", to_bar)
         self.summary = bkm.Div(text="", css_classes=["wb-summary"], width=380)
 
         self.card_src = {e: ColumnDataSource({"x": [], "y": []}) for e in ("head", "crank")}
@@ -279,15 +336,27 @@ class Workbench:
             setTimeout(() => { URL.revokeObjectURL(a.href); a.remove(); }, 1000);
         """))
 
+        self.animate = Button(label="the gear in motion", css_classes=["wb-animate"],
+                              width=200)
+        self.animate.on_click(self._on_animate)
+        self.motion_status = bkm.Div(text="the gear's linkage, valve and card as the crank "
+                                     "turns, drawn from the exact linkage as "
+                                     "<code>corliss animate</code> draws it",
+                                     css_classes=["wb-motion-status"], width=700)
+        self.motion = bkm.Div(text="", css_classes=["wb-motion"], width=720, visible=False)
+
         head = bkm.Div(text=f"<b>corliss workbench</b>: {html.escape(self.name)}", width=320)
         self.left = column(head, self.units_switch, self.controls)
-        right = column(self.status,
+        right = column(self.status, self.notes, self.address,
                        row(self.card, column(self.summary, self.table)),
                        row(self.ports, column(self.zeuner, self.znote)),
+                       row(self.animate, self.motion_status), self.motion,
                        row(column(self.save, self.toml)))
         self.layout = row(self.left, right)
         self.doc.add_root(self.layout)
         self.doc.title = f"corliss workbench: {self.name}"
+        self._clear_errors()
+        self._sync_address()
 
     # --- events -------------------------------------------------------------------------
 
@@ -295,15 +364,91 @@ class Workbench:
         c = item.control
         if c.widget == "effects":
             new = [c.choices[i] for i in sorted(new)]
+        self.values[c.name] = new
+        self.address_errors.pop(c.name, None)
         self.edits[c.key] = scene_value(c, new, self.data)
         self.moved = item
+        self._sync_address()
         self.request(item)
 
     def _on_units(self, attr, old, new) -> None:
         self.edits["output.units"] = ("US", "SI")[new]
         self.controls.children = self._controls_column().children
         self.moved = None
+        self._clear_errors()
+        self._sync_address()
         self.request(None)
+
+    def address_query(self) -> str:
+        """The page's settings as its address's query.
+
+        Returns
+        -------
+        str
+            ``"?scene=...&..."`` (:func:`corliss.workbench.address.address_query`).
+        """
+        data = self.data
+        return address_query(self.name, self.units,
+                             [(it.control, self.values[it.control.name])
+                              for it in self.widgets], data)
+
+    def _sync_address(self) -> None:
+        if not self.sync_address:
+            return
+        try:
+            self.address.text = self.address_query()
+        except Exception:       # a setting the loader will refuse: the address waits
+            log.debug("no address for these settings", exc_info=True)
+
+    def _clear_errors(self) -> None:
+        """Every control's message cleared, but those an address's value left."""
+        for it in self.widgets:
+            msg = self.address_errors.get(it.control.name)
+            it.error.text = "" if msg is None else \
+                f"the address's value was not set: {html.escape(msg)}"
+            it.error.visible = msg is not None
+
+    # --- the gear in motion ---------------------------------------------------------------
+
+    def _on_animate(self) -> None:
+        if self.motion_busy:
+            return
+        self.motion_busy = True
+        self.animate.disabled = True
+        edits = dict(self.edits)
+        self.motion_status.text = ("<span class='wb-motion-working'>drawing the gear's "
+                                   "frames... (the controls go on working)</span>")
+        fut = self.runner.submit_motion(with_keys(self.base, edits), self.name, self.source)
+        fut.add_done_callback(lambda f: self.doc.add_next_tick_callback(
+            partial(self._apply_motion, f, edits)))
+
+    def _apply_motion(self, fut: Future, edits: dict) -> None:
+        self.motion_busy = False
+        self.animate.disabled = False
+        try:
+            view = fut.result()
+        except Exception as exc:            # the worker died: say so, keep the page
+            log.exception("workbench animation failed")
+            view = {"ok": False, "message": f"the drawing failed: {exc}"}
+        if not view["ok"]:
+            self.motion_status.text = ("<span class='wb-motion-refused'>not drawn: "
+                                       f"{html.escape(view['message'])}</span>")
+            return
+        self.motion_edits = edits
+        self.motion.text = (f"<img class='wb-motion-frames' alt='{html.escape(view['title'])}'"
+                            f" src='data:image/gif;base64,{view['gif']}'>")
+        self.motion.visible = True
+        self._motion_caption()
+
+    def _motion_caption(self) -> None:
+        if self.motion_edits is None or self.motion_busy:
+            return
+        stale = self.motion_edits != self.edits
+        self.motion_status.text = (
+            "<span class='wb-motion-done'>" + ("drawn for an earlier setting: press again "
+                                               "for this one" if stale else
+                                               "the gear in motion at this setting")
+            + "</span>")
 
     def request(self, item) -> None:
         """Run the scene as the controls set it now, or once the run in flight ends.
@@ -323,12 +468,19 @@ class Workbench:
     def _submit(self) -> None:
         self.busy, self.pending = True, False
         started, edits = self.changed_at, dict(self.edits)
+        stamps = {"changed": started, "submitted": time.perf_counter()}
         fut = self.runner.submit(with_keys(self.base, edits), self.name, self.source)
-        fut.add_done_callback(lambda f: self.doc.add_next_tick_callback(
-            partial(self._apply, f, started, edits)))
 
-    def _apply(self, fut: Future, started: float, edits: dict) -> None:
+        def done(f):
+            stamps["returned"] = time.perf_counter()
+            self.doc.add_next_tick_callback(partial(self._apply, f, started, edits, stamps))
+        fut.add_done_callback(done)
+
+    def _apply(self, fut: Future, started: float, edits: dict,
+               stamps: dict | None = None) -> None:
         self.busy = False
+        stamps = stamps or {}
+        stamps["applied"] = time.perf_counter()
         try:
             view = fut.result()
         except Exception as exc:            # the worker died: say so, keep the page
@@ -336,14 +488,22 @@ class Workbench:
             view = {"ok": False, "message": f"the run failed: {exc}", "key": None}
         if self.pending:
             self._submit()
+        self._motion_caption()
         if not view["ok"]:
             self._show_error(view)
             return
-        for it in self.widgets:
-            it.error.text, it.error.visible = "", False
+        self._clear_errors()
         self._draw(view, edits)
-        ms = 1e3 * (time.perf_counter() - started)
+        end = time.perf_counter()
+        ms = 1e3 * (end - started)
         self.latencies_ms.append(ms)
+        if stamps:
+            log.debug("redraw %.1f ms: to the worker %.1f, worker and back %.1f (the run "
+                      "and views %.1f), waiting for the loop %.1f, drawing %.1f", ms,
+                      1e3 * (stamps["submitted"] - started),
+                      1e3 * (stamps["returned"] - stamps["submitted"]),
+                      1e3 * view["compute_s"], 1e3 * (stamps["applied"] - stamps["returned"]),
+                      1e3 * (end - stamps["applied"]))
         if not self.busy:
             note = f"; {html.escape(view['note'])}" if view["note"] else ""
             self.status.text = (f"<span class='wb-done'>redrawn in {ms:.0f} ms</span> "
@@ -356,8 +516,7 @@ class Workbench:
         named = next((it for it in self.widgets if key is not None and
                       (key == it.control.key or key.startswith(it.control.key + "."))), None)
         targets = {id(t): t for t in (self.moved, named) if t is not None}
-        for it in self.widgets:
-            it.error.text, it.error.visible = "", False
+        self._clear_errors()
         msg = html.escape(view["message"])
         for t in targets.values():
             t.error.text, t.error.visible = msg, True
@@ -406,8 +565,30 @@ class Workbench:
         self.toml.value = self.scene_text(edits)      # the scene of the card shown
 
 
+def address_settings(doc) -> dict:
+    """The query of the address a session's page was opened at.
+
+    Parameters
+    ----------
+    doc : bokeh.document.Document
+        The session's document.
+
+    Returns
+    -------
+    dict
+        ``{name: text}`` (the first value of each name); empty outside a server
+        session.
+    """
+    ctx = getattr(doc, "session_context", None)
+    request = getattr(ctx, "request", None) if ctx is not None else None
+    args = getattr(request, "arguments", None) or {}
+    return {k: (v[0].decode("utf-8", "replace") if isinstance(v[0], bytes) else str(v[0]))
+            for k, v in args.items() if v and not k.startswith("bokeh-")}
+
+
 def make_document(text: str, name: str, source: str | None, runner: Runner,
-                  fidelity: str | None = "fast"):
+                  fidelity: str | None = "fast", settings: dict | None = None,
+                  address: bool = True):
     """The function a Bokeh application calls to fill each session's document.
 
     Parameters
@@ -422,6 +603,12 @@ def make_document(text: str, name: str, source: str | None, runner: Runner,
         The worker shared by the sessions.
     fidelity : str or None, optional
         The preset the page starts at (None: the scene's).
+    settings : dict, optional
+        Settings every page starts with (``{control name: text}``); with ``address``,
+        those of the address a page is opened at come after them.
+    address : bool, optional
+        Read the settings of the address a page is opened at, and keep its address
+        showing the page's settings.
 
     Returns
     -------
@@ -429,5 +616,8 @@ def make_document(text: str, name: str, source: str | None, runner: Runner,
         ``modify_doc(doc)``, which builds a :class:`Workbench` in ``doc``.
     """
     def modify_doc(doc):
-        Workbench(doc, text, name, source, runner, fidelity)
+        asked = dict(settings or {})
+        if address:
+            asked.update(address_settings(doc))
+        doc.workbench = Workbench(doc, text, name, source, runner, fidelity, asked, address)
     return modify_doc
