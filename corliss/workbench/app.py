@@ -24,6 +24,7 @@ from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
 from functools import partial
 
+import numpy as np
 from bokeh.layouts import column, row
 from bokeh import models as bkm         # Div by its module: its docstring upsets numpydoc
 from bokeh.models import (Button, CheckboxGroup, ColumnDataSource, CustomJS, LabelSet,
@@ -176,6 +177,7 @@ class Workbench:
         self.motion_edits: dict | None = None
         self.busy = False
         self.pending = False
+        self.future: Future | None = None       # the run asked for last
         self.moved: _Widget | None = None
         self.changed_at = time.perf_counter()
         self.latencies_ms: list[float] = []
@@ -274,15 +276,17 @@ class Workbench:
             """)
             self.address.js_on_change("text", to_bar)
             self.doc.js_on_event("document_ready", to_bar)
-        self.summary = bkm.Div(text="", css_classes=["wb-summary"], width=380)
+        # the summary and the events in one Div: one message to the page per redraw
+        self.numbers = bkm.Div(text="", css_classes=["wb-numbers"], width=380)
 
-        self.card_src = {e: ColumnDataSource({"x": [], "y": []}) for e in ("head", "crank")}
+        # both ends' cards in one source (the shorter padded with NaN): one message
+        self.card_src = ColumnDataSource({"hx": [], "hy": [], "cx": [], "cy": []})
         self.marks = ColumnDataSource({"x": [], "y": [], "label": [], "end": []})
         self.card = figure(width=720, height=430, title="indicator card", toolbar_location=None,
                            css_classes=["wb-card"])
-        self.card.line("x", "y", source=self.card_src["head"], color="black", line_width=1.6,
+        self.card.line("hx", "hy", source=self.card_src, color="black", line_width=1.6,
                        legend_label="head end")
-        self.card.line("x", "y", source=self.card_src["crank"], color="#404040",
+        self.card.line("cx", "cy", source=self.card_src, color="#404040",
                        line_width=1.6, line_dash="dashed", legend_label="crank end")
         self.card.scatter("x", "y", source=self.marks, size=6, color="#a00000")
         self.card.add_layout(LabelSet(x="x", y="y", text="label", source=self.marks,
@@ -296,15 +300,13 @@ class Workbench:
         self.card.legend.background_fill_alpha = 0.0
         self.card.legend.border_line_alpha = 0.0
 
-        self.table = bkm.Div(text="", css_classes=["wb-events"], width=380)
-
-        self.zsrc = {e: ColumnDataSource({"x": [], "y": []}) for e in ("head", "crank")}
+        self.zsrc = ColumnDataSource({"hx": [], "hy": [], "cx": [], "cy": []})
         self.zcircles = ColumnDataSource({"xs": [], "ys": []})
         self.zeuner = figure(width=380, height=380, title="Zeuner diagram", match_aspect=True,
                              toolbar_location=None, css_classes=["wb-zeuner"])
-        self.zeuner.line("x", "y", source=self.zsrc["head"], color="black", line_width=1.4,
+        self.zeuner.line("hx", "hy", source=self.zsrc, color="black", line_width=1.4,
                          legend_label="head-end valve circle")
-        self.zeuner.line("x", "y", source=self.zsrc["crank"], color="black", line_width=1.4,
+        self.zeuner.line("cx", "cy", source=self.zsrc, color="black", line_width=1.4,
                          line_dash="dashed", legend_label="crank-end valve circle")
         self.zeuner.multi_line("xs", "ys", source=self.zcircles, color="#888888",
                                legend_label="lap circles")
@@ -348,7 +350,7 @@ class Workbench:
         head = bkm.Div(text=f"<b>corliss workbench</b>: {html.escape(self.name)}", width=320)
         self.left = column(head, self.units_switch, self.controls)
         right = column(self.status, self.notes, self.address,
-                       row(self.card, column(self.summary, self.table)),
+                       row(self.card, self.numbers),
                        row(self.ports, column(self.zeuner, self.znote)),
                        row(self.animate, self.motion_status), self.motion,
                        row(column(self.save, self.toml)))
@@ -470,6 +472,7 @@ class Workbench:
         started, edits = self.changed_at, dict(self.edits)
         stamps = {"changed": started, "submitted": time.perf_counter()}
         fut = self.runner.submit(with_keys(self.base, edits), self.name, self.source)
+        self.future = fut
 
         def done(f):
             stamps["returned"] = time.perf_counter()
@@ -524,45 +527,86 @@ class Workbench:
             self.status.text = ("<span class='wb-refused'>not redrawn: "
                                 f"{msg}</span> The last good card stays.")
 
-    def _draw(self, v: dict, edits: dict) -> None:
+    def _draw(self, v: dict, edits: dict, defer: bool = True) -> None:
+        """The card, its title and the numbers beside it now; the Zeuner diagram, the
+        port openings and the scene's text on the next tick (``defer``), so that the
+        card reaches the page first."""
         card = v["card"]
-        for end in ("head", "crank"):
-            self.card_src[end].data = card[end]
+        n = max(len(card["head"]["x"]), len(card["crank"]["x"]))
+        self.card_src.data = {f"{e[0]}{c}": _padded(card[e][c], n)
+                              for e in ("head", "crank") for c in ("x", "y")}
         self.marks.data = card["marks"]
-        self.vacuum.location = card["vacuum"]
-        self.card.xaxis.axis_label = (f"piston position from head-end dead centre "
-                                      f"[{card['x_unit']}]")
-        self.card.yaxis.axis_label = f"pressure [{card['p_unit']}]"
+        _set(self.vacuum, "location", card["vacuum"])
+        _set(self.card.xaxis[0], "axis_label",
+             f"piston position from head-end dead centre [{card['x_unit']}]")
+        _set(self.card.yaxis[0], "axis_label", f"pressure [{card['p_unit']}]")
         s = v["summary"]
         self.card.title.text = (f"{v['title']}: {s['indicated power']}, "
                                 f"m.e.p. {s['m.e.p.']}")
         rows = "".join(f"<tr><td style='padding-right: 1em'>{html.escape(k)}</td>"
                        f"<td class='wb-num' data-key='"
                        f"{html.escape(k)}'>{html.escape(t)}</td></tr>" for k, t in s.items())
-        self.summary.text = f"<table class='wb-summary-table'>{rows}</table>"
         ev = v["events"]
         td = "<td style='padding: 1px 8px 1px 0'"
         cells = "".join(f"<tr>{td}>{html.escape(e)}</td>{td} class='wb-head'>{h}</td>"
                         f"{td} class='wb-crank'>{c}</td></tr>"
                         for e, h, c in zip(ev["event"], ev["head"], ev["crank"]))
-        self.table.text = ("<table class='wb-events-table' style='border-collapse: collapse'>"
-                           "<tr><th style='text-align:left'>event</th><th>head</th>"
-                           f"<th>crank</th></tr>{cells}</table>")
+        self.numbers.text = (
+            f"<div class='wb-summary'><table class='wb-summary-table'>{rows}</table></div>"
+            "<div class='wb-events' style='margin-top: 8px'><table class='wb-events-table' "
+            "style='border-collapse: collapse'><tr><th style='text-align:left'>event</th>"
+            f"<th>head</th><th>crank</th></tr>{cells}</table></div>")
+        if defer:
+            self.doc.add_next_tick_callback(partial(self._draw_rest, v, edits))
+        else:
+            self._draw_rest(v, edits)
+
+    def _draw_rest(self, v: dict, edits: dict) -> None:
+        """The Zeuner diagram and the port openings where they changed, and the scene's
+        text of the card shown."""
         z = v["zeuner"]
         if z is None:
             self.zeuner.visible = False
-            self.znote.text = ("No Zeuner diagram: this gear's motion is not one lapped valve "
-                               "(<code>corliss gear</code> draws its own panels).")
+            _set(self.znote, "text", "No Zeuner diagram: this gear's motion is not one "
+                 "lapped valve (<code>corliss gear</code> draws its own panels).")
             self.znote.visible = True
         else:
             self.zeuner.visible, self.znote.visible = True, False
-            for end in ("head", "crank"):
-                self.zsrc[end].data = z[end]
-            self.zcircles.data = {"xs": z["circles"]["x"], "ys": z["circles"]["y"]}
-        self.psrc.data = v["ports"]
-        u = v["card"]["x_unit"]
-        self.ports.yaxis.axis_label = f"port opening [{u}]"
+            _set_data(self.zsrc, {f"{e[0]}{c}": z[e][c] for e in ("head", "crank")
+                                  for c in ("x", "y")})
+            _set_data(self.zcircles, {"xs": z["circles"]["x"], "ys": z["circles"]["y"]})
+        _set_data(self.psrc, v["ports"])
+        _set(self.ports.yaxis[0], "axis_label", f"port opening [{v['card']['x_unit']}]")
         self.toml.value = self.scene_text(edits)      # the scene of the card shown
+
+
+def _padded(a, n: int) -> np.ndarray:
+    """``a`` as floats, NaN after its end up to length ``n``."""
+    a = np.asarray(a, dtype=float)
+    return a if len(a) == n else np.concatenate([a, np.full(n - len(a), np.nan)])
+
+
+def _set(model, attr: str, value) -> None:
+    """Set a property only where it changes (nothing sent to the page otherwise)."""
+    if getattr(model, attr) != value:
+        setattr(model, attr, value)
+
+
+def _same(a, b) -> bool:
+    if isinstance(a, (list, tuple)) and isinstance(b, (list, tuple)):
+        return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b))
+    try:
+        return np.array_equal(np.asarray(a, dtype=float), np.asarray(b, dtype=float),
+                              equal_nan=True)
+    except (TypeError, ValueError):
+        return False
+
+
+def _set_data(source, data: dict) -> None:
+    """A source's columns set only where one of them changes."""
+    old = source.data
+    if set(old) != set(data) or not all(_same(old[k], data[k]) for k in data):
+        source.data = data
 
 
 def address_settings(doc) -> dict:

@@ -39,8 +39,9 @@ def view(scene: str | None = None, *, settings: dict | None = None,
     -------
     bokeh.application.Application
         The view: ``bokeh.io.show(view(...))`` in a notebook; each time it is shown,
-        a document of its own (:class:`~corliss.workbench.app.Workbench` as the
-        document's ``workbench``).
+        a document of its own, whose :class:`~corliss.workbench.app.Workbench` (the
+        document's ``workbench``) is added to the application's ``workbenches``
+        (``app.workbenches[-1].scene_text()``: the scene of the card shown).
 
     Raises
     ------
@@ -49,5 +50,14 @@ def view(scene: str | None = None, *, settings: dict | None = None,
     """
     path, text = scene_source(scene, fidelity)
     runner = runner or Runner()
-    return Application(FunctionHandler(make_document(text, path.stem, str(path), runner,
-                                                     fidelity, settings, address=False)))
+    make = make_document(text, path.stem, str(path), runner, fidelity, settings,
+                         address=False)
+    opened: list = []
+
+    def modify_doc(doc):
+        make(doc)
+        opened.append(doc.workbench)
+
+    app = Application(FunctionHandler(modify_doc))
+    app.workbenches = opened
+    return app
