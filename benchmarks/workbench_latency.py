@@ -15,7 +15,7 @@ Usage::
 
 Prints a table and writes ``benchmarks/results/workbench_latency.csv``; with
 ``--shots DIR`` also a screenshot of each scene's page, and of the default scene's
-with its eccentricity run below its lap (the documentation's).
+gear in motion and its eccentricity run below its lap (the documentation's).
 """
 
 from __future__ import annotations
@@ -117,6 +117,11 @@ def measure(scene: str, control: str, repeats: int, fidelity: str, exe: str,
             if shot:
                 page.mouse.move(0, 0)
                 page.screenshot(path=shot, full_page=True)
+            if shot and scene == "default":     # the gear in motion, asked for
+                page.locator(".wb-animate button").click()
+                page.wait_for_selector(".wb-motion-frames", timeout=600_000)
+                page.mouse.move(0, 0)
+                page.locator(".wb-motion").screenshot(path=shot.replace(".png", "-motion.png"))
             if shot and scene == "default":     # a gear the loader refuses, shown
                 page.locator(".wb-valve-gear-eccentricity .noUi-handle").focus()
                 page.keyboard.press("Home")
