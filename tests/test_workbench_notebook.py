@@ -92,4 +92,4 @@ def test_the_notebook_view_of_an_address_setting_draws_that_engine():
     assert shown_cutoff == pytest.approx(result.events["head"]["cutoff_frac"], abs=5e-4)
 
     # a notebook's address is its own: the view neither writes nor listens to it
-    assert bench.address.text == "" and not doc.callbacks.js_event_callbacks
+    assert bench.address.data["query"] == [""] and not doc.callbacks.js_event_callbacks

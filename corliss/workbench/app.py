@@ -41,6 +41,8 @@ from corliss.workbench.scene_text import edited_text
 log = logging.getLogger(__name__)
 
 _NAN = float("nan")
+#: A run still in flight after this long says it is working [ms].
+WORKING_AFTER_ms = 120
 _PORT_STYLE = {"head_steam": ("black", "solid"), "crank_steam": ("black", "dashed"),
                "head_exhaust": ("#888888", "solid"), "crank_exhaust": ("#888888", "dashed")}
 
@@ -177,6 +179,7 @@ class Workbench:
         self.motion_edits: dict | None = None
         self.busy = False
         self.pending = False
+        self.session = getattr(doc, "session_context", None) is not None
         self.future: Future | None = None       # the run asked for last
         self.moved: _Widget | None = None
         self.changed_at = time.perf_counter()
@@ -260,24 +263,28 @@ class Workbench:
                                              active=0 if self.units == "US" else 1)
         self.units_switch.on_change("active", self._on_units)
         self.controls = self._controls_column()
-        self.status = bkm.Div(text="working...", css_classes=["wb-status"], width=700)
+        # fixed sizes: a text changed in them lays out nothing else again
+        self.status = bkm.Div(text="working...", css_classes=["wb-status"], width=700,
+                              height=20)
         self.notes = bkm.Div(text="".join(f"<div>{html.escape(n)}</div>"
                                           for n in self.address_notes),
                              visible=bool(self.address_notes), css_classes=["wb-notes"],
                              width=700, styles={"color": "#a00000", "font-size": "12px"})
-        # the page's settings as an address query; the browser shows it in its address
-        # bar (history.replaceState: no reload, no request)
-        self.address = bkm.Div(text="", visible=False, css_classes=["wb-address"])
+        # the page's settings as an address query, kept in a source that is drawn
+        # nowhere (nothing laid out again); the browser shows it in its address bar
+        # (history.replaceState: no reload, no request)
+        self.address = ColumnDataSource({"query": [""]}, name="wb-address")
         if self.sync_address:
             to_bar = CustomJS(args={"address": self.address}, code="""
-                if (address.text && window.history && window.history.replaceState)
+                const q = address.data.query[0];
+                if (q && window.history && window.history.replaceState)
                     window.history.replaceState(window.history.state, "",
-                                                window.location.pathname + address.text);
+                                                window.location.pathname + q);
             """)
-            self.address.js_on_change("text", to_bar)
+            self.address.js_on_change("data", to_bar)
             self.doc.js_on_event("document_ready", to_bar)
         # the summary and the events in one Div: one message to the page per redraw
-        self.numbers = bkm.Div(text="", css_classes=["wb-numbers"], width=380)
+        self.numbers = bkm.Div(text="", css_classes=["wb-numbers"], width=380, height=330)
 
         # both ends' cards in one source (the shorter padded with NaN): one message
         self.card_src = ColumnDataSource({"hx": [], "hy": [], "cx": [], "cy": []})
@@ -349,13 +356,14 @@ class Workbench:
 
         head = bkm.Div(text=f"<b>corliss workbench</b>: {html.escape(self.name)}", width=320)
         self.left = column(head, self.units_switch, self.controls)
-        right = column(self.status, self.notes, self.address,
+        right = column(self.status, self.notes,
                        row(self.card, self.numbers),
                        row(self.ports, column(self.zeuner, self.znote)),
                        row(self.animate, self.motion_status), self.motion,
                        row(column(self.save, self.toml)))
         self.layout = row(self.left, right)
         self.doc.add_root(self.layout)
+        self.doc.add_root(self.address)
         self.doc.title = f"corliss workbench: {self.name}"
         self._clear_errors()
         self._sync_address()
@@ -398,7 +406,7 @@ class Workbench:
         if not self.sync_address:
             return
         try:
-            self.address.text = self.address_query()
+            self.address.data = {"query": [self.address_query()]}
         except Exception:       # a setting the loader will refuse: the address waits
             log.debug("no address for these settings", exc_info=True)
 
@@ -461,11 +469,18 @@ class Workbench:
             The control that changed (None: the page or the units).
         """
         self.changed_at = time.perf_counter()
-        self.status.text = "<span class='wb-working'>working...</span>"
+        if self.session:        # said only of a run that takes a while: no flicker
+            self.doc.add_timeout_callback(self._say_working, WORKING_AFTER_ms)
+        else:
+            self._say_working()
         if self.busy:
             self.pending = True
             return
         self._submit()
+
+    def _say_working(self) -> None:
+        if self.busy or self.pending or not self.session:
+            self.status.text = "<span class='wb-working'>working...</span>"
 
     def _submit(self) -> None:
         self.busy, self.pending = True, False
