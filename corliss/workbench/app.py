@@ -9,6 +9,13 @@ beside the control it names (or the control just moved), and the last good drawi
 stays.  The page's TOML is the source scene's text with the settings put in place
 (:func:`corliss.workbench.scene_text.edited_text`), saved by the browser itself: the
 server writes no file and takes no path from the page.
+
+The card and the numbers beside it go to the page first, the other panels on the next
+tick.  The gear in motion is drawn on demand in a second worker
+(:mod:`corliss.workbench.motion`), so the card is redrawn meanwhile.  The page's
+settings are kept in its address as the controls move, and a page opened at such an
+address starts from them (:mod:`corliss.workbench.address`); in a notebook
+(:func:`corliss.workbench.notebook.view`) the address is left alone.
 """
 
 from __future__ import annotations
