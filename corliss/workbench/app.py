@@ -282,14 +282,20 @@ class Workbench:
         # (history.replaceState: no reload, no request)
         self.address = ColumnDataSource({"query": [""]}, name="wb-address")
         if self.sync_address:
-            to_bar = CustomJS(args={"address": self.address}, code="""
+            sync = """
                 const q = address.data.query[0];
-                if (q && window.history && window.history.replaceState)
+                if (q && q != window.location.search && window.history
+                        && window.history.replaceState)
                     window.history.replaceState(window.history.state, "",
                                                 window.location.pathname + q);
-            """)
-            self.address.js_on_change("data", to_bar)
-            self.doc.js_on_event("document_ready", to_bar)
+            """
+            self.address.js_on_change("data", CustomJS(args={"address": self.address},
+                                                       code=sync))
+            # and a look four times a second, should a change come that the callback
+            # above missed
+            self.doc.js_on_event("document_ready", CustomJS(
+                args={"address": self.address},
+                code=sync + "setInterval(() => {" + sync + "}, 250);"))
         # the summary and the events in one Div: one message to the page per redraw
         self.numbers = bkm.Div(text="", css_classes=["wb-numbers"], width=380, height=330)
 
