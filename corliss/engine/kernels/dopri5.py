@@ -78,7 +78,7 @@ def cycle_dopri5(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, max_rhs
     samples = np.full((n, out_theta.shape[0]), np.nan)
     vec = np.empty((3, n))
     K = np.empty((7, n))
-    pr = np.empty((PR_ROWS, net.node_kind.shape[0]))
+    pr = np.full((PR_ROWS, net.node_kind.shape[0]), np.nan)
     cell = np.empty((net.port_npts.shape[0], 4))
     clamps = np.zeros(6)
     clamps[CL_NODE] = -1.0
@@ -205,7 +205,7 @@ def cycle_rk4(y0, stops, out_theta, step, net, tier, tab, perf, max_rhs):
     ynew = np.empty(n)
     ytmp = np.empty(n)
     tmp = np.empty(n)
-    pr = np.empty((PR_ROWS, net.node_kind.shape[0]))
+    pr = np.full((PR_ROWS, net.node_kind.shape[0]), np.nan)
     cell = np.empty((net.port_npts.shape[0], 4))
     nfev = 0
     clamps = np.zeros(6)
@@ -337,7 +337,7 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
     K = np.empty((7, n))
     ytmp = np.empty(n)
     tmp = np.empty(n)
-    pr = np.empty((PR_ROWS, net.node_kind.shape[0]))
+    pr = np.full((PR_ROWS, net.node_kind.shape[0]), np.nan)
     pa = np.empty((net.port_npts.shape[0], 4))
     out = np.empty(4)
     sc = tr.sc
