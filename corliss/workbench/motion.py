@@ -12,10 +12,8 @@ from __future__ import annotations
 
 import base64
 import io
-import multiprocessing
 import time
 
-import matplotlib
 import matplotlib.pyplot as plt
 
 from corliss.errors import InputError, RunError
@@ -68,8 +66,6 @@ def motion_view(data: dict, name: str = "scene", source: str | None = None,
         refused or its gear has no single valve to draw.
     """
     t0 = time.perf_counter()
-    if multiprocessing.parent_process() is not None:
-        matplotlib.use("Agg")       # the worker process draws off screen
     try:
         scene = scene_from_dict(data, name=name, source=source)
         drawn = animate_scene(scene, frames=frames)
