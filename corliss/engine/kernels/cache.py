@@ -8,6 +8,7 @@ import logging
 import os
 
 from corliss.engine.kernels.cycle import CYCLE_KERNELS, ROS_FINITE_ARG, ROS_PAIR_ARG
+from corliss.engine.kernels.dopri5 import DOPRI_TURN_ARG, _dopri5_steps
 from corliss.engine.kernels.rosenbrock import _ros_steps
 from corliss.logs import NOTICE
 
@@ -65,7 +66,7 @@ def _uncached(dispatcher, nones: dict[int, bool] | None) -> bool | None:
 def cycle_kernel_uncached(code: int, exact: bool = True) -> bool | None:
     """:func:`uncached` of the compiled cycle integrator of a method code, in the
     version that method runs on the network (:data:`ROS_PAIR_ARG`,
-    :data:`ROS_FINITE_ARG`).
+    :data:`ROS_FINITE_ARG`) and for a steady cycle (:data:`DOPRI_TURN_ARG` None).
 
     Parameters
     ----------
@@ -80,6 +81,9 @@ def cycle_kernel_uncached(code: int, exact: bool = True) -> bool | None:
         As :func:`uncached`.
     """
     dispatcher = CYCLE_KERNELS[code]
+    if dispatcher is _dopri5_steps:
+        # the version of a steady cycle (its step loop also serves the loop's turn)
+        return uncached(dispatcher, {DOPRI_TURN_ARG: True})
     if dispatcher is _ros_steps:
         return uncached(dispatcher, {ROS_PAIR_ARG: code != 2, ROS_FINITE_ARG: exact})
     return uncached(dispatcher)

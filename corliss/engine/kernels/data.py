@@ -352,3 +352,63 @@ class LoopScratch(NamedTuple):
     fp: np.ndarray
     dl: np.ndarray
     dtq: np.ndarray
+
+
+class DopriScratch(NamedTuple):
+    """Scratch of the Dormand-Prince step loop, allocated by its caller.
+
+    Parameters
+    ----------
+    vec : ndarray
+        Three state vectors (3, n): the derivative at the step's start, a stage's
+        argument, the output's scratch.
+    K : ndarray
+        The stages' derivatives (7, n).
+    pr : ndarray
+        Node properties (PR_ROWS, nodes).
+    cell : ndarray
+        Port areas (cylinders, 4) [m2].
+    clamps : ndarray
+        The clamp counts (6,), CL_* (kernels.clamps).
+    tally : ndarray
+        A trial's and a step end's clamp tally (2, 4).
+    """
+
+    vec: np.ndarray
+    K: np.ndarray
+    pr: np.ndarray
+    cell: np.ndarray
+    clamps: np.ndarray
+    tally: np.ndarray
+
+
+class LoopTurn(NamedTuple):
+    """What a turn of the governed loop adds to a step loop: its tables, its record and
+    its scratch.  Passed to the step loops of a steady cycle as None.
+
+    Parameters
+    ----------
+    tr : LoopArrays
+        The loop's tables; the clamp counts and the Rosenbrock loop's next step
+        written into ``tr.sc``.
+    out : ndarray
+        (2, 4): the loop's outputs (indicated and load torques [N m], actuator [-],
+        domega/dt [rad/s2]) of the evaluation at a step's end (row 0, the one recorded)
+        and of a stage's (row 1).
+    rec : ndarray
+        (N_REC, columns): per accepted step, rows as kernels.loop._record writes them.
+    record : bool
+        Whether to record every accepted step.
+    t_end : float
+        The run's end time [s].
+    tq : ndarray
+        (3, nodes): each node's share of the indicated torque [N m] at a step's start,
+        at its end, and their change in a column of the Jacobian.
+    """
+
+    tr: LoopArrays
+    out: np.ndarray
+    rec: np.ndarray
+    record: bool
+    t_end: float
+    tq: np.ndarray

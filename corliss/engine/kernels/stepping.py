@@ -121,6 +121,39 @@ def initial_step(f0, y, atol, rtol, span):
 
 
 @njit(cache=True, _nrt=False)
+def turn_first_step(f0, y, atol, rtol, root):
+    """The first step of a turn of the governed loop, from the derivative's scale.
+
+    ``0.01 rtol^root / max_i (|f_i| / (atol_i + rtol |y_i|))``, within [1e-7, 0.05].
+
+    Parameters
+    ----------
+    f0 : ndarray
+        The derivative at the start (per radian); shape (n,).
+    y : ndarray
+        The state at the start; shape (n,).
+    atol : ndarray
+        Absolute tolerances, in each component's unit; shape (n,).
+    rtol : float
+        Relative tolerance [-].
+    root : float
+        The power of ``rtol``, ``1 / (order + 1)`` of the method's error [-].
+
+    Returns
+    -------
+    float
+        The step [rad] (0.01 when nothing changes).
+    """
+    scale = 0.0
+    for i in range(y.shape[0]):
+        v = abs(f0[i]) / (atol[i] + rtol * abs(y[i]))
+        if v > scale:
+            scale = v
+    h = 0.01 * (rtol ** root) / scale if scale > 0.0 else 0.01
+    return min(max(h, 1e-7), 0.05)
+
+
+@njit(cache=True, _nrt=False)
 def starting_step(t, y, f0, atol, rtol, span, expo, phys, scratch):
     """A first step from the derivative and its change over a trial Euler step.
 
