@@ -7,9 +7,10 @@ from __future__ import annotations
 import logging
 import os
 
-from corliss.engine.kernels.cycle import CYCLE_KERNELS, ROS_FINITE_ARG, ROS_PAIR_ARG
+from corliss.engine.kernels.cycle import CYCLE_KERNELS
 from corliss.engine.kernels.dopri5 import DOPRI_TURN_ARG, _dopri5_steps
-from corliss.engine.kernels.rosenbrock import _ros_steps
+from corliss.engine.kernels.rosenbrock import (ROS_FINITE_ARG, ROS_PAIR_ARG, ROS_TURN_ARG,
+                                               _ros_steps)
 from corliss.logs import NOTICE
 
 log = logging.getLogger(__name__)
@@ -66,7 +67,8 @@ def _uncached(dispatcher, nones: dict[int, bool] | None) -> bool | None:
 def cycle_kernel_uncached(code: int, exact: bool = True) -> bool | None:
     """:func:`uncached` of the compiled cycle integrator of a method code, in the
     version that method runs on the network (:data:`ROS_PAIR_ARG`,
-    :data:`ROS_FINITE_ARG`) and for a steady cycle (:data:`DOPRI_TURN_ARG` None).
+    :data:`ROS_FINITE_ARG`) and for a steady cycle (:data:`DOPRI_TURN_ARG` and
+    :data:`ROS_TURN_ARG` None: the step loops also serve the governed loop's turn).
 
     Parameters
     ----------
@@ -85,7 +87,8 @@ def cycle_kernel_uncached(code: int, exact: bool = True) -> bool | None:
         # the version of a steady cycle (its step loop also serves the loop's turn)
         return uncached(dispatcher, {DOPRI_TURN_ARG: True})
     if dispatcher is _ros_steps:
-        return uncached(dispatcher, {ROS_PAIR_ARG: code != 2, ROS_FINITE_ARG: exact})
+        return uncached(dispatcher, {ROS_PAIR_ARG: code != 2, ROS_FINITE_ARG: exact,
+                                     ROS_TURN_ARG: True})
     return uncached(dispatcher)
 
 

@@ -250,7 +250,7 @@ class Tableau(NamedTuple):
 
 
 class StepScratch(NamedTuple):
-    """Scratch of the Rosenbrock cycle's starting step and Jacobian.
+    """Scratch of the Rosenbrock step loop's starting step and Jacobian.
 
     Parameters
     ----------
@@ -283,18 +283,21 @@ class StepScratch(NamedTuple):
 
 
 class RosScratch(NamedTuple):
-    """Scratch of the Rosenbrock cycle's step loop, allocated by its caller.
+    """Scratch of the Rosenbrock step loop, allocated by its caller.
 
     Parameters
     ----------
     vec : ndarray
-        Nine state vectors (9, n).
+        Ten state vectors (10, n): derivatives at a step's start and end, a stage's
+        argument, the output's scratch, the time derivative, a solve's right-hand
+        side, the tolerances' scale, a probe state and its derivative, a solve's
+        columns (the loop's W).
     U : ndarray
         The stages (stages, n).
     J : ndarray
-        The Jacobian (n, ndyn).
+        The Jacobian (n, m): the ndyn dynamic columns, and the loop's three in a turn.
     mats : ndarray
-        W's inverse and its factor (2, ndyn, ndyn).
+        W's inverse and its factor (2, m, m).
     dl : ndarray
         (ndyn,).
     pr : ndarray
@@ -412,3 +415,19 @@ class LoopTurn(NamedTuple):
     record: bool
     t_end: float
     tq: np.ndarray
+
+
+class Columns(NamedTuple):
+    """The Jacobian's dynamic columns in groups whose rows do not overlap, perturbed
+    together by the finite differences (:meth:`corliss.engine.network.Network.column_colors`).
+
+    Parameters
+    ----------
+    color : ndarray
+        Int64 (ndyn,): the colour of each dynamic column.
+    owner : ndarray
+        Int64 (colours, rows): which column of each colour moves each row (-1: none).
+    """
+
+    color: np.ndarray
+    owner: np.ndarray
