@@ -324,39 +324,6 @@ class RosScratch(NamedTuple):
     tally: np.ndarray
 
 
-class LoopScratch(NamedTuple):
-    """Scratch of the governed loop's Jacobian.
-
-    Parameters
-    ----------
-    pr : ndarray
-        Node properties (PR_ROWS, nodes).
-    pa : ndarray
-        Port areas (cylinders, 4) [m2].
-    out : ndarray
-        The loop's outputs (4,).
-    att : ndarray
-        A trial's clamp tally (4,).
-    yp : ndarray
-        A probe state (n,).
-    fp : ndarray
-        Its derivative (n,).
-    dl : ndarray
-        The columns' increments.
-    dtq : ndarray
-        The nodes' torque change (nodes,).
-    """
-
-    pr: np.ndarray
-    pa: np.ndarray
-    out: np.ndarray
-    att: np.ndarray
-    yp: np.ndarray
-    fp: np.ndarray
-    dl: np.ndarray
-    dtq: np.ndarray
-
-
 class DopriScratch(NamedTuple):
     """Scratch of the Dormand-Prince step loop, allocated by its caller.
 

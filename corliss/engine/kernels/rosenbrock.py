@@ -15,10 +15,10 @@ from corliss.engine.kernels.clamps import (CL_ACCEPTED, CL_NODE, settle_clamps,
                                            settle_trial, settle_visited, tally_clamps,
                                            visited_clamp_off)
 from corliss.engine.kernels.compiled import njit
-from corliss.engine.kernels.data import (Columns, LoopScratch, LoopTurn, Physics,
-                                         RosScratch, StepControl, StepScratch, Tableau)
+from corliss.engine.kernels.data import (Columns, LoopTurn, Physics, RosScratch,
+                                         StepControl, StepScratch, Tableau)
 from corliss.engine.kernels.jacobians import (LOOP_COLUMNS, _exact_jacobian_holds,
-                                              _jacobian, _jacobian_exact, _loop_jacobian,
+                                              _jacobian, _jacobian_exact,
                                               _loop_w_inverse, _loop_w_solve, _w_inverse,
                                               _w_solve)
 from corliss.engine.kernels.loop import (N_EXTRA, N_REC, S_MAX_RHS, S_STEP, S_WMIN,
@@ -179,7 +179,7 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, fin
     needed the properties clamped retried shorter.  A turn (a tableau's method on the
     finite-difference Jacobian): one segment (``stops`` the turn's start and end), the
     loop's right-hand side :func:`~corliss.engine.kernels.loop.transient_rhs` and its
-    Jacobian (:func:`_loop_jacobian`, one a step), the first step carried over
+    Jacobian (:func:`_jacobian` with ``turn``, one a step), the first step carried over
     from the turn before (``sc[S_STEP]``) or :func:`turn_first_step`'s, a visited
     state's clamp stopping the run (but for the greatest energy's), the governor's
     stops after each accepted step, each accepted step recorded, and the run stopped
@@ -225,7 +225,7 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, fin
     """
     rtol, atol, max_rhs, jac_age = ctl.rtol, ctl.atol, ctl.max_rhs, ctl.jac_age
     net, tier, tab, perf = phys.net, phys.tier, phys.tab, phys.perf
-    color, owner = cols.color, cols.owner
+    color = cols.color
     gam, tA, tC, tc, td = tableau.gamma, tableau.A, tableau.C, tableau.c, tableau.d
     tb, te, same, expo = tableau.b, tableau.e, tableau.same, tableau.expo
     vec, U, J, mats, dl = scratch.vec, scratch.U, scratch.J, scratch.mats, scratch.dl
@@ -254,7 +254,6 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, fin
         sc = tr.sc
         out, out1 = turn.out[0], turn.out[1]
         tq0, tq1 = turn.tq[0], turn.tq[1]
-        loop_scratch = LoopScratch(pr, cell, out1, att, yp, fp, dl, turn.tq[2])
     nfev = 0
     n_rec = 0
     status = 0
@@ -305,16 +304,13 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, fin
             if t + h > b or b - (t + h) < 1e-12:
                 h = b - t
             if age >= jac_age:
-                if turn is not None:
-                    nfev += _loop_jacobian(t, y, f0, tq0, J, T, yscale, color, owner, phys,
-                                           tr, loop_scratch)
-                elif finite is None:
+                if finite is None:
                     # called from here, not through :func:`_jacobian`: through it, a call
                     # cost 2.2 us against 0.7 us (the default scene; numba's handling of a
                     # function that passes the network and table tuples on, it seems)
                     _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope)
                 else:
-                    nfev += _jacobian(t, y, f0, J, T, yscale, color, owner, phys, steps)
+                    nfev += _jacobian(t, y, f0, J, T, yscale, cols, phys, steps, turn)
                 age = 0
                 h_w = -1.0
             hd = h * gam
@@ -487,8 +483,8 @@ def integrate_turn_ros(y0, th0, out_theta, rtol, atol, phys, tr, record, t_end, 
 
     The tableau's method of :func:`cycle_ros` (one of
     :data:`corliss.engine.kernels.tableaus.ROS_TABLEAUS`) by the same step loop,
-    :func:`_ros_steps`, on the loop's finite-difference Jacobian (:func:`_loop_jacobian`),
-    one a step (the retry of a rejected step reuses it; the
+    :func:`_ros_steps`, on the loop's finite-difference Jacobian (:func:`_jacobian` with
+    the loop's columns), one a step (the retry of a rejected step reuses it; the
     linear algebra is :func:`_loop_w_inverse`'s and :func:`_loop_w_solve`'s over the
     Jacobian's columns, which here are not the first states).  dopri5 is held
     by the stiff pressure equalisation through an open port to steps of 1 to 2 deg
