@@ -16,9 +16,9 @@ from corliss.engine.kernels.clamps import (CL_ACCEPTED, CL_NODE, settle_clamps,
                                            visited_clamp_off)
 from corliss.engine.kernels.compiled import njit
 from corliss.engine.kernels.data import DopriScratch, LoopTurn, Physics, StepControl
-from corliss.engine.kernels.loop import (N_EXTRA, N_REC, S_MAX_RHS, S_WMIN, X_OMEGA, X_Z,
-                                         _project, _record, _turn_end, _visited_clamps,
-                                         transient_rhs)
+from corliss.engine.kernels.loop import (N_EXTRA, N_REC, S_MAX_RHS, S_WMIN, X_OMEGA,
+                                         _turn_end, _visited_clamps, transient_rhs,
+                                         turn_accepted, turn_start)
 from corliss.engine.kernels.mechanism import TWO_PI
 from corliss.engine.kernels.properties import PR_ROWS
 from corliss.engine.kernels.stepping import (copy_into, emit_samples, initial_step,
@@ -176,12 +176,7 @@ def _dopri5_steps(y, samples, stops, out_theta, ctl, phys, scratch, turn):
             segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att)
             h = min(h_prev, b - a) if h_prev > 0.0 else initial_step(f0, y, atol, rtol, b - a)
         else:
-            transient_rhs(t, y, f0, net, tier, tab, perf, pr, cell, tr, out)
-            tally_clamps(pr, t, att)
-            settle_visited(att, clamps)
-            if turn.record:
-                _record(turn.rec, 0, t, y, nn, out)
-                n_rec = 1
+            n_rec = turn_start(t, y, f0, phys, pr, cell, turn, att, clamps)
             h = turn_first_step(f0, y, atol, rtol, 0.2)
         nfev += 1
         while t < b:
@@ -217,22 +212,12 @@ def _dopri5_steps(y, samples, stops, out_theta, ctl, phys, scratch, turn):
                 io = emit_samples(io, out_theta, t, y, f0, t1, ytmp, K[6], samples, tmp)
                 t = t1
                 copy_into(y, ytmp)
-                if turn is not None:
-                    before = y[nn + X_Z]
-                    _project(y, nn)
-                    if y[nn + X_Z] != before:   # a stop was struck: restart the derivative
-                        transient_rhs(t, y, K[6], net, tier, tab, perf, pr, cell, tr, out)
-                        tally_clamps(pr, t, att)
-                        settle_visited(att, clamps)
-                        if clamps[CL_ACCEPTED] > 0.0:
-                            _visited_clamps(clamps, sc)
-                        nfev += 1
                 copy_into(f0, K[6])
                 if turn is not None:
-                    if turn.record and n_rec < turn.rec.shape[1]:
-                        # out holds the values at the last stage, the step's end (FSAL)
-                        _record(turn.rec, n_rec, t, y, nn, out)
-                        n_rec += 1
+                    # (out holds the values at the last stage, the step's end: FSAL)
+                    nf, n_rec = turn_accepted(t, y, f0, phys, pr, cell, turn, att, clamps,
+                                              n_rec)
+                    nfev += nf
                 h_prev = h * step_factor(err, 0.9, -0.2)
                 h = h_prev
                 if turn is not None:

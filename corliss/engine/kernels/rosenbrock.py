@@ -12,8 +12,7 @@ import numpy as np
 
 from corliss.engine.kernels.balances import rhs
 from corliss.engine.kernels.clamps import (CL_ACCEPTED, CL_NODE, settle_clamps,
-                                           settle_trial, settle_visited, tally_clamps,
-                                           visited_clamp_off)
+                                           settle_trial, tally_clamps, visited_clamp_off)
 from corliss.engine.kernels.compiled import njit
 from corliss.engine.kernels.data import (Columns, LoopTurn, Physics, RosScratch,
                                          StepControl, StepScratch, Tableau)
@@ -22,8 +21,8 @@ from corliss.engine.kernels.jacobians import (LOOP_COLUMNS, _exact_jacobian_hold
                                               _loop_w_inverse, _loop_w_solve, _w_inverse,
                                               _w_solve)
 from corliss.engine.kernels.loop import (N_EXTRA, N_REC, S_MAX_RHS, S_STEP, S_WMIN,
-                                         X_OMEGA, X_Z, _node_torques, _project, _record,
-                                         _turn_end, _visited_clamps, transient_rhs)
+                                         X_OMEGA, _node_torques, _turn_end, _visited_clamps,
+                                         transient_rhs, turn_accepted, turn_start)
 from corliss.engine.kernels.mechanism import TWO_PI
 from corliss.engine.kernels.properties import PR_ROWS
 from corliss.engine.kernels.stepping import (copy_into, emit_samples, initial_step,
@@ -287,14 +286,8 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, fin
             else:
                 h = initial_step(f0, y, atol, rtol, b - a)
         else:
-            transient_rhs(t, y, f0, net, tier, tab, perf, pr, cell, tr, out)
-            _node_torques(pr, tq0)
-            tally_clamps(pr, t, att)
-            settle_visited(att, clamps)
+            n_rec = turn_start(t, y, f0, phys, pr, cell, turn, att, clamps)
             nfev += 1
-            if turn.record:
-                _record(turn.rec, 0, t, y, nn, out)
-                n_rec = 1
             h = sc[S_STEP]
             if not (h > 0.0):
                 h = turn_first_step(f0, y, atol, rtol, 0.25)
@@ -398,20 +391,9 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, fin
                 age += 1
                 if turn is not None:
                     copy_into(tq0, tq1)
-                    before = y[nn + X_Z]
-                    _project(y, nn)
-                    if y[nn + X_Z] != before:   # a stop was struck: restart the derivative
-                        transient_rhs(t, y, f0, net, tier, tab, perf, pr, cell, tr, out)
-                        _node_torques(pr, tq0)
-                        tally_clamps(pr, t, att)
-                        settle_visited(att, clamps)
-                        if clamps[CL_ACCEPTED] > 0.0:
-                            _visited_clamps(clamps, sc)
-                        nfev += 1
-                    if turn.record and n_rec < turn.rec.shape[1]:
-                        # out holds the values at the step's end
-                        _record(turn.rec, n_rec, t, y, nn, out)
-                        n_rec += 1
+                    nf, n_rec = turn_accepted(t, y, f0, phys, pr, cell, turn, att, clamps,
+                                              n_rec)
+                    nfev += nf
                 if predictive:
                     fac = predictive_factor(err, h, err_acc, h_acc, safety, expo)
                     if rejected:
