@@ -125,11 +125,11 @@ def prints_now() -> dict:
     """Every scene's fingerprint now, taken in a fresh process, in the order and the way
     the saved one was taken (this file run as a script).
 
-    A fresh process, because a run in the test's worker has been seen to take another
-    number of steps after other test files ran in that worker (a throttling governor's
-    transient at ``fast``: 110,868 evaluations against 150,472; the same scene alone
-    gives 150,472 every time): what carries over is not found yet, and it is no change
-    of the kernels' arithmetic, which is what this test guards.
+    A fresh process, so that the sequence of runs is the saved one's.  (A run in the
+    test's worker once took another number of steps after other test files ran there:
+    the compiled loops read their property scratch before writing it, and it was
+    allocated uninitialised; tests/test_scratch_determinism.py now holds that a run
+    does not depend on what ran before it.)
     """
     out = subprocess.run([sys.executable, str(Path(__file__))], capture_output=True,
                          text=True, check=True, cwd=Path(__file__).parent.parent)

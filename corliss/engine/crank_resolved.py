@@ -103,7 +103,7 @@ class CrankResolved:
         self._tab = steam.table.arrays() if hasattr(steam, "table") else load_table().arrays()
         self._perf = (np.array(steam.perfect_params()) if hasattr(steam, "perfect_params")
                       else np.zeros(3))
-        self._pr = np.empty((properties.PR_ROWS, network.n_nodes))
+        self._pr = np.full((properties.PR_ROWS, network.n_nodes), np.nan)
         self._stops: dict[float, np.ndarray] = {}
         # the states each cycle restarts from zero: the quadratures, and the skin
         # walls' heat quadratures (their other states carry on)

@@ -78,7 +78,7 @@ def start_from_rest(y0: np.ndarray, theta0: float, omega_run: float, net, tier, 
     w_f = CREEP_FRACTION * omega_run
     sc[loop.S_WMIN] = w_f
     dy = np.empty(y0.shape[0])
-    pr = np.empty((PR_ROWS, net.node_kind.shape[0]))
+    pr = np.full((PR_ROWS, net.node_kind.shape[0]), np.nan)
     pa = np.empty((net.port_npts.shape[0], 4))
     out = np.empty(4)
     nfev = 0

@@ -80,7 +80,7 @@ def cycle_dopri5(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, max_rhs
     clamps = np.zeros(6)
     clamps[CL_NODE] = -1.0
     scratch = DopriScratch(np.empty((3, n)), np.empty((7, n)),
-                           np.empty((PR_ROWS, net.node_kind.shape[0])),
+                           np.full((PR_ROWS, net.node_kind.shape[0]), np.nan),
                            np.empty((net.port_npts.shape[0], 4)), clamps, np.zeros((2, 4)))
     nfev, status, _ = _dopri5_steps(y, samples, stops, out_theta,
                                     StepControl(rtol, atol, max_rhs, 0),
@@ -300,7 +300,7 @@ def cycle_rk4(y0, stops, out_theta, step, net, tier, tab, perf, max_rhs):
     ynew = np.empty(n)
     ytmp = np.empty(n)
     tmp = np.empty(n)
-    pr = np.empty((PR_ROWS, net.node_kind.shape[0]))
+    pr = np.full((PR_ROWS, net.node_kind.shape[0]), np.nan)
     cell = np.empty((net.port_npts.shape[0], 4))
     nfev = 0
     clamps = np.zeros(6)
@@ -432,7 +432,8 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
     stops = np.empty(2)
     stops[0] = th0
     stops[1] = th0 + TWO_PI
-    scratch = DopriScratch(np.empty((3, n)), np.empty((7, n)), np.empty((PR_ROWS, nv)),
+    scratch = DopriScratch(np.empty((3, n)), np.empty((7, n)),
+                           np.full((PR_ROWS, nv), np.nan),
                            np.empty((net.port_npts.shape[0], 4)), np.zeros(6),
                            np.zeros((2, 4)))
     nfev, status, n_rec = _dopri5_steps(y, samples, stops, out_theta,

@@ -137,9 +137,9 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
     clamps[CL_NODE] = -1.0
     scratch = RosScratch(np.empty((10, n)), np.empty((tb.shape[0], n)), np.zeros((n, ndyn)),
                          np.empty((2, ndyn, ndyn)), np.empty(ndyn),
-                         np.empty((PR_ROWS, net.node_kind.shape[0])),
+                         np.full((PR_ROWS, net.node_kind.shape[0]), np.nan),
                          # jd also holds pr's rows (starting_step)
-                         np.empty((max(12, PR_ROWS), net.node_kind.shape[0])),
+                         np.full((max(12, PR_ROWS), net.node_kind.shape[0]), np.nan),
                          np.empty((2, net.port_npts.shape[0], 4)), clamps, np.zeros((2, 4)))
     nfev, status, _ = _ros_steps(y, samples, stops, out_theta,
                                  StepControl(rtol, atol, max_rhs, jac_age),
@@ -549,7 +549,7 @@ def integrate_turn_ros(y0, th0, out_theta, rtol, atol, phys, tr, record, t_end, 
     # jd: none (the analytic Jacobian and the pair's starting step are a cycle's)
     scratch = RosScratch(np.empty((10, n)), np.empty((tableau.b.shape[0], n)),
                          np.zeros((n, m)), np.empty((2, m, m)), np.empty(ndyn),
-                         np.empty((PR_ROWS, nv)), np.empty((0, 0)),
+                         np.full((PR_ROWS, nv), np.nan), np.empty((0, 0)),
                          np.empty((2, net.port_npts.shape[0], 4)), np.zeros(6),
                          np.zeros((2, 4)))
     nfev, status, n_rec = _ros_steps(y, samples, stops, out_theta,
