@@ -559,17 +559,8 @@ def turn_accepted(t, y, f0, phys, pr, cell, turn, att, clamps, n_rec):
         The state there, projected in place.
     f0 : ndarray
         The derivative there, evaluated again in place where a stop was struck.
-    phys : Physics
-        The network and the steam's properties
-        (:class:`~corliss.engine.kernels.data.Physics`).
-    pr, cell : ndarray
-        Scratch: the node properties and the port areas [m2].
-    turn : LoopTurn
-        The turn (:class:`~corliss.engine.kernels.data.LoopTurn`).
-    att : ndarray
-        A step attempt's clamp tally, shape (4,), used and cleared.
-    clamps : ndarray
-        The turn's clamp counts, shape (6,), updated.
+    phys, pr, cell, turn, att, clamps
+        As :func:`turn_start`'s.
     n_rec : int
         The record's columns filled so far.
 
