@@ -92,7 +92,29 @@ def cycle_kernel_uncached(code: int, exact: bool = True) -> bool | None:
     return uncached(dispatcher)
 
 
-def announce_compile(*dispatchers, cycle: int | None = None, exact: bool = True) -> None:
+def turn_kernel_uncached(method: str) -> bool | None:
+    """:func:`uncached` of the step loop a turn of the governed loop runs on, in the
+    turn's version (:data:`DOPRI_TURN_ARG`, :data:`ROS_TURN_ARG` not None; a Rosenbrock
+    turn takes a tableau and the finite-difference Jacobian).
+
+    Parameters
+    ----------
+    method : str
+        The transient loop's method: ``"dopri5"`` or a Rosenbrock tableau's name.
+
+    Returns
+    -------
+    bool or None
+        As :func:`uncached`.
+    """
+    if method == "dopri5":
+        return uncached(_dopri5_steps, {DOPRI_TURN_ARG: False})
+    return uncached(_ros_steps, {ROS_PAIR_ARG: True, ROS_FINITE_ARG: False,
+                                 ROS_TURN_ARG: False})
+
+
+def announce_compile(*dispatchers, cycle: int | None = None, exact: bool = True,
+                     turn: str | None = None) -> None:
     """Say so before compiled functions not yet in numba's disk cache are first called.
 
     The first run on a machine spends some seconds compiling them; a NOTICE names the
@@ -108,11 +130,17 @@ def announce_compile(*dispatchers, cycle: int | None = None, exact: bool = True)
         called, in that method's version (:func:`cycle_kernel_uncached`).
     exact : bool
         With ``cycle``: whether the network's Jacobian is analytic.
+    turn : str, optional
+        A transient loop's method whose turn is about to be integrated
+        (:func:`turn_kernel_uncached`).
     """
     state = [uncached(d) for d in dispatchers]
     if cycle is not None:
         dispatchers = dispatchers + (CYCLE_KERNELS[cycle],)
         state.append(cycle_kernel_uncached(cycle, exact))
+    if turn is not None:
+        dispatchers = dispatchers + (_dopri5_steps if turn == "dopri5" else _ros_steps,)
+        state.append(turn_kernel_uncached(turn))
     if None in state:          # a numba without these internals: say nothing
         return
     missing = [d.__name__ for d, m in zip(dispatchers, state) if m]

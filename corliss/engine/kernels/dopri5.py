@@ -356,12 +356,13 @@ def cycle_rk4(y0, stops, out_theta, step, net, tier, tab, perf, max_rhs):
     return y, samples, nfev, True, clamps
 
 
-@njit(cache=True)
 def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, record, t_end):
     """Integrate one turn, from ``th0`` to ``th0 + 2 pi`` (dopri5, dense Hermite output).
 
-    Allocates the scratch and hands over to the step loop :func:`_dopri5_steps`, which
-    a steady cycle shares.
+    Allocates the scratch (in Python, as :func:`cycle_dopri5`: a compiled caller
+    would have numba optimise the loop's right-hand side linked into it once more, 1.7 s
+    of a first run) and hands over to the step loop :func:`_dopri5_steps`, which a
+    steady cycle shares.
 
     Evaluations that clamped a state to the range of the steam properties are counted:
     at trial states (stages, rejected steps) into ``sc[S_CLAMPED_TRIALS]``; at a state
@@ -429,9 +430,7 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
     samples = np.full((n, out_theta.shape[0]), np.nan)
     nv = net.node_kind.shape[0]
     rec = np.empty((N_REC, 40000 if record else 1))
-    stops = np.empty(2)
-    stops[0] = th0
-    stops[1] = th0 + TWO_PI
+    stops = np.array([th0, th0 + TWO_PI])
     scratch = DopriScratch(np.empty((3, n)), np.empty((7, n)),
                            np.full((PR_ROWS, nv), np.nan),
                            np.empty((net.port_npts.shape[0], 4)), np.zeros(6),

@@ -240,13 +240,13 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
 LOOP_COLUMNS = np.array([X_OMEGA, X_Z, X_ZDOT])
 
 
-@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
-def _jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, turn):
-    """Jacobian of the dynamic columns, and the time derivative, for the Rosenbrock step
-    loop, over a steady cycle (``turn`` None) and over a turn of the governed loop.
+@njit(cache=True, inline="always")
+def _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, turn):
+    """Jacobian of the dynamic columns, and the time derivative, by finite differences,
+    for the Rosenbrock step loop, over a steady cycle (``turn`` None, through
+    :func:`_jacobian`) and over a turn of the governed loop (inlined into the loop).
 
-    A steady cycle's: analytic (:func:`_jacobian_exact`, no evaluation of :func:`rhs`)
-    where it covers the network, else by finite differences: columns of one colour
+    A steady cycle's: columns of one colour
     (``cols``, :class:`~corliss.engine.kernels.data.Columns`) are perturbed together
     (their rows do not overlap), so a single cylinder costs two evaluations, and the
     time derivative a forward difference, one more.
@@ -265,21 +265,16 @@ def _jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, turn):
     (tests/test_speed_loop.py).
 
     Clamped evaluations go into the step's tally ``att``; ``yp``, ``fp`` (length of
-    the state), ``dl`` (of the dynamic states), ``jd`` (shape (12, nodes)) and
-    ``slope`` (shape (cylinders, 4)) are scratch, the fields of ``scratch``
+    the state) and ``dl`` (of the dynamic states) are scratch, fields of ``scratch``
     (:class:`~corliss.engine.kernels.data.StepScratch`); ``phys`` is
     :class:`~corliss.engine.kernels.data.Physics`.  Returns the evaluations of the
     right-hand side spent.
     """
     net, tier, tab, perf = phys.net, phys.tier, phys.tab, phys.perf
     pr, cell, att, yp, fp = scratch.pr, scratch.cell, scratch.att, scratch.yp, scratch.fp
-    dl, jd, slope = scratch.dl, scratch.jd, scratch.slope
+    dl = scratch.dl
     color, owner = cols.color, cols.owner
-    if turn is None:
-        if _exact_jacobian_holds(net):
-            _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope)
-            return 0
-    else:
+    if turn is not None:
         tr = turn.tr
         out, tq0, dtq = turn.out[1], turn.tq[0], turn.tq[2]
     n = y.shape[0]
@@ -339,6 +334,19 @@ def _jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, turn):
     for i in range(n):
         T[i] = (fp[i] - f0[i]) / dt
     return nfev
+
+
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
+def _jacobian(t, y, f0, J, T, yscale, cols, phys, scratch):
+    """A steady cycle's Jacobian of the dynamic columns, and the time derivative:
+    analytic (:func:`_jacobian_exact`, no evaluation of :func:`rhs`) where it covers
+    the network, else :func:`_fd_jacobian`'s.  Arguments and return as
+    :func:`_fd_jacobian`'s (``jd`` and ``slope`` of ``scratch`` the analytic one's)."""
+    if _exact_jacobian_holds(phys.net):
+        _jacobian_exact(t, y, J, T, phys.net, phys.tier, phys.tab, phys.perf, scratch.pr,
+                        scratch.cell, scratch.jd, scratch.slope)
+        return 0
+    return _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, None)
 
 
 @njit(cache=True, _nrt=False)

@@ -17,7 +17,7 @@ from corliss.engine.kernels.compiled import njit
 from corliss.engine.kernels.data import (Columns, LoopTurn, Physics, RosScratch,
                                          StepControl, StepScratch, Tableau)
 from corliss.engine.kernels.jacobians import (LOOP_COLUMNS, _exact_jacobian_holds,
-                                              _jacobian, _jacobian_exact,
+                                              _fd_jacobian, _jacobian, _jacobian_exact,
                                               _loop_w_inverse, _loop_w_solve, _w_inverse,
                                               _w_solve)
 from corliss.engine.kernels.loop import (N_EXTRA, N_REC, S_MAX_RHS, S_STEP, S_WMIN,
@@ -178,7 +178,7 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, fin
     needed the properties clamped retried shorter.  A turn (a tableau's method on the
     finite-difference Jacobian): one segment (``stops`` the turn's start and end), the
     loop's right-hand side :func:`~corliss.engine.kernels.loop.transient_rhs` and its
-    Jacobian (:func:`_jacobian` with ``turn``, one a step), the first step carried over
+    Jacobian (:func:`_fd_jacobian` with ``turn``, one a step), the first step carried over
     from the turn before (``sc[S_STEP]``) or :func:`turn_first_step`'s, a visited
     state's clamp stopping the run (but for the greatest energy's), the governor's
     stops after each accepted step, each accepted step recorded, and the run stopped
@@ -297,13 +297,17 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, fin
             if t + h > b or b - (t + h) < 1e-12:
                 h = b - t
             if age >= jac_age:
-                if finite is None:
+                if turn is not None:
+                    # inlined here: compiled apart, the loop's right-hand side linked into
+                    # it was optimised once more by LLVM, seconds of a first run
+                    nfev += _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, steps, turn)
+                elif finite is None:
                     # called from here, not through :func:`_jacobian`: through it, a call
                     # cost 2.2 us against 0.7 us (the default scene; numba's handling of a
                     # function that passes the network and table tuples on, it seems)
                     _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope)
                 else:
-                    nfev += _jacobian(t, y, f0, J, T, yscale, cols, phys, steps, turn)
+                    nfev += _jacobian(t, y, f0, J, T, yscale, cols, phys, steps)
                 age = 0
                 h_w = -1.0
             hd = h * gam
@@ -458,15 +462,14 @@ _ODE23S_ARGS = Tableau(_D, np.zeros((4, 4)), np.zeros((4, 4)), np.zeros(4), np.z
                        np.zeros(4), np.zeros(4), np.zeros(4, dtype=np.int64), -1.0 / 3.0)
 
 
-@njit(cache=True)
 def integrate_turn_ros(y0, th0, out_theta, rtol, atol, phys, tr, record, t_end, color, owner,
                        tableau):
     """Integrate one turn as :func:`integrate_turn`, with a Rosenbrock method.
 
     The tableau's method of :func:`cycle_ros` (one of
     :data:`corliss.engine.kernels.tableaus.ROS_TABLEAUS`) by the same step loop,
-    :func:`_ros_steps`, on the loop's finite-difference Jacobian (:func:`_jacobian` with
-    the loop's columns), one a step (the retry of a rejected step reuses it; the
+    :func:`_ros_steps`, on the loop's finite-difference Jacobian (:func:`_fd_jacobian`
+    with the loop's columns), one a step (the retry of a rejected step reuses it; the
     linear algebra is :func:`_loop_w_inverse`'s and :func:`_loop_w_solve`'s over the
     Jacobian's columns, which here are not the first states).  dopri5 is held
     by the stiff pressure equalisation through an open port to steps of 1 to 2 deg
@@ -478,7 +481,8 @@ def integrate_turn_ros(y0, th0, out_theta, rtol, atol, phys, tr, record, t_end, 
     then cost more than they save (:data:`corliss.engine.options.PRESETS`).  The step
     carries over from turn to turn (``sc[S_STEP]``).  Returns, raises and counts clamps
     as :func:`integrate_turn`; a step whose end needs the properties clamped (but for
-    the greatest energy's) is retried shorter.
+    the greatest energy's) is retried shorter.  Allocates the scratch in Python, as
+    :func:`cycle_ros` (see :func:`integrate_turn`).
 
     Parameters
     ----------
@@ -543,9 +547,7 @@ def integrate_turn_ros(y0, th0, out_theta, rtol, atol, phys, tr, record, t_end, 
     y = y0.copy()
     samples = np.full((n, out_theta.shape[0]), np.nan)
     rec = np.empty((N_REC, 40000 if record else 1))
-    stops = np.empty(2)
-    stops[0] = th0
-    stops[1] = th0 + TWO_PI
+    stops = np.array([th0, th0 + TWO_PI])
     # jd: none (the analytic Jacobian and the pair's starting step are a cycle's)
     scratch = RosScratch(np.empty((10, n)), np.empty((tableau.b.shape[0], n)),
                          np.zeros((n, m)), np.empty((2, m, m)), np.empty(ndyn),
