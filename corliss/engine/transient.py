@@ -39,6 +39,7 @@ from corliss.governors.operating_point import (BALANCED, LOAD_TOO_HEAVY, SURPLUS
                                            OperatingPoint, find_operating_point)
 from corliss.engine.options import TRANSIENT_METHODS, record_of
 from corliss.engine.result import TransientResult
+from corliss.engine.reversal import reversible, run_reversal
 from corliss.engine.speed_metrics import settled, step_time_of
 from corliss.engine.start_from_rest import HANDOVER_FRACTION, start_from_rest
 from corliss.errors import InputError, RunError
@@ -46,7 +47,8 @@ from corliss.governors import governor_type
 from corliss.governors.mechanism import CREEP_PER_S
 from corliss.thermo.steam_table import load_table
 from corliss.valves import events as gear_events
-from corliss.valves.portmap import tabulate_settings
+from corliss.valves.portmap import tabulate, tabulate_settings
+from corliss.valves.single_acting import single_acting
 
 log = logging.getLogger(__name__)
 TWO_PI = 2.0 * math.pi
@@ -481,8 +483,15 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
         mid = np.array([0.5 * (r["t_start_s"] + r["t_end_s"]) for r in rows])
         return not settled(mid, np.array([r["mean_speed_rpm"] for r in rows]), since)[0]
 
+    # a slip eccentric stalled by its load is carried through the change of direction
+    # (corliss.engine.reversal); afterwards the loop runs in the backward frame, its
+    # angles and speeds reported in the fixed frame (``sense`` -1)
+    can_reverse = reversible(scene, gear)
+    sense = 1.0
+    th_offset = 0.0
+    slip_deg = math.degrees(gear.spec.slip_rad) if can_reverse else 0.0
     while status != 2 and go_on(y[nn + loop.X_TIME]):
-        th0 = TWO_PI * k
+        th0 = TWO_PI * k + th_offset
         y[network.n_dyn:nn] = 0.0
         for q in (loop.X_WLOAD, loop.X_WFRIC, loop.X_WGAS, loop.X_ZDT, loop.X_ADT):
             y[nn + q] = 0.0
@@ -502,7 +511,32 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
                            f"{y[nn + loop.X_TIME]:.3f} s)")
         if status == 1:
             raise RuntimeError(f"the integrator failed in turn {k + 1} (step size collapsed)")
-        if status != 2 or not rows:
+        if status == 2 and can_reverse and sense > 0.0:
+            rev = run_reversal(y_start, th0, omega0, net, gear, steam.kernel_tier, tab, perf,
+                               tables.tr, rtol, atol, longest)
+            nfev += rev["nfev"]
+            row, frame = _reversal_record(rev, k, y_start, network, steam, tables, nn, slip_deg,
+                                          record == "degree")
+            rows.append(row)
+            frames.append(frame)
+            y = rev["y"]
+            k += 1
+            if not rev["handed_over"]:
+                break
+            log.info("the load turned the engine backward: the eccentric slipped %.1f deg to "
+                     "its backward stop at %.3f s", slip_deg, float(rev["samples"]["t"][-1]))
+            sense, status = -1.0, 0
+            th_offset = rev["phi_rad"] - TWO_PI * k
+            # the backward stop's gear (a single-acting cylinder's kept single-acting)
+            pm_back = tabulate(single_acting(gear.reversed(), scene.engine.steam_ends),
+                               fid.portmap_points)
+            back = build_network(scene, geo, pm_back, steam, chest, exhaust).arrays()
+            net = net._replace(port_grid=back.port_grid, port_npts=back.port_npts,
+                               port_area=back.port_area)
+            sc[loop.S_TREF] = -sc[loop.S_TREF]    # the load keeps its direction
+            continue
+        appended = status != 2 or not rows
+        if appended:
             # a turn the stall cut short is no turn: its row would be a wrong mean
             rows.append(_cycle_row(k, y_start, y, network, tables, nn))
         if marks is not None:
@@ -511,6 +545,10 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
         else:
             _update_wall(network, y)
         frame = _frame(network, steam, tables, out_theta, samples, rec, n_rec, record, nn)
+        if can_reverse:
+            frame["eccentric_slip_deg"] = np.full(len(frame["time_s"]), 0.0 if sense > 0 else slip_deg)
+        if sense < 0.0:
+            _to_fixed_frame(rows[-1] if appended else {}, frame)
         frames.append({"cycle": np.full(len(frame["time_s"]), k + 1), **frame})
         k += 1
         if progress:
@@ -602,6 +640,41 @@ def _start_record(begun: dict, y0: np.ndarray, network, steam, tables: LoopTable
         V = network.volume(i, theta)
         cols[f"p_{end}_Pa"] = steam.states(ys[2 * i] / V, ys[2 * i + 1] / ys[2 * i])[0]
     return row, pd.DataFrame(cols)
+
+
+def _reversal_record(rev: dict, k: int, y0: np.ndarray, network, steam, tables: LoopTables,
+                     nn: int, slip_deg: float, pressures: bool):
+    """The per-turn row and the time-series columns of a change of direction
+    (:func:`corliss.engine.reversal.run_reversal`), in the fixed frame: from the start of
+    the turn that stalled to the dead centre where the loop runs on backward."""
+    s = rev["samples"]
+    t, theta, ys = s["t"], s["theta"], s["y"]
+    row = _cycle_row(k, y0, rev["y"], network, tables, nn)
+    dt = max(float(t[-1] - t[0]), 1e-12)
+    rpm = 60.0 / TWO_PI
+    row["mean_speed_rpm"] = (theta[-1] - theta[0]) / dt * rpm
+    row["speed_end_rpm"] = float(ys[nn + loop.X_OMEGA, -1]) * rpm
+    cols = {"cycle": np.full(t.size, k + 1), "time_s": t, "crank_angle_deg": np.degrees(theta),
+            "speed_rpm": ys[nn + loop.X_OMEGA] * rpm, "governor_z_frac": np.zeros(t.size),
+            "actuator_frac": np.zeros(t.size)}
+    for end in ("head", "crank") if pressures else ():
+        i = network.node(end)
+        V = network.volume(i, theta)
+        cols[f"p_{end}_Pa"] = steam.states(ys[2 * i] / V, ys[2 * i + 1] / ys[2 * i])[0]
+    cols["valve_m"] = s["valve_m"]
+    cols["eccentric_slip_deg"] = np.degrees(s["slip_rad"])
+    return row, cols
+
+
+def _to_fixed_frame(row: dict, frame: dict) -> None:
+    """A turn run backward (the loop's angle, speed and torques in the direction of
+    rotation) reported in the fixed frame: crank angle, speeds and torques negated."""
+    for key in ("mean_speed_rpm", "speed_start_rpm", "speed_end_rpm"):
+        if key in row:
+            row[key] = -row[key]
+    for key in ("crank_angle_deg", "speed_rpm", "indicated_torque_N_m", "load_torque_N_m"):
+        if key in frame:
+            frame[key] = -np.asarray(frame[key])
 
 
 def _update_wall(network, y: np.ndarray) -> None:

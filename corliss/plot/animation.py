@@ -236,7 +236,7 @@ def _draw_port_face(ax, gear, scale) -> list:
     s = gear.spec
     rho, h = s.port_radius_m, s.port_length_m
     rows = [(0.0, s.steam_port_angle_rad, -s.exhaust_port_angle_rad, "head end")]
-    if s.acting == "double":
+    if getattr(gear, "steam_end", "both") != "head":    # single-acting: the head end's only
         rows.append((-2.2 * h, -s.steam_port_angle_rad, s.exhaust_port_angle_rad, "crank end"))
     ports = []
     reach = rho * (s.max_swing_rad + max(s.steam_port_angle_rad, s.exhaust_port_angle_rad)) \

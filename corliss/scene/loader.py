@@ -24,6 +24,7 @@ from corliss.engine.geometry import EngineSpec
 from corliss.engine.load import parse_load
 from corliss.engine.options import (COMPILED_METHODS, EFFECT_KEYS, EFFECTS, PLANNED_EFFECTS,
                                     PRESETS, SCIPY_METHODS, Fidelity)
+from corliss.engine.output_size import check_output_samples
 from corliss.errors import InputError, InputErrors
 from corliss.keys.declared import REQUIRED
 from corliss.scene.sections import (COMPARE, COMPOUND, ENGINE, EXHAUST, FLYWHEEL, LOAD, OUTPUT,
@@ -116,9 +117,11 @@ class RunSpec:
     duration_s : float or None
         Transient: simulated time [s] (rounded up to whole turns).
     record : str or None
-        Transient time series: ``"step"`` (every integrator step), ``"degree"`` (every
-        ``output_step`` of crank angle) or ``"cycle"`` (once per turn); None (not in the
-        scene): by the run's length (:func:`corliss.engine.options.record_of`).
+        The time series: ``"step"`` (every integrator step, transient only),
+        ``"degree"`` (every ``output_step`` of crank angle) or ``"cycle"`` (once per
+        turn; a steady run's last cycle at every output step); None (not in the scene):
+        a transient's by the run's length (:func:`corliss.engine.options.record_of`),
+        a steady run's ``"degree"``.
     settling_band : float
         Transient: the speed band, as a fraction of the final mean speed, that the
         settling time is measured to [-].  By default 0.2 %: a fraction of the 1 to 5 %
@@ -661,7 +664,7 @@ def _run(t: Table) -> RunSpec:
     duration = None
     if mode == "transient":
         duration = t.get("duration", REQUIRED)
-        if not 0.0 < duration <= 3600.0:
+        if not 0.0 < duration <= limits.MAX_DURATION_S:
             raise InputError(t.key("duration"), t.raw("duration"), "a time above 0, up to 1 h")
         if cycles is not None:
             raise InputError(t.key("cycles"), cycles, "no cycles in a transient run: give "
@@ -670,6 +673,10 @@ def _run(t: Table) -> RunSpec:
         raise InputError(t.key("duration"), t.raw("duration"), "no duration in a steady run "
                          "(it runs until periodic, or run.cycles); or mode = \"transient\"")
     record = t.get("record", None)
+    if record == "step" and mode != "transient":
+        raise InputError(t.key("record"), record, "\"degree\" (every cycle at every output "
+                         "step) or \"cycle\" (each cycle once, the last at every output step) "
+                         "in a steady run: \"step\" records a transient's integrator steps")
     band = t.get("settling_band")
     if not 0.0 < band < 0.5:
         raise InputError(t.key("settling_band"), band, "a fraction of the speed between 0 and 0.5")
@@ -692,11 +699,13 @@ def _run(t: Table) -> RunSpec:
         if mode != "transient":
             raise InputError(t.key("until_settled"), until, "a transient run (mode = "
                              "\"transient\"): a steady run always runs until periodic")
-        longest = t.get("max_duration", f"{min(10.0 * duration, 3600.0)} s",
-                        within=(duration, 3600.0))
+        longest = t.get("max_duration", f"{min(10.0 * duration, limits.MAX_DURATION_S)} s",
+                        within=(duration, limits.MAX_DURATION_S))
     t.finish()
-    return RunSpec(mode, model, speed, tuple(dict.fromkeys(effects)), fid, cycles, expansion,
+    spec = RunSpec(mode, model, speed, tuple(dict.fromkeys(effects)), fid, cycles, expansion,
                    duration, record, band, warm, start, until, longest, start_angle)
+    check_output_samples(spec)
+    return spec
 
 
 def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) -> Scene:

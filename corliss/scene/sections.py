@@ -149,8 +149,9 @@ RUN = group(
         choices=EXPANSION_LAWS),
     Key("duration", "time", "Simulated time of a transient run, above 0 up to 1 h.",
         default=None, when="in a transient run (required there)"),
-    Key("record", "choice", "Transient time series: every step, every output step of crank "
-        "angle, or once a turn.", default=Derived("by the run's length"),
+    Key("record", "choice", "Time series: every step (transient only), every output step "
+        "of crank angle, or once a turn (a steady run's last cycle at every output step).",
+        default=Derived("by a transient's length; degree in a steady run"),
         choices=RECORD_CHOICES),
     Key("settling_band", "number", "Speed band, as a fraction of the final mean speed, the "
         "settling time is measured to; in (0, 0.5).", default=0.002, within=(0.0, 0.5)),
@@ -228,6 +229,10 @@ LOAD = group(
         default="constant", choices=tuple(SPEED_LAWS)),
     Key("kind", "choice", "The schedule of the load fraction.", default="constant",
         choices=("constant", "step", "ramp", "schedule")),
+    Key("initial_fraction", "number", "Load before the step or ramp, a fraction of the "
+        "reference load: a step from 50 % to 80 % is initial_fraction = 0.5, step_fraction "
+        "= 0.8; the engine starts settled at it.", default=1.0, within=(0.0, 5.0),
+        when="with kind = \"step\" or \"ramp\""),
     Key("step_time", "time", "When the step comes (zero or more).", within=ZERO_OR_MORE,
         when="with kind = \"step\""),
     Key("step_fraction", "number", "Load after the step, a fraction of the reference load.",

@@ -40,10 +40,13 @@ end's admission and cut-off fall where psi = l / rho on the way out and back, at
 ``R sin(theta + lambda) = D sin(lambda)`` with lambda = l / rho (the swing's equation
 rearranged), the closed form tests/test_live_steam_gears.py checks the events against.
 
-A single-acting cylinder (``acting = "single"``) takes steam at the head end only: its
-crank end's ports never open (the gear-level choice: corliss's engine model has
-double-acting cylinders; the crank end is then a closed space whose steam springs back
-with the piston, not an end open to the air).
+A single-acting oscillator is said as every single-acting cylinder is, with
+``[engine] steam_ends = "head"`` (:mod:`corliss.valves.single_acting`): the crank end's
+steam port never opens and its exhaust port stands open, so that side of the piston
+breathes the exhaust, as the open-ended cylinder of a single-acting toy or model
+oscillator breathes the air.  The gear's own ``acting`` key of earlier versions (which
+closed the crank end instead, a space whose steam sprang back with the piston) is
+refused, naming ``steam_ends``.
 
 The piston moves ``sqrt(D^2 + R^2 - 2 D R cos(theta)) - (D - R)`` from head-end dead
 centre: that of a slider crank whose connecting rod is D, to second order in R/D
@@ -65,10 +68,6 @@ from corliss.keys.declared import POSITIVE_LENGTH, Key, group
 from corliss.keys.toml_table import DISCHARGE_COEFFICIENT, Table
 from corliss.valves.gear import GearType, register
 from corliss.valves.slide_valve import LappedValve
-
-#: Double- or single-acting, by the ``acting`` key's values.
-ACTING = ("double", "single")
-
 
 @dataclass(frozen=True)
 class OscillatingSpec:
@@ -94,8 +93,6 @@ class OscillatingSpec:
         The ports' extent across the arc (radially) [m].
     discharge_coefficient : float, optional
         Of the port opening [-].
-    acting : str, optional
-        ``"double"`` or ``"single"`` (the crank end's ports never open).
     """
 
     crank_m: float
@@ -107,7 +104,6 @@ class OscillatingSpec:
     exhaust_port_angle_rad: float
     port_length_m: float
     discharge_coefficient: float = 0.7
-    acting: str = "double"
 
     # what a lapped valve's spec carries (module doc)
     @property
@@ -178,7 +174,7 @@ class OscillatingCylinder(LappedValve):
 
     name = "oscillating"
     summary = ("oscillating cylinder: the port face swings over the standard's ports as "
-               "the crank turns; single- or double-acting")
+               "the crank turns")
 
     def __init__(self, spec: OscillatingSpec):
         self.spec = spec
@@ -197,12 +193,6 @@ class OscillatingCylinder(LappedValve):
             x [m], in the sense that opens the head steam port.
         """
         return self.spec.port_radius_m * swing_angle(self.spec, theta)
-
-    def signed_openings(self, theta):
-        s = super().signed_openings(theta)
-        if self.spec.acting == "single":
-            s[2:] = -self.spec.port_width_m
-        return s
 
     def joints(self, theta: float) -> "OscillatingJoints":
         """The shaft, crank pin, trunnion and piston at crank angle ``theta``.
@@ -299,8 +289,6 @@ OSCILLATING_KEYS = group(
     Key("port_length", "length", "The ports' extent across the arc (radially).", **_LEN),
     Key("discharge_coefficient", "number", "Discharge coefficient of a port opening.",
         default=0.7, within=DISCHARGE_COEFFICIENT),
-    Key("acting", "choice", "Double-acting, or single-acting (steam at the head end only: "
-        "the crank end's ports never open).", default="double", choices=ACTING),
 )
 
 
@@ -321,6 +309,13 @@ def parse_oscillating(t: Table) -> OscillatingSpec:
     OscillatingSpec
         The port face's spec.
     """
+    if "acting" in t.data:
+        # one way to say single-acting, for every gear: the engine's steam_ends
+        raise InputError(t.key("acting"), t.data["acting"],
+                         "no acting key: a single-acting oscillator is said as [engine] "
+                         "steam_ends = \"head\" (the crank end's steam port shut, its "
+                         "exhaust port open, as an open-ended cylinder's), and a "
+                         "double-acting one by leaving steam_ends at its default, \"both\"")
     t = t.bound(OSCILLATING_KEYS)
     R = t.get("stroke") / 2
     D = t.get("trunnion_distance")
@@ -335,8 +330,7 @@ def parse_oscillating(t: Table) -> OscillatingSpec:
     spec = OscillatingSpec(crank_m=R, trunnion_distance_m=D, port_radius_m=rho,
                            cylinder_port_m=wc, standard_port_m=ws, steam_port_angle_rad=bs,
                            exhaust_port_angle_rad=be, port_length_m=t.get("port_length"),
-                           discharge_coefficient=t.get("discharge_coefficient"),
-                           acting=t.get("acting"))
+                           discharge_coefficient=t.get("discharge_coefficient"))
     psi = spec.max_swing_rad
     half = 0.5 * (wc + ws)
     for key, beta in (("steam_port_angle", bs), ("exhaust_port_angle", be)):
