@@ -156,7 +156,7 @@ def test_the_scene_written_reproduces_the_designs_events(system, tmp_path):
     these events the valve moves some 2.9 in per radian of crank, so a thou is 0.02
     deg; the advance's 0.005 deg adds itself.  The head lead is the 1/4 in asked to
     a thou."""
-    from tests.conftest import make_scene
+    from conftest import make_scene
     d = design(None, units_system=system, **README_DESIGN)
     scene = load_scene(d.write(tmp_path)["scene"])
     ev = scene_events(scene)

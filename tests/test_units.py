@@ -134,7 +134,7 @@ def test_thou_is_a_thousandth_of_an_inch_wherever_a_length_is_read():
     the factor's last bit), and a study's range and a design's lead read it too."""
     from corliss.engine.model import scene_events
     from corliss.keys.edits import parse_range
-    from tests.conftest import make_scene
+    from conftest import make_scene
 
     assert units.parse("15 thou", "length") == pytest.approx(0.381e-3, rel=1e-12)
     assert units.parse("2 1/2 thou", "length") == pytest.approx(2.5 * 25.4e-6, rel=1e-12)
