@@ -18,6 +18,7 @@ import functools
 import math
 import re
 from dataclasses import dataclass
+from typing import Any
 
 from corliss.errors import InputError
 
@@ -230,7 +231,7 @@ def is_quantity_object(value: object) -> bool:
             and hasattr(value, "magnitude"))
 
 
-def _from_object(q: object, kind: str, key: str, within) -> float:
+def _from_object(q: Any, kind: str, key: str, within) -> float:
     """A quantity object in SI, converted by ``kind``; the library is never imported
     here: the object converts itself."""
     if kind == "pressure":
