@@ -561,7 +561,7 @@ class Network:
             shape (colours, :attr:`n_state`).
         """
         nv = self.n_nodes
-        nbr = [set() for _ in range(nv)]
+        nbr: list[set[int]] = [set() for _ in range(nv)]
         for a, b in zip(self.e_a, self.e_b):
             if a >= 0 and b >= 0:
                 nbr[a].add(b)
