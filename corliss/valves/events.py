@@ -48,21 +48,25 @@ def crossing_table(gear: ValveGear, levels: np.ndarray) -> list[list[list[tuple[
     levels = np.atleast_2d(np.asarray(levels, dtype=float))
     th = np.linspace(0.0, TWO_PI, _SAMPLES + 1)
     s = gear.signed_openings(th)
-    ports, levs, idx, rising = [], [], [], []
+    port_list: list[int] = []
+    levs: list[int] = []
+    idx_parts: list[np.ndarray] = []
+    rising_parts: list[np.ndarray] = []
     for port in range(4):
         for li, level in enumerate(levels[port]):
             above = s[port] - level > 0.0
             i = np.nonzero(above[1:] != above[:-1])[0]
-            ports += [port] * i.size
+            port_list += [port] * i.size
             levs += [li] * i.size
-            idx.append(i)
-            rising.append(above[i + 1])
-    out = [[[] for _ in range(levels.shape[1])] for _ in range(4)]
-    if not ports:
+            idx_parts.append(i)
+            rising_parts.append(above[i + 1])
+    out: list[list[list[tuple[float, bool]]]] = [[[] for _ in range(levels.shape[1])]
+                                                 for _ in range(4)]
+    if not port_list:
         return out
-    ports = np.array(ports)
-    idx = np.concatenate(idx)
-    rising = np.concatenate(rising)
+    ports = np.array(port_list)
+    idx = np.concatenate(idx_parts)
+    rising = np.concatenate(rising_parts)
     lev = levels[ports, np.array(levs)]
     t = _solve_crossings(gear, ports, lev, th[idx], th[idx + 1],
                          s[ports, idx] - lev, s[ports, idx + 1] - lev) % TWO_PI
