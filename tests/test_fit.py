@@ -124,14 +124,16 @@ def test_the_fitted_card_conserves_the_indicated_work(fit_half_psi):
 
 def test_the_fit_writes_its_files_and_the_fitted_scene_runs(fit_half_psi):
     f, out = fit_half_psi
-    assert sorted(p.name for p in out.iterdir()) == ["fit-card.png", "fit.json", "fitted.toml"]
-    meta = json.loads((out / "fit.json").read_text())
+    stem = f"{f.scene.name}.fit"
+    assert sorted(p.name for p in out.iterdir()) == [f"{stem}.card.png", f"{stem}.json",
+                                                      f"{stem}.toml"]
+    meta = json.loads((out / f"{stem}.json").read_text())
     par = {p["key"]: p for p in meta["parameters"]}
     assert par["valve_gear.lap"]["unit"] == "in"
     assert par["valve_gear.lap"]["value"] == pytest.approx(f.values["valve_gear.lap"])
     assert meta["residual_rms"]["unit"] == "psi"
     assert meta["residual_rms"]["value"] == pytest.approx(f.residual_rms_Pa / PSI)
-    fitted = corliss.load_scene(out / "fitted.toml")
+    fitted = corliss.load_scene(out / f"{stem}.toml")
     assert fitted.engine.clearance[0] == pytest.approx(f.values["engine.clearance"], rel=1e-5)
     assert fitted.gear.lap_m[0] == pytest.approx(f.values["valve_gear.lap"] * units.INCH_m,
                                                  rel=1e-5)
@@ -233,7 +235,7 @@ def test_bad_input_through_the_command_leaves_the_output_folder_as_it_was(
     card = truth_run.to_csv(tmp_path / "card.csv", table="cards")
     out = tmp_path / "out"
     out.mkdir()
-    (out / "fit.json").write_text("earlier")
+    (out / "earlier.txt").write_text("earlier")
     cases = [
         (["--vary", "engine.bogus=1:2in"], "bogus"),
         (["--vary", "valve_gear.lap=1.3:0.7in"], "LOW below HIGH"),
@@ -249,8 +251,8 @@ def test_bad_input_through_the_command_leaves_the_output_folder_as_it_was(
     assert cli.main(["fit", str(scene), str(bad_card), "--out", str(out),
                      "--vary", "valve_gear.lap=0.7:1.3in"]) == 2
     assert "position" in capsys.readouterr().err
-    assert sorted(p.name for p in out.iterdir()) == ["fit.json"]
-    assert (out / "fit.json").read_text() == "earlier"
+    assert sorted(p.name for p in out.iterdir()) == ["earlier.txt"]
+    assert (out / "earlier.txt").read_text() == "earlier"
 
 
 def test_the_command_fits_a_card_corliss_wrote_and_prints_json(truth_run, tmp_path, capsys):
@@ -267,8 +269,9 @@ def test_the_command_fits_a_card_corliss_wrote_and_prints_json(truth_run, tmp_pa
     lap = s["parameters"][0]
     assert lap["value"] == pytest.approx(1.0, abs=1e-3)
     assert lap["identifiable"] and lap["standard_error"] < 1e-3
-    assert sorted(p.name for p in (tmp_path / "o").iterdir()) == ["fit.json", "fitted.toml"]
-    written = tomllib.loads((tmp_path / "o" / "fitted.toml").read_text())["valve_gear"]["lap"]
+    assert sorted(p.name for p in (tmp_path / "o").iterdir()) == ["engine.fit.json",
+                                                                   "engine.fit.toml"]
+    written = tomllib.loads((tmp_path / "o" / "engine.fit.toml").read_text())["valve_gear"]["lap"]
     assert units.parse(written, "length") == pytest.approx(lap["value"] * units.INCH_m, rel=1e-5)
     assert math.isfinite(s["residual_rms_Pa"])
 

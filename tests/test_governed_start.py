@@ -163,3 +163,46 @@ def test_the_mean_value_model_starts_at_the_same_operating_point():
     mv = corliss.simulate(scene.replace_run(model="mean_value")).summary["start"]
     assert mv["status"] == cr["status"] == "balanced"
     assert mv["speed_rpm"] == pytest.approx(cr["speed_rpm"], rel=1e-3)
+
+
+def test_a_step_from_half_load_to_eight_tenths_starts_settled_at_half_load():
+    """A load step given from one load to another (``initial_fraction = 0.5``,
+    ``step_fraction = 0.8``) starts where the governor balances the first load.
+
+    The Watt engine's reference load is 110 hp at 120 rpm, T_ref = P / omega; at half
+    load and a constant-torque law each turn takes W = 0.5 T_ref 2 pi from the shaft
+    (a closed form: the torque is constant until the step).  Before the step, each
+    turn's load work is that to 1e-3 (the turn is integrated at the run's tolerance
+    with the speed free to swing), the indicated work less friction balances it to
+    5e-3 of it, and the turn-mean speed stays at the start's within 1e-3 (the
+    tolerances and their reasons of the test above).  The start lies on the Watt
+    governor's characteristic at a coordinate of its own: at the reference load (the
+    step's old meaning, from full load) the throttle must open wider, so the balls
+    stand lower, more than 0.05 of their travel below the half load's (0.59 against
+    0.77 measured).
+    """
+    scene = _scene("watt-throttling-governor", **{"load.initial_fraction": 0.5,
+                                                  "load.step_fraction": 0.8,
+                                                  "run.duration": "3 s"})
+    assert scene.load.fraction(0.0) == 0.5 and scene.load.fraction(7.0) == 0.8
+    r = corliss.simulate(scene)
+    start = r.summary["start"]
+    assert start["status"] == "balanced"
+    t_ref = scene.load.torque_N_m
+    assert t_ref == pytest.approx(110 * 745.69987158227 / (120 * 2 * math.pi / 60), rel=1e-12)
+    c = r.cycles
+    w_load = 0.5 * t_ref * 2.0 * math.pi
+    assert np.abs(c["load_work_J"] / w_load - 1.0).max() < 1e-3, c["load_work_J"].to_numpy()
+    surplus = (c["work_J"] - c["friction_work_J"] - c["load_work_J"]) / w_load
+    assert np.abs(surplus).max() < 5e-3, surplus.to_numpy()
+    assert np.abs(c["mean_speed_rpm"] / start["speed_rpm"] - 1.0).max() < 1e-3
+    full = corliss.simulate(_scene("watt-throttling-governor", **{"run.duration": "1 s"}))
+    assert start["governor_z_frac"] - full.summary["start"]["governor_z_frac"] > 0.05
+
+
+def test_an_initial_load_is_read_with_a_step_or_a_ramp_only():
+    """``initial_fraction`` belongs to a step or ramp; with a constant load it is
+    refused, naming the key, as any key the scene's settings do not read."""
+    with pytest.raises(InputError, match="initial_fraction"):
+        _scene("watt-throttling-governor", **{"load.kind": "constant",
+                                              "load.initial_fraction": 0.5})

@@ -44,13 +44,14 @@ ONLY = {"US": SYSTEM_SUFFIXES["US"] - SYSTEM_SUFFIXES["SI"],
         "SI": SYSTEM_SUFFIXES["SI"] - SYSTEM_SUFFIXES["US"]}
 
 
-def _expected(name: str, transient: bool) -> set[str]:
+def _expected(name: str, transient: bool, stem: str | None = None) -> set[str]:
     tables = ("timeseries", "cycles") if transient else ("timeseries", "cycles", "cards")
     figs = ("loadstep",) if transient else ("card", "effort")
     if name in SCENES and "compound" in tomllib.loads(SCENES[name].read_text()):
         figs += ("lp_card",)
-    out = {f"{name}.{t}.csv" for t in tables} | {f"{name}.{t}.meta.json" for t in tables}
-    return out | {f"{name}.{f}.png" for f in figs} | {f"{name}.summary.json"}
+    stem = stem or name
+    out = {f"{stem}.{t}.csv" for t in tables} | {f"{stem}.{t}.meta.json" for t in tables}
+    return out | {f"{stem}.{f}.png" for f in figs} | {f"{stem}.summary.json"}
 
 
 def _finite_json(obj, where=""):
@@ -103,10 +104,12 @@ def test_every_scene_runs_in_both_unit_systems(name, system, tmp_path, capsys):
     code, out, err = _run(args, capsys)
     assert code == 0, err
     assert "Traceback" not in err
-    assert {p.name for p in tmp_path.iterdir()} == _expected(name, transient)
+    # the bundled scenes are in US units: their SI files carry the system in the stem
+    stem = name if system == "US" else f"{name}.SI"
+    assert {p.name for p in tmp_path.iterdir()} == _expected(name, transient, stem)
     for csv in tmp_path.glob("*.csv"):
         _check_table(csv, system)
-    summary = json.loads((tmp_path / f"{name}.summary.json").read_text())
+    summary = json.loads((tmp_path / f"{stem}.summary.json").read_text())
     _finite_json(summary)
     assert summary["kind"] == ("transient" if transient else "steady")
     if transient:

@@ -124,3 +124,28 @@ def test_a_misspelt_key_is_reported_missing_with_the_key_the_scene_has():
         scene_from_dict(data)
     assert e.value.key == "valve_gear.eccentricty"
     assert "valve_gear.eccentricity?" in str(e.value)
+
+
+def test_thou_is_a_thousandth_of_an_inch_wherever_a_length_is_read():
+    """``thou``: 0.001 in, the inch being 25.4 mm exactly (international yard and pound,
+    1959), so 15 thou = 0.381 mm.  A scene's lap and lead in thou give the valve events
+    of the same lap and lead in inches, to the last bit of the events' arithmetic
+    (1e-12 of a fraction of the stroke: 1 in and 1000 thou differ by a rounding of
+    the factor's last bit), and a study's range and a design's lead read it too."""
+    from corliss.engine.model import scene_events
+    from corliss.keys.edits import parse_range
+    from tests.conftest import make_scene
+
+    assert units.parse("15 thou", "length") == pytest.approx(0.381e-3, rel=1e-12)
+    assert units.parse("2 1/2 thou", "length") == pytest.approx(2.5 * 25.4e-6, rel=1e-12)
+    assert units.to_unit(0.381e-3, "thou") == pytest.approx(15.0, rel=1e-12)
+    inches = scene_events(make_scene(valve_gear={"lap": "1 in", "lead": "0.25 in"}))
+    thou = scene_events(make_scene(valve_gear={"lap": "1000 thou", "lead": "250 thou"}))
+    for end in ("head", "crank"):
+        for key, value in inches[end].items():
+            if isinstance(value, float):
+                assert thou[end][key] == pytest.approx(value, abs=1e-12), (end, key)
+    r = parse_range("valve_gear.lap=900:1100thou")
+    assert (r.low, r.high, r.unit) == (900.0, 1100.0, "thou")
+    with pytest.raises(InputError, match="angle in one of"):
+        units.parse("15 thou", "angle")

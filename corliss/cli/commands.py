@@ -14,7 +14,8 @@
     the port openings and the card traced as the crank turns), as GIF or HTML.
 ``corliss design [SCENE] --cutoff F [--lead Q --max-opening Q ...] [--release F | --compression F | --exhaust-lap Q] [--equalise cutoff|laps] [--out DIR] [--json]``
     A plain slide valve (eccentricity, advance, laps per end), or a gear's setting,
-    for the events asked; writes ``design.toml`` (runnable) and its diagrams.
+    for the events asked; writes ``SCENE.design.toml`` (runnable, in one unit system,
+    the source's comments kept) and its diagrams.
 ``corliss sweep SCENE [--settings 0,0.5,1] [--throttle 0.2,0.6,1] [--fidelity F] [--json] [--out DIR]``
     Steady cards across the load range at each gear setting and/or throttle opening:
     a CSV with its meta file and the Willans lines as PNG.
@@ -27,8 +28,9 @@
     Parquet), the base scene, the figure of responses against keys.
 ``corliss fit SCENE CARD.csv --vary KEY=LOW:HIGH ... [--refine] [--bootstrap N] [--out DIR]``
     Calibrate scene keys to a measured card by least squares: the fitted values with
-    their standard errors (or that the card does not determine a key), ``fit.json``,
-    the runnable ``fitted.toml`` and the measured card over the fitted one.
+    their standard errors (or that the card does not determine a key),
+    ``SCENE.fit.json``, the runnable ``SCENE.fit.toml`` and the measured card over
+    the fitted one (``SCENE.fit.card.png``).
 ``corliss bench [--repeats N] [--out DIR]``
     The accuracy-versus-time study of ``benchmarks/`` (from a source checkout).
 ``corliss workbench [SCENE] [--port N] [--no-browser] [--fidelity F]``
@@ -82,8 +84,8 @@ from corliss.engine.simulate import simulate
 from corliss.engine.verdict import EXIT_PHYSICAL
 from corliss.errors import (EXIT_BALANCE_FAILED, EXIT_INTERRUPTED, EXIT_TERMINATED, InputError,
                             RunError, StudyStopped, Terminated)
-from corliss.files.run_output import (OutputFiles, plain_name, plain_text, scene_from_meta,
-                                      summary_json)
+from corliss.files.run_output import (OutputFiles, output_stem, plain_name, plain_text,
+                                      scene_from_meta, summary_json)
 from corliss.frames.columns import convert_record
 from corliss.keys import limits, units
 from corliss.logs import NOTICE
@@ -502,7 +504,7 @@ def cmd_gear(args) -> int:
     scene = _load(args.scene, args.units)
     out_dir = output_dir(args, scene)
     gear = build_gear(scene)
-    name = f"{scene.name}.gear.png"
+    name = f"{output_stem(scene)}.gear.png"
     with OutputFiles(out_dir) as out, plain_text():
         fig = plot_gear(gear, units_system=scene.output.units)["figure"]
         try:
@@ -560,7 +562,7 @@ def cmd_animate(args) -> int:
             run = run.replace_run(model="crank_resolved")
         result = simulate(run)
     title = f"{scene.title}: {scene.gear_type}" + (" (the exact linkage)" if changed else "")
-    name = f"{scene.name}.animation.{args.format}"
+    name = f"{output_stem(scene)}.animation.{args.format}"
     with plain_text():
         drawn = animate_gear(gear, result, frames=args.frames, units_system=scene.output.units,
                              stroke_m=scene.engine.stroke_m, title=title)
@@ -576,7 +578,8 @@ def cmd_animate(args) -> int:
 def cmd_design(args) -> int:
     """``corliss design``: a valve (or a gear's setting) for the events asked.
 
-    Writes ``design.toml`` and its diagrams (:func:`corliss.files.design_output.design`),
+    Writes ``SCENE.design.toml`` and its diagrams (``SCENE.SI.design.toml`` with
+    ``--units SI`` on a US scene; :func:`corliss.files.design_output.design`),
     then prints the design, or its summary as JSON with ``--json``.
 
     Parameters
@@ -864,7 +867,8 @@ def cmd_study(args) -> int:
 def cmd_fit(args) -> int:
     """``corliss fit``: calibrate scene keys to a measured card.
 
-    Writes ``fit.json``, ``fitted.toml`` and the figure, then prints
+    Writes ``SCENE.fit.json``, ``SCENE.fit.toml`` and the figure (a folder holding
+    another fit of the scene refused before any work), then prints
     :func:`corliss.files.fit_output.print_fit` (the fit as JSON with ``--json``).
 
     Parameters
@@ -878,9 +882,10 @@ def cmd_fit(args) -> int:
         The exit status: 0 (a user's mistake raises
         :class:`~corliss.errors.InputError`, which :func:`main` turns into 2).
     """
-    from corliss.files.fit_output import fit, print_fit
+    from corliss.files.fit_output import check_out, fit, print_fit
     scene = _load(args.scene, args.units)
     out_dir = output_dir(args, scene)
+    check_out(out_dir, scene, args.card, args.vary)
     result = fit(scene, args.card, args.vary, fidelity=args.fidelity, refine=args.refine,
                  bootstrap=args.bootstrap, seed=args.seed)
     files = result.write(out_dir, plots=not args.no_plots)
@@ -1130,8 +1135,9 @@ def build_parser() -> argparse.ArgumentParser:
     ds.add_argument("--end", choices=("head", "crank", "mean"), default="head",
                     help="whose cut-off a gear's setting is found for (default head)")
     ds.add_argument("--out", help="output directory (default: the scene's [output] dir)")
-    ds.add_argument("--units", choices=("US", "SI"), help="units of the scene written and "
-                    "the figures (default: the scene's)")
+    ds.add_argument("--units", choices=("US", "SI"), help="units of the scene written (every "
+                    "quantity of it, rounded as a drawing is: 0.001 in or 0.01 mm, 0.01 deg, "
+                    "four figures) and of the figures (default: the scene's)")
     ds.add_argument("--json", action="store_true", help="print the design as JSON")
     ds.set_defaults(func=cmd_design)
     sw = _subcommand(sub, "sweep", help="steady cards across the load range: Willans line")
@@ -1214,7 +1220,7 @@ def build_parser() -> argparse.ArgumentParser:
     ft.add_argument("--seed", type=int, default=0, help="the bootstrap's seed")
     ft.add_argument("--out", help="output directory (default: the scene's [output] dir)")
     ft.add_argument("--units", choices=("US", "SI"), help=units_help)
-    ft.add_argument("--no-plots", action="store_true", help="no fit-card.png")
+    ft.add_argument("--no-plots", action="store_true", help="no SCENE.fit.card.png")
     ft.add_argument("--json", action="store_true", help="print the fit as JSON")
     ft.set_defaults(func=cmd_fit)
     b = _subcommand(sub, "bench", help="run the accuracy-versus-time study (source checkout)")

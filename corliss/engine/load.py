@@ -11,8 +11,11 @@ viscous drag) or 2 (torque as the square of speed: a fan or centrifugal pump).
 The schedule (``kind``):
 
 * ``"constant"``: f = 1;
-* ``"step"``: f = 1 until ``step_time``, then ``step_fraction``;
-* ``"ramp"``: f = 1 until ``ramp_start``, linear to ``ramp_fraction`` at ``ramp_end``;
+* ``"step"``: f = ``initial_fraction`` (default 1) until ``step_time``, then
+  ``step_fraction``: "from 50 % to 80 %" is ``initial_fraction = 0.5``,
+  ``step_fraction = 0.8``;
+* ``"ramp"``: f = ``initial_fraction`` (default 1) until ``ramp_start``, linear to
+  ``ramp_fraction`` at ``ramp_end``;
 * ``"schedule"``: a CSV file (``schedule``, relative to the scene) with columns
   ``time_s`` and ``load_fraction``, read piecewise linearly and held beyond its ends.
 """
@@ -92,8 +95,8 @@ class LoadSpec:
         return sorted(set(self.times_s[1:-1])) if len(self.times_s) > 2 else []
 
 
-def _fraction(t: Table, key: str) -> float:
-    v = t.number(key)
+def _fraction(t: Table, key: str, default=None) -> float:
+    v = t.number(key) if default is None else t.number(key, default)
     if not 0.0 <= v <= 5.0:
         raise InputError(t.key(key), v, "a load fraction from 0 to 5 (of the reference load)")
     return v
@@ -147,16 +150,18 @@ def parse_load(t: Table, speed_rad_s: float, scene_dir: Path | None) -> LoadSpec
         ts = t.quantity("step_time", "time")
         if ts < 0.0:
             raise InputError(t.key("step_time"), t.raw("step_time"), "a time of zero or more")
+        f0 = _fraction(t, "initial_fraction", 1.0)
         f = _fraction(t, "step_fraction")
-        times, fracs = (0.0, ts, ts, ts + 1.0), (1.0, 1.0, f, f)
+        times, fracs = (0.0, ts, ts, ts + 1.0), (f0, f0, f, f)
     elif kind == "ramp":
         a = t.quantity("ramp_start", "time")
         b = t.quantity("ramp_end", "time")
         if not 0.0 <= a < b:
             raise InputError(t.key("ramp_end"), t.raw("ramp_end"),
                              "a ramp end after its start (both zero or more)")
+        f0 = _fraction(t, "initial_fraction", 1.0)
         f = _fraction(t, "ramp_fraction")
-        times, fracs = (0.0, a, b, b + 1.0), (1.0, 1.0, f, f)
+        times, fracs = (0.0, a, b, b + 1.0), (f0, f0, f, f)
     else:
         times, fracs = _read_schedule(t, scene_dir)
     t.finish()

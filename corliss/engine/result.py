@@ -32,7 +32,7 @@ from corliss.keys import units
 from corliss.engine import crank_effort as ce
 from corliss.engine.condensation import marks_condensation_kg
 from corliss.engine.options import record_of
-from corliss.engine.speed_metrics import load_step_metrics, step_time_of
+from corliss.engine.speed_metrics import final_turns, load_step_metrics, step_time_of
 from corliss.engine.verdict import steady_failures, transient_failures
 from corliss.frames.frame import Frame
 from corliss.thermo.steam import HEOSSteam, TableSteam
@@ -297,7 +297,10 @@ class Result:
         Returns
         -------
         dict
-            The matplotlib objects drawn (``"ax"`` or ``"figure"`` and the lines).
+            The matplotlib objects drawn, one shape for every kind
+            (:func:`corliss.plot.shape.one_shape`): ``figure``, ``axes`` (a list, the
+            main first), ``ax`` (the main axes), ``lines`` (``{name: Line2D}``), and
+            the plotting function's own entries beside them.
         """
         return _writer().plot_result(self, kind or self.FIGURES[0], ax, units_system)
 
@@ -810,8 +813,8 @@ class TransientResult(Result):
             "record": record_of(s.run) if s.run.model != "mean_value" else None,
             "stalled": self.stalled,
             **self.metrics,
-            "final_indicated_power_W": float(c["indicated_power_W"].iloc[-5:].mean()),
-            "final_steam_rate_kg_per_h": float(c["steam_rate_kg_per_h"].iloc[-5:].mean()),
+            "final_indicated_power_W": float(final_turns(c)["indicated_power_W"].mean()),
+            "final_steam_rate_kg_per_h": float(final_turns(c)["steam_rate_kg_per_h"].mean()),
             **self._final_state(),
             "clamped_trial_evaluations_count": self.clamped_trials,
             "clamped_hot_state_evaluations_count": self.clamped_hot,
@@ -820,17 +823,18 @@ class TransientResult(Result):
 
     def _final_state(self) -> dict:
         """The steady contract's keys (:class:`SteadyResult`'s summary) for the run's
-        final state: power, steam and water rates over the last five turns (as
+        final state: power, steam and water rates over the final turns
+        (:func:`~corliss.engine.speed_metrics.final_turns`, as
         ``final_indicated_power_W``), the mean effective pressure over both ends from
         their work, and each end's from the area of its card in the last turn
         (None without pressures: a ``"cycle"`` record, the mean-value model)."""
-        c = self.cycles
-        power = float(c["indicated_power_W"].iloc[-5:].mean())
-        steam = float(c["steam_rate_kg_per_h"].iloc[-5:].mean())
+        c = final_turns(self.cycles)
+        power = float(c["indicated_power_W"].mean())
+        steam = float(c["steam_rate_kg_per_h"].mean())
         ihp = power / units.HP_W
         sw_h, sw_c = self.geometry.swept_m3
         mep = {"mep_head_Pa": None, "mep_crank_Pa": None,
-               "mep_mean_Pa": float(c["work_J"].iloc[-5:].mean()) / (sw_h + sw_c)}
+               "mep_mean_Pa": float(c["work_J"].mean()) / (sw_h + sw_c)}
         cards = self.cards()
         if cards:
             for end, swept in (("head", sw_h), ("crank", sw_c)):

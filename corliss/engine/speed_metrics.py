@@ -236,6 +236,37 @@ def hunting(cycles: pd.DataFrame, since_s: float = 0.0, timeseries=None) -> dict
             "hunting_read_from": read_from}
 
 
+def final_turns(cycles: "pd.DataFrame") -> "pd.DataFrame":
+    """The turns a transient run's final state is read from: the last
+    :data:`STEADY_TURNS`, none of them before the last change of direction.
+
+    A turn through a change of direction (a reversing slip eccentric,
+    :mod:`corliss.engine.reversal`) starts at one sign of speed and ends at the other;
+    its mean speed is its net angle over its time, neither direction's speed, so it and
+    the turns before it are not the final state.
+
+    Parameters
+    ----------
+    cycles : DataFrame
+        The per-turn table of a transient run (``speed_start_rpm`` and
+        ``speed_end_rpm`` where recorded).
+
+    Returns
+    -------
+    DataFrame
+        Its last rows: at most :data:`STEADY_TURNS`, all after the last turn whose
+        speed changed sign (all the last :data:`STEADY_TURNS` when none did).
+    """
+    tail = cycles.iloc[-STEADY_TURNS:]
+    if not {"speed_start_rpm", "speed_end_rpm"} <= set(cycles.columns):
+        return tail
+    turned = np.flatnonzero(np.sign(cycles["speed_start_rpm"].to_numpy())
+                            * np.sign(cycles["speed_end_rpm"].to_numpy()) < 0.0)
+    if turned.size == 0 or turned[-1] == len(cycles) - 1:
+        return tail
+    return cycles.iloc[max(int(turned[-1]) + 1, len(cycles) - STEADY_TURNS):]
+
+
 def load_step_metrics(cycles: pd.DataFrame, step_time_s: float | None, band: float,
                       timeseries=None) -> dict:
     """Regulation, largest deviation and settling after a load change at ``step_time_s``.
@@ -264,7 +295,8 @@ def load_step_metrics(cycles: pd.DataFrame, step_time_s: float | None, band: flo
     n = cycles["mean_speed_rpm"].to_numpy()
     since = step_time_s if step_time_s is not None else float(cycles["t_start_s"].iloc[0])
     ok, swing = settled(t, n, since)
-    out = {"final_speed_rpm": float(np.mean(n[-STEADY_TURNS:])), "settled": ok,
+    out = {"final_speed_rpm": float(final_turns(cycles)["mean_speed_rpm"].mean()),
+           "settled": ok,
            "settled_swing_frac": None if math.isnan(swing) else swing,
            **hunting(cycles, since, timeseries)}
     if step_time_s is None:

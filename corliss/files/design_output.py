@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -28,11 +29,12 @@ from matplotlib.figure import Figure
 from corliss.keys import units
 from corliss.engine.model import build_gear, geometry_of, scene_events
 from corliss.errors import InputError
-from corliss.files.run_output import OutputFiles
+from corliss.files.run_output import OutputFiles, output_stem
 from corliss.plot import plot_gear
 from corliss.plot.gears import plot_bilgram_diagram, plot_zeuner_diagram
 from corliss.scene.loader import Scene, bundled_scenes, default_scene_path, find_scene, load_scene, scene_from_dict
 from corliss.keys.edits import with_keys
+from corliss.keys.scene_system import SYSTEMS, quantity, scene_text
 from corliss.keys.toml_text import dumps
 from corliss.valves.design import (SettingDesign, SlideValveDesign, design_setting,
                                    design_slide_valve)
@@ -48,6 +50,13 @@ SLIDE_VALVES = ("slide_valve", "slip_eccentric")
 #: The designed scene's events must be the asked ones to this [deg] after the round
 #: trip through the TOML text (12 significant digits).
 SCENE_CHECK_DEG = 1e-4
+#: The scene written is rounded as a drawing is (:mod:`corliss.keys.scene_system`:
+#: lengths to 0.001 in or 0.01 mm, angles to 0.01 deg); an asked event it moves by
+#: more than this [deg] is warned of.  A thou of lap on a 3 in eccentric moves an
+#: event by some 0.02 deg, so the warning fires only on a small or nearly square valve.
+ROUNDING_WARN_DEG = 0.05
+#: Decimal places of a gear's setting written (a notch or a block to 1e-4 of its range).
+SETTING_DECIMALS = 4
 
 
 @dataclass(frozen=True)
@@ -59,14 +68,24 @@ class Design:
     scene : Scene
         The scene with the designed gear, built from ``text``.
     text : str
-        The designed scene as TOML (what ``design.toml`` holds).
+        The designed scene as TOML (what ``STEM.toml`` holds): the source scene's
+        text, comments and key order kept, the designed keys set, every quantity in
+        one unit system and rounded as a drawing is
+        (:func:`corliss.keys.scene_system.scene_text`).
     valve : SlideValveDesign or SettingDesign
-        The design (SI).
+        The design (SI, unrounded).
     events : dict
-        The designed scene's events by :func:`corliss.engine.model.scene_events`
+        The written scene's events by :func:`corliss.engine.model.scene_events`
         (per end, crank angles [deg] and fractions of the stroke [-]).
     base : str
         The scene designed from (name or path).
+    stem : str
+        The stem of the files written: the source scene's name, the unit system when
+        it is not the scene's own, and ``design`` (``default.design``,
+        ``default.SI.design``).
+    exact_events : dict or None
+        The design's own events, of its keys at 12 figures (checked to
+        :data:`SCENE_CHECK_DEG` against those asked), before the drawing's rounding.
     """
 
     scene: Scene
@@ -74,9 +93,11 @@ class Design:
     valve: SlideValveDesign | SettingDesign
     events: dict
     base: str
+    stem: str = "design"
+    exact_events: dict | None = None
 
     def write(self, out_dir) -> dict:
-        """Write ``design.toml`` and the diagrams into a folder, all or nothing.
+        """Write ``STEM.toml`` and the diagrams into a folder, all or nothing.
 
         Parameters
         ----------
@@ -107,14 +128,14 @@ class Design:
             One sentence per finding (empty for a design without one, and for a gear's
             setting).
         """
+        out = self._rounding_warnings()
         v = self.valve
         if not isinstance(v, SlideValveDesign):
-            return []
+            return out
         us = self.scene.output.units == "US"
         q = (lambda m: f"{units.to_unit(m, 'in'):.3g} in") if us else \
             (lambda m: f"{m * 1e3:.3g} mm")
         ref = 0 if v.reference_end == "head" else 1
-        out = []
         lead0 = v.lead_m[ref]
         for k, end in enumerate(("head", "crank")):
             if k != ref and lead0 > 0.0 and (
@@ -132,13 +153,29 @@ class Design:
                                f"{q(v.max_opening_m[k] - width)}")
         return out
 
+    def _rounding_warnings(self) -> list[str]:
+        """The asked events the written scene's rounding moves by more than
+        :data:`ROUNDING_WARN_DEG`."""
+        out = []
+        for end, want in self.valve.asked_deg.items():
+            if self.scene.engine.steam_ends not in ("both", end):
+                continue
+            for key, deg in want.items():
+                got = self.events[end][key]
+                if got is not None and abs((got - deg + 180.0) % 360.0 - 180.0) > ROUNDING_WARN_DEG:
+                    out.append(f"{end} end: {key[:-4]} at {got:.3f} deg in the scene written "
+                               f"against {deg:.3f} deg asked (the drawing's rounding: lengths "
+                               "to 0.001 in or 0.01 mm, angles to 0.01 deg)")
+        return out
+
     def summary(self) -> dict:
         """The design as plain JSON-able values (SI, unit in every name).
 
         Returns
         -------
         dict
-            ``base_scene``, ``gear``, ``events`` and ``warnings`` (:attr:`warnings`);
+            ``base_scene``, ``gear``, ``events`` (the written scene's),
+            ``warnings`` (:attr:`warnings`) and ``units_system`` (the written scene's);
             for a slide valve its
             ``eccentricity_m``, ``angular_advance_deg``, ``lap_m``, ``exhaust_lap_m``,
             ``lead_m`` and ``max_opening_m`` (head, crank), ``equalise``,
@@ -148,7 +185,7 @@ class Design:
         """
         v = self.valve
         out = {"base_scene": self.base, "gear": self.scene.gear_type, "events": self.events,
-               "warnings": self.warnings}
+               "warnings": self.warnings, "units_system": self.scene.output.units}
         if isinstance(v, SlideValveDesign):
             out.update(eccentricity_m=v.eccentricity_m,
                        angular_advance_deg=math.degrees(v.angular_advance_rad),
@@ -206,7 +243,7 @@ def design(scene=None, *, cutoff, cutoff_crank=None, lead=None, max_opening=None
            eccentricity=None, lap=None, angular_advance=None, lead_angle=None,
            overtravel=None, release=None, compression=None,
            exhaust_lap=None, equalise: str = "cutoff", reference_end: str = "head",
-           end: str = "head") -> Design:
+           end: str = "head", units_system: str | None = None) -> Design:
     """Design a scene's valve for the events asked (the arguments of ``corliss design``).
 
     Parameters
@@ -243,13 +280,18 @@ def design(scene=None, *, cutoff, cutoff_crank=None, lead=None, max_opening=None
     end : str, optional
         Whose cut-off a gear's setting is found for: ``"head"``, ``"crank"``,
         ``"mean"`` (gears with a setting).
+    units_system : str, optional
+        ``"US"`` or ``"SI"``: the unit system the scene is written in (every
+        quantity of it); default the scene's ``[output] units``.
 
     Returns
     -------
     Design
-        The designed scene, its TOML text, the design and its events, checked to
-        :data:`SCENE_CHECK_DEG` against those asked after the round trip through
-        the text.
+        The designed scene, its TOML text, the design and the written scene's events.
+        The design is checked to :data:`SCENE_CHECK_DEG` against the events asked
+        through the scene's tables at 12 figures; the scene written is rounded as a
+        drawing is, and an event its rounding moves by more than
+        :data:`ROUNDING_WARN_DEG` is warned of (:attr:`Design.warnings`).
 
     Raises
     ------
@@ -257,6 +299,11 @@ def design(scene=None, *, cutoff, cutoff_crank=None, lead=None, max_opening=None
         Naming the event that no valve (or no setting) can give, and what is valid.
     """
     base, base_name = _scene(scene)
+    if units_system is not None:
+        if units_system not in SYSTEMS:
+            raise InputError("--units", units_system, "US or SI")
+        base = dataclasses.replace(base, output=dataclasses.replace(base.output,
+                                                                    units=units_system))
     if base.compound is not None:
         raise InputError("scene", base_name, "a simple engine: a compound's two gears are "
                          "not designed here")
@@ -295,8 +342,7 @@ def design(scene=None, *, cutoff, cutoff_crank=None, lead=None, max_opening=None
                              "with a setting")
         valve = design_setting(gear, frac, cutoff, end=end)
     data = _designed_tables(base, valve)
-    text = dumps(data, header=_header(base, base_name, valve))   # checked by reading back
-    designed = dataclasses.replace(scene_from_dict(data, name="design"), text=text)
+    designed = scene_from_dict(tomllib.loads(dumps(data)), name="design")
     ev = scene_events(designed)
     for e, want in valve.asked_deg.items():
         if designed.engine.steam_ends not in ("both", e):
@@ -306,7 +352,15 @@ def design(scene=None, *, cutoff, cutoff_crank=None, lead=None, max_opening=None
             if got is None or abs((got - deg + 180.0) % 360.0 - 180.0) > SCENE_CHECK_DEG:
                 raise RuntimeError(f"designed scene check failed: {e} {key} asked {deg:.6f} "
                                    f"deg, the scene gives {got}")
-    return Design(scene=designed, text=text, valve=valve, events=ev, base=base_name)
+    system = base.output.units
+    stem = f"{output_stem(base)}.design"
+    text = scene_text(base.text if base.text is not None else dumps(base.data), system,
+                      _written_values(base, valve, system),
+                      drop=("valve_gear.lead",) if isinstance(valve, SlideValveDesign) else (),
+                      header=_header(base, base_name, valve))
+    written = dataclasses.replace(scene_from_dict(tomllib.loads(text), name=stem), text=text)
+    return Design(scene=written, text=text, valve=valve, events=scene_events(written),
+                  base=base_name, stem=stem, exact_events=ev)
 
 
 # ---------------------------------------------------------------- the scene's tables
@@ -357,17 +411,53 @@ def _designed_tables(base: Scene, valve) -> dict:
     return data
 
 
+def _pair_written(pair, system: str):
+    a, b = (quantity(x, "length", system) for x in pair)
+    return a if a == b else [a, b]
+
+
+def _written_values(base: Scene, valve, system: str) -> dict:
+    """The designed keys as the scene written gives them: in ``system``, rounded as a
+    drawing is (:mod:`corliss.keys.scene_system`)."""
+    if isinstance(valve, SlideValveDesign):
+        advance, other = "angular_advance", {}
+        if base.gear_type == "slip_eccentric":
+            g = base.gear
+            ahead = g.direction == "ahead"
+            advance = "forward_advance" if ahead else "backward_advance"
+            other = {f"valve_gear.{'backward' if ahead else 'forward'}_advance": quantity(
+                g.backward_advance_rad if ahead else g.forward_advance_rad, "angle", system)}
+        values = {"valve_gear.eccentricity": quantity(valve.eccentricity_m, "length", system),
+                  f"valve_gear.{advance}": quantity(valve.angular_advance_rad, "angle", system),
+                  **other,
+                  "valve_gear.lap": _pair_written(valve.lap_m, system),
+                  "valve_gear.exhaust_lap": _pair_written(valve.exhaust_lap_m, system)}
+    elif base.gear_type in BLOCK_KEY:
+        half = (base.gear.link.half_link_m if base.gear_type == "fink_motion"
+                else base.gear.half_link_m)
+        values = {f"valve_gear.{BLOCK_KEY[base.gear_type]}": quantity(valve.setting * half,
+                                                                      "length", system)}
+    else:
+        values = {"valve_gear.setting": round(valve.setting, SETTING_DECIMALS)}
+    values["title"] = f"{(base.data or {}).get('title', base.title)} (designed)"
+    return values
+
+
 def _header(base: Scene, base_name: str, valve) -> str:
-    u = _unit(base)
+    system = base.output.units
     lines = [f"Designed by `corliss design` from the scene {base_name}.",
+             f"Written in {system} units as a drawing is: lengths to the nearest "
+             + ("0.001 in" if system == "US" else "0.01 mm")
+             + ", angles to 0.01 deg, other quantities to four figures.",
              "Events asked (crank angle from head-end dead centre):"]
     for end, want in valve.asked_deg.items():
         for key, deg in want.items():
             lines.append(f"  {end:5s} {key[:-4]:12s} {deg:9.4f} deg")
     if isinstance(valve, SlideValveDesign):
-        lines.append(f"Leads {_q(valve.lead_m[0], u)} (head), {_q(valve.lead_m[1], u)} (crank); "
-                     f"greatest openings {_q(valve.max_opening_m[0], u)}, "
-                     f"{_q(valve.max_opening_m[1], u)}.")
+        q = lambda m: quantity(m, "length", system)  # noqa: E731
+        lines.append(f"Leads {q(valve.lead_m[0])} (head), {q(valve.lead_m[1])} (crank); "
+                     f"greatest openings {q(valve.max_opening_m[0])}, "
+                     f"{q(valve.max_opening_m[1])}.")
     else:
         lines.append(f"Setting {valve.setting:.6f}: {valve.setting_name}.")
     return "\n".join(lines)
@@ -389,12 +479,44 @@ def _mark_asked(ax, valve, radius: float, drawn_from: str) -> None:
             color="0.3", va="bottom")
 
 
-def write_design(design: Design, out_dir) -> dict:
-    """Write ``design.toml`` and the diagrams with the asked events marked.
+def refuse_overwrite(path: Path, text: str, what: str) -> None:
+    """Refuse to write ``text`` over a file that holds something else.
 
-    ``design-zeuner.png`` and ``design-bilgram.png`` for a lapped valve (Spangler
-    Arts. 10-18, 149), ``design-gear.png`` (the gear's own panels) for another.
-    Staged and moved into place together; a failure leaves ``out_dir`` as it was.
+    A command's files are named for the scene, the command and the unit system
+    (:func:`corliss.files.run_output.output_stem`); two designs (or fits) of one scene
+    into one folder would still share a name, and the second would silently replace
+    the first.  The same command again writes the same text, and may.
+
+    Parameters
+    ----------
+    path : Path
+        The file about to be written.
+    text : str
+        What would be written into it.
+    what : str
+        What it is, for the message (``"design"``).
+
+    Raises
+    ------
+    InputError
+        Naming ``--out``, the file and what to do, when it exists with other content.
+    """
+    if path.exists() and (not path.is_file()
+                          or path.read_text(encoding="utf-8", errors="replace") != text):
+        raise InputError("--out", str(path.parent), f"a folder without another {what} of "
+                         f"this scene: {path.name} there holds a different one, which "
+                         "this would overwrite (give another --out, or remove the file)")
+
+
+def write_design(design: Design, out_dir) -> dict:
+    """Write ``STEM.toml`` and the diagrams with the asked events marked.
+
+    ``STEM.zeuner.png`` and ``STEM.bilgram.png`` for a lapped valve (Spangler
+    Arts. 10-18, 149), ``STEM.gear.png`` (the gear's own panels) for another, where
+    STEM is :attr:`Design.stem` (``default.design``; ``default.SI.design`` for a
+    design of an inch scene written in SI).  Staged and moved into place together; a
+    failure leaves ``out_dir`` as it was.  A different design of the same stem
+    already in ``out_dir`` is not overwritten (:func:`refuse_overwrite`).
 
     Parameters
     ----------
@@ -408,13 +530,21 @@ def write_design(design: Design, out_dir) -> dict:
     dict of str to Path
         ``{kind: path}`` of the files written: ``scene``, and ``zeuner`` and
         ``bilgram`` or ``gear``.
+
+    Raises
+    ------
+    InputError
+        Before anything is written, when ``out_dir`` holds a different design of
+        the same stem.
     """
+    stem = design.stem
+    refuse_overwrite(Path(out_dir) / f"{stem}.toml", design.text, "design")
     gear = build_gear(design.scene)
     units_system = design.scene.output.units
     files = {}
     with OutputFiles(out_dir) as out:
-        out.stage("design.toml").write_text(design.text, encoding="utf-8")
-        files["scene"] = Path(out_dir) / "design.toml"
+        out.stage(f"{stem}.toml").write_text(design.text, encoding="utf-8")
+        files["scene"] = Path(out_dir) / f"{stem}.toml"
         if isinstance(working_gear(gear), LappedValve):
             gear = working_gear(gear)
             for kind, draw, drawn_from in (
@@ -426,7 +556,7 @@ def write_design(design: Design, out_dir) -> dict:
                 lim = ax.get_xlim()[1]
                 _mark_asked(ax, design.valve, 0.95 * lim, drawn_from)
                 ax.set_title(f"{drawn['ax'].get_title()}: {design.scene.title}", fontsize=9)
-                name = f"design-{kind}.png"
+                name = f"{stem}.{kind}.png"
                 fig.savefig(out.stage(name), dpi=120, bbox_inches="tight", format="png")
                 files[kind] = Path(out_dir) / name
         else:
@@ -434,8 +564,9 @@ def write_design(design: Design, out_dir) -> dict:
                 fig = plot_gear(gear, units_system=units_system)["figure"]
             try:
                 fig.suptitle(f"{design.scene.title}: setting {design.valve.setting:.4f}", fontsize=10)
-                fig.savefig(out.stage("design-gear.png"), dpi=120, bbox_inches="tight", format="png")
-                files["gear"] = Path(out_dir) / "design-gear.png"
+                name = f"{stem}.gear.png"
+                fig.savefig(out.stage(name), dpi=120, bbox_inches="tight", format="png")
+                files["gear"] = Path(out_dir) / name
             finally:
                 plt.close(fig)
     return files

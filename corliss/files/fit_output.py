@@ -4,14 +4,21 @@ files.
 :func:`fit` takes what the command takes (a scene, a card CSV, ``KEY=LOW:HIGH``
 ranges, the fidelity, refine, bootstrap and seed, an output folder), checks all of it
 before any simulation, runs :func:`corliss.fitting.solver.fit_card` and, given ``out``,
-writes into it as one transaction (:class:`corliss.files.run_output.OutputFiles`):
+writes into it as one transaction (:class:`corliss.files.run_output.OutputFiles`),
+each file named for the scene, the unit system when it is not the scene's own, and
+the command (STEM = ``default.fit``, ``default.SI.fit``: :func:`fit_stem`):
 
-- ``fit.json``: the fitted values with their standard errors (or why a key is not
+- ``STEM.json``: the fitted values with their standard errors (or why a key is not
   determined), the correlations, the residual r.m.s. in the pressure unit of the
   units system, the m.e.p. of each end measured and fitted, and what reruns the fit:
   the scene's text and SHA-256, the card file's SHA-256, the ranges, the versions;
-- ``fitted.toml``: the scene with the fitted values, runnable by ``corliss run``;
-- ``fit-card.png``: the measured card over the fitted one.
+- ``STEM.toml``: the scene with the fitted values, runnable by ``corliss run``: the
+  source scene's text with its comments, every quantity in the one unit system
+  (:func:`corliss.keys.scene_system.scene_text`);
+- ``STEM.card.png``: the measured card over the fitted one.
+
+A folder that holds another fit of the same stem (other ranges, card or scene) is
+refused before any simulation (:func:`check_out`): one fit never overwrites another.
 """
 
 from __future__ import annotations
@@ -26,14 +33,88 @@ from corliss.errors import InputError
 from corliss.fitting import solver
 from corliss.fitting.card import MeasuredCard, read_card
 from corliss.fitting.solver import FitResult, fit_card
+from corliss.keys.scene_system import scene_text
 from corliss.keys.toml_text import dumps
 from corliss.plot.fit_card import plot_fit_card
+from corliss.plot.shape import one_shape
 from corliss.files.run_output import (DPI, PNG_OPTIONS, OutputFiles, dependency_versions,
-                                      jsonable, package_version, plain_text)
+                                      jsonable, output_stem, package_version, plain_text)
 from corliss.scene.loader import Scene, find_scene, load_scene
-from corliss.keys.edits import KeyRange, parse_range
+from corliss.keys.edits import KeyRange, get_key, parse_range
 
-FILES = {"summary": "fit.json", "scene": "fitted.toml", "card": "fit-card.png"}
+#: The fit's files by kind: their names after the stem (:func:`fit_stem`).
+FILES = {"summary": "json", "scene": "toml", "card": "card.png"}
+
+
+def fit_stem(scene: Scene, units_system: str | None = None) -> str:
+    """The stem of a fit's files: ``default.fit``, ``default.SI.fit``.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene fitted.
+    units_system : str, optional
+        The files' units, when not the scene's ``[output] units``.
+
+    Returns
+    -------
+    str
+        :func:`corliss.files.run_output.output_stem` and ``.fit``.
+    """
+    return f"{output_stem(scene, units_system)}.fit"
+
+
+def _vary_text(ranges) -> list[str]:
+    return [f"{r.key}={r.low:g}:{r.high:g}{r.unit}" for r in ranges]
+
+
+def _sha256(path) -> str | None:
+    try:
+        return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+    except (OSError, TypeError):
+        return None
+
+
+def check_out(out_dir, scene: Scene, card, vary, units_system: str | None = None) -> None:
+    """Refuse, before any simulation, an output folder that holds another fit of the
+    same stem: other ranges, another card or another scene (the same fit again, at
+    another fidelity or with a bootstrap, may replace its files).
+
+    Parameters
+    ----------
+    out_dir : str or Path
+        The output folder.
+    scene : Scene
+        The scene to fit.
+    card : str, Path or MeasuredCard
+        The card (its file's SHA-256 is compared).
+    vary : str or list
+        The ranges, as :func:`fit` takes them.
+    units_system : str, optional
+        The files' units, when not the scene's.
+
+    Raises
+    ------
+    InputError
+        Naming ``--out`` and the file, when it holds another fit.
+    """
+    path = Path(out_dir) / f"{fit_stem(scene, units_system)}.{FILES['summary']}"
+    if not path.exists():
+        return
+    try:
+        old = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        old = None
+    src = card.source if isinstance(card, MeasuredCard) else card
+    scene_sha = hashlib.sha256(scene.text.encode("utf-8")).hexdigest() if scene.text else None
+    same = (isinstance(old, dict) and old.get("vary") == _vary_text(_ranges(vary))
+            and old.get("card_sha256") == _sha256(src)
+            and old.get("scene_sha256") == scene_sha)
+    if not same:
+        raise InputError("--out", str(path.parent), f"a folder without another fit of this "
+                         f"scene: {path.name} there holds a fit of other ranges, card or "
+                         "scene, which this would overwrite (give another --out, or remove "
+                         "the file)")
 
 
 def _ranges(vary) -> list[KeyRange]:
@@ -73,11 +154,13 @@ def fit(scene, card, vary, *, fidelity: str = "fast", refine: bool = False,
     seed : int, optional
         The bootstrap's seed.
     out : str or Path, optional
-        Write ``fit.json``, ``fitted.toml`` and ``fit-card.png`` into this folder.
+        Write ``STEM.json``, ``STEM.toml`` and ``STEM.card.png`` into this folder
+        (:func:`fit_stem`); one holding another fit is refused first
+        (:func:`check_out`).
     units_system : str, optional
         ``"US"`` or ``"SI"`` for the files and figure (default: the scene's).
     plots : bool, optional
-        Draw ``fit-card.png``.
+        Draw ``STEM.card.png``.
     progress : callable, optional
         Called after each simulation with (simulations, residual r.m.s. [Pa]).
 
@@ -99,6 +182,8 @@ def fit(scene, card, vary, *, fidelity: str = "fast", refine: bool = False,
     ranges = _ranges(vary)
     if not isinstance(card, MeasuredCard):
         card = read_card(card, barometer_Pa=scene.supply.barometer_Pa)
+    if out is not None:
+        check_out(out, scene, card, ranges, units_system)
     result = fit_card(scene, card, ranges, fidelity=fidelity, refine=refine,
                       bootstrap=bootstrap, seed=seed, progress=progress)
     if out is not None:
@@ -112,7 +197,7 @@ def _pressure_unit(system: str) -> tuple[str, float]:
 
 
 def fit_json(fit_result: FitResult, units_system: str | None = None) -> dict:
-    """The fit's summary with what reruns it (the content of ``fit.json``).
+    """The fit's summary with what reruns it (the content of ``STEM.json``).
 
     Parameters
     ----------
@@ -133,11 +218,7 @@ def fit_json(fit_result: FitResult, units_system: str | None = None) -> dict:
     s = fit_result.scene
     system = units_system or s.output.units
     unit, size = _pressure_unit(system)
-    src = fit_result.card.source
-    try:
-        card_sha = hashlib.sha256(Path(src).read_bytes()).hexdigest()
-    except OSError:
-        card_sha = None
+    card_sha = _sha256(fit_result.card.source)
     out = dict(fit_result.summary)
     out.update({
         "units_system": system,
@@ -145,7 +226,7 @@ def fit_json(fit_result: FitResult, units_system: str | None = None) -> dict:
         "noise_estimate": {"value": fit_result.s_Pa / size, "unit": unit},
         "card_columns": fit_result.card.columns,
         "card_sha256": card_sha,
-        "vary": [f"{r.key}={r.low:g}:{r.high:g}{r.unit}" for r in fit_result.ranges],
+        "vary": _vary_text(fit_result.ranges),
         "corliss_version": package_version(), "versions": dependency_versions(),
         "created_utc": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
         "scene_name": s.name, "scene_file": s.source,
@@ -155,19 +236,26 @@ def fit_json(fit_result: FitResult, units_system: str | None = None) -> dict:
     return jsonable(out)
 
 
-def fitted_toml(fit_result: FitResult) -> str:
+def fitted_toml(fit_result: FitResult, units_system: str | None = None) -> str:
     """The fitted scene as TOML text, its header saying what was fitted and how well.
 
     Parameters
     ----------
     fit_result : FitResult
         The fit.
+    units_system : str, optional
+        ``"US"`` or ``"SI"``: every quantity of the scene written in it (default the
+        scene's).
 
     Returns
     -------
     str
-        The text of ``fitted.toml``: comment lines with each key's fitted value and
-        standard error (or why it is not determined), then the fitted tables.
+        The text of ``STEM.toml``: comment lines with each key's fitted value and
+        standard error (or why it is not determined), then the source scene's text
+        with the fitted keys set, its comments kept, in one unit system
+        (:func:`corliss.keys.scene_system.scene_text`; a fitted value already in
+        that system is written at the fit's six figures, a converted one rounded as a
+        drawing is).
     """
     lines = [f"{fit_result.scene.title}: fitted by corliss fit to {fit_result.card.source}"]
     for r in fit_result.ranges:
@@ -177,7 +265,10 @@ def fitted_toml(fit_result: FitResult) -> str:
         lines.append(f"  {k} = {fit_result.values[k]:.6g}{unit} " +
                      (f"+- {se:.2g}{unit}" if se is not None else
                       "(NOT determined by the card: " + fit_result.unidentifiable[k] + ")"))
-    return dumps(fit_result.fitted_data, "\n".join(lines))
+    s = fit_result.scene
+    values = {r.key: get_key(fit_result.fitted_data, r.key) for r in fit_result.ranges}
+    return scene_text(s.text if s.text is not None else dumps(s.data or {}),
+                      units_system or s.output.units, values, header="\n".join(lines))
 
 
 def write(fit_result: FitResult, out_dir, plots: bool = True,
@@ -191,31 +282,33 @@ def write(fit_result: FitResult, out_dir, plots: bool = True,
     out_dir : str or Path
         The output folder (made if missing).
     plots : bool, optional
-        Whether to draw ``fit-card.png``.
+        Whether to draw ``STEM.card.png``.
     units_system : str, optional
-        ``"US"`` or ``"SI"`` for ``fit.json`` and the figure; default the scene's.
+        ``"US"`` or ``"SI"`` for the files and the figure; default the scene's.
 
     Returns
     -------
     dict of str to Path
-        ``{kind: path}`` of :data:`FILES` written: ``summary``, ``scene`` and
-        ``card`` (when drawn).
+        ``{kind: path}`` of :data:`FILES` written (STEM :func:`fit_stem`):
+        ``summary``, ``scene`` and ``card`` (when drawn).
     """
     files = {}
-    toml_text = fitted_toml(fit_result)
+    toml_text = fitted_toml(fit_result, units_system)
+    stem = fit_stem(fit_result.scene, units_system)
+    name = {kind: f"{stem}.{suffix}" for kind, suffix in FILES.items()}
     with OutputFiles(out_dir) as out, plain_text(plots):
-        out.stage(FILES["summary"]).write_text(json.dumps(fit_json(fit_result, units_system),
-                                                          indent=2))
-        files["summary"] = out.files[FILES["summary"]]
-        out.stage(FILES["scene"]).write_text(toml_text, encoding="utf-8")
-        files["scene"] = out.files[FILES["scene"]]
+        out.stage(name["summary"]).write_text(json.dumps(fit_json(fit_result, units_system),
+                                                         indent=2))
+        files["summary"] = out.files[name["summary"]]
+        out.stage(name["scene"]).write_text(toml_text, encoding="utf-8")
+        files["scene"] = out.files[name["scene"]]
         if plots:
             from matplotlib.figure import Figure  # only when drawing
             fig = Figure(figsize=(9, 5.8))        # no pyplot: the user's backend untouched
             plot_fit_card(fit_result, ax=fig.add_subplot(), units_system=units_system)
-            fig.savefig(out.stage(FILES["card"]), dpi=DPI, bbox_inches="tight",
+            fig.savefig(out.stage(name["card"]), dpi=DPI, bbox_inches="tight",
                         format="png", pil_kwargs=PNG_OPTIONS)
-            files["card"] = out.files[FILES["card"]]
+            files["card"] = out.files[name["card"]]
     return files
 
 
@@ -295,9 +388,12 @@ def plot(fit_result: FitResult, ax=None, units_system: str | None = None) -> dic
     Returns
     -------
     dict
-        The matplotlib objects drawn.
+        The matplotlib objects drawn, in the one shape of every ``plot()``
+        (:func:`corliss.plot.shape.one_shape`: ``figure``, ``axes``, ``ax``,
+        ``lines``; and ``measured`` and ``fitted``).
     """
-    return plot_fit_card(fit_result, ax=ax, units_system=units_system)
+    return one_shape(plot_fit_card(fit_result, ax=ax, units_system=units_system))
 
 
-__all__ = ["FILES", "fit", "fit_json", "fitted_toml", "plot", "print_fit", "write"]
+__all__ = ["FILES", "check_out", "fit", "fit_json", "fit_stem", "fitted_toml", "plot",
+           "print_fit", "write"]

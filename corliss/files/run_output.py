@@ -46,6 +46,7 @@ except ImportError:  # pragma: no cover - not a POSIX system
     fcntl = None  # type: ignore[assignment]  # no POSIX locks here: the lock is skipped
 
 from corliss import __version__, plot
+from corliss.plot.shape import one_shape
 from corliss.frames import columns
 from corliss.engine.options import PRESETS, Fidelity
 from corliss.errors import InputError, RunError
@@ -429,6 +430,8 @@ JOURNAL = ".commit.json"
 #: output folder before it gives up [s].  A run's files take well under a second to
 #: write; a large study's Parquet and figures a few seconds.
 LOCK_WAIT_S = 120.0
+#: A scene's units when its tables name none (``[output] units``' declared default).
+OWN_UNITS_DEFAULT = "US"
 #: The longest output file stem (a scene's name) [characters].
 MAX_STEM_CHARS = 120
 
@@ -467,6 +470,36 @@ def plain_name(name: str, key: str = "scene name") -> str:
                          "absolute or hidden, printable, at most "
                          f"{MAX_STEM_CHARS} characters")
     return name
+
+
+def output_stem(scene, units_system: str | None = None) -> str:
+    """The stem of the files a command writes for ``scene``: its name, and the unit
+    system when the files are not in the scene's own.
+
+    A scene's files in its own units keep the plain stem (``default.summary.json``);
+    ``--units SI`` on an inch scene writes ``default.SI.summary.json`` beside them,
+    so a US and an SI run of one scene into one folder never overwrite each other.
+    Each command adds its name after the stem (``default.sweep.csv``,
+    ``default.design.toml``, ``default.fit.json``); ``run``'s tables are named for
+    themselves (``default.cycles.csv``).
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene (its name, its tables' ``[output] units`` and the units asked,
+        ``scene.output.units``).
+    units_system : str, optional
+        The files' units, when not ``scene.output.units``.
+
+    Returns
+    -------
+    str
+        The stem.
+    """
+    system = units_system or scene.output.units
+    own = ((scene.data or {}).get("output") or {}).get("units", OWN_UNITS_DEFAULT) \
+        if scene.data is not None else scene.output.units
+    return scene.name if system == own else f"{scene.name}.{system}"
 
 
 @contextlib.contextmanager
@@ -854,8 +887,10 @@ def plot_result(result, kind: str, ax=None, units_system: str | None = None) -> 
     Returns
     -------
     dict
-        What the plotting function of :mod:`corliss.plot` returned (``ax`` or
-        ``figure``, and the lines).
+        One shape for every kind (:func:`corliss.plot.shape.one_shape`): ``figure``,
+        ``axes`` (a list, the main first), ``ax`` (the main axes) and ``lines``
+        (``{name: Line2D}``), beside what the plotting function of
+        :mod:`corliss.plot` returned.
 
     Raises
     ------
@@ -866,20 +901,20 @@ def plot_result(result, kind: str, ax=None, units_system: str | None = None) -> 
         raise ValueError(f"figure {kind!r}: one of {', '.join(result.FIGURES)} (lp_card for "
                          "a compound)")
     if kind == "card":
-        return plot.plot_card(result, ax=ax, units_system=units_system)
+        return one_shape(plot.plot_card(result, ax=ax, units_system=units_system))
     if kind == "lp_card":
-        return plot.plot_card(result, ax=ax, units_system=units_system, prefix="lp_")
+        return one_shape(plot.plot_card(result, ax=ax, units_system=units_system,
+                                        prefix="lp_"))
     if kind == "effort":
-        return plot.plot_crank_effort(result, ax=ax, units_system=units_system)
+        return one_shape(plot.plot_crank_effort(result, ax=ax, units_system=units_system))
     if kind == "loadstep":
-        return plot.plot_load_step(result, units_system=units_system)
+        return one_shape(plot.plot_load_step(result, units_system=units_system))
     if kind == "compare":
-        return plot.plot_compare(result, units_system or result.scene.output.units)
+        return one_shape(plot.plot_compare(result, units_system or result.scene.output.units))
     pts = result.points
     sweeps = ({f"{result.scene.title} ({k})": g for k, g in pts.groupby("knob", sort=False)}
               if "knob" in pts else {f"{result.scene.title} ({result.knob})": pts})
-    return plot.plot_willans(sweeps, ax,
-                             units_system or result.scene.output.units)
+    return one_shape(plot.plot_willans(sweeps, ax, units_system or result.scene.output.units))
 
 
 def _figures(result) -> list[tuple[str, tuple[float, float]]]:
@@ -939,7 +974,7 @@ def write(result, out_dir, plots: bool = True) -> dict[str, Path]:
         ``{kind: path}`` of the tables, figures and summary written (meta files beside
         the tables).
     """
-    stem = result.scene.name
+    stem = output_stem(result.scene)
     files: dict[str, Path] = {}
     with OutputFiles(out_dir) as out, plain_text(plots):
         for table, suffix in TABLE_FILES[result.kind].items():

@@ -24,6 +24,7 @@ from pathlib import Path
 from corliss.errors import InputError
 from corliss.logs import NOTICE
 from corliss.plot import plot_study
+from corliss.plot.shape import one_shape
 from corliss.files.run_output import DPI, PNG_OPTIONS, OutputFiles, jsonable, meta, summary_json, write_csv
 from corliss.scene.loader import scene_from_dict
 from corliss.studies.study_result import column_unit, converted, scene_data_of
@@ -228,10 +229,12 @@ def plot(result, ax=None, units_system: str | None = None) -> dict:
     Returns
     -------
     dict
-        ``{"figure": fig, "axes": axes}`` (:func:`corliss.plot.plot_study`).
+        :func:`corliss.plot.plot_study`'s figure and axes in the one shape of every
+        ``plot()`` (:func:`corliss.plot.shape.one_shape`: ``figure``, ``axes``,
+        ``ax``, ``lines``).
     """
-    return plot_study(result.points, result.varied, list(result.responses),
-                      units_system=units_system or result.scene.output.units)
+    return one_shape(plot_study(result.points, result.varied, list(result.responses),
+                                units_system=units_system or result.scene.output.units))
 
 
 def read_study(path) -> tuple:

@@ -308,14 +308,15 @@ class FitResult:
     at_bound: dict = field(default_factory=dict)
 
     def write(self, out_dir, *, plots: bool = True, units_system: str | None = None) -> dict:
-        """Write ``fit.json``, ``fitted.toml`` and ``fit-card.png``, all of them or none.
+        """Write ``STEM.json``, ``STEM.toml`` and ``STEM.card.png``, all of them or none
+        (STEM: :func:`corliss.files.fit_output.fit_stem`, ``default.fit``).
 
         Parameters
         ----------
         out_dir : str or Path
             The output folder (made if missing).
         plots : bool, optional
-            Whether to draw ``fit-card.png``.
+            Whether to draw ``STEM.card.png``.
         units_system : str, optional
             ``"US"`` or ``"SI"`` for the files and figure (default: the scene's).
 
@@ -339,7 +340,9 @@ class FitResult:
         Returns
         -------
         dict
-            The matplotlib objects drawn (:func:`corliss.plot.fit_card.plot_fit_card`).
+            The matplotlib objects drawn (:func:`corliss.plot.fit_card.plot_fit_card`)
+            in the one shape of every ``plot()``: ``figure``, ``axes``, ``ax``,
+            ``lines`` (:func:`corliss.plot.shape.one_shape`).
         """
         return _writer().plot(self, ax, units_system)
 

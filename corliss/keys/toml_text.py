@@ -1,7 +1,8 @@
 """A scene's tables as TOML text (the standard library reads TOML but does not write
-it): enough of TOML for a scene, checked by reading the text back.  The written scenes
-of ``corliss design`` (``design.toml``), ``corliss fit`` (``fitted.toml``) and
-``corliss study`` (the base scene) all come from :func:`dumps`."""
+it): enough of TOML for a scene, checked by reading the text back.  ``corliss study``'s
+base scene comes from :func:`dumps`; ``corliss design`` and ``corliss fit`` edit the
+source scene's text instead (:mod:`corliss.keys.scene_system`), and use :func:`dumps`
+for a scene that has no text."""
 
 from __future__ import annotations
 

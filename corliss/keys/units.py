@@ -9,7 +9,8 @@ are read against a barometer, which the scene states (default 14.696 psia).  A b
 ``psi``, ``bar``, ``kPa`` or ``MPa`` is refused because it does not say which; each
 takes ``a``, ``(a)``, ``abs`` or ``absolute`` after it for absolute, ``g``, ``(g)``,
 ``gauge`` or ``gage`` for gauge.  ``Pa``, ``atm``, ``inHg`` and ``mmHg`` are absolute
-as written.  Speeds in ``rpm``, ``RPM``, ``rev/min``, ``r/min``, ``rev/s`` or ``rad/s``.
+as written.  Lengths also in ``thou`` (a thousandth of an inch, ``"15 thou"``).
+Speeds in ``rpm``, ``RPM``, ``rev/min``, ``r/min``, ``rev/s`` or ``rad/s``.
 """
 
 from __future__ import annotations
@@ -29,6 +30,9 @@ if TYPE_CHECKING:  # for annotations only: this module never needs numpy at run 
 STANDARD_ATMOSPHERE_Pa = 101_325.0
 
 INCH_m = 0.0254
+#: The thou, a thousandth of an inch [m]: the machinist's unit, in which live-steam
+#: builders give laps, leads and clearances ("15 thou" is 0.015 in).
+THOU_m = INCH_m / 1000.0
 FOOT_m = 0.3048
 POUND_kg = 0.45359237
 LBF_N = 4.4482216152605
@@ -42,7 +46,8 @@ RPM_RAD_S = 2.0 * math.pi / 60.0
 #: Pressure units with a gauge or vacuum sense are handled separately.
 _LINEAR: dict[str, dict[str, float]] = {
     "length": {"m": 1.0, "mm": 1e-3, "cm": 1e-2, "in": INCH_m, "inch": INCH_m,
-               "inches": INCH_m, "ft": FOOT_m, "feet": FOOT_m, "foot": FOOT_m},
+               "inches": INCH_m, "thou": THOU_m, "ft": FOOT_m, "feet": FOOT_m,
+               "foot": FOOT_m},
     "area": {"m2": 1.0, "mm2": 1e-6, "cm2": 1e-4, "in2": INCH_m**2, "ft2": FOOT_m**2},
     "volume": {"m3": 1.0, "L": 1e-3, "l": 1e-3, "cm3": 1e-6, "in3": INCH_m**3,
                "ft3": FOOT_m**3},

@@ -127,7 +127,9 @@ def reference_markdown() -> str:
     out += ["", "Pressure: `psi`, `bar`, `kPa` and `MPa` take `a`, `(a)`, ` abs` or "
             "` absolute` for absolute, `g`, `(g)`, ` gauge` or ` gage` for gauge (read "
             "against `supply.barometer`); `Pa`, `atm`, `inHg` and `mmHg` are absolute; "
-            "`inHg vacuum` is below the barometer.", ""]
+            "`inHg vacuum` is below the barometer.", "",
+            "Length: `thou` is a thousandth of an inch (`\"15 thou\"` = 0.015 in), the unit "
+            "in which live-steam builders give laps, leads and clearances.", ""]
     return "\n".join(out)
 
 

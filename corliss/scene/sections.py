@@ -228,6 +228,10 @@ LOAD = group(
         default="constant", choices=tuple(SPEED_LAWS)),
     Key("kind", "choice", "The schedule of the load fraction.", default="constant",
         choices=("constant", "step", "ramp", "schedule")),
+    Key("initial_fraction", "number", "Load before the step or ramp, a fraction of the "
+        "reference load: a step from 50 % to 80 % is initial_fraction = 0.5, step_fraction "
+        "= 0.8; the engine starts settled at it.", default=1.0, within=(0.0, 5.0),
+        when="with kind = \"step\" or \"ramp\""),
     Key("step_time", "time", "When the step comes (zero or more).", within=ZERO_OR_MORE,
         when="with kind = \"step\""),
     Key("step_fraction", "number", "Load after the step, a fraction of the reference load.",

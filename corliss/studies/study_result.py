@@ -281,7 +281,8 @@ class StudyResult(Result):
         Returns
         -------
         dict
-            ``{"figure": fig, "axes": axes}`` (:func:`corliss.plot.plot_study`).
+            ``figure``, ``axes``, ``ax`` and ``lines``, the one shape of every
+            ``plot()`` (:func:`corliss.plot.shape.one_shape`).
         """
         return _writer().plot(self, ax, units_system)
 

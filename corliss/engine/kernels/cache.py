@@ -85,6 +85,14 @@ def cycle_kernel_uncached(code: int, exact: bool = True) -> bool | None:
     return uncached(dispatcher)
 
 
+#: How long a first run takes, as the notice says it: measured from a fresh numba
+#: cache and steam table, the whole run of the default scene (start to exit): 22 s on
+#: an idle 16-core machine, 29 to 50 s on two cores at a load of 1.5 to 2.8, 43 s
+#: from an installed wheel at 1.3; 54 to 208 s (median 140 s, four runs) on two cores
+#: shared at a load of 6 to 15.
+FIRST_RUN_TEXT = "half a minute to a minute on two free cores, a few minutes on a busy machine"
+
+
 def announce_compile(*dispatchers, cycle: int | None = None, exact: bool = True) -> None:
     """Say so before compiled functions not yet in numba's disk cache are first called.
 
@@ -110,5 +118,5 @@ def announce_compile(*dispatchers, cycle: int | None = None, exact: bool = True)
         return
     missing = [d.__name__ for d, m in zip(dispatchers, state) if m]
     if missing:
-        log.log(NOTICE, "compiling the kernels once for this machine (%s; 10 to 15 s); "
-                "later runs load them from the cache", ", ".join(missing))
+        log.log(NOTICE, "compiling the kernels once for this machine (%s; %s); "
+                "later runs load them from the cache", ", ".join(missing), FIRST_RUN_TEXT)
