@@ -14,17 +14,13 @@ from typing import Callable, Protocol, cast
 class TerminalEvent(Protocol):
     """An event function of ``solve_ivp`` that ends the integration.
 
+    Called as ``event(t, y)`` (time [s], state), it returns a float, zero at the event.
+    A protocol: never made, its arguments are those of the class machinery.
+
     Parameters
     ----------
-    t : float
-        Time [s].
-    y : ndarray
-        The state.
-
-    Returns
-    -------
-    float
-        The event's value, zero at the event.
+    *args, **kwargs
+        Not taken: a protocol is not instantiated.
     """
 
     terminal: bool
