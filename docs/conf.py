@@ -4,7 +4,9 @@ Build it (offline, nothing fetched) from the repository's root with::
 
     sphinx-build -W --keep-going -b html docs docs/_build/html
 
-``tests/test_docs.py`` runs the same build and fails on any warning.  Generated
+``tests/test_docs.py`` runs the same build and fails on any warning.  The drawn
+figures the pages show (``default-card.png``, ``corliss-gear-keys.png``) are redrawn by
+``docs/figures.py`` at every build.  Generated
 sources (the API pages, the gallery, the notebooks copied from ``notebooks/``) are
 written under ``docs/`` at build time and are not committed.
 """
@@ -69,6 +71,14 @@ def _copy_notebooks() -> None:
 
 
 _copy_notebooks()
+
+# -- the drawn figures --------------------------------------------------------------------
+# The README's card and the scene reference's sketches, drawn afresh by docs/figures.py
+# (a file is rewritten only when the drawing changed).
+sys.path.insert(0, str(DOCS))
+import figures  # noqa: E402
+
+figures.write_figures(DOCS)
 
 # -- the API reference -------------------------------------------------------------------
 # docs/api/ is generated afresh by autosummary at every build, so that a module since

@@ -339,6 +339,103 @@ def test_sigint_and_sigterm_during_a_run_leave_the_folder_as_it_was(sig, code, e
     assert _tree(earlier) == before
 
 
+# --- a folder describes one run -------------------------------------------------------------
+
+#: The figures of a steady run of the default scene.
+FIGURES = {"default.card.png", "default.effort.png"}
+
+
+@pytest.fixture()
+def plotted(tmp_path, capsys):
+    """A folder holding an earlier run's files with its figures (two cycles)."""
+    out = tmp_path / "plotted"
+    assert _run(["run", "--out", str(out), "--cycles", "2", "--fidelity", "fast"], capsys)[0] == 0
+    assert {p.name for p in out.iterdir()} == NAMES | FIGURES and _which_run(out) == {2}
+    return out
+
+
+def test_a_run_without_figures_takes_the_earlier_runs_figures_away(plotted, capsys):
+    """``--no-plots`` after a plotted run into the same folder: before, the earlier
+    run's figures stayed beside the new run's tables, a folder of two runs; now the
+    commit moves them out with the rest, and the folder is the new run's alone."""
+    assert _run(["run", "--out", str(plotted), "--cycles", "3", *FAST], capsys)[0] == 0
+    assert {p.name for p in plotted.iterdir()} == NAMES and _which_run(plotted) == {3}
+    # files of another stem, and of another kind of result, are not this run's to take
+    other = plotted / "other.card.png"
+    other.write_bytes(b"another scene's figure")
+    sweep = plotted / "default.sweep.csv"
+    sweep.write_text("a sweep of this scene\n")
+    assert _run(["run", "--out", str(plotted), "--cycles", "2", *FAST], capsys)[0] == 0
+    assert {p.name for p in plotted.iterdir()} == NAMES | {other.name, sweep.name}
+
+
+def test_sigint_or_a_failure_as_the_figures_go_leaves_one_whole_run(plotted, capsys,
+                                                                     monkeypatch):
+    """The figures go in the commit, after the new files are in place, signals held: a
+    SIGINT there still leaves the new run whole (exit 130); a failure there (a disk
+    error moving the second) puts every earlier file back, the first figure too."""
+    real = os.replace
+    staged = []
+
+    def interrupting(src, dst):
+        if str(src).endswith(".png") and str(src).startswith(str(plotted)):
+            staged.append(src)           # a figure moved aside, out of the folder
+            os.kill(os.getpid(), signal.SIGINT)
+        return real(src, dst)
+    monkeypatch.setattr(os, "replace", interrupting)
+    code, _, err = _run(["run", "--out", str(plotted), "--cycles", "3", *FAST], capsys)
+    monkeypatch.setattr(os, "replace", real)
+    assert code == 130 and len(staged) == len(FIGURES)
+    assert {p.name for p in plotted.iterdir()} == NAMES and _which_run(plotted) == {3}
+
+    assert _run(["run", "--out", str(plotted), "--cycles", "2", "--fidelity", "fast"],
+                capsys)[0] == 0
+    before = _tree(plotted)
+
+    aside = []
+
+    def failing(src, dst):              # the second figure's move fails
+        if str(dst).endswith(".retired"):
+            aside.append(dst)
+            if len(aside) == 2:
+                raise OSError(28, "No space left on device")
+        return real(src, dst)
+    monkeypatch.setattr(os, "replace", failing)
+    code, _, err = _run(["run", "--out", str(plotted), "--cycles", "3", *FAST], capsys)
+    monkeypatch.setattr(os, "replace", real)
+    assert code != 0 and "as it was" in err
+    assert _tree(plotted) == before
+
+
+def test_sigkill_as_the_figures_go_and_the_next_run_finishes_it(plotted):
+    """SIGKILL at the first figure's move: the new tables are in place, the journal
+    names the figures to go, and the next run into the folder takes them away."""
+    k = len(NAMES) + 2           # the journal, each new file, then the first figure
+    proc = subprocess.run([sys.executable, "-c", _KILLER, str(k), str(plotted), "run",
+                           "--out", str(plotted), "--cycles", "3", *FAST],
+                          capture_output=True, text=True, timeout=300)
+    assert proc.returncode == -signal.SIGKILL, proc.stderr
+    assert FIGURES <= {p.name for p in plotted.iterdir()}
+    with OutputFiles(plotted):
+        pass
+    assert {p.name for p in plotted.iterdir()} == NAMES and _which_run(plotted) == {3}
+
+
+def test_a_transient_run_after_a_steady_one_of_the_same_name_leaves_no_cards(earlier,
+                                                                              capsys):
+    """A steady run and a transient run share their tables' names: a transient run of a
+    scene named as the steady one leaves no steady cards or figures beside its files."""
+    text = SCENES["porter-throttling-governor"].read_text(encoding="utf-8")
+    scene = earlier.parent / "default.toml"
+    scene.write_text(text, encoding="utf-8")
+    code, _, _ = _run(["run", str(scene), "--out", str(earlier), "--duration", "0.5 s",
+                       "--no-plots"], capsys)
+    assert code == 0
+    assert {p.name for p in earlier.iterdir()} == {
+        f"default.{t}.{x}" for t in ("timeseries", "cycles") for x in ("csv", "meta.json")
+    } | {"default.summary.json"}
+
+
 # --- one writer per folder ---------------------------------------------------------------
 
 def test_a_second_writer_waits_for_the_first_and_gives_up_with_a_message(tmp_path):
@@ -426,6 +523,67 @@ def test_a_cycle_count_beyond_the_ceiling_is_refused_before_work(tmp_path, capsy
     code, _, err = _run(["run", "--out", str(tmp_path / "o"), "--cycles", "1000000000"], capsys)
     assert code == 2 and "--cycles" in err and f"{limits.MAX_CYCLES}" in err
     assert not (tmp_path / "o").exists()
+
+
+def test_a_duration_beyond_the_ceiling_is_refused_before_work(tmp_path, capsys):
+    """An hour of an engine's life is the most a transient runs: ``--duration 2 h`` and
+    a scene's ``[run] duration = "2 h"`` are refused naming the key, nothing written."""
+    code, _, err = _run(["run", "porter-throttling-governor", "--duration", "2 h", "--out",
+                         str(tmp_path / "o")], capsys)
+    assert code == 2 and "--duration" in err and "1 h" in err
+    text = SCENES["porter-throttling-governor"].read_text()
+    scene = tmp_path / "long.toml"
+    assert 'duration = "30 s"' in text
+    scene.write_text(text.replace('duration = "30 s"', 'duration = "2 h"'))
+    code, _, err = _run(["run", str(scene), "--out", str(tmp_path / "o")], capsys)
+    assert code == 2 and "run.duration" in err
+    assert not (tmp_path / "o").exists()
+
+
+@pytest.mark.parametrize("how, key", [(["--lhs", "10000001"], "--lhs"),
+                                      (["--monte-carlo", "10000001"], "--monte-carlo"),
+                                      (["--grid", "--levels", "4000"], "--levels")])
+def test_a_study_beyond_the_ceiling_is_refused_before_work(how, key, tmp_path, capsys):
+    """A study's runs are at most ten million (a grid of two keys at 4,000 levels is
+    sixteen million): refused naming the option, nothing written."""
+    code, _, err = _run(["study", "default", "--vary", "valve_gear.lap=0.8:1.2in",
+                         "--vary", "engine.bore=11:13in", *how, "--out", str(tmp_path / "o")],
+                        capsys)
+    assert code == 2 and key in err and "10,000,000" in err, err
+    assert not (tmp_path / "o").exists()
+
+
+def test_a_text_file_over_the_size_limit_is_refused_unread(tmp_path, capsys):
+    """A scene is a few kilobytes: a file over the 20 MB of docs/limits.md (a valid
+    scene with a comment making up the rest) is refused naming the scene and its size,
+    before it is read."""
+    big = tmp_path / "big.toml"
+    big.write_text(SCENES["default"].read_text() + "#" * 20_000_000 + "\n")
+    code, _, err = _run(["events", str(big)], capsys)
+    assert code == 2 and "scene" in err and "MB" in err, err
+
+
+def test_an_output_folder_that_cannot_be_made_or_written_is_a_message(tmp_path, capsys,
+                                                                     monkeypatch):
+    """``--out`` beneath a file (a folder that cannot be made): refused before any work
+    naming ``--out`` (exit 2); a folder that fails as the run's files are staged (made
+    unwritable after the check) is one line saying so (exit 5); no traceback, nothing
+    written (before: a traceback)."""
+    blocker = tmp_path / "a-file"
+    blocker.write_text("the user's own file")
+    code, _, err = _run(["run", "--out", str(blocker / "out"), "--cycles", "2", *FAST], capsys)
+    assert code == 2 and "--out" in err and "is a file" in err
+    assert blocker.read_text() == "the user's own file"
+    out = tmp_path / "out"
+
+    def unwritable(*a, **k):
+        raise PermissionError(13, "Permission denied", str(out))
+    import tempfile
+    monkeypatch.setattr(tempfile, "mkdtemp", unwritable)
+    code, _, err = _run(["run", "--out", str(out), "--cycles", "2", *FAST], capsys)
+    monkeypatch.undo()
+    assert code == cli.EXIT_RUN_STOPPED and "could not write into the output folder" in err
+    assert not out.exists()
 
 
 def _card_text(loops: int = 1, p_psia: float = 100.0, frac_max: float = 1.0,

@@ -80,6 +80,7 @@ from corliss.cli.heartbeat import Heartbeat
 from corliss.engine import first_run
 from corliss.engine.balance import balance_failure
 from corliss.engine.model import build_gear, scene_events
+from corliss.engine.output_size import check_output_samples
 from corliss.engine.simulate import simulate
 from corliss.engine.verdict import EXIT_PHYSICAL
 from corliss.errors import (EXIT_BALANCE_FAILED, EXIT_INTERRUPTED, EXIT_TERMINATED, InputError,
@@ -371,11 +372,15 @@ def cmd_run(args) -> int:
         scene = scene.replace_run(duration_s=d)
     if transient and (args.until_settled or scene.run.until_settled):
         d = scene.run.duration_s
-        longest = max(scene.run.max_duration_s or 0.0, min(10.0 * d, 3600.0), d)
+        longest = max(scene.run.max_duration_s or 0.0, min(10.0 * d, limits.MAX_DURATION_S), d)
         scene = scene.replace_run(until_settled=True, max_duration_s=longest)
     elif args.until_settled:
         raise InputError("--until-settled", True, "a transient scene: a steady run always "
                          "runs until periodic")
+    check_output_samples(scene.run, {"cycles": "--cycles" if args.cycles is not None
+                                     else "run.cycles",
+                                     "duration": "--duration" if args.duration is not None
+                                     else "run.duration"})
     out = output_dir(args, scene)
     bar = None if args.json else (
         _bar("time") if transient else

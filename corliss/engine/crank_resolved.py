@@ -66,6 +66,9 @@ class CrankResolved:
         Relative tolerance [-]; absolute tolerances follow from the network's scales.
     step_deg : float
         Step of the fixed-step ``rk4`` [deg].
+    arrays : NetworkArrays, optional
+        ``network.arrays()`` when the caller has them already (the network unchanged
+        since).
 
     Raises
     ------
@@ -74,13 +77,13 @@ class CrankResolved:
     """
 
     def __init__(self, network: Network, steam: Steam, method: str = "LSODA",
-                 rtol: float = 1e-6, step_deg: float = 1.0):
+                 rtol: float = 1e-6, step_deg: float = 1.0, arrays=None):
         self.network = network
         self.steam = steam
         self.method = method
         self.rtol = rtol
         self.step = math.radians(step_deg)
-        self.net = network.arrays()
+        self.net = network.arrays() if arrays is None else arrays
         self.color, self.owner = network.column_colors()
         self.atol = rtol * network.scales()
         self.nfev = 0

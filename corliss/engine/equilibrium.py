@@ -21,7 +21,7 @@ admission from dead centre to cut-off.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -257,7 +257,7 @@ def step_end(steam: Steam, theta: np.ndarray, V: np.ndarray, conn: np.ndarray,
 def run_cycles(steam: Steam, theta: np.ndarray, volumes: tuple[np.ndarray, np.ndarray],
                conns: tuple[np.ndarray, np.ndarray], chest: State, exhaust: State,
                tol: float, max_cycles: int, cycles: int | None = None, walls=None,
-               omega: float = 1.0):
+               omega: float = 1.0, every_point: bool = True):
     """Repeat the cycle until the indicated work is periodic.
 
     Each end starts full of exhaust steam; the cycle is periodic when the work of both
@@ -293,6 +293,10 @@ def run_cycles(steam: Steam, theta: np.ndarray, volumes: tuple[np.ndarray, np.nd
         Head and crank walls (skin model).
     omega : float
         Shaft speed [rad/s] (the walls' time).
+    every_point : bool
+        Keep every point of every cycle; false: of each cycle but the last only its
+        first point (:func:`first_point`), so that the cycles run take no memory beyond
+        what a run recording once a cycle writes.
 
     Returns
     -------
@@ -304,7 +308,7 @@ def run_cycles(steam: Steam, theta: np.ndarray, volumes: tuple[np.ndarray, np.nd
     states = []
     for V in volumes:   # start each end full of exhaust steam
         states.append((exhaust, V[0] * exhaust.rho))
-    traces = []
+    traces: list[tuple[EndTrace, ...]] = []
     w_prev = None
     n_max = cycles if cycles is not None else max_cycles * (3 if walls else 1)
     converged = None
@@ -319,6 +323,8 @@ def run_cycles(steam: Steam, theta: np.ndarray, volumes: tuple[np.ndarray, np.nd
                                  walls[j] if walls else None, omega)
             states[j] = (st, m)
             out.append(tr)
+        if traces and not every_point:
+            traces[-1] = tuple(first_point(tr) for tr in traces[-1])
         traces.append(tuple(out))
         w = out[0].work_J + out[1].work_J
         change = abs(w - w_prev) / max(abs(w), 1e-300) if w_prev is not None else math.inf
@@ -339,6 +345,27 @@ def run_cycles(steam: Steam, theta: np.ndarray, volumes: tuple[np.ndarray, np.nd
             break
         w_prev = w
     return traces, converged
+
+
+def first_point(trace: EndTrace) -> EndTrace:
+    """A cycle's trace cut to its first point: the start of the cycle, its totals whole.
+
+    Parameters
+    ----------
+    trace : EndTrace
+        One end over one cycle.
+
+    Returns
+    -------
+    EndTrace
+        The same totals (work, steam, enthalpy, wall), each array its first entry only
+        (copied, so the cycle's arrays are freed).
+    """
+    return replace(trace, theta_rad=trace.theta_rad[:1].copy(), V_m3=trace.V_m3[:1].copy(),
+                   p_Pa=trace.p_Pa[:1].copy(), T_K=trace.T_K[:1].copy(),
+                   x=trace.x[:1].copy(), m_kg=trace.m_kg[:1].copy(),
+                   wall_records=None if trace.wall_records is None
+                   else trace.wall_records[:1].copy())
 
 
 def connection_from_areas(open_steam: np.ndarray, open_exhaust: np.ndarray) -> np.ndarray:

@@ -525,8 +525,19 @@ class Network:
             One scale per state component, in its unit; shape (:attr:`n_state`,).
         """
         ref = max(self.reservoirs, key=lambda s: s.p)
-        vmax = sum(float(np.max(self.volume(i, np.linspace(0, 2 * math.pi, 73))))
-                   for i in range(self.n_nodes))
+        # each cylinder's volumes found once for both its ends (the same values as
+        # :meth:`volume` node by node)
+        per_cyl: dict = {}
+        vmax = 0.0
+        for i in range(self.n_nodes):
+            if self.node_kind[i] == FIXED:
+                v = np.full(_SCALE_THETA.shape, self.node_V[i])
+            else:
+                c = self.node_cyl[i]
+                if c not in per_cyl:
+                    per_cyl[c] = self.geometries[c].volumes_m3(_SCALE_THETA + self.phases[c])
+                v = per_cyl[c][self.node_end[i]]
+            vmax += float(np.max(v))
         m = vmax * ref.rho
         sc = np.empty(self.n_state)
         sc[0:self.n_dyn:2] = m
@@ -560,6 +571,18 @@ class Network:
             ``owner[c, row]``: the column of colour ``c`` that moves ``row``, or -1;
             shape (colours, :attr:`n_state`).
         """
+        key = (type(self), self.n_nodes, tuple(self.e_a), tuple(self.e_b),
+               tuple(self.wall_nodes))
+        got = _COLORS.get(key)
+        if got is None:
+            got = self._column_colors()
+            if len(_COLORS) >= COLORS_KEPT:
+                _COLORS.clear()
+            _COLORS[key] = got
+        return got[0].copy(), got[1].copy()
+
+    def _column_colors(self) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`column_colors`, found."""
         nv = self.n_nodes
         nbr: list[set[int]] = [set() for _ in range(nv)]
         for a, b in zip(self.e_a, self.e_b):
@@ -649,6 +672,15 @@ class Network:
             edge_cyl=i64(self.e_cyl), edge_port=i64(self.e_port), edge_area=f64(self.e_area),
             edge_cd=f64(self.e_cd), port_grid=grid, port_npts=npts, port_area=area,
             heat=f64(self.node_heat), wall_T=self.wall_T)
+
+
+#: The crank angles a network's volumes are sampled at for its states' scales [rad].
+_SCALE_THETA = np.linspace(0, 2 * math.pi, 73)
+#: The column colours of the networks of each layout (:meth:`Network.column_colors`):
+#: a study's runs share their network's layout, found once.
+_COLORS: dict = {}
+#: How many layouts it keeps.
+COLORS_KEPT = 64
 
 
 def _band(band: float | None) -> float:

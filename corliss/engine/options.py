@@ -211,11 +211,13 @@ RECORD_DEGREE_MAX_TURNS = 300
 
 
 def record_of(run) -> str:
-    """What a transient run's time series records.
+    """What a run's time series records.
 
     The scene's ``[run] record``, or by default ``"degree"`` for a duration of up to
     :data:`RECORD_DEGREE_MAX_TURNS` turns at ``run.speed`` and ``"cycle"`` beyond (a
-    run ``until_settled`` follows its duration's choice).
+    run ``until_settled`` follows its duration's choice); a steady run's default is
+    ``"degree"`` (every cycle at every output step), and its ``"cycle"`` records each
+    cycle once and the last at every output step.
 
     Parameters
     ----------

@@ -57,11 +57,36 @@ def _writer():
     return importlib.import_module(WRITER)
 
 
+class Deferred:
+    """A table a run builds only when it is first read: a study's run that records
+    numbers of its summary never builds the time series of its cycles.
+
+    Parameters
+    ----------
+    make : callable
+        Called once, with no arguments, to build the table (a Frame or a DataFrame);
+        what it reads must not change after the run (a run's own arrays).
+    """
+
+    def __init__(self, make):
+        self.make = make
+
+
+def _held(obj, name: str):
+    """The table ``name`` of a result as held, built now if it was deferred."""
+    held = obj.__dict__["_held"]
+    value = held[name]
+    if isinstance(value, Deferred):
+        value = held[name] = value.make()
+    return value
+
+
 class _Table:
     """A table field of a result (``timeseries``, ``cycles``): held as the run built it,
     a :class:`~corliss.frames.frame.Frame` (a steady run: no pandas needed to compute the
-    summary and write the CSVs) or a DataFrame, and given out as a DataFrame, converted
-    once, on first access.  :meth:`Result.frame` reads it as held."""
+    summary and write the CSVs) or a DataFrame, or :class:`Deferred` until first read,
+    and given out as a DataFrame, converted once, on first access.
+    :meth:`Result.frame` reads it as held."""
 
     def __set_name__(self, owner, name):
         self.name = name
@@ -71,7 +96,7 @@ class _Table:
             raise AttributeError(self.name)
         cache = obj.__dict__.setdefault("_pandas", {})
         if self.name not in cache:
-            held = obj.__dict__["_held"][self.name]
+            held = _held(obj, self.name)
             cache[self.name] = held.to_pandas() if isinstance(held, Frame) else held
         return cache[self.name]
 
@@ -113,6 +138,12 @@ class Result:
     rhs_evaluations: int
     wall_time_s: float
     _summary: dict | None = field(default=None, init=False, repr=False)
+
+    def __getstate__(self):
+        # a pickled result holds its tables built (a deferred one is a closure)
+        for name in list(self.__dict__.get("_held", {})):
+            _held(self, name)
+        return self.__dict__
 
     @property
     def summary(self) -> dict:
@@ -235,7 +266,7 @@ class Result:
         if hasattr(self, f"_frame_{name}"):
             return getattr(self, f"_frame_{name}")()
         held = self.__dict__.get("_held", {})
-        return held[name] if name in held else self.table(name)
+        return _held(self, name) if name in held else self.table(name)
 
     def to_pandas(self, table: str | None = None, units_system: str | None = None
                   ) -> pd.DataFrame:
@@ -645,7 +676,40 @@ class SteadyResult(Result):
     def _failures(self, summary: dict) -> list[dict]:
         return steady_failures(summary, fixed_cycles=self.scene.run.cycles is not None)
 
-    def _make_summary(self) -> dict:
+    def summary_with(self, keys) -> dict:
+        """The summary's part that holds ``keys``: the whole :attr:`summary` when it is
+        computed or a key needs it, else only the numbers read from the last cycle's
+        row and the run's own figures, with the same values (no time series, cards or
+        crank effort built: a study's run that records rates and balances).
+
+        Parameters
+        ----------
+        keys : iterable of str
+            Dotted keys of the summary (``events.head.cutoff_frac``).
+
+        Returns
+        -------
+        dict
+            The summary, or a part of it holding every key of ``keys`` that the whole
+            summary holds (nested, as :attr:`summary`; no ``failures``).
+        """
+        if self._summary is not None:
+            return self._summary
+        part = self.__dict__.get("_light")
+        if part is None:
+            part = self.__dict__["_light"] = self._make_summary(light=True)
+        for key in keys:
+            node = part
+            for name in key.split("."):
+                if not isinstance(node, dict) or name not in node:
+                    return self.summary
+                node = node[name]
+        return part
+
+    def _make_summary(self, light: bool = False) -> dict:
+        """The summary; ``light``: without the keys that need the time series (the
+        peak pressure, the crank effort and what is read with it, a compound's
+        cylinders)."""
         run = self.scene.run
         row = self._last_row()
         w_h, w_c = float(row["work_head_J"]), float(row["work_crank_J"])
@@ -659,8 +723,8 @@ class SteadyResult(Result):
         m_exh = float(row["m_exhaust_kg"])
         H_in = float(row["H_supply_J"])
         H_ex = float(row["H_exhaust_J"]) if "H_exhaust_J" in row else math.nan
-        p_peak = float(np.nanmax(np.concatenate([c["p_Pa"].to_numpy()
-                                                 for c in self.card_frames().values()])))
+        p_peak = None if light else float(np.nanmax(np.concatenate(
+            [c["p_Pa"].to_numpy() for c in self.card_frames().values()])))
         mass_err = abs(steam_cycle + m_exh) / abs(steam_cycle) if steam_cycle else None
         Q = sum(float(row[c]) for c in row.index if c.startswith("Q_") and "to_wall" not in c)
         energy_err = (abs(H_in + H_ex + Q - w) / abs(H_in) if math.isfinite(H_ex) and H_in
@@ -671,7 +735,7 @@ class SteadyResult(Result):
         def ratio(a, b):
             return a / b if b > 0 else None
 
-        return {
+        out = {
             "title": self.scene.title,
             "kind": self.kind,
             "model": run.model,
@@ -707,11 +771,14 @@ class SteadyResult(Result):
             "clamped_trial_evaluations_count": self.clamped_trials,
             "clamped_hot_state_evaluations_count": self.clamped_hot,
             "wall_time_s": self.wall_time_s,
-            **self._effort_summary(w),
-            **self._compound_summary(),
+            **({} if light else self._effort_summary(w)),
+            **({} if light else self._compound_summary()),
             "events": self.events,
             **({"lp_events": self.lp_events} if self.lp_events is not None else {}),
         }
+        if light:
+            del out["peak_pressure_Pa"]
+        return out
 
 
 @dataclass
@@ -854,7 +921,9 @@ class TransientResult(Result):
         -------
         dict
             ``{"before": {"head": frame, "crank": frame, "cycle": k}, "after": ...}``,
-            each frame with ``V_m3`` [m3] and ``p_Pa`` [Pa] over the turn ``k``; empty
+            each frame with ``piston_frac`` (the piston's position as a fraction of the
+            stroke from head-end dead centre, the cards' abscissa) [-], ``V_m3`` [m3]
+            and ``p_Pa`` [Pa] over the turn ``k``; empty
             when the time series has no pressures (``record`` = cycle, or the
             mean-value model).
         """
@@ -874,9 +943,10 @@ class TransientResult(Result):
             rows = ts[ts["cycle"] == k]
             th = np.radians(rows["crank_angle_deg"].to_numpy())
             vh, vc = self.geometry.volumes_m3(th)
-            out[label] = {"head": pd.DataFrame({"V_m3": vh,
+            frac = self.geometry.fraction(th % TWO_PI)
+            out[label] = {"head": pd.DataFrame({"piston_frac": frac, "V_m3": vh,
                                                 "p_Pa": rows["p_head_Pa"].to_numpy()}),
-                          "crank": pd.DataFrame({"V_m3": vc,
+                          "crank": pd.DataFrame({"piston_frac": frac, "V_m3": vc,
                                                  "p_Pa": rows["p_crank_Pa"].to_numpy()}),
                           "cycle": k}
         return out

@@ -12,6 +12,7 @@ from typing import Any
 
 from corliss.engine import first_run
 from corliss.engine.model import scene_events
+from corliss.engine.output_size import check_output_samples
 from corliss.engine.result import Result
 from corliss.engine.steady import run_steady
 from corliss.progress import progress_for
@@ -40,7 +41,15 @@ def simulate(scene, *, portmap_scale: float = 1.0,
     Result
         A :class:`~corliss.engine.result.SteadyResult` for a steady scene, a
         :class:`~corliss.engine.result.TransientResult` for a transient one.
+
+    Raises
+    ------
+    InputError
+        Before any work, if the run's time series would hold more rows than
+        :data:`corliss.keys.limits.MAX_OUTPUT_SAMPLES` (a scene's run changed after it
+        was loaded, by ``replace_run``, is checked here).
     """
+    check_output_samples(scene.run)
     first_run.prepare(scene)
     transient = scene.run.mode == "transient"
     with progress_for(progress, "time" if transient else "cycles",

@@ -24,14 +24,15 @@ from corliss.engine.crank_resolved import CrankResolved
 from corliss.engine.ideal_card import card_area, hyperbolic_card, indicated_steam_kg
 from corliss.engine.model import assemble
 from corliss.engine.network import cylinder_prefix, piston_ends
-from corliss.engine.result import SteadyResult
+from corliss.engine.options import record_of
+from corliss.engine.output_size import EQUILIBRIUM_STEP_DEG
+from corliss.engine.result import Deferred, SteadyResult
 from corliss.engine.wall import IdealPortWall
 from corliss.frames.frame import Frame
 from corliss.thermo.steam import HEOSSteam
 
 log = logging.getLogger(__name__)
 TWO_PI = 2.0 * math.pi
-EQUILIBRIUM_STEP_DEG = 0.25
 
 
 @dataclasses.dataclass(frozen=True)
@@ -78,7 +79,8 @@ def run_steady(scene, *, portmap_scale: float = 1.0,
     Returns
     -------
     SteadyResult
-        The run: every cycle's time series and balances, the last cycle's cards,
+        The run: every cycle's time series (with ``run.record = "cycle"`` each cycle's
+        first sample and the last cycle's all) and balances, the last cycle's cards,
         valve events and summary.
     """
     t0 = time.perf_counter()
@@ -147,9 +149,10 @@ def _crank_resolved(scene, model, pm, progress, start=None):
     if heat and scene.engine.wall_heat_model == "marks":
         marks = MarksLaw(net, geo, model.events, omega, model.chest.T, model.exhaust.T,
                          lp_events=model.lp_events)
+    arrays = net.arrays()
     method, rtol = fid.steady_integrator(steam.kernel_tier is not None
-                                         and jacobians.exact_jacobian_covers(net.arrays()))
-    crank = CrankResolved(net, steam, method, rtol, step_deg=fid.step_deg)
+                                         and jacobians.exact_jacobian_covers(arrays))
+    crank = CrankResolved(net, steam, method, rtol, step_deg=fid.step_deg, arrays=arrays)
     ends_all = piston_ends(net)
     step = math.radians(fid.output_step_deg)
     out_theta = np.linspace(0.0, TWO_PI, int(round(TWO_PI / step)) + 1)
@@ -160,6 +163,9 @@ def _crank_resolved(scene, model, pm, progress, start=None):
                 and start.wall_T_K.shape == net.wall_T.shape:
             net.wall_T[:] = start.wall_T_K
     rows, samples_all, walls_used = [], [], []
+    # recorded once a cycle (record = "cycle"), a cycle keeps its first sample once the
+    # next has run: the run holds what it writes, not every cycle it ran
+    once = record_of(scene.run) == "cycle"
     # the sampled rows the time series reads: the volumes' states, first, and with skin
     # walls their states and quadratures too; a run kept every cycle's whole samples
     # before, and paid for the fresh memory (page faults) 10 to 20 us a cycle
@@ -186,6 +192,8 @@ def _crank_resolved(scene, model, pm, progress, start=None):
             crank.update_wall(y)
         row = _cycle_row(k, lay, net, y, wall_start)
         rows.append(row)
+        if once and samples_all:
+            samples_all[-1] = samples_all[-1][:, :1].copy()
         samples_all.append(samples[:kept].copy() if kept < samples.shape[0] else samples)
         w = row["work_J"]
         residuals = _periodicity(lay, net.wall_T, y_start, y, samples, wall_start, dT_scale,
@@ -221,8 +229,10 @@ def _crank_resolved(scene, model, pm, progress, start=None):
                     "a tolerance of %.2g; the card is the last cycle's (a tighter fidelity, or "
                     "more max_cycles, may settle it)", n_max, change,
                     max(residuals, key=residuals.get), fid.convergence_tolerance)
-    timeseries = _crank_timeseries(net, steam, ends_all, out_theta, omega, samples_all,
-                                   walls_used)
+    # the time series is built when first read (the summary's cards, a file, a plot): a
+    # study's run that records the summary's balances and rates never needs it
+    timeseries = Deferred(lambda: _crank_timeseries(net, steam, ends_all, out_theta, omega,
+                                                    samples_all, walls_used))
     final = SteadyStart(y.copy(), None if net.wall_T is None else np.array(net.wall_T, dtype=float))
     return {"timeseries": timeseries, "cycles": Frame.from_rows(rows), "final_state": final,
             "cycles_to_converge": converged, "periodicity": residuals, "portmap": pm, "nfev": crank.nfev,
@@ -300,18 +310,23 @@ def _crank_timeseries(net, steam, ends_all, out_theta, omega: float, samples_all
     The cycles' samples are stacked and each volume's states turned into pressure,
     temperature and dryness in one call of the tier (for the table, one compiled call
     per volume), not one per cycle; the values are those of a conversion cycle by
-    cycle, element by element the same arithmetic.
+    cycle, element by element the same arithmetic.  A cycle recorded once holds the
+    first of the output angles only.
     """
-    n_cyc, n_out = len(samples_all), out_theta.size
+    n_cyc = len(samples_all)
+    counts = np.array([b.shape[1] for b in samples_all])
     s = np.concatenate(samples_all, axis=1)
     k = np.arange(n_cyc)
-    angle = (out_theta[None, :] + (TWO_PI * k)[:, None]).ravel()
-    cols = {"cycle": np.repeat(k + 1, n_out), "crank_angle_deg": np.degrees(angle),
+    angle = np.concatenate([out_theta[:c] for c in counts]) + np.repeat(TWO_PI * k, counts)
+    cols = {"cycle": np.repeat(k + 1, counts), "crank_angle_deg": np.degrees(angle),
             "time_s": angle / omega}
-    # the volumes at the output angles are the same every cycle
+
+    def each_cycle(values):
+        """Values at the output angles, the same every cycle, for every row."""
+        return np.concatenate([values[:c] for c in counts])
     for end in ends_all:
         i = net.node(end)
-        V = np.tile(net.volume(i, out_theta), n_cyc)
+        V = each_cycle(net.volume(i, out_theta))
         m, U = s[2 * i], s[2 * i + 1]
         cols[f"p_{end}_Pa"], cols[f"T_{end}_K"], cols[f"x_{end}_frac"] = steam.states(m / V,
                                                                                       U / m)
@@ -319,7 +334,7 @@ def _crank_timeseries(net, steam, ends_all, out_theta, omega: float, samples_all
     for i in net.wall_nodes:
         # the skin model's surface temperature and the heat into the steam so far
         end = net.node_names[i]
-        deep = np.repeat([w[i] for w in walls_used], n_out)
+        deep = np.repeat([w[i] for w in walls_used], counts)
         cols[f"T_wall_{end}_K"] = deep + s[net.i_wall(i)]
         cols[f"Q_{end}_J"] = s[net.i_node_quad(i, "heat")]
         cols[f"m_film_{end}_kg"] = s[net.i_film(i)]
@@ -328,7 +343,7 @@ def _crank_timeseries(net, steam, ends_all, out_theta, omega: float, samples_all
     for vessel in ("chest", "receiver"):
         if vessel in net.node_names:
             i = net.node(vessel)
-            V = np.tile(net.volume(i, out_theta), n_cyc)
+            V = each_cycle(net.volume(i, out_theta))
             cols[f"p_{vessel}_Pa"] = steam.states(s[2 * i] / V, s[2 * i + 1] / s[2 * i])[0]
     return Frame(cols)
 
@@ -430,7 +445,7 @@ def _equilibrium(scene, geo, steam, chest, exhaust, sched, pm=None, progress=Non
     omega = scene.run.speed_rad_s
     traces, converged = eq.run_cycles(steam, theta, vols, conns, chest, exhaust,
                                       fid.convergence_tolerance, fid.max_cycles, scene.run.cycles,
-                                      walls, omega)
+                                      walls, omega, record_of(scene.run) != "cycle")
     rows, ts = [], []
     for k, (th_, tc_) in enumerate(traces):
         row = {"cycle": k + 1}
@@ -445,7 +460,8 @@ def _equilibrium(scene, geo, steam, chest, exhaust, sched, pm=None, progress=Non
                 row[f"Q_to_wall_{end}_J"] = tr.wall["Q_to_wall_J"]
                 row[f"T_wall_{end}_K"] = tr.wall["T_deep_K"]
         rows.append(_with_totals(row))
-        frame = _cycle_frame(k, theta, omega, {
+        # (a cycle recorded once has its first point only)
+        frame = _cycle_frame(k, theta[:th_.p_Pa.size], omega, {
             end: (tr.p_Pa, tr.T_K, tr.x, tr.V_m3, tr.m_kg)
             for end, tr in (("head", th_), ("crank", tc_))})
         for end, tr in (("head", th_), ("crank", tc_)):

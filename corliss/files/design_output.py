@@ -553,8 +553,8 @@ def write_design(design: Design, out_dir) -> dict:
                 fig = Figure(figsize=(7, 7))      # no pyplot: the user's backend untouched
                 ax = fig.add_subplot()
                 drawn = draw(gear, ax=ax, units_system=units_system)
-                lim = ax.get_xlim()[1]
-                _mark_asked(ax, design.valve, 0.95 * lim, drawn_from)
+                # the asked events as long as the diagram's own crank lines
+                _mark_asked(ax, design.valve, drawn["crank_radius"], drawn_from)
                 ax.set_title(f"{drawn['ax'].get_title()}: {design.scene.title}", fontsize=9)
                 name = f"{stem}.{kind}.png"
                 fig.savefig(out.stage(name), dpi=120, bbox_inches="tight", format="png")

@@ -576,8 +576,8 @@ def recover_staging(out_dir: Path) -> list[str]:
     """Finish or remove what killed runs left in ``out_dir``: their staging folders.
 
     A staging folder with a journal belongs to a run that was moving its files into
-    place when it was killed: its remaining files are moved in, so the folder holds
-    that run's whole set.  One without a journal never began to move anything: it is
+    place when it was killed: its remaining files are moved in and the earlier run's
+    files it was retiring removed, so the folder holds that run's whole set.  One without a journal never began to move anything: it is
     removed, the folder's files untouched.  Call it holding the folder's lock.
 
     Parameters
@@ -598,15 +598,20 @@ def recover_staging(out_dir: Path) -> list[str]:
         moved = 0
         if journal.is_file():
             try:
-                names = json.loads(journal.read_text(encoding="utf-8"))["files"]
-                names = [plain_name(n, "journal") for n in names]
-            except (OSError, ValueError, KeyError, TypeError):
-                names = []
+                entry = json.loads(journal.read_text(encoding="utf-8"))
+                names = [plain_name(n, "journal") for n in entry["files"]]
+                stale = [plain_name(n, "journal") for n in entry.get("retire", [])]
+            except (OSError, ValueError, KeyError, TypeError, AttributeError):
+                names, stale = [], []
             for name in names:
                 src = d / name
                 if src.is_file() and not src.is_symlink():
                     os.replace(src, out_dir / name)
                     moved += 1
+            for name in stale:
+                target = out_dir / name
+                if os.path.lexists(target) and not (target.is_dir() and not target.is_symlink()):
+                    target.unlink()
             line = (f"finished moving the files of a run killed while writing into "
                     f"{out_dir} ({moved} moved)")
         else:
@@ -632,7 +637,9 @@ class OutputFiles:
 
     The folder has one writer at a time (a lock on it, held from entering the block to
     leaving it); entering finishes or removes what a killed run left
-    (:func:`recover_staging`).  The commit never removes an earlier file: each new file
+    (:func:`recover_staging`).  Files of an earlier run this one does not replace
+    (:meth:`retire`: a plotted run's figures under a run without them) are removed in
+    the same commit.  The commit never removes an earlier file: each new file
     is renamed over its old one (an atomic replace), the earlier files hard-linked
     beside the staged ones first, so a failure part-way puts every earlier file back;
     a journal written before the first move lets the next run finish the moves of a
@@ -649,6 +656,7 @@ class OutputFiles:
     def __init__(self, out_dir: str | Path, lock_wait_s: float = LOCK_WAIT_S):
         self.out_dir = Path(out_dir)
         self.files: dict[str, Path] = {}
+        self.retired: list[str] = []
         self._created: list[Path] = []
         self._tmp: Path | None = None
         self._lock = _FolderLock(self.out_dir, lock_wait_s)
@@ -707,6 +715,22 @@ class OutputFiles:
         self.files[name] = self.out_dir / name
         return self._staging / name
 
+    def retire(self, names) -> None:
+        """Files of an earlier run that this run's set does not replace, to be removed
+        in its commit: moved into the staging folder with the other moves (and put
+        back if the commit fails), so the folder describes one run.
+
+        Parameters
+        ----------
+        names : iterable of str
+            Bare file names in the output folder (:func:`plain_name`); those this run
+            stages, and those not there or that are folders, are left alone.
+        """
+        for name in names:
+            plain_name(name, "output file")
+            if name not in self.files and name not in self.retired:
+                self.retired.append(name)
+
     def __exit__(self, exc_type, exc, tb) -> None:
         try:
             if exc_type is None:
@@ -738,16 +762,26 @@ class OutputFiles:
                 except OSError:       # a file system without hard links
                     shutil.copy2(target, backup, follow_symlinks=False)
                 backups[name] = backup
+        stale = [n for n in self.retired if n not in self.files
+                 and os.path.lexists(self.out_dir / n)
+                 and not ((self.out_dir / n).is_dir() and not (self.out_dir / n).is_symlink())]
         part = self._staging / (JOURNAL + ".part")
-        part.write_text(json.dumps({"files": list(self.files)}), encoding="utf-8")
+        part.write_text(json.dumps({"files": list(self.files), "retire": stale}),
+                        encoding="utf-8")
         os.replace(part, self._staging / JOURNAL)
-        moved = []
+        moved, aside = [], []
         with _signals_held():
             try:
                 for name, target in self.files.items():
                     os.replace(self._staging / name, target)
                     moved.append(name)
+                for name in stale:
+                    # moved aside into the staging folder, removed with it
+                    os.replace(self.out_dir / name, self._staging / f".{name}.retired")
+                    aside.append(name)
             except BaseException:
+                for name in aside:
+                    os.replace(self._staging / f".{name}.retired", self.out_dir / name)
                 for name in moved:
                     if name in backups:
                         os.replace(backups[name], self.files[name])
@@ -957,7 +991,9 @@ def write(result, out_dir, plots: bool = True) -> dict[str, Path]:
     """Write every file of ``result`` into ``out_dir`` as one transaction.
 
     Each table of :data:`TABLE_FILES` as CSV with its meta file, in the scene's units;
-    the figures as PNG; the summary as JSON.
+    the figures as PNG; the summary as JSON.  Files of the same stem an earlier run
+    wrote and this one does not (:func:`family_names`: figures under ``plots=False``,
+    a steady run's cards under a transient run) are removed in the same commit.
 
     Parameters
     ----------
@@ -1001,9 +1037,50 @@ def write(result, out_dir, plots: bool = True) -> dict[str, Path]:
                     files[kind] = out.files[name]
                 finally:
                     plt.close(fig)
-        name = (f"{stem}.{result.kind}.summary.json" if result.kind in ("sweep", "compare")
-                else f"{stem}.summary.json")
+        name = _summary_name(stem, result.kind)
         out.stage(name).write_text(summary_json(result.summary))
         files["summary"] = out.files[name]
+        out.retire(sorted(family_names(stem, result.kind)))
     return files
+
+
+#: The figures each kind of result may draw (:func:`_figures`: ``lp_card`` for a
+#: compound only).
+FIGURE_NAMES = {"steady": ("card", "effort", "lp_card"), "transient": ("loadstep",),
+                "sweep": ("willans",), "compare": ("compare",)}
+
+
+def _summary_name(stem: str, kind: str) -> str:
+    return f"{stem}.{kind}.summary.json" if kind in ("sweep", "compare") else f"{stem}.summary.json"
+
+
+def family_names(stem: str, kind: str) -> set[str]:
+    """Every file :func:`write` may write for a stem and a kind of result.
+
+    A steady and a transient run share their tables' and summary's names, so their
+    files are one family: a run of either replaces the whole family, and what it does
+    not write (figures under ``--no-plots``, a steady run's cards under a transient
+    run) goes, so the folder describes one run.  A sweep's and a comparison's names
+    are their own.
+
+    Parameters
+    ----------
+    stem : str
+        The files' stem (the scene's name).
+    kind : str
+        ``"steady"``, ``"transient"``, ``"sweep"`` or ``"compare"``.
+
+    Returns
+    -------
+    set of str
+        The tables with their meta files, the figures and the summary.
+    """
+    kinds = ("steady", "transient") if kind in ("steady", "transient") else (kind,)
+    names = set()
+    for k in kinds:
+        for suffix in TABLE_FILES[k].values():
+            names |= {f"{stem}.{suffix}.csv", f"{stem}.{suffix}.meta.json"}
+        names |= {f"{stem}.{fig}.png" for fig in FIGURE_NAMES[k]}
+        names.add(_summary_name(stem, k))
+    return names
 

@@ -237,6 +237,50 @@ def with_keys(data: dict, values: dict) -> dict:
     return out
 
 
+def edited(data: dict, values: dict) -> dict:
+    """A scene's raw tables with dotted keys set, as :func:`with_keys` sets them, that
+    shares every table it does not edit with ``data`` (a study's runs: the base
+    scene's tables copied on each run's path to its keys only, not whole).
+
+    Parameters
+    ----------
+    data : dict
+        The scene as read from its TOML file; not changed, and not to be changed
+        while the copy is in use (the two share their unedited tables).
+    values : dict
+        ``{dotted key: value}``, each value as the scene writes it.
+
+    Returns
+    -------
+    dict
+        The edited tables; read them, do not change them.
+
+    Raises
+    ------
+    InputError
+        As :func:`with_keys`.
+    """
+    out = dict(data)
+    copied = {id(out)}
+    for key, value in values.items():
+        parts = key.split(".")
+        node = out
+        for depth, part in enumerate(parts[:-1]):
+            if part not in node and depth == len(parts) - 2:
+                node[part] = {}
+                copied.add(id(node[part]))
+            child = node.get(part)
+            if not isinstance(child, dict):
+                raise InputError(key, value, "a key of a table the scene has; "
+                                 f"{'.'.join(parts[:depth + 1])} is not one")
+            if id(child) not in copied:
+                child = node[part] = dict(child)
+                copied.add(id(child))
+            node = child
+        node[parts[-1]] = value
+    return out
+
+
 # --- grids and distributions (the study's --vary) ------------------------------------------
 
 _CALL = re.compile(r"^\s*(?P<kind>[A-Za-z_]+)\s*\((?P<args>[^()]*)\)\s*(?P<unit>[^()]*?)\s*$")

@@ -16,6 +16,14 @@ MAX_CYCLES = 10_000
 #: Longest simulated time of a transient run [s] (``--duration``, ``[run] duration``,
 #: ``max_duration``): an hour of an engine's life.
 MAX_DURATION_S = 3600.0
+#: Most rows of a run's time series [-] (counted before the run by
+#: :func:`corliss.engine.output_size.output_samples`: a cycle's output steps times the
+#: cycles recorded, a transient's turns times its samples a turn).  10,000 cycles at the
+#: default 1 degree output are 3.61 million rows; a row of a steady run is 14 to 30
+#: columns, some 200 bytes of CSV and 150 to 250 bytes in memory, so the most a run may
+#: write is about a gigabyte of CSV and as much memory: minutes of writing, a desktop's
+#: memory.  A card is one cycle of an end: at most 36,001 points (a 0.01 deg step).
+MAX_OUTPUT_SAMPLES = 5_000_000
 #: Largest card file a fit reads [bytes]: a card digitised at a point per tenth of a
 #: degree for four ends is some 14,400 lines, under a megabyte.
 MAX_CARD_BYTES = 2_000_000

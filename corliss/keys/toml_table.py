@@ -32,6 +32,29 @@ def _closest(key: str, candidates) -> str | None:
     return near[0] if near else None
 
 
+#: Values :meth:`Table.get` keeps for each key group (its reads of a study's scenes).
+READS_KEPT = 4096
+#: Each key group's kept reads, by the group's id (with the group, so an id reused by
+#: another object is not taken for it).
+_READS: dict[int, tuple] = {}
+
+
+def _reads_of(group) -> dict:
+    """The reads kept for a key group."""
+    entry = _READS.get(id(group))
+    if entry is None or entry[0] is not group:
+        entry = _READS[id(group)] = (group, {})
+    return entry[1]
+
+
+def _immutable(value) -> bool:
+    """Whether a value read may be handed out again: a number, text, flag, None, or a
+    tuple of them (a list as written is the scene's own, and is not kept)."""
+    if value is None or type(value) in (float, int, str, bool):
+        return True
+    return type(value) is tuple and all(type(v) in (float, int, str, bool) for v in value)
+
+
 class Table:
     """A scene table with its dotted name and the scene's barometer.
 
@@ -163,6 +186,12 @@ class Table:
     def get(self, key: str, default=_MISSING, *, within: tuple | None = None):
         """``key`` read by its declaration: its kind, default, range and choices.
 
+        A value read once is kept (:data:`READS_KEPT` a key group) and given again for
+        the same key group, key, value as written, default, range and barometer: a
+        study loads its base scene's unchanged keys once, not once a run.  Only a
+        value that was read without error is kept (a refused one is read again, and
+        refused again, each time).
+
         Parameters
         ----------
         key : str
@@ -182,6 +211,30 @@ class Table:
             once or per end), a float, int, str or bool for a plain kind, the value as
             written for the others; None for an absent optional key.
         """
+        if self.keys is None:
+            return self._get(key, default, within=within)
+        raw = self.data.get(key, _MISSING)
+        # a float by its repr: -0.0 is not 0.0 (equal, and hashed alike)
+        memo_key = (key, type(raw), repr(raw) if type(raw) is float else raw, default,
+                    within, self.barometer_Pa)
+        kept = _reads_of(self.keys)
+        try:
+            value = kept.get(memo_key, _MISSING)
+        except TypeError:           # a list, or a default that cannot be hashed
+            return self._get(key, default, within=within)
+        if value is not _MISSING:
+            self._declared(key)
+            self._read.add(key)
+            return value
+        value = self._get(key, default, within=within)
+        if _immutable(value):
+            if len(kept) >= READS_KEPT:
+                kept.clear()
+            kept[memo_key] = value
+        return value
+
+    def _get(self, key: str, default=_MISSING, *, within: tuple | None = None):
+        """:meth:`get`, read each time."""
         if self.keys is None:
             raise UndeclaredKeyError(f"{self.key(key)}: Table.get needs a table bound to "
                                      "its key group")

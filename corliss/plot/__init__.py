@@ -8,6 +8,11 @@ matplotlib is imported when a figure is first drawn.
   :func:`plot_gear`, all the panels of any gear;
 - :mod:`corliss.plot.gear_panels`: the panels of gears whose motion is not one lapped
   valve (double valves, the Corliss and Porter-Allen gears);
+- :mod:`corliss.plot.crank_lines`: the events' crank lines on the polar valve diagrams;
+- :mod:`corliss.plot.corliss_keys`: the Corliss gear's scene keys sketched on its
+  geometry;
+- :mod:`corliss.plot.labels`: labels placed where no curve runs, diagrams fitted to
+  their labels;
 - :mod:`corliss.plot.transients`: load steps and governor characteristics;
 - :mod:`corliss.plot.willans`: Willans lines across the load range;
 - :mod:`corliss.plot.study`: a study's responses against its varied keys.

@@ -16,6 +16,60 @@ _EVENT_MARK = {"cutoff": ("c/o", "v"), "release": ("rel", "s"), "compression": (
                "admission": ("adm", "o")}
 
 
+#: The label of every card's abscissa (the indicator drum turned with the crosshead).
+POSITION_LABEL = "piston position from head-end dead centre"
+
+
+def card_abscissa(ax, stroke_m: float, units_system: str, volume=None) -> str:
+    """Set a card's abscissa: piston position in the scene's units, with the fraction
+    of the stroke on the axis above (and an end's volume, where given, below it).
+
+    Every card corliss draws (a steady run's, a load step's, a fitted one) is drawn on
+    this one abscissa, so cards compare by eye.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The card's axes, its x data in ``in`` (US) or ``mm`` (SI) from head-end dead
+        centre.
+    stroke_m : float
+        The stroke [m].
+    units_system : str
+        ``"US"`` (inches) or ``"SI"`` (mm).
+    volume : (str, float, float, str) or None, optional
+        ``(end, clearance [m3], area [m2], unit)``: an end's volume as a secondary axis
+        under the plot (``unit`` ``"ft3"`` or ``"L"``; for the crank end the volume
+        grows towards head-end dead centre); None for none.
+
+    Returns
+    -------
+    str
+        The unit of the abscissa, ``"in"`` or ``"mm"``.
+    """
+    x_unit = "in" if units_system == "US" else "mm"
+    xs = float(units.to_unit(stroke_m, x_unit))
+    ax.set_xlabel(f"{POSITION_LABEL} [{x_unit}]")
+    top = ax.secondary_xaxis("top", functions=(lambda x: x / xs, lambda f: f * xs))
+    top.set_xlabel("fraction of the stroke", fontsize=8, color="0.35")
+    top.tick_params(labelsize=7, colors="0.35")
+    if volume is not None:
+        end, clearance, area, v_unit = volume
+        m = float(units.to_unit(stroke_m, x_unit)) / stroke_m       # axis units per metre
+
+        def to_v(x, sign=1.0 if end == "head" else -1.0):
+            s = np.asarray(x, dtype=float) / m
+            return units.to_unit(clearance + area * (s if sign > 0 else stroke_m - s), v_unit)
+
+        def to_x(v):
+            s = (units.from_unit(np.asarray(v, dtype=float), v_unit) - clearance) / area
+            return (s if end == "head" else stroke_m - s) * m
+
+        low = ax.secondary_xaxis(-0.2, functions=(to_v, to_x))
+        low.set_xlabel(f"{end}-end volume [{v_unit}]", fontsize=8, color="0.35")
+        low.tick_params(labelsize=7, colors="0.35")
+    return x_unit
+
+
 def plot_card(result, ax=None, units_system: str | None = None, prefix: str = "") -> dict:
     """Indicator card of both ends of the last cycle.
 
@@ -99,7 +153,14 @@ def plot_card(result, ax=None, units_system: str | None = None, prefix: str = ""
                                       xytext=(3, 4), fontsize=7, color=style[end]["color"]))
     s = result.summary
     ax.set_xlim(-0.02 * xs, 1.02 * xs)
-    ax.set_xlabel(f"piston position from head-end dead centre [{x_unit}]")
+    # a single-acting cylinder's card is its working end's: its volume read below
+    working = getattr(result.scene.engine, "steam_ends", "both")
+    volume = None
+    if working in ("head", "crank") and prefix == "":
+        k = 0 if working == "head" else 1
+        area = geo.area_head_m2 if working == "head" else geo.area_crank_m2
+        volume = (working, geo.clearance_m3[k], area, "ft3" if system == "US" else "L")
+    card_abscissa(ax, stroke, system, volume)
     ax.set_ylabel(f"pressure [{p_unit}]")
     if prefix == "":
         which, power, mep = "", s["indicated_power_W"], s["mep_mean_Pa"]

@@ -7,15 +7,25 @@ from __future__ import annotations
 import numpy as np
 
 from corliss.keys import units
+from corliss.plot.cards import card_abscissa
 
 
-def _abscissa(fit, end: str, units_system: str):
-    """(label, unit) of the x axis: the card's own abscissa."""
-    e = fit.card.ends[end]
-    if e.abscissa == "V_m3":
-        unit = "ft3" if units_system == "US" else "L"
-        return "volume of the end", unit
-    return "piston position from head-end dead centre", "in" if units_system == "US" else "mm"
+def _position_m(geometry, end: str, abscissa: str, x):
+    """A measured card's abscissa as piston position from head-end dead centre [m]:
+    a fraction of the stroke, a position, or the end's volume (the head end's grows
+    from its clearance as the piston leaves head-end dead centre, the crank end's from
+    its clearance as it leaves crank-end dead centre)."""
+    x = np.asarray(x, dtype=float)
+    stroke = geometry.spec.stroke_m
+    if abscissa == "piston_frac":
+        return x * stroke
+    if abscissa != "V_m3":
+        return x
+    side = end.removeprefix("lp_")
+    k = 0 if side == "head" else 1
+    area = geometry.area_head_m2 if side == "head" else geometry.area_crank_m2
+    s = (x - geometry.clearance_m3[k]) / area
+    return s if side == "head" else stroke - s
 
 
 def plot_fit_card(fit, ax=None, units_system: str | None = None) -> dict:
@@ -47,18 +57,16 @@ def plot_fit_card(fit, ax=None, units_system: str | None = None) -> dict:
     styles = {"head": dict(color="k", ls="-", marker="o"),
               "crank": dict(color="0.35", ls="--", marker="s")}
     measured, fitted = {}, {}
-    xmax = 0.0
-    label_x = unit_x = None
+    unit_x = "in" if system == "US" else "mm"
+    stroke = res.geometry.spec.stroke_m
     for end, e in fit.card.ends.items():
         g = geos.get("lp_" if end.startswith("lp_") else "", res.geometry)
+        stroke = g.spec.stroke_m
         st = styles.get(end.removeprefix("lp_"), styles["head"])
-        label_x, unit_x = _abscissa(fit, end, system)
         c = res.cards[end]
-        if e.abscissa == "V_m3":
-            xs, xm = c["V_m3"].to_numpy(), e.x
-        else:
-            xs = c["piston_frac"].to_numpy() * g.spec.stroke_m
-            xm = e.x * g.spec.stroke_m if e.abscissa == "piston_frac" else e.x
+        # every card on one abscissa: a card measured on volume is laid on position
+        xs = c["piston_frac"].to_numpy() * stroke
+        xm = _position_m(g, end, e.abscissa, e.x)
         xs, xm = units.to_unit(xs, unit_x), units.to_unit(xm, unit_x)
         ys = units.to_unit(c["p_Pa"].to_numpy(), p_unit, barometer_Pa=baro)
         ym = units.to_unit(e.p_Pa, p_unit, barometer_Pa=baro)
@@ -67,10 +75,12 @@ def plot_fit_card(fit, ax=None, units_system: str | None = None) -> dict:
         (measured[end],) = ax.plot(xm, ym, ls="none", marker=st["marker"], ms=2.5,
                                    mfc="white", mec=st["color"], mew=0.7,
                                    label=f"{end} end, measured")
-        xmax = max(xmax, float(np.max(xs)), float(np.max(xm)))
     ax.axhline(0.0, color="0.35", lw=0.8)
-    ax.text(xmax * 0.5, 0.0, "atmosphere", ha="center", va="bottom", fontsize=8, color="0.35")
-    ax.set_xlabel(f"{label_x} [{unit_x}]")
+    # named beyond the card's right edge, where no curve runs
+    ax.annotate("atmosphere", (1.0, 0.0), xycoords=ax.get_yaxis_transform(), xytext=(3, 0),
+                textcoords="offset points", ha="left", va="center", fontsize=8,
+                color="0.35", annotation_clip=False)
+    card_abscissa(ax, stroke, system)
     ax.set_ylabel(f"pressure [{p_unit}]")
     parts = []
     for r in fit.ranges:
@@ -84,7 +94,7 @@ def plot_fit_card(fit, ax=None, units_system: str | None = None) -> dict:
                  + "; ".join(parts) + f"\nresidual r.m.s. {rms:.3g} "
                  + ("psi" if system == "US" else "bar"), fontsize=9)
     ax.grid(True, color="0.9", lw=0.5)
-    ax.legend(loc="center", fontsize=8, frameon=False)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=8, frameon=False)
     for side in ("top", "right"):
         ax.spines[side].set_visible(False)
     return {"ax": ax, "measured": measured, "fitted": fitted}

@@ -12,6 +12,8 @@ import math
 import numpy as np
 
 from corliss.keys import units
+from corliss.plot.crank_lines import crank_lines, dead_centre_lines, period_frame, polar_events
+from corliss.plot.labels import fit_inside
 from corliss.valves.buckeye import BuckeyeGear
 from corliss.valves.single_acting import working_gear
 from corliss.valves.double_valve import DoubleValve
@@ -333,7 +335,8 @@ def plot_porter_allen(gear, fig=None, units_system: str = "US") -> dict:
 
     The stems' travels and the four port openings against crank angle, and the Zeuner
     diagram of the steam motion at the radius rod with the laps referred to it
-    (Spangler Arts. 30, 83).
+    (Spangler Arts. 30, 83), the crank line of each steam event (admission and cut-off
+    of each end) through its circles' meeting.
 
     Parameters
     ----------
@@ -347,7 +350,9 @@ def plot_porter_allen(gear, fig=None, units_system: str = "US") -> dict:
     Returns
     -------
     dict
-        ``{"figure": fig, "axes": [travels, openings, zeuner], "lines": {...}}``.
+        ``{"figure": fig, "axes": [travels, openings, zeuner], "lines": {...},
+        "labels": [Text, ...], "events": {...}}``: the steam events' crank lines are
+        ``lines["crank_lines"][end][event]``, their angles [deg] ``events``.
     """
     fig = _figure(fig)
     u = _unit(units_system)
@@ -385,8 +390,8 @@ def plot_porter_allen(gear, fig=None, units_system: str = "US") -> dict:
         ax.legend(fontsize=7, frameon=False, loc="upper center")
         for side in ("top", "right"):
             ax.spines[side].set_visible(False)
-    x = units.to_unit(gear.steam_drive(np.linspace(0, 2 * math.pi, 1441)), u)
     t = np.linspace(0, 2 * math.pi, 1441)
+    x = units.to_unit(gear.steam_drive(t), u)
     pos = x > 0
     for end, mask, rad, ls in (("head", pos, x, "-"), ("crank", ~pos, -x, "--")):
         lines[f"{end}-end valve circle"] = ax3.plot(
@@ -395,19 +400,21 @@ def plot_porter_allen(gear, fig=None, units_system: str = "US") -> dict:
     c = np.linspace(0, 2 * math.pi, 361)
     for lam, ls, label in zip(units.to_unit(np.array(gear.spec.equivalent_lap_m), u),
                               ("-", "--"), ("head lap at the rod", "crank lap at the rod")):
-        lines[label] = ax3.plot(lam * np.cos(c), lam * np.sin(c), color="0.55", lw=0.8, ls=ls,
+        lines[label] = ax3.plot(lam * np.cos(c), lam * np.sin(c), color="0.45", lw=0.8, ls=ls,
                                 label=label)[0]
-    rmax = float(np.nanmax(np.abs(x)))
-    ax3.axhline(0, color="0.8", lw=0.6)
-    ax3.axvline(0, color="0.8", lw=0.6)
-    ax3.set_aspect("equal")
-    ax3.set_xlim(-1.1 * rmax, 1.1 * rmax)
-    ax3.set_ylim(-1.1 * rmax, 1.1 * rmax)
-    ax3.set_title(f"Zeuner diagram of the steam motion (s = {gear.spec.setting:g})",
-                  fontsize=10)
-    ax3.set_xlabel(f"[{u}]")
-    ax3.legend(fontsize=7, frameon=False, loc="lower right")
-    return {"figure": fig, "axes": [ax1, ax2, ax3], "lines": lines}
+    # the steam events where the valve circles meet the laps at the rod (the exhaust
+    # valves have their own motion, not drawn here)
+    radius = 1.08 * float(np.nanmax(np.abs(x)))
+    dead_centre_lines(ax3, radius)
+    ev = polar_events(gear.steam_drive, gear.spec.equivalent_lap_m)
+    labels = crank_lines(ax3, ev, radius, lines)
+    ax3.set_xlim(-1.1 * radius, 1.1 * radius)
+    ax3.set_ylim(-1.1 * radius, 1.1 * radius)
+    period_frame(ax3, u, f"Zeuner diagram of the steam motion (s = {gear.spec.setting:g}),\n"
+                 "steam events")
+    fit_inside(ax3, labels)
+    return {"figure": fig, "axes": [ax1, ax2, ax3], "lines": lines, "labels": labels,
+            "events": ev}
 
 
 # -- oscillating cylinder ---------------------------------------------------------------

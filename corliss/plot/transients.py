@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from corliss.keys import units
+from corliss.plot.cards import card_abscissa
 
 
 def plot_load_step(result, units_system: str | None = None) -> dict:
@@ -14,7 +15,8 @@ def plot_load_step(result, units_system: str | None = None) -> dict:
     Left, against time: speed (turn by turn and within the turn) with the settling
     band, the governor's position and what it sets (cut-off or throttle opening), and
     the indicated and load power.  Right: the head-end and crank-end cards of the turn
-    before the step and of the last turn, and the governor's static characteristic
+    before the step and of the last turn (against piston position, as every card:
+    :func:`corliss.plot.cards.card_abscissa`), and the governor's static characteristic
     with its mean position before the step and at the end.
 
     Parameters
@@ -22,7 +24,7 @@ def plot_load_step(result, units_system: str | None = None) -> dict:
     result : TransientResult
         A transient run (its ``timeseries``, ``cycles``, ``metrics`` and cards).
     units_system : str, optional
-        ``"US"`` (hp, psig, ft3) or ``"SI"`` (kW, bar gauge, L); default from the
+        ``"US"`` (hp, psig, inches) or ``"SI"`` (kW, bar gauge, mm); default from the
         scene's ``output.units``.
 
     Returns
@@ -35,8 +37,8 @@ def plot_load_step(result, units_system: str | None = None) -> dict:
 
     system = units_system or result.scene.output.units
     ts, cyc = result.timeseries, result.cycles
-    fig = plt.figure(figsize=(13, 8.5))
-    gs = fig.add_gridspec(3, 2, width_ratios=(1.8, 1.0), hspace=0.45, wspace=0.25)
+    fig = plt.figure(figsize=(13, 9.5))
+    gs = fig.add_gridspec(3, 2, width_ratios=(1.8, 1.0), hspace=0.7, wspace=0.3)
     ax_n = fig.add_subplot(gs[0, 0])
     ax_g = fig.add_subplot(gs[1, 0], sharex=ax_n)
     ax_l = fig.add_subplot(gs[2, 0], sharex=ax_n)
@@ -91,21 +93,24 @@ def plot_load_step(result, units_system: str | None = None) -> dict:
     cards = result.cards()
     if cards:
         baro = result.scene.supply.barometer_Pa
-        pu, vu = ("psig", "ft3") if system == "US" else ("barg", "L")
+        pu = "psig" if system == "US" else "barg"
+        stroke = result.scene.engine.stroke_m
+        xu = "in" if system == "US" else "mm"
         for r, label in enumerate(("before", "after")):
             ax = fig.add_subplot(gs[r, 1])
             for end, style in (("head", "-"), ("crank", "--")):
                 card = cards[label][end]
-                ax.plot(units.to_unit(card["V_m3"].to_numpy(), vu),
+                ax.plot(units.to_unit(card["piston_frac"].to_numpy() * stroke, xu),
                         units.to_unit(card["p_Pa"].to_numpy(), pu, barometer_Pa=baro),
                         color="k", lw=1.1, ls=style, label=f"{end} end")
             ax.axhline(0.0, color="0.35", lw=0.8)
             ax.set_title(f"cards, turn {cards[label]['cycle']} "
                          f"({'before the step' if label == 'before' else 'at the end'})",
                          fontsize=9)
-            ax.set_xlabel(f"volume [{vu}]")
+            card_abscissa(ax, stroke, system)
+            ax.xaxis.label.set_fontsize(8)
             ax.set_ylabel(f"pressure [{pu}]")
-            ax.legend(fontsize=7, frameon=False)
+            ax.legend(fontsize=7, frameon=False, loc="upper left", bbox_to_anchor=(1.0, 1.0))
             for side in ("top", "right"):
                 ax.spines[side].set_visible(False)
             axes[f"card_{label}"] = ax

@@ -24,6 +24,7 @@ from corliss.engine.geometry import EngineSpec
 from corliss.engine.load import parse_load
 from corliss.engine.options import (COMPILED_METHODS, EFFECT_KEYS, EFFECTS, PLANNED_EFFECTS,
                                     PRESETS, SCIPY_METHODS, Fidelity)
+from corliss.engine.output_size import check_output_samples
 from corliss.errors import InputError, InputErrors
 from corliss.keys.declared import REQUIRED
 from corliss.scene.sections import (COMPARE, COMPOUND, ENGINE, EXHAUST, FLYWHEEL, LOAD, OUTPUT,
@@ -116,9 +117,11 @@ class RunSpec:
     duration_s : float or None
         Transient: simulated time [s] (rounded up to whole turns).
     record : str or None
-        Transient time series: ``"step"`` (every integrator step), ``"degree"`` (every
-        ``output_step`` of crank angle) or ``"cycle"`` (once per turn); None (not in the
-        scene): by the run's length (:func:`corliss.engine.options.record_of`).
+        The time series: ``"step"`` (every integrator step, transient only),
+        ``"degree"`` (every ``output_step`` of crank angle) or ``"cycle"`` (once per
+        turn; a steady run's last cycle at every output step); None (not in the scene):
+        a transient's by the run's length (:func:`corliss.engine.options.record_of`),
+        a steady run's ``"degree"``.
     settling_band : float
         Transient: the speed band, as a fraction of the final mean speed, that the
         settling time is measured to [-].  By default 0.2 %: a fraction of the 1 to 5 %
@@ -524,11 +527,33 @@ def _compound(t: Table, hp: EngineSpec, lp_gear_data, hp_gear_type, hp_gear,
     return CompoundSpec(lp, name, lp_gear, -follows, receiver)
 
 
+#: The reservoir states :func:`_check_states` found inside the properties' range (a
+#: study's runs share their supply and exhaust: checked once, not once a run).
+_STATES_PASSED: set = set()
+#: How many it keeps.
+STATES_KEPT = 256
+
+
 def _check_states(data: dict, supply: SupplySpec, exhaust: ExhaustSpec, run: RunSpec) -> None:
     """Supply and exhaust steam inside the range of the steam properties the run uses,
     before any work: below the critical pressure (IAPWS: 22.064 MPa; no steam and
     water apart above it), and for the ``table`` tier inside the table's density and
-    energy, with room for the exhaust steam to expand a little below back pressure."""
+    energy, with room for the exhaust steam to expand a little below back pressure.
+    States that passed are kept, and pass again without a look (a refusal is found
+    again each time, to name the key as written)."""
+    key = (supply.pressure_Pa, supply.temperature_K, supply.dryness, exhaust.pressure_Pa,
+           run.fidelity.properties, steam_table.table_path().is_file())
+    if key in _STATES_PASSED:
+        return
+    _check_states_once(data, supply, exhaust, run)
+    if len(_STATES_PASSED) >= STATES_KEPT:
+        _STATES_PASSED.clear()
+    _STATES_PASSED.add(key)
+
+
+def _check_states_once(data: dict, supply: SupplySpec, exhaust: ExhaustSpec,
+                       run: RunSpec) -> None:
+    """:func:`_check_states`, looked at."""
     raw_p = data["supply"].get("pressure")
     if supply.pressure_Pa >= units.CRITICAL_PRESSURE_Pa:
         raise InputError("supply.pressure", raw_p, "a pressure below the critical pressure of "
@@ -662,7 +687,7 @@ def _run(t: Table) -> RunSpec:
     duration = None
     if mode == "transient":
         duration = t.get("duration", REQUIRED)
-        if not 0.0 < duration <= 3600.0:
+        if not 0.0 < duration <= limits.MAX_DURATION_S:
             raise InputError(t.key("duration"), t.raw("duration"), "a time above 0, up to 1 h")
         if cycles is not None:
             raise InputError(t.key("cycles"), cycles, "no cycles in a transient run: give "
@@ -671,6 +696,10 @@ def _run(t: Table) -> RunSpec:
         raise InputError(t.key("duration"), t.raw("duration"), "no duration in a steady run "
                          "(it runs until periodic, or run.cycles); or mode = \"transient\"")
     record = t.get("record", None)
+    if record == "step" and mode != "transient":
+        raise InputError(t.key("record"), record, "\"degree\" (every cycle at every output "
+                         "step) or \"cycle\" (each cycle once, the last at every output step) "
+                         "in a steady run: \"step\" records a transient's integrator steps")
     band = t.get("settling_band")
     if not 0.0 < band < 0.5:
         raise InputError(t.key("settling_band"), band, "a fraction of the speed between 0 and 0.5")
@@ -694,11 +723,13 @@ def _run(t: Table) -> RunSpec:
             raise InputError(t.key("until_settled"), until, "a transient run (mode = "
                              "\"transient\"): a steady run always runs until periodic")
         assert duration is not None     # read above for every transient run
-        longest = t.get("max_duration", f"{min(10.0 * duration, 3600.0)} s",
-                        within=(duration, 3600.0))
+        longest = t.get("max_duration", f"{min(10.0 * duration, limits.MAX_DURATION_S)} s",
+                        within=(duration, limits.MAX_DURATION_S))
     t.finish()
-    return RunSpec(mode, model, speed, tuple(dict.fromkeys(effects)), fid, cycles, expansion,
+    spec = RunSpec(mode, model, speed, tuple(dict.fromkeys(effects)), fid, cycles, expansion,
                    duration, record, band, warm, start, until, longest, start_angle)
+    check_output_samples(spec)
+    return spec
 
 
 def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) -> Scene:

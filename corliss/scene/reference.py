@@ -24,6 +24,13 @@ from corliss.valves import GEARS
 
 #: The command that writes the committed page.
 REGENERATE = "python -m corliss.scene.reference > docs/scene-reference.md"
+#: Figures of a type's keys, drawn from its geometry by ``docs/figures.py`` at every
+#: documentation build and shown beside its keys: (section, type) -> (file in docs/,
+#: caption).
+SKETCHES = {("valve_gear", "corliss"): ("corliss-gear-keys.png",
+                        "The Corliss gear's keys on the bundled corliss-trip-gear scene's "
+                        "geometry at the wrist plate's mid position; each angle's arc has "
+                        "its arrow in the positive sense")}
 #: Sections whose keys are those of the type they name.
 TYPED = {"valve_gear": GEARS, "lp_valve_gear": GEARS, "governor": GOVERNORS}
 _SECTION_DOC = {
@@ -113,6 +120,9 @@ def reference_markdown() -> str:
         for e in es[section]:
             out += [f"### {noun.capitalize()}: {e.name}", "", _md(e.summary), "",
                     e.keys.doc, ""]
+            if (section, e.name) in SKETCHES:
+                file, caption = SKETCHES[(section, e.name)]
+                out += [f"![{caption}]({file})", "", f"*{caption}.*", ""]
             out += _table(_without_type(e.keys)) + [""]
         out += [f"### Which {noun} reads which key", ""] + _index(section, es[section]) + [""]
     out += ["## Effects", "", "Named in `run.effects`; each key listed is read with it.", "",

@@ -149,8 +149,9 @@ RUN = group(
         choices=EXPANSION_LAWS),
     Key("duration", "time", "Simulated time of a transient run, above 0 up to 1 h.",
         default=None, when="in a transient run (required there)"),
-    Key("record", "choice", "Transient time series: every step, every output step of crank "
-        "angle, or once a turn.", default=Derived("by the run's length"),
+    Key("record", "choice", "Time series: every step (transient only), every output step "
+        "of crank angle, or once a turn (a steady run's last cycle at every output step).",
+        default=Derived("by a transient's length; degree in a steady run"),
         choices=RECORD_CHOICES),
     Key("settling_band", "number", "Speed band, as a fraction of the final mean speed, the "
         "settling time is measured to; in (0, 0.5).", default=0.002, within=(0.0, 0.5)),

@@ -2,7 +2,7 @@
 Dask cluster.
 
 Each run is the base scene's tables with the run's keys set
-(:func:`corliss.keys.edits.with_keys`), loaded and checked by the scene loader, made
+(:func:`corliss.keys.edits.edited`), loaded and checked by the scene loader, made
 steady at its speed and run at the study's fidelity; its row holds the responses
 asked for.  Before any run the scenes of the first runs and of the runs at each key's
 least and greatest value are loaded (every run's, up to :data:`CHECK_ALL_UP_TO`
@@ -61,7 +61,7 @@ from corliss.errors import InputError, RunError, StudyStopped
 from corliss.logs import at_point
 from corliss.progress import progress_for
 from corliss.scene.loader import Scene, find_scene, load_scene, scene_from_dict
-from corliss.keys.edits import KeyValue, with_keys
+from corliss.keys.edits import KeyValue, edited
 from corliss.studies.sampling import make_design
 from corliss.studies.journal import Journal, check_writable, fingerprint, journal_path, read_rows
 from corliss.studies.responses import check_responses, flatten, response_value
@@ -121,7 +121,7 @@ class StudySpec:
 
 def _scene(base: dict, name: str, fidelity: str | None, changes: dict):
     """One run's steady scene, loaded and checked."""
-    sc = scene_from_dict(with_keys(base, changes), name=name)
+    sc = scene_from_dict(edited(base, changes), name=name)
     if fidelity is not None:
         sc = sc.with_fidelity(fidelity)
     return steady_scene(sc)
@@ -159,7 +159,7 @@ def run_chunk(spec: StudySpec, run_ids, values) -> tuple[list, int, str | None]:
             with at_point(f"run {int(run_id)}: "
                           + ", ".join(f"{k} {v}" for k, v in changes.items())):
                 r = run_steady(_scene(spec.base, spec.name, spec.fidelity, changes))
-                flat = flatten(r.summary)
+                flat = flatten(r.summary_with(responses))
             nfev += r.rhs_evaluations
             tier = r.property_tier
             why = run_failure(r)
@@ -190,7 +190,7 @@ def run_failure(result) -> str:
     str
         ``"not converged: ..."`` with the reason, or ``""``.
     """
-    s = result.summary
+    s = result.summary_with(FAILURE_KEYS)
     if result.scene.run.cycles is None and s.get("cycles_to_converge") is None:
         res = s.get("periodicity_residuals") or {}
         worst = max(res, key=res.get) if res else "work"
@@ -198,6 +198,12 @@ def run_failure(result) -> str:
                 f"residual {res.get(worst, float('nan')):.3g}, {worst})")
     why = balance_failure(s)
     return f"not converged: {why}" if why else ""
+
+
+#: The summary's keys :func:`run_failure` reads.
+FAILURE_KEYS = ("cycles_to_converge", "periodicity_residuals", "cycles_simulated",
+                "steam_per_cycle_kg", "convergence_tolerance", "mass_balance_error",
+                "energy_balance_error")
 
 
 # --- a local pool's workers ----------------------------------------------------------------

@@ -866,35 +866,53 @@ def _chain(t: Table, kind: str) -> ValveChain:
     return ch
 
 
+#: Typical values of each chain's keys: those of the bundled 20 x 42 engine
+#: (``corliss-trip-gear``, proportioned after Spangler Art. 157), steam then exhaust.
+_TYPICAL = {"stud_radius": ("6 in", "6 in"), "stud_angle": ("25 deg", "30 deg"),
+            "arm": ("4 in", "4 in"), "arm_angle": ("-45 deg", "-45 deg"),
+            "spindle_distance": ("30 in", "24 in"), "valve_radius": ("2.5 in", "3 in")}
+
+
 def _chain_keys(kind: str) -> list:
     """The keys of the head-end ``kind`` (steam or exhaust) valve's chain."""
+    col = 0 if kind == "steam" else 1
     return [Key(f"{kind}_{name}", k, f"{what} of the {kind} valve's chain (head end; the "
-                "crank end mirrors).", within=POSITIVE_LENGTH if k == "length" else None,
+                f"crank end mirrors); typical {_TYPICAL[name][col]}.",
+                within=POSITIVE_LENGTH if k == "length" else None,
                 unit="in" if k == "length" else "deg")
             for name, k, what in (
-                ("stud_radius", "length", "Radius of the wrist-plate stud"),
-                ("stud_angle", "angle", "Angle of the stud from the line of centres at the "
-                 "plate's mid position"),
-                ("arm", "length", "Spindle arm"),
-                ("arm_angle", "angle", "Angle of the spindle arm at mid position"),
-                ("spindle_distance", "length", "Distance from the plate's centre to the "
+                ("stud_radius", "length", "Radius oj of the wrist-plate stud"),
+                ("stud_angle", "angle", "Angle of the stud oj from the line of centres "
+                 "o->q (plate centre to spindle) at the plate's mid position, positive the "
+                 "way the plate turns to open this valve"),
+                ("arm", "length", "Spindle arm ql"),
+                ("arm_angle", "angle", "Angle of the spindle arm ql from the line q->o at "
+                 "mid position, positive on the side of a positive stud angle (negative: "
+                 "the arm across the line from the stud, set for the toggle of Art. 156)"),
+                ("spindle_distance", "length", "Distance oq from the plate's centre to the "
                  "spindle"),
                 ("valve_radius", "length", "Radius of the valve's face"))]
 
 
 CORLISS_KEYS = group(
     "corliss", "Corliss's trip gear: a wrist plate rocks four rotary valves; the steam "
-    "valves are tripped by the cams and closed by dashpots.",
+    "valves are tripped by the cams and closed by dashpots.  The keys are sketched below "
+    "from the bundled corliss-trip-gear scene (its values the typical ones given); the "
+    "crank end's chains are the head end's mirror images.",
     *_chain_keys("steam"), *_chain_keys("exhaust"),
     Key("eccentricity", "length", "Throw of the eccentric at the hook, less than the "
-        "wrist-plate radius.", within=POSITIVE_LENGTH, unit="in"),
-    Key("angular_advance", "angle", "Angular advance of the eccentric.", unit="deg"),
-    Key("wrist_plate_radius", "length", "Radius of the hook pin on the wrist plate.",
+        "wrist-plate radius; typical 3.5 in (Art. 157: 3 1/2 to 10 in).",
         within=POSITIVE_LENGTH, unit="in"),
+    Key("angular_advance", "angle", "Angular advance of the eccentric: how far beyond "
+        "90 deg it leads the crank, in the sense of rotation; typical 32 deg.", unit="deg"),
+    Key("wrist_plate_radius", "length", "Radius of the hook pin f on the wrist plate (of, "
+        "Fig. 107); typical 11 in (Art. 157: 10 to 12 in).", within=POSITIVE_LENGTH,
+        unit="in"),
     Key("hook_rod", "length", "Rod from the eccentric to the wrist-plate pin, longer than "
-        "twice the throw plus the plate's radius.", within=POSITIVE_LENGTH, unit="in"),
+        "twice the throw plus the plate's radius; typical 120 in.",
+        within=POSITIVE_LENGTH, unit="in"),
     Key("dashpot_closing_time", "time", "Time from release to the steam port closed "
-        "(above zero).", unit="s"),
+        "(above zero); typical 0.04 s (19 deg of crank at 80 rev/min).", unit="s"),
     Key("setting", "number", "Cam position s: 0 trips the steam valve at admission, 1 at "
         "the end of the hook's travel; above 1 no trip, below 0 the safety cam admits no "
         "steam.", default=0.5, within=SETTING_RANGE),
@@ -903,13 +921,15 @@ CORLISS_KEYS = group(
     Key("ports_per_end", "integer", "Openings each valve uncovers.", default=1,
         within=(1, 8)),
     Key("steam_lap", "arc", "Steam valves' lap at the plate's mid position: an arc on the "
-        "valve face or a spindle angle.", ends=True),
-    Key("exhaust_lap", "arc", "Exhaust valves' lap at mid position (negative: open there).",
-        default="0 in", ends=True),
-    Key("steam_port_width", "length", "Steam ports' width, an arc on the valve face.",
-        within=POSITIVE_LENGTH, unit="in"),
-    Key("exhaust_port_width", "length", "Exhaust ports' width, an arc on the valve face.",
-        within=POSITIVE_LENGTH, unit="in"),
+        "valve face or a spindle angle; typical 0.5 in (Art. 157: 7/16 to 1/2 in).",
+        ends=True),
+    Key("exhaust_lap", "arc", "Exhaust valves' lap at mid position (negative: open there); "
+        "typical -0.1 in (Art. 157: open 1/16 to 1/8 in).", default="0 in", ends=True),
+    Key("steam_port_width", "length", "Steam ports' width, an arc on the valve face; "
+        "typical 1.25 in.", within=POSITIVE_LENGTH, unit="in"),
+    Key("exhaust_port_width", "length", "Exhaust ports' width, an arc on the valve face; "
+        "typical 1.5 to 2 times the steam port's (1.875 in).", within=POSITIVE_LENGTH,
+        unit="in"),
     Key("port_length", "length", "The ports' length along the valve.",
         within=POSITIVE_LENGTH, unit="in"),
     Key("motion", "choice", "The exact four-bar linkage, or harmonic motion.",

@@ -45,37 +45,53 @@ def crossing_table(gear: ValveGear, levels: np.ndarray) -> list[list[list[tuple[
         regula falsi, Illinois-modified (bracketing like bisection, but superlinear on
         a smooth opening: some 8 evaluations of the gear instead of bisection's 42).
     """
+    return sampled_crossings(gear, levels)[0]
+
+
+def sampled_crossings(gear: ValveGear, levels: np.ndarray) -> tuple[list, np.ndarray]:
+    """:func:`crossing_table`, and the signed openings over the turn's samples it was
+    found from.
+
+    Parameters
+    ----------
+    gear : ValveGear
+        The gear, at its present setting.
+    levels : ndarray, shape (4, L)
+        Levels [m] to cross for each port.
+
+    Returns
+    -------
+    table : list
+        As :func:`crossing_table`.
+    signed : ndarray
+        ``gear.signed_openings`` [m] at the :data:`_SAMPLES` angles ``2 pi k /
+        _SAMPLES`` a turn, shape ``(4, _SAMPLES)`` (the angles :func:`events` reads
+        the largest openings at: :func:`events` takes them instead of finding them
+        again).
+    """
     levels = np.atleast_2d(np.asarray(levels, dtype=float))
     th = np.linspace(0.0, TWO_PI, _SAMPLES + 1)
     s = gear.signed_openings(th)
-    port_list: list[int] = []
-    levs: list[int] = []
-    idx_parts: list[np.ndarray] = []
-    rising_parts: list[np.ndarray] = []
-    for port in range(4):
-        for li, level in enumerate(levels[port]):
-            above = s[port] - level > 0.0
-            i = np.nonzero(above[1:] != above[:-1])[0]
-            port_list += [port] * i.size
-            levs += [li] * i.size
-            idx_parts.append(i)
-            rising_parts.append(above[i + 1])
+    # every port's samples against every one of its levels at once: (port, level, sample)
+    above = (s[:, None, :] - levels[:, :, None]) > 0.0
+    # (flat indices: numpy's nonzero of a 3-d array is ten times slower than of a flat one)
+    flat = np.flatnonzero(above[:, :, 1:] != above[:, :, :-1])
+    ports, rest = np.divmod(flat, levels.shape[1] * _SAMPLES)
+    levs, idx = np.divmod(rest, _SAMPLES)
     out: list[list[list[tuple[float, bool]]]] = [[[] for _ in range(levels.shape[1])]
                                                  for _ in range(4)]
-    if not port_list:
-        return out
-    ports = np.array(port_list)
-    idx = np.concatenate(idx_parts)
-    rising = np.concatenate(rising_parts)
-    lev = levels[ports, np.array(levs)]
+    if not ports.size:
+        return out, s[:, :_SAMPLES]
+    rising = above[ports, levs, idx + 1]
+    lev = levels[ports, levs]
     t = _solve_crossings(gear, ports, lev, th[idx], th[idx + 1],
                          s[ports, idx] - lev, s[ports, idx + 1] - lev) % TWO_PI
-    for k in range(idx.size):
-        out[ports[k]][levs[k]].append((float(t[k]), bool(rising[k])))
+    for k, (port, li) in enumerate(zip(ports.tolist(), levs.tolist())):
+        out[port][li].append((float(t[k]), bool(rising[k])))
     for row in out:
         for lst in row:
             lst.sort()
-    return out
+    return out, s[:, :_SAMPLES]
 
 
 #: The crossings' bracket is closed to this width [rad].
@@ -100,43 +116,48 @@ def _solve_crossings(gear: ValveGear, ports: np.ndarray, lev: np.ndarray, a: np.
     difference is positive, as the samples' brackets were found."""
     a, b, fa, fb = (np.array(v, dtype=float) for v in (a, b, fa, fb))
     cols = np.arange(a.size)
-    width0 = np.abs(b - a)
+    w = b - a
+    aw = np.abs(w)
+    width0 = aw
     nudge_ok = np.ones(a.size, dtype=bool)
     nudged = np.zeros(a.size, dtype=bool)
-    for rnd in range(CROSSING_MAX_ROUNDS):
-        # a bracket closed stays as it is, whatever the others still need, so that each
-        # crossing is the same however many it is solved beside
-        active = np.abs(b - a) > CROSSING_TOL_RAD
-        if not np.any(active):
-            break
-        nudge_ok &= ~(nudged & active)      # a step off an end that did not close it
-        with np.errstate(divide="ignore", invalid="ignore"):
-            c = b - fb * (b - a) / (fb - fa)
-        lo, hi = np.minimum(a, b), np.maximum(a, b)
-        outside = ~((c > lo) & (c < hi))
-        check = rnd % 3 == 2
-        bisect = outside | (check & (np.abs(b - a) > 0.25 * width0))
-        c = np.where(bisect, 0.5 * (a + b), c)
-        # a secant that falls on an end (that end is on the crossing to the last bits,
-        # and the other far off; or its difference is zero) would leave bisection alone
-        # to close the bracket, some 30 rounds: a step of a fraction of the tolerance
-        # off that end, towards the other, closes it in one where the crossing is
-        # there; where it is not (an opening resting at the level), bisection goes on
-        nudged = outside & nudge_ok & active
-        if np.any(nudged):
-            near_b = (np.abs(fb) <= np.abs(fa))
-            end, other = np.where(near_b, b, a), np.where(near_b, a, b)
-            step = np.minimum(CROSSING_NUDGE * CROSSING_TOL_RAD, 0.5 * np.abs(other - end))
-            c = np.where(nudged, end + np.copysign(step, other - end), c)
-        fc = gear.signed_openings(c)[ports, cols] - lev
-        # the new point replaces the end on its side; the kept end's value is halved
-        # when it was kept on a secant step (Illinois), so that both ends move
-        same_b = (fc > 0.0) == (fb > 0.0)
-        fa = np.where(active, np.where(same_b, np.where(bisect, fa, 0.5 * fa), fb), fa)
-        a = np.where(active, np.where(same_b, a, b), a)
-        b, fb = np.where(active, c, b), np.where(active, fc, fb)
-        if check:
-            width0 = np.abs(b - a)
+    # (each bracket's width is found once a round and read where the steps read it)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for rnd in range(CROSSING_MAX_ROUNDS):
+            # a bracket closed stays as it is, whatever the others still need, so that
+            # each crossing is the same however many it is solved beside
+            active = aw > CROSSING_TOL_RAD
+            if not active.any():
+                break
+            nudge_ok &= ~(nudged & active)      # a step off an end that did not close it
+            c = b - fb * w / (fb - fa)
+            outside = ~((c > np.minimum(a, b)) & (c < np.maximum(a, b)))
+            check = rnd % 3 == 2
+            bisect = (outside | (aw > 0.25 * width0)) if check else outside
+            c = np.where(bisect, 0.5 * (a + b), c)
+            # a secant that falls on an end (that end is on the crossing to the last
+            # bits, and the other far off; or its difference is zero) would leave
+            # bisection alone to close the bracket, some 30 rounds: a step of a
+            # fraction of the tolerance off that end, towards the other, closes it in
+            # one where the crossing is there; where it is not (an opening resting at
+            # the level), bisection goes on
+            nudged = outside & nudge_ok & active
+            if nudged.any():
+                near_b = (np.abs(fb) <= np.abs(fa))
+                end, other = np.where(near_b, b, a), np.where(near_b, a, b)
+                step = np.minimum(CROSSING_NUDGE * CROSSING_TOL_RAD, 0.5 * np.abs(other - end))
+                c = np.where(nudged, end + np.copysign(step, other - end), c)
+            fc = gear.signed_openings(c)[ports, cols] - lev
+            # the new point replaces the end on its side; the kept end's value is
+            # halved when it was kept on a secant step (Illinois), so that both ends move
+            same_b = (fc > 0.0) == (fb > 0.0)
+            fa = np.where(active, np.where(same_b, np.where(bisect, fa, 0.5 * fa), fb), fa)
+            a = np.where(active, np.where(same_b, a, b), a)
+            b, fb = np.where(active, c, b), np.where(active, fc, fb)
+            w = b - a
+            aw = np.abs(w)
+            if check:
+                width0 = aw
     return 0.5 * (a + b)
 
 
@@ -256,7 +277,7 @@ def end_events(gear: ValveGear, end: str, piston_fraction: Callable[[float], flo
 
 
 def events(gear: ValveGear, piston_fraction: Callable[[float], float],
-           table: list | None = None) -> dict:
+           table: list | None = None, signed: np.ndarray | None = None) -> dict:
     """Events of both ends: ``{"head": {...}, "crank": {...}}``.
 
     Parameters
@@ -269,6 +290,10 @@ def events(gear: ValveGear, piston_fraction: Callable[[float], float],
     table : list or None, optional
         A crossing table already found, whose first level is zero (a PortMap's
         ``crossings``); found here when None.
+    signed : ndarray or None, optional
+        The gear's signed openings [m] at the :data:`_SAMPLES` angles a turn, as
+        :func:`sampled_crossings` gives them (a PortMap's ``signed_samples``); found
+        here when None.
 
     Returns
     -------
@@ -278,12 +303,13 @@ def events(gear: ValveGear, piston_fraction: Callable[[float], float],
     """
     if table is None:
         table = crossing_table(gear, np.zeros((4, 1)))
-    sampled = _sampled(gear)
+    sampled = _sampled(gear, signed)
     return {end: end_events(gear, end, piston_fraction, table, sampled)
             for end in ("head", "crank")}
 
 
-def _sampled(gear: ValveGear) -> tuple[np.ndarray, np.ndarray]:
-    """The gear's openings and signed openings over :data:`_SAMPLES` angles a turn."""
+def _sampled(gear: ValveGear, signed: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """The gear's openings and signed openings over :data:`_SAMPLES` angles a turn
+    (the signed ones given when ``signed`` is not None)."""
     th = np.linspace(0.0, TWO_PI, _SAMPLES, endpoint=False)
-    return gear.openings(th), gear.signed_openings(th)
+    return gear.sampled(th, signed)

@@ -161,6 +161,36 @@ class ValveGear:
         s = self.signed_openings(np.atleast_1d(theta))
         return np.clip(s, 0.0, self.port_widths()[:, None])
 
+    def _openings_of(self, s: np.ndarray) -> np.ndarray:
+        """:meth:`openings` from the signed openings ``s`` [m], shape ``(4, n)``."""
+        return np.clip(s, 0.0, self.port_widths()[:, None])
+
+    def sampled(self, theta: np.ndarray,
+                signed: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`openings` and :meth:`signed_openings` at the same angles, the gear's
+        motion found once where its openings are its signed ones clipped (a gear whose
+        class has its own :meth:`openings` has both found as each finds them).
+
+        Parameters
+        ----------
+        theta : ndarray
+            Crank angles [rad], shape ``(n,)``.
+        signed : ndarray, optional
+            ``signed_openings(theta)`` when the caller has them [m], shape ``(4, n)``.
+
+        Returns
+        -------
+        openings : ndarray
+            Openings [m], shape ``(4, n)``, as :meth:`openings` gives them.
+        signed : ndarray
+            Signed openings [m], shape ``(4, n)``, as :meth:`signed_openings` gives them.
+        """
+        if type(self).openings in OPENINGS_OF_SIGNED:
+            s = self.signed_openings(np.atleast_1d(theta)) if signed is None else signed
+            return self._openings_of(s), s
+        return self.openings(theta), (self.signed_openings(theta) if signed is None
+                                      else signed)
+
     def areas(self, theta: np.ndarray) -> np.ndarray:
         """Open area of each port: the opening times the effective port length.
 
@@ -177,6 +207,10 @@ class ValveGear:
         """
         return self.openings(theta) * self.port_lengths()[:, None]
 
+
+#: The :meth:`ValveGear.openings` methods that are ``_openings_of(signed_openings(theta))``
+#: (:meth:`ValveGear.sampled` finds the motion once for those).
+OPENINGS_OF_SIGNED: set = {ValveGear.openings}
 
 #: A registry entry: how to read a gear's scene table and build the gear.
 GearType = RegistryEntry

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from corliss.valves.events import crossing_table
+from corliss.valves.events import sampled_crossings
 from corliss.valves.gear import PORTS, ValveGear
 
 TWO_PI = 2.0 * math.pi
@@ -40,6 +40,11 @@ class PortMap:
         ``crossings[port][0]`` where the port opens or closes, ``[port][1]`` where it
         reaches full opening, as :func:`corliss.valves.events.crossing_table` gives
         them (the events are read from the first); None when not kept.
+    signed_samples : ndarray or None, optional
+        The gear's signed openings [m] over the turn's samples the crossings were
+        found from (:func:`corliss.valves.events.sampled_crossings`), shape
+        ``(4, n)``: the events read the largest openings from them; None when not
+        kept.
     """
 
     theta_rad: np.ndarray
@@ -47,6 +52,7 @@ class PortMap:
     cd: np.ndarray
     breakpoints_rad: np.ndarray
     crossings: list | None = None
+    signed_samples: np.ndarray | None = None
 
     def areas(self, theta: float) -> np.ndarray:
         """Open areas of the four ports at one crank angle, interpolated linearly.
@@ -97,7 +103,7 @@ class PortMap:
             unchanged.
         """
         return PortMap(self.theta_rad, self.area_m2 * factor, self.cd, self.breakpoints_rad,
-                       self.crossings)
+                       self.crossings, self.signed_samples)
 
     @property
     def ports(self) -> tuple[str, ...]:
@@ -132,19 +138,18 @@ def tabulate(gear: ValveGear, n: int = 1440) -> PortMap:
         Areas on the merged grid, with the gear's discharge coefficients, the kinks
         as breakpoints and the crossing table (from which the events are read).
     """
-    table = crossing_table(gear, gear.kink_levels())
+    table, signed = sampled_crossings(gear, gear.kink_levels())
     kink_list = [t for row in table for lst in row for t, _ in lst]
     kinks = np.unique(np.round(np.asarray(kink_list, dtype=float) % TWO_PI, 12))
     grid = np.union1d(np.linspace(0.0, TWO_PI, n + 1), kinks)
-    # drop uniform points closer than 1e-9 rad to a kink (keep the kink itself)
-    keep = np.ones(grid.size, dtype=bool)
-    for k in kinks:
-        near = np.abs(grid - k) < 1e-9
-        near[np.argmin(np.abs(grid - k))] = False
-        keep &= ~near
-    grid = grid[keep]
+    # drop uniform points closer than 1e-9 rad to a kink (keep the kink itself: the
+    # point nearest it), every kink at once
+    dist = np.abs(grid[None, :] - kinks[:, None])
+    near = dist < 1e-9
+    near[np.arange(kinks.size), np.argmin(dist, axis=1)] = False
+    grid = grid[~near.any(axis=0)]
     return PortMap(theta_rad=grid, area_m2=gear.areas(grid), cd=gear.discharge_coefficients(),
-                   breakpoints_rad=kinks, crossings=table)
+                   breakpoints_rad=kinks, crossings=table, signed_samples=signed)
 
 
 @dataclass(frozen=True)

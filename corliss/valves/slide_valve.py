@@ -57,7 +57,7 @@ import numpy as np
 
 from corliss.keys import units
 from corliss.errors import InputError
-from corliss.valves.gear import GearType, ValveGear, register
+from corliss.valves.gear import OPENINGS_OF_SIGNED, GearType, ValveGear, register
 from corliss.keys.declared import POSITIVE_LENGTH, Key, group
 from corliss.keys.toml_table import DISCHARGE_COEFFICIENT, Table
 
@@ -190,7 +190,10 @@ class LappedValve(ValveGear):
             Openings [m], shape ``(4, n)``, each in [0, port width], in the order of
             :data:`corliss.valves.gear.PORTS`.
         """
-        s = self.signed_openings(np.atleast_1d(theta))
+        return self._openings_of(self.signed_openings(np.atleast_1d(theta)))
+
+    def _openings_of(self, s):
+        """:meth:`openings` from the signed openings ``s`` [m], shape ``(4, n)``."""
         w = self.spec.port_width_m
         out = np.clip(s, 0.0, w)
         a = getattr(self.spec, "allen_passage_m", None)
@@ -229,6 +232,9 @@ class LappedValve(ValveGear):
 
     def discharge_coefficients(self):
         return np.full(4, self.spec.discharge_coefficient)
+
+
+OPENINGS_OF_SIGNED.add(LappedValve.openings)
 
 
 class SlideValve(LappedValve):
