@@ -2,6 +2,11 @@
 the card's numbers are those of ``corliss run`` of the scene the page saves, a gear
 the loader refuses shows its message beside its control while the page keeps working,
 and the page asks nothing of any address but the loopback one it was served from.
+An address with a lap set opens the page with that lap and draws that engine (the
+numbers of ``corliss run``), a bad value in it gets the loader's message beside its
+control, the address follows the controls as they move, and the gear in motion is
+drawn on demand (the frames of ``corliss animate``) while the card goes on being
+redrawn.
 
 The browser is Debian's ``chromium`` (headless) through Playwright's Python client;
 where neither can be had the browser tests skip, saying which is missing.  The text
@@ -11,6 +16,8 @@ dimensions) are kept.
 
 from __future__ import annotations
 
+import base64
+import io
 import json
 import shutil
 import socket
@@ -19,6 +26,7 @@ import sys
 import time
 import tomllib
 from pathlib import Path
+from urllib.parse import parse_qs, urlsplit
 
 import pytest
 
@@ -88,6 +96,28 @@ def workbench(tmp_path):
 
 def _numbers(page) -> list[str]:
     return page.locator(".wb-summary td.wb-num").all_inner_texts()
+
+
+def _run_summary(text: str, tmp_path: Path, name: str) -> dict:
+    """``corliss run --json`` of a scene's text: its summary."""
+    path = tmp_path / f"{name}.toml"
+    path.write_text(text)
+    out = subprocess.run([sys.executable, "-m", "corliss.cli.commands", "run", str(path),
+                          "--json", "--no-plots", "--out", str(tmp_path / name)],
+                         capture_output=True, text=True, cwd=tmp_path, check=True)
+    return json.loads(out.stdout)
+
+
+def _shown(s: dict) -> list[str]:
+    """The summary's numbers as the page writes them in US units."""
+    return [f"{s['indicated_power_hp']:.2f} ihp",
+            f"{s['mep_mean_Pa'] / 6894.757293168361:.2f} psi",
+            f"{s['steam_rate_kg_per_h'] / 0.45359237:.1f} lb/h",
+            f"{s['water_rate_lb_per_ihp_h']:.2f} lb"]
+
+
+def _query(page) -> dict:
+    return {k: v[0] for k, v in parse_qs(urlsplit(page.url).query).items()}
 
 
 def _events(page) -> dict:
@@ -209,3 +239,84 @@ def test_saved_scene_keeps_the_sources_comments():
     assert comments and all(c in out for c in comments)
     assert 'lap = ["1.1 in", "1 in"]' in out and "# steam (outside) lap" in out
 
+
+
+def test_an_address_sets_the_controls_and_draws_that_engine_and_the_gear_moves(workbench,
+                                                                                tmp_path):
+    from PIL import Image, ImageChops
+
+    sync_playwright, exe = _browser()
+    url, port = workbench
+    local = (f"http://127.0.0.1:{port}/", f"ws://127.0.0.1:{port}/", "blob:", "data:")
+    asked = []
+    address = (url + "?scene=default&valve_gear.lap%5Bhead%5D=1.1+in&run.speed=fast+please"
+               "&no.such_control=1")
+    with sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=exe, args=["--no-sandbox"])
+        try:
+            page = browser.new_page(viewport={"width": 1500, "height": 1000})
+            page.on("request", lambda r: asked.append(r.url))
+            page.on("websocket", lambda w: asked.append(w.url))
+            page.goto(address)
+            page.wait_for_selector(".wb-done", timeout=FIRST_DRAW_s * 1000)
+            first = _wait_redrawn(page, [], REDRAW_s, 'lap = ["1.1 in", "1 in"]')
+            lap_shown = page.locator(".wb-valve-gear-lap-head- .bk-slider-value").inner_text()
+            speed_error = " ".join(page.locator(".wb-run-speed-error div").all_inner_texts())
+            notes = " ".join(page.locator(".wb-notes div").all_inner_texts())
+            text1 = page.locator(".wb-toml textarea").input_value()
+            opened = _query(page)
+
+            # the address follows a control as it moves, without a reload
+            handle = page.locator(".wb-valve-gear-lap-head- .noUi-handle")
+            handle.focus()
+            page.keyboard.press("ArrowRight")
+            second = _wait_redrawn(page, first, REDRAW_s, 'lap = ["1.11 in", "1 in"]')
+            moved = _query(page)
+            text2 = page.locator(".wb-toml textarea").input_value()
+
+            # the gear in motion, asked for; a lap moved meanwhile is redrawn before the
+            # frames come (they are drawn in a worker of their own)
+            page.locator(".wb-animate button").click()
+            page.wait_for_selector(".wb-motion-working", timeout=REDRAW_s * 1000)
+            handle.focus()
+            page.keyboard.press("ArrowLeft")
+            third = _wait_redrawn(page, second, REDRAW_s, 'lap = ["1.1 in", "1 in"]')
+            frames_before_card = page.locator(".wb-motion-frames").count()
+            page.wait_for_selector(".wb-motion-frames", timeout=FIRST_DRAW_s * 1000)
+            src = page.locator(".wb-motion-frames").get_attribute("src")
+            stale = page.locator(".wb-motion-done").inner_text()
+        finally:
+            browser.close()
+
+    # the address set the lap: the control shows it and the card is that engine's
+    assert lap_shown == "1.1"
+    assert tomllib.loads(text1)["valve_gear"]["lap"] == ["1.1 in", "1 in"]
+    assert first == _shown(_run_summary(text1, tmp_path, "opened"))
+    assert opened["valve_gear.lap[head]"] == "1.1 in" and opened["scene"] == "default"
+    # the bad value: the loader's message beside its control, the scene's speed kept
+    assert "run.speed = 'fast please' is not valid" in speed_error
+    assert opened["run.speed"] == "120 rpm"
+    assert "no.such_control" in notes
+    # moved: the address and the card follow
+    assert moved["valve_gear.lap[head]"] == "1.11 in"
+    assert second == _shown(_run_summary(text2, tmp_path, "moved"))
+    assert third == first
+    # the frames came after the card, and they are corliss animate's of the scene
+    # as it was when asked (lap 1.11 in)
+    assert frames_before_card == 0
+    assert "earlier setting" in stale
+    page_gif = Image.open(io.BytesIO(base64.b64decode(src.split(",", 1)[1])))
+    (tmp_path / "asked.toml").write_text(text2)
+    subprocess.run([sys.executable, "-m", "corliss.cli.commands", "animate",
+                    str(tmp_path / "asked.toml"), "--out", str(tmp_path / "anim")],
+                   capture_output=True, text=True, cwd=tmp_path, check=True)
+    cli_gif = Image.open(tmp_path / "anim" / "asked.animation.gif")
+    assert page_gif.n_frames == cli_gif.n_frames == 72
+    for i in (0, 17, 36, 71):
+        page_gif.seek(i)
+        cli_gif.seek(i)
+        diff = ImageChops.difference(page_gif.convert("RGB"), cli_gif.convert("RGB"))
+        assert diff.getbbox() is None, f"frame {i} differs from corliss animate's"
+
+    outside = [u for u in asked if not u.startswith(local)]
+    assert asked and not outside, outside

@@ -539,7 +539,7 @@ def cmd_animate(args) -> int:
         The exit status: 0 (a user's mistake raises
         :class:`~corliss.errors.InputError`, which :func:`main` turns into 2).
     """
-    if not 2 <= args.frames <= 720:
+    if not 2 <= args.frames <= 720:         # before any work, as animate_scene says it
         raise InputError("--frames", args.frames, "a whole number of frames from 2 to 720")
     scene = _load(args.scene, args.units)
     if args.fidelity:
@@ -548,29 +548,12 @@ def cmd_animate(args) -> int:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from corliss.engine.model import steady_scene
-    from corliss.plot.animation import (animate_gear, exact_linkage_spec, linkage_kind,
-                                        write_animation)
+    from corliss.plot.animation import write_animation
+    from corliss.plot.scene_animation import animate_scene
     out_dir = output_dir(args, scene)
-    spec, changed = exact_linkage_spec(scene.gear)
-    scene = dataclasses.replace(scene, gear=spec)
-    gear = build_gear(scene)
-    try:
-        linkage_kind(gear)
-    except ValueError as exc:
-        raise InputError("valve_gear.type", scene.gear_type,
-                         f"a gear with one valve to animate ({exc})") from None
-    result = None
-    if not args.no_card:
-        run = steady_scene(scene)
-        if run.run.model == "mean_value":
-            run = run.replace_run(model="crank_resolved")
-        result = simulate(run)
-    title = f"{scene.title}: {scene.gear_type}" + (" (the exact linkage)" if changed else "")
     name = f"{output_stem(scene)}.animation.{args.format}"
     with plain_text():
-        drawn = animate_gear(gear, result, frames=args.frames, units_system=scene.output.units,
-                             stroke_m=scene.engine.stroke_m, title=title)
+        drawn = animate_scene(scene, frames=args.frames, card=not args.no_card)
     try:
         with OutputFiles(out_dir) as out:
             write_animation(drawn, out.stage(name), args.format)

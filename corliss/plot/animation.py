@@ -1155,8 +1155,9 @@ def write_animation(drawn: dict, path, fmt: str = "gif", fps: float = 12.0) -> N
     ----------
     drawn : dict
         What :func:`animate_gear` returned.
-    path : str or Path
-        The file to write.
+    path : str, Path or file object
+        The file to write (a binary file object for a GIF: the workbench sends the
+        bytes to its page).
     fmt : str
         ``"gif"`` (through Pillow) or ``"html"`` (a page with the frames and a player).
     fps : float
@@ -1174,8 +1175,9 @@ def write_animation(drawn: dict, path, fmt: str = "gif", fps: float = 12.0) -> N
             sheet.paste(im, (0, k * h))
         palette = sheet.quantize(colors=96, method=Image.Quantize.MEDIANCUT)
         q = [im.quantize(palette=palette, dither=Image.Dither.NONE) for im in frames]
-        q[0].save(str(path), format="GIF", save_all=True, append_images=q[1:],
-                  duration=int(round(1000.0 / fps)), loop=0)
+        q[0].save(path if hasattr(path, "write") else str(path), format="GIF",
+                  save_all=True, append_images=q[1:], duration=int(round(1000.0 / fps)),
+                  loop=0)
     elif fmt == "html":
         html = self_contained_html(drawn["animation"].to_jshtml(fps=fps, default_mode="loop"))
         with open(path, "w", encoding="utf-8") as f:

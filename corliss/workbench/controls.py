@@ -333,12 +333,31 @@ def scene_value(control: Control, value, data: dict):
         return f"{units.to_unit(t, unit):.6g} {unit}"
     if control.widget != "slider":
         return list(value) if control.widget == "effects" else value
-    x = round(float(value) / control.step) * control.step
-    x = int(round(x)) if control.kind == "integer" else float(f"{x:.10g}")
-    one = x if control.unit == "" else f"{x:.10g} {control.unit}"
+    one = slider_value(control, value)
     if control.end is None:
         return one
     now = get_key(data, control.key)
     pair = list(now) if isinstance(now, list) else [now, now]
     pair[control.end] = one
     return pair[0] if pair[0] == pair[1] else pair
+
+
+def slider_value(control: Control, value):
+    """The scene value of a slider's setting alone (one end of a key given per end):
+    the setting on the slider's steps, with the slider's unit.
+
+    Parameters
+    ----------
+    control : Control
+        A slider.
+    value : float
+        Its setting, in the control's unit.
+
+    Returns
+    -------
+    str or float or int
+        ``"1.05 in"``, or a plain number for a key without a unit.
+    """
+    x = round(float(value) / control.step) * control.step
+    x = int(round(x)) if control.kind == "integer" else float(f"{x:.10g}")
+    return x if control.unit == "" else f"{x:.10g} {control.unit}"

@@ -47,6 +47,34 @@ def free_port(address: str = "127.0.0.1") -> int:
         return s.getsockname()[1]
 
 
+def scene_source(scene: str | None, fidelity: str | None = "fast") -> tuple[Path, str]:
+    """The workbench's scene file and its text, the scene loaded once to check it.
+
+    Parameters
+    ----------
+    scene : str or None
+        A scene file or a bundled scene's name (None: the bundled default scene).
+    fidelity : str or None, optional
+        The preset the page starts at (None: the scene's).
+
+    Returns
+    -------
+    tuple
+        (its path, its TOML text).
+
+    Raises
+    ------
+    InputError
+        A scene that is not there or does not load, or a fidelity that is not a preset.
+    """
+    path = Path(find_scene(scene) if scene is not None else default_scene_path())
+    load_scene(path)                   # a bad scene is the user's mistake: say so first
+    text = read_text(path, "scene", "a scene file (.toml)")
+    if fidelity is not None and fidelity not in PRESETS:
+        raise InputError("--fidelity", fidelity, "one of " + ", ".join(PRESETS))
+    return path, text
+
+
 def workbench_server(scene: str | None = None, *, port: int | None = None,
                      address: str = "127.0.0.1", fidelity: str | None = "fast",
                      runner: Runner | None = None) -> Server:
@@ -76,18 +104,14 @@ def workbench_server(scene: str | None = None, *, port: int | None = None,
         A scene that is not there or does not load, a fidelity that is not a preset,
         a port out of range.
     """
-    path = find_scene(scene) if scene is not None else default_scene_path()
-    load_scene(path)                   # a bad scene is the user's mistake: say so first
-    text = read_text(Path(path), "scene", "a scene file (.toml)")
-    if fidelity is not None and fidelity not in PRESETS:
-        raise InputError("--fidelity", fidelity, "one of " + ", ".join(PRESETS))
+    path, text = scene_source(scene, fidelity)
     if port is None or port == 0:
         port = free_port(address)
     if not 0 < port < 65536:
         raise InputError("--port", port, "a port number from 1 to 65535")
     settings.resources.set_value("server")       # BokehJS from this server, never a CDN
     runner = runner or Runner()
-    app = Application(FunctionHandler(make_document(text, Path(path).stem, str(path), runner,
+    app = Application(FunctionHandler(make_document(text, path.stem, str(path), runner,
                                                     fidelity)))
     hosts = [f"{address}:{port}"] + ([f"localhost:{port}"] if address == "127.0.0.1" else [])
     server = Server({"/": app}, port=port, address=address, allow_websocket_origin=hosts)
