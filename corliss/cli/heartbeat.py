@@ -56,7 +56,7 @@ class Heartbeat(logging.Handler):
         self._shown = False
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
-        self._listener = None
+        self._listener: _CompileListener | None = None
 
     # --- what is going on --------------------------------------------------------------
     def emit(self, record: logging.LogRecord) -> None:

@@ -62,8 +62,8 @@ def balance_failure(summary: dict) -> str | None:
         # a small difference itself, and the run reports no water rate to trust
         return None
     tol = balance_tolerance(float(summary["convergence_tolerance"]))
-    errors = {k: summary.get(k) for k in ("mass_balance_error", "energy_balance_error")}
-    errors = {k: float(v) for k, v in errors.items() if v is not None}
+    found = {k: summary.get(k) for k in ("mass_balance_error", "energy_balance_error")}
+    errors = {k: float(v) for k, v in found.items() if v is not None}
     if not errors:
         return None
     worst = max(errors, key=lambda k: errors[k] if errors[k] == errors[k] else float("inf"))

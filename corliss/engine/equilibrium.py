@@ -113,15 +113,16 @@ def _open_step(steam: Steam, st: State, m: float, V1: float, res: State, dm_w: f
     H = m * st.h + dH_w
     m0 = m
     m += dm_w
+    own: State | None = st      # the end's own state, None when the wall's share decides
     if dm_w != 0.0 or dH_w != 0.0:
         # the wall's share at the reservoir's pressure (when it condensed half or more
         # of what the end held, the port fills it whatever the rest's state: what
         # condenses leaves the rest at its own enthalpy)
-        st = steam.ph(res.p, H / m) if m > 0.5 * m0 else None
-    if st is not None and V1 * st.rho <= m:    # shrinking: outflow at own state
-        m1 = V1 * st.rho
-        return st, m1, m1 - m, st.h * (m1 - m)
-    h1 = st.h if st is not None else res.h
+        own = steam.ph(res.p, H / m) if m > 0.5 * m0 else None
+    if own is not None and V1 * own.rho <= m:    # shrinking: outflow at own state
+        m1 = V1 * own.rho
+        return own, m1, m1 - m, own.h * (m1 - m)
+    h1 = own.h if own is not None else res.h
     try:
         for _ in range(30):
             s1 = steam.ph(res.p, h1)
@@ -307,14 +308,14 @@ def run_cycles(steam: Steam, theta: np.ndarray, volumes: tuple[np.ndarray, np.nd
     states = []
     for V in volumes:   # start each end full of exhaust steam
         states.append((exhaust, V[0] * exhaust.rho))
-    traces = []
+    traces: list[tuple[EndTrace, ...]] = []
     w_prev = None
     n_max = cycles if cycles is not None else max_cycles * (3 if walls else 1)
     converged = None
     dT_scale = max(chest.T - exhaust.T, 1.0)
     for k in range(1, n_max + 1):
         out = []
-        start = [(w.T_deep + w.dT, w.film) for w in walls] if walls else None
+        start = [(w.T_deep + w.dT, w.film) for w in walls] if walls else []
         for j in range(2):
             if walls:
                 walls[j].begin_cycle()

@@ -245,8 +245,10 @@ def _start_reachable(scene) -> None:
         proc = subprocess.Popen([sys.executable, "-c", REACHABLE_COMMAND],
                                 stdin=subprocess.PIPE, stdout=subprocess.DEVNULL,
                                 stderr=subprocess.DEVNULL, start_new_session=True)
-        proc.stdin.write(data)
-        proc.stdin.close()
+        stdin = proc.stdin
+        assert stdin is not None        # opened as a pipe above
+        stdin.write(data)
+        stdin.close()
     except Exception as exc:       # noqa: BLE001 - a convenience: the run goes on without it
         log.debug("no background process for the other kernels: %s", exc)
         return
@@ -296,8 +298,10 @@ def prepare(scene) -> None:
         return
     if jacobian:
         try:
-            builder.stdin.write(_network_pickle(scene))
-            builder.stdin.close()
+            pipe = builder.stdin
+            assert pipe is not None     # opened as a pipe when jacobian
+            pipe.write(_network_pickle(scene))
+            pipe.close()
         except OSError as exc:     # the second process gone: it builds no table either
             log.debug("the second process took no network: %s", exc)
     try:

@@ -142,6 +142,8 @@ def parse_load(t: Table, speed_rad_s: float, scene_dir: Path | None) -> LoadSpec
                          t.raw("torque", t.raw("power", None)), "a load of zero or more")
     law = t.choice("speed_law", tuple(SPEED_LAWS), "constant")
     kind = t.choice("kind", ("constant", "step", "ramp", "schedule"), "constant")
+    times: tuple[float, ...]
+    fracs: tuple[float, ...]
     if kind == "constant":
         times, fracs = (0.0, 1.0), (1.0, 1.0)
     elif kind == "step":
@@ -187,18 +189,19 @@ def _read_schedule(t: Table, scene_dir: Path | None):
     if not rows or not {"time_s", "load_fraction"} <= {h.strip() for h in header}:
         raise InputError(key, name, "a CSV with a header row naming the columns time_s and "
                          "load_fraction, and at least one row below it")
-    times, fracs = [], []
+    times: list[float] = []
+    fracs: list[float] = []
     for line, row in rows:
         row = {(k or "").strip(): v for k, v in row.items()}
-        cells = (row.get("time_s"), row.get("load_fraction"))
-        if any(c is None or not str(c).strip() for c in cells):
+        t_cell, f_cell = row.get("time_s"), row.get("load_fraction")
+        if t_cell is None or f_cell is None or not t_cell.strip() or not f_cell.strip():
             raise InputError(key, name, f"a time and a load fraction on every row; line "
                              f"{line} has too few cells")
         try:
-            tv, fv = float(cells[0]), float(cells[1])
+            tv, fv = float(t_cell), float(f_cell)
         except ValueError:
             raise InputError(key, name, f"numbers on every row; line {line} has "
-                             f"{cells[0]!r}, {cells[1]!r}") from None
+                             f"{t_cell!r}, {f_cell!r}") from None
         if not (math.isfinite(tv) and math.isfinite(fv)):
             raise InputError(key, name, f"finite numbers; line {line} has {tv}, {fv}")
         if not 0.0 <= tv <= units.RANGES["time"][1]:

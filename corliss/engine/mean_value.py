@@ -28,6 +28,7 @@ import time
 import numpy as np
 import pandas as pd
 
+from corliss.engine.ivp_events import terminal_event
 from corliss.engine.kernels.governor import governor_motion
 from corliss.engine.model import at_knob, geometry_of, steady_scene
 from corliss.governors.operating_point import OperatingPoint, find_operating_point
@@ -222,7 +223,7 @@ def run_mean_value(scene, *, progress=None) -> TransientResult:
 
     def stalled(t, y):
         return y[1] - 0.05 * w_ref
-    stalled.terminal, stalled.direction = True, -1
+    terminal_event(stalled, -1)
     # scipy at its one point of use: every run imports this module through
     # corliss.engine.simulate, and only the mean-value model integrates with scipy
     from scipy.integrate import solve_ivp

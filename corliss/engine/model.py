@@ -344,6 +344,7 @@ def assemble(scene, *, tabulated: bool = True) -> Model:
     lp_events = None
     if scene.compound is not None:
         lp_geo = lp_geometry_of(scene)
+        assert lp_geo is not None       # a compound has its low-pressure cylinder
         lp_events = valve_events(build_lp_gear(scene), lambda t: float(lp_geo.fraction(t)))
     return Model(scene, steam, chest, exhaust, geo, gear, pm, ev, lp_events)
 

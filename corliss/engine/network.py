@@ -584,7 +584,7 @@ class Network:
     def _column_colors(self) -> tuple[np.ndarray, np.ndarray]:
         """:meth:`column_colors`, found."""
         nv = self.n_nodes
-        nbr = [set() for _ in range(nv)]
+        nbr: list[set[int]] = [set() for _ in range(nv)]
         for a, b in zip(self.e_a, self.e_b):
             if a >= 0 and b >= 0:
                 nbr[a].add(b)

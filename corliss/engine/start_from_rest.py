@@ -24,6 +24,7 @@ import math
 
 import numpy as np
 
+from corliss.engine.ivp_events import terminal_event
 from corliss.engine.kernels import loop
 from corliss.engine.kernels.properties import PR_ROWS
 
@@ -101,7 +102,7 @@ def start_from_rest(y0: np.ndarray, theta0: float, omega_run: float, net, tier, 
 
     def fast_enough(t, Y):
         return Y[1 + i_w] - HANDOVER_FRACTION * omega_run
-    fast_enough.terminal, fast_enough.direction = True, 1
+    terminal_event(fast_enough, 1)
 
     # scipy here, where it is used: every transient run imports this module, and only a
     # start from rest integrates with it (scipy costs a third of a second to import)
@@ -123,7 +124,7 @@ def start_from_rest(y0: np.ndarray, theta0: float, omega_run: float, net, tier, 
 
             def dead_centre(t, Y):
                 return Y[0] - theta_dc
-            dead_centre.terminal, dead_centre.direction = True, 1
+            terminal_event(dead_centre, 1)
             t1 = sol.t[-1]
             sol = solve_ivp(rhs, (t1, t1 + t_max), Y, method="LSODA", rtol=rtol,
                             atol=np.concatenate([[1e-9], atol]), events=dead_centre)

@@ -395,7 +395,8 @@ class ConductionGrid:
         self.g = [k / w for w in widths]
         #: the nodes' temperatures less the held node's [K] (0 .. n-1)
         self.theta = [0.0] * n
-        self._ab = None
+        #: the elimination's (a, b) of each node, set by :meth:`surface_terms`
+        self._ab: list[tuple[float, float]] = []
 
     def surface_terms(self, dt: float) -> tuple[float, float, float]:
         """The surface's lumped equivalent over a step, from the grid below it.
@@ -414,7 +415,7 @@ class ConductionGrid:
         """
         n = len(self.theta)
         a, b = 0.0, 0.0
-        ab = [None] * n
+        ab = [(0.0, 0.0)] * n           # node 0's pair is never read
         for i in range(n - 1, 0, -1):
             cd = self.C[i] / dt
             D = cd + self.g[i - 1] + self.g[i] * (1.0 - b)
@@ -518,7 +519,7 @@ class IdealPortWall:
         #: the share of the steam the last open step let out [-] (its sweep is taken at
         #: the next step's start, :meth:`exchange`)
         self.outflow = 0.0
-        self._hist = None
+        self._hist: tuple[float, float] | None = None
         #: the conduction grid under the surface, or None for the lumped node
         self.grid = ConductionGrid(omega_rad_s, grid_nodes) if grid_nodes else None
         self.begin_cycle()
@@ -526,7 +527,7 @@ class IdealPortWall:
     def begin_cycle(self) -> None:
         """Restart the cycle's quadratures and records."""
         self.Q = self.Q_to_wall = self.Q_sat = self.Q_conv = self.hA = 0.0
-        self.records = []
+        self.records: list[tuple[float, ...]] = []
 
     def record(self) -> None:
         """Keep the surface temperature [K], the film [kg] and the heats so far [J]."""
@@ -590,7 +591,7 @@ class IdealPortWall:
                         else (-0.5 * m * lat_c / dt if not open_ else -math.inf)),
                   "m": (hm, Tsat, (1.0 - x) * m * self.L / dt),
                   "c": (hv, T, None)}
-        fixed = {}
+        fixed: dict[str, float] = {}
         for _ in range(3):
             num, den = cA * Tw + gA * T_under, cA + gA
             for key, (h, t, _cap) in limits.items():

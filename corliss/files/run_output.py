@@ -36,13 +36,14 @@ import time
 import tomllib
 from importlib.metadata import PackageNotFoundError
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 try:
     import fcntl
 except ImportError:  # pragma: no cover - not a POSIX system
-    fcntl = None
+    fcntl = None  # type: ignore[assignment]  # no POSIX locks here: the lock is skipped
 
 from corliss import __version__, plot
 from corliss.plot.shape import one_shape
@@ -296,7 +297,7 @@ def _meta_run(run: object, base, key: str, edited: bool):
                                    and base.mode == "steady"):
         raise InputError(f"{key}.cycles", _short(cycles), "null, or in a steady run a whole "
                          f"number of cycles from 1 to {limits.MAX_CYCLES}")
-    times = {}
+    times: dict[str, float | None] = {}
     for n in ("duration_s", "max_duration_s"):
         v = run[n]
         ok = (v is None and (base.mode != "transient" or n != "duration_s")) or (
@@ -308,8 +309,10 @@ def _meta_run(run: object, base, key: str, edited: bool):
         times[n] = None if v is None else float(v)
     if type(run["until_settled"]) is not bool:
         raise InputError(f"{key}.until_settled", _short(run["until_settled"]), "true or false")
-    if run["until_settled"] and (times["max_duration_s"] is None
-                                 or times["max_duration_s"] < times["duration_s"]):
+    duration_s, max_duration_s = times["duration_s"], times["max_duration_s"]
+    # a transient run (the only kind with a max_duration_s) always has its duration_s
+    if run["until_settled"] and (max_duration_s is None or (
+            duration_s is not None and max_duration_s < duration_s)):
         raise InputError(f"{key}.max_duration_s", times["max_duration_s"], "a time at least "
                          "the duration in a run until settled")
     return dataclasses.replace(base, fidelity=fidelity, cycles=cycles,
@@ -687,6 +690,13 @@ class OutputFiles:
             raise
         return self
 
+    @property
+    def _staging(self) -> Path:
+        """The staging folder, made on entering the ``with`` block."""
+        if self._tmp is None:
+            raise RuntimeError("OutputFiles staged a file outside its with block")
+        return self._tmp
+
     def stage(self, name: str) -> Path:
         """Where to write a file of the run, staged until the block ends.
 
@@ -703,7 +713,7 @@ class OutputFiles:
         """
         plain_name(name, "output file")
         self.files[name] = self.out_dir / name
-        return self._tmp / name
+        return self._staging / name
 
     def retire(self, names) -> None:
         """Files of an earlier run that this run's set does not replace, to be removed
@@ -730,7 +740,7 @@ class OutputFiles:
             raise
         finally:
             try:
-                shutil.rmtree(self._tmp, ignore_errors=True)
+                shutil.rmtree(self._staging, ignore_errors=True)
                 if exc_type is not None:
                     self._remove_created()
             finally:
@@ -746,7 +756,7 @@ class OutputFiles:
         backups: dict[str, Path] = {}
         for name, target in self.files.items():
             if os.path.lexists(target):
-                backup = self._tmp / f".{name}.before"
+                backup = self._staging / f".{name}.before"
                 try:
                     os.link(target, backup, follow_symlinks=False)
                 except OSError:       # a file system without hard links
@@ -755,29 +765,29 @@ class OutputFiles:
         stale = [n for n in self.retired if n not in self.files
                  and os.path.lexists(self.out_dir / n)
                  and not ((self.out_dir / n).is_dir() and not (self.out_dir / n).is_symlink())]
-        part = self._tmp / (JOURNAL + ".part")
+        part = self._staging / (JOURNAL + ".part")
         part.write_text(json.dumps({"files": list(self.files), "retire": stale}),
                         encoding="utf-8")
-        os.replace(part, self._tmp / JOURNAL)
+        os.replace(part, self._staging / JOURNAL)
         moved, aside = [], []
         with _signals_held():
             try:
                 for name, target in self.files.items():
-                    os.replace(self._tmp / name, target)
+                    os.replace(self._staging / name, target)
                     moved.append(name)
                 for name in stale:
                     # moved aside into the staging folder, removed with it
-                    os.replace(self.out_dir / name, self._tmp / f".{name}.retired")
+                    os.replace(self.out_dir / name, self._staging / f".{name}.retired")
                     aside.append(name)
             except BaseException:
                 for name in aside:
-                    os.replace(self._tmp / f".{name}.retired", self.out_dir / name)
+                    os.replace(self._staging / f".{name}.retired", self.out_dir / name)
                 for name in moved:
                     if name in backups:
                         os.replace(backups[name], self.files[name])
                     else:
                         self.files[name].unlink(missing_ok=True)
-                (self._tmp / JOURNAL).unlink(missing_ok=True)
+                (self._staging / JOURNAL).unlink(missing_ok=True)
                 self._remove_created()
                 raise
 
@@ -943,7 +953,8 @@ def plot_result(result, kind: str, ax=None, units_system: str | None = None) -> 
 
 def _figures(result) -> list[tuple[str, tuple[float, float]]]:
     if result.kind == "steady":
-        figs = [("card", (9, 5.5)), ("effort", (9, 4.5))]
+        figs: list[tuple[str, tuple[float, float]]] = [("card", (9, 5.5)),
+                                                       ("effort", (9, 4.5))]
         if result.scene.compound is not None:
             figs.append(("lp_card", (9, 5.5)))
         return figs
@@ -1014,7 +1025,7 @@ def write(result, out_dir, plots: bool = True) -> dict[str, Path]:
             for kind, size in _figures(result):
                 # a one-axes figure is drawn on a Figure of its own (no pyplot, no
                 # backend); a figure of several axes is made by its plot function
-                fig = Figure(figsize=size) if size[0] else None
+                fig: Any = Figure(figsize=size) if size[0] else None
                 ax = fig.add_subplot() if fig is not None else None
                 try:
                     with plt.ioff():

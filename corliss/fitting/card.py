@@ -290,7 +290,7 @@ def parse_card(text: str, *, barometer_Pa: float = units.STANDARD_ATMOSPHERE_Pa,
                              f"line {line}")
         return v
 
-    columns: dict[str, dict[str, tuple[int, str]]] = {}
+    columns: dict[str, dict[str, tuple[int, str, str]]] = {}
     long = "end" in kinds
     for i, ((_, unit, end), kind) in enumerate(zip(parsed, kinds)):
         if kind == "end":

@@ -139,10 +139,11 @@ import numpy as np
 
 from corliss.keys import units
 from corliss.engine.options import PRESETS
+from corliss.engine.result import Result
 from corliss.engine.simulate import simulate
 from corliss.errors import InputError, RunError
 from corliss.fitting.card import MeasuredCard
-from corliss.scene.loader import scene_from_dict
+from corliss.scene.loader import Scene, scene_from_dict
 from corliss.keys.edits import KeyRange, get_key, parse_value, with_keys
 
 log = logging.getLogger(__name__)
@@ -277,8 +278,8 @@ class FitResult:
         (within a thousandth of the range).
     """
 
-    scene: object
-    fitted_scene: object
+    scene: Scene
+    fitted_scene: Scene
     fitted_data: dict
     card: MeasuredCard
     ranges: list
@@ -293,10 +294,10 @@ class FitResult:
     n_residuals: int
     n_points: int
     simulations: int
-    cycles: int
+    cycles: int | None
     wall_time_s: float
     fidelity: str
-    result: object
+    result: Result
     end_work: dict
     status: str
     standard_errors_classic: dict = field(default_factory=dict)
@@ -906,7 +907,7 @@ def _bootstrap(prob: _Problem, u: np.ndarray, r0: np.ndarray, geo: dict, free: l
     spans = np.array([r.high - r.low for r in prob.ranges])
     n_pts = prob.card.n_points
     own = r0[:n_pts] / prob.P
-    fits = []
+    fits: list[np.ndarray] = []
     for _ in range(samples):
         override = {}
         start = 0
@@ -920,8 +921,7 @@ def _bootstrap(prob: _Problem, u: np.ndarray, r0: np.ndarray, geo: dict, free: l
         else:
             ub = u
         fits.append(ub)
-    fits = np.array(fits)
-    vals = np.array([r.low for r in prob.ranges]) + fits * spans
+    vals = np.array([r.low for r in prob.ranges]) + np.array(fits) * spans
     return {"samples": samples, "seed": seed,
             "standard_errors": {keys[i]: float(np.std(vals[:, i], ddof=1)) if samples > 1
                                 else None for i in free},

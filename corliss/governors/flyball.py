@@ -44,6 +44,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -65,6 +66,18 @@ class SleeveLosses:
     so ``F_f = F x_travel`` and ``c = c_s x_travel^2`` exactly.  It takes no
     constructor parameters of its own.
     """
+
+    if TYPE_CHECKING:
+        # what the mixing dataclasses define (as fields or properties), for the type
+        # checker only: at run time a property here would become their fields' default
+        @property
+        def sleeve_friction_N(self) -> float: ...
+
+        @property
+        def sleeve_damping_N_s_m(self) -> float: ...
+
+        @property
+        def sleeve_travel_m(self) -> float: ...
 
     @property
     def friction(self) -> float:
@@ -137,6 +150,7 @@ class FlyBallGovernor(Governor):
     """
 
     name = "flyball"
+    spec: FlyBallSpec
 
     def __init__(self, spec: FlyBallSpec):
         self.spec = spec
@@ -414,6 +428,8 @@ class SpringGovernor(Governor):
     name = "spring"
     summary = ("spring-loaded fly-balls on bell-cranks (Hartnell, Pickering, Waters; Marks "
                "Art. 97) moving the throttle")
+
+    spec: SpringSpec
 
     def __init__(self, spec: SpringSpec):
         self.spec = spec

@@ -37,7 +37,7 @@ from __future__ import annotations
 
 import logging
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import ClassVar, Protocol
 
 import numpy as np
 
@@ -247,6 +247,22 @@ class Actuator:
     safety_value: float = float("nan")
 
 
+class _GovernorSpec(Protocol):
+    """What :class:`Governor` reads from every spec (read-only; see its docstring)."""
+
+    @property
+    def ratio(self) -> float: ...
+
+    @property
+    def damping(self) -> float: ...
+
+    @property
+    def friction(self) -> float: ...
+
+    @property
+    def actuator(self) -> Actuator: ...
+
+
 class Governor:
     """Base class of a governor: geometry and potential in, common form out.
 
@@ -262,7 +278,7 @@ class Governor:
     #: True when the spin axis is vertical and gravity acts along h.
     vertical_spindle: ClassVar[bool] = True
 
-    spec: object
+    spec: _GovernorSpec
 
     # --- what a governor describes --------------------------------------------------
     def bodies(self, z: np.ndarray) -> list[PointMass]:  # pragma: no cover

@@ -167,6 +167,7 @@ class ShaftGovernor(Governor):
 
     name = "shaft"
     vertical_spindle = False
+    spec: ShaftSpec
 
     def __init__(self, spec: ShaftSpec):
         self.spec = spec

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 from corliss.keys import units
 
@@ -256,16 +257,18 @@ class KeyGroup:
     name: str
     keys: tuple
     doc: str = ""
-
     def __post_init__(self):
-        seen = {}
+        seen: dict[str, Key] = {}
         for k in self.keys:
             if k.name in seen and seen[k.name] != k:
                 raise ValueError(f"{self.name}: key {k.name} declared twice, differently")
             seen[k.name] = k
         object.__setattr__(self, "keys", tuple(seen.values()))
+
+    @cached_property
+    def _by_name(self) -> dict[str, Key]:
         # read by name for every key of every scene a study loads: a dict, not a scan
-        object.__setattr__(self, "_by_name", seen)
+        return {k.name: k for k in self.keys}
 
     def __contains__(self, name: object) -> bool:
         return isinstance(name, str) and name in self._by_name
@@ -307,7 +310,7 @@ def group(name: str, doc: str, *parts) -> KeyGroup:
     KeyGroup
         The group.
     """
-    keys = []
+    keys: list[Key] = []
     for p in parts:
         keys.extend(p.keys if isinstance(p, KeyGroup) else [p])
     return KeyGroup(name, tuple(keys), doc)

@@ -228,10 +228,11 @@ def with_keys(data: dict, values: dict) -> dict:
         for depth, part in enumerate(parts[:-1]):
             if part not in node and depth == len(parts) - 2:
                 node[part] = {}
-            node = node.get(part)
-            if not isinstance(node, dict):
+            below = node.get(part)
+            if not isinstance(below, dict):
                 raise InputError(key, value, "a key of a table the scene has; "
                                  f"{'.'.join(parts[:depth + 1])} is not one")
+            node = below
         node[parts[-1]] = value
     return out
 

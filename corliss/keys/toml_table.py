@@ -279,8 +279,9 @@ class Table:
         if isinstance(raw, list):
             if len(raw) != 2:
                 raise InputError(self.key(key), raw, "one value, or a list [head, crank] of two")
-            return tuple(units.parse(v, kind, self.key(key), barometer_Pa=self.barometer_Pa,
-                                     within=within) for v in raw)
+            head, crank = (units.parse(v, kind, self.key(key), barometer_Pa=self.barometer_Pa,
+                                       within=within) for v in raw)
+            return head, crank
         v = units.parse(raw, kind, self.key(key), barometer_Pa=self.barometer_Pa, within=within)
         return (v, v)
 

@@ -39,7 +39,7 @@ def _value(v) -> str:
 
 
 def _table(data: dict, path: list[str], lines: list[str]) -> None:
-    subs = []
+    subs: list[tuple[str, dict | list]] = []
     for k, v in data.items():
         if isinstance(v, dict):
             subs.append((k, v))

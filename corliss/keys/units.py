@@ -19,8 +19,12 @@ import functools
 import math
 import re
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 from corliss.errors import InputError
+
+if TYPE_CHECKING:  # for annotations only: this module never needs numpy at run time
+    import numpy as np
 
 #: Standard atmosphere [Pa], the default barometer.
 STANDARD_ATMOSPHERE_Pa = 101_325.0
@@ -235,7 +239,7 @@ def is_quantity_object(value: object) -> bool:
             and hasattr(value, "magnitude"))
 
 
-def _from_object(q: object, kind: str, key: str, within) -> float:
+def _from_object(q: Any, kind: str, key: str, within) -> float:
     """A quantity object in SI, converted by ``kind``; the library is never imported
     here: the object converts itself."""
     if kind == "pressure":
@@ -424,7 +428,7 @@ def pressure_to_si(values, unit: str, *, barometer_Pa: float = STANDARD_ATMOSPHE
     raise ValueError(f"unknown pressure unit {unit!r}")
 
 
-def to_unit(value_si: float, unit: str, *, barometer_Pa: float = STANDARD_ATMOSPHERE_Pa):
+def to_unit(value_si: float | np.ndarray, unit: str, *, barometer_Pa: float = STANDARD_ATMOSPHERE_Pa):
     """Convert an SI value (array or float) to ``unit``.
 
     Pressure units with a gauge sense subtract the barometer; ``degF`` and
@@ -460,7 +464,7 @@ def to_unit(value_si: float, unit: str, *, barometer_Pa: float = STANDARD_ATMOSP
     raise ValueError(f"unknown unit {unit!r}")
 
 
-def from_unit(value: float, unit: str, *, barometer_Pa: float = STANDARD_ATMOSPHERE_Pa):
+def from_unit(value: float | np.ndarray, unit: str, *, barometer_Pa: float = STANDARD_ATMOSPHERE_Pa):
     """Convert ``value`` in ``unit`` to SI (the inverse of :func:`to_unit`).
 
     Parameters

@@ -918,11 +918,13 @@ def animate_gear(gear, result=None, *, frames: int = 72, stroke_m: float | None 
     linkage = {"eccentric": _Eccentric, "stephenson": _Stephenson, "walschaerts": _Walschaerts,
                "gooch_allen": _GoochAllen, "radial": _Radial, "travel": _Travel,
                "oscillating": _Oscillating}
+    drawer: _Linkage
     if kind == "corliss":
-        drawer = _Corliss(ax_link, gear, scale, stroke_m, ax_shaft, ax_valves)
+        cd = _Corliss(ax_link, gear, scale, stroke_m, ax_shaft, ax_valves)
         artists["valve_edges"] = [(line, c, b, sn) for line, c, b, sn in
-                                  zip(drawer.v_edges, drawer.v_centres, drawer.base, drawer.sense)]
+                                  zip(cd.v_edges, cd.v_centres, cd.base, cd.sense)]
         ax_shaft.axis("off")
+        drawer = cd
     else:
         drawer = linkage[kind](ax_link, gear, scale, stroke_m)
     moving = list(drawer.moving)
@@ -966,7 +968,7 @@ def animate_gear(gear, result=None, *, frames: int = 72, stroke_m: float | None 
         ax_open.spines[side].set_visible(False)
     # the card
     card_lines = {}
-    if has_card:
+    if ax_card is not None:  # has_card
         baro = result.scene.supply.barometer_Pa
         p_unit = "psig" if units_system == "US" else "barg"
         stroke = result.scene.engine.stroke_m

@@ -187,7 +187,7 @@ def _relative_circle(gear, ax, u) -> dict:
     th = np.linspace(0.0, TWO_PI, 1441)
     C, S = gear.zeuner_closing_coefficients()
     xr = units.to_unit(C * np.cos(th) + S * np.sin(th), u)
-    lines = {}
+    lines: dict = {}
     _polar(ax, th, xr, "k", "relative valve circle", lines)
     _polar(ax, th, units.to_unit(gear.main_travel(th), u), "0.6", "main valve circle", lines,
            lw=0.9)
@@ -202,7 +202,7 @@ def _combined_diagram(gear, ax, u) -> dict:
     circle, the cut-off valve's circle and the circle of radius s, which cuts it where
     the cut-off valve closes (E) and opens again (F)."""
     th = np.linspace(0.0, TWO_PI, 1441)
-    lines = {}
+    lines: dict = {}
     _polar(ax, th, units.to_unit(gear.main_travel(th), u), "k", "main valve circle", lines)
     _polar(ax, th, units.to_unit(gear.cutoff_travel(th), u), "0.4", "cut-off valve circle",
            lines, lw=1.0)

@@ -245,7 +245,7 @@ def bilgram_events(gear) -> dict:
     dx, dy = S, -C
     rho, alpha = float(np.hypot(dx, dy)), float(np.arctan2(dy, dx))
     laps, elaps = gear.spec.lap_m, gear.spec.exhaust_lap_m
-    out = {"head": {}, "crank": {}}
+    out: dict[str, dict] = {"head": {}, "crank": {}}
     for end, name, level, rising in POLAR_EVENTS:
         L = level(laps, elaps)
         angle = None

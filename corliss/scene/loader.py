@@ -470,8 +470,9 @@ def _engine(t: Table) -> EngineSpec:
     thickness = t.get("wall_thickness", within=(1e-3, 0.5 * bore))
     leak_model = t.get("leakage_model")
     rates = [t.get(k) for k in ("valve_leak_rate", "piston_leak_rate")]
+    valve_leak, piston_leak = leaks
     spec = EngineSpec(bore, stroke, rod, prd, _pair_fraction(t, "clearance"), mass, f0, f1,
-                      *leaks, model, marks, crank_angles, condensing, jacket, thickness,
+                      valve_leak, piston_leak, model, marks, crank_angles, condensing, jacket, thickness,
                       t.get("steam_ends"), leak_model, *rates)
     t.finish()
     return spec
@@ -721,6 +722,7 @@ def _run(t: Table) -> RunSpec:
         if mode != "transient":
             raise InputError(t.key("until_settled"), until, "a transient run (mode = "
                              "\"transient\"): a steady run always runs until periodic")
+        assert duration is not None     # read above for every transient run
         longest = t.get("max_duration", f"{min(10.0 * duration, limits.MAX_DURATION_S)} s",
                         within=(duration, limits.MAX_DURATION_S))
     t.finish()

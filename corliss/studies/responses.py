@@ -134,6 +134,7 @@ def response_keys(scene) -> tuple[str, ...]:
     keys += list(flatten({"events": scene_events(scene)}))
     if scene.compound is not None:
         lp_geo = lp_geometry_of(scene)
+        assert lp_geo is not None       # a compound has its low-pressure cylinder
         keys += list(flatten({"lp_events": valve_events(build_lp_gear(scene),
                                                        lambda t: float(lp_geo.fraction(t)))}))
     return tuple(dict.fromkeys(keys))

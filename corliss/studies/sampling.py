@@ -213,22 +213,22 @@ def make_design(vary, *, grid: bool = False, levels: int = 3, lhs: int | None = 
     if grid:
         if isinstance(levels, bool) or not isinstance(levels, (int, np.integer)) or levels < 2:
             raise InputError("--levels", levels, "a whole number of levels, 2 or more")
-        specs = []
+        grid_specs: list[KeyValues | KeyRange] = []
         for v in vary:
             rhs = v.split("=", 1)[-1] if isinstance(v, str) else ""
             if "(" in rhs:
                 raise InputError("--vary", v, "LOW:HIGH or a list a,b,c for a grid (a "
                                  "distribution is for --lhs or --monte-carlo)")
-            specs.append(parse_values(v) if "," in rhs else parse_range(v))
-        _distinct(specs)
+            grid_specs.append(parse_values(v) if "," in rhs else parse_range(v))
+        _distinct(grid_specs)
         axes = [quantize(s.values if isinstance(s, KeyValues) else
-                         np.linspace(s.low, s.high, int(levels))) for s in specs]
+                         np.linspace(s.low, s.high, int(levels))) for s in grid_specs]
         n = int(np.prod([len(a) for a in axes], dtype=float))
         if n > MAX_RUNS:
             raise InputError("--levels", levels, f"a grid of at most {MAX_RUNS:,} runs "
                              f"(this one has {n:,})")
         values = np.array(list(itertools.product(*axes)), dtype=float)
-        return Design("grid", tuple(specs), values.reshape(n, len(specs)), None)
+        return Design("grid", tuple(grid_specs), values.reshape(n, len(grid_specs)), None)
     specs = []
     for v in vary:
         rhs = v.split("=", 1)[-1] if isinstance(v, str) else ""
@@ -238,7 +238,8 @@ def make_design(vary, *, grid: bool = False, levels: int = 3, lhs: int | None = 
         specs.append(parse_distribution(v))
     _distinct(specs)
     if seed is None:
-        seed = int(np.random.SeedSequence().entropy % (2 ** 32))
+        entropy: int = np.random.SeedSequence().entropy  # type: ignore[assignment]  # a fresh sequence's entropy is an int
+        seed = int(entropy % (2 ** 32))
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
         raise InputError("--seed", seed, "a whole number, 0 or more")
     rng = np.random.default_rng(int(seed))

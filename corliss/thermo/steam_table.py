@@ -56,7 +56,7 @@ import time
 import zipfile
 from dataclasses import dataclass
 from pathlib import Path
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 from numba import njit
@@ -254,8 +254,8 @@ def _fields_of(doc: str, fields: tuple) -> str:
         "    " + line for e in kept for line in e.split("\n")) + "\n"
 
 
-TableArrays.__doc__ = (TableArrays.__doc__.rstrip() + "\n"
-                       + _fields_of(SteamTable.__doc__, TableArrays._fields) + "    ")
+TableArrays.__doc__ = ((TableArrays.__doc__ or "").rstrip() + "\n"
+                       + _fields_of(SteamTable.__doc__ or "", TableArrays._fields) + "    ")
 
 
 @njit(cache=True)
@@ -751,19 +751,21 @@ def _build(params: dict) -> dict:
     TT = np.empty_like(q)
     for i, lr in enumerate(lnrho):
         rho = math.exp(lr)
-        us, ps, ts = [], [], []
+        u_list: list[float] = []
+        p_list: list[float] = []
+        t_list: list[float] = []
         for T in T_row:
             try:
                 gas.update(CP.DmassT_INPUTS, rho, T)
                 p, uu = gas.p(), gas.umass()
             except ValueError:
                 continue
-            if not (p > 0 and math.isfinite(uu)) or (us and uu <= us[-1]):
+            if not (p > 0 and math.isfinite(uu)) or (u_list and uu <= u_list[-1]):
                 continue
-            us.append(uu)
-            ps.append(p / rho)
-            ts.append(T)
-        us, ps, ts = np.array(us), np.array(ps), np.array(ts)
+            u_list.append(uu)
+            p_list.append(p / rho)
+            t_list.append(T)
+        us, ps, ts = np.array(u_list), np.array(p_list), np.array(t_list)
         # below the lowest valid metastable point, extend with the lowest slope
         q[i] = np.interp(u_grid, us, ps)
         TT[i] = np.interp(u_grid, us, ts)
@@ -972,13 +974,13 @@ def _kappa_grid(k_lnrho: np.ndarray, k_u: np.ndarray) -> np.ndarray:
         ok = np.nonzero(np.isfinite(col))[0]
         if ok.size == 0:
             continue
-        for i in np.nonzero(~np.isfinite(col))[0]:
-            col[i] = col[ok[np.argmin(np.abs(ok - i))]]
+        for bad in np.nonzero(~np.isfinite(col))[0]:
+            col[bad] = col[ok[np.argmin(np.abs(ok - bad))]]
     for i in range(k_lnrho.size):     # a column with none at all: the nearest energy
         row = kap[i]
         ok = np.nonzero(np.isfinite(row))[0]
-        for j in np.nonzero(~np.isfinite(row))[0]:
-            row[j] = row[ok[np.argmin(np.abs(ok - j))]]
+        for bad in np.nonzero(~np.isfinite(row))[0]:
+            row[bad] = row[ok[np.argmin(np.abs(ok - bad))]]
     return kap
 
 
@@ -1026,12 +1028,12 @@ def measure_error(table: SteamTable, n: int = 4000, seed: int = 0) -> dict:
         rho.append(heos.rhomass())
         u.append(heos.umass())
         ref.append((heos.p(), heos.T(), x))
-    ref = np.array(ref)
+    want = np.array(ref)
     p, T, x = lookup_many(table.arrays(), np.array(rho), np.array(u))
     return {"states": n,
-            "max_rel_error_p": float(np.max(np.abs(p / ref[:, 0] - 1))),
-            "max_rel_error_T": float(np.max(np.abs(T / ref[:, 1] - 1))),
-            "max_abs_error_dryness": float(np.max(np.abs(x - ref[:, 2]))),
+            "max_rel_error_p": float(np.max(np.abs(p / want[:, 0] - 1))),
+            "max_rel_error_T": float(np.max(np.abs(T / want[:, 1] - 1))),
+            "max_abs_error_dryness": float(np.max(np.abs(x - want[:, 2]))),
             "range": "0.007-25 bar, dryness 0.5-1, superheat 0-300 K"}
 
 
@@ -1112,9 +1114,10 @@ _SCALARS = ("lnrho0", "dlnrho", "u0", "du", "sT0", "sdT", "k_lnrho0", "k_dlnrho"
 def _table_of(arrays: dict, error: dict) -> SteamTable:
     """A :class:`SteamTable` of the arrays read from a file (its scalars as floats, its
     arrays contiguous float64, as the compiled lookup takes them)."""
-    return SteamTable(error=error, **{
+    fields: dict[str, Any] = {
         k: (float(v) if k in _SCALARS else np.ascontiguousarray(v, dtype=np.float64))
-        for k, v in arrays.items()})
+        for k, v in arrays.items()}
+    return SteamTable(error=error, **fields)
 
 
 def write_mini_table(path: Path = MINI_FILE) -> Path:
@@ -1137,8 +1140,8 @@ def write_mini_table(path: Path = MINI_FILE) -> Path:
     """
     built = _build(MINI_PARAMS)
     built.pop("kappa")
-    np.savez_compressed(path, params=np.array(json.dumps(MINI_PARAMS)),
-                        **{k: np.asarray(v) for k, v in built.items()})
+    saved: dict[str, Any] = {k: np.asarray(v) for k, v in built.items()}
+    np.savez_compressed(path, params=np.array(json.dumps(MINI_PARAMS)), **saved)
     return Path(path)
 
 

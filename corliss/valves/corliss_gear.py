@@ -579,7 +579,7 @@ class CorlissGear(ValveGear):
     def _released_opening(self) -> tuple:
         """The steam valves' latched openings at release (head, crank) [m], at the
         gear's own setting (0 at the safety cam; None for an end not released)."""
-        out = []
+        out: list[float | None] = []
         for w, rel in zip(self._geom["windows"], self.release_angle_rad()):
             if rel is None:
                 out.append(None)
@@ -589,7 +589,7 @@ class CorlissGear(ValveGear):
 
     def _release_at(self, s: float):
         from scipy.optimize import brentq
-        out = []
+        out: list[float | None] = []
         for w in self._geom["windows"]:
             if s > 1.0:
                 out.append(None)
@@ -722,9 +722,12 @@ class CorlissGear(ValveGear):
         frames = ((2 * math.pi / 3, 1.0, s.steam, psi), (-2 * math.pi / 3, -1.0, s.exhaust, -psi),
                   (math.pi / 3, -1.0, s.steam, -psi), (-math.pi / 3, 1.0, s.exhaust, psi))
         studs, arms, spindles, senses = [], [], [], []
-        rods = {"eccentric": (r, "shaft", "eccentric"), "hook rod": (s.hook_rod_m, "eccentric",
-                                                                      "hook_pin"),
-                "plate arm": (R, "plate_centre", "hook_pin")}
+        # each rod: (length, the joint at one end, the joint at the other), a joint named
+        # or given as (its list, its index)
+        rods: dict[str, tuple[float, str | tuple[str, int], str | tuple[str, int]]] = {
+            "eccentric": (r, "shaft", "eccentric"),
+            "hook rod": (s.hook_rod_m, "eccentric", "hook_pin"),
+            "plate arm": (R, "plate_centre", "hook_pin")}
         for i, (phi, m, ch, u) in enumerate(frames):
             c, sn = math.cos(phi), math.sin(phi)
 

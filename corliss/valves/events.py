@@ -78,7 +78,8 @@ def sampled_crossings(gear: ValveGear, levels: np.ndarray) -> tuple[list, np.nda
     flat = np.flatnonzero(above[:, :, 1:] != above[:, :, :-1])
     ports, rest = np.divmod(flat, levels.shape[1] * _SAMPLES)
     levs, idx = np.divmod(rest, _SAMPLES)
-    out = [[[] for _ in range(levels.shape[1])] for _ in range(4)]
+    out: list[list[list[tuple[float, bool]]]] = [[[] for _ in range(levels.shape[1])]
+                                                 for _ in range(4)]
     if not ports.size:
         return out, s[:, :_SAMPLES]
     rising = above[ports, levs, idx + 1]

@@ -473,13 +473,15 @@ class PorterAllenSpec:
     def arm_angles_rad(self) -> tuple[float, float]:
         """beta of the (head, crank) valve arm: square to its stem as the edge crosses
         the port [rad]."""
-        return tuple(math.asin(lam / self.valve_arm_m) for lam in self.steam_lap_m)
+        head, crank = (math.asin(lam / self.valve_arm_m) for lam in self.steam_lap_m)
+        return head, crank
 
     @property
     def equivalent_lap_m(self) -> tuple[float, float]:
         """The laps as seen at the radius rod's end, R_d sin(beta) [m]: where the Zeuner
         diagram of the steam motion is cut."""
-        return tuple(self.drive_arm_m * math.sin(b) for b in self.arm_angles_rad)
+        head, crank = (self.drive_arm_m * math.sin(b) for b in self.arm_angles_rad)
+        return head, crank
 
 
 class PorterAllenGear(ValveGear):

@@ -14,6 +14,7 @@ Port order everywhere: head steam, head exhaust, crank steam, crank exhaust.
 from __future__ import annotations
 
 import dataclasses
+from typing import Any, Callable, cast
 
 import numpy as np
 
@@ -39,6 +40,8 @@ class ValveGear:
     #: What a reverse lever or governor moves, in its natural normalised form, or None.
     setting_name: str | None = None
     setting_range: tuple[float, float] | None = None
+    #: The gear's frozen spec dataclass; each subclass sets (and may narrow) it.
+    spec: Any
 
     def with_setting(self, value: float) -> "ValveGear":
         """The same gear at another setting of its reverse lever or governor.
@@ -70,7 +73,9 @@ class ValveGear:
     def _at_setting(self, value: float) -> "ValveGear":
         """The gear rebuilt at a setting already checked: by default its spec's
         ``setting`` field replaced; a gear whose setting moves other fields overrides."""
-        return type(self)(dataclasses.replace(self.spec, setting=value))
+        # every gear's constructor takes its spec, which the base class cannot declare
+        rebuild = cast(Callable[[Any], ValveGear], type(self))
+        return rebuild(dataclasses.replace(self.spec, setting=value))
 
     def signed_openings(self, theta: np.ndarray) -> np.ndarray:  # pragma: no cover
         """Signed opening of each port: how far the controlling edge has passed the

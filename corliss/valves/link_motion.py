@@ -438,6 +438,7 @@ def _gooch_allen_points(spec: LinkMotionSpec, u: float, theta: np.ndarray) -> di
     xm, a = newton2(residual, xm, a, 1e-7 * g, 1e-7, 1e-14 * g, 1e-14)
     out = {}
     if gooch:                       # the block: where the arc (shaft side) meets y = yb
+        assert rho is not None      # a Gooch link's radius, set above
         kx, ky = xm + rho * np.cos(a), ym + rho * np.sin(a)
         px = kx - np.sqrt(rho * rho - (yb - ky) ** 2)
         out["link_centre"] = np.array([kx, ky])

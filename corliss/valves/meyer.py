@@ -138,7 +138,8 @@ class MeyerSpec:
             s of the (head, crank) end [m]; it may be zero or negative at wide
             spacings, for the earliest cut-offs (Art. 142).
         """
-        return tuple(self.blocks_together_lap_m - y for y in self.half_spacing(setting))
+        head, crank = (self.blocks_together_lap_m - y for y in self.half_spacing(setting))
+        return head, crank
 
     def relative_coefficients(self) -> tuple[float, float]:
         """The relative valve circle, ``x_r = C cos(theta) + S sin(theta)`` (Art. 128).

@@ -59,6 +59,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -267,7 +268,7 @@ def oscillating_joints(spec: OscillatingSpec, theta: float) -> OscillatingJoints
                               "piston rod": (D, "crank_pin", "piston")})
 
 
-_LEN = dict(within=POSITIVE_LENGTH, unit="in")
+_LEN: dict[str, Any] = dict(within=POSITIVE_LENGTH, unit="in")
 OSCILLATING_KEYS = group(
     "oscillating", "An oscillating cylinder: its port face over the standard's ports, in "
     "the trunnion's terms.",

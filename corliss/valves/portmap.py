@@ -139,8 +139,8 @@ def tabulate(gear: ValveGear, n: int = 1440) -> PortMap:
         as breakpoints and the crossing table (from which the events are read).
     """
     table, signed = sampled_crossings(gear, gear.kink_levels())
-    kinks = [t for row in table for lst in row for t, _ in lst]
-    kinks = np.unique(np.round(np.asarray(kinks, dtype=float) % TWO_PI, 12))
+    kink_list = [t for row in table for lst in row for t, _ in lst]
+    kinks = np.unique(np.round(np.asarray(kink_list, dtype=float) % TWO_PI, 12))
     grid = np.union1d(np.linspace(0.0, TWO_PI, n + 1), kinks)
     # drop uniform points closer than 1e-9 rad to a kink (keep the kink itself: the
     # point nearest it), every kink at once

@@ -128,6 +128,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -719,6 +720,7 @@ def _watt(spec: SimpleRadialSpec, G, t, nrm, E, l1):
     """h on the Angstrom gear's parallel motion (Watt's, rod along the guide at i):
     a scalar Newton solve per crank angle for the first radius link's swing."""
     a, b = spec.parallel_link_m, spec.parallel_rod_m
+    assert a is not None and b is not None   # an Angstrom gear's, read with its kind
     t, nrm = np.asarray(t), np.asarray(nrm)
     p1 = G - 0.5 * b * t + a * nrm
     p2 = G + 0.5 * b * t - a * nrm
@@ -1217,11 +1219,13 @@ def parse_radial_gear(t: Table):
     """
     t = t.bound(RADIAL_GEAR_KEYS)
     kind = t.get("kind")
-    common = dict(kind=kind, lap_m=t.get("lap"), exhaust_lap_m=t.get("exhaust_lap"),
-                  setting=_setting(t), motion=t.get("motion"),
-                  allen_passage_m=parse_allen_passage(t), **parse_ports(t))
+    common: dict[str, Any] = dict(
+        kind=kind, lap_m=t.get("lap"), exhaust_lap_m=t.get("exhaust_lap"),
+        setting=_setting(t), motion=t.get("motion"),
+        allen_passage_m=parse_allen_passage(t), **parse_ports(t))
     if kind != "walschaerts" and t.has("valve_rod"):
         common["valve_rod_m"] = t.get("valve_rod")
+    spec: SimpleRadialSpec | JoySpec | WalschaertsSpec
     if kind in SIMPLE:
         r = t.get("eccentricity")
         l1 = t.get("link")
@@ -1231,7 +1235,7 @@ def parse_radial_gear(t: Table):
             raise InputError(t.key("valve_arm"), t.raw("valve_arm"),
                              "a nonzero distance from the guided end, below the link's length "
                              "(negative: attached outside, beyond the guided end)")
-        extra = {}
+        extra: dict[str, Any] = {}
         if kind == "marshall":
             extra["guide_radius_m"] = _signed_radius(t)
             if extra["guide_radius_m"] is None:

@@ -137,6 +137,7 @@ class SlipEccentric(SlideValve):
     """
 
     name = "slip_eccentric"
+    spec: SlipEccentricSpec
     summary = ("plain slide valve on a slip eccentric with forward and backward stops; "
                "reversed by running backward until the eccentric slips")
 

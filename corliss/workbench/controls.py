@@ -173,7 +173,7 @@ def _sliders(section: str, key: Key, table: dict, system: str, barometer_Pa: flo
         if key.is_quantity else ""
     out = []
     for end in ((0, 1) if key.ends else (None,)):
-        v = per_end[end] if per_end is not None else raw
+        v = per_end[end] if per_end is not None and end is not None else raw
         now = _si(key, v, barometer_Pa)
         start, stop, step = _span(key, now, scale, unit, barometer_Pa)
         shown = float(f"{_shown(key, now, unit, barometer_Pa):.9g}")

@@ -22,10 +22,33 @@ import hashlib
 import logging
 import re
 from pathlib import Path
+from typing import Any, Callable, Generic, ParamSpec, TypeVar
 
 import numba
 
 log = logging.getLogger(__name__)
+
+_P = ParamSpec("_P")
+_R = TypeVar("_R")
+
+
+class Kernel(Generic[_P, _R]):
+    """What :func:`njit` returns, for the type checker: numba's dispatcher, called as
+    the function it compiled, with the attributes of it the package reads.
+
+    Never made: at run time the kernels are numba's dispatchers, called with the
+    compiled function's arguments and returning its value.
+    """
+
+    #: The compiled function's name.
+    __name__: str
+    #: The Python function compiled (run as Python).
+    py_func: Callable[_P, _R]
+    #: numba's disk cache of the function (a private attribute of numba's).
+    _cache: Any
+
+    def __call__(self, *args: _P.args, **kwargs: _P.kwargs) -> _R:  # pragma: no cover
+        raise NotImplementedError
 
 #: The folder of the package ``corliss``.
 PACKAGE_ROOT = Path(__file__).resolve().parents[2]
@@ -170,8 +193,12 @@ def stamp(dispatcher) -> bool:
     return True
 
 
-def njit(**options):
+def njit(**options: Any) -> Callable[[Callable[_P, _R]], Kernel[_P, _R]]:
     """numba's ``njit(**options)``, the cache (``cache=True``) keyed by :func:`stamp`.
+
+    Typed as returning a :class:`Kernel` of the function it compiles: numba's dispatcher
+    takes the same arguments, so a type checker checks the kernels' calls against their
+    signatures (numba itself is untyped here).
 
     Parameters
     ----------
@@ -183,8 +210,8 @@ def njit(**options):
     callable
         The decorator.
     """
-    def decorate(func):
-        dispatcher = numba.njit(**options)(func)
+    def decorate(func: Callable[_P, _R]) -> Kernel[_P, _R]:
+        dispatcher: Kernel[_P, _R] = numba.njit(**options)(func)
         if options.get("cache"):
             stamp(dispatcher)
         return dispatcher
