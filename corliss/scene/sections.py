@@ -148,7 +148,8 @@ RUN = group(
     Key("expansion", "choice", "Expansion law of the ideal card.", default="hyperbolic",
         choices=EXPANSION_LAWS),
     Key("duration", "time", "Simulated time of a transient run, above 0 up to 1 h.",
-        default=None, when="in a transient run (required there)"),
+        default=None, within=(0.0, limits.MAX_DURATION_S),
+        when="in a transient run (required there)"),
     Key("record", "choice", "Time series: every step (transient only), every output step "
         "of crank angle, or once a turn (a steady run's last cycle at every output step).",
         default=Derived("by a transient's length; degree in a steady run"),
@@ -165,7 +166,7 @@ RUN = group(
         "max_duration (transient only).", default=False),
     Key("max_duration", "time", "The longest a run until_settled goes on, from duration up "
         "to 1 h.", default=Derived("10 x duration, at most 1 h"),
-        when="with until_settled = true"),
+        within=(0.0, limits.MAX_DURATION_S), when="with until_settled = true"),
 )
 
 OUTPUT = group(
