@@ -261,6 +261,36 @@ def _drop(doc, key: str) -> None:
         del node[parts[-1]]
 
 
+def _edited_doc(source: str, values: dict, drop=()):
+    """The parsed source with ``values`` set and ``drop`` removed (comments kept)."""
+    doc = tomlkit.parse(source)
+    for key, value in values.items():
+        _set(doc, key, value)
+    for key in drop:
+        _drop(doc, key)
+    return doc
+
+
+def edited(source: str, values: dict) -> str:
+    """The source scene's text with keys set, its units, comments and layout kept.
+
+    Parameters
+    ----------
+    source : str
+        The source scene's TOML text.
+    values : dict
+        ``{dotted key: value}``, each as a scene writes it.  A key that is there
+        keeps its place and its comment; one that is not is added at the end of its
+        table.
+
+    Returns
+    -------
+    str
+        The TOML text.
+    """
+    return tomlkit.dumps(_edited_doc(source, values))
+
+
 def scene_text(source: str, system: str, values: dict | None = None, drop=(),
                header: str = "") -> str:
     """The source scene's text with keys set, in one unit system, comments kept.
@@ -294,11 +324,7 @@ def scene_text(source: str, system: str, values: dict | None = None, drop=(),
     """
     if system not in SYSTEMS:
         raise InputError("--units", system, "US or SI")
-    doc = tomlkit.parse(source)
-    for key, value in (values or {}).items():
-        _set(doc, key, value)
-    for key in drop:
-        _drop(doc, key)
+    doc = _edited_doc(source, values or {}, drop)
     _convert_all(doc, system, "")
     _set(doc, "output.units", system)
     text = tomlkit.dumps(doc)
@@ -308,5 +334,5 @@ def scene_text(source: str, system: str, values: dict | None = None, drop=(),
     return text
 
 
-__all__ = ["ANGLE_DECIMALS", "FIGURES", "FIGURES_ABSOLUTE", "LENGTH_DECIMALS", "SYSTEMS", "TARGET", "converted",
+__all__ = ["ANGLE_DECIMALS", "FIGURES", "FIGURES_ABSOLUTE", "LENGTH_DECIMALS", "SYSTEMS", "TARGET", "converted", "edited",
            "quantity", "rounded", "scene_text", "system_of"]
