@@ -221,20 +221,8 @@ def with_keys(data: dict, values: dict) -> dict:
         ``[engine]`` table; a section the scene lacks is created only when it is
         the key's last level above the name).
     """
-    out = copy.deepcopy(data)
-    for key, value in values.items():
-        parts = key.split(".")
-        node = out
-        for depth, part in enumerate(parts[:-1]):
-            if part not in node and depth == len(parts) - 2:
-                node[part] = {}
-            below = node.get(part)
-            if not isinstance(below, dict):
-                raise InputError(key, value, "a key of a table the scene has; "
-                                 f"{'.'.join(parts[:depth + 1])} is not one")
-            node = below
-        node[parts[-1]] = value
-    return out
+    # the path-copying edit of a whole copy: nothing shared with ``data``
+    return edited(copy.deepcopy(data), values)
 
 
 def edited(data: dict, values: dict) -> dict:
