@@ -38,8 +38,11 @@ from corliss.keys.scene_system import SYSTEMS, quantity, scene_text
 from corliss.keys.toml_text import dumps
 from corliss.valves.design import (SettingDesign, SlideValveDesign, design_setting,
                                    design_slide_valve)
+from corliss.valves.fink_motion import FinkMotionSpec
+from corliss.valves.link_motion import LinkMotionSpec
 from corliss.valves.single_acting import working_gear
-from corliss.valves.slide_valve import LappedValve
+from corliss.valves.slide_valve import LappedValve, SlideValveSpec
+from corliss.valves.slip_eccentric import SlipEccentricSpec
 
 #: The scene keys that hold a gear's setting, when it is not the number ``setting``:
 #: the block's offset as a length (setting x half link).
@@ -184,6 +187,7 @@ class Design:
             ``setting_name``, ``end``, ``cutoff_frac`` and ``asked_deg``.
         """
         v = self.valve
+        out: dict[str, object]      # names, numbers, lists and tables, by the gear
         out = {"base_scene": self.base, "gear": self.scene.gear_type, "events": self.events,
                "warnings": self.warnings, "units_system": self.scene.output.units}
         if isinstance(v, SlideValveDesign):
@@ -312,7 +316,9 @@ def design(scene=None, *, cutoff, cutoff_crank=None, lead=None, max_opening=None
     def frac(t):
         return float(geo.fraction(t))
 
+    valve: SlideValveDesign | SettingDesign
     if base.gear_type in SLIDE_VALVES:
+        assert isinstance(base.gear, SlideValveSpec)    # the registry's spec of either
         valve = design_slide_valve(
             base.gear, frac, cutoff=cutoff, cutoff_crank=cutoff_crank,
             lead_m=_length("lead", lead), max_opening_m=_length("max_opening", max_opening),
@@ -354,7 +360,7 @@ def design(scene=None, *, cutoff, cutoff_crank=None, lead=None, max_opening=None
                                    f"deg, the scene gives {got}")
     system = base.output.units
     stem = f"{output_stem(base)}.design"
-    text = scene_text(base.text if base.text is not None else dumps(base.data), system,
+    text = scene_text(base.text if base.text is not None else dumps(_tables(base)), system,
                       _written_values(base, valve, system),
                       drop=("valve_gear.lead",) if isinstance(valve, SlideValveDesign) else (),
                       header=_header(base, base_name, valve))
@@ -364,6 +370,24 @@ def design(scene=None, *, cutoff, cutoff_crank=None, lead=None, max_opening=None
 
 
 # ---------------------------------------------------------------- the scene's tables
+def _tables(scene: Scene) -> dict:
+    """The scene's tables as read: every scene a design starts from has them."""
+    if scene.data is None:
+        raise InputError("scene", scene.name, "a scene loaded from tables or a file (a "
+                         "design writes its tables back)")
+    return scene.data
+
+
+def _half_link_m(gear: object) -> float:
+    """Half the link of a link motion's or a Fink motion's spec [m]: what the block's
+    offset is in units of."""
+    if isinstance(gear, FinkMotionSpec):
+        return gear.link.half_link_m
+    if isinstance(gear, LinkMotionSpec):
+        return gear.half_link_m
+    raise TypeError(f"{type(gear).__name__} is no link motion")
+
+
 def _unit(scene: Scene) -> str:
     return "in" if scene.output.units == "US" else "mm"
 
@@ -386,6 +410,7 @@ def _designed_tables(base: Scene, valve) -> dict:
         if base.gear_type == "slip_eccentric":
             # the driving stop's advance; the other stop's kept as the scene had it
             g = base.gear
+            assert isinstance(g, SlipEccentricSpec)     # the registry's spec of the type
             ahead = g.direction == "ahead"
             advance = "forward_advance" if ahead else "backward_advance"
             other = g.backward_advance_rad if ahead else g.forward_advance_rad
@@ -399,13 +424,12 @@ def _designed_tables(base: Scene, valve) -> dict:
                   "valve_gear.lap": _pair_q(valve.lap_m, u),
                   "valve_gear.exhaust_lap": _pair_q(valve.exhaust_lap_m, u)}
     elif base.gear_type in BLOCK_KEY:
-        half = (base.gear.link.half_link_m if base.gear_type == "fink_motion"
-                else base.gear.half_link_m)
+        half = _half_link_m(base.gear)
         values = {f"valve_gear.{BLOCK_KEY[base.gear_type]}": _q(valve.setting * half, u)}
     else:
         values = {"valve_gear.setting": float(f"{valve.setting:.12g}")}
-    values["title"] = f"{base.data.get('title', base.title)} (designed)"
-    data = with_keys(base.data, values)
+    values["title"] = f"{_tables(base).get('title', base.title)} (designed)"
+    data = with_keys(_tables(base), values)
     if isinstance(valve, SlideValveDesign):
         data["valve_gear"].pop("lead", None)     # the advance is written instead (exact)
     return data
@@ -423,6 +447,7 @@ def _written_values(base: Scene, valve, system: str) -> dict:
         advance, other = "angular_advance", {}
         if base.gear_type == "slip_eccentric":
             g = base.gear
+            assert isinstance(g, SlipEccentricSpec)     # the registry's spec of the type
             ahead = g.direction == "ahead"
             advance = "forward_advance" if ahead else "backward_advance"
             other = {f"valve_gear.{'backward' if ahead else 'forward'}_advance": quantity(
@@ -433,8 +458,7 @@ def _written_values(base: Scene, valve, system: str) -> dict:
                   "valve_gear.lap": _pair_written(valve.lap_m, system),
                   "valve_gear.exhaust_lap": _pair_written(valve.exhaust_lap_m, system)}
     elif base.gear_type in BLOCK_KEY:
-        half = (base.gear.link.half_link_m if base.gear_type == "fink_motion"
-                else base.gear.half_link_m)
+        half = _half_link_m(base.gear)
         values = {f"valve_gear.{BLOCK_KEY[base.gear_type]}": quantity(valve.setting * half,
                                                                       "length", system)}
     else:
@@ -562,6 +586,8 @@ def write_design(design: Design, out_dir) -> dict:
         else:
             with plt.ioff():
                 fig = plot_gear(gear, units_system=units_system)["figure"]
+            # a gear that is no lapped valve was designed by its setting
+            assert isinstance(design.valve, SettingDesign)
             try:
                 fig.suptitle(f"{design.scene.title}: setting {design.valve.setting:.4f}", fontsize=10)
                 name = f"{stem}.gear.png"

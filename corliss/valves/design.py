@@ -199,9 +199,9 @@ def zeuner_valve(cutoff_rad: float, **known: float) -> tuple[float, float, float
         if gv[k] == 0.0 and k > 0 and gv[k - 1] == 0.0:
             continue
         d = grid[k] if gv[k] == 0.0 else float(brentq(g, grid[k], grid[k + 1], xtol=1e-15))
-        q = _unit_quantities(np.array(d), cutoff_rad)
-        qa = float(q[a])
-        r = va / qa if abs(qa) > 1e-12 else vb / float(q[b])
+        qd = _unit_quantities(np.array(d), cutoff_rad)
+        qa = float(qd[a])
+        r = va / qa if abs(qa) > 1e-12 else vb / float(qd[b])
         if r > 0.0 and math.isfinite(r):
             found.append((r, float(d), r * math.sin(cutoff_rad + d)))
     return min(found) if found else None
@@ -583,7 +583,7 @@ def design_slide_valve(base: SlideValveSpec, piston_fraction: Callable[[float], 
             elaps.append(float(v))
             continue
         if equalise == "laps" and k != ref:
-            elaps.append(None)
+            elaps.append(math.nan)      # the reference end's, below
             continue
         th = crank_angle(piston_fraction, v, end, "out" if kind == "release" else "return")
         x = sign[k] * float(travel(r, d, np.array([th]))[0])
@@ -624,12 +624,12 @@ def design_slide_valve(base: SlideValveSpec, piston_fraction: Callable[[float], 
             if got is None or abs((got - deg + 180.0) % 360.0 - 180.0) > CHECK_DEG:
                 raise RuntimeError(f"design check failed: {end} {key} asked {deg:.6f} deg, "
                                    f"the valve gives {got}")
-    x = gear.travel(np.array([0.5 * math.pi - d, 1.5 * math.pi - d]))
+    xt = gear.travel(np.array([0.5 * math.pi - d, 1.5 * math.pi - d]))
     return SlideValveDesign(
         spec=spec, eccentricity_m=r, angular_advance_rad=d, lap_m=(lh, lc),
         exhaust_lap_m=(elaps[0], elaps[1]),
         lead_m=(ev["head"]["lead_m"], ev["crank"]["lead_m"]),
-        max_opening_m=(float(x[0]) - lh, float(-x[1]) - lc),
+        max_opening_m=(float(xt[0]) - lh, float(-xt[1]) - lc),
         zeuner={"eccentricity_m": r0, "angular_advance_rad": d0, "lap_m": l0},
         asked_deg=asked_deg,
         asked={"cutoff": cut, "equalise": equalise, "reference_end": reference_end,
@@ -724,7 +724,7 @@ def design_setting(gear: ValveGear, piston_fraction: Callable[[float], float], c
     """
     from scipy.optimize import brentq
 
-    if gear.setting_range is None:
+    if gear.setting_range is None or gear.setting_name is None:
         raise InputError("cutoff", cutoff, f"a gear with a setting: the {gear.name} gear has "
                          "none (a plain slide valve is designed by its laps and eccentric)")
     if end not in ("head", "crank", "mean"):
@@ -738,14 +738,20 @@ def design_setting(gear: ValveGear, piston_fraction: Callable[[float], float], c
         raise InputError("bounds", bounds, f"settings within the gear's range [{lo}, {hi}]")
     grid = np.linspace(a, b, samples)
     cut = [_cutoff_of(gear.with_setting(float(s)), piston_fraction, end) for s in grid]
+    def missed(v: float) -> float:
+        c = _cutoff_of(gear.with_setting(v), piston_fraction, end)
+        if c is None:
+            raise RuntimeError(f"the {gear.name} gear admits no steam at setting {v:g}, "
+                               "inside a bracket of the cut-off asked")
+        return c - f
+
     best = None
     for k in range(samples - 1):
         c0, c1 = cut[k], cut[k + 1]
         if c0 is None or c1 is None:
             continue
         if (c0 - f) * (c1 - f) <= 0.0:
-            s = float(brentq(lambda v: _cutoff_of(gear.with_setting(v), piston_fraction, end)
-                             - f, grid[k], grid[k + 1], xtol=1e-10))
+            s = float(brentq(missed, grid[k], grid[k + 1], xtol=1e-10))
             best = s
             break
     if best is None:
