@@ -60,6 +60,14 @@ SCENE_CHECK_DEG = 1e-4
 ROUNDING_WARN_DEG = 0.05
 #: Decimal places of a gear's setting written (a notch or a block to 1e-4 of its range).
 SETTING_DECIMALS = 4
+#: A gear set for the cut-off asked at one end warns when the other end's differs by
+#: more than this fraction of the stroke: the greatest inequality of cut-off between the
+#: strokes that the connecting rod's angularity alone gave Peabody's Stephenson link
+#: (0.067 of the stroke, 1.6 in on a 24 in stroke at L/R 7.5; Peabody, *Link Motion*,
+#: MIT thesis, 1877), so that a larger one is the linkage's own.
+CUTOFF_WARN_FRAC = 0.067
+#: The two ends, in the order of the gear's pairs.
+ENDS = ("head", "crank")
 
 
 @dataclass(frozen=True)
@@ -120,40 +128,61 @@ class Design:
 
         A slide valve is designed for the lead and opening asked at the reference end;
         equal cut-offs with a finite rod then give the other end laps of its own, and
-        with them its own lead and opening.  Warned: an end whose lead is more than
-        twice the asked one and 1/16 in (1.6 mm) beyond it, or less than half of it; an
-        end whose greatest opening passes the port's width by more than a quarter of
-        it (the valve overtravels the port, its travel spent past the port's edge).
+        with them its own lead and opening.  A gear with a setting is set for the
+        cut-off asked at one end (or their mean); its linkage gives the other end the
+        cut-off, lead and opening it does.  Warned: an end whose lead is more than
+        twice the reference end's (the one asked) and 1/16 in (1.6 mm) beyond it, or
+        less than half of it; an end whose greatest opening passes the port's width by
+        more than a quarter of it (the valve overtravels the port, its travel spent
+        past the port's edge); with a setting, the other end's cut-off more than
+        :data:`CUTOFF_WARN_FRAC` of the stroke from the one asked.  Lengths are
+        quoted in the scene's unit system.
 
         Returns
         -------
         list of str
-            One sentence per finding (empty for a design without one, and for a gear's
-            setting).
+            One sentence per finding (empty for a design without one).
         """
         out = self._rounding_warnings()
         v = self.valve
-        if not isinstance(v, SlideValveDesign):
-            return out
-        us = self.scene.output.units == "US"
-        q = (lambda m: f"{units.to_unit(m, 'in'):.3g} in") if us else \
-            (lambda m: f"{m * 1e3:.3g} mm")
-        ref = 0 if v.reference_end == "head" else 1
-        lead0 = v.lead_m[ref]
-        for k, end in enumerate(("head", "crank")):
+        q = _length_quoter(self.scene.output.units)
+        if isinstance(v, SlideValveDesign):
+            ref = 0 if v.reference_end == "head" else 1
+            leads = v.lead_m
+            openings = v.max_opening_m
+            width = getattr(self.scene.gear, "port_width_m", None)
+            widths = (width, width)
+            lead_why = (f"asked at the {v.reference_end} end (equal cut-offs give the ends "
+                        "laps, and so leads, of their own; --equalise laps gives equal laps)")
+        else:
+            ref = 1 if v.end == "crank" else 0
+            ev = (v.events["head"], v.events["crank"])
+            leads = (ev[0]["lead_m"], ev[1]["lead_m"])
+            # the signed opening's greatest: the port's width and the overtravel past it
+            openings = (ev[0]["max_port_opening_m"] + ev[0]["overtravel_m"],
+                        ev[1]["max_port_opening_m"] + ev[1]["overtravel_m"])
+            steam_ports = v.gear.port_widths()
+            widths = (float(steam_ports[0]), float(steam_ports[2]))
+            lead_why = (f"at the {ENDS[ref]} end (the gear's linkage gives each end its "
+                        "own lead at a setting)")
+            if v.end != "mean":
+                k = 1 - ref
+                cut = ev[k]["cutoff_frac"]
+                if cut is not None and abs(cut - v.cutoff_frac) > CUTOFF_WARN_FRAC:
+                    out.append(f"{ENDS[k]} end: cut-off {cut:.3f} of the stroke against the "
+                               f"{v.cutoff_frac:.3f} asked at the {v.end} end (one setting "
+                               "serves both ends; --end mean sets it for their mean)")
+        lead0 = leads[ref]
+        for k, end in enumerate(ENDS):
             if k != ref and lead0 > 0.0 and (
-                    (v.lead_m[k] > 2.0 * lead0 and v.lead_m[k] - lead0 > units.INCH_m / 16.0)
-                    or v.lead_m[k] < 0.5 * lead0):
-                out.append(f"{end} end: lead {q(v.lead_m[k])} against the {q(lead0)} asked "
-                           f"at the {v.reference_end} end (equal cut-offs give the ends laps, "
-                           "and so leads, of their own; --equalise laps gives equal laps)")
-        width = getattr(self.scene.gear, "port_width_m", None)
-        if width:
-            for k, end in enumerate(("head", "crank")):
-                if v.max_opening_m[k] > 1.25 * width:
-                    out.append(f"{end} end: greatest opening {q(v.max_opening_m[k])} on a "
-                               f"{q(width)} port: the valve overtravels the port by "
-                               f"{q(v.max_opening_m[k] - width)}")
+                    (leads[k] > 2.0 * lead0 and leads[k] - lead0 > units.INCH_m / 16.0)
+                    or leads[k] < 0.5 * lead0):
+                out.append(f"{end} end: lead {q(leads[k])} against the {q(lead0)} {lead_why}")
+        for k, end in enumerate(ENDS):
+            w = widths[k]
+            if w and openings[k] > 1.25 * w:
+                out.append(f"{end} end: greatest opening {q(openings[k])} on a {q(w)} port: "
+                           f"the valve overtravels the port by {q(openings[k] - w)}")
         return out
 
     def _rounding_warnings(self) -> list[str]:
@@ -329,7 +358,7 @@ def design(scene=None, *, cutoff, cutoff_crank=None, lead=None, max_opening=None
             release=_fractions("release", release),
             compression=_fractions("compression", compression),
             exhaust_lap_m=_length("exhaust_lap", exhaust_lap), equalise=equalise,
-            reference_end=reference_end)
+            reference_end=reference_end, length_unit=_unit(base))
     else:
         slide_args = {"cutoff_crank": cutoff_crank, "lead": lead, "max_opening": max_opening,
                       "eccentricity": eccentricity, "lap": lap,
@@ -367,6 +396,13 @@ def design(scene=None, *, cutoff, cutoff_crank=None, lead=None, max_opening=None
     written = dataclasses.replace(scene_from_dict(tomllib.loads(text), name=stem), text=text)
     return Design(scene=written, text=text, valve=valve, events=scene_events(written),
                   base=base_name, stem=stem, exact_events=ev)
+
+
+def _length_quoter(system: str):
+    """A length [m] in words in a unit system's unit: inches (US) or millimetres (SI),
+    to three figures."""
+    unit = "in" if system == "US" else "mm"
+    return lambda m: f"{units.to_unit(m, unit):.3g} {unit}"
 
 
 # ---------------------------------------------------------------- the scene's tables
