@@ -37,13 +37,16 @@ from corliss.engine.scene_specs import SceneSpec
 from corliss.engine.speed_metrics import final_turns, load_step_metrics, step_time_of
 from corliss.engine.verdict import steady_failures, transient_failures
 from corliss.frames.frame import Frame
-from corliss.governors.mechanism import GovernorMechanism
-from corliss.governors.operating_point import OperatingPoint
 from corliss.thermo.steam import HEOSSteam, State, TableSteam
 from corliss.valves.portmap import PortMap
 
-if TYPE_CHECKING:          # the tables are handed out as DataFrames; pandas is imported then
+if TYPE_CHECKING:
+    # the tables are handed out as DataFrames (pandas is imported then); a transient
+    # result's governor types, which a steady run does not load
     import pandas as pd
+
+    from corliss.governors.mechanism import GovernorMechanism
+    from corliss.governors.operating_point import OperatingPoint
 
 TWO_PI = 2.0 * math.pi
 #: Why a card's fluctuation coefficient is undefined (the summary's value is null).
