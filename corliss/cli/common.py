@@ -39,6 +39,32 @@ _VERBOSE.add_argument("-v", "--verbose", action="store_true", default=argparse.S
                       help="log corliss's progress messages to stderr")
 
 
+#: The options several commands take, with the same meaning and help everywhere.
+_OPTIONS: dict[str, dict] = {
+    "out": {"help": "output directory (default: the scene's [output] dir)"},
+    "units": {"choices": ("US", "SI"), "help": UNITS_HELP},
+    "json": {"action": "store_true", "help": "print the summary as JSON"},
+    "fidelity": {"choices": ("reference", "standard", "fast"),
+                 "help": "override the scene's fidelity preset"},
+}
+
+
+def add_options(parser: argparse.ArgumentParser, *names: str) -> None:
+    """Add options several commands share, in the order named.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        A subcommand's parser (:func:`subcommand`).
+    *names : {"out", "units", "json", "fidelity"}
+        The options: ``--out`` (the output folder), ``--units`` (of the files and
+        figures), ``--json`` (the summary printed as JSON), ``--fidelity`` (the scene's
+        preset overridden).
+    """
+    for name in names:
+        parser.add_argument(f"--{name}", **_OPTIONS[name])
+
+
 def subcommand(sub, name: str, **kw) -> argparse.ArgumentParser:
     """A subcommand of ``corliss`` that also takes ``-v`` after its name.
 
