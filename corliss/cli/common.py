@@ -170,7 +170,9 @@ def fmt(v, unit, digits=4):
     str
         E.g. ``"153.9 ihp"``, or ``"never"``.
     """
-    return "never" if v is None else f"{v:.{digits}g} {unit}"
+    if v is None:
+        return "never"
+    return f"{v:.{digits}g} {unit}" if unit else f"{v:.{digits}g}"
 
 
 def print_files(files) -> None:
