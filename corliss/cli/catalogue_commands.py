@@ -93,28 +93,16 @@ def cmd_explain(args) -> int:
     return 0
 
 
-def add_list_parser(sub) -> None:
-    """Add ``corliss list`` and its options to the subcommands ``sub``.
-
-    Parameters
-    ----------
-    sub : argparse._SubParsersAction
-        The ``corliss`` parser's subcommands.
-    """
+def _list_parser(sub) -> None:
+    """``corliss list`` and its options."""
     ls = subcommand(sub, "list", help="list bundled scenes and the registries")
     ls.add_argument("what", choices=("scenes", "gears", "effects", "governors", "keys"))
     ls.add_argument("name", nargs="?", help="with keys: the gear or governor")
     ls.set_defaults(func=cmd_list_keys)
 
 
-def add_explain_parser(sub) -> None:
-    """Add ``corliss explain`` and its options to the subcommands ``sub``.
-
-    Parameters
-    ----------
-    sub : argparse._SubParsersAction
-        The ``corliss`` parser's subcommands.
-    """
+def _explain_parser(sub) -> None:
+    """``corliss explain`` and its options."""
     ex = subcommand(sub, "explain", help="what a scene key, section, gear, governor or "
                         "effect is: kind, units, default, range, who reads it")
     ex.add_argument("key", help="e.g. valve_gear.lap, governor.ball_mass, run.effects, "
@@ -123,4 +111,4 @@ def add_explain_parser(sub) -> None:
 
 
 #: The subcommands this module adds, in the order ``corliss --help`` lists them.
-PARSERS = (add_list_parser, add_explain_parser)
+PARSERS = (_list_parser, _explain_parser)

@@ -39,6 +39,32 @@ _VERBOSE.add_argument("-v", "--verbose", action="store_true", default=argparse.S
                       help="log corliss's progress messages to stderr")
 
 
+#: The options several commands take, with the same meaning and help everywhere.
+_OPTIONS: dict[str, dict] = {
+    "out": {"help": "output directory (default: the scene's [output] dir)"},
+    "units": {"choices": ("US", "SI"), "help": UNITS_HELP},
+    "json": {"action": "store_true", "help": "print the summary as JSON"},
+    "fidelity": {"choices": ("reference", "standard", "fast"),
+                 "help": "override the scene's fidelity preset"},
+}
+
+
+def add_options(parser: argparse.ArgumentParser, *names: str) -> None:
+    """Add options several commands share, in the order named.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        A subcommand's parser (:func:`subcommand`).
+    *names : {"out", "units", "json", "fidelity"}
+        The options: ``--out`` (the output folder), ``--units`` (of the files and
+        figures), ``--json`` (the summary printed as JSON), ``--fidelity`` (the scene's
+        preset overridden).
+    """
+    for name in names:
+        parser.add_argument(f"--{name}", **_OPTIONS[name])
+
+
 def subcommand(sub, name: str, **kw) -> argparse.ArgumentParser:
     """A subcommand of ``corliss`` that also takes ``-v`` after its name.
 
@@ -144,7 +170,9 @@ def fmt(v, unit, digits=4):
     str
         E.g. ``"153.9 ihp"``, or ``"never"``.
     """
-    return "never" if v is None else f"{v:.{digits}g} {unit}"
+    if v is None:
+        return "never"
+    return f"{v:.{digits}g} {unit}" if unit else f"{v:.{digits}g}"
 
 
 def print_files(files) -> None:

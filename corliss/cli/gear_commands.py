@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 import math
 
-from corliss.cli.common import (UNITS_HELP, fmt, load_scene_for, numbers, output_dir,
+from corliss.cli.common import (add_options, fmt, load_scene_for, numbers, output_dir,
                                 print_files, subcommand)
 from corliss.engine.model import build_gear, scene_events
 from corliss.errors import InputError
@@ -181,14 +181,8 @@ def cmd_design(args) -> int:
     return 0
 
 
-def add_events_parser(sub) -> None:
-    """Add ``corliss events`` and its options to the subcommands ``sub``.
-
-    Parameters
-    ----------
-    sub : argparse._SubParsersAction
-        The ``corliss`` parser's subcommands.
-    """
+def _events_parser(sub) -> None:
+    """``corliss events`` and its options."""
     e = subcommand(sub, "events", help="valve events of each end, without simulating")
     e.add_argument("scene", help="scene TOML or a bundled scene's name")
     e.add_argument("--json", action="store_true", help="print JSON")
@@ -199,33 +193,20 @@ def add_events_parser(sub) -> None:
     e.set_defaults(func=cmd_events)
 
 
-def add_gear_parser(sub) -> None:
-    """Add ``corliss gear`` and its options to the subcommands ``sub``.
-
-    Parameters
-    ----------
-    sub : argparse._SubParsersAction
-        The ``corliss`` parser's subcommands.
-    """
+def _gear_parser(sub) -> None:
+    """``corliss gear`` and its options."""
     gp = subcommand(sub, "gear", help="valve travel and Zeuner diagram of a scene's gear")
     gp.add_argument("scene", help="scene TOML or a bundled scene's name")
-    gp.add_argument("--out", help="output directory (default: the scene's [output] dir)")
-    gp.add_argument("--units", choices=("US", "SI"), help=UNITS_HELP)
+    add_options(gp, "out", "units")
     gp.set_defaults(func=cmd_gear)
 
 
-def add_animate_parser(sub) -> None:
-    """Add ``corliss animate`` and its options to the subcommands ``sub``.
-
-    Parameters
-    ----------
-    sub : argparse._SubParsersAction
-        The ``corliss`` parser's subcommands.
-    """
+def _animate_parser(sub) -> None:
+    """``corliss animate`` and its options."""
     an = subcommand(sub, "animate", help="the gear in motion, its valve over the ports, "
                         "the port openings and the card traced, as GIF or HTML")
     an.add_argument("scene", help="scene TOML or a bundled scene's name")
-    an.add_argument("--out", help="output directory (default: the scene's [output] dir)")
+    add_options(an, "out")
     an.add_argument("--frames", type=int, default=72, help="frames in one turn (default 72)")
     an.add_argument("--format", choices=("gif", "html"), default="gif",
                     help="a GIF (default) or an HTML page with a player")
@@ -233,18 +214,12 @@ def add_animate_parser(sub) -> None:
                     help="no steady run, no indicator card")
     an.add_argument("--fidelity", choices=("reference", "standard", "fast"), default="fast",
                     help="fidelity of the steady run whose card is traced (default fast)")
-    an.add_argument("--units", choices=("US", "SI"), help=UNITS_HELP)
+    add_options(an, "units")
     an.set_defaults(func=cmd_animate)
 
 
-def add_design_parser(sub) -> None:
-    """Add ``corliss design`` and its options to the subcommands ``sub``.
-
-    Parameters
-    ----------
-    sub : argparse._SubParsersAction
-        The ``corliss`` parser's subcommands.
-    """
+def _design_parser(sub) -> None:
+    """``corliss design`` and its options."""
     ds = subcommand(sub, "design", help="a valve (or a gear's setting) for the events asked: "
                         "a runnable scene and its Zeuner and Bilgram diagrams")
     ds.add_argument("scene", nargs="?", help="scene TOML or a bundled scene's name whose "
@@ -269,7 +244,7 @@ def add_design_parser(sub) -> None:
                     help="end at which the lead and opening asked hold (default head)")
     ds.add_argument("--end", choices=("head", "crank", "mean"), default="head",
                     help="whose cut-off a gear's setting is found for (default head)")
-    ds.add_argument("--out", help="output directory (default: the scene's [output] dir)")
+    add_options(ds, "out")
     ds.add_argument("--units", choices=("US", "SI"), help="units of the scene written (every "
                     "quantity of it, rounded as a drawing is: 0.001 in or 0.01 mm, 0.01 deg, "
                     "four figures) and of the figures (default: the scene's)")
@@ -278,4 +253,4 @@ def add_design_parser(sub) -> None:
 
 
 #: The subcommands this module adds, in the order ``corliss --help`` lists them.
-PARSERS = (add_events_parser, add_gear_parser, add_animate_parser, add_design_parser)
+PARSERS = (_events_parser, _gear_parser, _animate_parser, _design_parser)

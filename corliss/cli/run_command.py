@@ -6,7 +6,7 @@ import dataclasses
 import sys
 from pathlib import Path
 
-from corliss.cli.common import (EXIT_OK, UNITS_HELP, fmt, load_scene_for, log, output_dir,
+from corliss.cli.common import (EXIT_OK, add_options, fmt, load_scene_for, log, output_dir,
                                 print_files, progress_bar, subcommand)
 from corliss.engine.balance import balance_failure
 from corliss.engine.output_size import check_output_samples
@@ -277,23 +277,14 @@ def _inside_working_directory(folder: str) -> None:
                          "the scene comes from a meta file; give --out to write elsewhere")
 
 
-def add_run_parser(sub) -> None:
-    """Add ``corliss run`` and its options to the subcommands ``sub``.
-
-    Parameters
-    ----------
-    sub : argparse._SubParsersAction
-        The ``corliss`` parser's subcommands.
-    """
+def _run_parser(sub) -> None:
+    """``corliss run`` and its options."""
     r = subcommand(sub, "run", help="simulate a scene and write its card, CSV and meta")
     r.add_argument("scene", nargs="?", help="scene TOML, or a bundled scene's name "
                    "(default: the bundled default scene)")
-    r.add_argument("--out", help="output directory (default: the scene's [output] dir)")
-    r.add_argument("--json", action="store_true", help="print the summary as JSON")
+    add_options(r, "out", "json")
     r.add_argument("--no-plots", action="store_true", help="write the tables and summary only")
-    r.add_argument("--units", choices=("US", "SI"), help=UNITS_HELP)
-    r.add_argument("--fidelity", choices=("reference", "standard", "fast"),
-                   help="override the scene's fidelity preset")
+    add_options(r, "units", "fidelity")
     r.add_argument("--cycles", type=int, help="simulate exactly N cycles (steady scenes; "
                    f"at most {limits.MAX_CYCLES})")
     r.add_argument("--duration", help="simulated time of a transient scene, e.g. \"5 s\"")
@@ -309,4 +300,4 @@ def add_run_parser(sub) -> None:
 
 
 #: The subcommands this module adds, in the order ``corliss --help`` lists them.
-PARSERS = (add_run_parser,)
+PARSERS = (_run_parser,)

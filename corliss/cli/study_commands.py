@@ -6,7 +6,7 @@ import contextlib
 import math
 from pathlib import Path
 
-from corliss.cli.common import (UNITS_HELP, fmt, load_scene_for, numbers, output_dir,
+from corliss.cli.common import (add_options, fmt, load_scene_for, numbers, output_dir,
                                 print_files, progress_bar, subcommand)
 from corliss.errors import InputError
 from corliss.files.run_output import summary_json
@@ -283,35 +283,19 @@ def cmd_fit(args) -> int:
     return 0
 
 
-def add_sweep_parser(sub) -> None:
-    """Add ``corliss sweep`` and its options to the subcommands ``sub``.
-
-    Parameters
-    ----------
-    sub : argparse._SubParsersAction
-        The ``corliss`` parser's subcommands.
-    """
+def _sweep_parser(sub) -> None:
+    """``corliss sweep`` and its options."""
     sw = subcommand(sub, "sweep", help="steady cards across the load range: Willans line")
     sw.add_argument("scene", help="scene TOML or a bundled scene's name (a transient one "
                     "runs steady at its speed)")
     sw.add_argument("--settings", help="gear settings, e.g. 0,0.25,0.5,0.75,1")
     sw.add_argument("--throttle", help="throttle openings, e.g. 0.2,0.4,0.6,0.8,1")
-    sw.add_argument("--out", help="output directory (default: the scene's [output] dir)")
-    sw.add_argument("--units", choices=("US", "SI"), help=UNITS_HELP)
-    sw.add_argument("--fidelity", choices=("reference", "standard", "fast"),
-                    help="override the scene's fidelity preset")
-    sw.add_argument("--json", action="store_true", help="print the summary as JSON")
+    add_options(sw, "out", "units", "fidelity", "json")
     sw.set_defaults(func=cmd_sweep)
 
 
-def add_compare_parser(sub) -> None:
-    """Add ``corliss compare`` and its options to the subcommands ``sub``.
-
-    Parameters
-    ----------
-    sub : argparse._SubParsersAction
-        The ``corliss`` parser's subcommands.
-    """
+def _compare_parser(sub) -> None:
+    """``corliss compare`` and its options."""
     cp = subcommand(sub, "compare", help="throttling against cut-off governing across the "
                         "load range, with and without condensation")
     cp.add_argument("scene", help="scene TOML or a bundled scene's name (its gear needs a "
@@ -327,20 +311,12 @@ def add_compare_parser(sub) -> None:
                     "(default: every load at the scene's speed)")
     cp.add_argument("--no-droop", action="store_true", help="every load at the scene's speed "
                     "(the default; kept for scripts that ask for it)")
-    cp.add_argument("--out", help="output directory (default: the scene's [output] dir)")
-    cp.add_argument("--units", choices=("US", "SI"), help=UNITS_HELP)
-    cp.add_argument("--json", action="store_true", help="print the summary as JSON")
+    add_options(cp, "out", "units", "json")
     cp.set_defaults(func=cmd_compare)
 
 
-def add_study_parser(sub) -> None:
-    """Add ``corliss study`` and its options to the subcommands ``sub``.
-
-    Parameters
-    ----------
-    sub : argparse._SubParsersAction
-        The ``corliss`` parser's subcommands.
-    """
+def _study_parser(sub) -> None:
+    """``corliss study`` and its options."""
     st = subcommand(sub, "study", help="steady runs over a grid, Latin hypercube or Monte "
                         "Carlo design of scene keys, locally or on a Dask cluster")
     st.add_argument("scene", help="scene TOML or a bundled scene's name (a transient one "
@@ -370,21 +346,15 @@ def add_study_parser(sub) -> None:
                     "rows are kept in it as runs finish, so a stopped study keeps them")
     st.add_argument("--resume", action="store_true", help="finish a stopped study: run only "
                     "the rows its partial file in --out lacks")
-    st.add_argument("--json", action="store_true", help="print the summary as JSON")
+    add_options(st, "json")
     st.add_argument("--units", choices=("US", "SI"), help="units of the responses' ranges "
                     "printed (default: the scene's [output] units; the files and --json "
                     "keep the names the summary gives, SI unless they say otherwise)")
     st.set_defaults(func=cmd_study)
 
 
-def add_fit_parser(sub) -> None:
-    """Add ``corliss fit`` and its options to the subcommands ``sub``.
-
-    Parameters
-    ----------
-    sub : argparse._SubParsersAction
-        The ``corliss`` parser's subcommands.
-    """
+def _fit_parser(sub) -> None:
+    """``corliss fit`` and its options."""
     ft = subcommand(sub, "fit", help="calibrate scene keys to a measured indicator card")
     ft.add_argument("scene", help="scene TOML or a bundled scene's name (steady)")
     ft.add_argument("card", help="card CSV, its header naming each column's unit (e.g. "
@@ -399,12 +369,11 @@ def add_fit_parser(sub) -> None:
     ft.add_argument("--bootstrap", type=int, default=0, metavar="N",
                     help="wild-bootstrap refits of the residuals, a second uncertainty (default 0)")
     ft.add_argument("--seed", type=int, default=0, help="the bootstrap's seed")
-    ft.add_argument("--out", help="output directory (default: the scene's [output] dir)")
-    ft.add_argument("--units", choices=("US", "SI"), help=UNITS_HELP)
+    add_options(ft, "out", "units")
     ft.add_argument("--no-plots", action="store_true", help="no SCENE.fit.card.png")
     ft.add_argument("--json", action="store_true", help="print the fit as JSON")
     ft.set_defaults(func=cmd_fit)
 
 
 #: The subcommands this module adds, in the order ``corliss --help`` lists them.
-PARSERS = (add_sweep_parser, add_compare_parser, add_study_parser, add_fit_parser)
+PARSERS = (_sweep_parser, _compare_parser, _study_parser, _fit_parser)

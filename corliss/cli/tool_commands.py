@@ -72,28 +72,16 @@ def cmd_workbench(args) -> int:
     return 0
 
 
-def add_bench_parser(sub) -> None:
-    """Add ``corliss bench`` and its options to the subcommands ``sub``.
-
-    Parameters
-    ----------
-    sub : argparse._SubParsersAction
-        The ``corliss`` parser's subcommands.
-    """
+def _bench_parser(sub) -> None:
+    """``corliss bench`` and its options."""
     b = subcommand(sub, "bench", help="run the accuracy-versus-time study (source checkout)")
     b.add_argument("--repeats", type=int, default=3, help="repeats per setting (median)")
     b.add_argument("--out", help="directory for the CSV and plot (default benchmarks/results)")
     b.set_defaults(func=cmd_bench)
 
 
-def add_workbench_parser(sub) -> None:
-    """Add ``corliss workbench`` and its options to the subcommands ``sub``.
-
-    Parameters
-    ----------
-    sub : argparse._SubParsersAction
-        The ``corliss`` parser's subcommands.
-    """
+def _workbench_parser(sub) -> None:
+    """``corliss workbench`` and its options."""
     wb = subcommand(sub, "workbench", help="a local page to set the gear and steam by hand "
                         "and watch the card redrawn")
     wb.add_argument("scene", nargs="?", help="scene TOML or a bundled scene's name "
@@ -108,4 +96,4 @@ def add_workbench_parser(sub) -> None:
 
 
 #: The subcommands this module adds, in the order ``corliss --help`` lists them.
-PARSERS = (add_bench_parser, add_workbench_parser)
+PARSERS = (_bench_parser, _workbench_parser)
