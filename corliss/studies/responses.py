@@ -11,6 +11,8 @@ actually give.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
+from typing import Any
 
 from corliss.engine.model import build_lp_gear, lp_geometry_of, scene_events
 from corliss.errors import InputError
@@ -53,7 +55,7 @@ SKIN_KEYS = ("wall_surface_swing_{end}_K", "wall_surface_mean_{end}_K",
              "heat_into_steam_exhaust_{end}_J", "heat_into_steam_compression_{end}_J")
 
 
-def flatten(summary: dict, prefix: str = "") -> dict:
+def flatten(summary: Mapping[str, Any], prefix: str = "") -> dict:
     """The summary's numbers by dotted key.
 
     Nested tables are joined with dots; text, lists and flags are left out; a null
