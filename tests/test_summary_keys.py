@@ -29,6 +29,7 @@ from corliss.engine.summary_keys import (END_NAMES, SteadySummary, TransientSumm
                                          end_value)
 from corliss.scene import bundled_scenes, load_scene
 
+from conftest import make_scene
 from test_every_scene_same_outputs import cheap
 
 STEADY_HINTS = get_type_hints(SteadySummary)
@@ -91,6 +92,52 @@ def test_every_summary_key_is_declared(name):
         steady = simulate(cheap(steady_scene(scene), "fast"))
         bad = mismatches(dict(steady.summary), STEADY_HINTS)
         assert not bad, f"{name} (run steady):\n" + "\n".join(bad)
+
+
+def _edited(name: str, tmp_path, engine: str, effects: str):
+    """A bundled scene with lines added to ``[engine]`` and effects to ``run.effects``."""
+    text = bundled_scenes()[name].read_text()
+    assert "[engine]\n" in text and "effects = [" in text
+    text = text.replace("[engine]\n", "[engine]\n" + engine, 1)
+    text = text.replace("effects = [", f"effects = [{effects}, ", 1)
+    path = tmp_path / f"{name}.toml"
+    path.write_text(text)
+    return load_scene(path)
+
+
+#: Scenes beyond the bundled ones, for the keys no bundled scene writes: every effect
+#: (leakage past valve and piston, friction, the chest), a jacket, per-end keys of a
+#: second identical cylinder and of a compound's LP, the period's leakage law.
+VARIANTS = {
+    "every_effect": lambda tmp: make_scene(
+        engine={"valve_leakage_area": "0.02 in2", "piston_leakage_area": "0.05 in2",
+                "reciprocating_mass": "800 lb", "friction_torque": "300 lbf ft"},
+        supply={"chest_volume": "2 ft3", "pipe_diameter": "4 in"},
+        run={"effects": ["port_flow", "rod_angularity", "inertia", "steam_chest",
+                         "leakage", "wall_heat", "friction"]}),
+    "jacket": lambda tmp: make_scene(engine={"jacket": "barrel"},
+                                     run={"effects": ["port_flow", "wall_heat"]}),
+    "twin_walls_leaks": lambda tmp: _edited(
+        "twin-90-degrees", tmp, 'valve_leakage_area = "0.02 in2"\n'
+        'piston_leakage_area = "0.05 in2"\n', '"wall_heat", "leakage"'),
+    "compound_walls_period_leaks": lambda tmp: _edited(
+        "marks-compound-9-14x14", tmp, 'leakage_model = "period"\n'
+        'valve_leak_rate = "3 lb/h psi"\npiston_leak_rate = "1 lb/h psi"\n',
+        '"wall_heat", "leakage"'),
+}
+
+
+@pytest.mark.parametrize("variant", sorted(VARIANTS))
+def test_keys_of_effects_no_bundled_scene_asks_are_declared(variant, tmp_path):
+    """The keys of the effects, per-end keys of further cylinders and the compound's LP
+    (which no bundled scene writes) are declared with their types."""
+    result = simulate(cheap(VARIANTS[variant](tmp_path), "fast"))
+    bad = mismatches(dict(result.summary), STEADY_HINTS)
+    assert not bad, f"{variant}:\n" + "\n".join(bad)
+    wanted = {"every_effect": "valve_leak_head_kg_per_h", "jacket": "jacket_heat_W",
+              "twin_walls_leaks": "missing_water_fraction_c2_crank",
+              "compound_walls_period_leaks": "heat_to_walls_lp_crank_J_per_cycle"}[variant]
+    assert wanted in result.summary       # the variant writes what it is here for
 
 
 def test_the_check_refuses_what_is_not_declared():
