@@ -19,7 +19,7 @@
 ``corliss sweep SCENE [--settings 0,0.5,1] [--throttle 0.2,0.6,1] [--fidelity F] [--json] [--out DIR]``
     Steady cards across the load range at each gear setting and/or throttle opening:
     a CSV with its meta file and the Willans lines as PNG.
-``corliss compare SCENE [--loads 0.1:1.1:0.1] [--with-condensation both|on|off] [--fidelity F] [--json] [--out DIR]``
+``corliss compare SCENE [--loads 0.1:1.1:0.1] [--with-condensation both|on|off] [--fidelity F] [--jobs N] [--json] [--out DIR]``
     Throttling against cut-off governing of one engine across its load range, with
     and without condensation: the table (CSV with its meta), the Willans lines and
     steam rates (PNG), and a verdict printed: which governing uses less steam where.
@@ -797,7 +797,7 @@ def cmd_compare(args) -> int:
     loads = _loads(args.loads) if args.loads else list(DEFAULT_LOADS)
     result, files = _study(args, scene, lambda bar, out: compare(
         scene, loads, condensation=args.with_condensation, fidelity=args.fidelity,
-        droop=args.droop, progress=bar))
+        droop=args.droop, workers=args.jobs, progress=bar))
     if files is None:
         return 0
     print_verdict(result)
@@ -1154,6 +1154,7 @@ def build_parser() -> argparse.ArgumentParser:
                     "(default: every load at the scene's speed)")
     cp.add_argument("--no-droop", action="store_true", help="every load at the scene's speed "
                     "(the default; kept for scripts that ask for it)")
+    cp.add_argument("--jobs", type=int, help="local processes (default: every core)")
     cp.add_argument("--out", help="output directory (default: the scene's [output] dir)")
     cp.add_argument("--units", choices=("US", "SI"), help=units_help)
     cp.add_argument("--json", action="store_true", help="print the summary as JSON")

@@ -55,8 +55,8 @@ except ImportError:             # a platform without it: forks or spawns
 
 log = logging.getLogger(__name__)
 
-__all__ = ["Interrupt", "POOL_RESTARTS", "WARM_ENV", "close", "run_tasks", "start_method",
-           "worker_pids"]
+__all__ = ["Interrupt", "POOL_RESTARTS", "WARM_ENV", "SigtermRaises", "close", "run_tasks",
+           "start_method", "worker_pids"]
 
 #: Times a pool is started again when one of its workers is lost (killed, out of
 #: memory), its unfinished tasks resent, before the caller gets an error.
@@ -81,6 +81,26 @@ _SERVER_STARTED = False
 
 class Interrupt(BaseException):
     """SIGTERM, raised in the main thread as Ctrl-C raises :class:`KeyboardInterrupt`."""
+
+
+def _on_sigterm(signum, frame):
+    raise Interrupt()
+
+
+class SigtermRaises:
+    """While in it (in the main thread): SIGTERM raises :class:`Interrupt`, so a caller's
+    tasks stop as on Ctrl-C (the workers ended, the caller's ``finally`` run)."""
+
+    def __enter__(self):
+        self.old = None
+        if threading.current_thread() is threading.main_thread():
+            self.old = signal.signal(signal.SIGTERM, _on_sigterm)
+        return self
+
+    def __exit__(self, *exc):
+        if self.old is not None:
+            signal.signal(signal.SIGTERM, self.old)
+        return False
 
 
 def start_method() -> str:
@@ -189,10 +209,10 @@ def _main_hidden():
 
 
 @contextlib.contextmanager
-def _warm_file(warm: Callable[[], Sequence] | None):
-    """The forkserver's first start: the scenes ``warm()`` handed to it in a file named
-    by :data:`WARM_ENV` (removed once the workers have started: the forkserver has read
-    it before its first fork)."""
+def _warm_file(warm: Callable[[], Sequence] | None, modules: Sequence[str] = ()):
+    """The forkserver's first start: the task functions' ``modules`` and the scenes
+    ``warm()`` handed to it in a file named by :data:`WARM_ENV` (removed once the
+    workers have started: the forkserver has read it before its first fork)."""
     global _SERVER_STARTED
     if warm is None or _SERVER_STARTED or start_method() != "forkserver":
         yield
@@ -208,7 +228,7 @@ def _warm_file(warm: Callable[[], Sequence] | None):
     old = os.environ.get(WARM_ENV)
     try:
         with os.fdopen(fd, "wb") as f:
-            pickle.dump(scenes, f, protocol=pickle.HIGHEST_PROTOCOL)
+            pickle.dump((tuple(modules), scenes), f, protocol=pickle.HIGHEST_PROTOCOL)
         os.environ[WARM_ENV] = path
         yield
     finally:
@@ -330,7 +350,8 @@ def _pass(tasks, todo: list[int], jobs: int, collect, warm) -> list[int]:
     futs: dict = {}
     try:
         pool = _pool(jobs)
-        with _warm_file(warm), _main_hidden():
+        modules = sorted({fn.__module__ for fn, _ in tasks})
+        with _warm_file(warm, modules), _main_hidden():
             futs = {pool.submit(tasks[i][0], *tasks[i][1]): i for i in todo}
         if masked:
             signal.pthread_sigmask(signal.SIG_SETMASK, old)

@@ -62,7 +62,7 @@ from corliss.scene.loader import Scene, find_scene, load_scene, scene_from_dict
 from corliss.keys.edits import KeyValue, edited
 from corliss.studies.sampling import make_design
 from corliss.studies.journal import Journal, check_writable, fingerprint, journal_path, read_rows
-from corliss.studies.pool import Interrupt, run_tasks
+from corliss.studies.pool import Interrupt, SigtermRaises, run_tasks
 from corliss.studies.responses import check_responses, flatten, response_value
 from corliss.studies.study_result import ERROR, RUN_ID, STATUS, StudyResult
 
@@ -221,25 +221,6 @@ def _pool_chunk(token: str, blob: bytes, run_ids, values):
             _WORKER_SPECS.pop(next(iter(_WORKER_SPECS)))
         _WORKER_SPECS[token] = spec
     return run_chunk(spec, run_ids, values)
-
-
-def _on_sigterm(signum, frame):
-    raise Interrupt()
-
-
-class _Signals:
-    """While a study runs (in the main thread): SIGTERM raises :class:`Interrupt`."""
-
-    def __enter__(self):
-        self.old = None
-        if threading.current_thread() is threading.main_thread():
-            self.old = signal.signal(signal.SIGTERM, _on_sigterm)
-        return self
-
-    def __exit__(self, *exc):
-        if self.old is not None:
-            signal.signal(signal.SIGTERM, self.old)
-        return False
 
 
 def _run_local(spec, chunks, jobs, collect):
@@ -545,7 +526,7 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
         else:
             workers = max(1, min(workers, len(todo)))
         chunks = _chunks(todo, design.values[todo], _chunk_size(len(todo), workers, chunk_size))
-        with _Signals(), progress_for(progress, "runs") as bar[0]:
+        with SigtermRaises(), progress_for(progress, "runs") as bar[0]:
             try:
                 if not chunks:
                     pass

@@ -2,16 +2,18 @@
 
 Imported by the forkserver as it starts: the modules of a steady run (the compiled
 kernels' dispatchers, the steam table's reader) and, when the starting caller named
-a file in :data:`corliss.studies.pool.WARM_ENV`, each steady scene in it run once,
+a file in :data:`corliss.studies.pool.WARM_ENV`, the modules of its tasks' functions
+imported and each steady scene in it run once,
 so the kernels of its version are loaded from numba's cache and the steam table read
 before any worker is forked from this process: each worker starts with them, as a
 fork of a warm process, without this module's caller's memory.  A run that stops
 here is no matter (the worker runs it again and reports it).  Nothing else is
-imported: no pandas, no plotting.
+imported: no pandas (unless a task's module needs it), no plotting.
 """
 
 from __future__ import annotations
 
+import importlib
 import logging
 import os
 import pickle
@@ -26,7 +28,8 @@ __all__ = ["warm"]
 
 
 def warm(path: str | None) -> int:
-    """Run once each steady scene pickled in the file at ``path``.
+    """Import the modules named, and run once each steady scene, pickled in the file at
+    ``path``.
 
     Parameters
     ----------
@@ -42,9 +45,15 @@ def warm(path: str | None) -> int:
         return 0
     try:
         with open(path, "rb") as f:
-            scenes = pickle.load(f)
-    except (OSError, EOFError, pickle.UnpicklingError):
+            modules, scenes = pickle.load(f)
+    except (OSError, EOFError, ValueError, pickle.UnpicklingError):
         return 0
+    for name in modules:
+        if name.startswith("corliss."):
+            try:
+                importlib.import_module(name)
+            except ImportError as exc:
+                log.debug("warm-up import of %s failed: %s", name, exc)
     ran = 0
     for sc in scenes:
         try:
