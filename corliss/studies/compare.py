@@ -43,7 +43,7 @@ from corliss.governors.operating_point import characteristic_speed, working_trav
 from corliss.logs import at_point
 from corliss.progress import progress_for
 from corliss.studies.compare_result import CompareResult
-from corliss.studies.pool import run_tasks
+from corliss.studies.pool import prestart, run_tasks
 
 log = logging.getLogger(__name__)
 TWO_PI = 2.0 * math.pi
@@ -509,6 +509,7 @@ def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
     for v in var.values():
         for c in conds:
             groups[(v.name, c)] = dataclasses.replace(v, scene=_with_wall_heat(v.scene, c))
+    prestart(workers, lambda: _warm_scenes(groups), (__name__,))
     # the full-power run of each group sets the rated power when the scene has no load
     rated = rated_power_W(scene, brake)
     grid_tasks, grid_keys = [], []
@@ -546,8 +547,7 @@ def _solve(scene, loads, var, groups, grid_tasks, grid_keys, rated, brake, tier,
            progress, total, t0, speeds):
     """The two rounds of :func:`compare`: the knob grids, then the operating points."""
     conds = sorted({c for _, c in groups})
-    grid, done = _map(grid_tasks, workers, progress, 0, total,
-                      warm=lambda: _warm_scenes(groups))
+    grid, done = _map(grid_tasks, workers, progress, 0, total)
     curves = {key: [] for key in groups}
     states = {key: {} for key in groups}
     runs = GRID_POINTS * len(groups)

@@ -55,8 +55,8 @@ except ImportError:             # a platform without it: forks or spawns
 
 log = logging.getLogger(__name__)
 
-__all__ = ["Interrupt", "POOL_RESTARTS", "WARM_ENV", "SigtermRaises", "close", "run_tasks",
-           "start_method", "worker_pids"]
+__all__ = ["Interrupt", "POOL_RESTARTS", "WARM_ENV", "SigtermRaises", "close", "prestart",
+           "run_tasks", "start_method", "worker_pids"]
 
 #: Times a pool is started again when one of its workers is lost (killed, out of
 #: memory), its unfinished tasks resent, before the caller gets an error.
@@ -77,6 +77,8 @@ _POOL: ProcessPoolExecutor | None = None
 _POOL_JOBS = 0
 #: Whether this process's forkserver was started (by a pool here).
 _SERVER_STARTED = False
+#: The forkserver's warm-up file, until its first fork.
+_WARM_PATH: str | None = None
 
 
 class Interrupt(BaseException):
@@ -208,34 +210,55 @@ def _main_hidden():
             sys.modules["__main__"] = main
 
 
-@contextlib.contextmanager
-def _warm_file(warm: Callable[[], Sequence] | None, modules: Sequence[str] = ()):
-    """The forkserver's first start: the task functions' ``modules`` and the scenes
-    ``warm()`` handed to it in a file named by :data:`WARM_ENV` (removed once the
-    workers have started: the forkserver has read it before its first fork)."""
-    global _SERVER_STARTED
-    if warm is None or _SERVER_STARTED or start_method() != "forkserver":
-        yield
+def prestart(jobs: int, warm: Callable[[], Sequence] | None = None,
+             modules: Sequence[str] = ()) -> None:
+    """Start this process's forkserver now, so that it loads while the caller checks its
+    inputs (its first workers wait for it), when ``jobs`` > 1 and none is started.
+
+    Parameters
+    ----------
+    jobs : int
+        The caller's processes [-] (1: nothing is started).
+    warm : callable, optional
+        Returns the steady scenes the forkserver runs once before its first fork (its
+        workers then start with their kernels and steam table loaded).
+    modules : sequence of str, optional
+        Modules of the package the forkserver imports before its first fork (those of
+        the caller's task functions).
+    """
+    global _SERVER_STARTED, _WARM_PATH
+    if jobs <= 1 or _SERVER_STARTED or start_method() != "forkserver":
         return
     _SERVER_STARTED = True
+    _context()
     try:
-        scenes = tuple(warm())
+        scenes = tuple(warm()) if warm is not None else ()
     except Exception as exc:        # noqa: BLE001  a cold start, not a stopped caller
         log.debug("no warm-up for the workers: %s", exc)
-        yield
-        return
+        scenes = ()
     fd, path = tempfile.mkstemp(prefix="corliss-warm-", suffix=".pickle")
     old = os.environ.get(WARM_ENV)
     try:
         with os.fdopen(fd, "wb") as f:
             pickle.dump((tuple(modules), scenes), f, protocol=pickle.HIGHEST_PROTOCOL)
+        _WARM_PATH = path
         os.environ[WARM_ENV] = path
-        yield
+        _mp_forkserver.ensure_running()
+    except BaseException:
+        _forget_warm_file()
+        raise
     finally:
         if old is None:
             os.environ.pop(WARM_ENV, None)
         else:
             os.environ[WARM_ENV] = old
+
+
+def _forget_warm_file() -> None:
+    """Remove the forkserver's warm-up file (once it has forked: it has read it)."""
+    global _WARM_PATH
+    path, _WARM_PATH = _WARM_PATH, None
+    if path is not None:
         with contextlib.suppress(OSError):
             os.unlink(path)
 
@@ -296,6 +319,7 @@ def close(kill: bool = False) -> None:
         pool.shutdown(wait=True)
 
 
+atexit.register(_forget_warm_file)
 atexit.register(close)
 
 
@@ -350,9 +374,12 @@ def _pass(tasks, todo: list[int], jobs: int, collect, warm) -> list[int]:
     futs: dict = {}
     try:
         pool = _pool(jobs)
-        modules = sorted({fn.__module__ for fn, _ in tasks})
-        with _warm_file(warm, modules), _main_hidden():
-            futs = {pool.submit(tasks[i][0], *tasks[i][1]): i for i in todo}
+        prestart(jobs, warm, sorted({fn.__module__ for fn, _ in tasks}))
+        try:
+            with _main_hidden():
+                futs = {pool.submit(tasks[i][0], *tasks[i][1]): i for i in todo}
+        finally:
+            _forget_warm_file()
         if masked:
             signal.pthread_sigmask(signal.SIG_SETMASK, old)
             masked = False

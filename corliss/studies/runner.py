@@ -62,7 +62,7 @@ from corliss.scene.loader import Scene, find_scene, load_scene, scene_from_dict
 from corliss.keys.edits import KeyValue, edited
 from corliss.studies.sampling import make_design
 from corliss.studies.journal import Journal, check_writable, fingerprint, journal_path, read_rows
-from corliss.studies.pool import Interrupt, SigtermRaises, run_tasks
+from corliss.studies.pool import Interrupt, SigtermRaises, prestart, run_tasks
 from corliss.studies.responses import check_responses, flatten, response_value
 from corliss.studies.study_result import ERROR, RUN_ID, STATUS, StudyResult
 
@@ -476,6 +476,9 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
         workers = jobs if jobs is not None else (os.cpu_count() or 1)
         if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
             raise InputError("--jobs", jobs, "a whole number of processes, 1 or more")
+    if scheduler is None and design.runs > 1:
+        # the workers' forkserver loads (the base scene's run) while the scenes are checked
+        prestart(workers, lambda: (_scene(base, name, fidelity, {}),), (__name__,))
     _check_scenes(design, base, name, fidelity)
     token = fingerprint(base, name, fidelity, responses, design)
     rows: dict[int, tuple] = {}
