@@ -875,7 +875,7 @@ def cmd_fit(args) -> int:
     out_dir = output_dir(args, scene)
     check_out(out_dir, scene, args.card, args.vary)
     result = fit(scene, args.card, args.vary, fidelity=args.fidelity, refine=args.refine,
-                 bootstrap=args.bootstrap, seed=args.seed)
+                 bootstrap=args.bootstrap, seed=args.seed, jobs=args.jobs)
     files = result.write(out_dir, plots=not args.no_plots)
     if args.json:
         print(summary_json(result.summary))
@@ -1207,6 +1207,8 @@ def build_parser() -> argparse.ArgumentParser:
     ft.add_argument("--bootstrap", type=int, default=0, metavar="N",
                     help="wild-bootstrap refits of the residuals, a second uncertainty (default 0)")
     ft.add_argument("--seed", type=int, default=0, help="the bootstrap's seed")
+    ft.add_argument("--jobs", type=int, default=1, help="local processes for the "
+                    "uncertainty's runs and the bootstrap's refits (default 1)")
     ft.add_argument("--out", help="output directory (default: the scene's [output] dir)")
     ft.add_argument("--units", choices=("US", "SI"), help=units_help)
     ft.add_argument("--no-plots", action="store_true", help="no SCENE.fit.card.png")
