@@ -48,6 +48,7 @@ from typing import Any, Callable, Sequence
 
 from corliss.errors import RunError
 
+_mp_forkserver: Any
 try:
     from multiprocessing import forkserver as _mp_forkserver
 except ImportError:             # a platform without it: forks or spawns
@@ -157,7 +158,7 @@ def _let_the_server_go() -> None:
     no process, so the caller holds the only copy and the server ends with it.
     """
     try:
-        server = _mp_forkserver._forkserver
+        server: Any = _mp_forkserver._forkserver
         fd = server._forkserver_alive_fd
     except AttributeError:
         return
@@ -369,7 +370,7 @@ def _pass(tasks, todo: list[int], jobs: int, collect, warm) -> list[int]:
     # Ctrl-C and SIGTERM wait while the workers start (a signal in the middle of a fork
     # is lost in its handlers), and are taken at once after
     masked = hasattr(signal, "pthread_sigmask")
-    old = signal.pthread_sigmask(signal.SIG_BLOCK, _STOPS) if masked else None
+    old: set = signal.pthread_sigmask(signal.SIG_BLOCK, _STOPS) if masked else set()
     pool = None
     futs: dict = {}
     try:
@@ -383,7 +384,7 @@ def _pass(tasks, todo: list[int], jobs: int, collect, warm) -> list[int]:
         if masked:
             signal.pthread_sigmask(signal.SIG_SETMASK, old)
             masked = False
-        pending, lost = set(futs), set()
+        pending, lost = set(futs), set[Any]()
         while pending and not lost:
             done, pending = wait(pending, return_when=FIRST_COMPLETED)
             for fut in done:
