@@ -188,8 +188,8 @@ def run_failure(result) -> str:
     """
     s = result.summary_with(FAILURE_KEYS)
     if result.scene.run.cycles is None and s.get("cycles_to_converge") is None:
-        res = s.get("periodicity_residuals") or {}
-        worst = max(res, key=res.get) if res else "work"
+        res: dict[str, float] = s.get("periodicity_residuals") or {}
+        worst = max(res, key=lambda k: res[k]) if res else "work"
         return (f"not converged: not periodic after {s['cycles_simulated']} cycles (largest "
                 f"residual {res.get(worst, float('nan')):.3g}, {worst})")
     why = balance_failure(s)
@@ -343,6 +343,7 @@ def _base_of(scene) -> tuple[dict, Scene]:
     if scene is None or isinstance(scene, (str, Path)):
         from corliss.scene.loader import default_scene_path
         sc = load_scene(find_scene(scene) if scene is not None else default_scene_path())
+        assert sc.data is not None      # a scene read from a file keeps its tables
         return sc.data, sc
     raise InputError("scene", scene, "a Scene, its tables (dict), a scene file or a bundled "
                      "scene's name")
@@ -352,6 +353,7 @@ def _check_scenes(design, base, name, fidelity) -> None:
     """Load the scenes of the runs most likely refused before any run: every run's in
     a small study; in a larger one the first runs' and those at each key's extremes."""
     n = design.runs
+    ids: range | list[int]
     if n <= CHECK_ALL_UP_TO:
         ids = range(n)
     else:
@@ -501,7 +503,7 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
                                       "columns": [RUN_ID, STATUS, ERROR, *responses]},
                               keep=resume)
         except BaseException:
-            if own:
+            if own and client is not None:
                 client.close()
             raise
     todo = np.array([i for i in range(design.runs) if i not in rows], dtype=np.int64)
@@ -554,7 +556,7 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
     finally:
         if journal is not None:
             journal.close()
-        if own:
+        if own and client is not None:
             client.close()
     ordered = [rows[i] for i in range(design.runs)]
     tier = tiers[0] if tiers else probe.run.fidelity.properties
