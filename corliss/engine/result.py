@@ -115,12 +115,12 @@ class _Table:
         obj.__dict__.setdefault("_pandas", {}).pop(self.name, None)
 
 
-#: A kind's summary: a typed mapping (:mod:`corliss.engine.summary_keys`) or a plain dict.
-SummaryT = TypeVar("SummaryT", bound=Mapping[str, Any])
+# a kind's summary: a typed mapping (:mod:`corliss.engine.summary_keys`) or a plain dict.
+_SummaryT = TypeVar("_SummaryT", bound=Mapping[str, Any])
 
 
 @dataclass(kw_only=True)
-class Result(Generic[SummaryT]):
+class Result(Generic[_SummaryT]):
     """A run's outcome (base of every kind).
 
     Parameters
@@ -151,7 +151,7 @@ class Result(Generic[SummaryT]):
     cycles: pd.DataFrame = _Table()
     rhs_evaluations: int
     wall_time_s: float
-    _summary: SummaryT | None = field(default=None, init=False, repr=False)
+    _summary: _SummaryT | None = field(default=None, init=False, repr=False)
 
     def __getstate__(self):
         # a pickled result holds its tables built (a deferred one is a closure)
@@ -160,7 +160,7 @@ class Result(Generic[SummaryT]):
         return self.__dict__
 
     @property
-    def summary(self) -> SummaryT:
+    def summary(self) -> _SummaryT:
         """The run's summary (SI unless a key names its unit); computed once."""
         if self._summary is None:
             summary = self._make_summary()
@@ -171,12 +171,12 @@ class Result(Generic[SummaryT]):
             self._summary = summary
         return self._summary
 
-    def _failures(self, summary: SummaryT) -> list[dict] | None:
+    def _failures(self, summary: _SummaryT) -> list[dict] | None:
         """The ways a completed run failed physically (see :mod:`corliss.engine.verdict`);
         None for a kind that reports none."""
         return None
 
-    def _make_summary(self) -> SummaryT:  # pragma: no cover - interface
+    def _make_summary(self) -> _SummaryT:  # pragma: no cover - interface
         raise NotImplementedError
 
     def table(self, name: str | None = None) -> pd.DataFrame:
