@@ -368,7 +368,7 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
     nfev = 0
     integrate_turn = _turn_integrator(method, network)
     # warm-up: speed and governor held, time held at zero
-    announce_compile(dopri5.integrate_turn if method == "dopri5" else rosenbrock.integrate_turn_ros)
+    announce_compile(turn=method)
     sc[loop.S_FREEZE] = 1.0
 
     def frozen_turns(y, omega, z, turns, tol=None):
