@@ -84,36 +84,43 @@ def cycle_dopri5(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, max_rhs
                            np.empty((net.port_npts.shape[0], 4)), clamps, np.zeros((2, 4)))
     nfev, status, _ = _dopri5_steps(y, samples, stops, out_theta,
                                     StepControl(rtol, atol, max_rhs, 0),
-                                    Physics(net, tier, tab, perf), scratch, None)
+                                    Physics(net, tier, tab, perf), scratch, True, None)
     return y, samples, nfev, status == 0, clamps
 
 
 #: The position of :func:`_dopri5_steps`'s ``turn`` among its arguments: None for a
 #: steady cycle, a :class:`~corliss.engine.kernels.data.LoopTurn` for a turn of the
 #: governed loop; numba compiles and caches a version for each.
-DOPRI_TURN_ARG = 7
+DOPRI_TURN_ARG = 8
 
 
 @njit(cache=True, _nrt=False)
-def _dopri5_steps(y, samples, stops, out_theta, ctl, phys, scratch, turn):
+def _dopri5_steps(y, samples, stops, out_theta, ctl, phys, scratch, cycle, turn):
     """The Dormand-Prince step loop of a steady cycle (:func:`cycle_dopri5`) and of a
     turn of the governed loop (:func:`integrate_turn`), on scratch its caller allocated
     (no reference counts).
 
     ``y`` is advanced to the end (``stops[-1]``), ``samples`` and ``scratch.clamps``
-    written.  ``turn`` is None for a steady cycle: the network's right-hand side
+    written.  A steady cycle (``cycle`` True, ``turn`` None): the network's right-hand side
     :func:`~corliss.engine.kernels.balances.rhs` between the stops, each segment from
     :func:`initial_step` (or the last segment's step), a step whose end needed the
-    properties clamped retried shorter, and no more.  For a turn it is the loop's
-    :class:`~corliss.engine.kernels.data.LoopTurn`: one segment (``stops`` the turn's
+    properties clamped retried shorter, and no more.  A turn (``cycle`` None, ``turn``
+    the loop's :class:`~corliss.engine.kernels.data.LoopTurn`): one segment (``stops`` the turn's
     start and end), the loop's right-hand side
     :func:`~corliss.engine.kernels.loop.transient_rhs`, the first step
     :func:`turn_first_step`'s, a visited state's clamp stopping the run
     (:func:`~corliss.engine.kernels.loop._visited_clamps`), the governor's stops after
     each accepted step (the derivative evaluated again where one was struck), each
-    accepted step recorded, and the run stopped where the engine stalls.  numba prunes
-    the branches on ``turn is None`` as it types the function: each version holds only
-    its own code.
+    accepted step recorded, and the run stopped where the engine stalls.
+
+    Each version holds only its own code, by numba's pruning of the branches on an
+    argument compared with None, before it types the function: it decides ``x is None``
+    only where ``x`` *is* None (where ``x`` is a tuple it keeps both branches and types
+    them, compiling every function they call).  So the cycle's code sits under ``if
+    cycle is not None`` (None in a turn), the turn's under ``if turn is not None`` (None
+    in a cycle), never under an ``else`` of the other's test: written so, the turn's
+    version compiled the network's right-hand side :func:`rhs` too, 8.8 s of a first
+    transient run of 37 s (``fast``) for code it never runs.
 
     Parameters
     ----------
@@ -133,6 +140,8 @@ def _dopri5_steps(y, samples, stops, out_theta, ctl, phys, scratch, turn):
         (:class:`~corliss.engine.kernels.data.Physics`).
     scratch : DopriScratch
         (:class:`~corliss.engine.kernels.data.DopriScratch`), its clamp counts written.
+    cycle : True or None
+        True for a steady cycle, None for a turn.
     turn : LoopTurn or None
         The governed loop's turn, or None for a steady cycle.
 
@@ -172,10 +181,10 @@ def _dopri5_steps(y, samples, stops, out_theta, ctl, phys, scratch, turn):
         if b - a <= 0.0:
             continue
         t = a
-        if turn is None:
+        if cycle is not None:
             segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att)
             h = min(h_prev, b - a) if h_prev > 0.0 else initial_step(f0, y, atol, rtol, b - a)
-        else:
+        if turn is not None:
             n_rec = turn_start(t, y, f0, phys, pr, cell, turn, att, clamps)
             h = turn_first_step(f0, y, atol, rtol, 0.2)
         nfev += 1
@@ -185,9 +194,9 @@ def _dopri5_steps(y, samples, stops, out_theta, ctl, phys, scratch, turn):
             copy_into(K[0], f0)
             for s_ in range(1, 7):
                 dopri_stage(y, K, s_, h, ytmp)
-                if turn is None:
+                if cycle is not None:
                     rhs(t + DOPRI_NODES[s_] * h, ytmp, K[s_], net, tier, tab, perf, pr, cell)
-                else:
+                if turn is not None:
                     transient_rhs(t + DOPRI_NODES[s_] * h, ytmp, K[s_], net, tier, tab, perf,
                                   pr, cell, tr, out)
                 tally_clamps(pr, t + DOPRI_NODES[s_] * h, att_end if s_ == 6 else att)
@@ -198,9 +207,9 @@ def _dopri5_steps(y, samples, stops, out_theta, ctl, phys, scratch, turn):
             # their least density, say) is no step of the physical path: it is retried
             # shorter, as an inaccurate one is (positivity by step control); in a turn,
             # such a step stops the run (but for steam heated beyond the greatest energy)
-            if turn is None:
+            if cycle is not None:
                 accepted = (err <= 1.0 and visited_clamp_off(att_end) == 0) or h < 1e-12
-            else:
+            if turn is not None:
                 accepted = err <= 1.0 or h < 1e-10
             settle_trial(att, clamps)
             settle_clamps(att_end, accepted, clamps)
@@ -236,12 +245,12 @@ def _dopri5_steps(y, samples, stops, out_theta, ctl, phys, scratch, turn):
                 break
         if status != 0:
             break
-    if turn is None:
+    if cycle is not None:
         if status == 0:
             while io < out_theta.shape[0]:
                 put_column(samples, io, y)
                 io += 1
-    else:
+    if turn is not None:
         status = _turn_end(io, out_theta, samples, y, nn, status, turn.t_end, clamps, sc)
     return nfev, status, n_rec
 
@@ -437,7 +446,7 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
                            np.zeros((2, 4)))
     nfev, status, n_rec = _dopri5_steps(y, samples, stops, out_theta,
                                         StepControl(rtol, atol, tr.sc[S_MAX_RHS], 0),
-                                        Physics(net, tier, tab, perf), scratch,
+                                        Physics(net, tier, tab, perf), scratch, None,
                                         LoopTurn(tr, np.empty((2, 4)), rec, record, t_end,
                                                  np.empty((3, nv))))
     return y, samples, rec, n_rec, nfev, status

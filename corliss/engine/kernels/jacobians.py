@@ -241,10 +241,13 @@ LOOP_COLUMNS = np.array([X_OMEGA, X_Z, X_ZDOT])
 
 
 @njit(cache=True, inline="always")
-def _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, turn):
+def _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, cycle, turn):
     """Jacobian of the dynamic columns, and the time derivative, by finite differences,
-    for the Rosenbrock step loop, over a steady cycle (``turn`` None, through
-    :func:`_jacobian`) and over a turn of the governed loop (inlined into the loop).
+    for the Rosenbrock step loop, over a steady cycle (``cycle`` True, ``turn`` None,
+    through :func:`_jacobian`) and over a turn of the governed loop (``cycle`` None,
+    inlined into the loop).  As in the step loops, the cycle's code is guarded by
+    ``cycle``, the turn's by ``turn``: numba prunes a branch on ``x is None`` only
+    where ``x`` is None, so each version compiles only its own right-hand side.
 
     A steady cycle's: columns of one colour
     (``cols``, :class:`~corliss.engine.kernels.data.Columns`) are perturbed together
@@ -288,9 +291,9 @@ def _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, turn):
         for j in range(ndyn):
             if color[j] == c:
                 yp[j] += dl[j]
-        if turn is None:
+        if cycle is not None:
             rhs(t, yp, fp, net, tier, tab, perf, pr, cell)
-        else:
+        if turn is not None:
             transient_rhs(t, yp, fp, net, tier, tab, perf, pr, cell, tr, out)
         tally_clamps(pr, t, att)
         for j in range(ndyn):
@@ -326,9 +329,9 @@ def _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, turn):
                 J[i, ndyn + k] = (fp[i] - f0[i]) / d
         nfev += LOOP_COLUMNS.shape[0]
     dt = 1e-7 * max(abs(t), 1.0)
-    if turn is None:
+    if cycle is not None:
         rhs(t + dt, y, fp, net, tier, tab, perf, pr, cell)
-    else:
+    if turn is not None:
         transient_rhs(t + dt, y, fp, net, tier, tab, perf, pr, cell, tr, out)
     tally_clamps(pr, t + dt, att)
     for i in range(n):
@@ -346,7 +349,7 @@ def _jacobian(t, y, f0, J, T, yscale, cols, phys, scratch):
         _jacobian_exact(t, y, J, T, phys.net, phys.tier, phys.tab, phys.perf, scratch.pr,
                         scratch.cell, scratch.jd, scratch.slope)
         return 0
-    return _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, None)
+    return _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, True, None)
 
 
 @njit(cache=True, _nrt=False)

@@ -147,7 +147,7 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
                                  Tableau(gam, tA, tC, tc, td, tb, te, same, expo),
                                  True if kind == KIND_ODE23S else None,
                                  None if _exact_jacobian_holds.py_func(net) else True,
-                                 scratch, None)
+                                 scratch, True, None)
     return y, samples, nfev, status == 0, clamps
 
 
@@ -156,12 +156,12 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
 #: analytic one) and ``turn`` (None: a steady cycle) among its arguments: numba
 #: compiles and caches a version for each combination a run takes
 #: (:func:`corliss.engine.kernels.cache.cycle_kernel_uncached`).
-ROS_PAIR_ARG, ROS_FINITE_ARG, ROS_TURN_ARG = 8, 9, 11
+ROS_PAIR_ARG, ROS_FINITE_ARG, ROS_TURN_ARG = 8, 9, 12
 
 
 @njit(cache=True, _nrt=False)
 def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, finite, scratch,
-               turn):
+               cycle, turn):
     """The Rosenbrock step loop of a steady cycle (:func:`cycle_ros`) and of a turn of the
     governed loop (:func:`integrate_turn_ros`), on scratch its caller allocated (no
     reference counts: the views of the scratch taken here cost nothing).
@@ -169,11 +169,13 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, fin
     ``y`` is advanced to the end (``stops[-1]``), ``samples`` and ``scratch.clamps``
     written.  ``pair``: True for the ode23s pair, None for a tableau's method;
     ``finite``: True for a network whose Jacobian is taken by finite differences
-    (:func:`_exact_jacobian_holds` false), None for the analytic one; ``turn``: None
-    for a steady cycle, else the loop's
-    :class:`~corliss.engine.kernels.data.LoopTurn`.  Each is a separate compiled
-    version without the others' code (numba prunes the branches on ``is None`` as it
-    types the function).  A steady cycle: the network's right-hand side
+    (:func:`_exact_jacobian_holds` false), None for the analytic one; ``cycle`` True
+    and ``turn`` None for a steady cycle, ``cycle`` None and ``turn`` the loop's
+    :class:`~corliss.engine.kernels.data.LoopTurn` for a turn.  Each is a separate
+    compiled version; a version taking None for one of them holds none of the code
+    that argument's branches guard (numba prunes them as it types the function: see
+    :func:`~corliss.engine.kernels.dopri5._dopri5_steps` on why the cycle's code and
+    the turn's are each guarded by their own argument).  A steady cycle: the network's right-hand side
     :func:`~corliss.engine.kernels.balances.rhs` between the stops, a step whose end
     needed the properties clamped retried shorter.  A turn (a tableau's method on the
     finite-difference Jacobian): one segment (``stops`` the turn's start and end), the
@@ -210,6 +212,8 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, fin
         The finite-difference Jacobian, or the analytic one.
     scratch : RosScratch
         (:class:`~corliss.engine.kernels.data.RosScratch`), its clamp counts written.
+    cycle : True or None
+        True for a steady cycle, None for a turn.
     turn : LoopTurn or None
         The governed loop's turn, or None for a steady cycle.
 
@@ -235,7 +239,9 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, fin
     ns = tb.shape[0]
     safety = 0.9
     # the shortest step taken whatever its error or clamps
-    h_min = 1e-12 if turn is None else 1e-10
+    h_min = 1e-12
+    if turn is not None:
+        h_min = 1e-10
     # the ode23s pair's steps by Gustafsson's predictive controller, no growth on the
     # step after a rejection (:func:`predictive_factor`); a tableau's by the error alone
     predictive = pair is not None
@@ -271,7 +277,7 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, fin
         if b - a <= 0.0:
             continue
         t = a
-        if turn is None:
+        if cycle is not None:
             if not (predictive and t_end == a):
                 # (the ode23s pair's last step ended on this stop: f0 is the derivative
                 # at this angle and state, evaluated and its clamps settled as a visited
@@ -285,7 +291,7 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, fin
                 nfev += 1
             else:
                 h = initial_step(f0, y, atol, rtol, b - a)
-        else:
+        if turn is not None:
             n_rec = turn_start(t, y, f0, phys, pr, cell, turn, att, clamps)
             nfev += 1
             h = sc[S_STEP]
@@ -300,21 +306,24 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, fin
                 if turn is not None:
                     # inlined here: compiled apart, the loop's right-hand side linked into
                     # it was optimised once more by LLVM, seconds of a first run
-                    nfev += _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, steps, turn)
-                elif finite is None:
-                    # called from here, not through :func:`_jacobian`: through it, a call
-                    # cost 2.2 us against 0.7 us (the default scene; numba's handling of a
-                    # function that passes the network and table tuples on, it seems)
-                    _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope)
-                else:
-                    nfev += _jacobian(t, y, f0, J, T, yscale, cols, phys, steps)
+                    nfev += _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, steps, None,
+                                         turn)
+                if cycle is not None:
+                    if finite is None:
+                        # called from here, not through :func:`_jacobian`: through it, a
+                        # call cost 2.2 us against 0.7 us (the default scene; numba's
+                        # handling of a function that passes the network and table tuples
+                        # on, it seems)
+                        _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope)
+                    else:
+                        nfev += _jacobian(t, y, f0, J, T, yscale, cols, phys, steps)
                 age = 0
                 h_w = -1.0
             hd = h * gam
             if h != h_w:
-                if turn is None:
+                if cycle is not None:
                     _w_inverse(J, hd, Winv, A)
-                else:
+                if turn is not None:
                     _loop_w_inverse(J, hd, Winv, A, ndyn, nn)
                 h_w = h
             if pair is not None:
@@ -354,26 +363,26 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, fin
                         copy_into(fp, f0)
                     elif same[st] == 0:
                         tableau_argument(y, U, tA, st, ytmp)
-                        if turn is None:
+                        if cycle is not None:
                             rhs(t + tc[st] * h, ytmp, fp, net, tier, tab, perf, pr, cell)
-                        else:
+                        if turn is not None:
                             transient_rhs(t + tc[st] * h, ytmp, fp, net, tier, tab, perf, pr,
                                           cell, tr, out1)
                         tally_clamps(pr, t + tc[st] * h, att)
                         nfev += 1
                     tableau_stage_rhs(fp, T, U, tC, td, st, h, x)
-                    if turn is None:
+                    if cycle is not None:
                         _w_solve(J, Winv, hd, x, U[st])
-                    else:
+                    if turn is not None:
                         _loop_w_solve(J, Winv, hd, x, U[st], ndyn, nn, xs)
                     for i in range(n):
                         U[st, i] *= hd
                 err = tableau_solution(y, U, tb, te, atol, rtol, ytmp)
                 accepted = err <= 1.0 or h < h_min
                 if accepted:
-                    if turn is None:
+                    if cycle is not None:
                         rhs(t + h, ytmp, f1, net, tier, tab, perf, pr, cell)
-                    else:
+                    if turn is not None:
                         transient_rhs(t + h, ytmp, f1, net, tier, tab, perf, pr, cell, tr, out)
                         _node_torques(pr, tq1)
                     tally_clamps(pr, t + h, att_end)
@@ -431,12 +440,12 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, fin
                 break
         if status != 0:
             break
-    if turn is None:
+    if cycle is not None:
         if status == 0:
             while io < out_theta.shape[0]:
                 put_column(samples, io, y)
                 io += 1
-    else:
+    if turn is not None:
         status = _turn_end(io, out_theta, samples, y, nn, status, turn.t_end, clamps, sc)
     return nfev, status, n_rec
 
@@ -557,6 +566,6 @@ def integrate_turn_ros(y0, th0, out_theta, rtol, atol, phys, tr, record, t_end, 
     nfev, status, n_rec = _ros_steps(y, samples, stops, out_theta,
                                      StepControl(rtol, atol, tr.sc[S_MAX_RHS], 1), phys,
                                      Columns(color, owner), tableau, None, True, scratch,
-                                     LoopTurn(tr, np.empty((2, 4)), rec, record, t_end,
+                                     None, LoopTurn(tr, np.empty((2, 4)), rec, record, t_end,
                                               np.empty((3, nv))))
     return y, samples, rec, n_rec, nfev, status
