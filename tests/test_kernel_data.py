@@ -45,8 +45,13 @@ OTHER_MEANING = ("corliss/plot/animation.py",)
 MAX_ARGUMENTS = 12
 #: Compiled functions allowed over it, with their count: the governor's equation of
 #: motion, thirteen scalars (its state, its tables' values at z, its constants, the
-#: shaft's speed and acceleration), called alike from the compiled loop and from Python.
-LONG_ARGUMENT_LISTS = {"corliss/engine/kernels/governor.py:governor_motion": 13}
+#: shaft's speed and acceleration), called alike from the compiled loop and from Python;
+#: the Rosenbrock step loop, whose four version markers (``pair``, ``finite``,
+#: ``cycle``, ``turn``) must be plain arguments: numba prunes a branch on ``x is None``
+#: only for an argument, not for a field of a structure, and without the pruning a
+#: turn's first run compiled the steady cycle's right-hand side and Jacobians too.
+LONG_ARGUMENT_LISTS = {"corliss/engine/kernels/governor.py:governor_motion": 13,
+                       "corliss/engine/kernels/rosenbrock.py:_ros_steps": 13}
 
 
 def positional_reads(source: str) -> list[str]:
