@@ -21,10 +21,21 @@ from typing import Callable
 
 import numpy as np
 
-from corliss.valves.gear import ValveGear
+from corliss.valves.gear import OPENINGS_OF_SIGNED, ValveGear
 
 TWO_PI = 2.0 * math.pi
 _SAMPLES = 7200
+
+
+def _fixed(a: np.ndarray) -> np.ndarray:
+    a.setflags(write=False)
+    return a
+
+
+#: The samples' angles [rad], a turn and its end (the crossings' brackets), and a turn
+#: without its end (the events' largest openings): made once, read by every gear.
+_TURN_CLOSED = _fixed(np.linspace(0.0, TWO_PI, _SAMPLES + 1))
+_TURN_OPEN = _fixed(np.linspace(0.0, TWO_PI, _SAMPLES, endpoint=False))
 
 
 def crossing_table(gear: ValveGear, levels: np.ndarray) -> list[list[list[tuple[float, bool]]]]:
@@ -72,7 +83,7 @@ def sampled_crossings(gear: ValveGear, levels: np.ndarray) -> tuple[list, np.nda
         again).
     """
     levels = np.atleast_2d(np.asarray(levels, dtype=float))
-    th = np.linspace(0.0, TWO_PI, _SAMPLES + 1)
+    th = _TURN_CLOSED
     s = gear.signed_openings(th)
     # every port's samples against every one of its levels at once: (port, level, sample)
     above = (s[:, None, :] - levels[:, :, None]) > 0.0
@@ -397,7 +408,7 @@ def events(gear: ValveGear, piston_fraction: Callable[[float], float],
     """
     if table is None:
         table = crossing_table(gear, np.zeros((4, 1)))
-    sampled = _sampled(gear, signed)
+    sampled = _largest(gear, signed)
     return {end: end_events(gear, end, piston_fraction, table, sampled)
             for end in ("head", "crank")}
 
@@ -405,5 +416,20 @@ def events(gear: ValveGear, piston_fraction: Callable[[float], float],
 def _sampled(gear: ValveGear, signed: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The gear's openings and signed openings over :data:`_SAMPLES` angles a turn
     (the signed ones given when ``signed`` is not None)."""
-    th = np.linspace(0.0, TWO_PI, _SAMPLES, endpoint=False)
-    return gear.sampled(th, signed)
+    return gear.sampled(_TURN_OPEN, signed)
+
+
+def _largest(gear: ValveGear, signed: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """What :func:`end_events` reads of :func:`_sampled`: each port's largest opening
+    and largest signed opening over the samples, shape ``(4, 1)`` each.
+
+    Where the gear's openings are its signed ones through ``_openings_of``
+    (:data:`~corliss.valves.gear.OPENINGS_OF_SIGNED`, nondecreasing in each signed
+    opening), the largest opening is ``_openings_of`` of the largest signed one, the
+    same number as the largest of the openings, found on four values instead of the
+    turn's samples; otherwise the openings over the samples."""
+    if type(gear).openings not in OPENINGS_OF_SIGNED:
+        return _sampled(gear, signed)
+    s = gear.signed_openings(_TURN_OPEN) if signed is None else signed
+    top = s.max(axis=1)[:, None]
+    return gear._openings_of(top.copy()), top
