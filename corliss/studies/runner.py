@@ -121,10 +121,7 @@ class StudySpec:
 
 def _scene(base: dict, name: str, fidelity: str | None, changes: dict):
     """One run's steady scene, loaded and checked."""
-    sc = scene_from_dict(edited(base, changes), name=name)
-    if fidelity is not None:
-        sc = sc.with_fidelity(fidelity)
-    return steady_scene(sc)
+    return steady_scene(scene_from_dict(edited(base, changes), name=name), fidelity)
 
 
 def run_chunk(spec: StudySpec, run_ids, values) -> tuple[list, int, str | None]:
