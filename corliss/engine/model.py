@@ -378,7 +378,7 @@ def steady_scene(scene, fidelity: str | None = None):
     InputError
         A fidelity that is not a preset.
     """
-    changes = {"mode": "steady", "duration_s": None}
+    changes: dict = {"mode": "steady", "duration_s": None}
     if fidelity is not None:
         if fidelity not in PRESETS:
             raise InputError("run.fidelity", fidelity, "one of " + ", ".join(PRESETS))

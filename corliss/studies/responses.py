@@ -11,6 +11,7 @@ actually give.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 from corliss.engine.model import build_lp_gear, lp_geometry_of, scene_events
 from corliss.errors import InputError
@@ -99,7 +100,7 @@ def picked(summary: dict, key: str):
         ``flatten(summary).get(key)``: the number (a numpy scalar as a Python one),
         None for a null, a key the summary lacks, or a value that is not a number.
     """
-    node = summary
+    node: Any = summary
     for name in key.split("."):
         if not isinstance(node, dict) or name not in node:
             return None
