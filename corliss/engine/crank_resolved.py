@@ -211,12 +211,14 @@ class CrankResolved:
             ha = y_end[net.i_node_quad(i, "hA")]
             if not ha > 0.0:
                 continue
+            wall_T = net.wall_T
+            assert wall_T is not None      # set by initial_state for every walled node
             if net.node_heat[i][H_MODEL] != WALL_SKIN:
-                net.wall_T[i] = y_end[net.i_node_quad(i, "hAT")] / ha
+                wall_T[i] = y_end[net.i_node_quad(i, "hAT")] / ha
                 continue
             gap = net.node_heat[i][H_SKIN_JACKET_G] * 2.0 * math.pi / net.omega
             d_full = ha - gap
-            T = float(net.wall_T[i])
+            T = float(wall_T[i])
             Q = float(y_end[net.i_node_quad(i, "heat")])
             slope = d_full
             prev, lo, hi = hist.get(i, (None, -math.inf, math.inf))
@@ -229,7 +231,7 @@ class CrankResolved:
             imbalance = max(imbalance, abs(r) / max(scale, 1e-300))
             if apply:
                 hist[i] = ((T, Q), lo, hi)
-                net.wall_T[i] = T + step
+                wall_T[i] = T + step
         return largest, imbalance
 
     def initial_state(self) -> np.ndarray:

@@ -104,6 +104,7 @@ def run_steady(scene, *, portmap_scale: float = 1.0,
         else:
             data = _equilibrium(scene, geo, steam_eq(), chest, exhaust, _ideal_schedule(ev, geo))
     elif scene.run.has("port_flow"):
+        assert pm is not None          # a port-flow model has its port map
         if portmap_scale != 1.0:
             pm = pm.scaled(portmap_scale)
         data = _crank_resolved(scene, model, pm, progress, start)
