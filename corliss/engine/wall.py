@@ -484,7 +484,9 @@ class IdealPortWall:
     Water beyond the film the wall holds (``FILM_MAX_KG_M2``) runs into the steam, and
     while the steam flows out the film beyond ``FILM_WET_KG_M2`` goes with it in the
     proportion of the steam leaving (:meth:`sweep`), as in the kernel, taken with the
-    exchange of the step after the outflow (a blow-down's or an open step's).
+    exchange of the step after an open step's outflow; a blow-down sweeps as it goes,
+    so that part of the water swept leaves with the rest of the steam, as through
+    ports (:func:`corliss.engine.equilibrium.step_end`).
 
     Parameters
     ----------
