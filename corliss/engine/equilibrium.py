@@ -318,8 +318,9 @@ def run_cycles(steam: Steam, theta: np.ndarray, volumes: tuple[np.ndarray, np.nd
     With ``walls`` (an :class:`corliss.engine.wall.IdealPortWall` per end) the cycle is
     periodic when the work, each surface's temperature (against the supply's less the
     exhaust's temperature), each film (against the steam its end holds) and each deep
-    wall's heat balance over the cycle (against the enthalpy supplied) change by less
-    than ``tol``; the deep wall takes its step once the rest is periodic, as the
+    wall's heat balance over the cycle (against the heat it took, or its bracket
+    against the temperature scale, :class:`corliss.engine.wall.DeepWallSearch`) change
+    by less than ``tol``; the deep wall takes its step once the rest is periodic, as the
     crank-resolved runner's (:func:`corliss.engine.steady.run_steady`).
 
     Parameters
@@ -381,16 +382,18 @@ def run_cycles(steam: Steam, theta: np.ndarray, volumes: tuple[np.ndarray, np.nd
         w = out[0].work_J + out[1].work_J
         change = abs(w - w_prev) / max(abs(w), 1e-300) if w_prev is not None else math.inf
         if walls:
-            h_in = abs(out[0].H_chest_J + out[1].H_chest_J)
             inner = change
             for (t0, f0), wl, tr in zip(start, walls, out):
                 inner = max(inner, abs(wl.T_deep + wl.dT - t0) / dT_scale,
                             abs(wl.film - f0) / max(float(np.max(tr.m_kg)), 1e-300))
-            steps = [wl.deep_step(False, h_in) for wl in walls]
+            # each wall's balance against its own heat, or its bracket against the
+            # temperature scale (as the crank-resolved runner's, corliss.engine.steady)
+            trusted = inner <= tol
+            steps = [wl.deep_step(False, dT_scale=dT_scale, trusted=trusted) for wl in walls]
             settled = inner <= max(10.0 * tol, 0.1 * max(abs(s[0]) for s in steps) / dT_scale)
             if settled:
                 for wl in walls:
-                    wl.deep_step(True, h_in)
+                    wl.deep_step(True, dT_scale=dT_scale, trusted=trusted)
             change = max(inner, max(s[1] for s in steps))
         if cycles is None and change <= tol:
             converged = k
