@@ -33,6 +33,7 @@ import pytest
 import numpy as np
 
 from corliss.cli import commands as cli
+from corliss.cli import run_command
 from corliss.engine.balance import BALANCE_FACTOR, balance_failure, balance_tolerance
 from corliss.errors import EXIT_BALANCE_FAILED, RunError
 from corliss.files.run_output import STAGING_PREFIX, OutputFiles
@@ -328,12 +329,12 @@ def test_sigint_and_sigterm_during_a_run_leave_the_folder_as_it_was(sig, code, e
     """A signal while the run simulates: exit 130 or 143, one line, no traceback, the
     earlier run's files byte for byte."""
     before = _tree(earlier)
-    real = cli.simulate
+    real = run_command.simulate
 
     def signalled(*a, **k):
         os.kill(os.getpid(), sig)
         return real(*a, **k)
-    monkeypatch.setattr(cli, "simulate", signalled)
+    monkeypatch.setattr(run_command, "simulate", signalled)
     got, _, err = _run(["run", "--out", str(earlier), "--cycles", "3", *FAST], capsys)
     assert got == code and err.count("\n") <= 2
     assert _tree(earlier) == before

@@ -34,6 +34,8 @@ import os
 import pickle
 import subprocess
 import sys
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 
@@ -85,7 +87,7 @@ TRANSIENT_SCENE = "corliss-governor"
 #: Makes that scene (a callable of no argument returning a Scene), set by the command
 #: line (:mod:`corliss.cli.commands`), which loads bundled scenes; None (a run from
 #: Python): the transient loop is left to compile on its first use.
-transient_probe = None
+transient_probe: Callable[[], Any] | None = None
 #: The presets a user reaches from the command line with the table tier.
 PRESETS_REACHED = ("standard", "fast")
 #: The lock file, beside numba's cache of the cycle kernels, held by the process that

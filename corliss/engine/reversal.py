@@ -91,6 +91,143 @@ def reversible(scene, gear) -> bool:
             and scene.governor is None and scene.load.speed_exponent == 0)
 
 
+class _Shaft:
+    """The loop's right-hand side in time, in the frame turning either way, with the slip
+    eccentric's sheave at its place; it counts its evaluations and keeps the samples of
+    every stretch integrated.
+
+    Parameters
+    ----------
+    nn : int
+        The network's states (the loop's follow them).
+    omega_run : float
+        The scene's run speed [rad/s].
+    net, gear, tier, tab, perf, tr
+        As :func:`run_reversal`'s.
+    """
+
+    def __init__(self, nn: int, omega_run: float, net, gear, tier, tab, perf, tr):
+        self.i_w = nn + loop.X_OMEGA
+        self.gear = gear
+        self.slip = gear.spec.slip_rad
+        self.w_f = CREEP_FRACTION * omega_run
+        self.sc = tr.sc
+        self.t_ref = tr.sc[loop.S_TREF]
+        self.tier, self.tab, self.perf, self.tr = tier, tab, perf, tr
+        # the ahead gear's areas over its crank angle, read at the sheave's place ``a``
+        self.grid = net.port_grid[0, :net.port_npts[0]].copy()
+        self.table = net.port_area[0, :, :net.port_npts[0]].copy()
+        self.fixed = np.empty((1, 4, 2))
+        self.net_fixed = net._replace(port_grid=np.array([[0.0, TWO_PI]]),
+                                      port_npts=np.array([2], dtype=net.port_npts.dtype),
+                                      port_area=self.fixed)
+        self.dy = np.empty(nn + loop.N_EXTRA)
+        # the properties' scratch starts unknown (NaN), as the compiled loops' does: a
+        # value left by another run would seed the wet-state iteration
+        self.pr = np.full((PR_ROWS, net.node_kind.shape[0]), np.nan)
+        self.pa = np.empty((1, 4))
+        self.out = np.empty(4)
+        self.nfev = 0
+        self.ts: list = []
+        self.ths: list = []
+        self.ys: list = []
+        self.valves: list = []
+        self.slips: list = []
+
+    def place(self, theta: float, mode: int, anchor: float) -> float:
+        """The sheave's place ``a`` (the ahead gear's crank angle) [rad]."""
+        if mode == FORWARD:
+            return theta
+        if mode == BACKWARD:
+            return theta + self.slip
+        return anchor
+
+    def frame_rates(self, theta: float, y: np.ndarray, sense: float, a: float):
+        """d/dt of the loop's states in the frame turning ``sense``, and the shaft's
+        acceleration in it [rad/s2]."""
+        self.nfev += 1
+        a = a % TWO_PI
+        for p in range(4):
+            self.fixed[0, p, :] = np.interp(a, self.grid, self.table[p])
+        yk = y.copy()
+        w_eff = max(abs(y[self.i_w]), self.w_f)
+        yk[self.i_w] = w_eff
+        self.sc[loop.S_TREF] = sense * self.t_ref
+        loop.transient_rhs((sense * theta) % TWO_PI, yk, self.dy, self.net_fixed, self.tier,
+                           self.tab, self.perf, self.pr, self.pa, self.tr, self.out)
+        return self.dy * w_eff, self.out[3]
+
+    def rhs(self, t: float, Y: np.ndarray, mode: int, anchor: float) -> np.ndarray:
+        """d/dt of ``[theta, y]`` for ``solve_ivp``."""
+        theta = Y[0]
+        y = Y[1:]
+        w = y[self.i_w]
+        a = self.place(theta, mode, anchor)
+        if abs(w) > self.w_f:
+            sense = 1.0 if w > 0.0 else -1.0
+            d, wdot = self.frame_rates(theta, y, sense, a)
+        else:
+            # at rest: it moves the way the net torque can turn it against friction
+            sense = 1.0
+            d, wdot = self.frame_rates(theta, y, 1.0, a)
+            if wdot <= 0.0:
+                d_b, wdot_b = self.frame_rates(theta, y, -1.0, a)
+                if wdot_b > 0.0:
+                    sense, d, wdot = -1.0, d_b, wdot_b
+                else:
+                    wdot = 0.0          # held by friction
+        d[self.i_w] = sense * wdot
+        return np.concatenate([[w], d])
+
+    def keep(self, sol, mode: int, anchor: float, first: bool) -> None:
+        """Keep a stretch's samples (its first sample only for the first stretch)."""
+        s = slice(0 if first else 1, None)
+        th = sol.y[0, s]
+        self.ts.append(sol.t[s])
+        self.ths.append(th)
+        self.ys.append(sol.y[1:, s])
+        a = np.array([self.place(x, mode, anchor) for x in th])
+        self.valves.append(self.gear.travel(a % TWO_PI))
+        self.slips.append(a - th)
+
+    def samples(self) -> dict:
+        """The samples kept, as :func:`run_reversal` returns them."""
+        return {"t": np.concatenate(self.ts), "theta": np.concatenate(self.ths),
+                "y": np.concatenate(self.ys, axis=1), "valve_m": np.concatenate(self.valves),
+                "slip_rad": np.concatenate(self.slips)}
+
+    def events(self, mode: int, anchor: float, Y: np.ndarray, omega_run: float):
+        """The terminal events of the next stretch in ``mode``: the shaft turning back
+        (forward stop), either stop meeting the pin (standing), ahead again or fast enough
+        backward (backward stop); None when already fast enough backward."""
+        i_w, w_f, slip = self.i_w, self.w_f, self.slip
+        if mode == FORWARD:
+            def stop(t, Y, *_):
+                return Y[1 + i_w] + 0.5 * w_f      # a little past zero: turned back
+            _terminal(stop, -1)
+            return [stop]
+        if mode == STANDING:
+            def forward_stop(t, Y, *_, a=anchor):
+                return Y[0] - a
+            _terminal(forward_stop, 1)
+
+            def backward_stop(t, Y, *_, a=anchor):
+                return Y[0] - (a - slip)
+            _terminal(backward_stop, -1)
+            return [forward_stop, backward_stop]
+        if -Y[1 + i_w] >= HANDOVER_FRACTION * omega_run:
+            return None                         # fast enough already: to the dead centre
+
+        def ahead_again(t, Y, *_):
+            return Y[1 + i_w] - 0.5 * w_f
+        _terminal(ahead_again, 1)
+
+        def fast_enough(t, Y, *_):
+            return -Y[1 + i_w] - HANDOVER_FRACTION * omega_run
+        _terminal(fast_enough, 1)
+        return [ahead_again, fast_enough]
+
+
 def run_reversal(y0: np.ndarray, theta0: float, omega_run: float, net, gear, tier, tab, perf,
                  tr, rtol: float, atol: np.ndarray, t_max: float) -> dict:
     """Integrate in time from the start of a stalling turn through the change of direction.
@@ -135,82 +272,10 @@ def run_reversal(y0: np.ndarray, theta0: float, omega_run: float, net, gear, tie
 
     sc = tr.sc
     nn = y0.shape[0] - loop.N_EXTRA
-    i_w = nn + loop.X_OMEGA
-    slip = gear.spec.slip_rad
-    w_f = CREEP_FRACTION * omega_run
-    t_ref = sc[loop.S_TREF]
+    shaft = _Shaft(nn, omega_run, net, gear, tier, tab, perf, tr)
+    i_w, slip = shaft.i_w, shaft.slip
     floor_saved = sc[loop.S_WMIN]
-    sc[loop.S_WMIN] = w_f
-    # the ahead gear's areas over its crank angle, read at the sheave's place ``a``
-    grid = net.port_grid[0, :net.port_npts[0]].copy()
-    table = net.port_area[0, :, :net.port_npts[0]].copy()
-    fixed = np.empty((1, 4, 2))
-    net_fixed = net._replace(port_grid=np.array([[0.0, TWO_PI]]),
-                             port_npts=np.array([2], dtype=net.port_npts.dtype),
-                             port_area=fixed)
-    dy = np.empty(y0.shape[0])
-    pr = np.empty((PR_ROWS, net.node_kind.shape[0]))
-    pa = np.empty((1, 4))
-    out = np.empty(4)
-    nfev = 0
-
-    def place(theta, mode, anchor):
-        """The sheave's place ``a`` (the ahead gear's crank angle) [rad]."""
-        if mode == FORWARD:
-            return theta
-        if mode == BACKWARD:
-            return theta + slip
-        return anchor
-
-    def frame_rates(theta, y, sense, a):
-        """d/dt of the loop's states in the frame turning ``sense``, and the shaft's
-        acceleration in it [rad/s2]."""
-        nonlocal nfev
-        nfev += 1
-        a = a % TWO_PI
-        for p in range(4):
-            fixed[0, p, :] = np.interp(a, grid, table[p])
-        yk = y.copy()
-        w_eff = max(abs(y[i_w]), w_f)
-        yk[i_w] = w_eff
-        sc[loop.S_TREF] = sense * t_ref
-        loop.transient_rhs((sense * theta) % TWO_PI, yk, dy, net_fixed, tier, tab, perf, pr, pa,
-                           tr, out)
-        return dy * w_eff, out[3]
-
-    def rhs(t, Y, mode, anchor):
-        theta = Y[0]
-        y = Y[1:]
-        w = y[i_w]
-        a = place(theta, mode, anchor)
-        if abs(w) > w_f:
-            sense = 1.0 if w > 0.0 else -1.0
-            d, wdot = frame_rates(theta, y, sense, a)
-        else:
-            # at rest: it moves the way the net torque can turn it against friction
-            sense = 1.0
-            d, wdot = frame_rates(theta, y, 1.0, a)
-            if wdot <= 0.0:
-                d_b, wdot_b = frame_rates(theta, y, -1.0, a)
-                if wdot_b > 0.0:
-                    sense, d, wdot = -1.0, d_b, wdot_b
-                else:
-                    wdot = 0.0          # held by friction
-        d[i_w] = sense * wdot
-        return np.concatenate([[w], d])
-
-    ts, ths, ys, valves, slips = [], [], [], [], []
-
-    def keep(sol, mode, anchor, first):
-        s = slice(0 if first else 1, None)
-        th = sol.y[0, s]
-        ts.append(sol.t[s])
-        ths.append(th)
-        ys.append(sol.y[1:, s])
-        a = np.array([place(x, mode, anchor) for x in th])
-        valves.append(gear.travel(a % TWO_PI))
-        slips.append(a - th)
-
+    sc[loop.S_WMIN] = shaft.w_f
     Y = np.concatenate([[theta0], y0])
     Y[1 + i_w] = max(Y[1 + i_w], 0.0)
     t = float(y0[nn + loop.X_TIME])
@@ -221,37 +286,13 @@ def run_reversal(y0: np.ndarray, theta0: float, omega_run: float, net, gear, tie
     tol = np.concatenate([[1e-9], atol])
     try:
         while t < t_max:
-            if mode == FORWARD:
-                def stop(t, Y, *_):
-                    return Y[1 + i_w] + 0.5 * w_f      # a little past zero: turned back
-                _terminal(stop, -1)
-                events = [stop]
-            elif mode == STANDING:
-                def forward_stop(t, Y, *_, a=anchor):
-                    return Y[0] - a
-                _terminal(forward_stop, 1)
-
-                def backward_stop(t, Y, *_, a=anchor):
-                    return Y[0] - (a - slip)
-                _terminal(backward_stop, -1)
-                events = [forward_stop, backward_stop]
-            elif -Y[1 + i_w] >= HANDOVER_FRACTION * omega_run:
-                events = None                   # fast enough already: to the dead centre
-            else:
-                def ahead_again(t, Y, *_):
-                    return Y[1 + i_w] - 0.5 * w_f
-                _terminal(ahead_again, 1)
-
-                def fast_enough(t, Y, *_):
-                    return -Y[1 + i_w] - HANDOVER_FRACTION * omega_run
-                _terminal(fast_enough, 1)
-                events = [ahead_again, fast_enough]
+            events = shaft.events(mode, anchor, Y, omega_run)
             if events is None:
                 hit = [1]
             else:
-                sol = solve_ivp(rhs, (t, t_max), Y, method="LSODA", rtol=rtol, atol=tol,
+                sol = solve_ivp(shaft.rhs, (t, t_max), Y, method="LSODA", rtol=rtol, atol=tol,
                                 events=events, args=(mode, anchor))
-                keep(sol, mode, anchor, first)
+                shaft.keep(sol, mode, anchor, first)
                 first = False
                 Y = sol.y[:, -1].copy()
                 t = float(sol.t[-1])
@@ -279,23 +320,20 @@ def run_reversal(y0: np.ndarray, theta0: float, omega_run: float, net, gear, tie
                 def dead_centre(t, Y, *_):
                     return Y[0] - theta_dc
                 _terminal(dead_centre, -1)
-                sol = solve_ivp(rhs, (t, t_max), Y, method="LSODA", rtol=rtol, atol=tol,
+                sol = solve_ivp(shaft.rhs, (t, t_max), Y, method="LSODA", rtol=rtol, atol=tol,
                                 events=[dead_centre], args=(mode, anchor))
-                keep(sol, mode, anchor, False)
+                shaft.keep(sol, mode, anchor, False)
                 Y = sol.y[:, -1].copy()
                 t = float(sol.t[-1])
                 handed_over = sol.status == 1
                 break
     finally:
         sc[loop.S_WMIN] = floor_saved
-        sc[loop.S_TREF] = t_ref
+        sc[loop.S_TREF] = shaft.t_ref
     y = Y[1:].copy()
     y[nn + loop.X_TIME] = t
     y[i_w] = abs(y[i_w])
     phi = -Y[0]
     return {"y": y, "phi_rad": float(round(phi / TWO_PI) * TWO_PI) if handed_over else phi,
-            "handed_over": handed_over, "nfev": nfev, "theta_reversed_rad": reversed_at,
-            "theta_engaged_rad": engaged_at,
-            "samples": {"t": np.concatenate(ts), "theta": np.concatenate(ths),
-                        "y": np.concatenate(ys, axis=1), "valve_m": np.concatenate(valves),
-                        "slip_rad": np.concatenate(slips)}}
+            "handed_over": handed_over, "nfev": shaft.nfev, "theta_reversed_rad": reversed_at,
+            "theta_engaged_rad": engaged_at, "samples": shaft.samples()}

@@ -28,13 +28,13 @@ from corliss.engine.kernels.cache import announce_compile
 from corliss.engine.kernels.data import (TRIP_AREA, TRIP_CLOSING, TRIP_GRID, TRIP_RELEASE,
                                          TRIP_SCALARS, TS_CLOSE_ANGLE, TS_CLOSE_TIME,
                                          TS_N_CLOSING, TS_N_SETTINGS, TS_OPEN_ANGLE, LoopArrays,
-                                         Physics, Tableau)
+                                         NetworkArrays, Physics, Tableau)
 from corliss.engine.kernels.stepping import MAX_RHS_PER_CYCLE
 from corliss.engine.kernels.tableaus import ROS_TABLEAUS
 from corliss.engine.condensation import MarksLaw
 from corliss.engine.crank_resolved import budget_message
 from corliss.engine.model import assemble, build_network
-from corliss.engine.network import throttle_area_m2
+from corliss.engine.network import Network, throttle_area_m2
 from corliss.governors.operating_point import (BALANCED, LOAD_TOO_HEAVY, SURPLUS_TOL,
                                            OperatingPoint, find_operating_point)
 from corliss.engine.options import TRANSIENT_METHODS, record_of
@@ -45,7 +45,7 @@ from corliss.engine.start_from_rest import HANDOVER_FRACTION, start_from_rest
 from corliss.errors import InputError, RunError
 from corliss.governors import governor_type
 from corliss.governors.mechanism import CREEP_PER_S
-from corliss.thermo.steam_table import load_table
+from corliss.thermo.steam_table import TableArrays, load_table
 from corliss.valves import events as gear_events
 from corliss.valves.portmap import tabulate, tabulate_settings
 from corliss.valves.single_acting import single_acting
@@ -315,6 +315,213 @@ def build_tables(scene, net, gear, geo) -> LoopTables:
                       z0, mech)
 
 
+@dataclass
+class TurnRunner:
+    """The compiled turn of one transient run, with everything it reads: the network's,
+    the steam table's and the loop's arrays, the tolerances, and the evaluations counted.
+
+    Parameters
+    ----------
+    integrate : callable
+        The turn's integrator (:func:`_turn_integrator`), with the arguments of
+        :func:`corliss.engine.kernels.dopri5.integrate_turn`.
+    network : Network
+        The run's network (for its messages and its walls).
+    net : NetworkArrays
+        Its compiled arrays (replaced when a slip eccentric reverses the gear).
+    tier : int
+        The steam properties' compiled tier.
+    tab : TableArrays
+        The steam table's arrays.
+    perf : numpy.ndarray
+        The perfect-gas parameters of the ``perfect`` tier (zeros otherwise).
+    tr : LoopArrays
+        The loop's tables and scalars (``tr.sc``).
+    rtol : float
+        Relative tolerance [-].
+    atol : numpy.ndarray
+        Absolute tolerance of each state [its unit].
+    nfev : int
+        Right-hand-side evaluations so far.
+    """
+
+    integrate: Callable
+    network: Network
+    net: NetworkArrays
+    tier: int
+    tab: TableArrays
+    perf: np.ndarray
+    tr: LoopArrays
+    rtol: float
+    atol: np.ndarray
+    nfev: int = 0
+
+    def turn(self, y: np.ndarray, th0: float, out_theta: np.ndarray, steps: bool,
+             t_end: float) -> tuple:
+        """One turn of the crank from ``th0`` (or less: a stall, ``t_end``).
+
+        Parameters
+        ----------
+        y : numpy.ndarray
+            The state at ``th0``: the network's and the loop's (:mod:`~corliss.engine.kernels.loop`).
+        th0 : float
+            Crank angle at the start [rad].
+        out_theta : numpy.ndarray
+            Crank angles to sample the state at [rad].
+        steps : bool
+            Record every accepted step as well.
+        t_end : float
+            Time at which to stop [s].
+
+        Returns
+        -------
+        tuple
+            ``(y, samples, recorded, n_recorded, status)``: the state at the turn's end,
+            the samples at ``out_theta``, the steps recorded and their count, and the
+            status (0 a whole turn, 2 stalled or ``t_end``, 1 failed, 4 over budget).
+        """
+        y, samples, rec, n_rec, nf, status = self.integrate(
+            y, th0, out_theta, self.rtol, self.atol, self.net, self.tier, self.tab, self.perf,
+            self.tr, steps, t_end)
+        self.nfev += nf
+        return y, samples, rec, n_rec, status
+
+    def stop_on_failure(self, status: int, where: str, failed: str) -> None:
+        """Raise when a turn went over the evaluation budget or its step size collapsed.
+
+        Parameters
+        ----------
+        status : int
+            The turn's status (:meth:`turn`).
+        where : str
+            Appended to the budget's message, e.g. ``" (in turn 3, at 0.412 s)"``.
+        failed : str
+            The message when the step size collapsed.
+
+        Raises
+        ------
+        RunError
+            Over the budget (:func:`~corliss.engine.crank_resolved.budget_message`).
+        RuntimeError
+            The step size collapsed.
+        """
+        if status == 4:
+            raise RunError(budget_message(self.network, self.tr.sc[loop.S_MAX_RHS]) + where)
+        if status == 1:
+            raise RuntimeError(failed)
+
+
+def _frozen_turns(turns: TurnRunner, y: np.ndarray, omega: float, z: float, count: int,
+                  marks, tol: float | None = None) -> tuple[np.ndarray, float]:
+    """Turns at speed ``omega`` with the governor held at ``z``: ``count`` of them, or with
+    ``tol`` [N m] until the turn's mean surplus torque changes by less (at most
+    ``count``).  Returns the state and the last turn's surplus [N m]."""
+    network = turns.network
+    nn = network.n_state
+    y[nn + loop.X_OMEGA] = omega
+    y[nn + loop.X_Z] = z
+    y[nn + loop.X_ZDOT] = 0.0
+    last = math.inf
+    surplus = 0.0
+    for turn in range(count):
+        y[network.n_dyn:nn] = 0.0
+        for q in (loop.X_TIME, loop.X_WLOAD, loop.X_WFRIC, loop.X_WGAS):
+            y[nn + q] = 0.0
+        if marks is not None:
+            marks.strokes_per_s = omega / math.pi
+            marks.apply(turns.net.heat)
+        y, _, _, _, status = turns.turn(y, 0.0, np.zeros(0), False, math.inf)
+        turns.stop_on_failure(status, " (in the warm-up turns before t = 0)",
+                              "the integrator failed in the warm-up turns before t = 0")
+        if marks is None:
+            _update_wall(network, y)
+        surplus = (y[nn + loop.X_WGAS] - y[nn + loop.X_WFRIC] - y[nn + loop.X_WLOAD]) / TWO_PI
+        if tol is not None and turn >= 1 and abs(surplus - last) <= tol:
+            break
+        last = surplus
+    return y, surplus
+
+
+def _start_at_speed(turns: TurnRunner, y: np.ndarray, scene, tables: LoopTables, marks
+                    ) -> tuple[np.ndarray, OperatingPoint]:
+    """Warm-up turns at the scene's speed, then (``start = "equilibrium"``) the governor's
+    operating point for the load, and the speed at dead centre that gives it as the
+    turn's mean.  Returns the state released at t = 0 and the start."""
+    run = scene.run
+    nn = turns.network.n_state
+    sc = tables.tr.sc
+    omega0 = run.speed_rad_s
+    y, _ = _frozen_turns(turns, y, omega0, tables.z0, run.warmup_cycles, marks)
+    start = OperatingPoint(omega0, tables.z0, math.nan, "run_speed", 0)
+    if tables.mechanism is not None and run.start == "equilibrium":
+        t_load = abs(sc[loop.S_TREF] * loop.load_factor(0.0, tables.tr.load_t, tables.tr.load_f))
+        tol = 0.25 * SURPLUS_TOL * max(t_load, 1e-9)
+
+        def surplus(omega, z):
+            nonlocal y
+            y, s = _frozen_turns(turns, y, omega, z, EQUILIBRIUM_TURNS, marks, tol)
+            return s
+
+        start = find_operating_point(surplus, tables.mechanism, t_load)
+        y, _ = _frozen_turns(turns, y, start.speed_rad_s, start.governor_z, 2, marks)
+        _report_start(start)
+    # The flywheel lets the speed swing within a turn (Marks Art. 62), and the governor
+    # balances on the turn's mean speed; released at dead centre at the mean speed, the
+    # engine would gain or lose the swing's offset and the governor follow it.  So the
+    # speed at dead centre is set, by trial turns with the governor held and the speed
+    # free, to give the turn-mean speed of the start.
+    sc[loop.S_FREEZE] = 2.0
+    omega_dc = start.speed_rad_s
+    for _ in range(START_TRIALS):
+        trial = y.copy()
+        trial[nn + loop.X_OMEGA] = omega_dc
+        trial[nn + loop.X_TIME] = 0.0
+        trial, _, _, _, status = turns.turn(trial, 0.0, np.zeros(0), False, math.inf)
+        if status != 0:
+            break
+        omega_dc *= start.speed_rad_s / (TWO_PI / trial[nn + loop.X_TIME])
+    sc[loop.S_FREEZE] = 0.0
+    y[nn + loop.X_TIME] = 0.0
+    y[nn + loop.X_OMEGA] = omega_dc
+    y[nn + loop.X_Z] = start.governor_z
+    y[nn + loop.X_ZDOT] = 0.0
+    return y, start
+
+
+def _start_at_rest(turns: TurnRunner, y: np.ndarray, scene, steam, tables: LoopTables
+                   ) -> tuple[dict, OperatingPoint, dict, dict]:
+    """From rest at ``run.start_angle`` to the dead centre where the crank-angle loop
+    takes over (:func:`~corliss.engine.start_from_rest.start_from_rest`).  Returns what
+    it gives, the start, and its per-turn row and time-series columns."""
+    run = scene.run
+    network = turns.network
+    nn = network.n_state
+    start = OperatingPoint(0.0, 0.0, math.nan, "rest", 0)
+    turns.tr.sc[loop.S_FREEZE] = 0.0
+    for q in (loop.X_OMEGA, loop.X_Z, loop.X_ZDOT, loop.X_TIME):
+        y[nn + q] = 0.0
+    begun = start_from_rest(y, run.start_angle_rad, run.speed_rad_s, turns.net, turns.tier,
+                            turns.tab, turns.perf, turns.tr, turns.rtol, turns.atol,
+                            run.max_duration_s or run.duration_s)
+    turns.nfev += begun["nfev"]
+    row, frame = _start_record(begun, y, network, steam, tables, nn)
+    if begun["stalled"]:
+        log.warning("the engine did not start: from rest at %.1f deg of crank it had not "
+                    "reached %.0f %% of run.speed by %.3g s", math.degrees(run.start_angle_rad),
+                    100 * HANDOVER_FRACTION, begun["y"][nn + loop.X_TIME])
+    return begun, start, row, {c: frame[c].to_numpy() for c in frame.columns}
+
+
+def _out_angles(record: str, th0: float, n_out: int) -> np.ndarray:
+    """The crank angles a turn from ``th0`` is sampled at [rad]: ``n_out`` a turn with
+    ``record = "degree"``, the turn's start with ``"cycle"``, none with ``"step"``."""
+    if record == "degree":
+        return th0 + np.arange(n_out) * (TWO_PI / n_out)
+    if record == "cycle":
+        return np.array([th0])
+    return np.zeros(0)
+
+
 def run_transient(scene, *, progress: Callable[[float, float], None] | None = None
                   ) -> TransientResult:
     """Run a transient scene.
@@ -364,112 +571,28 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
     atol = np.concatenate([fid.rtol * network.scales(),
                            fid.rtol * np.array([omega0, 1.0, 1.0, 1.0, 1e3, 1e3, 1e3, 1.0, 1.0])])
     sc = tables.tr.sc
-    rtol = fid.rtol
-    nfev = 0
-    integrate_turn = _turn_integrator(method, network)
+    turns = TurnRunner(_turn_integrator(method, network), network, net, steam.kernel_tier, tab,
+                       perf, tables.tr, fid.rtol, atol)
     # warm-up: speed and governor held, time held at zero
     announce_compile(dopri5.integrate_turn if method == "dopri5" else rosenbrock.integrate_turn_ros)
     sc[loop.S_FREEZE] = 1.0
 
-    def frozen_turns(y, omega, z, turns, tol=None):
-        """Turns at speed ``omega`` with the governor held at ``z``: ``turns`` of them, or
-        with ``tol`` [N m] until the turn's mean surplus torque changes by less (at most
-        ``turns``).  Returns the state and the last turn's surplus [N m]."""
-        nonlocal nfev
-        y[nn + loop.X_OMEGA] = omega
-        y[nn + loop.X_Z] = z
-        y[nn + loop.X_ZDOT] = 0.0
-        last = math.inf
-        surplus = 0.0
-        for turn in range(turns):
-            y[network.n_dyn:nn] = 0.0
-            for q in (loop.X_TIME, loop.X_WLOAD, loop.X_WFRIC, loop.X_WGAS):
-                y[nn + q] = 0.0
-            if marks is not None:
-                marks.strokes_per_s = omega / math.pi
-                marks.apply(net.heat)
-            y, _, _, _, nf_, status = integrate_turn(y, 0.0, np.zeros(0), rtol, atol, net,
-                                                        steam.kernel_tier, tab, perf, tables.tr,
-                                                        False, math.inf)
-            nfev += nf_
-            if status == 4:
-                raise RunError(budget_message(network, sc[loop.S_MAX_RHS])
-                               + " (in the warm-up turns before t = 0)")
-            if status == 1:
-                raise RuntimeError("the integrator failed in the warm-up turns before t = 0")
-            if marks is None:
-                _update_wall(network, y)
-            surplus = (y[nn + loop.X_WGAS] - y[nn + loop.X_WFRIC] - y[nn + loop.X_WLOAD]) / TWO_PI
-            if tol is not None and turn >= 1 and abs(surplus - last) <= tol:
-                break
-            last = surplus
-        return y, surplus
-
     rows, frames = [], []
     k = 0
+    stalled_at_rest = False
     if run.start == "rest":
-        start = OperatingPoint(0.0, 0.0, math.nan, "rest", 0)
-        sc[loop.S_FREEZE] = 0.0
-        y[nn + loop.X_OMEGA] = 0.0
-        y[nn + loop.X_Z] = 0.0
-        y[nn + loop.X_ZDOT] = 0.0
-        y[nn + loop.X_TIME] = 0.0
-        begun = start_from_rest(y, run.start_angle_rad, omega0, net, steam.kernel_tier, tab,
-                                perf, tables.tr, rtol, atol,
-                                run.max_duration_s or run.duration_s)
-        nfev += begun["nfev"]
-        row, frame = _start_record(begun, y, network, steam, tables, nn)
+        begun, start, row, frame = _start_at_rest(turns, y, scene, steam, tables)
         rows.append(row)
-        frames.append({c: frame[c].to_numpy() for c in frame.columns})
+        frames.append(frame)
         y = begun["y"]
         k = int(round(begun["theta_rad"] / TWO_PI))
-        if begun["stalled"]:
-            log.warning("the engine did not start: from rest at %.1f deg of crank it had not "
-                        "reached %.0f %% of run.speed by %.3g s", math.degrees(run.start_angle_rad),
-                        100 * HANDOVER_FRACTION, y[nn + loop.X_TIME])
+        stalled_at_rest = begun["stalled"]
     else:
-        y, _ = frozen_turns(y, omega0, tables.z0, run.warmup_cycles)
-        start = OperatingPoint(omega0, tables.z0, math.nan, "run_speed", 0)
-        if tables.mechanism is not None and run.start == "equilibrium":
-            t_load = abs(sc[loop.S_TREF] * loop.load_factor(0.0, tables.tr.load_t, tables.tr.load_f))
-            tol = 0.25 * SURPLUS_TOL * max(t_load, 1e-9)
-
-            def surplus(omega, z):
-                nonlocal y
-                y, s = frozen_turns(y, omega, z, EQUILIBRIUM_TURNS, tol)
-                return s
-
-            start = find_operating_point(surplus, tables.mechanism, t_load)
-            y, _ = frozen_turns(y, start.speed_rad_s, start.governor_z, 2)
-            _report_start(start)
-        # The flywheel lets the speed swing within a turn (Marks Art. 62), and the governor
-        # balances on the turn's mean speed; released at dead centre at the mean speed, the
-        # engine would gain or lose the swing's offset and the governor follow it.  So the
-        # speed at dead centre is set, by trial turns with the governor held and the speed
-        # free, to give the turn-mean speed of the start.
-        sc[loop.S_FREEZE] = 2.0
-        omega_dc = start.speed_rad_s
-        for _ in range(START_TRIALS):
-            trial = y.copy()
-            trial[nn + loop.X_OMEGA] = omega_dc
-            trial[nn + loop.X_TIME] = 0.0
-            trial, _, _, _, nf_, status = integrate_turn(trial, 0.0, np.zeros(0), rtol, atol, net,
-                                                            steam.kernel_tier, tab, perf, tables.tr,
-                                                            False, math.inf)
-            nfev += nf_
-            if status != 0:
-                break
-            omega_dc *= start.speed_rad_s / (TWO_PI / trial[nn + loop.X_TIME])
-        sc[loop.S_FREEZE] = 0.0
-        y[nn + loop.X_TIME] = 0.0
-        y[nn + loop.X_OMEGA] = omega_dc
-        y[nn + loop.X_Z] = start.governor_z
-        y[nn + loop.X_ZDOT] = 0.0
+        y, start = _start_at_speed(turns, y, scene, tables, marks)
     duration = run.duration_s
     record = record_of(run)
-    step = math.radians(fid.output_step_deg)
-    n_out = max(1, int(round(TWO_PI / step)))
-    status = 2 if run.start == "rest" and begun["stalled"] else 0
+    n_out = max(1, int(round(TWO_PI / math.radians(fid.output_step_deg))))
+    status = 2 if stalled_at_rest else 0
     since = step_time_of(scene.load) or 0.0
     longest = run.max_duration_s if run.until_settled else duration
 
@@ -496,25 +619,14 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
         for q in (loop.X_WLOAD, loop.X_WFRIC, loop.X_WGAS, loop.X_ZDT, loop.X_ADT):
             y[nn + q] = 0.0
         y_start = y.copy()
-        if record == "degree":
-            out_theta = th0 + np.arange(n_out) * (TWO_PI / n_out)
-        elif record == "cycle":
-            out_theta = np.array([th0])
-        else:
-            out_theta = np.zeros(0)
-        y, samples, rec, n_rec, nf_, status = integrate_turn(
-            y, th0, out_theta, rtol, atol, net, steam.kernel_tier, tab, perf, tables.tr,
-            record == "step", longest)
-        nfev += nf_
-        if status == 4:
-            raise RunError(budget_message(network, sc[loop.S_MAX_RHS]) + f" (in turn {k + 1}, at "
-                           f"{y[nn + loop.X_TIME]:.3f} s)")
-        if status == 1:
-            raise RuntimeError(f"the integrator failed in turn {k + 1} (step size collapsed)")
+        out_theta = _out_angles(record, th0, n_out)
+        y, samples, rec, n_rec, status = turns.turn(y, th0, out_theta, record == "step", longest)
+        turns.stop_on_failure(status, f" (in turn {k + 1}, at {y[nn + loop.X_TIME]:.3f} s)",
+                              f"the integrator failed in turn {k + 1} (step size collapsed)")
         if status == 2 and can_reverse and sense > 0.0:
-            rev = run_reversal(y_start, th0, omega0, net, gear, steam.kernel_tier, tab, perf,
-                               tables.tr, rtol, atol, longest)
-            nfev += rev["nfev"]
+            rev = run_reversal(y_start, th0, omega0, turns.net, gear, steam.kernel_tier, tab,
+                               perf, tables.tr, fid.rtol, atol, longest)
+            turns.nfev += rev["nfev"]
             row, frame = _reversal_record(rev, k, y_start, network, steam, tables, nn, slip_deg,
                                           record == "degree")
             rows.append(row)
@@ -531,8 +643,8 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
             pm_back = tabulate(single_acting(gear.reversed(), scene.engine.steam_ends),
                                fid.portmap_points)
             back = build_network(scene, geo, pm_back, steam, chest, exhaust).arrays()
-            net = net._replace(port_grid=back.port_grid, port_npts=back.port_npts,
-                               port_area=back.port_area)
+            turns.net = turns.net._replace(port_grid=back.port_grid, port_npts=back.port_npts,
+                                           port_area=back.port_area)
             sc[loop.S_TREF] = -sc[loop.S_TREF]    # the load keeps its direction
             continue
         appended = status != 2 or not rows
@@ -541,7 +653,7 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
             rows.append(_cycle_row(k, y_start, y, network, tables, nn))
         if marks is not None:
             marks.strokes_per_s = 2.0 / (rows[-1]["t_end_s"] - rows[-1]["t_start_s"])
-            marks.apply(net.heat)
+            marks.apply(turns.net.heat)
         else:
             _update_wall(network, y)
         frame = _frame(network, steam, tables, out_theta, samples, rec, n_rec, record, nn)
@@ -558,7 +670,7 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
             break
     timeseries = _concat_columns(frames)
     return TransientResult(scene=scene, property_tier=steam.name, timeseries=timeseries,
-                           cycles=pd.DataFrame(rows), rhs_evaluations=nfev,
+                           cycles=pd.DataFrame(rows), rhs_evaluations=turns.nfev,
                            wall_time_s=time.perf_counter() - t_wall, geometry=geo,
                            stalled=status == 2, mechanism=tables.mechanism,
                            z_start=start.governor_z, chest=chest, exhaust=exhaust,

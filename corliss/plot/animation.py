@@ -838,6 +838,59 @@ class _Corliss(_Linkage):
 
 # ------------------------------------------------------------------ the figure
 
+def _openings_panel(ax, gear, u: str, moving: list):
+    """The four port openings against crank angle, with a dot on each and a cursor at
+    the crank's angle (appended to ``moving``).  Returns the dots and the cursor."""
+    th = np.linspace(0.0, 2 * math.pi, 721)
+    op = units.to_unit(gear.openings(th), u)
+    deg = np.degrees(th)
+    dots = []
+    for p, (lab, col, ls) in enumerate(_PORT_STYLE):
+        ax.plot(deg, op[p], color=col, ls=ls, lw=1.1, label=lab)
+        dots.append(ax.plot([], [], "o", color=col, ms=4)[0])
+        moving.append(dots[-1])
+    cursor = ax.axvline(0.0, color="0.3", lw=0.8)
+    moving.append(cursor)
+    ax.set_xlim(0, 360)
+    ax.set_xticks(range(0, 361, 90))
+    ax.set_xlabel("crank angle [deg]", fontsize=8)
+    ax.set_ylabel(f"port opening [{u}]", fontsize=8)
+    ax.tick_params(labelsize=7)
+    ax.legend(fontsize=6, frameon=False, loc="upper right")
+    for side in ("top", "right"):
+        ax.spines[side].set_visible(False)
+    return dots, cursor
+
+
+def _card_panel(ax, result, units_system: str, u: str, moving: list) -> dict:
+    """The steady run's card of both ends in grey, with a trace and a dot per end that
+    follow the crank (appended to ``moving``).  Returns ``{end: (crank angles [deg],
+    x, y, trace, dot)}``."""
+    card_lines = {}
+    baro = result.scene.supply.barometer_Pa
+    p_unit = "psig" if units_system == "US" else "barg"
+    stroke = result.scene.engine.stroke_m
+    for end, ls in (("head", "-"), ("crank", "--")):
+        card = result.cards[end]
+        x = units.to_unit(card["piston_frac"].to_numpy() * stroke, u)
+        y = units.to_unit(card["p_Pa"].to_numpy(), p_unit, barometer_Pa=baro)
+        a = card["crank_angle_deg"].to_numpy()
+        ax.plot(x, y, color="0.8", lw=0.8, ls=ls)
+        trace = ax.plot([], [], color="k", lw=1.3, ls=ls, label=f"{end} end")[0]
+        head = ax.plot([], [], "o", color=_STEAM, ms=4)[0]
+        card_lines[end] = (a, x, y, trace, head)
+        moving += [trace, head]
+    ax.axhline(0.0, color="0.5", lw=0.6)
+    ax.set_xlabel(f"piston position [{u}]", fontsize=8)
+    ax.set_ylabel(f"pressure [{p_unit}]", fontsize=8)
+    ax.set_title("indicator card", fontsize=9)
+    ax.tick_params(labelsize=7)
+    ax.legend(fontsize=6, frameon=False, loc="upper right")
+    for side in ("top", "right"):
+        ax.spines[side].set_visible(False)
+    return card_lines
+
+
 def animate_gear(gear, result=None, *, frames: int = 72, stroke_m: float | None = None,
                  units_system: str = "US", title: str | None = None,
                  interval_ms: float = 80.0, dpi: float = 72.0) -> dict:
@@ -947,49 +1000,8 @@ def animate_gear(gear, result=None, *, frames: int = 72, stroke_m: float | None 
         artists["valve_x"] = ax_valve.text(0.0, 2.6 * lay["w"] * scale, "", ha="center",
                                            va="bottom", fontsize=7)
         moving.append(artists["valve_x"])
-    # port openings against crank angle
-    th = np.linspace(0.0, 2 * math.pi, 721)
-    op = units.to_unit(gear.openings(th), u)
-    deg = np.degrees(th)
-    dots = []
-    for p, (lab, col, ls) in enumerate(_PORT_STYLE):
-        ax_open.plot(deg, op[p], color=col, ls=ls, lw=1.1, label=lab)
-        dots.append(ax_open.plot([], [], "o", color=col, ms=4)[0])
-        moving.append(dots[-1])
-    artists["cursor"] = ax_open.axvline(0.0, color="0.3", lw=0.8)
-    moving.append(artists["cursor"])
-    ax_open.set_xlim(0, 360)
-    ax_open.set_xticks(range(0, 361, 90))
-    ax_open.set_xlabel("crank angle [deg]", fontsize=8)
-    ax_open.set_ylabel(f"port opening [{u}]", fontsize=8)
-    ax_open.tick_params(labelsize=7)
-    ax_open.legend(fontsize=6, frameon=False, loc="upper right")
-    for side in ("top", "right"):
-        ax_open.spines[side].set_visible(False)
-    # the card
-    card_lines = {}
-    if ax_card is not None:  # has_card
-        baro = result.scene.supply.barometer_Pa
-        p_unit = "psig" if units_system == "US" else "barg"
-        stroke = result.scene.engine.stroke_m
-        for end, ls in (("head", "-"), ("crank", "--")):
-            card = result.cards[end]
-            x = units.to_unit(card["piston_frac"].to_numpy() * stroke, u)
-            y = units.to_unit(card["p_Pa"].to_numpy(), p_unit, barometer_Pa=baro)
-            a = card["crank_angle_deg"].to_numpy()
-            ax_card.plot(x, y, color="0.8", lw=0.8, ls=ls)
-            trace = ax_card.plot([], [], color="k", lw=1.3, ls=ls, label=f"{end} end")[0]
-            head = ax_card.plot([], [], "o", color=_STEAM, ms=4)[0]
-            card_lines[end] = (a, x, y, trace, head)
-            moving += [trace, head]
-        ax_card.axhline(0.0, color="0.5", lw=0.6)
-        ax_card.set_xlabel(f"piston position [{u}]", fontsize=8)
-        ax_card.set_ylabel(f"pressure [{p_unit}]", fontsize=8)
-        ax_card.set_title("indicator card", fontsize=9)
-        ax_card.tick_params(labelsize=7)
-        ax_card.legend(fontsize=6, frameon=False, loc="upper right")
-        for side in ("top", "right"):
-            ax_card.spines[side].set_visible(False)
+    dots, artists["cursor"] = _openings_panel(ax_open, gear, u, moving)
+    card_lines = {} if ax_card is None else _card_panel(ax_card, result, units_system, u, moving)
     if title:
         fig.suptitle(title, fontsize=10)
     label = fig.text(0.01, 0.985, "", fontsize=8, va="top")

@@ -243,8 +243,9 @@ class Workbench:
             w = Slider(start=c.start, end=c.stop, step=c.step, value=c.value,
                        title=c.label + unit, width=300, css_classes=css, format="0[.][0000]")
         elif c.widget == "effects":
+            chosen = c.value if isinstance(c.value, (list, tuple)) else ()    # words
             w = CheckboxGroup(labels=list(c.choices), css_classes=css,
-                              active=[i for i, e in enumerate(c.choices) if e in c.value])
+                              active=[i for i, e in enumerate(c.choices) if e in chosen])
         else:
             w = Select(title=c.label, options=list(c.choices), value=c.value, width=300,
                        css_classes=css)

@@ -16,6 +16,7 @@ import time
 import numpy as np
 
 from corliss.engine.model import build_gear, steady_scene
+from corliss.engine.result import SteadyResult
 from corliss.engine.simulate import simulate
 from corliss.errors import InputError, RunError
 from corliss.keys import units
@@ -57,7 +58,7 @@ def card_view(result, system: str) -> dict:
     out = {"x_unit": x_unit, "p_unit": p_unit,
            "stroke": float(units.to_unit(stroke, x_unit)),
            "vacuum": float(units.to_unit(0.0, p_unit, barometer_Pa=baro))}
-    marks = {"x": [], "y": [], "label": [], "end": []}
+    marks: dict[str, list] = {"x": [], "y": [], "label": [], "end": []}
     for end in ("head", "crank"):
         card = held[end]
         frac = np.asarray(card["piston_frac"], dtype=float)
@@ -104,7 +105,7 @@ def events_rows(events: dict, system: str) -> dict:
             ("compression, fraction of stroke", "compression_frac", 1.0, 3),
             (f"lead [{u}]", "lead_m", None, 3),
             (f"greatest opening [{u}]", "max_port_opening_m", None, 3)]
-    out = {"event": [], "head": [], "crank": []}
+    out: dict[str, list] = {"event": [], "head": [], "crank": []}
     for label, key, _, digits in rows:
         out["event"].append(label)
         for end in ("head", "crank"):
@@ -165,13 +166,13 @@ def zeuner_view(gear, system: str) -> dict | None:
     u = "in" if system == "US" else "mm"
     th = np.linspace(0.0, 2.0 * np.pi, ANGLES)
     x = units.to_unit(np.asarray(gear.travel(th), dtype=float), u)
-    out = {}
+    out: dict[str, object] = {}
     for end, mask, rad in (("head", x > 0, x), ("crank", x <= 0, -x)):
         out[end] = {"x": np.where(mask, rad * np.cos(th), np.nan),
                     "y": np.where(mask, rad * np.sin(th), np.nan)}
     t = np.linspace(0.0, 2.0 * np.pi, 181)
-    radii = sorted({abs(float(units.to_unit(v, u))) for v in (*spec.lap_m, *spec.exhaust_lap_m)}
-                   - {0.0})
+    laps = (*getattr(spec, "lap_m"), *getattr(spec, "exhaust_lap_m"))   # checked above
+    radii = sorted({abs(float(units.to_unit(v, u))) for v in laps} - {0.0})
     out["circles"] = {"x": [r * np.cos(t) for r in radii],
                       "y": [r * np.sin(t) for r in radii]}
     out["r"] = float(np.nanmax(np.abs(x))) if x.size else 1.0
@@ -244,6 +245,7 @@ def compute_view(data: dict, name: str = "scene", source: str | None = None) -> 
             scene = steady_scene(scene)
             note = "a transient scene, shown as a steady card at its speed"
         result = simulate(scene)
+        assert isinstance(result, SteadyResult)     # a steady scene: a steady result
         gear = build_gear(scene)
     except InputError as exc:
         return {"ok": False, "message": str(exc), "key": exc.key}
