@@ -275,3 +275,22 @@ def test_constant_speed_is_the_default_said_and_matches_run_at_full_load(small):
     run = corliss.simulate(small.with_fidelity("fast").replace_run(duration_s=0.3)).summary
     assert run["start"]["status"] == "balanced"
     assert full == pytest.approx(run["start"]["speed_rpm"], rel=0.01)
+
+
+def test_the_rated_power_is_the_full_load_not_the_first_of_a_step(small):
+    """``[load]`` gives the reference load (fraction 1); a step "from 50 % to 100 %" is
+    ``initial_fraction = 0.5``, ``step_fraction = 1``.  The rated power the study's
+    loads are fractions of is the full load, 100 hp (745.69987 W each: 550 ft lbf/s),
+    whatever the schedule starts at, not half of it; so with the scene as bundled
+    (starting at full load)."""
+    from corliss.scene.loader import scene_from_dict
+    from corliss.studies.compare import rated_power_W
+
+    data = {**small.data, "load": {**small.data["load"], "initial_fraction": 0.5,
+                                   "step_fraction": 1.0}}
+    stepped = scene_from_dict(data, name="stepped")
+    assert stepped.load.fractions[0] == 0.5                                      # the premise
+    for scene in (stepped, small):
+        for brake in (False, True):
+            # to 1e-6: the horsepower's watts written to eight figures
+            assert rated_power_W(scene, brake) == pytest.approx(100 * 745.69987, rel=1e-6)

@@ -217,11 +217,13 @@ class CrankResolved:
             ha = y_end[net.i_node_quad(i, "hA")]
             if not ha > 0.0:
                 continue
+            wall_T = net.wall_T
+            assert wall_T is not None      # set by initial_state for every walled node
             if net.node_heat[i][H_MODEL] != WALL_SKIN:
-                net.wall_T[i] = y_end[net.i_node_quad(i, "hAT")] / ha
+                wall_T[i] = y_end[net.i_node_quad(i, "hAT")] / ha
                 continue
             gap = net.node_heat[i][H_SKIN_JACKET_G] * 2.0 * math.pi / net.omega
-            T = float(net.wall_T[i])
+            T = float(wall_T[i])
             search = searches.setdefault(i, DeepWallSearch())
             step, r = search.step(T, float(y_end[net.i_node_quad(i, "heat")]), ha - gap, gap,
                                   float(net.node_heat[i][H_SKIN_JACKET_T]), apply, trusted)
@@ -229,7 +231,7 @@ class CrankResolved:
             scale = heat_scale or float(y_end[net.i_node_quad(i, "heat_to_wall")])
             imbalance = max(imbalance, search.imbalance(r, scale, dT_scale))
             if apply:
-                net.wall_T[i] = T + step
+                wall_T[i] = T + step
         return largest, imbalance
 
     def initial_state(self) -> np.ndarray:

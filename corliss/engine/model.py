@@ -14,6 +14,7 @@ import math
 from dataclasses import dataclass
 
 from corliss.engine.geometry import CylinderGeometry
+from corliss.engine.scene_specs import SceneSpec
 from corliss.engine.network import (Network, compound, single_cylinder, with_leakage,
                                     with_period_leakage, with_steam_chest, with_wall_heat)
 from corliss.errors import InputError
@@ -21,6 +22,8 @@ from corliss.thermo.steam import State, Steam, make_steam
 from corliss.thermo.wall_properties import transport_properties
 from corliss.valves import events as valve_events
 from corliss.valves import gear_type, tabulate
+from corliss.valves.gear import ValveGear
+from corliss.valves.portmap import PortMap
 from corliss.valves.single_acting import single_acting
 
 log = logging.getLogger(__name__)
@@ -247,7 +250,7 @@ class Model:
         Supply steam at the chest; dry saturated steam at back pressure.
     geometry : CylinderGeometry
         The (first or high-pressure) cylinder.
-    gear : object
+    gear : ValveGear
         The valve gear (a registry entry built from the scene).
     portmap : PortMap or None
         Port areas against crank angle (None for the ideal card).
@@ -257,13 +260,13 @@ class Model:
         A compound's low-pressure valve events.
     """
 
-    scene: object
+    scene: SceneSpec
     steam: Steam
     chest: State
     exhaust: State
     geometry: CylinderGeometry
-    gear: object
-    portmap: object
+    gear: ValveGear
+    portmap: PortMap | None
     events: dict
     lp_events: dict | None = None
 

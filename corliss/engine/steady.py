@@ -104,6 +104,7 @@ def run_steady(scene, *, portmap_scale: float = 1.0,
         else:
             data = _equilibrium(scene, geo, steam_eq(), chest, exhaust, _ideal_schedule(ev, geo))
     elif scene.run.has("port_flow"):
+        assert pm is not None          # a port-flow model has its port map
         if portmap_scale != 1.0:
             pm = pm.scaled(portmap_scale)
         data = _crank_resolved(scene, model, pm, progress, start)
@@ -370,8 +371,8 @@ def _periodicity(lay: _Layout, wall_T, y0, y1, samples, wall0, dT_scale: float, 
     surface), against the supply's less the exhaust's temperature, and for the skin
     model the wall's heat imbalance over the cycle against the heat it took, or its
     bracket against the temperature scale where that is smaller (set by the runner,
-    :class:`corliss.engine.wall.DeepWallSearch`).  A cycle is periodic when every one is below the convergence
-    tolerance.
+    :class:`corliss.engine.wall.DeepWallSearch`).  A cycle is periodic when every one
+    is below the convergence tolerance.
     """
     w = row["work_J"]
     out = {"work": abs(w - w_prev) / max(abs(w), 1e-300) if w_prev is not None else math.inf}

@@ -408,12 +408,16 @@ def droop_speeds(scene, loads) -> dict[float, float] | None:
 
 
 def rated_power_W(scene, brake: bool) -> float | None:
-    """The scene's rated power: its load at the start.
+    """The scene's rated power: its reference load, at full load (load fraction 1).
+
+    The ``[load]`` section's torque or power is the reference load; its schedule's
+    fractions are of it (a step from 50 % to 80 % starts at fraction 0.5), so full
+    load is fraction 1 whatever the schedule's first fraction.
 
     Parameters
     ----------
     scene : Scene
-        The scene; its load's torque and first fraction, and the run's speed, are read.
+        The scene; its load's reference torque and the run's speed are read.
     brake : bool
         Whether the study compares brake power (the ``friction`` effect named); the
         load's torque x speed is the power either way, so it does not change the value.
@@ -421,12 +425,12 @@ def rated_power_W(scene, brake: bool) -> float | None:
     Returns
     -------
     float or None
-        ``torque x first load fraction x speed`` [W], or None when the scene has no
-        load.
+        ``reference torque x speed`` [W] (the ``power`` given, when the load was
+        given as one), or None when the scene has no load.
     """
     if scene.load is None:
         return None
-    return scene.load.torque_N_m * scene.load.fractions[0] * scene.run.speed_rad_s
+    return scene.load.torque_N_m * scene.run.speed_rad_s
 
 
 def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
@@ -439,9 +443,9 @@ def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
     scene : Scene
         A scene whose gear has a setting; a transient one is run steady at its speed.
     loads : sequence of float
-        Loads as fractions of the rated power [-]: the scene's load (brake power when
-        ``friction`` is named, else indicated), or without a load, the throttled
-        variant's power wide open.
+        Loads as fractions of the rated power [-]: the scene's reference load at
+        fraction 1 (:func:`rated_power_W`; brake power when ``friction`` is named, else
+        indicated), or without a load, the throttled variant's power wide open.
     condensation : str
         ``"both"``, ``"on"`` or ``"off"``: with the ``wall_heat`` effect, without, or
         both.

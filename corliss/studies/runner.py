@@ -47,7 +47,8 @@ import signal
 import sys
 import threading
 import time
-from concurrent.futures import FIRST_COMPLETED, CancelledError, ProcessPoolExecutor, wait
+from concurrent.futures import (FIRST_COMPLETED, CancelledError, Future, ProcessPoolExecutor,
+                                wait)
 from concurrent.futures.process import BrokenProcessPool
 from pathlib import Path
 from typing import Any
@@ -192,8 +193,8 @@ def run_failure(result) -> str:
     """
     s = result.summary_with(FAILURE_KEYS)
     if result.scene.run.cycles is None and s.get("cycles_to_converge") is None:
-        res = s.get("periodicity_residuals") or {}
-        worst = max(res, key=res.get) if res else "work"
+        res: dict[str, float] = s.get("periodicity_residuals") or {}
+        worst = max(res, key=lambda k: res[k]) if res else "work"
         return (f"not converged: not periodic after {s['cycles_simulated']} cycles (largest "
                 f"residual {res.get(worst, float('nan')):.3g}, {worst})")
     why = balance_failure(s)
@@ -324,7 +325,7 @@ def _pool_pass(spec, chunks, jobs, collect) -> list:
     # Ctrl-C and SIGTERM wait while the workers start (a signal in the middle of a fork
     # is lost in its handlers), and are taken at once after
     masked = hasattr(signal, "pthread_sigmask")
-    old = signal.pthread_sigmask(signal.SIG_BLOCK, _STOPS) if masked else None
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, _STOPS) if masked else set()
     pool = None
     futs = {}
     try:
@@ -334,7 +335,8 @@ def _pool_pass(spec, chunks, jobs, collect) -> list:
         if masked:
             signal.pthread_sigmask(signal.SIG_SETMASK, old)
             masked = False
-        pending, lost = set(futs), set()
+        pending = set(futs)
+        lost: set[Future] = set()
         while pending and not lost:
             done, pending = wait(pending, return_when=FIRST_COMPLETED)
             for fut in done:
@@ -460,6 +462,7 @@ def _base_of(scene) -> tuple[dict, Scene]:
     if scene is None or isinstance(scene, (str, Path)):
         from corliss.scene.loader import default_scene_path
         sc = load_scene(find_scene(scene) if scene is not None else default_scene_path())
+        assert sc.data is not None      # a scene read from a file keeps its tables
         return sc.data, sc
     raise InputError("scene", scene, "a Scene, its tables (dict), a scene file or a bundled "
                      "scene's name")
@@ -469,6 +472,7 @@ def _check_scenes(design, base, name, fidelity) -> None:
     """Load the scenes of the runs most likely refused before any run: every run's in
     a small study; in a larger one the first runs' and those at each key's extremes."""
     n = design.runs
+    ids: range | list[int]
     if n <= CHECK_ALL_UP_TO:
         ids = range(n)
     else:
@@ -615,7 +619,7 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
                                       "columns": [RUN_ID, STATUS, ERROR, *responses]},
                               keep=resume)
         except BaseException:
-            if own:
+            if own and client is not None:
                 client.close()
             raise
     todo = np.array([i for i in range(design.runs) if i not in rows], dtype=np.int64)
@@ -668,7 +672,7 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
     finally:
         if journal is not None:
             journal.close()
-        if own:
+        if own and client is not None:
             client.close()
     ordered = [rows[i] for i in range(design.runs)]
     tier = tiers[0] if tiers else probe.run.fidelity.properties
