@@ -3,9 +3,12 @@ work, two processes against one, and the speed-up the serial share allows on man
 
 The study is the issue's: a Latin hypercube over the default engine's port width,
 clearance, lap and speed at the ``fast`` fidelity (``--runs``, default 1000).  Each
-measurement runs in a fresh Python process (``--worker``), after a warm-up study in
-that process (kernels loaded from numba's cache, the steam table read), so each
-sitting pays what a user's second study pays.  Given ``--baseline DIR`` (a checkout of
+measurement runs in a fresh Python process (``--worker``), after a warm-up study of 8
+runs on as many processes in that process (kernels loaded from numba's cache, the
+steam table read, and where the code keeps its pool, the pool started), so each
+sitting pays what a user's second study in one process pays; the warm-up's own wall
+time is recorded too (``first_wall_s``: a first study in a fresh process, a command
+line's).  Given ``--baseline DIR`` (a checkout of
 another version, e.g. ``git worktree add ../base main``), the same measurements run on
 that code too, alternating with this tree's, ``--repeats`` times each: an A/B in one
 sitting on a machine whose load moves.
@@ -13,14 +16,18 @@ sitting on a machine whose load moves.
 Measured per study:
 
 * wall time and runs a second on one process (``jobs=1``) and on two (``jobs=2``);
-* CPU per run: this process's (the parent: checks, set-up, its first run, sending
-  chunks, collecting rows) and its pool's workers' (read when the pool is shut down
-  and its workers reaped);
+* CPU per run: this process's (the parent: checks, set-up, sending chunks,
+  collecting rows) and its pool's workers' (read when the pool is shut down and its
+  workers reaped, or, for workers kept for the process and forked by its forkserver,
+  from ``/proc`` before and after the study);
 * the serial fraction ``s``: the parent's CPU over the parent's and the workers'
   (the workers' start-up counted in theirs), and the parent's CPU to start one more
-  worker (a fork of the process as it is after the study); from them Amdahl's
-  speed-up on N processes, ``(P + W) / (P + (N - 2) F + W / N)`` (:func:`amdahl`), for
-  16 and 64 (derived, not measured: no machine with that many free cores was at hand).
+  worker ``F`` (the code's own way: where it keeps a pool
+  (``corliss.studies.pool``), the CPU of starting :data:`START` workers on it from
+  its forkserver, over their number, and the forkserver's CPU for them beside it;
+  else a fork of the process as it is after the study); from them Amdahl's speed-up
+  on N processes, ``(P + W) / (P + (N - 2) F + W / N)`` (:func:`amdahl`), for 16 and
+  64 (derived, not measured: no machine with that many free cores was at hand).
 
 On a machine shared with other work, two processes cannot show their speed-up in
 wall time alone: the CPU figures say whether the parallel path adds work of its own.
@@ -55,11 +62,40 @@ RESPONSES = ["indicated_power_W", "mep_mean_Pa", "steam_rate_kg_per_h",
              "water_rate_kg_per_kWh", "events.head.cutoff_frac"]
 #: Forks timed to find what one more worker's start costs the parent.
 FORKS = 5
+#: Workers started on a kept pool to find what one more costs the parent.
+START = 4
 
 
 def _cpu(who) -> float:
     r = resource.getrusage(who)
     return r.ru_utime + r.ru_stime
+
+
+def _proc_cpu(pid: int) -> float:
+    """A live process's CPU [s] (user and system), from ``/proc`` (0 when gone)."""
+    try:
+        f = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    except (FileNotFoundError, ProcessLookupError):
+        return 0.0
+    return (int(f[11]) + int(f[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def _kept_pool():
+    """The code's kept pool module and its forkserver's pid (None, None without)."""
+    try:
+        from corliss.studies import pool
+    except ImportError:
+        return None, None
+    try:
+        from multiprocessing import forkserver
+        server = forkserver._forkserver._forkserver_pid
+    except (ImportError, AttributeError):
+        server = None
+    return pool, server
+
+
+def _kept_cpu(pool) -> dict:
+    return {} if pool is None else {pid: _proc_cpu(pid) for pid in pool.worker_pids()}
 
 
 def measure(runs: int, jobs: int) -> dict:
@@ -75,18 +111,37 @@ def measure(runs: int, jobs: int) -> dict:
     Returns
     -------
     dict
-        ``wall_s``, ``parent_cpu_s``, ``workers_cpu_s``, ``failed``.
+        ``wall_s``, ``first_wall_s``, ``parent_cpu_s``, ``workers_cpu_s``,
+        ``server_cpu_s``, ``failed``, ``fork_cpu_s``, ``server_fork_cpu_s``.
     """
     import corliss
+    t0 = time.perf_counter()
     corliss.study("default", VARY, lhs=8, seed=1, fidelity="fast", responses=RESPONSES,
-                  jobs=1)
+                  jobs=jobs)
+    first = time.perf_counter() - t0
+    pool, server = _kept_pool()
+    k0, s0 = _kept_cpu(pool), (_proc_cpu(server) if server else 0.0)
     p0, c0, t0 = _cpu(resource.RUSAGE_SELF), _cpu(resource.RUSAGE_CHILDREN), time.perf_counter()
     res = corliss.study("default", VARY, lhs=runs, seed=0, fidelity="fast",
                         responses=RESPONSES, jobs=jobs)
     wall = time.perf_counter() - t0
-    out = {"wall_s": wall, "parent_cpu_s": _cpu(resource.RUSAGE_SELF) - p0,
-           "workers_cpu_s": _cpu(resource.RUSAGE_CHILDREN) - c0, "failed": int(res.failed)}
-    # what starting one more worker costs this process: a fork of it as it is now
+    parent = _cpu(resource.RUSAGE_SELF) - p0
+    k1 = _kept_cpu(pool)
+    kept = sum(k1[p] - k0.get(p, 0.0) for p in k1)
+    out = {"wall_s": wall, "first_wall_s": first, "parent_cpu_s": parent,
+           "workers_cpu_s": _cpu(resource.RUSAGE_CHILDREN) - c0 + kept,
+           "server_cpu_s": (_proc_cpu(server) - s0) if server else 0.0,
+           "failed": int(res.failed)}
+    # what starting one more worker costs this process: the code's own way
+    if pool is not None and server is not None:
+        pool.close()
+        s0, f0 = _proc_cpu(server), _cpu(resource.RUSAGE_SELF)
+        pool.run_tasks([(time.sleep, (0.2,)) for _ in range(START)], START,
+                       lambda i, r: None)
+        out["fork_cpu_s"] = (_cpu(resource.RUSAGE_SELF) - f0) / START
+        out["server_fork_cpu_s"] = (_proc_cpu(server) - s0) / START
+        pool.close()
+        return out
     f0 = _cpu(resource.RUSAGE_SELF)
     for _ in range(FORKS):
         pid = os.fork()
@@ -94,6 +149,7 @@ def measure(runs: int, jobs: int) -> dict:
             os._exit(0)
         os.waitpid(pid, 0)
     out["fork_cpu_s"] = (_cpu(resource.RUSAGE_SELF) - f0) / FORKS
+    out["server_fork_cpu_s"] = 0.0
     return out
 
 
@@ -162,12 +218,15 @@ def main(argv=None) -> int:
         cpu1 = med(name, 1, "parent_cpu_s") / n
         par, wrk = med(name, 2, "parent_cpu_s"), med(name, 2, "workers_cpu_s")
         fork = med(name, 2, "fork_cpu_s")
+        first1, first2 = med(name, 1, "first_wall_s"), med(name, 2, "first_wall_s")
         s = par / (par + wrk)
         summary[name] = {"runs_per_s_1": n / w1, "cpu_ms_per_run_1": 1e3 * cpu1,
                          "two_over_one": w1 / w2, "parent_ms_per_run": 1e3 * par / n,
                          "workers_ms_per_run": 1e3 * wrk / n, "serial_fraction": s,
                          "parent_share_of_run": (par / n) / cpu1,
                          "fork_ms": 1e3 * fork,
+                         "server_fork_ms": 1e3 * med(name, 2, "server_fork_cpu_s"),
+                         "first_wall_s_1": first1, "first_wall_s_2": first2,
                          "speedup_16": amdahl(par, wrk, fork, 16),
                          "speedup_64": amdahl(par, wrk, fork, 64)}
         x = summary[name]
@@ -176,8 +235,11 @@ def main(argv=None) -> int:
               f"{x['two_over_one']:.2f} x one (wall) | parent {x['parent_ms_per_run']:.3f} ms "
               f"a run = {100 * x['parent_share_of_run']:.1f} % of a run, workers "
               f"{x['workers_ms_per_run']:.2f} ms a run | serial fraction {s:.4f}, "
-              f"{x['fork_ms']:.1f} ms a worker's start: {x['speedup_16']:.1f} x on 16, "
-              f"{x['speedup_64']:.1f} x on 64 (Amdahl, derived)")
+              f"{x['fork_ms']:.2f} ms a worker's start (its forkserver "
+              f"{x['server_fork_ms']:.2f} ms): {x['speedup_16']:.1f} x on 16, "
+              f"{x['speedup_64']:.1f} x on 64 (Amdahl, derived) | a first study of 8 runs "
+              f"in a fresh process: {x['first_wall_s_1']:.2f} s on 1, "
+              f"{x['first_wall_s_2']:.2f} s on 2")
     if "baseline" in summary:
         a, b = summary["this"], summary["baseline"]
         print(f"this / baseline, runs a second on one process: "

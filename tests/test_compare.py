@@ -10,11 +10,13 @@ from __future__ import annotations
 import json
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from corliss.cli.commands import main
 from corliss.studies.compare import compare, variants
 from corliss.studies.compare_result import POINT_COLUMNS
+from corliss.studies import pool as study_pool
 from corliss.engine.geometry import CylinderGeometry
 from corliss.errors import InputError
 from corliss.scene.loader import find_scene, load_scene
@@ -275,3 +277,39 @@ def test_constant_speed_is_the_default_said_and_matches_run_at_full_load(small):
     run = corliss.simulate(small.with_fidelity("fast").replace_run(duration_s=0.3)).summary
     assert run["start"]["status"] == "balanced"
     assert full == pytest.approx(run["start"]["speed_rpm"], rel=0.01)
+
+
+def test_the_rated_power_is_the_full_load_not_the_first_of_a_step(small):
+    """``[load]`` gives the reference load (fraction 1); a step "from 50 % to 100 %" is
+    ``initial_fraction = 0.5``, ``step_fraction = 1``.  The rated power the study's
+    loads are fractions of is the full load, 100 hp (745.69987 W each: 550 ft lbf/s),
+    whatever the schedule starts at, not half of it; so with the scene as bundled
+    (starting at full load)."""
+    from corliss.scene.loader import scene_from_dict
+    from corliss.studies.compare import rated_power_W
+
+    data = {**small.data, "load": {**small.data["load"], "initial_fraction": 0.5,
+                                   "step_fraction": 1.0}}
+    stepped = scene_from_dict(data, name="stepped")
+    assert stepped.load.fractions[0] == 0.5                                      # the premise
+    for scene in (stepped, small):
+        for brake in (False, True):
+            # to 1e-6: the horsepower's watts written to eight figures
+            assert rated_power_W(scene, brake) == pytest.approx(100 * 745.69987, rel=1e-6)
+
+
+def test_compare_on_two_processes_gives_the_table_of_one_to_the_bit(small, tmp_path):
+    """``compare`` on two processes runs its grid chains and operating points on the
+    process's kept pool of workers (corliss.studies.pool); a task's numbers depend only
+    on its inputs, so the table equals the one made here on one process, value for
+    value and bit for bit (exact: no tolerance, a run is deterministic).  ``--jobs``
+    reaches it from the command line, and a count of none is refused before any run."""
+    kw = dict(condensation="off", fidelity="fast", droop=False)
+    one = compare(small, [0.5, 1.0], workers=1, **kw)
+    two = compare(small, [0.5, 1.0], workers=2, **kw)
+    assert len(study_pool.worker_pids()) == 2 and two.workers == 2
+    assert (one.points["status"] == "found").all()
+    pd.testing.assert_frame_equal(one.points, two.points, check_exact=True)
+    rc = main(["compare", "armington-sims-governor", "--loads", "0.5", "--jobs", "0",
+               "--out", str(tmp_path / "none")])
+    assert rc == 2 and not (tmp_path / "none").exists()

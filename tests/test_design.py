@@ -532,3 +532,80 @@ def test_the_readmes_design_warns_of_the_end_it_was_not_asked_for(tmp_path, caps
     assert not any(w.startswith("head end") for w in warnings)   # the end asked for
     assert main(argv) == 0
     assert "WARNING          crank end: lead" in capsys.readouterr().out
+
+
+def _warned_length_in(warning: str, before: str) -> float:
+    """The length [in] a warning quotes right after ``before`` ("greatest opening ")."""
+    return float(warning.split(before, 1)[1].split(" in", 1)[0])
+
+
+def test_a_gears_setting_warns_of_the_other_ends_cutoff_lead_and_opening():
+    """A gear with a setting is set for the cut-off asked at one end; its linkage gives
+    the other end its own cut-off, lead and opening, which the design now checks as it
+    checks a slide valve's other end.
+
+    Joy's radial gear (the bundled locomotive, 1 in ports) set for 0.35 at the head end
+    cuts off the crank end near 0.43 and drives the crank port's edge some 3/8 in past
+    its 1 in width: the crank end is warned of its cut-off (more than 0.067 of the
+    stroke, Peabody's greatest inequality from the rod's angularity alone, from the one
+    asked) and of its opening (more than a quarter past the port, the slide valve's
+    rule); the head end, asked, is not.  The numbers quoted are those of the written
+    scene's events (what ``corliss events`` prints) to the warning's three figures and
+    the setting's rounding to 1e-4 (0.01 in, 0.002 of the stroke).  Porter-Allen's gear
+    at 0.35 gives the crank end a lead under half the head end's: warned as a slide
+    valve's is."""
+    d = design("joy-radial-gear", cutoff=0.35)
+    crank = d.events["crank"]
+    greatest_in = (crank["max_port_opening_m"] + crank["overtravel_m"]) / IN
+    assert greatest_in > 1.25 * 1.0 and crank["cutoff_frac"] - 0.35 > 0.067   # the premise
+    cut = [w for w in d.warnings if w.startswith("crank end: cut-off")]
+    assert len(cut) == 1 and "0.350 asked at the head end" in cut[0], d.warnings
+    assert float(cut[0].split("cut-off ", 1)[1].split(" ", 1)[0]) == pytest.approx(
+        crank["cutoff_frac"], abs=2e-3)
+    opening = [w for w in d.warnings if w.startswith("crank end: greatest opening")]
+    assert len(opening) == 1 and "on a 1 in port" in opening[0], d.warnings
+    assert _warned_length_in(opening[0], "greatest opening ") == pytest.approx(greatest_in,
+                                                                               abs=0.01)
+    assert not any(w.startswith("head end") for w in d.warnings), d.warnings
+
+    pa = design("porter-allen-engine", cutoff=0.35)
+    head, crank = pa.events["head"]["lead_m"], pa.events["crank"]["lead_m"]
+    assert 0.0 < crank < 0.5 * head                                                # the premise
+    lead = [w for w in pa.warnings if w.startswith("crank end: lead")]
+    assert len(lead) == 1 and "at the head end" in lead[0], pa.warnings
+    assert _warned_length_in(lead[0], "lead ") == pytest.approx(crank / IN, abs=0.01)
+
+
+def test_a_gears_setting_within_the_rules_is_not_warned_of():
+    """The Stephenson link of the Hinkley locomotive set for 0.35: the crank end cuts off
+    at 0.29 (the rod's angularity, within Peabody's 0.067), the leads are equal and
+    the greatest opening (0.43 in) is well inside the 1.25 in port: no warning of an
+    end."""
+    d = design("hinkley-stephenson-link", cutoff=0.35)
+    assert abs(d.events["crank"]["cutoff_frac"] - 0.35) < 0.067                    # the premise
+    assert not any(w.startswith(("head end", "crank end")) for w in d.warnings), d.warnings
+
+
+def test_a_refusal_quotes_lengths_in_the_scenes_units():
+    """``design``'s messages quote lengths in the scene's unit system: asked for a 3 in
+    opening on the default engine's 1.25 in port, an SI scene is told of 76.2 mm and a
+    31.75 mm port (25.4 mm to the inch, exact), an inch scene of 3 in and 1.25 in; an
+    inch scene written in SI (``units_system="SI"``, ``--units SI``) is told in mm.  A
+    refusal from the solve (a cut-off so early that the crank end would need a negative
+    lap) names its lengths in mm too."""
+    si = make_scene(output={"units": "SI", "dir": "out"})
+    with pytest.raises(InputError) as e:
+        design(si, cutoff=0.6, lead="0.25 in", max_opening="3 in")
+    assert e.value.key == "max_opening"
+    assert str(e.value.value) == "76.2 mm" and "(31.75 mm)" in e.value.expected, str(e.value)
+    with pytest.raises(InputError) as e:
+        design(make_scene(), cutoff=0.6, lead="0.25 in", max_opening="3 in",
+               units_system="SI")
+    assert str(e.value.value) == "76.2 mm" and "(31.75 mm)" in e.value.expected, str(e.value)
+    with pytest.raises(InputError) as e:
+        design(make_scene(), cutoff=0.6, lead="0.25 in", max_opening="3 in")
+    assert str(e.value.value) == "3 in" and "(1.25 in)" in e.value.expected, str(e.value)
+    with pytest.raises(InputError) as e:
+        design(si, cutoff=0.05, lead="6 mm", max_opening="25 mm")
+    assert " mm" in str(e.value) and " in)" not in str(e.value) and \
+        " in," not in str(e.value), str(e.value)

@@ -25,6 +25,7 @@ from corliss.fitting.card import EndCard, MeasuredCard, parse_card, read_card
 from corliss.fitting.solver import fit_card, loop_area
 from corliss.keys.toml_text import dumps
 from corliss.keys.edits import parse_range
+from corliss.studies import pool as study_pool
 from conftest import BASE
 
 PSI = units.PSI_Pa
@@ -320,17 +321,21 @@ def test_the_python_function_refuses_bad_input_before_any_simulation(truth_run, 
 def test_the_bootstrap_agrees_with_the_jacobian_and_repeats_with_its_seed(truth_run):
     """Residuals resampled onto the fitted card and refitted: the spread of the lap over
     the refits is of the size of the Jacobian's error, its 95 % interval holds the
-    fit, and the same seed gives the same refits."""
+    fit, and the same seed gives the same refits, on two processes too (the
+    uncertainty's runs and the refits on the kept pool of workers: each run depends
+    only on its inputs, so the values, the errors and the refits are equal exactly)."""
     card = noisy_card(truth_run, 0.5, seed=21)
     start = scene_with(valve_gear={"lap": "0.9 in"})
     ranges = [parse_range("valve_gear.lap=0.7:1.3in")]
     a = fit_card(start, card, ranges, bootstrap=8, seed=4)
-    b = fit_card(start, card, ranges, bootstrap=8, seed=4)
+    b = fit_card(start, card, ranges, bootstrap=8, seed=4, jobs=2)
     key = "valve_gear.lap"
     se, bse = a.standard_errors[key], a.bootstrap["standard_errors"][key]
     assert 0.3 < bse / se < 3.0, (bse, se)
     assert a.bootstrap["low"][key] < a.values[key] < a.bootstrap["high"][key]
     assert b.bootstrap == a.bootstrap
+    assert b.values == a.values and b.standard_errors == a.standard_errors
+    assert len(study_pool.worker_pids()) == 2
     assert abs(a.values[key] - 1.0) < 3.0 * se
 
 

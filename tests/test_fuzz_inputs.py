@@ -42,6 +42,7 @@ import corliss.studies
 import corliss.studies.compare
 import corliss.studies.load_range
 from corliss.cli import commands as cli
+from corliss.cli import gear_commands, run_command
 from corliss.engine.verdict import EXIT_PHYSICAL
 from corliss.errors import EXIT_BALANCE_FAILED, InputError
 from corliss.files.run_output import STAGING_PREFIX
@@ -270,11 +271,11 @@ def test_random_command_lines_are_answered_never_a_traceback(sandbox, monkeypatc
     def reached(*a, **k):
         raise _Reached()
     (sandbox["box"] / "card.csv").write_text(sandbox["card"])
-    for module, name in [(cli, "simulate"), (corliss.studies, "study"),
+    for module, name in [(run_command, "simulate"), (corliss.studies, "study"),
                          (corliss.files.fit_output, "fit"),
                          (corliss.files.design_output, "design"),
                          (corliss.studies.load_range, "load_ranges"),
-                         (corliss.studies.compare, "compare"), (cli, "build_gear")]:
+                         (corliss.studies.compare, "compare"), (gear_commands, "build_gear")]:
         monkeypatch.setattr(module, name, reached)
     rng = random.Random(SEED)
     flags = _flags()

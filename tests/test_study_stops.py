@@ -29,6 +29,7 @@ import pytest
 
 import corliss
 from corliss.errors import InputError, RunError
+from corliss.studies import pool as study_pool
 from corliss.studies import runner as study_runner
 from corliss.keys.toml_text import dumps
 from conftest import BASE
@@ -88,6 +89,20 @@ def _children(pid: int) -> list[int]:
     return kids
 
 
+def _descendants(pid: int) -> list[int]:
+    """The processes under ``pid``: its children, theirs, and so on (a pool's workers
+    are children of its forkserver, itself a child of the study's process)."""
+    out, todo = [], [pid]
+    while todo:
+        try:
+            kids = _children(todo.pop())
+        except FileNotFoundError:
+            continue
+        out += kids
+        todo += kids
+    return out
+
+
 def _gone(pid: int) -> bool:
     try:
         stat = Path(f"/proc/{pid}/stat").read_text()
@@ -126,10 +141,10 @@ def test_a_study_stopped_by_sigint_then_killed_resumes_to_the_one_sitting_table(
     # second sitting: resumed, then killed outright; its workers die with it
     proc = subprocess.Popen(_command(scene, out, "--resume"), stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True, env=env)
-    # this process's first run, then a worker's chunk: the pool is up
+    # a worker's chunks: the pool is up
     _wait_for_rows(proc, journal, kept + 2)
-    workers = _children(proc.pid)
-    assert len(workers) >= 2
+    workers = _descendants(proc.pid)
+    assert len(workers) >= 3            # two workers, and the process that forked them
     proc.kill()
     proc.communicate(timeout=120)
     t0 = time.monotonic()
@@ -209,13 +224,8 @@ def test_a_local_worker_killed_mid_study_has_its_tasks_run_again(caplog):
     whole = corliss.study(copy.deepcopy(BASE), VARY, jobs=1, **kw)
     killed = []
 
-    me = Path("/proc/self/cmdline").read_bytes()
-
     def progress(done, total):
-        # the pool's workers are forks of this process, with its command line (not the
-        # resource tracker, nor another test's helpers)
-        workers = [w for w in _children(os.getpid())
-                   if Path(f"/proc/{w}/cmdline").read_bytes() == me]
+        workers = study_pool.worker_pids()
         if not killed and done > 1 and workers:
             os.kill(workers[0], signal.SIGKILL)
             killed.append(workers[0])

@@ -19,7 +19,7 @@
 ``corliss sweep SCENE [--settings 0,0.5,1] [--throttle 0.2,0.6,1] [--fidelity F] [--json] [--out DIR]``
     Steady cards across the load range at each gear setting and/or throttle opening:
     a CSV with its meta file and the Willans lines as PNG.
-``corliss compare SCENE [--loads 0.1:1.1:0.1] [--with-condensation both|on|off] [--fidelity F] [--json] [--out DIR]``
+``corliss compare SCENE [--loads 0.1:1.1:0.1] [--with-condensation both|on|off] [--fidelity F] [--jobs N] [--json] [--out DIR]``
     Throttling against cut-off governing of one engine across its load range, with
     and without condensation: the table (CSV with its meta), the Willans lines and
     steam rates (PNG), and a verdict printed: which governing uses less steam where.

@@ -194,7 +194,7 @@ def cmd_compare(args) -> int:
     loads = _loads(args.loads) if args.loads else list(DEFAULT_LOADS)
     result, files = _study(args, scene, lambda bar, out: compare(
         scene, loads, condensation=args.with_condensation, fidelity=args.fidelity,
-        droop=args.droop, progress=bar))
+        droop=args.droop, workers=args.jobs, progress=bar))
     if files is None:
         return 0
     print_verdict(result)
@@ -274,7 +274,7 @@ def cmd_fit(args) -> int:
     out_dir = output_dir(args, scene)
     check_out(out_dir, scene, args.card, args.vary)
     result = fit(scene, args.card, args.vary, fidelity=args.fidelity, refine=args.refine,
-                 bootstrap=args.bootstrap, seed=args.seed)
+                 bootstrap=args.bootstrap, seed=args.seed, jobs=args.jobs)
     files = result.write(out_dir, plots=not args.no_plots)
     if args.json:
         print(summary_json(result.summary))
@@ -311,6 +311,7 @@ def _compare_parser(sub) -> None:
                     "(default: every load at the scene's speed)")
     cp.add_argument("--no-droop", action="store_true", help="every load at the scene's speed "
                     "(the default; kept for scripts that ask for it)")
+    cp.add_argument("--jobs", type=int, help="local processes (default: every core)")
     add_options(cp, "out", "units", "json")
     cp.set_defaults(func=cmd_compare)
 
@@ -369,6 +370,8 @@ def _fit_parser(sub) -> None:
     ft.add_argument("--bootstrap", type=int, default=0, metavar="N",
                     help="wild-bootstrap refits of the residuals, a second uncertainty (default 0)")
     ft.add_argument("--seed", type=int, default=0, help="the bootstrap's seed")
+    ft.add_argument("--jobs", type=int, default=1, help="local processes for the "
+                    "uncertainty's runs and the bootstrap's refits (default 1)")
     add_options(ft, "out", "units")
     ft.add_argument("--no-plots", action="store_true", help="no SCENE.fit.card.png")
     ft.add_argument("--json", action="store_true", help="print the fit as JSON")

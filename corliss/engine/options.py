@@ -135,7 +135,7 @@ class Fidelity:
         rtol : float
             Its relative tolerance [-].
         """
-        if (exact_jacobian and self.exact_method is not None
+        if (exact_jacobian and self.exact_method is not None and self.exact_rtol is not None
                 and PRESETS.get(self.name) == self):
             return self.exact_method, float(self.exact_rtol)
         return self.method, self.rtol

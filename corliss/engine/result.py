@@ -31,14 +31,22 @@ from corliss.frames import columns
 from corliss.keys import units
 from corliss.engine import crank_effort as ce
 from corliss.engine.condensation import marks_condensation_kg
+from corliss.engine.geometry import CylinderGeometry
 from corliss.engine.options import record_of
+from corliss.engine.scene_specs import SceneSpec
 from corliss.engine.speed_metrics import final_turns, load_step_metrics, step_time_of
 from corliss.engine.verdict import steady_failures, transient_failures
 from corliss.frames.frame import Frame
-from corliss.thermo.steam import HEOSSteam, TableSteam
+from corliss.thermo.steam import HEOSSteam, State, TableSteam
+from corliss.valves.portmap import PortMap
 
-if TYPE_CHECKING:          # the tables are handed out as DataFrames; pandas is imported then
+if TYPE_CHECKING:
+    # the tables are handed out as DataFrames (pandas is imported then); a transient
+    # result's governor types, which a steady run does not load
     import pandas as pd
+
+    from corliss.governors.mechanism import GovernorMechanism
+    from corliss.governors.operating_point import OperatingPoint
 
 TWO_PI = 2.0 * math.pi
 #: Why a card's fluctuation coefficient is undefined (the summary's value is null).
@@ -105,7 +113,7 @@ class _Table:
         obj.__dict__.setdefault("_pandas", {}).pop(self.name, None)
 
 
-@dataclass
+@dataclass(kw_only=True)
 class Result:
     """A run's outcome (base of every kind).
 
@@ -131,7 +139,7 @@ class Result:
     #: Figures ``plot`` draws; the first is the default.
     FIGURES: ClassVar[tuple[str, ...]] = ()
 
-    scene: object
+    scene: SceneSpec
     property_tier: str
     timeseries: pd.DataFrame = _Table()
     cycles: pd.DataFrame = _Table()
@@ -160,62 +168,6 @@ class Result:
         """The ways a completed run failed physically (see :mod:`corliss.engine.verdict`);
         None for a kind that reports none."""
         return None
-
-    def _end_condensation(self, end, ev, geo, e_idx, shift_deg, row, ts, at, sat) -> dict:
-        """The condensation summary of one end (``end`` with its cylinder's prefix; its
-        events ``ev`` in its own crank angle, ``shift_deg`` its lead on the shaft)."""
-        out = {f"heat_to_walls_{end}_J_per_cycle": float(row[f"Q_to_wall_{end}_J"]),
-               f"wall_temperature_{end}_K": (float(row[f"T_wall_{end}_K"])
-                                             if f"T_wall_{end}_K" in row else None)}
-
-        def angle(key):
-            return None if ev.get(key) is None else (ev[key] - shift_deg) % 360.0
-
-        if f"T_wall_{end}_K" in ts:
-            tw = ts[f"T_wall_{end}_K"].to_numpy()
-            out[f"wall_surface_swing_{end}_K"] = float(np.max(tw) - np.min(tw))
-            out[f"wall_surface_mean_{end}_K"] = float(np.mean(tw))
-            q_total = float(row[f"Q_{end}_J"])
-            marks = [angle(k) for k in ("admission_deg", "cutoff_deg", "release_deg",
-                                        "compression_deg")]
-            if all(m is not None for m in marks):
-                qs = [at(f"Q_{end}_J", m) for m in marks]
-                for n, name in enumerate(("admission", "expansion", "exhaust", "compression")):
-                    dq = qs[(n + 1) % 4] - qs[n]
-                    if marks[(n + 1) % 4] < marks[n]:   # the phase wraps past 0
-                        dq += q_total
-                    out[f"heat_into_steam_{name}_{end}_J"] = dq
-        if ev["cutoff_deg"] is None or ev["compression_deg"] is None:
-            return out
-        c, k = angle("cutoff_deg"), angle("compression_deg")
-        out[f"wet_fraction_at_cutoff_{end}"] = 1.0 - at(f"x_{end}_frac", c)
-        if f"m_film_{end}_kg" in ts:
-            # the period's "wetness at cut-off" counts all the water present, the wall's
-            # film with the mixture's (English, in DPJ 267, 1888, p. 302: what counts is
-            # the water present at the end of admission, wherever it condensed)
-            m, film = at(f"m_{end}_kg", c), at(f"m_film_{end}_kg", c)
-            out[f"wet_fraction_at_cutoff_with_film_{end}"] = (
-                (m * (1.0 - at(f"x_{end}_frac", c)) + film) / (m + film))
-        supplied = float(row[f"m_chest_{end}_kg"])
-        shown = (at(f"V_{end}_m3", c) * sat.px(at(f"p_{end}_Pa", c), 1.0).rho
-                 - at(f"V_{end}_m3", k) * sat.px(at(f"p_{end}_Pa", k), 1.0).rho)
-        out[f"card_missing_water_fraction_{end}"] = (supplied - shown) / supplied
-        if f"m_{end}_kg" in ts:
-            steam = (at(f"m_{end}_kg", c) * at(f"x_{end}_frac", c)
-                     - at(f"m_{end}_kg", k) * at(f"x_{end}_frac", k))
-            out[f"missing_water_fraction_{end}"] = (supplied - steam) / supplied
-            # the mass Marks's eq. 221 predicts: condensation per stroke
-            out[f"missing_water_per_stroke_{end}_kg"] = supplied - steam
-        else:
-            out[f"missing_water_fraction_{end}"] = out[f"card_missing_water_fraction_{end}"]
-        # the period's prediction beside the model's (Marks eq. 221)
-        vc, vs = geo.clearance_m3[e_idx], geo.swept_m3[e_idx]
-        e_true = (vc + vs * ev["cutoff_frac"]) / (vc + vs)
-        cond = marks_condensation_kg(
-            geo.spec.bore_m, geo.spec.stroke_m, 2.0 * self.scene.run.speed_rad_s / TWO_PI,
-            e_true, sat.t_sat(at(f"p_{end}_Pa", c)), self.exhaust.T)
-        out[f"marks_missing_water_fraction_{end}"] = cond / (cond + shown)
-        return out
 
     def _make_summary(self) -> dict:  # pragma: no cover - interface
         raise NotImplementedError
@@ -363,7 +315,7 @@ def _last(ts):
     return ts[ts["cycle"] == ts["cycle"].max()]
 
 
-@dataclass
+@dataclass(kw_only=True)
 class SteadyResult(Result):
     """A steady run: the speed held, cycles until periodic.
 
@@ -418,11 +370,11 @@ class SteadyResult(Result):
     FIGURES: ClassVar[tuple[str, ...]] = ("card", "effort", "lp_card")
 
     events: dict = field(default_factory=dict)
-    geometry: object = None
-    chest: object = None
-    exhaust: object = None
+    geometry: CylinderGeometry
+    chest: State
+    exhaust: State
     cycles_to_converge: int | None = None
-    portmap: object = None
+    portmap: PortMap | None = None
     ideal_cards: dict | None = None
     cylinders: list | None = None
     lp_events: dict | None = None
@@ -430,6 +382,62 @@ class SteadyResult(Result):
     clamped_trials: int | None = None
     clamped_hot: int | None = None
     final_state: object = None
+
+    def _end_condensation(self, end, ev, geo, e_idx, shift_deg, row, ts, at, sat) -> dict:
+        """The condensation summary of one end (``end`` with its cylinder's prefix; its
+        events ``ev`` in its own crank angle, ``shift_deg`` its lead on the shaft)."""
+        out = {f"heat_to_walls_{end}_J_per_cycle": float(row[f"Q_to_wall_{end}_J"]),
+               f"wall_temperature_{end}_K": (float(row[f"T_wall_{end}_K"])
+                                             if f"T_wall_{end}_K" in row else None)}
+
+        def angle(key):
+            return None if ev.get(key) is None else (ev[key] - shift_deg) % 360.0
+
+        if f"T_wall_{end}_K" in ts:
+            tw = ts[f"T_wall_{end}_K"].to_numpy()
+            out[f"wall_surface_swing_{end}_K"] = float(np.max(tw) - np.min(tw))
+            out[f"wall_surface_mean_{end}_K"] = float(np.mean(tw))
+            q_total = float(row[f"Q_{end}_J"])
+            marks = [angle(k) for k in ("admission_deg", "cutoff_deg", "release_deg",
+                                        "compression_deg")]
+            if all(m is not None for m in marks):
+                qs = [at(f"Q_{end}_J", m) for m in marks]
+                for n, name in enumerate(("admission", "expansion", "exhaust", "compression")):
+                    dq = qs[(n + 1) % 4] - qs[n]
+                    if marks[(n + 1) % 4] < marks[n]:   # the phase wraps past 0
+                        dq += q_total
+                    out[f"heat_into_steam_{name}_{end}_J"] = dq
+        if ev["cutoff_deg"] is None or ev["compression_deg"] is None:
+            return out
+        c, k = angle("cutoff_deg"), angle("compression_deg")
+        out[f"wet_fraction_at_cutoff_{end}"] = 1.0 - at(f"x_{end}_frac", c)
+        if f"m_film_{end}_kg" in ts:
+            # the period's "wetness at cut-off" counts all the water present, the wall's
+            # film with the mixture's (English, in DPJ 267, 1888, p. 302: what counts is
+            # the water present at the end of admission, wherever it condensed)
+            m, film = at(f"m_{end}_kg", c), at(f"m_film_{end}_kg", c)
+            out[f"wet_fraction_at_cutoff_with_film_{end}"] = (
+                (m * (1.0 - at(f"x_{end}_frac", c)) + film) / (m + film))
+        supplied = float(row[f"m_chest_{end}_kg"])
+        shown = (at(f"V_{end}_m3", c) * sat.px(at(f"p_{end}_Pa", c), 1.0).rho
+                 - at(f"V_{end}_m3", k) * sat.px(at(f"p_{end}_Pa", k), 1.0).rho)
+        out[f"card_missing_water_fraction_{end}"] = (supplied - shown) / supplied
+        if f"m_{end}_kg" in ts:
+            steam = (at(f"m_{end}_kg", c) * at(f"x_{end}_frac", c)
+                     - at(f"m_{end}_kg", k) * at(f"x_{end}_frac", k))
+            out[f"missing_water_fraction_{end}"] = (supplied - steam) / supplied
+            # the mass Marks's eq. 221 predicts: condensation per stroke
+            out[f"missing_water_per_stroke_{end}_kg"] = supplied - steam
+        else:
+            out[f"missing_water_fraction_{end}"] = out[f"card_missing_water_fraction_{end}"]
+        # the period's prediction beside the model's (Marks eq. 221)
+        vc, vs = geo.clearance_m3[e_idx], geo.swept_m3[e_idx]
+        e_true = (vc + vs * ev["cutoff_frac"]) / (vc + vs)
+        cond = marks_condensation_kg(
+            geo.spec.bore_m, geo.spec.stroke_m, 2.0 * self.scene.run.speed_rad_s / TWO_PI,
+            e_true, sat.t_sat(at(f"p_{end}_Pa", c)), self.exhaust.T)
+        out[f"marks_missing_water_fraction_{end}"] = cond / (cond + shown)
+        return out
 
     @property
     def cylinder_list(self) -> list:
@@ -518,6 +526,8 @@ class SteadyResult(Result):
                                       self.scene.supply.barometer_Pa)
             cols[f"{prefix}steam_force_N"] = force
             if run.has("inertia"):
+                # the loader requires the mass with the inertia effect
+                assert spec.reciprocating_mass_kg is not None
                 f_in = ce.inertia_force_N(g, th + phase, run.speed_rad_s,
                                           spec.reciprocating_mass_kg)
                 cols[f"{prefix}inertia_force_N"] = f_in
@@ -536,6 +546,7 @@ class SteadyResult(Result):
         eff = self._frame_crank_effort()
         th = np.radians(eff["crank_angle_deg"].to_numpy())
         dE = ce.energy_fluctuation_J(th, eff["torque_N_m"].to_numpy())
+        out: dict[str, object]      # a number or a note, by the card's work
         out = {"max_torque_N_m": float(eff["torque_N_m"].max()),
                "min_torque_N_m": float(eff["torque_N_m"].min()),
                "mean_torque_N_m": work_J / TWO_PI,
@@ -781,7 +792,7 @@ class SteadyResult(Result):
         return out
 
 
-@dataclass
+@dataclass(kw_only=True)
 class TransientResult(Result):
     """A transient run: the speed a state, the load changing, the governor acting.
 
@@ -825,14 +836,14 @@ class TransientResult(Result):
     TABLES: ClassVar[tuple[str, ...]] = ("timeseries", "cycles", "cards")
     FIGURES: ClassVar[tuple[str, ...]] = ("loadstep",)
 
-    geometry: object = None
+    geometry: CylinderGeometry
     stalled: bool = False
-    mechanism: object = None
+    mechanism: GovernorMechanism | None = None
     z_start: float = 0.0
-    chest: object = None
-    exhaust: object = None
+    chest: State | None = None
+    exhaust: State | None = None
     engine_map: object = None
-    start: object = None
+    start: OperatingPoint | None = None
     clamped_trials: int | None = None
     clamped_hot: int | None = None
 
@@ -856,8 +867,11 @@ class TransientResult(Result):
     def _make_summary(self) -> dict:
         s = self.scene
         c = self.cycles
+        # a transient run has both (the loader requires them in that mode)
+        assert s.flywheel is not None and s.load is not None
         gov = None
         if s.governor is not None:
+            assert self.mechanism is not None      # built from the governor
             gov = {"type": s.governor_type, "acts_on": self.mechanism.acts_on,
                    "z_at_start": self.z_start}
         start = None
@@ -968,7 +982,7 @@ def _loop_work(card) -> float:
     return float(np.sum(0.5 * (p + np.roll(p, -1)) * (np.roll(v, -1) - v)))
 
 
-@dataclass
+@dataclass(kw_only=True)
 class SweepResult(Result):
     """Steady runs across the load range at a series of gear settings or throttle openings.
 
@@ -1017,6 +1031,7 @@ class SweepResult(Result):
 
     def _make_summary(self) -> dict:
         s = self.scene
+        out: dict[str, object]      # numbers, names, lists
         out = {"title": s.title, "kind": self.kind, "knob": self.knob,
                "values": list(self.values), "fidelity": s.run.fidelity.name,
                "property_tier": self.property_tier}

@@ -49,6 +49,9 @@ import numpy as np
 
 from corliss.engine.kernels import loop
 from corliss.engine.kernels.properties import PR_ROWS
+from corliss.valves.gear import ValveGear
+from corliss.valves.single_acting import SingleActing
+from corliss.valves.slip_eccentric import SlipEccentric
 
 TWO_PI = 2.0 * math.pi
 #: The backward speed [fraction of the run speed] past which the speed loop takes over
@@ -89,6 +92,32 @@ def reversible(scene, gear) -> bool:
     from_slip = getattr(gear, "name", None) == "slip_eccentric"
     return (from_slip and scene.compound is None and len(scene.engine.crank_angles_rad) == 1
             and scene.governor is None and scene.load.speed_exponent == 0)
+
+
+def backward_gear(gear: ValveGear) -> ValveGear:
+    """A slip eccentric's gear after the engine ran backward through the slip: the valve
+    on its backward stop (a single-acting cylinder's: its inner gear's, unwrapped).
+
+    Parameters
+    ----------
+    gear : ValveGear
+        The run's gear: a :class:`~corliss.valves.slip_eccentric.SlipEccentric`, or a
+        :class:`~corliss.valves.single_acting.SingleActing` round one.
+
+    Returns
+    -------
+    ValveGear
+        The slip eccentric on its backward stop.
+
+    Raises
+    ------
+    TypeError
+        For a gear that is not a slip eccentric (:func:`reversible` lets none through).
+    """
+    inner = gear.inner if isinstance(gear, SingleActing) else gear
+    if not isinstance(inner, SlipEccentric):
+        raise TypeError(f"the {gear.name} gear has no slip eccentric to reverse")
+    return inner.reversed()
 
 
 class _Shaft:

@@ -14,13 +14,14 @@ from corliss.engine import first_run
 from corliss.engine.model import scene_events
 from corliss.engine.output_size import check_output_samples
 from corliss.engine.result import Result
+from corliss.engine.scene_specs import SceneSpec
 from corliss.engine.steady import run_steady
 from corliss.progress import progress_for
 
 __all__ = ["scene_events", "simulate"]
 
 
-def simulate(scene, *, portmap_scale: float = 1.0,
+def simulate(scene: SceneSpec, *, portmap_scale: float = 1.0,
              progress: Any = None) -> Result:
     """Run a scene.
 

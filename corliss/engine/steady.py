@@ -104,6 +104,7 @@ def run_steady(scene, *, portmap_scale: float = 1.0,
         else:
             data = _equilibrium(scene, geo, steam_eq(), chest, exhaust, _ideal_schedule(ev, geo))
     elif scene.run.has("port_flow"):
+        assert pm is not None          # a port-flow model has its port map
         if portmap_scale != 1.0:
             pm = pm.scaled(portmap_scale)
         data = _crank_resolved(scene, model, pm, progress, start)
@@ -204,14 +205,20 @@ def _crank_resolved(scene, model, pm, progress, start=None):
             # (or, while the wall's own step is large, once the cycle's other residuals
             # are a tenth of it)
             # the wall is periodic when its heat over the cycle balances (what it took
-            # less what it gave, and the jacket's) to the tolerance of the enthalpy
-            # supplied, the energy balance's scale
+            # less what it gave, and the jacket's) to the tolerance of the heat it took,
+            # its own scale, or when its bracket has closed to the tolerance of the
+            # supply's less the exhaust's temperature (where the balance has a kink, a
+            # superheated wall's, or the cycles' noise exceeds the tolerance of a small
+            # heat): against the enthalpy supplied (some 30 times the wall's heat) the
+            # fast preset's 1e-3 left the wall up to 0.8 K from periodic, for the wall's
+            # heat moves only about 1.4 kJ a cycle per kelvin
             inner = max(v for n, v in residuals.items() if n != "wall_temperature")
-            h_in = abs(float(row["H_supply_J"]))
-            step, imbalance = crank.update_wall(y, apply=False, heat_scale=h_in)
+            trusted = inner <= fid.convergence_tolerance
+            step, imbalance = crank.update_wall(y, apply=False, dT_scale=dT_scale,
+                                                trusted=trusted)
             settled = inner <= max(10.0 * fid.convergence_tolerance, 0.1 * step / dT_scale)
             if settled:
-                crank.update_wall(y, apply=True, heat_scale=h_in)
+                crank.update_wall(y, apply=True, dT_scale=dT_scale, trusted=trusted)
             residuals["wall_temperature"] = max(residuals.get("wall_temperature", 0.0),
                                                 imbalance)
         change = max(residuals.values())
@@ -362,9 +369,10 @@ def _periodicity(lay: _Layout, wall_T, y0, y1, samples, wall0, dT_scale: float, 
     is judged by its contents; the skin model's film counts with its end's mass);
     ``wall_temperature``: the largest change of a wall's temperature (the skin model's
     surface), against the supply's less the exhaust's temperature, and for the skin
-    model the wall's heat imbalance over the cycle against the enthalpy supplied (set
-    by the runner).  A cycle is periodic when every one is below the convergence
-    tolerance.
+    model the wall's heat imbalance over the cycle against the heat it took, or its
+    bracket against the temperature scale where that is smaller (set by the runner,
+    :class:`corliss.engine.wall.DeepWallSearch`).  A cycle is periodic when every one
+    is below the convergence tolerance.
     """
     w = row["work_J"]
     out = {"work": abs(w - w_prev) / max(abs(w), 1e-300) if w_prev is not None else math.inf}

@@ -39,15 +39,16 @@ from corliss.governors.operating_point import (BALANCED, LOAD_TOO_HEAVY, SURPLUS
                                            OperatingPoint, find_operating_point)
 from corliss.engine.options import TRANSIENT_METHODS, record_of
 from corliss.engine.result import TransientResult
-from corliss.engine.reversal import reversible, run_reversal
+from corliss.engine.reversal import backward_gear, reversible, run_reversal
 from corliss.engine.speed_metrics import settled, step_time_of
 from corliss.engine.start_from_rest import HANDOVER_FRACTION, start_from_rest
 from corliss.errors import InputError, RunError
 from corliss.governors import governor_type
-from corliss.governors.mechanism import CREEP_PER_S
+from corliss.governors.mechanism import CREEP_PER_S, GovernorMechanism
 from corliss.thermo.steam_table import TableArrays, load_table
 from corliss.valves import events as gear_events
 from corliss.valves.portmap import tabulate, tabulate_settings
+from corliss.valves.gear import ValveGear
 from corliss.valves.single_acting import single_acting
 
 log = logging.getLogger(__name__)
@@ -81,7 +82,7 @@ class LoopTables:
         which cylinders the governor moves, the governor's M, M', G, R, J on a uniform z
         grid, the trip gear's tables, and the throttle's area over a uniform grid of
         opening [m2].
-    governed_gear : object or None
+    governed_gear : ValveGear or None
         The valve gear the governor sets (None: it works the throttle, or there is no
         governor).
     setting_grid : ndarray or None
@@ -95,11 +96,11 @@ class LoopTables:
     """
 
     tr: LoopArrays
-    governed_gear: object | None
+    governed_gear: ValveGear | None
     setting_grid: np.ndarray | None
     cutoff_table: CutoffTable | None     # head and crank cut-off over the settings
     z0: float
-    mechanism: object | None
+    mechanism: GovernorMechanism | None
 
 
 def _governor_arrays(mech):
@@ -640,7 +641,7 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
             sense, status = -1.0, 0
             th_offset = rev["phi_rad"] - TWO_PI * k
             # the backward stop's gear (a single-acting cylinder's kept single-acting)
-            pm_back = tabulate(single_acting(gear.reversed(), scene.engine.steam_ends),
+            pm_back = tabulate(single_acting(backward_gear(gear), scene.engine.steam_ends),
                                fid.portmap_points)
             back = build_network(scene, geo, pm_back, steam, chest, exhaust).arrays()
             turns.net = turns.net._replace(port_grid=back.port_grid, port_npts=back.port_npts,
@@ -828,6 +829,7 @@ def _cycle_row(k: int, y0: np.ndarray, y: np.ndarray, network, tables: LoopTable
             row["throttle_opening_frac"] = act
         else:
             row["gear_setting_frac"] = act
+            assert tables.cutoff_table is not None      # tabulated for a governed gear
             row["cutoff_head_frac"], row["cutoff_crank_frac"] = tables.cutoff_table.at(act)
     return row
 

@@ -38,8 +38,11 @@ from corliss.keys.scene_system import SYSTEMS, quantity, scene_text
 from corliss.keys.toml_text import dumps
 from corliss.valves.design import (SettingDesign, SlideValveDesign, design_setting,
                                    design_slide_valve)
+from corliss.valves.fink_motion import FinkMotionSpec
+from corliss.valves.link_motion import LinkMotionSpec
 from corliss.valves.single_acting import working_gear
-from corliss.valves.slide_valve import LappedValve
+from corliss.valves.slide_valve import LappedValve, SlideValveSpec
+from corliss.valves.slip_eccentric import SlipEccentricSpec
 
 #: The scene keys that hold a gear's setting, when it is not the number ``setting``:
 #: the block's offset as a length (setting x half link).
@@ -57,6 +60,14 @@ SCENE_CHECK_DEG = 1e-4
 ROUNDING_WARN_DEG = 0.05
 #: Decimal places of a gear's setting written (a notch or a block to 1e-4 of its range).
 SETTING_DECIMALS = 4
+#: A gear set for the cut-off asked at one end warns when the other end's differs by
+#: more than this fraction of the stroke: the greatest inequality of cut-off between the
+#: strokes that the connecting rod's angularity alone gave Peabody's Stephenson link
+#: (0.067 of the stroke, 1.6 in on a 24 in stroke at L/R 7.5; Peabody, *Link Motion*,
+#: MIT thesis, 1877), so that a larger one is the linkage's own.
+CUTOFF_WARN_FRAC = 0.067
+#: The two ends, in the order of the gear's pairs.
+ENDS = ("head", "crank")
 
 
 @dataclass(frozen=True)
@@ -117,40 +128,61 @@ class Design:
 
         A slide valve is designed for the lead and opening asked at the reference end;
         equal cut-offs with a finite rod then give the other end laps of its own, and
-        with them its own lead and opening.  Warned: an end whose lead is more than
-        twice the asked one and 1/16 in (1.6 mm) beyond it, or less than half of it; an
-        end whose greatest opening passes the port's width by more than a quarter of
-        it (the valve overtravels the port, its travel spent past the port's edge).
+        with them its own lead and opening.  A gear with a setting is set for the
+        cut-off asked at one end (or their mean); its linkage gives the other end the
+        cut-off, lead and opening it does.  Warned: an end whose lead is more than
+        twice the reference end's (the one asked) and 1/16 in (1.6 mm) beyond it, or
+        less than half of it; an end whose greatest opening passes the port's width by
+        more than a quarter of it (the valve overtravels the port, its travel spent
+        past the port's edge); with a setting, the other end's cut-off more than
+        :data:`CUTOFF_WARN_FRAC` of the stroke from the one asked.  Lengths are
+        quoted in the scene's unit system.
 
         Returns
         -------
         list of str
-            One sentence per finding (empty for a design without one, and for a gear's
-            setting).
+            One sentence per finding (empty for a design without one).
         """
         out = self._rounding_warnings()
         v = self.valve
-        if not isinstance(v, SlideValveDesign):
-            return out
-        us = self.scene.output.units == "US"
-        q = (lambda m: f"{units.to_unit(m, 'in'):.3g} in") if us else \
-            (lambda m: f"{m * 1e3:.3g} mm")
-        ref = 0 if v.reference_end == "head" else 1
-        lead0 = v.lead_m[ref]
-        for k, end in enumerate(("head", "crank")):
+        q = _length_quoter(self.scene.output.units)
+        if isinstance(v, SlideValveDesign):
+            ref = 0 if v.reference_end == "head" else 1
+            leads = v.lead_m
+            openings = v.max_opening_m
+            width = getattr(self.scene.gear, "port_width_m", None)
+            widths = (width, width)
+            lead_why = (f"asked at the {v.reference_end} end (equal cut-offs give the ends "
+                        "laps, and so leads, of their own; --equalise laps gives equal laps)")
+        else:
+            ref = 1 if v.end == "crank" else 0
+            ev = (v.events["head"], v.events["crank"])
+            leads = (ev[0]["lead_m"], ev[1]["lead_m"])
+            # the signed opening's greatest: the port's width and the overtravel past it
+            openings = (ev[0]["max_port_opening_m"] + ev[0]["overtravel_m"],
+                        ev[1]["max_port_opening_m"] + ev[1]["overtravel_m"])
+            steam_ports = v.gear.port_widths()
+            widths = (float(steam_ports[0]), float(steam_ports[2]))
+            lead_why = (f"at the {ENDS[ref]} end (the gear's linkage gives each end its "
+                        "own lead at a setting)")
+            if v.end != "mean":
+                k = 1 - ref
+                cut = ev[k]["cutoff_frac"]
+                if cut is not None and abs(cut - v.cutoff_frac) > CUTOFF_WARN_FRAC:
+                    out.append(f"{ENDS[k]} end: cut-off {cut:.3f} of the stroke against the "
+                               f"{v.cutoff_frac:.3f} asked at the {v.end} end (one setting "
+                               "serves both ends; --end mean sets it for their mean)")
+        lead0 = leads[ref]
+        for k, end in enumerate(ENDS):
             if k != ref and lead0 > 0.0 and (
-                    (v.lead_m[k] > 2.0 * lead0 and v.lead_m[k] - lead0 > units.INCH_m / 16.0)
-                    or v.lead_m[k] < 0.5 * lead0):
-                out.append(f"{end} end: lead {q(v.lead_m[k])} against the {q(lead0)} asked "
-                           f"at the {v.reference_end} end (equal cut-offs give the ends laps, "
-                           "and so leads, of their own; --equalise laps gives equal laps)")
-        width = getattr(self.scene.gear, "port_width_m", None)
-        if width:
-            for k, end in enumerate(("head", "crank")):
-                if v.max_opening_m[k] > 1.25 * width:
-                    out.append(f"{end} end: greatest opening {q(v.max_opening_m[k])} on a "
-                               f"{q(width)} port: the valve overtravels the port by "
-                               f"{q(v.max_opening_m[k] - width)}")
+                    (leads[k] > 2.0 * lead0 and leads[k] - lead0 > units.INCH_m / 16.0)
+                    or leads[k] < 0.5 * lead0):
+                out.append(f"{end} end: lead {q(leads[k])} against the {q(lead0)} {lead_why}")
+        for k, end in enumerate(ENDS):
+            w = widths[k]
+            if w and openings[k] > 1.25 * w:
+                out.append(f"{end} end: greatest opening {q(openings[k])} on a {q(w)} port: "
+                           f"the valve overtravels the port by {q(openings[k] - w)}")
         return out
 
     def _rounding_warnings(self) -> list[str]:
@@ -184,6 +216,7 @@ class Design:
             ``setting_name``, ``end``, ``cutoff_frac`` and ``asked_deg``.
         """
         v = self.valve
+        out: dict[str, object]      # names, numbers, lists and tables, by the gear
         out = {"base_scene": self.base, "gear": self.scene.gear_type, "events": self.events,
                "warnings": self.warnings, "units_system": self.scene.output.units}
         if isinstance(v, SlideValveDesign):
@@ -312,7 +345,9 @@ def design(scene=None, *, cutoff, cutoff_crank=None, lead=None, max_opening=None
     def frac(t):
         return float(geo.fraction(t))
 
+    valve: SlideValveDesign | SettingDesign
     if base.gear_type in SLIDE_VALVES:
+        assert isinstance(base.gear, SlideValveSpec)    # the registry's spec of either
         valve = design_slide_valve(
             base.gear, frac, cutoff=cutoff, cutoff_crank=cutoff_crank,
             lead_m=_length("lead", lead), max_opening_m=_length("max_opening", max_opening),
@@ -323,7 +358,7 @@ def design(scene=None, *, cutoff, cutoff_crank=None, lead=None, max_opening=None
             release=_fractions("release", release),
             compression=_fractions("compression", compression),
             exhaust_lap_m=_length("exhaust_lap", exhaust_lap), equalise=equalise,
-            reference_end=reference_end)
+            reference_end=reference_end, length_unit=_unit(base))
     else:
         slide_args = {"cutoff_crank": cutoff_crank, "lead": lead, "max_opening": max_opening,
                       "eccentricity": eccentricity, "lap": lap,
@@ -354,7 +389,7 @@ def design(scene=None, *, cutoff, cutoff_crank=None, lead=None, max_opening=None
                                    f"deg, the scene gives {got}")
     system = base.output.units
     stem = f"{output_stem(base)}.design"
-    text = scene_text(base.text if base.text is not None else dumps(base.data), system,
+    text = scene_text(base.text if base.text is not None else dumps(_tables(base)), system,
                       _written_values(base, valve, system),
                       drop=("valve_gear.lead",) if isinstance(valve, SlideValveDesign) else (),
                       header=_header(base, base_name, valve))
@@ -363,7 +398,32 @@ def design(scene=None, *, cutoff, cutoff_crank=None, lead=None, max_opening=None
                   base=base_name, stem=stem, exact_events=ev)
 
 
+def _length_quoter(system: str):
+    """A length [m] in words in a unit system's unit: inches (US) or millimetres (SI),
+    to three figures."""
+    unit = "in" if system == "US" else "mm"
+    return lambda m: f"{units.to_unit(m, unit):.3g} {unit}"
+
+
 # ---------------------------------------------------------------- the scene's tables
+def _tables(scene: Scene) -> dict:
+    """The scene's tables as read: every scene a design starts from has them."""
+    if scene.data is None:
+        raise InputError("scene", scene.name, "a scene loaded from tables or a file (a "
+                         "design writes its tables back)")
+    return scene.data
+
+
+def _half_link_m(gear: object) -> float:
+    """Half the link of a link motion's or a Fink motion's spec [m]: what the block's
+    offset is in units of."""
+    if isinstance(gear, FinkMotionSpec):
+        return gear.link.half_link_m
+    if isinstance(gear, LinkMotionSpec):
+        return gear.half_link_m
+    raise TypeError(f"{type(gear).__name__} is no link motion")
+
+
 def _unit(scene: Scene) -> str:
     return "in" if scene.output.units == "US" else "mm"
 
@@ -386,6 +446,7 @@ def _designed_tables(base: Scene, valve) -> dict:
         if base.gear_type == "slip_eccentric":
             # the driving stop's advance; the other stop's kept as the scene had it
             g = base.gear
+            assert isinstance(g, SlipEccentricSpec)     # the registry's spec of the type
             ahead = g.direction == "ahead"
             advance = "forward_advance" if ahead else "backward_advance"
             other = g.backward_advance_rad if ahead else g.forward_advance_rad
@@ -399,13 +460,12 @@ def _designed_tables(base: Scene, valve) -> dict:
                   "valve_gear.lap": _pair_q(valve.lap_m, u),
                   "valve_gear.exhaust_lap": _pair_q(valve.exhaust_lap_m, u)}
     elif base.gear_type in BLOCK_KEY:
-        half = (base.gear.link.half_link_m if base.gear_type == "fink_motion"
-                else base.gear.half_link_m)
+        half = _half_link_m(base.gear)
         values = {f"valve_gear.{BLOCK_KEY[base.gear_type]}": _q(valve.setting * half, u)}
     else:
         values = {"valve_gear.setting": float(f"{valve.setting:.12g}")}
-    values["title"] = f"{base.data.get('title', base.title)} (designed)"
-    data = with_keys(base.data, values)
+    values["title"] = f"{_tables(base).get('title', base.title)} (designed)"
+    data = with_keys(_tables(base), values)
     if isinstance(valve, SlideValveDesign):
         data["valve_gear"].pop("lead", None)     # the advance is written instead (exact)
     return data
@@ -423,6 +483,7 @@ def _written_values(base: Scene, valve, system: str) -> dict:
         advance, other = "angular_advance", {}
         if base.gear_type == "slip_eccentric":
             g = base.gear
+            assert isinstance(g, SlipEccentricSpec)     # the registry's spec of the type
             ahead = g.direction == "ahead"
             advance = "forward_advance" if ahead else "backward_advance"
             other = {f"valve_gear.{'backward' if ahead else 'forward'}_advance": quantity(
@@ -433,8 +494,7 @@ def _written_values(base: Scene, valve, system: str) -> dict:
                   "valve_gear.lap": _pair_written(valve.lap_m, system),
                   "valve_gear.exhaust_lap": _pair_written(valve.exhaust_lap_m, system)}
     elif base.gear_type in BLOCK_KEY:
-        half = (base.gear.link.half_link_m if base.gear_type == "fink_motion"
-                else base.gear.half_link_m)
+        half = _half_link_m(base.gear)
         values = {f"valve_gear.{BLOCK_KEY[base.gear_type]}": quantity(valve.setting * half,
                                                                       "length", system)}
     else:
@@ -562,6 +622,8 @@ def write_design(design: Design, out_dir) -> dict:
         else:
             with plt.ioff():
                 fig = plot_gear(gear, units_system=units_system)["figure"]
+            # a gear that is no lapped valve was designed by its setting
+            assert isinstance(design.valve, SettingDesign)
             try:
                 fig.suptitle(f"{design.scene.title}: setting {design.valve.setting:.4f}", fontsize=10)
                 name = f"{stem}.gear.png"

@@ -130,8 +130,8 @@ def _ranges(vary) -> list[KeyRange]:
 
 
 def fit(scene, card, vary, *, fidelity: str = "fast", refine: bool = False,
-        bootstrap: int = 0, seed: int = 0, out=None, units_system: str | None = None,
-        plots: bool = True, progress=None) -> FitResult:
+        bootstrap: int = 0, seed: int = 0, jobs: int = 1, out=None,
+        units_system: str | None = None, plots: bool = True, progress=None) -> FitResult:
     """Calibrate scene keys to a measured indicator card (``corliss fit``).
 
     Parameters
@@ -153,6 +153,9 @@ def fit(scene, card, vary, *, fidelity: str = "fast", refine: bool = False,
         Wild-bootstrap refits of the residuals (0: none).
     seed : int, optional
         The bootstrap's seed.
+    jobs : int, optional
+        Processes for the uncertainty's runs and the bootstrap's refits [-]
+        (default 1).
     out : str or Path, optional
         Write ``STEM.json``, ``STEM.toml`` and ``STEM.card.png`` into this folder
         (:func:`fit_stem`); one holding another fit is refused first
@@ -185,7 +188,7 @@ def fit(scene, card, vary, *, fidelity: str = "fast", refine: bool = False,
     if out is not None:
         check_out(out, scene, card, ranges, units_system)
     result = fit_card(scene, card, ranges, fidelity=fidelity, refine=refine,
-                      bootstrap=bootstrap, seed=seed, progress=progress)
+                      bootstrap=bootstrap, seed=seed, jobs=jobs, progress=progress)
     if out is not None:
         result.write(out, plots=plots, units_system=units_system)
     return result

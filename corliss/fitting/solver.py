@@ -127,10 +127,13 @@ beside the Jacobian's errors.
 
 from __future__ import annotations
 
+import copy
 import dataclasses
+import hashlib
 import importlib
 import logging
 import math
+import pickle
 import time
 from dataclasses import dataclass, field
 from typing import Callable
@@ -145,6 +148,7 @@ from corliss.errors import InputError, RunError
 from corliss.fitting.card import MeasuredCard
 from corliss.scene.loader import Scene, scene_from_dict
 from corliss.keys.edits import KeyRange, get_key, parse_value, with_keys
+from corliss.studies.pool import run_tasks
 
 log = logging.getLogger(__name__)
 
@@ -658,14 +662,85 @@ def _check(scene, ranges: list, card: MeasuredCard | None = None) -> None:
             scene_from_dict(with_keys(scene.data, {r.key: r.text(v)}), name=scene.name)
 
 
-def _jacobian(prob: _Problem, u: np.ndarray, r0: np.ndarray, h: float):
+#: In a pool's worker: the fits' problems it served, by the hash of their pickle (a
+#: problem is unpickled once a worker, and its cache of runs kept between its tasks).
+_WORKER_PROBLEMS: dict = {}
+#: Problems a worker keeps.
+_KEEP_PROBLEMS = 2
+
+
+def _shipped(prob: _Problem) -> tuple[str, bytes]:
+    """The problem as sent to a pool's workers: pickled without its progress callback
+    and its cache of runs, and the hash that names it."""
+    p = copy.copy(prob)
+    p.progress, p.cache, p.simulations = None, {}, 0
+    blob = pickle.dumps(p, protocol=pickle.HIGHEST_PROTOCOL)
+    return hashlib.sha1(blob).hexdigest(), blob
+
+
+def _worker_problem(token: str, blob: bytes) -> _Problem:
+    prob = _WORKER_PROBLEMS.get(token)
+    if prob is None:
+        prob = pickle.loads(blob)
+        while len(_WORKER_PROBLEMS) >= _KEEP_PROBLEMS:
+            _WORKER_PROBLEMS.pop(next(iter(_WORKER_PROBLEMS)))
+        _WORKER_PROBLEMS[token] = prob
+    return prob
+
+
+def _residuals_task(token: str, blob: bytes, u: np.ndarray) -> np.ndarray:
+    """A pool worker's task: the residuals at ``u`` (one simulation)."""
+    return _worker_problem(token, blob).residuals(u)
+
+
+def _refit_task(token: str, blob: bytes, u: np.ndarray, free: list, h: float,
+                override: dict) -> tuple[np.ndarray, int]:
+    """A pool worker's task: one bootstrap refit; its optimum and the simulations it
+    made (runs this worker had made before for the same problem are read back from
+    its cache, not made again)."""
+    prob = _worker_problem(token, blob)
+    n0 = prob.simulations
+    ub, _ = _solve(prob, u, free, h, override)
+    return ub, prob.simulations - n0
+
+
+def _residuals_at(prob: _Problem, points: list, jobs: int) -> list:
+    """The residuals at each of ``points``: here, one after another, when ``jobs`` is 1;
+    else the runs not in the problem's cache on ``jobs`` workers of the kept pool (the
+    same numbers: a run depends only on its inputs), the progress called here as each
+    comes back."""
+    if jobs <= 1:
+        return [prob.residuals(x) for x in points]
+    out: list = [None] * len(points)
+    todo = []
+    for i, x in enumerate(points):
+        key = (tuple(np.round(np.asarray(x, float), 12)), prob.fidelity, prob.cycles)
+        if key in prob.cache:
+            out[i] = prob.residuals(x)
+        else:
+            todo.append(i)
+    token, blob = _shipped(prob)
+
+    def collect(j, r):
+        out[todo[j]] = r
+        prob.simulations += 1
+        if prob.progress is not None:
+            prob.progress(prob.simulations, float(np.sqrt(np.mean(r ** 2))))
+
+    run_tasks([(_residuals_task, (token, blob, points[i])) for i in todo], jobs, collect)
+    return out
+
+
+def _jacobian(prob: _Problem, u: np.ndarray, r0: np.ndarray, h: float, jobs: int = 1):
     """Central-difference Jacobian at ``u`` (each step kept inside [0, 1]), each
     column's noise floor from the second difference of the same runs, and which rows
     are smooth: their second differences within :data:`SECANT_ROW_FACTOR` of each
-    column's robust scale of them (the others are secants across a corner)."""
+    column's robust scale of them (the others are secants across a corner).  The runs
+    go to ``jobs`` processes (:func:`_residuals_at`)."""
     J = np.empty((r0.size, u.size))
     noise = np.empty(u.size)
     smooth = np.ones(r0.size, dtype=bool)
+    steps, points = [], []
     for i in range(u.size):
         lo, hi = u[i] - h, u[i] + h
         if lo < 0.0:
@@ -674,8 +749,12 @@ def _jacobian(prob: _Problem, u: np.ndarray, r0: np.ndarray, h: float):
             lo, hi = 1.0 - 2.0 * h, 1.0
         ua, ub, um = u.copy(), u.copy(), u.copy()
         ua[i], ub[i], um[i] = lo, hi, 0.5 * (lo + hi)
-        ra, rb = prob.residuals(ua), prob.residuals(ub)
-        rm = r0 if um[i] == u[i] else prob.residuals(um)
+        steps.append((lo, hi, um[i] == u[i]))
+        points += [ua, ub] + ([] if um[i] == u[i] else [um])
+    rs = iter(_residuals_at(prob, points, jobs))
+    for i, (lo, hi, at_u) in enumerate(steps):
+        ra, rb = next(rs), next(rs)
+        rm = r0 if at_u else next(rs)
         J[:, i] = (rb - ra) / (hi - lo)
         d2 = (rb - 2.0 * rm + ra) / (0.5 * (hi - lo))
         # pure noise e on each run gives a central difference of e/(sqrt(2) h) and a
@@ -776,7 +855,7 @@ def _solve(prob: _Problem, u0: np.ndarray, free: list[int], h: float, override=N
 
 
 def fit_card(scene, card: MeasuredCard, ranges: list, *, fidelity: str = "fast",
-             refine: bool = False, bootstrap: int = 0, seed: int = 0,
+             refine: bool = False, bootstrap: int = 0, seed: int = 0, jobs: int = 1,
              progress: Callable[[int, float], None] | None = None) -> FitResult:
     """Calibrate scene keys to a measured card (see the module's notes).
 
@@ -798,6 +877,13 @@ def fit_card(scene, card: MeasuredCard, ranges: list, *, fidelity: str = "fast",
         Wild-bootstrap refits of the residuals (0: none; at most 10000).
     seed : int, optional
         Seed of the bootstrap's draws.
+    jobs : int, optional
+        Processes [-] (default 1: here).  More run the uncertainty's Jacobian and the
+        bootstrap's refits on the process's kept pool of workers
+        (:mod:`corliss.studies.pool`, as a study's runs): the same values, standard
+        errors and refits as on one (the search itself is one run after another).  A
+        worker's refits share its runs, as one process's share all of them, so the
+        count of simulations can be larger.
     progress : callable, optional
         Called after each simulation with (simulations so far, residual RMS [Pa]).
 
@@ -818,6 +904,8 @@ def fit_card(scene, card: MeasuredCard, ranges: list, *, fidelity: str = "fast",
         raise InputError("--fidelity", fidelity, "one of " + ", ".join(PRESETS))
     if isinstance(bootstrap, bool) or not isinstance(bootstrap, int) or not 0 <= bootstrap <= 10000:
         raise InputError("--bootstrap", bootstrap, "a whole number of refits from 0 to 10000")
+    if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
+        raise InputError("--jobs", jobs, "a whole number of processes, 1 or more")
     _check(scene, ranges, card)
     n_res = card.n_points + len(card.ends)
     if n_res <= len(ranges) + 1:
@@ -838,7 +926,7 @@ def fit_card(scene, card: MeasuredCard, ranges: list, *, fidelity: str = "fast",
     r0, best, geo = prob.residuals(u, detail=True)
     n, p = r0.size, len(ranges)
     s = math.sqrt(float(np.sum(r0 ** 2)) / max(n - p, 1))
-    J, noise, smooth = _jacobian(prob, u, r0, COV_STEP_FACTOR * DIFF_STEP[final])
+    J, noise, smooth = _jacobian(prob, u, r0, COV_STEP_FACTOR * DIFF_STEP[final], jobs)
     keys = [r.key for r in ranges]
     se_u, why, corr, cos, sv, floor, se_c = _uncertainty(J, noise, r0, keys, smooth)
     values = prob.values(u)
@@ -850,7 +938,7 @@ def fit_card(scene, card: MeasuredCard, ranges: list, *, fidelity: str = "fast",
     boot = None
     if bootstrap:
         boot = _bootstrap(prob, u, r0, geo, [i for i, k in enumerate(keys) if k not in why],
-                          bootstrap, seed, DIFF_STEP[final])
+                          bootstrap, seed, DIFF_STEP[final], jobs)
 
     n_pts = card.n_points
     fitted_data = prob.data(u, digits=6)
@@ -898,16 +986,17 @@ def _end_work(prob: _Problem, result) -> dict:
 
 
 def _bootstrap(prob: _Problem, u: np.ndarray, r0: np.ndarray, geo: dict, free: list[int],
-               samples: int, seed: int, h: float) -> dict:
+               samples: int, seed: int, h: float, jobs: int = 1) -> dict:
     """Wild bootstrap: cards made of the fitted loop's nearest points, each moved along
     the normal by its own residual with a random sign, each refitted from the
-    optimum."""
+    optimum (the refits on ``jobs`` workers of the kept pool when more than 1; the
+    draws are made here, in order, so the refits are the same)."""
     rng = np.random.default_rng(seed)
     keys = [r.key for r in prob.ranges]
     spans = np.array([r.high - r.low for r in prob.ranges])
     n_pts = prob.card.n_points
     own = r0[:n_pts] / prob.P
-    fits: list[np.ndarray] = []
+    overrides = []
     for _ in range(samples):
         override = {}
         start = 0
@@ -916,11 +1005,22 @@ def _bootstrap(prob: _Problem, u: np.ndarray, r0: np.ndarray, geo: dict, free: l
             draw = own[start:start + qx.size] * rng.choice((-1.0, 1.0), size=qx.size)
             start += qx.size
             override[end] = (qx + draw * nx, qy + draw * ny)
-        if free:
-            ub, _ = _solve(prob, u, free, h, override)
-        else:
-            ub = u
-        fits.append(ub)
+        overrides.append(override)
+    fits: list = [u] * samples
+    if free and jobs > 1 and samples > 1:
+        token, blob = _shipped(prob)
+        rms = float(np.sqrt(np.mean(r0 ** 2)))
+
+        def collect(i, got):
+            fits[i] = got[0]
+            prob.simulations += got[1]
+            if prob.progress is not None:
+                prob.progress(prob.simulations, rms)
+
+        run_tasks([(_refit_task, (token, blob, u, free, h, o)) for o in overrides], jobs,
+                  collect)
+    elif free:
+        fits = [_solve(prob, u, free, h, o)[0] for o in overrides]
     vals = np.array([r.low for r in prob.ranges]) + np.array(fits) * spans
     return {"samples": samples, "seed": seed,
             "standard_errors": {keys[i]: float(np.std(vals[:, i], ddof=1)) if samples > 1

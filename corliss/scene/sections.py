@@ -20,9 +20,9 @@ from corliss.keys.toml_table import DISCHARGE_COEFFICIENT
 from corliss.thermo.steam import BACKENDS
 from corliss.valves.single_acting import STEAM_ENDS
 
-#: How a transient run's time series is recorded (see :class:`corliss.scene.loader.RunSpec`).
+#: How a transient run's time series is recorded (see :class:`corliss.engine.scene_specs.RunSpec`).
 RECORD_CHOICES = ("step", "degree", "cycle")
-#: How a governed transient run starts (see :class:`corliss.scene.loader.RunSpec`).
+#: How a governed transient run starts (see :class:`corliss.engine.scene_specs.RunSpec`).
 START_CHOICES = ("equilibrium", "run_speed", "rest")
 #: Wall-heat models of the ``wall_heat`` effect.
 WALL_HEAT_MODELS = ("skin", "marks", "conductance", "adair")

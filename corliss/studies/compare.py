@@ -12,7 +12,8 @@ throttle, each at a series of loads, with and without the wall-heat effect.
 At each load the operating point is the throttle opening or gear setting that gives
 the engine that power at the scene's speed: a root of power against the knob,
 bracketed on a grid of the knob, solved on the ``fast`` tier and refined on the
-scene's.  The runs go to every core the machine has (processes).
+scene's.  The runs go to the process's kept pool of workers
+(:mod:`corliss.studies.pool`, as a study's do), one on every core unless told.
 
 Both variants keep the same steam chest and pipe: the scene's, or when the scene has
 none, a chest of :data:`DEFAULT_CHEST_OF_SWEPT` of the swept volume and a pipe sized
@@ -28,7 +29,6 @@ import logging
 import math
 import os
 import time
-from concurrent.futures import ProcessPoolExecutor, as_completed
 from typing import Any
 
 import numpy as np
@@ -43,6 +43,7 @@ from corliss.governors.operating_point import characteristic_speed, working_trav
 from corliss.logs import at_point
 from corliss.progress import progress_for
 from corliss.studies.compare_result import CompareResult
+from corliss.studies.pool import prestart, run_tasks
 
 log = logging.getLogger(__name__)
 TWO_PI = 2.0 * math.pi
@@ -319,27 +320,27 @@ def _point_task(scene, knob, bracket, target_W, brake, tier, guess=None, exact=T
     return k, row, runs
 
 
-def _map(tasks, pool, progress, done0: int, total: int):
-    """Run ``tasks`` [(fn, args, label)] on the process ``pool`` (here, serially, when
-    None); results in order, an exception in place of a task's result when it failed.
-    The messages of each task name its point, ``label``."""
+def _map(tasks, workers: int, progress, done0: int, total: int, warm=None):
+    """Run ``tasks`` [(fn, args, label)] on ``workers`` processes of the kept pool
+    (here, serially, when 1); results in order, an exception in place of a task's
+    result when it failed.  The messages of each task name its point, ``label``."""
     out = [None] * len(tasks)
-    done = done0
-    if pool is None:
-        for i, (fn, args, label) in enumerate(tasks):
-            out[i] = _safe(label, fn, *args)
-            done += 1
-            if progress:
-                progress(done, total)
-        return out, done
-    futs = {pool.submit(_safe, label, fn, *args): i
-            for i, (fn, args, label) in enumerate(tasks)}
-    for fut in as_completed(futs):
-        out[futs[fut]] = fut.result()
-        done += 1
+    done = [done0]
+
+    def collect(i, result):
+        out[i] = result
+        done[0] += 1
         if progress:
-            progress(done, total)
-    return out, done
+            progress(done[0], total)
+
+    if workers <= 1 or len(tasks) <= 1:
+        for i, (fn, args, label) in enumerate(tasks):
+            collect(i, _safe(label, fn, *args))
+    else:
+        run_tasks([(_safe, (label, fn, *args)) for fn, args, label in tasks],
+                  workers, collect,
+                  warm=warm)
+    return out, done[0]
 
 
 def _guess(curve, bracket, target_W):
@@ -408,12 +409,16 @@ def droop_speeds(scene, loads) -> dict[float, float] | None:
 
 
 def rated_power_W(scene, brake: bool) -> float | None:
-    """The scene's rated power: its load at the start.
+    """The scene's rated power: its reference load, at full load (load fraction 1).
+
+    The ``[load]`` section's torque or power is the reference load; its schedule's
+    fractions are of it (a step from 50 % to 80 % starts at fraction 0.5), so full
+    load is fraction 1 whatever the schedule's first fraction.
 
     Parameters
     ----------
     scene : Scene
-        The scene; its load's torque and first fraction, and the run's speed, are read.
+        The scene; its load's reference torque and the run's speed are read.
     brake : bool
         Whether the study compares brake power (the ``friction`` effect named); the
         load's torque x speed is the power either way, so it does not change the value.
@@ -421,12 +426,12 @@ def rated_power_W(scene, brake: bool) -> float | None:
     Returns
     -------
     float or None
-        ``torque x first load fraction x speed`` [W], or None when the scene has no
-        load.
+        ``reference torque x speed`` [W] (the ``power`` given, when the load was
+        given as one), or None when the scene has no load.
     """
     if scene.load is None:
         return None
-    return scene.load.torque_N_m * scene.load.fractions[0] * scene.run.speed_rad_s
+    return scene.load.torque_N_m * scene.run.speed_rad_s
 
 
 def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
@@ -439,16 +444,18 @@ def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
     scene : Scene
         A scene whose gear has a setting; a transient one is run steady at its speed.
     loads : sequence of float
-        Loads as fractions of the rated power [-]: the scene's load (brake power when
-        ``friction`` is named, else indicated), or without a load, the throttled
-        variant's power wide open.
+        Loads as fractions of the rated power [-]: the scene's reference load at
+        fraction 1 (:func:`rated_power_W`; brake power when ``friction`` is named, else
+        indicated), or without a load, the throttled variant's power wide open.
     condensation : str
         ``"both"``, ``"on"`` or ``"off"``: with the ``wall_heat`` effect, without, or
         both.
     fidelity : str, optional
         The tier the operating points are refined on (default: the scene's).
     workers : int, optional
-        Processes (default: every core).
+        Processes (default: every core; 1 runs here, in this process).  The runs go
+        to the process's kept pool (:mod:`corliss.studies.pool`), as a study's do:
+        Ctrl-C ends its workers at once.
     droop : bool
         False (default): every load at the scene's speed, so the two governings are
         compared at one speed and differ only in how they meet the load (the summary's
@@ -496,6 +503,9 @@ def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
     var = variants(scene, **variant_options)
     conds = {"both": (False, True), "on": (True,), "off": (False,)}[condensation]
     brake = scene.run.has("friction")
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
+                                or workers < 1):
+        raise InputError("--jobs", workers, "a whole number of processes, 1 or more")
     workers = workers or os.cpu_count() or 1
     speeds = droop_speeds(scene, loads) if droop else None
 
@@ -503,6 +513,7 @@ def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
     for v in var.values():
         for c in conds:
             groups[(v.name, c)] = dataclasses.replace(v, scene=_with_wall_heat(v.scene, c))
+    prestart(workers, lambda: _warm_scenes(groups), (__name__,))
     # the full-power run of each group sets the rated power when the scene has no load
     rated = rated_power_W(scene, brake)
     grid_tasks, grid_keys = [], []
@@ -516,24 +527,31 @@ def compare(scene, loads=DEFAULT_LOADS, *, condensation: str = "both",
                                f"{_group_label(key)}, {v.knob} {chain[0]:g} to {chain[-1]:g}"))
             grid_keys.append(key)
     total = len(grid_tasks) + len(groups) * len(loads)
-    # one pool for both rounds: a worker pays its imports and steam table once
-    pool = ProcessPoolExecutor(max_workers=workers) if workers > 1 else None
-    try:
-        with progress_for(progress, "runs") as bar:
-            result = _solve(scene, loads, var, groups, grid_tasks, grid_keys, rated, brake,
-                            tier, pool, bar, total, t0, workers, speeds)
-        result.chest_source = chest_source
-        return result
-    finally:
-        if pool is not None:
-            pool.shutdown()
+    # the kept pool for both rounds: a worker pays its imports and steam table once
+    with progress_for(progress, "runs") as bar:
+        result = _solve(scene, loads, var, groups, grid_tasks, grid_keys, rated, brake,
+                        tier, workers, bar, total, t0, speeds)
+    result.chest_source = chest_source
+    return result
 
 
-def _solve(scene, loads, var, groups, grid_tasks, grid_keys, rated, brake, tier, pool,
-           progress, total, t0, workers, speeds):
+def _warm_scenes(groups):
+    """One scene of each kernel version the grids run first (the ``fast`` tier, walls
+    that take heat and walls that do not), a cycle each: for the pool's forkserver to
+    load before its first fork."""
+    seen, out = set(), []
+    for (_, walled), v in groups.items():
+        if walled not in seen:
+            seen.add(walled)
+            out.append(v.scene.with_fidelity("fast").replace_run(cycles=1))
+    return out
+
+
+def _solve(scene, loads, var, groups, grid_tasks, grid_keys, rated, brake, tier, workers,
+           progress, total, t0, speeds):
     """The two rounds of :func:`compare`: the knob grids, then the operating points."""
     conds = sorted({c for _, c in groups})
-    grid, done = _map(grid_tasks, pool, progress, 0, total)
+    grid, done = _map(grid_tasks, workers, progress, 0, total)
     curves = {key: [] for key in groups}
     states = {key: {} for key in groups}
     runs = GRID_POINTS * len(groups)
@@ -578,7 +596,7 @@ def _solve(scene, loads, var, groups, grid_tasks, grid_keys, rated, brake, tier,
                                                   guess, speeds is None, wider,
                                                   states[key][near]),
                                     f"{_group_label(key)} at {100 * load:g} % load"))
-    found, _ = _map(point_tasks, pool, progress, done, total)
+    found, _ = _map(point_tasks, workers, progress, done, total)
     found = iter(found)
     rows = []
     for (name, cond), load, target, bracket in point_keys:

@@ -11,6 +11,7 @@ actually give.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 from corliss.engine.model import build_lp_gear, lp_geometry_of, scene_events
 from corliss.errors import InputError
@@ -80,6 +81,35 @@ def flatten(summary: dict, prefix: str = "") -> dict:
         elif hasattr(v, "dtype") and getattr(v, "ndim", 1) == 0 and v.dtype.kind in "fiu":
             out[prefix + k] = v.item()
     return out
+
+
+def picked(summary: dict, key: str):
+    """One number of a summary by its dotted key, as :func:`flatten` gives it (without
+    flattening the whole summary: a study's run reads a few keys of it).
+
+    Parameters
+    ----------
+    summary : dict
+        A run's summary (nested dicts).
+    key : str
+        A dotted key (``events.head.cutoff_frac``).
+
+    Returns
+    -------
+    int, float or None
+        ``flatten(summary).get(key)``: the number (a numpy scalar as a Python one),
+        None for a null, a key the summary lacks, or a value that is not a number.
+    """
+    node: Any = summary
+    for name in key.split("."):
+        if not isinstance(node, dict) or name not in node:
+            return None
+        node = node[name]
+    if node is None or (isinstance(node, (int, float)) and not isinstance(node, bool)):
+        return node
+    if hasattr(node, "dtype") and getattr(node, "ndim", 1) == 0 and node.dtype.kind in "fiu":
+        return node.item()
+    return None
 
 
 def response_keys(scene) -> tuple[str, ...]:

@@ -13,21 +13,23 @@ state beyond the steam properties), is a row with ``status = "failed"`` and its
 error, not a stopped study.
 
 What every run shares (:class:`StudySpec`: the base tables, the fidelity, the
-responses, the varied keys) goes to each worker once: to a local process pool's
-workers as they start, to a Dask cluster's workers scattered once.  A task carries
-only its runs' numbers and their keys' values (:func:`run_chunk`).  The pool's
-workers are started once for the study, after this process has loaded the compiled
-kernels and the steam table (its first run), so on Linux each forks with them
-loaded.  Rows come back a chunk at a time; given an output directory they are
-appended to its journal (:mod:`corliss.studies.journal`) as they come.
+responses, the varied keys) is pickled once here and unpickled once by each worker
+(a local pool's), or scattered once to a Dask cluster's workers.  A task carries
+only its runs' numbers and their keys' values (:func:`run_chunk`).  The local
+workers are the process's kept pool (:mod:`corliss.studies.pool`): started once,
+from a server process that ran the study's base scene before its first fork (the
+compiled kernels and the steam table loaded), and kept for the next study; this
+process runs nothing itself.  Rows come back a chunk at a time; given an output
+directory they are appended to its journal (:mod:`corliss.studies.journal`) as they
+come.
 
 A study stopped by Ctrl-C or SIGTERM ends its workers at once and raises
 :class:`~corliss.errors.StudyStopped` naming the rows kept; a pool's workers also
-end when this process is killed outright (they watch for it).  ``resume=True``
-reads the journal back and runs only the rows it lacks.  A local worker that is
-lost (killed, out of memory) breaks its pool: a new pool runs the unfinished chunks
-again (up to :data:`POOL_RESTARTS` times).  On Dask, a lost worker's tasks run again
-on another (Dask's own rescheduling); a cluster left with no worker for
+end when this process is killed outright.  ``resume=True`` reads the journal back
+and runs only the rows it lacks.  A local worker that is lost (killed, out of
+memory) breaks its pool: a new pool runs the unfinished chunks again (up to
+:data:`corliss.studies.pool.POOL_RESTARTS` times).  On Dask, a lost worker's tasks
+run again on another (Dask's own rescheduling); a cluster left with no worker for
 :data:`NO_WORKERS_GRACE_S` is an error, not a wait for ever.
 
 The same inputs give the same numbers on any worker, so a study's table does not
@@ -36,19 +38,15 @@ depend on where, in what order or in how many sittings it ran.
 
 from __future__ import annotations
 
-import ctypes
 import dataclasses
-import json
 import logging
 import math
-import multiprocessing
 import os
+import pickle
 import signal
-import sys
 import threading
 import time
-from concurrent.futures import FIRST_COMPLETED, CancelledError, ProcessPoolExecutor, wait
-from concurrent.futures.process import BrokenProcessPool
+from concurrent.futures import CancelledError
 from pathlib import Path
 from typing import Any
 
@@ -64,7 +62,8 @@ from corliss.scene.loader import Scene, find_scene, load_scene, scene_from_dict
 from corliss.keys.edits import KeyValue, edited
 from corliss.studies.sampling import make_design
 from corliss.studies.journal import Journal, check_writable, fingerprint, journal_path, read_rows
-from corliss.studies.responses import check_responses, flatten, response_value
+from corliss.studies.pool import Interrupt, SigtermRaises, prestart, run_tasks
+from corliss.studies.responses import check_responses, picked, response_value
 from corliss.studies.study_result import ERROR, RUN_ID, STATUS, StudyResult
 
 log = logging.getLogger(__name__)
@@ -82,9 +81,6 @@ CHECK_ALL_UP_TO = 32
 MAX_CHUNK = 50
 #: Chunks per worker, at least, when the runs allow (for balance: runs differ in cost).
 CHUNKS_PER_WORKER = 4
-#: Times a local pool is started again when one of its workers is lost (killed, out
-#: of memory), its unfinished tasks resent, before the study stops with an error.
-POOL_RESTARTS = 2
 #: Seconds a Dask cluster may have no worker before the study stops with an error.
 NO_WORKERS_GRACE_S = 30.0
 #: Seconds between looks at a Dask cluster's workers while tasks are out.
@@ -121,10 +117,7 @@ class StudySpec:
 
 def _scene(base: dict, name: str, fidelity: str | None, changes: dict):
     """One run's steady scene, loaded and checked."""
-    sc = scene_from_dict(edited(base, changes), name=name)
-    if fidelity is not None:
-        sc = sc.with_fidelity(fidelity)
-    return steady_scene(sc)
+    return steady_scene(scene_from_dict(edited(base, changes), name=name), fidelity)
 
 
 def run_chunk(spec: StudySpec, run_ids, values) -> tuple[list, int, str | None]:
@@ -159,12 +152,12 @@ def run_chunk(spec: StudySpec, run_ids, values) -> tuple[list, int, str | None]:
             with at_point(f"run {int(run_id)}: "
                           + ", ".join(f"{k} {v}" for k, v in changes.items())):
                 r = run_steady(_scene(spec.base, spec.name, spec.fidelity, changes))
-                flat = flatten(r.summary_with(responses))
+                part = r.summary_with(responses)
             nfev += r.rhs_evaluations
             tier = r.property_tier
             why = run_failure(r)
             rows.append((int(run_id), "failed" if why else "ok", why,
-                         *(response_value(flat.get(k)) for k in responses)))
+                         *(response_value(picked(part, k)) for k in responses)))
         except Exception as exc:      # noqa: BLE001  a stopped run is a row, not a stopped study
             log.debug("run %d (%s) stopped: %s", run_id, changes, exc)
             rows.append((int(run_id), "failed", f"{type(exc).__name__}: {exc}",
@@ -192,8 +185,8 @@ def run_failure(result) -> str:
     """
     s = result.summary_with(FAILURE_KEYS)
     if result.scene.run.cycles is None and s.get("cycles_to_converge") is None:
-        res = s.get("periodicity_residuals") or {}
-        worst = max(res, key=res.get) if res else "work"
+        res: dict[str, float] = s.get("periodicity_residuals") or {}
+        worst = max(res, key=lambda k: res[k]) if res else "work"
         return (f"not converged: not periodic after {s['cycles_simulated']} cycles (largest "
                 f"residual {res.get(worst, float('nan')):.3g}, {worst})")
     why = balance_failure(s)
@@ -208,152 +201,39 @@ FAILURE_KEYS = ("cycles_to_converge", "periodicity_residuals", "cycles_simulated
 
 # --- a local pool's workers ----------------------------------------------------------------
 
-#: The base scenes and fidelities this process has run a study of (its kernels for
-#: them loaded): a later study of one starts its workers without a run here first.
-_WARMED: set = set()
-#: In a worker process: the study it serves (set once, as it starts).
-_WORKER_SPEC: StudySpec | None = None
-#: The signals that stop a study.
-_STOPS = {signal.SIGINT, signal.SIGTERM}
-#: prctl's option that sends the child a signal when its parent dies (Linux).
-_PR_SET_PDEATHSIG = 1
+#: In a pool's worker: the specs of the studies it served, by fingerprint (a study's
+#: spec is unpickled once a worker, not once a task).
+_WORKER_SPECS: dict = {}
+#: Specs a worker keeps (the latest studies').
+_KEEP_SPECS = 4
 
 
-def _watch_parent(parent_pid: int) -> None:
-    """End this worker when the process that started it is gone."""
-    while True:
-        if os.getppid() != parent_pid:
-            os._exit(1)
-        time.sleep(0.5)
-
-
-def _init_worker(spec: StudySpec, parent_pid: int) -> None:
-    """Start a pool worker: keep the study's spec; leave Ctrl-C to the parent (which
-    ends the workers itself); die with the parent, however it ends."""
-    global _WORKER_SPEC
-    _WORKER_SPEC = spec
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)
-    if hasattr(signal, "pthread_sigmask"):
-        signal.pthread_sigmask(signal.SIG_UNBLOCK, _STOPS)
-    if sys.platform.startswith("linux"):
-        try:
-            ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGKILL)
-        except (OSError, AttributeError):
-            pass
-    if os.getppid() != parent_pid:          # the parent died before the line above
-        os._exit(1)
-    threading.Thread(target=_watch_parent, args=(parent_pid,), daemon=True,
-                     name="corliss-parent-watch").start()
-
-
-def _pool_chunk(run_ids, values):
-    """A pool worker's task: :func:`run_chunk` of the study it serves."""
-    return run_chunk(_WORKER_SPEC, run_ids, values)
-
-
-def _stop_pool(pool: ProcessPoolExecutor) -> None:
-    """End a pool's workers now (SIGKILL: their runs are abandoned, not finished)."""
-    procs = list((getattr(pool, "_processes", None) or {}).values())
-    for p in procs:
-        try:
-            p.kill()
-        except (OSError, ValueError):
-            pass
-    pool.shutdown(wait=True, cancel_futures=True)
-    for p in procs:
-        p.join(timeout=5)
-
-
-class _Interrupt(BaseException):
-    """SIGTERM, raised in the main thread as Ctrl-C raises KeyboardInterrupt."""
-
-
-def _on_sigterm(signum, frame):
-    raise _Interrupt()
-
-
-class _Signals:
-    """While a study runs (in the main thread): SIGTERM raises :class:`_Interrupt`."""
-
-    def __enter__(self):
-        self.old = None
-        if threading.current_thread() is threading.main_thread():
-            self.old = signal.signal(signal.SIGTERM, _on_sigterm)
-        return self
-
-    def __exit__(self, *exc):
-        if self.old is not None:
-            signal.signal(signal.SIGTERM, self.old)
-        return False
+def _pool_chunk(token: str, blob: bytes, run_ids, values):
+    """A pool worker's task: :func:`run_chunk` of the study whose spec, pickled, is
+    ``blob`` (unpickled the first time this worker meets ``token``)."""
+    spec = _WORKER_SPECS.get(token)
+    if spec is None:
+        spec = pickle.loads(blob)
+        while len(_WORKER_SPECS) >= _KEEP_SPECS:
+            _WORKER_SPECS.pop(next(iter(_WORKER_SPECS)))
+        _WORKER_SPECS[token] = spec
+    return run_chunk(spec, run_ids, values)
 
 
 def _run_local(spec, chunks, jobs, collect):
-    warm = (spec.name, spec.fidelity, json.dumps(spec.base, sort_keys=True, default=str))
     if jobs == 1 or len(chunks) <= 1:
         for ids, vals in chunks:
             collect(ids, run_chunk(spec, ids, vals))
-            _WARMED.add(warm)
         return
-    # this process's first run of the scene loads the compiled kernels and the steam
-    # table: forked workers start with them (spawned ones load them from their caches)
-    rest = chunks
-    if warm not in _WARMED:
-        first, rest = chunks[0], chunks[1:]
-        collect(first[0][:1], run_chunk(spec, first[0][:1], first[1][:1]))
-        if len(first[0]) > 1:
-            rest = [(first[0][1:], first[1][1:])] + rest
-        _WARMED.add(warm)
-        if not rest:
-            return
-    for _ in range(POOL_RESTARTS + 1):
-        rest = _pool_pass(spec, rest, jobs, collect)
-        if not rest:
-            return
-        log.warning("a worker process was lost: %d task(s) run again on a new pool",
-                    len(rest))
-    raise RunError(f"the study's worker processes were lost {POOL_RESTARTS + 1} times, with "
-                   f"{sum(len(c[0]) for c in rest)} runs left (out of memory? a run that "
-                   "crashes its process?); run it with --jobs 1 to see")
+    # the spec pickled once here, sent with each task, unpickled once a worker; the
+    # forkserver runs the base scene once before its first fork (its workers start warm)
+    blob = pickle.dumps(spec, protocol=pickle.HIGHEST_PROTOCOL)
+    tasks = [(_pool_chunk, (spec.token, blob, ids, vals)) for ids, vals in chunks]
 
+    def warm():
+        return (_scene(spec.base, spec.name, spec.fidelity, {}),)
 
-def _pool_pass(spec, chunks, jobs, collect) -> list:
-    """Run ``chunks`` on a fresh pool; the chunks left when a worker was lost."""
-    methods = multiprocessing.get_all_start_methods()
-    ctx = multiprocessing.get_context("fork" if "fork" in methods else None)
-    # Ctrl-C and SIGTERM wait while the workers start (a signal in the middle of a fork
-    # is lost in its handlers), and are taken at once after
-    masked = hasattr(signal, "pthread_sigmask")
-    old = signal.pthread_sigmask(signal.SIG_BLOCK, _STOPS) if masked else None
-    pool = None
-    futs = {}
-    try:
-        pool = ProcessPoolExecutor(max_workers=jobs, mp_context=ctx, initializer=_init_worker,
-                                   initargs=(spec, os.getpid()))
-        futs = {pool.submit(_pool_chunk, ids, vals): (ids, vals) for ids, vals in chunks}
-        if masked:
-            signal.pthread_sigmask(signal.SIG_SETMASK, old)
-            masked = False
-        pending, lost = set(futs), set()
-        while pending and not lost:
-            done, pending = wait(pending, return_when=FIRST_COMPLETED)
-            for fut in done:
-                if isinstance(fut.exception(), BrokenProcessPool):
-                    lost.add(fut)
-                else:
-                    collect(futs[fut][0], fut.result())
-        if lost:
-            _stop_pool(pool)
-            return [futs[f] for f in futs if f in lost or f in pending]
-    except BaseException:
-        if pool is not None:
-            _stop_pool(pool)
-        raise
-    finally:
-        if masked:
-            signal.pthread_sigmask(signal.SIG_SETMASK, old)
-    pool.shutdown(wait=True)
-    return []
+    run_tasks(tasks, jobs, lambda i, part: collect(chunks[i][0], part), warm=warm)
 
 
 def dask_client(scheduler):
@@ -460,6 +340,7 @@ def _base_of(scene) -> tuple[dict, Scene]:
     if scene is None or isinstance(scene, (str, Path)):
         from corliss.scene.loader import default_scene_path
         sc = load_scene(find_scene(scene) if scene is not None else default_scene_path())
+        assert sc.data is not None      # a scene read from a file keeps its tables
         return sc.data, sc
     raise InputError("scene", scene, "a Scene, its tables (dict), a scene file or a bundled "
                      "scene's name")
@@ -469,6 +350,7 @@ def _check_scenes(design, base, name, fidelity) -> None:
     """Load the scenes of the runs most likely refused before any run: every run's in
     a small study; in a larger one the first runs' and those at each key's extremes."""
     n = design.runs
+    ids: range | list[int]
     if n <= CHECK_ALL_UP_TO:
         ids = range(n)
     else:
@@ -593,6 +475,9 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
         workers = jobs if jobs is not None else (os.cpu_count() or 1)
         if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
             raise InputError("--jobs", jobs, "a whole number of processes, 1 or more")
+    if scheduler is None and design.runs > 1:
+        # the workers' forkserver loads (the base scene's run) while the scenes are checked
+        prestart(workers, lambda: (_scene(base, name, fidelity, {}),), (__name__,))
     _check_scenes(design, base, name, fidelity)
     token = fingerprint(base, name, fidelity, responses, design)
     rows: dict[int, tuple] = {}
@@ -615,7 +500,7 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
                                       "columns": [RUN_ID, STATUS, ERROR, *responses]},
                               keep=resume)
         except BaseException:
-            if own:
+            if own and client is not None:
                 client.close()
             raise
     todo = np.array([i for i in range(design.runs) if i not in rows], dtype=np.int64)
@@ -643,7 +528,7 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
         else:
             workers = max(1, min(workers, len(todo)))
         chunks = _chunks(todo, design.values[todo], _chunk_size(len(todo), workers, chunk_size))
-        with _Signals(), progress_for(progress, "runs") as bar[0]:
+        with SigtermRaises(), progress_for(progress, "runs") as bar[0]:
             try:
                 if not chunks:
                     pass
@@ -651,7 +536,7 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
                     _run_dask(client, spec, chunks, collect)
                 else:
                     _run_local(spec, chunks, workers, collect)
-            except (KeyboardInterrupt, _Interrupt) as exc:
+            except (KeyboardInterrupt, Interrupt) as exc:
                 why = "Ctrl-C" if isinstance(exc, KeyboardInterrupt) else "SIGTERM"
                 kept = (f"kept in {journal.path}; the same command with --resume finishes it"
                         if journal is not None else "not kept (give an output directory to "
@@ -668,7 +553,7 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
     finally:
         if journal is not None:
             journal.close()
-        if own:
+        if own and client is not None:
             client.close()
     ordered = [rows[i] for i in range(design.runs)]
     tier = tiers[0] if tiers else probe.run.fidelity.properties

@@ -58,12 +58,12 @@ from typing import Callable
 import numpy as np
 
 from corliss.errors import InputError
+from corliss.keys import units
 from corliss.valves.events import events as valve_events
 from corliss.valves.gear import ValveGear
 from corliss.valves.slide_valve import SlideValve, SlideValveSpec
 
 TWO_PI = 2.0 * math.pi
-INCH_m = 0.0254
 #: The design is checked on the forward events to this [deg] (the asked tolerance is
 #: 0.05 deg; the solve reaches 1e-9 deg, the events' bisection 1e-13 rad).
 CHECK_DEG = 1e-6
@@ -72,12 +72,13 @@ ANGLES = ("angular_advance", "lead_angle")
 ENDS = ("head", "crank")
 
 
-def _in(v: float) -> str:
-    return f"{v / INCH_m:.4g} in"
+def _len(v: float, unit: str) -> str:
+    """A length [m] for a message, in ``unit`` (the scene's: "in" or "mm")."""
+    return f"{units.to_unit(v, unit):.4g} {unit}"
 
 
-def _len_text(key: str, v: float) -> str:
-    return f"{math.degrees(v):.4g} deg" if key in ANGLES else _in(v)
+def _len_text(key: str, v: float, unit: str) -> str:
+    return f"{math.degrees(v):.4g} deg" if key in ANGLES else _len(v, unit)
 
 
 # ---------------------------------------------------------------- piston <-> crank
@@ -199,9 +200,9 @@ def zeuner_valve(cutoff_rad: float, **known: float) -> tuple[float, float, float
         if gv[k] == 0.0 and k > 0 and gv[k - 1] == 0.0:
             continue
         d = grid[k] if gv[k] == 0.0 else float(brentq(g, grid[k], grid[k + 1], xtol=1e-15))
-        q = _unit_quantities(np.array(d), cutoff_rad)
-        qa = float(q[a])
-        r = va / qa if abs(qa) > 1e-12 else vb / float(q[b])
+        qd = _unit_quantities(np.array(d), cutoff_rad)
+        qa = float(qd[a])
+        r = va / qa if abs(qa) > 1e-12 else vb / float(qd[b])
         if r > 0.0 and math.isfinite(r):
             found.append((r, float(d), r * math.sin(cutoff_rad + d)))
     return min(found) if found else None
@@ -276,7 +277,8 @@ def _fraction(key: str, v) -> float:
 
 
 def _check_inputs(base: SlideValveSpec, cutoff, cutoff_crank, known: dict, release,
-                  compression, exhaust_lap, equalise, reference_end, overtravel_m=None):
+                  compression, exhaust_lap, equalise, reference_end, overtravel_m=None,
+                  unit: str = "in"):
     if equalise not in ("cutoff", "laps"):
         raise InputError("equalise", equalise, "\"cutoff\" (laps per end, Spangler Art. 31) "
                          "or \"laps\" (equal laps, unequal cut-offs, Art. 32)")
@@ -295,33 +297,34 @@ def _check_inputs(base: SlideValveSpec, cutoff, cutoff_crank, known: dict, relea
                 "lead and max_opening, Art. 22)")
         if not given:
             raise InputError("lead", "none given", what)
-        raise InputError(", ".join(given), ", ".join(_len_text(k, v) for k, v in given.items()),
-                         what)
+        raise InputError(", ".join(given),
+                         ", ".join(_len_text(k, v, unit) for k, v in given.items()), what)
     for k, v in given.items():
         if not math.isfinite(v):
             raise InputError(k, v, "a finite number")
     if "max_opening" in given:
         p = given["max_opening"]
         if not p > 0.0:
-            raise InputError("max_opening", _in(p), "a port opening above zero")
+            raise InputError("max_opening", _len(p, unit), "a port opening above zero")
         if p > base.port_width_m * (1 + 1e-12) and overtravel_m is None:
-            raise InputError("max_opening", _in(p), f"an opening no wider than the port "
-                             f"({_in(base.port_width_m)}): the valve cannot open the port "
-                             "further than its width (travel beyond it is overtravel: give "
-                             "the overtravel instead, or a wider port)")
+            raise InputError("max_opening", _len(p, unit), f"an opening no wider than the "
+                             f"port ({_len(base.port_width_m, unit)}): the valve cannot open "
+                             "the port further than its width (travel beyond it is "
+                             "overtravel: give the overtravel instead, or a wider port)")
         if "lead" in given and given["lead"] >= p:
-            raise InputError("lead", _in(given["lead"]), f"a lead less than the greatest "
-                             f"opening ({_in(p)}): the port opens further after the dead point")
+            raise InputError("lead", _len(given["lead"], unit), f"a lead less than the "
+                             f"greatest opening ({_len(p, unit)}): the port opens further after "
+                             "the dead point")
     if "eccentricity" in given and not given["eccentricity"] > 0.0:
-        raise InputError("eccentricity", _in(given["eccentricity"]), "a throw above zero")
+        raise InputError("eccentricity", _len(given["eccentricity"], unit), "a throw above zero")
     if "lap" in given and given["lap"] < 0.0:
-        raise InputError("lap", _in(given["lap"]), "a steam lap of zero or more")
+        raise InputError("lap", _len(given["lap"], unit), "a steam lap of zero or more")
     if "lead_angle" in given and "angular_advance" in given:
-        raise InputError("lead_angle", _len_text("lead_angle", given["lead_angle"]),
+        raise InputError("lead_angle", _len_text("lead_angle", given["lead_angle"], unit),
                          "no angle of lead with the angular advance: with the cut-off either "
                          "fixes the other (Spangler Art. 21); give a length instead")
     if "lead_angle" in given and not abs(given["lead_angle"]) < 0.5 * math.pi:
-        raise InputError("lead_angle", _len_text("lead_angle", given["lead_angle"]),
+        raise InputError("lead_angle", _len_text("lead_angle", given["lead_angle"], unit),
                          "an angle between -90 and 90 deg")
     if "angular_advance" in given and not abs(given["angular_advance"]) < 0.5 * math.pi:
         raise InputError("angular_advance", f"{math.degrees(given['angular_advance']):.4g} deg",
@@ -364,13 +367,13 @@ def _rate(base, r, d, end: int, theta: float) -> float:
 
 
 def _solve_valve(base, piston_fraction, given: dict, th_cut, ref: int, equalise: str,
-                 both: bool = False):
+                 both: bool = False, unit: str = "in"):
     """Throw, advance and laps meeting the cut-offs at ``th_cut`` [rad] and the two
     quantities ``given`` at the reference end on the exact valve: the Zeuner valve
     (Arts. 19-22) as the start, then Powell's hybrid Newton method on (r, delta).
 
     With ``both`` (one cut-off asked of both ends, laps per end) the other end's lap
-    must be one too.
+    must be one too.  ``unit`` ("in" or "mm") is the messages' length unit.
 
     Returns (r, delta, lap_head, lap_crank, zeuner (r, delta, lap)); raises _NoValve."""
     from scipy.optimize import root
@@ -417,22 +420,22 @@ def _solve_valve(base, piston_fraction, given: dict, th_cut, ref: int, equalise:
     v, ok = attempt(base, [1.0, d0])
     r, d = r0 * float(v[0]), float(v[1])
     if not ok:
-        raise _NoValve(f"the infinite-rod valve (throw {_in(r0)}, advance "
-                       f"{math.degrees(d0):.3f} deg) has no counterpart with an eccentric "
-                       f"rod of {_in(g)}")
+        rod = "infinite eccentric rods" if g is None else f"an eccentric rod of {_len(g, unit)}"
+        raise _NoValve(f"the infinite-rod valve (throw {_len(r0, unit)}, advance "
+                       f"{math.degrees(d0):.3f} deg) has no counterpart with {rod}")
     lh, lc = laps(base, r, d)
     if not abs(d) < 0.5 * math.pi:
         raise _NoValve(f"the advance would be {math.degrees(d):.1f} deg")
     lap = (lh, lc)[ref]
     if lap < 0.0:
-        raise _NoValve(f"a negative steam lap ({_in(lap)}) would be needed")
+        raise _NoValve(f"a negative steam lap ({_len(lap, unit)}) would be needed")
     if _rate(base, r, d, ref, th_cut[ref]) >= 0.0:
         raise _NoValve("the port would close while the valve still moves out")
     if both and equalise == "cutoff":
         k = 1 - ref
         if (lh, lc)[k] < 0.0:
             raise _NoValve(f"the {ENDS[k]} end would need a negative steam lap "
-                           f"({_in((lh, lc)[k])})")
+                           f"({_len((lh, lc)[k], unit)})")
         if _rate(base, r, d, k, th_cut[k]) >= 0.0:
             raise _NoValve(f"the {ENDS[k]} end's port would close while the valve still "
                            "moves out")
@@ -464,7 +467,8 @@ def design_slide_valve(base: SlideValveSpec, piston_fraction: Callable[[float], 
                        angular_advance_rad: float | None = None,
                        lead_angle_rad: float | None = None, overtravel_m: float | None = None,
                        release=None, compression=None, exhaust_lap_m=None,
-                       equalise: str = "cutoff", reference_end: str = "head") -> SlideValveDesign:
+                       equalise: str = "cutoff", reference_end: str = "head",
+                       length_unit: str = "in") -> SlideValveDesign:
     """Design a plain slide valve for the events asked.
 
     Parameters
@@ -503,6 +507,9 @@ def design_slide_valve(base: SlideValveSpec, piston_fraction: Callable[[float], 
         the other end's following (Art. 32).
     reference_end : str
         ``"head"`` or ``"crank"``: where the lead and opening (or throw, lap) asked hold.
+    length_unit : str
+        The unit the messages quote lengths in: ``"in"`` or ``"mm"`` (the scene's
+        unit system's).
 
     Returns
     -------
@@ -515,20 +522,24 @@ def design_slide_valve(base: SlideValveSpec, piston_fraction: Callable[[float], 
     InputError
         Naming the event asked that no plain valve can give, and the valid range.
     """
+    unit = length_unit
+    if unit not in ("in", "mm"):
+        raise InputError("length_unit", unit, "\"in\" or \"mm\"")
     known = {"lead": lead_m, "max_opening": max_opening_m, "eccentricity": eccentricity_m,
              "lap": lap_m, "angular_advance": angular_advance_rad,
              "lead_angle": lead_angle_rad}
     if overtravel_m is not None:
         if max_opening_m is not None:
-            raise InputError("overtravel", _in(overtravel_m), "either the greatest opening or "
-                             "the overtravel, not both (the opening is the port width plus the "
-                             "overtravel, Spangler Art. 18)")
+            raise InputError("overtravel", _len(overtravel_m, unit), "either the greatest "
+                             "opening or the overtravel, not both (the opening is the port "
+                             "width plus the overtravel, Spangler Art. 18)")
         if not overtravel_m >= 0.0:
-            raise InputError("overtravel", _in(overtravel_m), "an overtravel of zero or more")
+            raise InputError("overtravel", _len(overtravel_m, unit),
+                             "an overtravel of zero or more")
         known["max_opening"] = base.port_width_m + overtravel_m
     ch, cc, given, exhaust = _check_inputs(base, cutoff, cutoff_crank, known, release,
                                            compression, exhaust_lap_m, equalise, reference_end,
-                                           overtravel_m)
+                                           overtravel_m, unit)
     ref = 0 if reference_end == "head" else 1
     cut = (ch, cc)
     th_cut = tuple(crank_angle(piston_fraction, cut[k], ENDS[k], "out") for k in (0, 1))
@@ -536,9 +547,9 @@ def design_slide_valve(base: SlideValveSpec, piston_fraction: Callable[[float], 
     ref_key = "cutoff" if ref == 0 or cutoff_crank is None else "cutoff_crank"
     try:
         r, d, lh, lc, z = _solve_valve(base, piston_fraction, given, th_cut, ref, equalise,
-                                       both=cutoff_crank is None)
+                                       both=cutoff_crank is None, unit=unit)
     except _NoValve as exc:
-        asked = ", ".join(f"{k} {_len_text(k, v)}" for k, v in given.items())
+        asked = ", ".join(f"{k} {_len_text(k, v, unit)}" for k, v in given.items())
         span = _cutoff_range(base, piston_fraction, given, th_cut, ref, equalise,
                              cutoff_crank is None)
         raise InputError(ref_key, cut[ref], (
@@ -563,9 +574,9 @@ def design_slide_valve(base: SlideValveSpec, piston_fraction: Callable[[float], 
         lap = (lh, lc)[k]
         if lap < 0.0 or dx(k, th_cut[k]) >= 0.0:
             raise InputError(key, cut[k], f"an earlier cut-off at the {ENDS[k]} end: with "
-                             f"throw {_in(r)} and advance {math.degrees(d):.3f} deg (set by the "
-                             f"{ENDS[ref]} end) it would need a negative steam lap "
-                             f"({_in(lap)})" if lap < 0.0 else
+                             f"throw {_len(r, unit)} and advance {math.degrees(d):.3f} deg "
+                             f"(set by the {ENDS[ref]} end) it would need a negative steam lap "
+                             f"({_len(lap, unit)})" if lap < 0.0 else
                              f"a cut-off at the {ENDS[k]} end before the valve's extreme travel "
                              "is passed: the port closes only as the valve moves back")
 
@@ -583,7 +594,7 @@ def design_slide_valve(base: SlideValveSpec, piston_fraction: Callable[[float], 
             elaps.append(float(v))
             continue
         if equalise == "laps" and k != ref:
-            elaps.append(None)
+            elaps.append(math.nan)      # the reference end's, below
             continue
         th = crank_angle(piston_fraction, v, end, "out" if kind == "release" else "return")
         x = sign[k] * float(travel(r, d, np.array([th]))[0])
@@ -607,12 +618,12 @@ def design_slide_valve(base: SlideValveSpec, piston_fraction: Callable[[float], 
             kind = exhaust[k][0]
             raise InputError(kind, exhaust[k][1], f"an exhaust event at the {end} end that "
                              "leaves the port closed to exhaust while it takes steam: lap + "
-                             f"exhaust lap = {_in(elaps[k] + (lh, lc)[k])} < 0 would blow "
+                             f"exhaust lap = {_len(elaps[k] + (lh, lc)[k], unit)} < 0 would blow "
                              "steam through (release after the cut-off, compression before "
                              "admission)")
         if elaps[k] >= r:
             raise InputError(exhaust[k][0], exhaust[k][1], f"an exhaust lap below the throw "
-                             f"{_in(r)}: the {end}-end exhaust would never open")
+                             f"{_len(r, unit)}: the {end}-end exhaust would never open")
 
     spec = dataclasses.replace(base, eccentricity_m=r, angular_advance_rad=d, lap_m=(lh, lc),
                                exhaust_lap_m=(elaps[0], elaps[1]))
@@ -624,12 +635,12 @@ def design_slide_valve(base: SlideValveSpec, piston_fraction: Callable[[float], 
             if got is None or abs((got - deg + 180.0) % 360.0 - 180.0) > CHECK_DEG:
                 raise RuntimeError(f"design check failed: {end} {key} asked {deg:.6f} deg, "
                                    f"the valve gives {got}")
-    x = gear.travel(np.array([0.5 * math.pi - d, 1.5 * math.pi - d]))
+    xt = gear.travel(np.array([0.5 * math.pi - d, 1.5 * math.pi - d]))
     return SlideValveDesign(
         spec=spec, eccentricity_m=r, angular_advance_rad=d, lap_m=(lh, lc),
         exhaust_lap_m=(elaps[0], elaps[1]),
         lead_m=(ev["head"]["lead_m"], ev["crank"]["lead_m"]),
-        max_opening_m=(float(x[0]) - lh, float(-x[1]) - lc),
+        max_opening_m=(float(xt[0]) - lh, float(-xt[1]) - lc),
         zeuner={"eccentricity_m": r0, "angular_advance_rad": d0, "lap_m": l0},
         asked_deg=asked_deg,
         asked={"cutoff": cut, "equalise": equalise, "reference_end": reference_end,
@@ -724,7 +735,7 @@ def design_setting(gear: ValveGear, piston_fraction: Callable[[float], float], c
     """
     from scipy.optimize import brentq
 
-    if gear.setting_range is None:
+    if gear.setting_range is None or gear.setting_name is None:
         raise InputError("cutoff", cutoff, f"a gear with a setting: the {gear.name} gear has "
                          "none (a plain slide valve is designed by its laps and eccentric)")
     if end not in ("head", "crank", "mean"):
@@ -738,14 +749,20 @@ def design_setting(gear: ValveGear, piston_fraction: Callable[[float], float], c
         raise InputError("bounds", bounds, f"settings within the gear's range [{lo}, {hi}]")
     grid = np.linspace(a, b, samples)
     cut = [_cutoff_of(gear.with_setting(float(s)), piston_fraction, end) for s in grid]
+    def missed(v: float) -> float:
+        c = _cutoff_of(gear.with_setting(v), piston_fraction, end)
+        if c is None:
+            raise RuntimeError(f"the {gear.name} gear admits no steam at setting {v:g}, "
+                               "inside a bracket of the cut-off asked")
+        return c - f
+
     best = None
     for k in range(samples - 1):
         c0, c1 = cut[k], cut[k + 1]
         if c0 is None or c1 is None:
             continue
         if (c0 - f) * (c1 - f) <= 0.0:
-            s = float(brentq(lambda v: _cutoff_of(gear.with_setting(v), piston_fraction, end)
-                             - f, grid[k], grid[k + 1], xtol=1e-10))
+            s = float(brentq(missed, grid[k], grid[k + 1], xtol=1e-10))
             best = s
             break
     if best is None:
