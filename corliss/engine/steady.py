@@ -25,7 +25,7 @@ from corliss.engine.ideal_card import card_area, hyperbolic_card, indicated_stea
 from corliss.engine.model import assemble
 from corliss.engine.network import cylinder_prefix, piston_ends
 from corliss.engine.options import record_of
-from corliss.engine.output_size import EQUILIBRIUM_STEP_DEG
+from corliss.engine.output_size import EQUILIBRIUM_STEP_DEG, WALL_CYCLES_FACTOR
 from corliss.engine.result import Deferred, SteadyResult
 from corliss.engine.wall import IdealPortWall
 from corliss.frames.frame import Frame
@@ -177,7 +177,7 @@ def _crank_resolved(scene, model, pm, progress, start=None):
     n_max = scene.run.cycles or fid.max_cycles
     if net.wall_nodes and not scene.run.cycles:
         # the skin model's deep wall settles over a few periodic cycles of its own
-        n_max *= 3
+        n_max *= WALL_CYCLES_FACTOR
     dT_scale = max(model.chest.T - model.exhaust.T, 1.0)
     lay = _layout(net, ends_all, heat, marks)
     for k in range(1, n_max + 1):
