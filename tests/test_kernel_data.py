@@ -16,6 +16,8 @@ knows what it is; reading ``net[19]`` they had to count.  These tests hold that:
 - no compiled function takes more than :data:`MAX_ARGUMENTS` arguments (the step
   loops take their control, physics, tableau and scratch as named structures: the
   ode23s loop took 35);
+- the step loops shared by the steady cycle and the loop's turn guard each kind's code
+  by that kind's own None-able marker, which numba prunes in the other's version;
 - a second process loads kernels typed on each structure from numba's disk cache
   without compiling them again (a class numba could not find again by its module and
   name would be compiled afresh in every process).
@@ -45,8 +47,13 @@ OTHER_MEANING = ("corliss/plot/animation.py",)
 MAX_ARGUMENTS = 12
 #: Compiled functions allowed over it, with their count: the governor's equation of
 #: motion, thirteen scalars (its state, its tables' values at z, its constants, the
-#: shaft's speed and acceleration), called alike from the compiled loop and from Python.
-LONG_ARGUMENT_LISTS = {"corliss/engine/kernels/governor.py:governor_motion": 13}
+#: shaft's speed and acceleration), called alike from the compiled loop and from Python;
+#: the Rosenbrock step loop, whose four version markers (``pair``, ``finite``,
+#: ``cycle``, ``turn``) must be plain arguments: numba prunes a branch on ``x is None``
+#: only for an argument, not for a field of a structure, and without the pruning a
+#: turn's first run compiled the steady cycle's right-hand side and Jacobians too.
+LONG_ARGUMENT_LISTS = {"corliss/engine/kernels/governor.py:governor_motion": 13,
+                       "corliss/engine/kernels/rosenbrock.py:_ros_steps": 13}
 
 
 def positional_reads(source: str) -> list[str]:
@@ -142,6 +149,52 @@ def test_no_compiled_function_takes_more_than_a_dozen_arguments():
         "bundle the arguments into the kernels' named structures "
         "(corliss.engine.kernels.data); over the limit now: " + repr(over))
 
+
+
+#: The version markers of the step loops shared by the steady cycle and the loop's
+#: turn: ``cycle`` is None in a turn's version, ``turn`` in a cycle's.
+KIND_MARKERS = frozenset({"cycle", "turn"})
+
+
+def unprunable_kind_tests(source: str) -> list[str]:
+    """The tests of a kind marker numba cannot prune in every version, as ``line: text``:
+    any but ``if <marker> is not None:`` with no ``else`` (nor ``elif``)."""
+    found = []
+    for node in ast.walk(ast.parse(source)):
+        if not isinstance(node, (ast.If, ast.IfExp)):
+            continue
+        t = node.test
+        if not (isinstance(t, ast.Compare) and isinstance(t.left, ast.Name)
+                and t.left.id in KIND_MARKERS and len(t.ops) == 1
+                and isinstance(t.comparators[0], ast.Constant)
+                and t.comparators[0].value is None):
+            continue
+        if not isinstance(t.ops[0], ast.IsNot) or isinstance(node, ast.IfExp) or node.orelse:
+            found.append(f"{node.lineno}: {ast.unparse(t)}")
+    return found
+
+
+def test_each_kind_of_step_loop_is_guarded_by_its_own_marker():
+    """numba prunes a branch on ``x is None`` before typing only in the version where
+    ``x`` is None; where ``x`` is a tuple it types both branches and compiles all they
+    call.  Under ``if turn is None: <cycle> else: <turn>`` a first transient run
+    compiled the steady cycle's right-hand side and Jacobians it never runs (37.4 s
+    against 21.7 s for the ``fast`` preset, docs/accuracy.md).  So the cycle's code is
+    guarded by ``cycle is not None`` and the turn's by ``turn is not None``, alone."""
+    bad = [f"{rel}:{r}" for rel, path in _files() if rel.startswith("corliss/engine/kernels/")
+           for r in unprunable_kind_tests(path.read_text(encoding="utf-8"))]
+    assert not bad, ("guard a kind's code by its own marker, 'if cycle is not None:' or "
+                     "'if turn is not None:', with no else:\n" + "\n".join(bad))
+
+
+def test_the_reader_sees_an_unprunable_kind_test():
+    planted = ("if turn is None:\n    a = 1\n"
+               "if turn is not None:\n    a = 2\nelse:\n    a = 3\n"
+               "h = 1e-12 if cycle is None else 1e-10\n"
+               "if cycle is not None:\n    a = 4\n"
+               "if pair is None:\n    a = 5\n")
+    assert [r.split(": ")[1] for r in unprunable_kind_tests(planted)] == [
+        "turn is None", "turn is not None", "cycle is None"]
 
 CHILD = textwrap.dedent(r"""
     import json, sys

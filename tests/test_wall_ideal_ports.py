@@ -12,6 +12,7 @@ and 64 times larger (``run_steady(portmap_scale=...)``), which tend to ideal por
 from __future__ import annotations
 
 import copy
+import dataclasses
 import tomllib
 
 import numpy as np
@@ -36,6 +37,29 @@ def ideal():
     r = run_steady(_scene(False))
     assert r.summary["cycles_to_converge"] is not None
     return r
+
+
+#: The ideal-port stepping's grid [deg], at which the port-flow runs below are also
+#: written out: the missing water is read at cut-off by interpolating the time series,
+#: and across the kink of the end's mass there the fast preset's 2 deg output errs by
+#: up to 0.005 of the steam (head end at 64 times the ports: 0.1007 from 2 deg, 0.0953
+#: from 0.25 deg), as large as the gap to the ideal ports the tests measure.
+OUTPUT_STEP_DEG = 0.25
+
+
+@pytest.fixture(scope="module")
+def ported():
+    """The port-flow runs through the gear's ports made 4, 16 and 64 times larger,
+    by scale (summaries)."""
+    out = {}
+    for scale in (4.0, 16.0, 64.0):
+        sc = _scene(True)
+        sc = sc.replace_run(fidelity=dataclasses.replace(sc.run.fidelity,
+                                                         output_step_deg=OUTPUT_STEP_DEG))
+        s = run_steady(sc, portmap_scale=scale).summary
+        assert s["cycles_to_converge"] is not None
+        out[scale] = s
+    return out
 
 
 def _last(r):
@@ -106,22 +130,19 @@ def test_with_ideal_ports_the_wall_gives_heat_only_down_the_temperature_differen
         assert last[f"m_film_{end}_kg"].min() >= 0.0
 
 
-def test_ideal_ports_are_the_limit_of_ever_larger_ports(ideal):
+def test_ideal_ports_are_the_limit_of_ever_larger_ports(ideal, ported):
     """The ideal-port model is what the port-flow model tends to as the ports grow
     without bound (corliss.engine.equilibrium): through the gear's ports made 4, 16
     and 64 times larger, the missing water at cut-off of each end comes nearer the
     ideal ports', the largest gap of the two ends at 64 times under half its value at
-    4 times and within 0.01 (with the default coefficient, Callendar and Nicolson's,
-    the gaps are 0.005 and 0.007 at 4 times, under 0.002 at 16 and 64 times; with the
-    old 3e5 W/(m2 K) the head end's went 0.292, 0.263, 0.243 against 0.231: with
-    larger ports the admission's wire-drawing, which lowers the pressure at cut-off
-    and so the steam the card shows, shrinks slowly, as the square root of the area or
-    slower)."""
+    4 times and within 0.01 (head end 0.1059, 0.0981, 0.0954 against 0.0927; crank
+    end 0.1383, 0.1311, 0.1287 against 0.1269: with larger ports the admission's
+    wire-drawing, which lowers the pressure at cut-off and so the steam the card
+    shows, shrinks slowly, as the square root of the area or slower)."""
     s_ideal = ideal.summary
     gaps = []
     for scale in (4.0, 16.0, 64.0):
-        s = run_steady(_scene(True), portmap_scale=scale).summary
-        assert s["cycles_to_converge"] is not None
+        s = ported[scale]
         gaps.append([s[f"missing_water_fraction_{end}"] - s_ideal[f"missing_water_fraction_{end}"]
                      for end in ("head", "crank")])
     gaps = np.abs(np.array(gaps))
@@ -129,19 +150,23 @@ def test_ideal_ports_are_the_limit_of_ever_larger_ports(ideal):
     assert gaps[-1].max() < 0.01
 
 
-@pytest.mark.xfail(strict=True, raises=AssertionError,
-                   reason="issue 31: with the measured coefficient the port-flow wall's "
-                   "surface moves away from the ideal-port wall's as the ports grow")
-def test_the_walls_surface_and_heat_tend_to_the_ideal_ports(ideal):
-    """The wall's mean surface temperature and heat should come nearer the ideal-port
+def test_the_walls_surface_and_heat_tend_to_the_ideal_ports(ideal, ported):
+    """The wall's mean surface temperature and heat come nearer the ideal-port
     wall's as the ports grow (4 and 64 times), and at 64 times lie within 4 K and a
-    fifth.  With the old coefficient, 3e5 W/(m2 K), they came within 1.5 K and 5 %;
-    with Callendar and Nicolson's the head end's surface is 1.3 K off at 4 times and
-    3.5 K at 64 (131.7 against 128.2 degC), its heat 13.2 kJ against 15.4: the
-    ideal-port wall (corliss.engine.equilibrium) and the port-flow wall part where the
-    surface lags the steam.  Strict: this fails once they meet."""
+    fifth: head end 129.3, 131.5 degC against 132.1, its heat 13.37, 13.31 kJ against
+    13.13; crank end 123.5, 124.7 against 125.0 degC, 12.80, 13.00 kJ against 13.09.
+    The bands are those the test was written with (the old coefficient, 3e5 W/(m2 K),
+    came within 1.5 K and 5 %); at 64 times the ports still wire-draw (the missing
+    water's gap, above).  The two walls parted before (the head end's
+    surface 1.3 K off at 4 times, 3.5 K at 64) because the ideal ports' blow-down at
+    release swept the film once, after it, into the steam left behind, where the
+    port-flow model sweeps it as the steam leaves and part of the water swept leaves
+    with it (corliss.engine.equilibrium._blow_down_sweeping); and because the
+    compiled balances swept on any fall of the end's mass, condensation on a closed
+    end included, where the ideal-port wall sweeps on the port's outflow alone
+    (corliss.engine.kernels.balances.sweep_films)."""
     s_ideal = ideal.summary
-    runs = [run_steady(_scene(True), portmap_scale=scale).summary for scale in (4.0, 64.0)]
+    runs = [ported[4.0], ported[64.0]]
     for end in ("head", "crank"):
         for key, within in ((f"wall_surface_mean_{end}_K", 4.0),
                             (f"heat_to_walls_{end}_J_per_cycle",

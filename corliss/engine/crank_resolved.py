@@ -41,6 +41,7 @@ from corliss.engine.kernels.data import (H_MODEL, H_SKIN_JACKET_G, H_SKIN_JACKET
                                          WALL_SKIN)
 from corliss.engine.network import Network
 from corliss.engine.options import COMPILED_METHODS
+from corliss.engine.wall import DeepWallSearch
 from corliss.errors import RunError
 from corliss.thermo.steam import Steam
 from corliss.thermo.steam_table import CLAMP_CODES, CLAMP_HIGH_ENERGY, kappa_at
@@ -163,23 +164,21 @@ class CrankResolved:
         balances.derivatives(th, y, self._pr, dy, self.net, self._cell)
         return dy
 
-    def update_wall(self, y_end: np.ndarray, apply: bool = True,
-                    heat_scale: float = 0.0) -> tuple[float, float]:
+    def update_wall(self, y_end: np.ndarray, apply: bool = True, heat_scale: float = 0.0,
+                    dT_scale: float = 0.0, trusted: bool = True) -> tuple[float, float]:
         """Set each wall to the mean steam temperature of the cycle just run.
 
         The mean weighted by ``h A``: the temperature at which the wall neither gains
         nor loses heat over a cycle.
 
-        The skin model's deep wall (:mod:`corliss.engine.wall`) takes a secant step on
-        its balance over the cycle, ``r(T) = -Q + G_j A_j P (T_j - T) = 0`` (heat the
-        steam leaves in the wall, and the jacket's): the first steps use the slope the
-        kernel integrates (every coefficient's h A), which overstates it, since water
-        condensed on a cooler wall evaporates from it later in the same cycle; then the
-        slope of the last two steps taken, kept between a hundredth and all of that one
-        (steps of 20 K at most).
-        The balance is weak (the heat a wall takes at admission it mostly gives back
-        the same cycle), so the runner takes a step only once the cycle at the present
-        deep temperature is periodic, ``apply``; otherwise the step is only measured.
+        The skin model's deep wall (:mod:`corliss.engine.wall`) takes a step on its
+        balance over the cycle, ``r(T) = -Q + G_j A_j P (T_j - T) = 0`` (heat the
+        steam leaves in the wall, and the jacket's): a secant held inside a bracket of
+        the balance's signs (:class:`corliss.engine.wall.DeepWallSearch`, the
+        ideal-port wall's too).  The balance is weak (the heat a wall takes at
+        admission it mostly gives back the same cycle), so the runner takes a step
+        only once the cycle at the present deep temperature is periodic, ``apply``;
+        otherwise the step is only measured.
 
         Walls of the other models are set to their mean at once, whatever ``apply``.
 
@@ -192,20 +191,27 @@ class CrankResolved:
             Whether a skin model's deep wall takes its step (else it is only
             measured).
         heat_scale : float
-            The scale of the imbalance [J]: the enthalpy supplied over the cycle; 0 for
-            the heat the steam gave the wall.
+            The scale of the imbalance [J]; 0 for each wall's own, the heat the steam
+            gave it over the cycle.
+        dT_scale : float
+            The temperature scale [K] against which a wall's bracket counts as an
+            imbalance (:meth:`corliss.engine.wall.DeepWallSearch.imbalance`); 0 for
+            none.
+        trusted : bool
+            Whether the rest of the cycle was periodic to the tolerance, so that the
+            balance's sign may narrow the bracket
+            (:meth:`corliss.engine.wall.DeepWallSearch.step`).
 
         Returns
         -------
         step : float
             The largest step of a skin model's deep wall [K] (0 without one).
         imbalance : float
-            The largest imbalance of a skin model's wall over the cycle, ``|r|``
-            against ``heat_scale`` (so that it reads as an error of the engine's
-            energy balance) [-] (0 without one).
+            The largest imbalance of a skin model's wall over the cycle [-] (0 without
+            one).
         """
         net = self.network
-        hist = self.__dict__.setdefault("_wall_history", {})
+        searches = self.__dict__.setdefault("_wall_searches", {})
         largest = imbalance = 0.0
         for i in range(net.n_nodes):
             ha = y_end[net.i_node_quad(i, "hA")]
@@ -217,20 +223,14 @@ class CrankResolved:
                 wall_T[i] = y_end[net.i_node_quad(i, "hAT")] / ha
                 continue
             gap = net.node_heat[i][H_SKIN_JACKET_G] * 2.0 * math.pi / net.omega
-            d_full = ha - gap
             T = float(wall_T[i])
-            Q = float(y_end[net.i_node_quad(i, "heat")])
-            slope = d_full
-            prev, lo, hi = hist.get(i, (None, -math.inf, math.inf))
-            if prev is not None and abs(T - prev[0]) > 1e-9:
-                slope = min(max((Q - prev[1]) / (T - prev[0]), 0.01 * d_full), d_full)
-            r = -Q + gap * (net.node_heat[i][H_SKIN_JACKET_T] - T)
-            step = min(max(r / (slope + gap), -20.0), 20.0)
+            search = searches.setdefault(i, DeepWallSearch())
+            step, r = search.step(T, float(y_end[net.i_node_quad(i, "heat")]), ha - gap, gap,
+                                  float(net.node_heat[i][H_SKIN_JACKET_T]), apply, trusted)
             largest = max(largest, abs(step))
             scale = heat_scale or float(y_end[net.i_node_quad(i, "heat_to_wall")])
-            imbalance = max(imbalance, abs(r) / max(scale, 1e-300))
+            imbalance = max(imbalance, search.imbalance(r, scale, dT_scale))
             if apply:
-                hist[i] = ((T, Q), lo, hi)
                 wall_T[i] = T + step
         return largest, imbalance
 

@@ -141,6 +141,57 @@ def _open_step(steam: Steam, st: State, m: float, V1: float, res: State, dm_w: f
     return s1, m1, m1 - m, res.h * (m1 - m)
 
 
+#: Steps of a blow-down with a wall whose film the outflow sweeps [-]
+#: (:func:`_blow_down_sweeping`).
+BLOW_DOWN_STEPS = 32
+
+
+def _blow_down_sweeping(steam: Steam, st: State, m: float, V: float, p_res: float, wall):
+    """A blow-down at constant volume ``V`` [m3] from ``st`` (mass ``m`` [kg]) to
+    ``p_res`` [Pa] that sweeps the wall's film as it goes.
+
+    The port-flow model sweeps the film beyond the clinging drops continuously, in
+    the proportion of the steam leaving, into the steam as water of the film's
+    enthalpy, and part of the water swept early in the blow-down leaves with the rest
+    of it (:func:`corliss.engine.kernels.balances.sweep_films`): of the film's excess
+    ``e``, a share ``1 - m2/m`` is swept while only ``(m2/m) ln(m/m2)`` of ``e`` is
+    still in the end when it is over.  Swept once after the blow-down, as a single
+    step would, all ``(1 - m2/m) e`` would stay (at release on the Meyer engine, half
+    as much again), the exhaust's mixture would be wetter and the wall cooler than
+    the port-flow model's as its ports grow.  The blow-down is therefore taken in
+    :data:`BLOW_DOWN_STEPS` steps geometric in pressure: each an isentropic expansion
+    of what stays, then the sweep of the share that left, mixed in at constant
+    volume; the last step's sweep is left to the wall's next exchange
+    (``wall.outflow``), at the reservoir's pressure, as before.
+
+    Returns
+    -------
+    tuple
+        The state and mass [kg] after, the mass [kg] and energy [J] that left through
+        the port (negative), the energy as the enthalpy carried out.
+    """
+    m0, U0, swept = m, m * st.u, 0.0
+    ratio = (p_res / st.p) ** (1.0 / BLOW_DOWN_STEPS)
+    for k in range(1, BLOW_DOWN_STEPS + 1):
+        p_k = p_res if k == BLOW_DOWN_STEPS else st.p * ratio
+        st2 = steam.ps(p_k, st.s)
+        m2 = V * st2.rho
+        share = max((m - m2) / m, 0.0)
+        if k == BLOW_DOWN_STEPS:
+            wall.outflow = share        # the film it sweeps: at the next exchange
+            st, m = st2, m2
+            break
+        sw = wall.sweep(share)
+        if sw > 0.0:
+            m3 = m2 + sw
+            st, m = steam.du(m3 / V, (m2 * st2.u + sw * wall.h_L) / m3), m3
+        else:
+            st, m = st2, m2
+        swept += sw
+    # what left: the mass less the water the wall gave; the energy likewise
+    return st, m, m - m0 - swept, m * st.u - U0 - swept * wall.h_L
+
+
 def _fill_at_pressure(steam: Steam, H: float, m: float, V1: float, res: State) -> float:
     """The enthalpy [J/kg] of an end filled to ``V1`` at the reservoir's pressure from
     contents of mass ``m`` and enthalpy ``H`` (``m`` may be below nothing, when a wall
@@ -215,11 +266,12 @@ def step_end(steam: Steam, theta: np.ndarray, V: np.ndarray, conn: np.ndarray,
                 st2, m2 = _fill(steam, st, m, V[i], res)
                 dm, dH = m2 - m, res.h * (m2 - m)
             elif st.p > res.p * (1 + 1e-7):
-                st2 = steam.ps(res.p, st.s)
-                m2 = V[i] * st2.rho
-                dm, dH = m2 - m, m2 * st2.u - m * st.u   # energy left = enthalpy carried out
-                if wall is not None:      # the film it sweeps: at the next exchange
-                    wall.outflow = (m - m2) / m
+                if wall is not None:
+                    st2, m2, dm, dH = _blow_down_sweeping(steam, st, m, V[i], res.p, wall)
+                else:
+                    st2 = steam.ps(res.p, st.s)
+                    m2 = V[i] * st2.rho
+                    dm, dH = m2 - m, m2 * st2.u - m * st.u   # energy left = carried out
             else:
                 st2, m2, dm, dH = st, m, 0.0, 0.0
             flows[c] += (dm, dH)
@@ -266,8 +318,9 @@ def run_cycles(steam: Steam, theta: np.ndarray, volumes: tuple[np.ndarray, np.nd
     With ``walls`` (an :class:`corliss.engine.wall.IdealPortWall` per end) the cycle is
     periodic when the work, each surface's temperature (against the supply's less the
     exhaust's temperature), each film (against the steam its end holds) and each deep
-    wall's heat balance over the cycle (against the enthalpy supplied) change by less
-    than ``tol``; the deep wall takes its step once the rest is periodic, as the
+    wall's heat balance over the cycle (against the heat it took, or its bracket
+    against the temperature scale, :class:`corliss.engine.wall.DeepWallSearch`) change
+    by less than ``tol``; the deep wall takes its step once the rest is periodic, as the
     crank-resolved runner's (:func:`corliss.engine.steady.run_steady`).
 
     Parameters
@@ -329,16 +382,18 @@ def run_cycles(steam: Steam, theta: np.ndarray, volumes: tuple[np.ndarray, np.nd
         w = out[0].work_J + out[1].work_J
         change = abs(w - w_prev) / max(abs(w), 1e-300) if w_prev is not None else math.inf
         if walls:
-            h_in = abs(out[0].H_chest_J + out[1].H_chest_J)
             inner = change
             for (t0, f0), wl, tr in zip(start, walls, out):
                 inner = max(inner, abs(wl.T_deep + wl.dT - t0) / dT_scale,
                             abs(wl.film - f0) / max(float(np.max(tr.m_kg)), 1e-300))
-            steps = [wl.deep_step(False, h_in) for wl in walls]
+            # each wall's balance against its own heat, or its bracket against the
+            # temperature scale (as the crank-resolved runner's, corliss.engine.steady)
+            trusted = inner <= tol
+            steps = [wl.deep_step(False, dT_scale=dT_scale, trusted=trusted) for wl in walls]
             settled = inner <= max(10.0 * tol, 0.1 * max(abs(s[0]) for s in steps) / dT_scale)
             if settled:
                 for wl in walls:
-                    wl.deep_step(True, h_in)
+                    wl.deep_step(True, dT_scale=dT_scale, trusted=trusted)
             change = max(inner, max(s[1] for s in steps))
         if cycles is None and change <= tol:
             converged = k

@@ -126,9 +126,10 @@ def transient_uncached() -> list:
         Their names; empty when every one is cached, or when this numba does not show
         its cache.
     """
-    return [d.__name__ for d in (dopri5.integrate_turn, rosenbrock.integrate_turn_ros,
-                                 loop.load_factor)
-            if cache.uncached(d)]
+    return [name for name, missing in (
+        (dopri5.integrate_turn.__name__, cache.turn_kernel_uncached("dopri5")),
+        (rosenbrock.integrate_turn_ros.__name__, cache.turn_kernel_uncached("ros4")),
+        (loop.load_factor.__name__, cache.uncached(loop.load_factor))) if missing]
 
 
 def reachable_uncached(scene) -> list[str]:

@@ -17,6 +17,7 @@ from corliss.engine.geometry import CylinderGeometry
 from corliss.engine.scene_specs import SceneSpec
 from corliss.engine.network import (Network, compound, single_cylinder, with_leakage,
                                     with_period_leakage, with_steam_chest, with_wall_heat)
+from corliss.engine.options import PRESETS
 from corliss.errors import InputError
 from corliss.thermo.steam import State, Steam, make_steam
 from corliss.thermo.wall_properties import transport_properties
@@ -357,21 +358,35 @@ def assemble(scene, *, tabulated: bool = True) -> Model:
 KNOBS = ("setting", "throttle")
 
 
-def steady_scene(scene):
+def steady_scene(scene, fidelity: str | None = None):
     """The scene as a steady run: no flywheel, load or governor, speed held.
 
     Parameters
     ----------
     scene : Scene
         The scene.
+    fidelity : str, optional
+        A preset of :data:`corliss.engine.options.PRESETS` to set as well (the copy
+        :meth:`Scene.with_fidelity` would make, made steady, in one copy: a study
+        makes one a run).
 
     Returns
     -------
     Scene
         A copy with ``run.mode = "steady"`` and no duration, flywheel, load or
         governor.
+
+    Raises
+    ------
+    InputError
+        A fidelity that is not a preset.
     """
-    run = dataclasses.replace(scene.run, mode="steady", duration_s=None)
+    changes: dict = {"mode": "steady", "duration_s": None}
+    if fidelity is not None:
+        if fidelity not in PRESETS:
+            raise InputError("run.fidelity", fidelity, "one of " + ", ".join(PRESETS))
+        changes["fidelity"] = PRESETS[fidelity]
+    run = dataclasses.replace(scene.run, **changes)
     return dataclasses.replace(scene, run=run, governor=None, governor_type=None, flywheel=None,
                                load=None)
 

@@ -25,6 +25,9 @@ from corliss.keys import limits
 #: Crank-angle step of the ideal-port (equilibrium) stepping [deg]: its time series
 #: holds every point of that grid, whatever the output step.
 EQUILIBRIUM_STEP_DEG = 0.25
+#: A steady run with a wall whose deep temperature settles over periodic cycles of its
+#: own (the skin model) may run this many times the fidelity's ``max_cycles``.
+WALL_CYCLES_FACTOR = 3
 #: Points of the equilibrium grid a turn beyond its uniform ones: the port areas' kinks,
 #: a few a turn (eight events of two ends); counted generously.
 EQUILIBRIUM_KINKS = 64
@@ -91,7 +94,7 @@ def output_samples(run) -> tuple[int, str]:
     if run.cycles is not None:
         cycles = run.cycles
     else:
-        cycles = run.fidelity.max_cycles * (3 if run.has("wall_heat") else 1)
+        cycles = run.fidelity.max_cycles * (WALL_CYCLES_FACTOR if run.has("wall_heat") else 1)
     if record == "cycle":
         return cycles - 1 + per, (f"one a cycle for {cycles - 1} cycles and {per} of the "
                                   "last")

@@ -25,7 +25,7 @@ from corliss.engine.ideal_card import card_area, hyperbolic_card, indicated_stea
 from corliss.engine.model import assemble
 from corliss.engine.network import cylinder_prefix, piston_ends
 from corliss.engine.options import record_of
-from corliss.engine.output_size import EQUILIBRIUM_STEP_DEG
+from corliss.engine.output_size import EQUILIBRIUM_STEP_DEG, WALL_CYCLES_FACTOR
 from corliss.engine.result import Deferred, SteadyResult
 from corliss.engine.wall import IdealPortWall
 from corliss.frames.frame import Frame
@@ -177,7 +177,7 @@ def _crank_resolved(scene, model, pm, progress, start=None):
     n_max = scene.run.cycles or fid.max_cycles
     if net.wall_nodes and not scene.run.cycles:
         # the skin model's deep wall settles over a few periodic cycles of its own
-        n_max *= 3
+        n_max *= WALL_CYCLES_FACTOR
     dT_scale = max(model.chest.T - model.exhaust.T, 1.0)
     lay = _layout(net, ends_all, heat, marks)
     for k in range(1, n_max + 1):
@@ -205,14 +205,20 @@ def _crank_resolved(scene, model, pm, progress, start=None):
             # (or, while the wall's own step is large, once the cycle's other residuals
             # are a tenth of it)
             # the wall is periodic when its heat over the cycle balances (what it took
-            # less what it gave, and the jacket's) to the tolerance of the enthalpy
-            # supplied, the energy balance's scale
+            # less what it gave, and the jacket's) to the tolerance of the heat it took,
+            # its own scale, or when its bracket has closed to the tolerance of the
+            # supply's less the exhaust's temperature (where the balance has a kink, a
+            # superheated wall's, or the cycles' noise exceeds the tolerance of a small
+            # heat): against the enthalpy supplied (some 30 times the wall's heat) the
+            # fast preset's 1e-3 left the wall up to 0.8 K from periodic, for the wall's
+            # heat moves only about 1.4 kJ a cycle per kelvin
             inner = max(v for n, v in residuals.items() if n != "wall_temperature")
-            h_in = abs(float(row["H_supply_J"]))
-            step, imbalance = crank.update_wall(y, apply=False, heat_scale=h_in)
+            trusted = inner <= fid.convergence_tolerance
+            step, imbalance = crank.update_wall(y, apply=False, dT_scale=dT_scale,
+                                                trusted=trusted)
             settled = inner <= max(10.0 * fid.convergence_tolerance, 0.1 * step / dT_scale)
             if settled:
-                crank.update_wall(y, apply=True, heat_scale=h_in)
+                crank.update_wall(y, apply=True, dT_scale=dT_scale, trusted=trusted)
             residuals["wall_temperature"] = max(residuals.get("wall_temperature", 0.0),
                                                 imbalance)
         change = max(residuals.values())
@@ -363,9 +369,10 @@ def _periodicity(lay: _Layout, wall_T, y0, y1, samples, wall0, dT_scale: float, 
     is judged by its contents; the skin model's film counts with its end's mass);
     ``wall_temperature``: the largest change of a wall's temperature (the skin model's
     surface), against the supply's less the exhaust's temperature, and for the skin
-    model the wall's heat imbalance over the cycle against the enthalpy supplied (set
-    by the runner).  A cycle is periodic when every one is below the convergence
-    tolerance.
+    model the wall's heat imbalance over the cycle against the heat it took, or its
+    bracket against the temperature scale where that is smaller (set by the runner,
+    :class:`corliss.engine.wall.DeepWallSearch`).  A cycle is periodic when every one
+    is below the convergence tolerance.
     """
     w = row["work_J"]
     out = {"work": abs(w - w_prev) / max(abs(w), 1e-300) if w_prev is not None else math.inf}

@@ -575,7 +575,7 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
     turns = TurnRunner(_turn_integrator(method, network), network, net, steam.kernel_tier, tab,
                        perf, tables.tr, fid.rtol, atol)
     # warm-up: speed and governor held, time held at zero
-    announce_compile(dopri5.integrate_turn if method == "dopri5" else rosenbrock.integrate_turn_ros)
+    announce_compile(turn=method)
     sc[loop.S_FREEZE] = 1.0
 
     rows, frames = [], []

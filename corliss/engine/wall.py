@@ -484,7 +484,9 @@ class IdealPortWall:
     Water beyond the film the wall holds (``FILM_MAX_KG_M2``) runs into the steam, and
     while the steam flows out the film beyond ``FILM_WET_KG_M2`` goes with it in the
     proportion of the steam leaving (:meth:`sweep`), as in the kernel, taken with the
-    exchange of the step after the outflow (a blow-down's or an open step's).
+    exchange of the step after an open step's outflow; a blow-down sweeps as it goes,
+    so that part of the water swept leaves with the rest of the steam, as through
+    ports (:func:`corliss.engine.equilibrium.step_end`).
 
     Parameters
     ----------
@@ -519,7 +521,8 @@ class IdealPortWall:
         #: the share of the steam the last open step let out [-] (its sweep is taken at
         #: the next step's start, :meth:`exchange`)
         self.outflow = 0.0
-        self._hist: tuple[float, float] | None = None
+        #: the deep wall's search (:class:`DeepWallSearch`)
+        self.search = DeepWallSearch()
         #: the conduction grid under the surface, or None for the lumped node
         self.grid = ConductionGrid(omega_rad_s, grid_nodes) if grid_nodes else None
         self.begin_cycle()
@@ -651,9 +654,11 @@ class IdealPortWall:
         self.film -= sw
         return sw
 
-    def deep_step(self, apply: bool, heat_scale: float) -> tuple[float, float]:
-        """The deep wall's secant step on its balance over the cycle just run,
-        ``r = -Q + G_j A_j P (T_j - T_d)`` (as the crank-resolved runner's,
+    def deep_step(self, apply: bool, heat_scale: float = 0.0, dT_scale: float = 0.0,
+                  trusted: bool = True) -> tuple[float, float]:
+        """The deep wall's step on its balance over the cycle just run,
+        ``r = -Q + G_j A_j P (T_j - T_d)`` (:class:`DeepWallSearch`, as the
+        crank-resolved runner's,
         :meth:`corliss.engine.crank_resolved.CrankResolved.update_wall`).
 
         Parameters
@@ -661,24 +666,142 @@ class IdealPortWall:
         apply : bool
             Take the step (else only measure it).
         heat_scale : float
-            The enthalpy supplied over the cycle [J], the imbalance's scale.
+            The imbalance's scale [J]; 0 for the wall's own, the heat the steam gave
+            it over the cycle.
+        dT_scale : float
+            The temperature scale [K] against which the bracket's width counts as an
+            imbalance (:meth:`DeepWallSearch.imbalance`); 0 for none.
+        trusted : bool
+            Whether the rest of the cycle was periodic to the tolerance
+            (:meth:`DeepWallSearch.step`).
 
         Returns
         -------
         tuple of float
-            The step [K] and the imbalance over ``heat_scale`` [-].
+            The step [K] and the imbalance [-].
         """
         gap = self.ga * 2.0 * math.pi / self.omega
-        d_full = self.hA - gap
-        r = -self.Q + gap * (self.T_jacket - self.T_deep)
-        slope = d_full
-        if self._hist is not None and abs(self.T_deep - self._hist[0]) > 1e-9:
-            slope = min(max((self.Q - self._hist[1]) / (self.T_deep - self._hist[0]),
-                            0.01 * d_full), d_full)
-        step = min(max(r / (slope + gap), -20.0), 20.0)
+        step, r = self.search.step(self.T_deep, self.Q, self.hA - gap, gap, self.T_jacket,
+                                   apply, trusted)
+        imbalance = self.search.imbalance(r, heat_scale or self.Q_to_wall, dT_scale)
         if apply:
-            self._hist = (self.T_deep, self.Q)
             # the surface moves with the deep wall (its state is the difference, as
             # the kernel's)
             self.T_deep += step
-        return step, abs(r) / max(heat_scale, 1e-300)
+        return step, imbalance
+
+
+class DeepWallSearch:
+    """The deep wall's temperature, found cycle by cycle: the root of its balance over
+    a cycle, ``r(T) = -Q(T) + G_j A_j P (T_j - T)`` (the heat the steam leaves in the
+    wall, and the jacket's through its thickness), by a secant held inside a bracket.
+
+    The first step uses the slope the kernel integrates (every coefficient's ``h A``),
+    which overstates it, since water condensed on a cooler wall evaporates from it later
+    in the same cycle; then the slope of the last two steps taken, kept between a
+    hundredth and all of that one, steps of 20 K at most.  The balance has a kink where
+    the surface's cycle starts or stops crossing the saturation temperature (a
+    superheated supply: condensing at ``h_c`` below it, convection's few hundred W/(m2
+    K) above), and there a secant alone wanders.  So each measured sign narrows a
+    bracket, ``lo`` the warmest wall found to gain heat over a cycle, ``hi`` the
+    coolest found to lose it, and a step that would leave the bracket goes halfway to
+    its edge instead (bisection).  A cycle measured before it was quite periodic may
+    give the wrong sign near the root: a measurement that contradicts an edge (a gain
+    at or above ``hi``, a loss at or below ``lo``) drops that edge, so that the bracket
+    never closes on noise.
+    """
+
+    def __init__(self) -> None:
+        #: the last step's (temperature [K], heat into the steam [J]), or None
+        self.prev: tuple[float, float] | None = None
+        #: the bracket [K]
+        self.lo, self.hi = -math.inf, math.inf
+        self.measured = (self.lo, self.hi)
+
+    def _bracket(self, T: float, r: float) -> tuple[float, float]:
+        lo, hi = self.lo, self.hi
+        if r > 0.0:
+            if T >= hi:
+                hi = math.inf
+            lo = max(lo, T)
+        elif r < 0.0:
+            if T <= lo:
+                lo = -math.inf
+            hi = min(hi, T)
+        return lo, hi
+
+    def step(self, T: float, Q: float, d_full: float, gap: float, T_jacket: float,
+             apply: bool, trusted: bool = True) -> tuple[float, float]:
+        """The step from the cycle just run at ``T``.
+
+        Parameters
+        ----------
+        T : float
+            The deep wall's temperature over the cycle [K].
+        Q : float
+            The heat into the steam over the cycle [J].
+        d_full : float
+            The cycle's integrated ``h A`` of the steam's coefficients [J/K].
+        gap : float
+            The jacket's ``G_j A_j P`` over the cycle [J/K] (0 without one).
+        T_jacket : float
+            The jacket's temperature [K].
+        apply : bool
+            Keep the measurement (the step is taken); else only measure.
+        trusted : bool
+            Whether the rest of the cycle was periodic to the tolerance, so that the
+            balance's sign may narrow the bracket (the runners step the wall once the
+            rest is within ten tolerances; a cycle just after a step, the surface
+            still moving by up to a hundredth of the temperature scale a cycle, gave
+            the crank end of the Meyer engine with ideal ports the wrong sign 1.5 K
+            from the root).
+
+        Returns
+        -------
+        tuple of float
+            The step [K] and the balance ``r`` [J].
+        """
+        r = -Q + gap * (T_jacket - T)
+        slope = d_full
+        if self.prev is not None and abs(T - self.prev[0]) > 1e-9:
+            slope = min(max((Q - self.prev[1]) / (T - self.prev[0]), 0.01 * d_full), d_full)
+        step = min(max(r / (slope + gap), -20.0), 20.0)
+        lo, hi = self._bracket(T, r) if trusted else (self.lo, self.hi)
+        target = T + step
+        if target >= hi:
+            target = 0.5 * (T + hi)
+        elif target <= lo:
+            target = 0.5 * (T + lo)
+        #: the bracket with this cycle's measurement (:meth:`imbalance`) [K]
+        self.measured = (lo, hi)
+        if apply:
+            self.prev = (T, Q)
+            self.lo, self.hi = lo, hi
+        return target - T, r
+
+    def imbalance(self, r: float, heat_scale: float, dT_scale: float = 0.0) -> float:
+        """The wall's imbalance as a fraction: ``|r|`` over ``heat_scale``, or the
+        bracket's width over ``dT_scale`` where that is smaller (the root is then
+        located to the tolerance in temperature, however the balance's kink or the
+        cycles' noise leaves ``r``); the bracket with the last measurement
+        (:meth:`step`), kept or not.
+
+        Parameters
+        ----------
+        r : float
+            The balance over the cycle [J].
+        heat_scale : float
+            Its scale [J].
+        dT_scale : float
+            The temperature scale [K]; 0 for none.
+
+        Returns
+        -------
+        float
+            The imbalance [-].
+        """
+        out = abs(r) / max(heat_scale, 1e-300)
+        lo, hi = self.measured
+        if dT_scale > 0.0 and math.isfinite(hi - lo):
+            out = min(out, (hi - lo) / dT_scale)
+        return out

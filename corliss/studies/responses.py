@@ -84,6 +84,35 @@ def flatten(summary: Mapping[str, Any], prefix: str = "") -> dict:
     return out
 
 
+def picked(summary: dict, key: str):
+    """One number of a summary by its dotted key, as :func:`flatten` gives it (without
+    flattening the whole summary: a study's run reads a few keys of it).
+
+    Parameters
+    ----------
+    summary : dict
+        A run's summary (nested dicts).
+    key : str
+        A dotted key (``events.head.cutoff_frac``).
+
+    Returns
+    -------
+    int, float or None
+        ``flatten(summary).get(key)``: the number (a numpy scalar as a Python one),
+        None for a null, a key the summary lacks, or a value that is not a number.
+    """
+    node: Any = summary
+    for name in key.split("."):
+        if not isinstance(node, dict) or name not in node:
+            return None
+        node = node[name]
+    if node is None or (isinstance(node, (int, float)) and not isinstance(node, bool)):
+        return node
+    if hasattr(node, "dtype") and getattr(node, "ndim", 1) == 0 and node.dtype.kind in "fiu":
+        return node.item()
+    return None
+
+
 def response_keys(scene) -> tuple[str, ...]:
     """Every response a steady run of ``scene`` gives, in the summary's order.
 

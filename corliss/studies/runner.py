@@ -63,7 +63,7 @@ from corliss.keys.edits import KeyValue, edited
 from corliss.studies.sampling import make_design
 from corliss.studies.journal import Journal, check_writable, fingerprint, journal_path, read_rows
 from corliss.studies.pool import Interrupt, SigtermRaises, prestart, run_tasks
-from corliss.studies.responses import check_responses, flatten, response_value
+from corliss.studies.responses import check_responses, picked, response_value
 from corliss.studies.study_result import ERROR, RUN_ID, STATUS, StudyResult
 
 log = logging.getLogger(__name__)
@@ -117,10 +117,7 @@ class StudySpec:
 
 def _scene(base: dict, name: str, fidelity: str | None, changes: dict):
     """One run's steady scene, loaded and checked."""
-    sc = scene_from_dict(edited(base, changes), name=name)
-    if fidelity is not None:
-        sc = sc.with_fidelity(fidelity)
-    return steady_scene(sc)
+    return steady_scene(scene_from_dict(edited(base, changes), name=name), fidelity)
 
 
 def run_chunk(spec: StudySpec, run_ids, values) -> tuple[list, int, str | None]:
@@ -155,12 +152,12 @@ def run_chunk(spec: StudySpec, run_ids, values) -> tuple[list, int, str | None]:
             with at_point(f"run {int(run_id)}: "
                           + ", ".join(f"{k} {v}" for k, v in changes.items())):
                 r = run_steady(_scene(spec.base, spec.name, spec.fidelity, changes))
-                flat = flatten(r.summary_with(responses))
+                part = r.summary_with(responses)
             nfev += r.rhs_evaluations
             tier = r.property_tier
             why = run_failure(r)
             rows.append((int(run_id), "failed" if why else "ok", why,
-                         *(response_value(flat.get(k)) for k in responses)))
+                         *(response_value(picked(part, k)) for k in responses)))
         except Exception as exc:      # noqa: BLE001  a stopped run is a row, not a stopped study
             log.debug("run %d (%s) stopped: %s", run_id, changes, exc)
             rows.append((int(run_id), "failed", f"{type(exc).__name__}: {exc}",

@@ -209,7 +209,9 @@ class ValveGear:
 
 
 #: The :meth:`ValveGear.openings` methods that are ``_openings_of(signed_openings(theta))``
-#: (:meth:`ValveGear.sampled` finds the motion once for those).
+#: (:meth:`ValveGear.sampled` finds the motion once for those), with an ``_openings_of``
+#: nondecreasing in each signed opening (the events take the largest opening as
+#: ``_openings_of`` of the largest signed one: :func:`corliss.valves.events.events`).
 OPENINGS_OF_SIGNED: set = {ValveGear.openings}
 
 #: A registry entry: how to read a gear's scene table and build the gear.

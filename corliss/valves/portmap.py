@@ -8,6 +8,7 @@ integrator can stop there (``breakpoints``).
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -17,6 +18,15 @@ from corliss.valves.events import sampled_crossings
 from corliss.valves.gear import PORTS, ValveGear
 
 TWO_PI = 2.0 * math.pi
+
+
+@functools.lru_cache(maxsize=8)
+def _uniform(n: int) -> np.ndarray:
+    """``n`` uniform intervals of a turn, its ends included [rad] (read-only: shared
+    by every map on ``n`` intervals)."""
+    grid = np.linspace(0.0, TWO_PI, n + 1)
+    grid.setflags(write=False)
+    return grid
 
 
 @dataclass(frozen=True)
@@ -141,7 +151,7 @@ def tabulate(gear: ValveGear, n: int = 1440) -> PortMap:
     table, signed = sampled_crossings(gear, gear.kink_levels())
     kink_list = [t for row in table for lst in row for t, _ in lst]
     kinks = np.unique(np.round(np.asarray(kink_list, dtype=float) % TWO_PI, 12))
-    grid = np.union1d(np.linspace(0.0, TWO_PI, n + 1), kinks)
+    grid = np.union1d(_uniform(n), kinks)
     # drop uniform points closer than 1e-9 rad to a kink (keep the kink itself: the
     # point nearest it), every kink at once
     dist = np.abs(grid[None, :] - kinks[:, None])

@@ -8,7 +8,9 @@ right-hand side), :mod:`~corliss.engine.kernels.clamps`,
 :mod:`~corliss.engine.kernels.tableaus` and :mod:`~corliss.engine.kernels.stepping`
 (the step arithmetic and its control), :mod:`~corliss.engine.kernels.jacobians`, the
 step loops of each method (:mod:`~corliss.engine.kernels.dopri5`,
-:mod:`~corliss.engine.kernels.rosenbrock`), the dispatch by method
+:mod:`~corliss.engine.kernels.rosenbrock`: one loop per method serves a steady cycle
+and a turn of the governed loop, the turn passed as an optional last argument, None
+for a cycle, which numba compiles as a version of its own), the dispatch by method
 (:mod:`~corliss.engine.kernels.cycle`) and the cache (:mod:`~corliss.engine.kernels.cache`).
 
 The equations are those of :mod:`corliss.engine.network`: control volumes (cylinder

@@ -284,13 +284,21 @@ def sweep_films(y, pr, dy, net):
     """
     heat = net.heat
     for i in range(heat.shape[0]):
-        if heat[i, H_MODEL] != WALL_SKIN or not dy[2 * i] < 0.0:
+        if heat[i, H_MODEL] != WALL_SKIN:
             continue
         k = int(heat[i, H_SKIN_STATE])
+        # the steam leaving through the ports: the node's mass rate less the wall's
+        # own (dy[k + 1] is the film's, the negative of what the wall gave the steam),
+        # so that condensation on a closed end sweeps nothing and the water boiling
+        # off the wall does not offset the outflow (as the ideal-port wall's sweep,
+        # corliss.engine.wall.IdealPortWall.sweep, on the port's flow alone)
+        out = -(dy[2 * i] + dy[k + 1])
+        if not out > 0.0:
+            continue
         extra = y[k + 1] - FILM_WET_KG_M2 * heat[i, H_SKIN_AREA]
         m = y[2 * i]
         if extra > 0.0 and m > 0.0:
-            sw = extra * (-dy[2 * i]) / m
+            sw = extra * out / m
             dy[2 * i] += sw
             dy[2 * i + 1] += sw * heat[i, H_SKIN_FILM_H]
             dy[k + 1] -= sw

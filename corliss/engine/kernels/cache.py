@@ -7,8 +7,10 @@ from __future__ import annotations
 import logging
 import os
 
-from corliss.engine.kernels.cycle import CYCLE_KERNELS, ROS_FINITE_ARG, ROS_PAIR_ARG
-from corliss.engine.kernels.rosenbrock import _ros_steps
+from corliss.engine.kernels.cycle import CYCLE_KERNELS
+from corliss.engine.kernels.dopri5 import DOPRI_TURN_ARG, _dopri5_steps
+from corliss.engine.kernels.rosenbrock import (ROS_FINITE_ARG, ROS_PAIR_ARG, ROS_TURN_ARG,
+                                               _ros_steps)
 from corliss.logs import NOTICE
 
 log = logging.getLogger(__name__)
@@ -65,7 +67,8 @@ def _uncached(dispatcher, nones: dict[int, bool] | None) -> bool | None:
 def cycle_kernel_uncached(code: int, exact: bool = True) -> bool | None:
     """:func:`uncached` of the compiled cycle integrator of a method code, in the
     version that method runs on the network (:data:`ROS_PAIR_ARG`,
-    :data:`ROS_FINITE_ARG`).
+    :data:`ROS_FINITE_ARG`) and for a steady cycle (:data:`DOPRI_TURN_ARG` and
+    :data:`ROS_TURN_ARG` None: the step loops also serve the governed loop's turn).
 
     Parameters
     ----------
@@ -80,9 +83,34 @@ def cycle_kernel_uncached(code: int, exact: bool = True) -> bool | None:
         As :func:`uncached`.
     """
     dispatcher = CYCLE_KERNELS[code]
+    if dispatcher is _dopri5_steps:
+        # the version of a steady cycle (its step loop also serves the loop's turn)
+        return uncached(dispatcher, {DOPRI_TURN_ARG: True})
     if dispatcher is _ros_steps:
-        return uncached(dispatcher, {ROS_PAIR_ARG: code != 2, ROS_FINITE_ARG: exact})
+        return uncached(dispatcher, {ROS_PAIR_ARG: code != 2, ROS_FINITE_ARG: exact,
+                                     ROS_TURN_ARG: True})
     return uncached(dispatcher)
+
+
+def turn_kernel_uncached(method: str) -> bool | None:
+    """:func:`uncached` of the step loop a turn of the governed loop runs on, in the
+    turn's version (:data:`DOPRI_TURN_ARG`, :data:`ROS_TURN_ARG` not None; a Rosenbrock
+    turn takes a tableau and the finite-difference Jacobian).
+
+    Parameters
+    ----------
+    method : str
+        The transient loop's method: ``"dopri5"`` or a Rosenbrock tableau's name.
+
+    Returns
+    -------
+    bool or None
+        As :func:`uncached`.
+    """
+    if method == "dopri5":
+        return uncached(_dopri5_steps, {DOPRI_TURN_ARG: False})
+    return uncached(_ros_steps, {ROS_PAIR_ARG: True, ROS_FINITE_ARG: False,
+                                 ROS_TURN_ARG: False})
 
 
 #: How long a first run takes, as the notice says it: measured from a fresh numba
@@ -93,7 +121,8 @@ def cycle_kernel_uncached(code: int, exact: bool = True) -> bool | None:
 FIRST_RUN_TEXT = "half a minute to a minute on two free cores, a few minutes on a busy machine"
 
 
-def announce_compile(*dispatchers, cycle: int | None = None, exact: bool = True) -> None:
+def announce_compile(*dispatchers, cycle: int | None = None, exact: bool = True,
+                     turn: str | None = None) -> None:
     """Say so before compiled functions not yet in numba's disk cache are first called.
 
     The first run on a machine spends some seconds compiling them; a NOTICE names the
@@ -109,11 +138,17 @@ def announce_compile(*dispatchers, cycle: int | None = None, exact: bool = True)
         called, in that method's version (:func:`cycle_kernel_uncached`).
     exact : bool
         With ``cycle``: whether the network's Jacobian is analytic.
+    turn : str, optional
+        A transient loop's method whose turn is about to be integrated
+        (:func:`turn_kernel_uncached`).
     """
     state = [uncached(d) for d in dispatchers]
     if cycle is not None:
         dispatchers = dispatchers + (CYCLE_KERNELS[cycle],)
         state.append(cycle_kernel_uncached(cycle, exact))
+    if turn is not None:
+        dispatchers = dispatchers + (_dopri5_steps if turn == "dopri5" else _ros_steps,)
+        state.append(turn_kernel_uncached(turn))
     if None in state:          # a numba without these internals: say nothing
         return
     missing = [d.__name__ for d, m in zip(dispatchers, state) if m]

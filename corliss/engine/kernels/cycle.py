@@ -18,17 +18,6 @@ from corliss.engine.kernels.tableaus import KIND_ODE23S, KIND_TABLEAU, ROS_TABLE
 CYCLE_KERNELS = (_dopri5_steps, cycle_rk4, _ros_steps, _ros_steps, _ros_steps, _ros_steps)
 
 
-#: The position of :func:`_ros_steps`'s ``pair`` among its arguments, and the type it
-#: takes by code (True: boolean for the ode23s pair; None for the tableaus): numba
-#: compiles and caches one version for each (:func:`cycle_kernel_uncached`).
-ROS_PAIR_ARG = 9
-
-
-#: The position of its ``finite`` (True: the Jacobian by finite differences; None: the
-#: analytic one), also a version each.
-ROS_FINITE_ARG = 10
-
-
 def integrate_cycle(y0, stops, out_theta, method, rtol, atol, step, net, tier, tab, perf,
                     color, owner, max_rhs):
     """Integrate from ``stops[0]`` to ``stops[-1]``, restarting at every stop.

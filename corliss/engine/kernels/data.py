@@ -250,7 +250,7 @@ class Tableau(NamedTuple):
 
 
 class StepScratch(NamedTuple):
-    """Scratch of the Rosenbrock cycle's starting step and Jacobian.
+    """Scratch of the Rosenbrock step loop's starting step and Jacobian.
 
     Parameters
     ----------
@@ -283,18 +283,21 @@ class StepScratch(NamedTuple):
 
 
 class RosScratch(NamedTuple):
-    """Scratch of the Rosenbrock cycle's step loop, allocated by its caller.
+    """Scratch of the Rosenbrock step loop, allocated by its caller.
 
     Parameters
     ----------
     vec : ndarray
-        Nine state vectors (9, n).
+        Ten state vectors (10, n): derivatives at a step's start and end, a stage's
+        argument, the output's scratch, the time derivative, a solve's right-hand
+        side, the tolerances' scale, a probe state and its derivative, a solve's
+        columns (the loop's W).
     U : ndarray
         The stages (stages, n).
     J : ndarray
-        The Jacobian (n, ndyn).
+        The Jacobian (n, m): the ndyn dynamic columns, and the loop's three in a turn.
     mats : ndarray
-        W's inverse and its factor (2, ndyn, ndyn).
+        W's inverse and its factor (2, m, m).
     dl : ndarray
         (ndyn,).
     pr : ndarray
@@ -321,34 +324,77 @@ class RosScratch(NamedTuple):
     tally: np.ndarray
 
 
-class LoopScratch(NamedTuple):
-    """Scratch of the governed loop's Jacobian.
+class DopriScratch(NamedTuple):
+    """Scratch of the Dormand-Prince step loop, allocated by its caller.
 
     Parameters
     ----------
+    vec : ndarray
+        Three state vectors (3, n): the derivative at the step's start, a stage's
+        argument, the output's scratch.
+    K : ndarray
+        The stages' derivatives (7, n).
     pr : ndarray
         Node properties (PR_ROWS, nodes).
-    pa : ndarray
+    cell : ndarray
         Port areas (cylinders, 4) [m2].
-    out : ndarray
-        The loop's outputs (4,).
-    att : ndarray
-        A trial's clamp tally (4,).
-    yp : ndarray
-        A probe state (n,).
-    fp : ndarray
-        Its derivative (n,).
-    dl : ndarray
-        The columns' increments.
-    dtq : ndarray
-        The nodes' torque change (nodes,).
+    clamps : ndarray
+        The clamp counts (6,), CL_* (kernels.clamps).
+    tally : ndarray
+        A trial's and a step end's clamp tally (2, 4).
     """
 
+    vec: np.ndarray
+    K: np.ndarray
     pr: np.ndarray
-    pa: np.ndarray
+    cell: np.ndarray
+    clamps: np.ndarray
+    tally: np.ndarray
+
+
+class LoopTurn(NamedTuple):
+    """What a turn of the governed loop adds to a step loop: its tables, its record and
+    its scratch.  Passed to the step loops of a steady cycle as None.
+
+    Parameters
+    ----------
+    tr : LoopArrays
+        The loop's tables; the clamp counts and the Rosenbrock loop's next step
+        written into ``tr.sc``.
+    out : ndarray
+        (2, 4): the loop's outputs (indicated and load torques [N m], actuator [-],
+        domega/dt [rad/s2]) of the evaluation at a step's end (row 0, the one recorded)
+        and of a stage's (row 1).
+    rec : ndarray
+        (N_REC, columns): per accepted step, rows as kernels.loop._record writes them.
+    record : bool
+        Whether to record every accepted step.
+    t_end : float
+        The run's end time [s].
+    tq : ndarray
+        (3, nodes): each node's share of the indicated torque [N m] at a step's start,
+        at its end, and their change in a column of the Jacobian.
+    """
+
+    tr: LoopArrays
     out: np.ndarray
-    att: np.ndarray
-    yp: np.ndarray
-    fp: np.ndarray
-    dl: np.ndarray
-    dtq: np.ndarray
+    rec: np.ndarray
+    record: bool
+    t_end: float
+    tq: np.ndarray
+
+
+class Columns(NamedTuple):
+    """The Jacobian's dynamic columns in groups whose rows do not overlap, perturbed
+    together by the finite differences (:meth:`corliss.engine.network.Network.column_colors`).
+
+    Parameters
+    ----------
+    color : ndarray
+        Int64 (ndyn,): the colour of each dynamic column.
+    owner : ndarray
+        Int64 (colours, rows): which column of each colour moves each row (-1: none).
+    """
+
+    color: np.ndarray
+    owner: np.ndarray

@@ -234,30 +234,55 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
         T[ndyn + 2 * e + 1] += hd_t
 
 
-@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
-def _jacobian(t, y, f0, J, T, yscale, color, owner, phys, scratch):
-    """Jacobian of the dynamic columns, and the time derivative, for both Rosenbrock
-    integrators.
+#: The loop's states that take a column of the Rosenbrock method's Jacobian besides the
+#: network's dynamic ones: speed, governor coordinate and its rate (offsets from the
+#: network's length).
+LOOP_COLUMNS = np.array([X_OMEGA, X_Z, X_ZDOT])
 
-    Analytic (:func:`_jacobian_exact`, no evaluation of :func:`rhs`) where it covers
-    the network, else by finite differences: columns of one colour are perturbed
-    together (their rows do not overlap), so a single cylinder costs two evaluations,
-    and the time derivative a forward difference, one more.  Clamped evaluations go
-    into the step's tally ``att``; ``yp``, ``fp`` (length of the state), ``dl`` (of
-    the dynamic states), ``jd`` (shape (12, nodes)) and ``slope`` (shape (cylinders,
-    4)) are scratch, the fields of ``scratch``
+
+@njit(cache=True, inline="always")
+def _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, cycle, turn):
+    """Jacobian of the dynamic columns, and the time derivative, by finite differences,
+    for the Rosenbrock step loop, over a steady cycle (``cycle`` True, ``turn`` None,
+    through :func:`_jacobian`) and over a turn of the governed loop (``cycle`` None,
+    inlined into the loop).  As in the step loops, the cycle's code is guarded by
+    ``cycle``, the turn's by ``turn``: numba prunes a branch on ``x is None`` only
+    where ``x`` is None, so each version compiles only its own right-hand side.
+
+    A steady cycle's: columns of one colour
+    (``cols``, :class:`~corliss.engine.kernels.data.Columns`) are perturbed together
+    (their rows do not overlap), so a single cylinder costs two evaluations, and the
+    time derivative a forward difference, one more.
+
+    A turn's (``turn`` the loop's :class:`~corliss.engine.kernels.data.LoopTurn`): by
+    finite differences of :func:`~corliss.engine.kernels.loop.transient_rhs` alone,
+    with the columns of :data:`LOOP_COLUMNS` (speed, governor coordinate and its rate)
+    after the network's; ``J`` has shape (n, ndyn + 3).  The network's columns are
+    perturbed by colour as a cycle's; the loop's own rows (speed, governor, works) see
+    every node, but only through the indicated torque sum p_i dV_i/dtheta, so a
+    colour's change of such a row is shared among the colour's columns as each one's
+    node changed that sum (``turn.tq[0]`` holds each node's p dV/dtheta at ``y``,
+    ``turn.tq[2]`` is scratch).  The loop's three columns are perturbed one at a time.
+    Without them the method lost its order: the flywheel's energy and the work
+    integrals parted by 1e-5 of the change even at rtol 1e-7
+    (tests/test_speed_loop.py).
+
+    Clamped evaluations go into the step's tally ``att``; ``yp``, ``fp`` (length of
+    the state) and ``dl`` (of the dynamic states) are scratch, fields of ``scratch``
     (:class:`~corliss.engine.kernels.data.StepScratch`); ``phys`` is
-    :class:`~corliss.engine.kernels.data.Physics`.  Returns the evaluations of
-    :func:`rhs` spent.
+    :class:`~corliss.engine.kernels.data.Physics`.  Returns the evaluations of the
+    right-hand side spent.
     """
     net, tier, tab, perf = phys.net, phys.tier, phys.tab, phys.perf
     pr, cell, att, yp, fp = scratch.pr, scratch.cell, scratch.att, scratch.yp, scratch.fp
-    dl, jd, slope = scratch.dl, scratch.jd, scratch.slope
-    if _exact_jacobian_holds(net):
-        _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope)
-        return 0
+    dl = scratch.dl
+    color, owner = cols.color, cols.owner
+    if turn is not None:
+        tr = turn.tr
+        out, tq0, dtq = turn.out[1], turn.tq[0], turn.tq[2]
     n = y.shape[0]
-    ndyn = J.shape[1]
+    nn = n - N_EXTRA
+    ndyn = color.shape[0]
     ncol = owner.shape[0]
     for j in range(ndyn):
         dl[j] = 1e-7 * max(abs(y[j]), yscale[j])
@@ -266,22 +291,65 @@ def _jacobian(t, y, f0, J, T, yscale, color, owner, phys, scratch):
         for j in range(ndyn):
             if color[j] == c:
                 yp[j] += dl[j]
-        rhs(t, yp, fp, net, tier, tab, perf, pr, cell)
+        if cycle is not None:
+            rhs(t, yp, fp, net, tier, tab, perf, pr, cell)
+        if turn is not None:
+            transient_rhs(t, yp, fp, net, tier, tab, perf, pr, cell, tr, out)
         tally_clamps(pr, t, att)
         for j in range(ndyn):
             if color[j] == c:
                 for i in range(n):
                     J[i, j] = 0.0
-        for i in range(n):
+        # the network's rows (a turn's owner covers those alone)
+        for i in range(owner.shape[1]):
             j = owner[c, i]
             if j >= 0:
                 J[i, j] = (fp[i] - f0[i]) / dl[j]
+        if turn is not None:
+            total = 0.0
+            for i in range(dtq.shape[0]):
+                dtq[i] = pr[PR_P, i] * pr[PR_DV, i] - tq0[i]
+                total += dtq[i]
+            if total != 0.0:
+                for j in range(ndyn):
+                    if color[j] == c:
+                        share = dtq[j // 2] / total
+                        for i in range(nn, n):
+                            J[i, j] = (fp[i] - f0[i]) * share / dl[j]
+    nfev = ncol + 1
+    if turn is not None:
+        for k in range(LOOP_COLUMNS.shape[0]):
+            q = nn + LOOP_COLUMNS[k]
+            d = 1e-7 * max(abs(y[q]), yscale[q])
+            copy_into(yp, y)
+            yp[q] += d
+            transient_rhs(t, yp, fp, net, tier, tab, perf, pr, cell, tr, out)
+            tally_clamps(pr, t, att)
+            for i in range(n):
+                J[i, ndyn + k] = (fp[i] - f0[i]) / d
+        nfev += LOOP_COLUMNS.shape[0]
     dt = 1e-7 * max(abs(t), 1.0)
-    rhs(t + dt, y, fp, net, tier, tab, perf, pr, cell)
+    if cycle is not None:
+        rhs(t + dt, y, fp, net, tier, tab, perf, pr, cell)
+    if turn is not None:
+        transient_rhs(t + dt, y, fp, net, tier, tab, perf, pr, cell, tr, out)
     tally_clamps(pr, t + dt, att)
     for i in range(n):
         T[i] = (fp[i] - f0[i]) / dt
-    return ncol + 1
+    return nfev
+
+
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
+def _jacobian(t, y, f0, J, T, yscale, cols, phys, scratch):
+    """A steady cycle's Jacobian of the dynamic columns, and the time derivative:
+    analytic (:func:`_jacobian_exact`, no evaluation of :func:`rhs`) where it covers
+    the network, else :func:`_fd_jacobian`'s.  Arguments and return as
+    :func:`_fd_jacobian`'s (``jd`` and ``slope`` of ``scratch`` the analytic one's)."""
+    if _exact_jacobian_holds(phys.net):
+        _jacobian_exact(t, y, J, T, phys.net, phys.tier, phys.tab, phys.perf, scratch.pr,
+                        scratch.cell, scratch.jd, scratch.slope)
+        return 0
+    return _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, True, None)
 
 
 @njit(cache=True, _nrt=False)
@@ -347,85 +415,6 @@ def _w_solve(J, Winv, hd, x, out):
         for j in range(ndyn):
             acc += hd * J[q, j] * out[j]
         out[q] = acc
-
-
-#: The loop's states that take a column of the Rosenbrock method's Jacobian besides the
-#: network's dynamic ones: speed, governor coordinate and its rate (offsets from the
-#: network's length).
-LOOP_COLUMNS = np.array([X_OMEGA, X_Z, X_ZDOT])
-
-
-@njit(cache=True, inline="always")
-def _loop_jacobian(t, y, f0, tq0, J, T, yscale, color, owner, phys, tr, scratch):
-    """Finite-difference Jacobian of the loop, and its derivative in crank angle.
-
-    Columns: the network's dynamic states (``ndyn``), then speed, governor coordinate
-    and its rate (:data:`LOOP_COLUMNS`); ``J`` has shape (n, ndyn + 3).  The network's
-    columns of one colour are perturbed together as in
-    :func:`corliss.engine.kernels._jacobian` (their nodes' rows do not overlap); the
-    loop's own rows (speed, governor, works) see every node, but only through the
-    indicated torque sum p_i dV_i/dtheta, so a colour's change of such a row is shared
-    among the colour's columns as each one's node changed that sum (``tq0`` holds each
-    node's p dV/dtheta at ``y``; ``dtq`` is scratch of the nodes' length).  The loop's
-    three columns are perturbed one at a time.  Without them the method lost its
-    order: the flywheel's energy and the work integrals parted by 1e-5 of the change
-    even at rtol 1e-7 (tests/test_speed_loop.py).  Clamped evaluations go into
-    ``att``; ``yp``, ``fp`` and ``dl`` (of ``J``'s columns) are scratch.  ``phys``
-    (:class:`~corliss.engine.kernels.data.Physics`) is the network and the steam's
-    properties, ``tr`` the loop's tables, ``scratch``
-    (:class:`~corliss.engine.kernels.data.LoopScratch`) ``pr``, ``pa``, ``out``,
-    ``att``, ``yp``, ``fp``, ``dl`` and ``dtq``.  Returns the evaluations spent.
-    """
-    net, tier, tab, perf = phys.net, phys.tier, phys.tab, phys.perf
-    pr, pa, out, att = scratch.pr, scratch.pa, scratch.out, scratch.att
-    yp, fp, dl, dtq = scratch.yp, scratch.fp, scratch.dl, scratch.dtq
-    n = y.shape[0]
-    nn = n - N_EXTRA
-    ndyn = color.shape[0]
-    ncol = owner.shape[0]
-    nv = dtq.shape[0]
-    for j in range(ndyn):
-        dl[j] = 1e-7 * max(abs(y[j]), yscale[j])
-    for c in range(ncol):
-        copy_into(yp, y)
-        for j in range(ndyn):
-            if color[j] == c:
-                yp[j] += dl[j]
-        transient_rhs(t, yp, fp, net, tier, tab, perf, pr, pa, tr, out)
-        tally_clamps(pr, t, att)
-        for j in range(ndyn):
-            if color[j] == c:
-                for i in range(n):
-                    J[i, j] = 0.0
-        for i in range(nn):
-            j = owner[c, i]
-            if j >= 0:
-                J[i, j] = (fp[i] - f0[i]) / dl[j]
-        total = 0.0
-        for i in range(nv):
-            dtq[i] = pr[PR_P, i] * pr[PR_DV, i] - tq0[i]
-            total += dtq[i]
-        if total != 0.0:
-            for j in range(ndyn):
-                if color[j] == c:
-                    share = dtq[j // 2] / total
-                    for i in range(nn, n):
-                        J[i, j] = (fp[i] - f0[i]) * share / dl[j]
-    for k in range(LOOP_COLUMNS.shape[0]):
-        q = nn + LOOP_COLUMNS[k]
-        d = 1e-7 * max(abs(y[q]), yscale[q])
-        copy_into(yp, y)
-        yp[q] += d
-        transient_rhs(t, yp, fp, net, tier, tab, perf, pr, pa, tr, out)
-        tally_clamps(pr, t, att)
-        for i in range(n):
-            J[i, ndyn + k] = (fp[i] - f0[i]) / d
-    dt = 1e-7 * max(abs(t), 1.0)
-    transient_rhs(t + dt, y, fp, net, tier, tab, perf, pr, pa, tr, out)
-    tally_clamps(pr, t + dt, att)
-    for i in range(n):
-        T[i] = (fp[i] - f0[i]) / dt
-    return ncol + LOOP_COLUMNS.shape[0] + 1
 
 
 @njit(cache=True, inline="always")

@@ -54,7 +54,7 @@ import numpy as np
 
 from corliss.engine.kernels.balances import balances
 from corliss.engine.kernels.clamps import (CL_ACCEPTED, CL_ACCEPTED_CODE, CL_REJECTED,
-                                           CL_REJECTED_CODE)
+                                           CL_REJECTED_CODE, settle_visited, tally_clamps)
 from corliss.engine.kernels.compiled import njit
 from corliss.engine.kernels.governor import governor_motion
 from corliss.engine.kernels.mechanism import TWO_PI, piston_kinematics, port_areas
@@ -498,3 +498,95 @@ def _node_torques(pr, tq):
     evaluation (as :func:`transient_rhs` sums it)."""
     for i in range(tq.shape[0]):
         tq[i] = pr[PR_P, i] * pr[PR_DV, i]
+
+
+@njit(cache=True, inline="always")
+def turn_start(t, y, f0, phys, pr, cell, turn, att, clamps):
+    """A turn's start, for both step loops: the derivative there, a visited state's
+    (its clamps settled as one's), each node's share of the indicated torque
+    (``turn.tq[0]``), and the record's first column when the turn records.
+
+    Parameters
+    ----------
+    t : float
+        The turn's start [rad].
+    y : ndarray
+        The state there.
+    f0 : ndarray
+        Written: the derivative there (per radian).
+    phys : Physics
+        The network and the steam's properties
+        (:class:`~corliss.engine.kernels.data.Physics`).
+    pr, cell : ndarray
+        Scratch: the node properties and the port areas [m2].
+    turn : LoopTurn
+        The turn (:class:`~corliss.engine.kernels.data.LoopTurn`).
+    att : ndarray
+        A step attempt's clamp tally, shape (4,), used and cleared.
+    clamps : ndarray
+        The turn's clamp counts, shape (6,), updated.
+
+    Returns
+    -------
+    int
+        The record's columns filled: 1 when the turn records, else 0.
+    """
+    out = turn.out[0]
+    transient_rhs(t, y, f0, phys.net, phys.tier, phys.tab, phys.perf, pr, cell, turn.tr, out)
+    _node_torques(pr, turn.tq[0])
+    tally_clamps(pr, t, att)
+    settle_visited(att, clamps)
+    if turn.record:
+        _record(turn.rec, 0, t, y, y.shape[0] - N_EXTRA, out)
+        return 1
+    return 0
+
+
+@njit(cache=True, inline="always")
+def turn_accepted(t, y, f0, phys, pr, cell, turn, att, clamps, n_rec):
+    """After an accepted step of a turn, for both step loops (``y`` and ``f0`` the
+    state and derivative at its end, ``turn.out[0]`` that evaluation's outputs): the
+    governor's stops (:func:`_project`), the derivative evaluated afresh where one was
+    struck (a visited state: its clamps settled, a stop of the run raised as
+    :func:`_visited_clamps` says, the node torques ``turn.tq[0]`` taken), and the step
+    recorded while the record has room.
+
+    Parameters
+    ----------
+    t : float
+        The step's end [rad].
+    y : ndarray
+        The state there, projected in place.
+    f0 : ndarray
+        The derivative there, evaluated again in place where a stop was struck.
+    phys, pr, cell, turn, att, clamps
+        As :func:`turn_start`'s.
+    n_rec : int
+        The record's columns filled so far.
+
+    Returns
+    -------
+    nfev : int
+        Right-hand-side evaluations spent (0 or 1).
+    n_rec : int
+        The record's columns filled now.
+    """
+    nn = y.shape[0] - N_EXTRA
+    out = turn.out[0]
+    nfev = 0
+    before = y[nn + X_Z]
+    _project(y, nn)
+    if y[nn + X_Z] != before:   # a stop was struck: restart the derivative
+        transient_rhs(t, y, f0, phys.net, phys.tier, phys.tab, phys.perf, pr, cell, turn.tr,
+                      out)
+        _node_torques(pr, turn.tq[0])
+        tally_clamps(pr, t, att)
+        settle_visited(att, clamps)
+        if clamps[CL_ACCEPTED] > 0.0:
+            _visited_clamps(clamps, turn.tr.sc)
+        nfev = 1
+    if turn.record and n_rec < turn.rec.shape[1]:
+        # out holds the values at the step's end
+        _record(turn.rec, n_rec, t, y, nn, out)
+        n_rec += 1
+    return nfev, n_rec

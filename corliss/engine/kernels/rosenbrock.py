@@ -1,7 +1,7 @@
-"""The Rosenbrock step loops: one loop for every tableau (the ode23s pair, ``ros4``,
-RODAS3, RODAS4) over a steady cycle (:func:`cycle_ros`, compiled in versions by
-whether the pair's controller and the finite-difference Jacobian are used), and over
-a turn of the governed loop (:func:`integrate_turn_ros`).
+"""The Rosenbrock step loop: one loop (:func:`_ros_steps`) for every tableau (the ode23s
+pair, ``ros4``, RODAS3, RODAS4), over a steady cycle (:func:`cycle_ros`) and over a
+turn of the governed loop (:func:`integrate_turn_ros`), compiled in versions by whether
+the pair's controller, the finite-difference Jacobian and the loop's turn are used.
 """
 
 from __future__ import annotations
@@ -12,23 +12,22 @@ import numpy as np
 
 from corliss.engine.kernels.balances import rhs
 from corliss.engine.kernels.clamps import (CL_ACCEPTED, CL_NODE, settle_clamps,
-                                           settle_trial, settle_visited, tally_clamps,
-                                           visited_clamp_off)
+                                           settle_trial, tally_clamps, visited_clamp_off)
 from corliss.engine.kernels.compiled import njit
-from corliss.engine.kernels.data import (LoopScratch, Physics, RosScratch, StepControl,
-                                         StepScratch, Tableau)
+from corliss.engine.kernels.data import (Columns, LoopTurn, Physics, RosScratch,
+                                         StepControl, StepScratch, Tableau)
 from corliss.engine.kernels.jacobians import (LOOP_COLUMNS, _exact_jacobian_holds,
-                                              _jacobian, _jacobian_exact, _loop_jacobian,
+                                              _fd_jacobian, _jacobian, _jacobian_exact,
                                               _loop_w_inverse, _loop_w_solve, _w_inverse,
                                               _w_solve)
 from corliss.engine.kernels.loop import (N_EXTRA, N_REC, S_MAX_RHS, S_STEP, S_WMIN,
-                                         X_OMEGA, X_Z, _node_torques, _project, _record,
-                                         _turn_end, _visited_clamps, transient_rhs)
+                                         X_OMEGA, _node_torques, _turn_end, _visited_clamps,
+                                         transient_rhs, turn_accepted, turn_start)
 from corliss.engine.kernels.mechanism import TWO_PI
 from corliss.engine.kernels.properties import PR_ROWS
 from corliss.engine.kernels.stepping import (copy_into, emit_samples, initial_step,
                                              predictive_factor, put_column, segment_start,
-                                             starting_step, step_factor)
+                                             starting_step, step_factor, turn_first_step)
 from corliss.engine.kernels.tableaus import (KIND_ODE23S, _D, _E32, tableau_argument,
                                              tableau_solution, tableau_stage_rhs)
 
@@ -134,62 +133,135 @@ def cycle_ros(y0, stops, out_theta, rtol, atol, net, tier, tab, perf, color, own
     ndyn = color.shape[0]
     y = y0.copy()
     samples = np.full((n, out_theta.shape[0]), np.nan)
-    vec = np.empty((9, n))
-    U = np.empty((tb.shape[0], n))
-    J = np.zeros((n, ndyn))
-    mats = np.empty((2, ndyn, ndyn))
-    dl = np.empty(ndyn)
-    pr = np.full((PR_ROWS, net.node_kind.shape[0]), np.nan)
-    jd = np.full((max(12, PR_ROWS), net.node_kind.shape[0]), np.nan)   # also holds pr's rows (starting_step)
-    cyl = np.empty((2, net.port_npts.shape[0], 4))
     clamps = np.zeros(6)
     clamps[CL_NODE] = -1.0
-    tally = np.zeros((2, 4))
-    nfev, ok = _ros_steps(y, samples, stops, out_theta,
-                          StepControl(rtol, atol, max_rhs, jac_age),
-                          Physics(net, tier, tab, perf), color, owner,
-                          Tableau(gam, tA, tC, tc, td, tb, te, same, expo),
-                          True if kind == KIND_ODE23S else None,
-                          None if _exact_jacobian_holds.py_func(net) else True,
-                          RosScratch(vec, U, J, mats, dl, pr, jd, cyl, clamps, tally))
-    return y, samples, nfev, ok, clamps
+    scratch = RosScratch(np.empty((10, n)), np.empty((tb.shape[0], n)), np.zeros((n, ndyn)),
+                         np.empty((2, ndyn, ndyn)), np.empty(ndyn),
+                         np.full((PR_ROWS, net.node_kind.shape[0]), np.nan),
+                         # jd also holds pr's rows (starting_step)
+                         np.full((max(12, PR_ROWS), net.node_kind.shape[0]), np.nan),
+                         np.empty((2, net.port_npts.shape[0], 4)), clamps, np.zeros((2, 4)))
+    nfev, status, _ = _ros_steps(y, samples, stops, out_theta,
+                                 StepControl(rtol, atol, max_rhs, jac_age),
+                                 Physics(net, tier, tab, perf), Columns(color, owner),
+                                 Tableau(gam, tA, tC, tc, td, tb, te, same, expo),
+                                 True if kind == KIND_ODE23S else None,
+                                 None if _exact_jacobian_holds.py_func(net) else True,
+                                 scratch, True, None)
+    return y, samples, nfev, status == 0, clamps
+
+
+#: The positions of :func:`_ros_steps`'s ``pair`` (True: the ode23s pair; None: a
+#: tableau's method), ``finite`` (True: the Jacobian by finite differences; None: the
+#: analytic one) and ``turn`` (None: a steady cycle) among its arguments: numba
+#: compiles and caches a version for each combination a run takes
+#: (:func:`corliss.engine.kernels.cache.cycle_kernel_uncached`).
+ROS_PAIR_ARG, ROS_FINITE_ARG, ROS_TURN_ARG = 8, 9, 12
 
 
 @njit(cache=True, _nrt=False)
-def _ros_steps(y, samples, stops, out_theta, ctl, phys, color, owner, tableau, pair, finite,
-               scratch):
-    """:func:`cycle_ros`'s steps, on scratch it allocated (no reference counts:
-    the views of the scratch taken here cost nothing).  ``y`` is advanced to the
-    cycle's end, ``samples`` and ``clamps`` written; returns the evaluations spent
-    and whether the cycle ended well.  ``pair``: True for the ode23s pair, None for a
-    tableau's method; ``finite``: True for a network whose Jacobian is taken by finite
-    differences (:func:`_exact_jacobian_holds` false), None for the analytic one.  Each
-    is a separate compiled version without the other's code.  ``ctl``
-    (:class:`~corliss.engine.kernels.data.StepControl`), ``phys``
-    (:class:`~corliss.engine.kernels.data.Physics`), ``tableau``
-    (:class:`~corliss.engine.kernels.data.Tableau`) and ``scratch``
-    (:class:`~corliss.engine.kernels.data.RosScratch`) are :func:`cycle_ros`'s."""
+def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, finite, scratch,
+               cycle, turn):
+    """The Rosenbrock step loop of a steady cycle (:func:`cycle_ros`) and of a turn of the
+    governed loop (:func:`integrate_turn_ros`), on scratch its caller allocated (no
+    reference counts: the views of the scratch taken here cost nothing).
+
+    ``y`` is advanced to the end (``stops[-1]``), ``samples`` and ``scratch.clamps``
+    written.  ``pair``: True for the ode23s pair, None for a tableau's method;
+    ``finite``: True for a network whose Jacobian is taken by finite differences
+    (:func:`_exact_jacobian_holds` false), None for the analytic one; ``cycle`` True
+    and ``turn`` None for a steady cycle, ``cycle`` None and ``turn`` the loop's
+    :class:`~corliss.engine.kernels.data.LoopTurn` for a turn.  Each is a separate
+    compiled version; a version taking None for one of them holds none of the code
+    that argument's branches guard (numba prunes them as it types the function: see
+    :func:`~corliss.engine.kernels.dopri5._dopri5_steps` on why the cycle's code and
+    the turn's are each guarded by their own argument).  A steady cycle: the network's right-hand side
+    :func:`~corliss.engine.kernels.balances.rhs` between the stops, a step whose end
+    needed the properties clamped retried shorter.  A turn (a tableau's method on the
+    finite-difference Jacobian): one segment (``stops`` the turn's start and end), the
+    loop's right-hand side :func:`~corliss.engine.kernels.loop.transient_rhs` and its
+    Jacobian (:func:`_fd_jacobian` with ``turn``, one a step), the first step carried over
+    from the turn before (``sc[S_STEP]``) or :func:`turn_first_step`'s, a visited
+    state's clamp stopping the run (but for the greatest energy's), the governor's
+    stops after each accepted step, each accepted step recorded, and the run stopped
+    where the engine stalls.
+
+    Parameters
+    ----------
+    y : ndarray
+        The state at ``stops[0]``, advanced in place; shape (n,).
+    samples : ndarray
+        Written: ``samples[:, k]`` the state at ``out_theta[k]``; shape (n, outputs).
+    stops : ndarray
+        Shaft angles [rad], increasing: the segments, each started afresh.
+    out_theta : ndarray
+        Shaft angles [rad] where the state is sampled, increasing.
+    ctl : StepControl
+        Tolerances, budget of evaluations and the Jacobian's age
+        (:class:`~corliss.engine.kernels.data.StepControl`).
+    phys : Physics
+        The network and the steam's properties
+        (:class:`~corliss.engine.kernels.data.Physics`).
+    cols : Columns
+        The Jacobian's column groups (:class:`~corliss.engine.kernels.data.Columns`).
+    tableau : Tableau
+        The method's tableau (:class:`~corliss.engine.kernels.data.Tableau`).
+    pair : True or None
+        The ode23s pair's formulas and controller, or the tableau's.
+    finite : True or None
+        The finite-difference Jacobian, or the analytic one.
+    scratch : RosScratch
+        (:class:`~corliss.engine.kernels.data.RosScratch`), its clamp counts written.
+    cycle : True or None
+        True for a steady cycle, None for a turn.
+    turn : LoopTurn or None
+        The governed loop's turn, or None for a steady cycle.
+
+    Returns
+    -------
+    nfev : int
+        Right-hand-side evaluations spent.
+    status : int
+        As :func:`corliss.engine.kernels.dopri5._dopri5_steps`'s.
+    n_rec : int
+        Columns of ``turn.rec`` filled (0 for a cycle).
+    """
     rtol, atol, max_rhs, jac_age = ctl.rtol, ctl.atol, ctl.max_rhs, ctl.jac_age
     net, tier, tab, perf = phys.net, phys.tier, phys.tab, phys.perf
+    color = cols.color
     gam, tA, tC, tc, td = tableau.gamma, tableau.A, tableau.C, tableau.c, tableau.d
     tb, te, same, expo = tableau.b, tableau.e, tableau.same, tableau.expo
     vec, U, J, mats, dl = scratch.vec, scratch.U, scratch.J, scratch.mats, scratch.dl
     pr, jd, cyl, clamps, tally = scratch.pr, scratch.jd, scratch.cyl, scratch.clamps, scratch.tally
     n = y.shape[0]
+    nn = n - N_EXTRA
+    ndyn = color.shape[0]
     ns = tb.shape[0]
     safety = 0.9
+    # the shortest step taken whatever its error or clamps
+    h_min = 1e-12
+    if turn is not None:
+        h_min = 1e-10
     # the ode23s pair's steps by Gustafsson's predictive controller, no growth on the
     # step after a rejection (:func:`predictive_factor`); a tableau's by the error alone
     predictive = pair is not None
     f0, f1, ytmp, tmp, T, x, yscale, yp, fp = (vec[0], vec[1], vec[2], vec[3], vec[4],
                                                vec[5], vec[6], vec[7], vec[8])
+    xs = vec[9]
     for i in range(n):
         yscale[i] = atol[i] / rtol
     Winv, A = mats[0], mats[1]
     slope, cell = cyl[0], cyl[1]
     att, att_end = tally[0], tally[1]
     steps = StepScratch(pr, cell, att, yp, fp, dl, jd, slope)
+    if turn is not None:
+        tr = turn.tr
+        sc = tr.sc
+        out, out1 = turn.out[0], turn.out[1]
+        tq0, tq1 = turn.tq[0], turn.tq[1]
     nfev = 0
+    n_rec = 0
+    status = 0
     io = 0
     while io < out_theta.shape[0] and out_theta[io] <= stops[0]:
         put_column(samples, io, y)
@@ -205,37 +277,54 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, color, owner, tableau, p
         if b - a <= 0.0:
             continue
         t = a
-        if not (predictive and t_end == a):
-            # (the ode23s pair's last step ended on this stop: f0 is the derivative at
-            # this angle and state, evaluated and its clamps settled as a visited
-            # state's; the area's kink changes the derivative's slope, not its value)
-            segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att)
+        if cycle is not None:
+            if not (predictive and t_end == a):
+                # (the ode23s pair's last step ended on this stop: f0 is the derivative
+                # at this angle and state, evaluated and its clamps settled as a visited
+                # state's; the area's kink changes the derivative's slope, not its value)
+                segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att)
+                nfev += 1
+            if h_prev > 0.0:
+                h = min(h_prev, b - a)
+            elif predictive:
+                h = starting_step(t, y, f0, atol, rtol, b - a, expo, phys, steps)
+                nfev += 1
+            else:
+                h = initial_step(f0, y, atol, rtol, b - a)
+        if turn is not None:
+            n_rec = turn_start(t, y, f0, phys, pr, cell, turn, att, clamps)
             nfev += 1
-        if h_prev > 0.0:
-            h = min(h_prev, b - a)
-        elif predictive:
-            h = starting_step(t, y, f0, atol, rtol, b - a, expo, phys, steps)
-            nfev += 1
-        else:
-            h = initial_step(f0, y, atol, rtol, b - a)
+            h = sc[S_STEP]
+            if not (h > 0.0):
+                h = turn_first_step(f0, y, atol, rtol, 0.25)
         age = jac_age          # accepted steps since J and T were computed
         h_w = -1.0             # the step W was inverted for
         while t < b:
             if t + h > b or b - (t + h) < 1e-12:
                 h = b - t
             if age >= jac_age:
-                if finite is None:
-                    # called from here, not through :func:`_jacobian`: through it, a call
-                    # cost 2.2 us against 0.7 us (the default scene; numba's handling of a
-                    # function that passes the network and table tuples on, it seems)
-                    _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope)
-                else:
-                    nfev += _jacobian(t, y, f0, J, T, yscale, color, owner, phys, steps)
+                if turn is not None:
+                    # inlined here: compiled apart, the loop's right-hand side linked into
+                    # it was optimised once more by LLVM, seconds of a first run
+                    nfev += _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, steps, None,
+                                         turn)
+                if cycle is not None:
+                    if finite is None:
+                        # called from here, not through :func:`_jacobian`: through it, a
+                        # call cost 2.2 us against 0.7 us (the default scene; numba's
+                        # handling of a function that passes the network and table tuples
+                        # on, it seems)
+                        _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope)
+                    else:
+                        nfev += _jacobian(t, y, f0, J, T, yscale, cols, phys, steps)
                 age = 0
                 h_w = -1.0
             hd = h * gam
             if h != h_w:
-                _w_inverse(J, hd, Winv, A)
+                if cycle is not None:
+                    _w_inverse(J, hd, Winv, A)
+                if turn is not None:
+                    _loop_w_inverse(J, hd, Winv, A, ndyn, nn)
                 h_w = h
             if pair is not None:
                 # Shampine and Reichelt's formulas, k_i in U[i]; the end's derivative
@@ -274,23 +363,37 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, color, owner, tableau, p
                         copy_into(fp, f0)
                     elif same[st] == 0:
                         tableau_argument(y, U, tA, st, ytmp)
-                        rhs(t + tc[st] * h, ytmp, fp, net, tier, tab, perf, pr, cell)
+                        if cycle is not None:
+                            rhs(t + tc[st] * h, ytmp, fp, net, tier, tab, perf, pr, cell)
+                        if turn is not None:
+                            transient_rhs(t + tc[st] * h, ytmp, fp, net, tier, tab, perf, pr,
+                                          cell, tr, out1)
                         tally_clamps(pr, t + tc[st] * h, att)
                         nfev += 1
                     tableau_stage_rhs(fp, T, U, tC, td, st, h, x)
-                    _w_solve(J, Winv, hd, x, U[st])
+                    if cycle is not None:
+                        _w_solve(J, Winv, hd, x, U[st])
+                    if turn is not None:
+                        _loop_w_solve(J, Winv, hd, x, U[st], ndyn, nn, xs)
                     for i in range(n):
                         U[st, i] *= hd
                 err = tableau_solution(y, U, tb, te, atol, rtol, ytmp)
-                accepted = err <= 1.0 or h < 1e-12
+                accepted = err <= 1.0 or h < h_min
                 if accepted:
-                    rhs(t + h, ytmp, f1, net, tier, tab, perf, pr, cell)
+                    if cycle is not None:
+                        rhs(t + h, ytmp, f1, net, tier, tab, perf, pr, cell)
+                    if turn is not None:
+                        transient_rhs(t + h, ytmp, f1, net, tier, tab, perf, pr, cell, tr, out)
+                        _node_torques(pr, tq1)
                     tally_clamps(pr, t + h, att_end)
                     nfev += 1
                     # a step whose end needed the properties clamped is retried shorter
-                    accepted = visited_clamp_off(att_end) == 0 or h < 1e-12
+                    accepted = visited_clamp_off(att_end) == 0 or h < h_min
             settle_trial(att, clamps)
             settle_clamps(att_end, accepted, clamps)
+            if turn is not None:
+                if clamps[CL_ACCEPTED] > 0.0:
+                    _visited_clamps(clamps, sc)
             if accepted:
                 t1 = t + h
                 io = emit_samples(io, out_theta, t, y, f0, t1, ytmp, f1, samples, tmp)
@@ -299,6 +402,11 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, color, owner, tableau, p
                 copy_into(y, ytmp)
                 copy_into(f0, f1)
                 age += 1
+                if turn is not None:
+                    copy_into(tq0, tq1)
+                    nf, n_rec = turn_accepted(t, y, f0, phys, pr, cell, turn, att, clamps,
+                                              n_rec)
+                    nfev += nf
                 if predictive:
                     fac = predictive_factor(err, h, err_acc, h_acc, safety, expo)
                     if rejected:
@@ -310,6 +418,12 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, color, owner, tableau, p
                 rejected = False
                 h_prev = h * fac
                 h = h_prev
+                if turn is not None:
+                    if t < b:
+                        sc[S_STEP] = h
+                    if y[nn + X_OMEGA] < sc[S_WMIN]:
+                        status = 2
+                        break
             else:
                 rejected = True
                 if age > 0:
@@ -318,12 +432,22 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, color, owner, tableau, p
                     h = 0.5 * h  # accurate, but through a state the properties do not hold
                 else:
                     h = h * max(0.2, safety * err ** expo)
-            if not (h > 0.0) or not math.isfinite(y[0]) or nfev > max_rhs:
-                return nfev, False
-    while io < out_theta.shape[0]:
-        put_column(samples, io, y)
-        io += 1
-    return nfev, True
+            if not (h > 0.0) or not math.isfinite(y[0]):
+                status = 1
+                break
+            if nfev > max_rhs:
+                status = 4
+                break
+        if status != 0:
+            break
+    if cycle is not None:
+        if status == 0:
+            while io < out_theta.shape[0]:
+                put_column(samples, io, y)
+                io += 1
+    if turn is not None:
+        status = _turn_end(io, out_theta, samples, y, nn, status, turn.t_end, clamps, sc)
+    return nfev, status, n_rec
 
 
 #: Accepted steps of the Rosenbrock methods one Jacobian serves (1: a fresh one every
@@ -347,16 +471,16 @@ _ODE23S_ARGS = Tableau(_D, np.zeros((4, 4)), np.zeros((4, 4)), np.zeros(4), np.z
                        np.zeros(4), np.zeros(4), np.zeros(4, dtype=np.int64), -1.0 / 3.0)
 
 
-@njit(cache=True)
 def integrate_turn_ros(y0, th0, out_theta, rtol, atol, phys, tr, record, t_end, color, owner,
                        tableau):
     """Integrate one turn as :func:`integrate_turn`, with a Rosenbrock method.
 
-    The tableau's method of :func:`corliss.engine.kernels.rosenbrock.cycle_ros` (one of
-    :data:`corliss.engine.kernels.tableaus.ROS_TABLEAUS`) on the Jacobian of
-    :func:`_loop_jacobian`, one a step (the retry of a rejected step reuses it; the
-    linear algebra is :func:`corliss.engine.kernels._w_inverse`'s and ``_w_solve``'s
-    over the Jacobian's columns, which here are not the first states).  dopri5 is held
+    The tableau's method of :func:`cycle_ros` (one of
+    :data:`corliss.engine.kernels.tableaus.ROS_TABLEAUS`) by the same step loop,
+    :func:`_ros_steps`, on the loop's finite-difference Jacobian (:func:`_fd_jacobian`
+    with the loop's columns), one a step (the retry of a rejected step reuses it; the
+    linear algebra is :func:`_loop_w_inverse`'s and :func:`_loop_w_solve`'s over the
+    Jacobian's columns, which here are not the first states).  dopri5 is held
     by the stiff pressure equalisation through an open port to steps of 1 to 2 deg
     whatever its tolerance (an eigenvalue of -60 to -330 per radian on the
     Porter-Allen engine, the step times it at 2.2 to 3.1, the edge of its stability);
@@ -366,7 +490,8 @@ def integrate_turn_ros(y0, th0, out_theta, rtol, atol, phys, tr, record, t_end, 
     then cost more than they save (:data:`corliss.engine.options.PRESETS`).  The step
     carries over from turn to turn (``sc[S_STEP]``).  Returns, raises and counts clamps
     as :func:`integrate_turn`; a step whose end needs the properties clamped (but for
-    the greatest energy's) is retried shorter.
+    the greatest energy's) is retried shorter.  Allocates the scratch in Python, as
+    :func:`cycle_ros` (see :func:`integrate_turn`).
 
     Parameters
     ----------
@@ -423,149 +548,24 @@ def integrate_turn_ros(y0, th0, out_theta, rtol, atol, phys, tr, record, t_end, 
     RunError
         A visited state needed a clamp other than the greatest energy's.
     """
-    net, tier, tab, perf = phys.net, phys.tier, phys.tab, phys.perf
-    gam, tA, tC, tc, td = tableau.gamma, tableau.A, tableau.C, tableau.c, tableau.d
-    tb, te, same, expo = tableau.b, tableau.e, tableau.same, tableau.expo
+    net = phys.net
     n = y0.shape[0]
-    nn = n - N_EXTRA
     ndyn = color.shape[0]
-    ns = tb.shape[0]
+    m = ndyn + LOOP_COLUMNS.shape[0]
     nv = net.node_kind.shape[0]
     y = y0.copy()
     samples = np.full((n, out_theta.shape[0]), np.nan)
-    nrec_max = 40000 if record else 1
-    rec = np.empty((N_REC, nrec_max))
-    n_rec = 0
-    f0 = np.empty(n)
-    f1 = np.empty(n)
-    U = np.empty((ns, n))
-    ytmp = np.empty(n)
-    tmp = np.empty(n)
-    m = ndyn + LOOP_COLUMNS.shape[0]
-    J = np.zeros((n, m))
-    Winv = np.empty((m, m))
-    A = np.empty((m, m))
-    xs = np.empty(m)
-    T = np.empty(n)
-    x = np.empty(n)
-    yscale = atol / rtol
-    yp = np.empty(n)
-    fp = np.empty(n)
-    dl = np.empty(ndyn)
-    tq0 = np.empty(nv)
-    tq1 = np.empty(nv)
-    dtq = np.empty(nv)
-    pr = np.full((PR_ROWS, nv), np.nan)
-    pa = np.empty((net.port_npts.shape[0], 4))
-    out = np.empty(4)
-    out1 = np.empty(4)
-    sc = tr.sc
-    clamps = np.zeros(6)
-    att = np.zeros(4)
-    att_end = np.zeros(4)
-    loop_scratch = LoopScratch(pr, pa, out1, att, yp, fp, dl, dtq)
-    a = th0
-    b = th0 + TWO_PI
-    t = a
-    transient_rhs(t, y, f0, net, tier, tab, perf, pr, pa, tr, out)
-    _node_torques(pr, tq0)
-    tally_clamps(pr, t, att)
-    settle_visited(att, clamps)
-    nfev = 1
-    io = 0
-    while io < out_theta.shape[0] and out_theta[io] <= a:
-        put_column(samples, io, y)
-        io += 1
-    if record:
-        _record(rec, 0, t, y, nn, out)
-        n_rec = 1
-    h = sc[S_STEP]
-    if not (h > 0.0):
-        scale = 0.0
-        for i in range(n):
-            v = abs(f0[i]) / (atol[i] + rtol * abs(y[i]))
-            if v > scale:
-                scale = v
-        h = 0.01 * (rtol ** 0.25) / scale if scale > 0.0 else 0.01
-        h = min(max(h, 1e-7), 0.05)
-    fresh = True           # J and T are not yet those of the step's start
-    h_w = -1.0             # the step W was inverted for
-    status = 0
-    while t < b:
-        if t + h > b or b - (t + h) < 1e-12:
-            h = b - t
-        if fresh:
-            nfev += _loop_jacobian(t, y, f0, tq0, J, T, yscale, color, owner, phys, tr,
-                                   loop_scratch)
-            fresh = False
-            h_w = -1.0
-        hd = h * gam
-        if h != h_w:
-            _loop_w_inverse(J, hd, Winv, A, ndyn, nn)
-            h_w = h
-        for st in range(ns):
-            if st == 0 or same[st] == 1:
-                copy_into(fp, f0)
-            elif same[st] == 0:
-                tableau_argument(y, U, tA, st, ytmp)
-                transient_rhs(t + tc[st] * h, ytmp, fp, net, tier, tab, perf, pr, pa, tr, out1)
-                tally_clamps(pr, t + tc[st] * h, att)
-                nfev += 1
-            tableau_stage_rhs(fp, T, U, tC, td, st, h, x)
-            _loop_w_solve(J, Winv, hd, x, U[st], ndyn, nn, xs)
-            for i in range(n):
-                U[st, i] *= hd
-        err = tableau_solution(y, U, tb, te, atol, rtol, ytmp)
-        accepted = err <= 1.0 or h < 1e-10
-        if accepted:
-            transient_rhs(t + h, ytmp, f1, net, tier, tab, perf, pr, pa, tr, out)
-            _node_torques(pr, tq1)
-            tally_clamps(pr, t + h, att_end)
-            nfev += 1
-            # a step whose end needed the properties clamped is retried shorter
-            accepted = visited_clamp_off(att_end) == 0 or h < 1e-10
-        settle_trial(att, clamps)
-        settle_clamps(att_end, accepted, clamps)
-        if clamps[CL_ACCEPTED] > 0.0:
-            _visited_clamps(clamps, sc)
-        if accepted:
-            t1 = t + h
-            io = emit_samples(io, out_theta, t, y, f0, t1, ytmp, f1, samples, tmp)
-            t = t1
-            copy_into(y, ytmp)
-            copy_into(f0, f1)
-            copy_into(tq0, tq1)
-            before = y[nn + X_Z]
-            _project(y, nn)
-            if y[nn + X_Z] != before:   # a stop was struck: restart the derivative
-                transient_rhs(t, y, f0, net, tier, tab, perf, pr, pa, tr, out)
-                _node_torques(pr, tq0)
-                tally_clamps(pr, t, att)
-                settle_visited(att, clamps)
-                if clamps[CL_ACCEPTED] > 0.0:
-                    _visited_clamps(clamps, sc)
-                nfev += 1
-            fresh = True
-            if record and n_rec < nrec_max:
-                # out[] holds the values at the step's end
-                _record(rec, n_rec, t, y, nn, out)
-                n_rec += 1
-            h_next = h * step_factor(err, 0.9, expo)
-            if t < b:
-                sc[S_STEP] = h_next
-            h = h_next
-            if y[nn + X_OMEGA] < sc[S_WMIN]:
-                status = 2
-                break
-        elif err <= 1.0:
-            h = 0.5 * h  # accurate, but through a state the properties do not hold
-        else:
-            h = h * max(0.2, 0.9 * err ** expo)
-        if not (h > 0.0) or not math.isfinite(y[0]):
-            status = 1
-            break
-        if nfev > sc[S_MAX_RHS]:
-            status = 4
-            break
-    status = _turn_end(io, out_theta, samples, y, nn, status, t_end, clamps, sc)
+    rec = np.empty((N_REC, 40000 if record else 1))
+    stops = np.array([th0, th0 + TWO_PI])
+    # jd: none (the analytic Jacobian and the pair's starting step are a cycle's)
+    scratch = RosScratch(np.empty((10, n)), np.empty((tableau.b.shape[0], n)),
+                         np.zeros((n, m)), np.empty((2, m, m)), np.empty(ndyn),
+                         np.full((PR_ROWS, nv), np.nan), np.empty((0, 0)),
+                         np.empty((2, net.port_npts.shape[0], 4)), np.zeros(6),
+                         np.zeros((2, 4)))
+    nfev, status, n_rec = _ros_steps(y, samples, stops, out_theta,
+                                     StepControl(rtol, atol, tr.sc[S_MAX_RHS], 1), phys,
+                                     Columns(color, owner), tableau, None, True, scratch,
+                                     None, LoopTurn(tr, np.empty((2, 4)), rec, record, t_end,
+                                              np.empty((3, nv))))
     return y, samples, rec, n_rec, nfev, status

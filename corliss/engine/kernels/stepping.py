@@ -87,6 +87,34 @@ def emit_samples(io, out_theta, t0, y0, f0, t1, y1, f1, samples, tmp):
     return io
 
 
+@njit(cache=True, inline="always")
+def derivative_scale(f0, y, atol, rtol):
+    """The derivative's size in the error's scale, the first steps' measure.
+
+    Parameters
+    ----------
+    f0 : ndarray
+        The derivative (per radian); shape (n,).
+    y : ndarray
+        The state; shape (n,).
+    atol : ndarray
+        Absolute tolerances, in each component's unit; shape (n,).
+    rtol : float
+        Relative tolerance [-].
+
+    Returns
+    -------
+    float
+        ``max_i |f_i| / (atol_i + rtol |y_i|)`` [1/rad].
+    """
+    scale = 0.0
+    for i in range(y.shape[0]):
+        v = abs(f0[i]) / (atol[i] + rtol * abs(y[i]))
+        if v > scale:
+            scale = v
+    return scale
+
+
 @njit(cache=True, _nrt=False)
 def initial_step(f0, y, atol, rtol, span):
     """A first step from the derivative's scale.
@@ -95,14 +123,9 @@ def initial_step(f0, y, atol, rtol, span):
 
     Parameters
     ----------
-    f0 : ndarray
-        The derivative at the start (per radian); shape (n,).
-    y : ndarray
-        The state at the start; shape (n,).
-    atol : ndarray
-        Absolute tolerances, in each component's unit; shape (n,).
-    rtol : float
-        Relative tolerance [-].
+    f0, y, atol, rtol
+        The derivative at the start, the state there and the tolerances, as
+        :func:`derivative_scale` takes them.
     span : float
         The segment's length [rad].
 
@@ -111,13 +134,33 @@ def initial_step(f0, y, atol, rtol, span):
     float
         The step [rad], within [1e-9, ``span``] (``span`` when nothing changes).
     """
-    scale = 0.0
-    for i in range(y.shape[0]):
-        v = abs(f0[i]) / (atol[i] + rtol * abs(y[i]))
-        if v > scale:
-            scale = v
+    scale = derivative_scale(f0, y, atol, rtol)
     h = 0.01 * (rtol ** 0.2) / scale if scale > 0.0 else span
     return min(max(h, 1e-9), span)
+
+
+@njit(cache=True, _nrt=False)
+def turn_first_step(f0, y, atol, rtol, root):
+    """The first step of a turn of the governed loop, from the derivative's scale.
+
+    ``0.01 rtol^root / max_i (|f_i| / (atol_i + rtol |y_i|))``, within [1e-7, 0.05].
+
+    Parameters
+    ----------
+    f0, y, atol, rtol
+        The derivative at the start, the state there and the tolerances, as
+        :func:`derivative_scale` takes them.
+    root : float
+        The power of ``rtol``, ``1 / (order + 1)`` of the method's error [-].
+
+    Returns
+    -------
+    float
+        The step [rad] (0.01 when nothing changes).
+    """
+    scale = derivative_scale(f0, y, atol, rtol)
+    h = 0.01 * (rtol ** root) / scale if scale > 0.0 else 0.01
+    return min(max(h, 1e-7), 0.05)
 
 
 @njit(cache=True, _nrt=False)
