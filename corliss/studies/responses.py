@@ -84,13 +84,13 @@ def flatten(summary: Mapping[str, Any], prefix: str = "") -> dict:
     return out
 
 
-def picked(summary: dict, key: str):
+def picked(summary: Mapping[str, Any], key: str):
     """One number of a summary by its dotted key, as :func:`flatten` gives it (without
     flattening the whole summary: a study's run reads a few keys of it).
 
     Parameters
     ----------
-    summary : dict
+    summary : mapping
         A run's summary (nested dicts).
     key : str
         A dotted key (``events.head.cutoff_frac``).
