@@ -54,6 +54,10 @@ def test_the_wheel_carries_its_version_licence_and_classifiers(wheel):
     (meta_name,) = [n for n in wheel.namelist() if n.endswith(".dist-info/METADATA")]
     meta = email.message_from_bytes(wheel.read(meta_name))
     assert meta["Version"] == corliss.__version__      # single-sourced
-    assert "License :: OSI Approved :: MIT License" in meta.get_all("Classifier")
+    # the licence as a PEP 639 SPDX expression (the classifier and the table form are
+    # deprecated by setuptools, an error from 2027-02-18)
+    assert meta["License-Expression"] == "MIT"
+    assert meta.get_all("License-File") == ["LICENSE"]
+    assert not [c for c in meta.get_all("Classifier") if c.startswith("License ::")]
     assert any(n.endswith(".dist-info/LICENSE") or "/licenses/LICENSE" in n
                for n in wheel.namelist())

@@ -21,9 +21,10 @@ from __future__ import annotations
 
 import importlib
 import math
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar, Generic, TypeVar, cast
 
 import numpy as np
 
@@ -35,6 +36,7 @@ from corliss.engine.geometry import CylinderGeometry
 from corliss.engine.options import record_of
 from corliss.engine.scene_specs import SceneSpec
 from corliss.engine.speed_metrics import final_turns, load_step_metrics, step_time_of
+from corliss.engine.summary_keys import SteadySummary, TransientSummary
 from corliss.engine.verdict import steady_failures, transient_failures
 from corliss.frames.frame import Frame
 from corliss.thermo.steam import HEOSSteam, State, TableSteam
@@ -113,8 +115,12 @@ class _Table:
         obj.__dict__.setdefault("_pandas", {}).pop(self.name, None)
 
 
+# a kind's summary: a typed mapping (:mod:`corliss.engine.summary_keys`) or a plain dict.
+_SummaryT = TypeVar("_SummaryT", bound=Mapping[str, Any])
+
+
 @dataclass(kw_only=True)
-class Result:
+class Result(Generic[_SummaryT]):
     """A run's outcome (base of every kind).
 
     Parameters
@@ -145,7 +151,7 @@ class Result:
     cycles: pd.DataFrame = _Table()
     rhs_evaluations: int
     wall_time_s: float
-    _summary: dict | None = field(default=None, init=False, repr=False)
+    _summary: _SummaryT | None = field(default=None, init=False, repr=False)
 
     def __getstate__(self):
         # a pickled result holds its tables built (a deferred one is a closure)
@@ -154,22 +160,23 @@ class Result:
         return self.__dict__
 
     @property
-    def summary(self) -> dict:
+    def summary(self) -> _SummaryT:
         """The run's summary (SI unless a key names its unit); computed once."""
         if self._summary is None:
             summary = self._make_summary()
             failures = self._failures(summary)
             if failures is not None:
-                summary["failures"] = failures
+                # every kind that reports failures declares the key
+                cast("dict[str, object]", summary)["failures"] = failures
             self._summary = summary
         return self._summary
 
-    def _failures(self, summary: dict) -> list[dict] | None:
+    def _failures(self, summary: _SummaryT) -> list[dict] | None:
         """The ways a completed run failed physically (see :mod:`corliss.engine.verdict`);
         None for a kind that reports none."""
         return None
 
-    def _make_summary(self) -> dict:  # pragma: no cover - interface
+    def _make_summary(self) -> _SummaryT:  # pragma: no cover - interface
         raise NotImplementedError
 
     def table(self, name: str | None = None) -> pd.DataFrame:
@@ -316,7 +323,7 @@ def _last(ts):
 
 
 @dataclass(kw_only=True)
-class SteadyResult(Result):
+class SteadyResult(Result[SteadySummary]):
     """A steady run: the speed held, cycles until periodic.
 
     Parameters
@@ -684,10 +691,10 @@ class SteadyResult(Result):
         return {"jacket_heat_W": q * rev_per_s, "jacket_steam_kg_per_h": jacket_kg_h,
                 "water_rate_with_jacket_kg_per_kWh": total / power_kW if power_kW > 0 else None}
 
-    def _failures(self, summary: dict) -> list[dict]:
+    def _failures(self, summary: SteadySummary) -> list[dict]:
         return steady_failures(summary, fixed_cycles=self.scene.run.cycles is not None)
 
-    def summary_with(self, keys) -> dict:
+    def summary_with(self, keys: Iterable[str]) -> SteadySummary:
         """The summary's part that holds ``keys``: the whole :attr:`summary` when it is
         computed or a key needs it, else only the numbers read from the last cycle's
         row and the run's own figures, with the same values (no time series, cards or
@@ -700,7 +707,7 @@ class SteadyResult(Result):
 
         Returns
         -------
-        dict
+        SteadySummary
             The summary, or a part of it holding every key of ``keys`` that the whole
             summary holds (nested, as :attr:`summary`; no ``failures``).
         """
@@ -710,14 +717,14 @@ class SteadyResult(Result):
         if part is None:
             part = self.__dict__["_light"] = self._make_summary(light=True)
         for key in keys:
-            node = part
+            node: object = part
             for name in key.split("."):
                 if not isinstance(node, dict) or name not in node:
                     return self.summary
                 node = node[name]
         return part
 
-    def _make_summary(self, light: bool = False) -> dict:
+    def _make_summary(self, light: bool = False) -> SteadySummary:
         """The summary; ``light``: without the keys that need the time series (the
         peak pressure, the crank effort and what is read with it, a compound's
         cylinders)."""
@@ -746,7 +753,7 @@ class SteadyResult(Result):
         def ratio(a, b):
             return a / b if b > 0 else None
 
-        out = {
+        out: dict[str, Any] = {
             "title": self.scene.title,
             "kind": self.kind,
             "model": run.model,
@@ -789,11 +796,13 @@ class SteadyResult(Result):
         }
         if light:
             del out["peak_pressure_Pa"]
-        return out
+        # the keys and their types are declared in SteadySummary
+        # (tests/test_summary_keys.py checks every bundled scene's against it)
+        return cast(SteadySummary, out)
 
 
 @dataclass(kw_only=True)
-class TransientResult(Result):
+class TransientResult(Result[TransientSummary]):
     """A transient run: the speed a state, the load changing, the governor acting.
 
     Parameters
@@ -852,7 +861,7 @@ class TransientResult(Result):
         """The time of the load's step [s] (None for a load without one)."""
         return step_time_of(self.scene.load)
 
-    def _failures(self, summary: dict) -> list[dict]:
+    def _failures(self, summary: TransientSummary) -> list[dict]:
         z_end = (float(self.cycles["governor_z_frac"].iloc[-1])
                  if "governor_z_frac" in self.cycles else None)
         return transient_failures(summary, self.mechanism, z_end,
@@ -864,7 +873,7 @@ class TransientResult(Result):
         return load_step_metrics(self.cycles, self.step_time_s, self.scene.run.settling_band,
                                  self.timeseries)
 
-    def _make_summary(self) -> dict:
+    def _make_summary(self) -> TransientSummary:
         s = self.scene
         c = self.cycles
         # a transient run has both (the loader requires them in that mode)
@@ -881,7 +890,7 @@ class TransientResult(Result):
                      "governor_z_frac": p.governor_z,
                      "surplus_torque_N_m": None if np.isnan(p.surplus_N_m) else p.surplus_N_m,
                      "evaluations_count": p.evaluations}
-        return {
+        out: dict[str, Any] = {
             "title": s.title, "kind": self.kind, "mode": "transient", "model": s.run.model,
             "effects": list(s.run.effects), "fidelity": s.run.fidelity.name,
             "property_tier": self.property_tier,
@@ -901,6 +910,9 @@ class TransientResult(Result):
             "clamped_hot_state_evaluations_count": self.clamped_hot,
             "rhs_evaluations": self.rhs_evaluations, "wall_time_s": self.wall_time_s,
         }
+        # the keys and their types are declared in TransientSummary
+        # (tests/test_summary_keys.py checks every bundled scene's against it)
+        return cast(TransientSummary, out)
 
     def _final_state(self) -> dict:
         """The steady contract's keys (:class:`SteadyResult`'s summary) for the run's
@@ -983,7 +995,7 @@ def _loop_work(card) -> float:
 
 
 @dataclass(kw_only=True)
-class SweepResult(Result):
+class SweepResult(Result[dict[str, Any]]):
     """Steady runs across the load range at a series of gear settings or throttle openings.
 
     Parameters

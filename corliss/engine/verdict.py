@@ -11,6 +11,9 @@ settled did not settle.  Each is reported in the summary's ``failures`` list
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+from typing import Any
+
 from corliss.keys import units
 
 #: Exit status of a run that completed, its files written, but failed physically.
@@ -30,7 +33,7 @@ def _fail(name: str, reason: str) -> dict:
     return {"failure": name, "reason": reason}
 
 
-def steady_failures(summary: dict, fixed_cycles: bool = False) -> list[dict]:
+def steady_failures(summary: Mapping[str, Any], fixed_cycles: bool = False) -> list[dict]:
     """The failures of a steady run.
 
     Parameters
@@ -65,7 +68,7 @@ def steady_failures(summary: dict, fixed_cycles: bool = False) -> list[dict]:
     return out
 
 
-def transient_failures(summary: dict, mechanism, z_end: float | None,
+def transient_failures(summary: Mapping[str, Any], mechanism, z_end: float | None,
                        until_settled: bool = False) -> list[dict]:
     """The failures of a transient run.
 

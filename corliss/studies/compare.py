@@ -37,6 +37,7 @@ import pandas as pd
 from corliss.engine.model import at_knob, build_gear, geometry_of, steady_scene
 from corliss.engine.result import willans_fit
 from corliss.engine.steady import run_steady
+from corliss.engine.summary_keys import end_value
 from corliss.errors import InputError, RunError
 from corliss.governors import GOVERNORS
 from corliss.governors.operating_point import characteristic_speed, working_travel
@@ -200,8 +201,8 @@ def _run(scene, knob: str, value: float, tier: str | None, start=None) -> dict |
         ang = np.mod(ts["crank_angle_deg"].to_numpy(), 360.0)
         ang, idx = np.unique(ang, return_index=True)
         p_adm = float(np.interp(adm, ang, ts["p_chest_Pa"].to_numpy()[idx], period=360.0))
-    miss = [s[k] for k in ("missing_water_fraction_head", "missing_water_fraction_crank")
-            if s.get(k) is not None]
+    miss = [m for end in ("head", "crank")
+            if (m := end_value(s, "missing_water_fraction", end)) is not None]
     # a jacket is paid for in steam (Marks Art. 79): the study counts it with the feed
     steam = s["steam_rate_kg_per_h"] + s.get("jacket_steam_kg_per_h", 0.0)
     power_kW = s["indicated_power_W"] / 1e3

@@ -7,7 +7,7 @@ and the steady run's summary change independently.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import ClassVar
+from typing import Any, ClassVar
 
 import numpy as np
 import pandas as pd
@@ -23,7 +23,7 @@ POINT_COLUMNS = ("load_frac", "variant", "condensation", "knob", "status", "knob
 
 
 @dataclass
-class CompareResult(Result):
+class CompareResult(Result[dict[str, Any]]):
     """One engine governed by throttling and by cut-off across its load range.
 
     Parameters

@@ -19,6 +19,7 @@ import pandas as pd
 from corliss.engine.model import KNOBS, at_knob
 from corliss.engine.result import SweepResult, willans_fit
 from corliss.engine.steady import run_steady
+from corliss.engine.summary_keys import SteadySummary
 from corliss.logs import at_point
 from corliss.progress import progress_for
 
@@ -78,7 +79,7 @@ def load_range(scene, knob: str, values, *,
                        values=values)
 
 
-def _row(v: float, s: dict) -> dict:
+def _row(v: float, s: SteadySummary) -> dict:
     return {"knob_frac": v, "indicated_power_W": s["indicated_power_W"],
             "steam_rate_kg_per_h": s["steam_rate_kg_per_h"],
             "water_rate_kg_per_kWh": s["water_rate_kg_per_kWh"],

@@ -11,6 +11,7 @@ actually give.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from typing import Any
 
 from corliss.engine.model import build_lp_gear, lp_geometry_of, scene_events
@@ -54,7 +55,7 @@ SKIN_KEYS = ("wall_surface_swing_{end}_K", "wall_surface_mean_{end}_K",
              "heat_into_steam_exhaust_{end}_J", "heat_into_steam_compression_{end}_J")
 
 
-def flatten(summary: dict, prefix: str = "") -> dict:
+def flatten(summary: Mapping[str, Any], prefix: str = "") -> dict:
     """The summary's numbers by dotted key.
 
     Nested tables are joined with dots; text, lists and flags are left out; a null
@@ -83,13 +84,13 @@ def flatten(summary: dict, prefix: str = "") -> dict:
     return out
 
 
-def picked(summary: dict, key: str):
+def picked(summary: Mapping[str, Any], key: str):
     """One number of a summary by its dotted key, as :func:`flatten` gives it (without
     flattening the whole summary: a study's run reads a few keys of it).
 
     Parameters
     ----------
-    summary : dict
+    summary : mapping
         A run's summary (nested dicts).
     key : str
         A dotted key (``events.head.cutoff_frac``).

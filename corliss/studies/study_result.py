@@ -10,7 +10,7 @@ import importlib
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
@@ -71,7 +71,7 @@ def column_unit(column: str, varied: list[dict]) -> str:
 
 
 @dataclass
-class StudyResult(Result):
+class StudyResult(Result[dict[str, Any]]):
     """Steady runs of one base scene with some of its keys changed, a row a run.
 
     Made by :func:`corliss.studies.runner.study`.  Its one table, ``points`` (also

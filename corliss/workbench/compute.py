@@ -18,6 +18,7 @@ import numpy as np
 from corliss.engine.model import build_gear, steady_scene
 from corliss.engine.result import SteadyResult
 from corliss.engine.simulate import simulate
+from corliss.engine.summary_keys import SteadySummary, end_value
 from corliss.errors import InputError, RunError
 from corliss.keys import units
 from corliss.scene.loader import scene_from_dict
@@ -179,12 +180,12 @@ def zeuner_view(gear, system: str) -> dict | None:
     return out
 
 
-def summary_view(summary: dict, system: str) -> dict:
+def summary_view(summary: SteadySummary, system: str) -> dict:
     """The summary's numbers as the page shows them, each as text.
 
     Parameters
     ----------
-    summary : dict
+    summary : SteadySummary
         A steady run's summary (:attr:`SteadyResult.summary`).
     system : str
         ``"US"`` (ihp, psi, lb/h, lb per ihp-hour) or ``"SI"`` (kW, bar, kg/h, kg/kWh).
@@ -209,7 +210,7 @@ def summary_view(summary: dict, system: str) -> dict:
                "steam per kWh": ("never" if s["water_rate_kg_per_kWh"] is None else
                                  f"{s['water_rate_kg_per_kWh']:.2f} kg")}
     for end in ("head", "crank"):
-        m = s.get(f"missing_water_fraction_{end}")
+        m = end_value(s, "missing_water_fraction", end)
         if m is not None:
             out[f"missing water, {end} end"] = f"{m:.3f} of the steam at cut-off"
     return out
