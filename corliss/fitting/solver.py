@@ -148,7 +148,7 @@ from corliss.errors import InputError, RunError
 from corliss.fitting.card import MeasuredCard
 from corliss.scene.loader import Scene, scene_from_dict
 from corliss.keys.edits import KeyRange, get_key, parse_value, with_keys
-from corliss.studies.pool import run_tasks
+from corliss.studies.pool import run_tasks, unpickled_once
 
 log = logging.getLogger(__name__)
 
@@ -662,10 +662,8 @@ def _check(scene, ranges: list, card: MeasuredCard | None = None) -> None:
             scene_from_dict(with_keys(scene.data, {r.key: r.text(v)}), name=scene.name)
 
 
-#: In a pool's worker: the fits' problems it served, by the hash of their pickle (a
-#: problem is unpickled once a worker, and its cache of runs kept between its tasks).
-_WORKER_PROBLEMS: dict = {}
-#: Problems a worker keeps.
+#: Problems a pool's worker keeps (a problem is unpickled once a worker, and its cache of
+#: runs kept between its tasks: :func:`corliss.studies.pool.unpickled_once`).
 _KEEP_PROBLEMS = 2
 
 
@@ -679,13 +677,7 @@ def _shipped(prob: _Problem) -> tuple[str, bytes]:
 
 
 def _worker_problem(token: str, blob: bytes) -> _Problem:
-    prob = _WORKER_PROBLEMS.get(token)
-    if prob is None:
-        prob = pickle.loads(blob)
-        while len(_WORKER_PROBLEMS) >= _KEEP_PROBLEMS:
-            _WORKER_PROBLEMS.pop(next(iter(_WORKER_PROBLEMS)))
-        _WORKER_PROBLEMS[token] = prob
-    return prob
+    return unpickled_once("fit", token, blob, _KEEP_PROBLEMS)
 
 
 def _residuals_task(token: str, blob: bytes, u: np.ndarray) -> np.ndarray:

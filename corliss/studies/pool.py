@@ -106,6 +106,42 @@ class SigtermRaises:
         return False
 
 
+#: In a worker: what its tasks were sent pickled, by the name the sender gave it
+#: (:func:`unpickled_once`), per kind of thing.
+_RECEIVED: dict[str, dict] = {}
+
+
+def unpickled_once(kind: str, token: str, blob: bytes, keep: int):
+    """In a pool's worker: a thing sent pickled with each task (a study's spec, a fit's
+    problem), unpickled the first time this worker meets its ``token`` and kept for the
+    next tasks, at most ``keep`` of a kind (the oldest dropped first).
+
+    Parameters
+    ----------
+    kind : str
+        What it is (``"study"``, ``"fit"``): each kind keeps its own.
+    token : str
+        The name the sender gave it (a hash of ``blob``).
+    blob : bytes
+        It, pickled.
+    keep : int
+        How many of this kind a worker keeps.
+
+    Returns
+    -------
+    object
+        It, unpickled (the same object for every task of this worker with ``token``).
+    """
+    kept = _RECEIVED.setdefault(kind, {})
+    thing = kept.get(token)
+    if thing is None:
+        thing = pickle.loads(blob)
+        while len(kept) >= keep:
+            kept.pop(next(iter(kept)))
+        kept[token] = thing
+    return thing
+
+
 def start_method() -> str:
     """How this platform's workers start: ``"forkserver"``, ``"fork"`` or ``"spawn"``.
 

@@ -62,7 +62,8 @@ from corliss.scene.loader import Scene, find_scene, load_scene, scene_from_dict
 from corliss.keys.edits import KeyValue, edited
 from corliss.studies.sampling import make_design
 from corliss.studies.journal import Journal, check_writable, fingerprint, journal_path, read_rows
-from corliss.studies.pool import Interrupt, SigtermRaises, prestart, run_tasks
+from corliss.studies.pool import (Interrupt, SigtermRaises, prestart, run_tasks,
+                                  unpickled_once)
 from corliss.studies.responses import check_responses, picked, response_value
 from corliss.studies.study_result import ERROR, RUN_ID, STATUS, StudyResult
 
@@ -201,9 +202,6 @@ FAILURE_KEYS = ("cycles_to_converge", "periodicity_residuals", "cycles_simulated
 
 # --- a local pool's workers ----------------------------------------------------------------
 
-#: In a pool's worker: the specs of the studies it served, by fingerprint (a study's
-#: spec is unpickled once a worker, not once a task).
-_WORKER_SPECS: dict = {}
 #: Specs a worker keeps (the latest studies').
 _KEEP_SPECS = 4
 
@@ -211,12 +209,7 @@ _KEEP_SPECS = 4
 def _pool_chunk(token: str, blob: bytes, run_ids, values):
     """A pool worker's task: :func:`run_chunk` of the study whose spec, pickled, is
     ``blob`` (unpickled the first time this worker meets ``token``)."""
-    spec = _WORKER_SPECS.get(token)
-    if spec is None:
-        spec = pickle.loads(blob)
-        while len(_WORKER_SPECS) >= _KEEP_SPECS:
-            _WORKER_SPECS.pop(next(iter(_WORKER_SPECS)))
-        _WORKER_SPECS[token] = spec
+    spec = unpickled_once("study", token, blob, _KEEP_SPECS)
     return run_chunk(spec, run_ids, values)
 
 
