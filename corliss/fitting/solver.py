@@ -608,9 +608,14 @@ class _Problem:
             return override[end]
         return e.x / self.xs[end], e.p_Pa / self.P
 
+    def cache_key(self, u) -> tuple:
+        """The key of the run at ``u`` in :attr:`cache` (``u`` to 12 decimals, the tier
+        and the cycles)."""
+        return (tuple(np.round(np.asarray(u, float), 12)), self.fidelity, self.cycles)
+
     def residuals(self, u, override=None, detail=False):
         """Point residuals of every end, then one area residual per end [Pa]."""
-        key = (tuple(np.round(np.asarray(u, float), 12)), self.fidelity, self.cycles)
+        key = self.cache_key(u)
         res = self.cache.get(key)
         if res is None:
             res = self.run(u)
@@ -706,8 +711,7 @@ def _residuals_at(prob: _Problem, points: list, jobs: int) -> list:
     out: list = [None] * len(points)
     todo = []
     for i, x in enumerate(points):
-        key = (tuple(np.round(np.asarray(x, float), 12)), prob.fidelity, prob.cycles)
-        if key in prob.cache:
+        if prob.cache_key(x) in prob.cache:
             out[i] = prob.residuals(x)
         else:
             todo.append(i)

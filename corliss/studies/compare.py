@@ -326,22 +326,22 @@ def _map(tasks, workers: int, progress, done0: int, total: int, warm=None):
     (here, serially, when 1); results in order, an exception in place of a task's
     result when it failed.  The messages of each task name its point, ``label``."""
     out = [None] * len(tasks)
-    done = [done0]
+    done = done0
 
     def collect(i, result):
+        nonlocal done
         out[i] = result
-        done[0] += 1
+        done += 1
         if progress:
-            progress(done[0], total)
+            progress(done, total)
 
     if workers <= 1 or len(tasks) <= 1:
         for i, (fn, args, label) in enumerate(tasks):
             collect(i, _safe(label, fn, *args))
     else:
-        run_tasks([(_safe, (label, fn, *args)) for fn, args, label in tasks],
-                  workers, collect,
-                  warm=warm)
-    return out, done[0]
+        run_tasks([(_safe, (label, fn, *args)) for fn, args, label in tasks], workers,
+                  collect, warm=warm)
+    return out, done
 
 
 def _guess(curve, bracket, target_W):

@@ -57,7 +57,7 @@ except ImportError:             # a platform without it: forks or spawns
 log = logging.getLogger(__name__)
 
 __all__ = ["Interrupt", "POOL_RESTARTS", "WARM_ENV", "SigtermRaises", "close", "prestart",
-           "run_tasks", "start_method", "worker_pids"]
+           "run_tasks", "start_method", "unpickled_once", "worker_pids"]
 
 #: Times a pool is started again when one of its workers is lost (killed, out of
 #: memory), its unfinished tasks resent, before the caller gets an error.
