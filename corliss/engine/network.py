@@ -910,7 +910,7 @@ def with_period_leakage(net: Network, valve_rate_kg_s_Pa: float,
 #: :mod:`corliss.engine.kernels.data`): the model code, then the model's own columns.
 #: The wall models by name, and their codes (``WALL_*`` there).
 WALL_MODELS = {"conductance": WALL_CONDUCTANCE, "adair": WALL_ADAIR, "marks": WALL_MARKS,
-               "skin": WALL_SKIN}
+               "english": WALL_MARKS, "skin": WALL_SKIN}
 
 
 def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
@@ -924,7 +924,11 @@ def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
       condensing the steam eq. 221 gives leaves the steam during admission and is
       given back from cut-off to compression, each spread over the crank angle in
       proportion to the wall exposed; the heat of each cycle and the windows are set
-      by :func:`corliss.engine.condensation.marks_law_rows` from the cycle before;
+      by :class:`corliss.engine.condensation.MarksLaw` from the cycle before;
+    * ``"english"``: English's law (DPJ 267, 1888, p. 302) on Marks's schedule (the same
+      model code): the heat the steam-swept surfaces hold at cut-off leaves the steam
+      during admission and is given back from cut-off to compression, set by
+      :class:`corliss.engine.condensation.EnglishLaw` from the cycle before;
     * ``"conductance"``: Marks's constant of condensation (Art. 82: C = 18.13 Btu per
       ft2, degF and minute, about 6180 W/(m2 K)) as a surface conductance to a wall at
       one temperature per end, its periodic mean, found cycle by cycle so that the
@@ -951,7 +955,8 @@ def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
     net : Network
         The network, changed in place.
     model : str
-        One of :data:`WALL_MODELS`: ``marks``, ``conductance``, ``adair`` or ``skin``.
+        One of :data:`WALL_MODELS`: ``marks``, ``english``, ``conductance``, ``adair``
+        or ``skin``.
     h_marks : float
         Marks's constant as a surface conductance [W/(m2 K)] (the ``conductance``
         model's coefficient).

@@ -25,7 +25,7 @@ RECORD_CHOICES = ("step", "degree", "cycle")
 #: How a governed transient run starts (see :class:`corliss.engine.scene_specs.RunSpec`).
 START_CHOICES = ("equilibrium", "run_speed", "rest")
 #: Wall-heat models of the ``wall_heat`` effect.
-WALL_HEAT_MODELS = ("skin", "marks", "conductance", "adair")
+WALL_HEAT_MODELS = ("skin", "marks", "english", "conductance", "adair")
 #: Models of the ``leakage`` effect.
 LEAKAGE_MODELS = ("orifice", "period")
 #: Cylinder sizes: a model's half-inch cylinder to the largest engines built [m].
