@@ -139,6 +139,10 @@ class Network:
     #: model, the temperature of the deep wall under the skin).
     node_heat: list = field(default_factory=list)
     wall_T: np.ndarray | None = None
+    #: Shaft angles [rad] where a wall-heat schedule switches (Marks's or English's
+    #: law, :class:`corliss.engine.condensation.ScheduledWallHeat`): stops as the
+    #: ports' kinks are, so that no switch falls inside a step.
+    schedule_stops: list[float] = field(default_factory=list)
 
     # --- building -----------------------------------------------------------------
     def add_node(self, name, kind, init, cyl=-1, end=-1, volume=0.0) -> int:
@@ -501,10 +505,11 @@ class Network:
         -------
         list of float
             Increasing shaft angles [rad] from ``theta0`` to ``theta0 + 2 pi``, both
-            included, with every breakpoint of every cylinder's PortMap between.
+            included, with every breakpoint of every cylinder's PortMap and every
+            switch of a wall-heat schedule (:attr:`schedule_stops`) between.
         """
         two_pi = 2.0 * math.pi
-        pts = []
+        pts = [s % two_pi for s in self.schedule_stops]
         for pm, ph in zip(self.portmaps, self.phases):
             pts += [(b - ph) % two_pi for b in pm.breakpoints_rad]
         stops = sorted({theta0 + ((p - theta0) % two_pi) for p in pts})
