@@ -36,6 +36,29 @@ given back in part over the piston's travel, in proportion to the surface growin
 clearance-only trials on a 10 x 14 in portable-engine cylinder, jacketed but for its
 covers, whose piston, valve and condenser "were found perfectly tight" (p. 302): it is
 condensation without leakage.
+
+How the model reads it (:class:`EnglishLaw`):
+
+* the heat of a cycle is C at cut-off, S the wall the steam touches then: what the
+  surfaces hold at the end of admission, the water English says counts (p. 297).  It is
+  taken over the admission and given back from cut-off to compression on Marks's
+  schedule, where English's own line gives it back in proportion to the surface
+  uncovered and the rest in the exhaust; the water at cut-off is his, its timing after
+  cut-off the schedule's.  Where the line is below zero at cut-off (a long cut-off, a
+  low admission density) the walls hold nothing and no heat is taken;
+* S_c and S are :func:`exposed_wall_m2`'s, the piston and cover faces and the barrel
+  (the clearance counted as the barrel it would fill), the surface the kernel's other
+  wall laws use.  It leaves out the passages: English's 10 x 14 in cylinder had 2 ft2
+  of clearance surface where the rule gives 1.26, so the law gives the model's engines
+  less than their real clearance surfaces would;
+* n is the crank's revolutions per second, for every end: each end takes steam once a
+  revolution, a double-acting cylinder's two ends each with its own S_c and S, a
+  single-acting cylinder's steam end alone (its idle end has no wall heat);
+* gamma_1 and gamma_0 are read from each end's own steam, at its cut-off and at its
+  compression, in the cycle before (the supply's and the exhaust's saturation in the
+  first): the admission pressure as the period read it off the card, and the back
+  pressure at the exhaust's closing, a compound's receiver for its HP ends;
+* K is 60 where the scene has a ``jacket``, 80 without.
 """
 
 from __future__ import annotations

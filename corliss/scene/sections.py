@@ -66,7 +66,9 @@ ENGINE = group(
         "3 lb/h psi).", default="0 lb/h psi", effect="leakage"),
     Key("piston_leak_rate", "leak_rate", "Rate of leak past the piston per unit of "
         "pressure difference.", default="0 lb/h psi", effect="leakage"),
-    Key("wall_heat_model", "choice", "How heat passes between steam and cylinder walls.",
+    Key("wall_heat_model", "choice", "How heat passes between steam and cylinder walls: a "
+        "wall with a temperature (skin), or a period law imposed as a schedule (marks, "
+        "english: English's law, its jacketed constant with a jacket), or a conductance.",
         default="skin", choices=WALL_HEAT_MODELS, effect="wall_heat"),
     Key("marks_constant", "heat_transfer", "Marks's constant of condensation (Art. 82), "
         "above zero.", default="18.13 Btu/ft2 degF min", effect="wall_heat"),
