@@ -111,6 +111,10 @@ class Network:
         Each node's wall temperature [K], shape (nodes,) (for the skin model, the deep
         wall's under the skin); set to the mean of supply and exhaust temperatures by
         :meth:`arrays` when None or of another length.
+    schedule_stops : list of float
+        Shaft angles [rad] where a wall-heat schedule switches (Marks's or English's
+        law, :class:`corliss.engine.condensation.ScheduledWallHeat`), stops of the
+        integrators as the ports' kinks are (:meth:`stops`).
     """
 
     omega: float
@@ -139,9 +143,7 @@ class Network:
     #: model, the temperature of the deep wall under the skin).
     node_heat: list = field(default_factory=list)
     wall_T: np.ndarray | None = None
-    #: Shaft angles [rad] where a wall-heat schedule switches (Marks's or English's
-    #: law, :class:`corliss.engine.condensation.ScheduledWallHeat`): stops as the
-    #: ports' kinks are, so that no switch falls inside a step.
+    #: so that no switch of a schedule falls inside a step
     schedule_stops: list[float] = field(default_factory=list)
 
     # --- building -----------------------------------------------------------------
