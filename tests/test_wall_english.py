@@ -250,6 +250,28 @@ def test_a_compound_each_end_takes_the_law_of_its_own_cylinder():
     assert min(float(row["Q_to_wall_head_J"]), float(row["Q_to_wall_crank_J"])) > 500.0
 
 
+def test_a_single_acting_cylinder_takes_it_at_its_steam_end_alone():
+    """The bundled single-acting engine after Callendar and Nicolson's (10.5 x 12 in,
+    steam at the head end only, 0.2 cut-off, 100.5 psia, 77 rpm, non-condensing; its
+    leak left out, for English's trials were tight): the steam end takes English's law
+    for its own card with n the revolutions per second, as each end of a double-acting
+    cylinder does (it takes steam once a revolution; 2 % as above), and gives it back
+    over the cycle (1e-3, the fast preset's quadrature); the idle end, open to the
+    exhaust, takes nothing."""
+    d = tomllib.loads(bundled_scenes()["callendar-nicolson-single-acting"].read_text())
+    assert d["engine"]["steam_ends"] == "head"
+    d["engine"]["wall_heat_model"] = "english"
+    d["run"]["effects"] = [e for e in d["run"]["effects"] if e != "leakage"]
+    d["run"]["fidelity"] = "fast"
+    r = corliss.simulate(scene_from_dict(d, name="single-acting-english"))
+    row = r.last_cycle
+    taken = float(row["Q_to_wall_head_J"])
+    assert taken == pytest.approx(englishs_heat_from_the_card(r, "head", False), rel=0.02)
+    assert taken > 1000.0
+    assert abs(float(row["Q_head_J"])) < 1e-3 * taken
+    assert float(row.get("Q_to_wall_crank_J", 0.0)) == 0.0
+
+
 def test_the_cli_runs_a_scene_with_englishs_law(tmp_path, capsys):
     """``corliss run`` on a scene with ``wall_heat_model = "english"``: the summary
     carries each end's heat to the walls and the missing water, and the run's text

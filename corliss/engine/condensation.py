@@ -494,6 +494,9 @@ class ScheduledWallHeat:
         """
         import numpy as np
         net = self.network
+        # the samples' angles from the first (a turn of the speed loop may start at
+        # any multiple of 2 pi)
+        rel = out_theta - out_theta[0]
         for i, end in self.ends:
             _, ev, phase = self._end(i, end)
             for key, kept in (("cutoff_deg", self.t_cutoff),
@@ -504,10 +507,10 @@ class ScheduledWallHeat:
                 # its phase), the state there interpolated between the samples either
                 # side: the pressure falls steeply at cut-off, and English's heat, a
                 # difference of two terms, moved 2 to 10 % with the nearest sample's
-                th = (math.radians(ev[key]) - phase) % (2 * math.pi)
-                k = min(max(int(np.searchsorted(out_theta, th)), 1), out_theta.size - 1)
-                w = (th - out_theta[k - 1]) / (out_theta[k] - out_theta[k - 1])
-                V = float(net.volume(i, np.array([th]))[0])
+                th = (math.radians(ev[key]) - phase - out_theta[0]) % (2 * math.pi)
+                k = min(max(int(np.searchsorted(rel, th)), 1), rel.size - 1)
+                w = min(max((th - rel[k - 1]) / (rel[k] - rel[k - 1]), 0.0), 1.0)
+                V = float(net.volume(i, np.array([th + out_theta[0]]))[0])
                 m = (1.0 - w) * samples[2 * i, k - 1] + w * samples[2 * i, k]
                 U = (1.0 - w) * samples[2 * i + 1, k - 1] + w * samples[2 * i + 1, k]
                 if not (m > 0.0 and np.isfinite(U)):
