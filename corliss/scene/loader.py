@@ -299,11 +299,6 @@ def _engine(t: Table) -> EngineSpec:
     leak_model = t.get("leakage_model")
     rates = [t.get(k) for k in ("valve_leak_rate", "piston_leak_rate",
                                 "steam_edge_leak_rate", "exhaust_edge_leak_rate")]
-    for k, r in zip(("valve_leak_rate", "piston_leak_rate", "steam_edge_leak_rate",
-                     "exhaust_edge_leak_rate"), rates):
-        if r < 0.0:
-            raise InputError(t.key(k), t.raw(k), "a rate of leak of zero or more (flow per "
-                             "unit of pressure difference, as \"3 lb/h psi\")")
     valve_leak, piston_leak = leaks
     spec = EngineSpec(bore, stroke, rod, prd, _pair_fraction(t, "clearance"), mass, f0, f1,
                       valve_leak, piston_leak, model, marks, crank_angles, condensing, jacket, thickness,
