@@ -73,7 +73,8 @@ def _print_walls(s: dict, us: bool) -> None:
         leak = s["valve_leakage_kg_per_h"]
         print(f"  valve leakage    "
               + (f"{leak / units.POUND_kg:.1f} lb/h" if us else f"{leak:.1f} kg/h")
-              + f", {s['valve_leakage_fraction_of_steam']:.3f} of the steam")
+              + f" past every path; {s['valve_leakage_fraction_of_steam']:.3f} of the steam "
+              "leaves the steam side")
     for path, v in (s.get("leak_paths") or {}).items():
         rate = v["kg_per_h"]
         frac = v.get("fraction_of_steam")
