@@ -58,6 +58,43 @@ def edge_side(x, pr, res):
 
 
 @njit(cache=True, inline="always")
+def marks_window(th, net, i):
+    """Where a node stands in Marks's schedule (Art. 75; :mod:`corliss.engine.condensation`).
+
+    The heat of eq. 221 leaves the steam during admission and comes back from cut-off
+    to compression, each spread over the crank angle in proportion to the wall
+    exposed: the heat into the steam is ``s Q A / W`` per radian, with ``A`` the wall
+    exposed [m2] and ``W`` that window's integral of it [m2 rad].  The right-hand side
+    and the exact Jacobian's crank-angle derivative both read the window here.
+
+    Parameters
+    ----------
+    th : float
+        Shaft crank angle [rad].
+    net : NetworkArrays
+        The network's arrays (its wall-heat rows and each cylinder's phase).
+    i : int
+        A node whose wall-heat model is Marks's law.
+
+    Returns
+    -------
+    s : float
+        -1 in admission, +1 from cut-off to compression, 0 elsewhere [-].
+    W : float
+        The window's exposed wall integrated over it [m2 rad] (1 where ``s`` is 0).
+    """
+    heat = net.heat
+    t = (th + net.phase[net.node_cyl[i]]) % TWO_PI
+    if ((t - heat[i, H_MARKS_ADMIT]) % TWO_PI
+            < (heat[i, H_MARKS_CUTOFF] - heat[i, H_MARKS_ADMIT]) % TWO_PI):
+        return -1.0, heat[i, H_MARKS_WALL_ADMIT]
+    if ((t - heat[i, H_MARKS_CUTOFF]) % TWO_PI
+            < (heat[i, H_MARKS_COMPRESS] - heat[i, H_MARKS_CUTOFF]) % TWO_PI):
+        return 1.0, heat[i, H_MARKS_WALL_EXPAND]
+    return 0.0, 1.0
+
+
+@njit(cache=True, inline="always")
 def derivatives(th, y, pr, dy, net, pa):
     """Derivatives with respect to crank angle, given each node's properties.
 
@@ -197,14 +234,8 @@ def balances(th, y, pr, dy, net, areas):
                 # Marks's law (Art. 75): the heat of eq. 221 leaves the steam during
                 # admission and comes back from cut-off to compression, each spread
                 # over the crank angle in proportion to the wall exposed
-                t = (th + net.phase[c]) % TWO_PI
-                q = 0.0
-                if ((t - heat[i, H_MARKS_ADMIT]) % TWO_PI
-                        < (heat[i, H_MARKS_CUTOFF] - heat[i, H_MARKS_ADMIT]) % TWO_PI):
-                    q = -heat[i, H_MARKS_Q] * A / heat[i, H_MARKS_WALL_ADMIT]
-                elif ((t - heat[i, H_MARKS_CUTOFF]) % TWO_PI
-                      < (heat[i, H_MARKS_COMPRESS] - heat[i, H_MARKS_CUTOFF]) % TWO_PI):
-                    q = heat[i, H_MARKS_Q] * A / heat[i, H_MARKS_WALL_EXPAND]
+                sm, W = marks_window(th, net, i)
+                q = sm * heat[i, H_MARKS_Q] * A / W if sm != 0.0 else 0.0
                 dy[2 * i + 1] += q
                 dy[q0 + 1] = q
                 dy[q0 + 2] = -q if q < 0.0 else 0.0
