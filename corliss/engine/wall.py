@@ -491,10 +491,11 @@ class IdealPortWall:
       at the surface's temperature at the step's start (condensing, the steam gives
       up its own enthalpy, ``lat = h - h_L``; evaporating, the vapour has
       ``h_L + L``); the film's own warming is the surface's (``C A_w`` above is
-      ``C A_w + m_f c_f``), so that steam, film and wall close as in the kernel.  Closed, the steam's new state is found
-      from its density and internal energy.  Open, the end stays at the reservoir's
-      pressure and the port's step takes the wall's mass and enthalpy with its own
-      flow: ``d(m h) = dm h_L + Q + h_res dm_port`` at constant pressure, the end
+      ``C A_w + m_f c_f``), so that steam, film and wall close as in the kernel.
+      Closed, the steam's new state is found from its density and internal energy.
+      Open, the end stays at the reservoir's pressure and the port's step takes the
+      wall's mass and enthalpy with its own flow: ``d(m h) = dm h_L + Q + h_res
+      dm_port`` at constant pressure, the end
       filled or emptied to its volume, so that the chest makes up at once whatever
       the wall condenses, even more than the end held.
 
