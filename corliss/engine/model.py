@@ -163,9 +163,28 @@ def reservoir_states(scene, steam: Steam) -> tuple[State, State]:
         Dry saturated steam at back pressure.
     """
     s = scene.supply
+    # the states are a function of the tier's own data (a table tier's table: the
+    # same object for every run of a process, a stand-in's while one is put in) and of
+    # the four numbers: a study's runs share their reservoirs, found once
+    table = getattr(steam, "table", None)
+    key = (type(steam), id(table), s.pressure_Pa, s.temperature_K, s.dryness,
+           scene.exhaust.pressure_Pa)
+    kept = _RESERVOIRS.get(key)
+    if kept is not None and kept[0] is table:
+        return kept[1]
     chest = (steam.pt(s.pressure_Pa, s.temperature_K) if s.temperature_K is not None
              else steam.px(s.pressure_Pa, s.dryness))
-    return chest, steam.px(scene.exhaust.pressure_Pa, 1.0)
+    states = (chest, steam.px(scene.exhaust.pressure_Pa, 1.0))
+    if len(_RESERVOIRS) >= RESERVOIRS_KEPT:
+        _RESERVOIRS.clear()
+    _RESERVOIRS[key] = (table, states)
+    return states
+
+
+#: Reservoir states kept by :func:`reservoir_states` (the table they came from, kept
+#: beside them so that its id stays its own), and how many.
+_RESERVOIRS: dict = {}
+RESERVOIRS_KEPT = 64
 
 
 def build_network(scene, geo, pm, steam: Steam, chest: State, exhaust: State) -> Network:

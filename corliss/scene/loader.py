@@ -368,15 +368,21 @@ def _check_states(data: dict, supply: SupplySpec, exhaust: ExhaustSpec, run: Run
     water apart above it), and for the ``table`` tier inside the table's density and
     energy, with room for the exhaust steam to expand a little below back pressure.
     States that passed are kept, and pass again without a look (a refusal is found
-    again each time, to name the key as written)."""
+    again each time, to name the key as written); states that passed on the built
+    table pass without a look at the disk (a study's every run: its file is not asked
+    for again), those that passed on the stand-in are looked at again once the table
+    is built."""
     key = (supply.pressure_Pa, supply.temperature_K, supply.dryness, exhaust.pressure_Pa,
-           run.fidelity.properties, steam_table.table_path().is_file())
-    if key in _STATES_PASSED:
+           run.fidelity.properties)
+    if (key, True) in _STATES_PASSED:
+        return
+    built = steam_table.table_path().is_file()
+    if (key, built) in _STATES_PASSED:
         return
     _check_states_once(data, supply, exhaust, run)
     if len(_STATES_PASSED) >= STATES_KEPT:
         _STATES_PASSED.clear()
-    _STATES_PASSED.add(key)
+    _STATES_PASSED.add((key, built))
 
 
 def _check_states_once(data: dict, supply: SupplySpec, exhaust: ExhaustSpec,
