@@ -539,16 +539,18 @@ class Network:
                 v = per_cyl[c][self.node_end[i]]
             vmax += float(np.max(v))
         m = vmax * ref.rho
+        nd, q0 = self.n_dyn, self.n_dyn + 2 * self.n_edges
         sc = np.empty(self.n_state)
-        sc[0:self.n_dyn:2] = m
-        sc[1:self.n_dyn:2] = m * ref.u
-        sc[self.n_dyn:self.n_dyn + 2 * self.n_edges:2] = m
-        sc[self.n_dyn + 1:self.n_dyn + 2 * self.n_edges:2] = m * ref.h
-        sc[self.n_dyn + 2 * self.n_edges:] = ref.p * vmax
-        for i in range(self.n_nodes):
-            # diagnostics for the wall temperature: kept out of the step-size control
-            sc[self.i_node_quad(i, "hA")] = 1e12
-            sc[self.i_node_quad(i, "hAT")] = 1e15
+        sc[0:nd:2] = m
+        sc[1:nd:2] = m * ref.u
+        sc[nd:q0:2] = m
+        sc[nd + 1:q0:2] = m * ref.h
+        sc[q0:] = ref.p * vmax
+        # diagnostics for the wall temperature, kept out of the step-size control: each
+        # node's hA and hAT (:meth:`i_node_quad`, every node's at once)
+        nq, q_end = len(self.NODE_QUADS), q0 + len(self.NODE_QUADS) * self.n_nodes
+        sc[q0 + self.NODE_QUADS.index("hA"):q_end:nq] = 1e12
+        sc[q0 + self.NODE_QUADS.index("hAT"):q_end:nq] = 1e15
         for i in self.wall_nodes:
             # the surface temperature's swing is a fraction of supply less exhaust
             sc[self.i_wall(i)] = max(ref.T - min(s.T for s in self.reservoirs), 10.0)

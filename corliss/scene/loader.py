@@ -465,6 +465,25 @@ def _supply(t: Table, swept_m3: float) -> SupplySpec:
     return SupplySpec(p, temperature, dryness, t.barometer_Pa, chest, pipe, cd, throttle, law)
 
 
+def _swept_of(engine: EngineSpec) -> float:
+    """One cylinder's swept volume [m3], as the loader finds it for the supply's checks."""
+    return math.pi / 4.0 * engine.bore_m ** 2 * engine.stroke_m
+
+
+#: The sections whose specs :func:`scene_from_dict` may take from a scene ``like``.
+_REUSABLE = ("supply", "engine", "exhaust", "valve_gear", "run", "output")
+
+
+def _shared_sections(data: dict, like: Scene | None) -> set:
+    """The sections of :data:`_REUSABLE` whose table ``data`` shares with ``like``'s
+    (the same object); none without ``like`` or when ``like`` was not loaded from
+    tables."""
+    if like is None or like.data is None:
+        return set()
+    return {k for k in _REUSABLE
+            if k in data and k in like.data and data[k] is like.data[k]}
+
+
 def _run(t: Table) -> RunSpec:
     mode = t.get("mode")
     model = t.get("model")
@@ -566,7 +585,8 @@ def _run(t: Table) -> RunSpec:
     return spec
 
 
-def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) -> Scene:
+def scene_from_dict(data: dict, name: str = "scene", source: str | None = None, *,
+                    like: Scene | None = None) -> Scene:
     """Validate a parsed TOML document into a :class:`Scene`; every mistake at once.
 
     Parameters
@@ -577,6 +597,15 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
         The scene's name.
     source : str, optional
         The path it was read from (a load schedule is found beside it).
+    like : Scene, optional
+        A scene loaded from tables that ``data`` shares sections with, the same
+        objects (:func:`corliss.keys.edits.edited` of ``like.data``: a study's run):
+        each of its sections' specs whose table ``data`` shares, and whose inputs from
+        other sections (the barometer, the swept volume) are the same numbers, is
+        taken as it is instead of being read again (the same spec: a section's spec is
+        a function of those); the tables edited are read and every rule across
+        sections checked as for any scene.  Neither's shared tables may be changed in
+        place.
 
     Returns
     -------
@@ -592,7 +621,7 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
         key, and the first mistake the whole scene's checks found.
     """
     try:
-        return _scene_from_dict(data, name, source)
+        return _scene_from_dict(data, name, source, like)
     except InputError as first:
         if isinstance(first, InputErrors):
             raise
@@ -687,7 +716,8 @@ def key_errors(data: dict) -> list[InputError]:
     return errors
 
 
-def _scene_from_dict(data: dict, name: str = "scene", source: str | None = None) -> Scene:
+def _scene_from_dict(data: dict, name: str = "scene", source: str | None = None,
+                     like: Scene | None = None) -> Scene:
     """Validate a parsed TOML document into a :class:`Scene`.
 
     Parameters
@@ -698,6 +728,8 @@ def _scene_from_dict(data: dict, name: str = "scene", source: str | None = None)
         The scene's name.
     source : str, optional
         The path it was read from (a load schedule is found beside it).
+    like : Scene, optional
+        A scene whose unedited sections' specs are taken (:func:`scene_from_dict`).
 
     Returns
     -------
@@ -715,25 +747,45 @@ def _scene_from_dict(data: dict, name: str = "scene", source: str | None = None)
     for key in SECTIONS[1:6]:
         if key not in data:
             raise InputError(key, None, f"a [{key}] section: it is required")
+    shared = _shared_sections(data, like)
     sup = Table(data["supply"], "supply", keys=SUPPLY)
-    barometer = sup.get("barometer")
+    if like is not None and "supply" in shared:
+        barometer = like.supply.barometer_Pa
+    else:
+        barometer = sup.get("barometer")
     sup.barometer_Pa = barometer
-    engine = _engine(Table(data["engine"], "engine", barometer, ENGINE))
-    supply = _supply(sup, math.pi / 4.0 * engine.bore_m ** 2 * engine.stroke_m)
-    ex = Table(data["exhaust"], "exhaust", barometer, EXHAUST)
-    exhaust = ExhaustSpec(ex.get("pressure"))
-    ex.finish()
+    if like is not None and barometer != like.supply.barometer_Pa:
+        shared = set()          # every gauge pressure read again on the new barometer
+    engine = (like.engine if like is not None and "engine" in shared
+              else _engine(Table(data["engine"], "engine", barometer, ENGINE)))
+    swept = _swept_of(engine)
+    if like is not None and "supply" in shared and swept == _swept_of(like.engine):
+        supply = like.supply
+    else:
+        if "supply" in shared:
+            sup.has("barometer")        # read with the scene ``like``, for the finish
+        supply = _supply(sup, swept)
+    if like is not None and "exhaust" in shared:
+        exhaust = like.exhaust
+    else:
+        ex = Table(data["exhaust"], "exhaust", barometer, EXHAUST)
+        exhaust = ExhaustSpec(ex.get("pressure"))
+        ex.finish()
     if not supply.pressure_Pa > exhaust.pressure_Pa:
         raise InputError("supply.pressure", data["supply"].get("pressure"),
                          f"a supply pressure above the exhaust pressure "
                          f"({data['exhaust'].get('pressure')!r} = "
                          f"{exhaust.pressure_Pa / units.PSI_Pa:.4g} psia)")
-    vg = Table(data["valve_gear"], "valve_gear", barometer)
-    gt = _registered(vg, GEARS)
-    vg.bind(gt.keys)
-    gear = gt.parse(vg)
-    vg.finish({n: e.keys for n, e in GEARS.items()})
-    run = _run(Table(data["run"], "run", barometer, RUN))
+    if like is not None and "valve_gear" in shared:
+        gt, gear = GEARS[like.gear_type], like.gear
+    else:
+        vg = Table(data["valve_gear"], "valve_gear", barometer)
+        gt = _registered(vg, GEARS)
+        vg.bind(gt.keys)
+        gear = gt.parse(vg)
+        vg.finish({n: e.keys for n, e in GEARS.items()})
+    run = (like.run if like is not None and "run" in shared
+           else _run(Table(data["run"], "run", barometer, RUN)))
     _check_states(data, supply, exhaust, run)
     for effect, keys in EFFECT_KEYS.items():
         for k in keys:
@@ -778,9 +830,12 @@ def _scene_from_dict(data: dict, name: str = "scene", source: str | None = None)
                              "\"port_flow\": the receiver fills and empties through ports")
     elif "lp_valve_gear" in data:
         raise InputError("lp_valve_gear", "[...]", "a [compound] section beside it")
-    out = Table(data.get("output", {}), "output", barometer, OUTPUT)
-    output = OutputSpec(out.get("units"), out.get("dir"))
-    out.finish()
+    if like is not None and "output" in shared:
+        output = like.output
+    else:
+        out = Table(data.get("output", {}), "output", barometer, OUTPUT)
+        output = OutputSpec(out.get("units"), out.get("dir"))
+        out.finish()
     title = data.get("title", name)
     if not isinstance(title, str):
         raise InputError("title", title, "a string")
