@@ -42,8 +42,9 @@ _READS: dict[int, tuple] = {}
 def _reads_of(group) -> dict:
     """The reads kept for a key group."""
     entry = _READS.get(id(group))
-    if entry is None or entry[0] is not group:
-        entry = _READS[id(group)] = (group, {})
+    if entry is not None and entry[0] is group:
+        return entry[1]
+    entry = _READS[id(group)] = (group, {})
     return entry[1]
 
 
@@ -223,7 +224,7 @@ class Table:
         except TypeError:           # a list, or a default that cannot be hashed
             return self._get(key, default, within=within)
         if value is not _MISSING:
-            self._declared(key)
+            # (kept only after a read of this group's: the key is declared)
             self._read.add(key)
             return value
         value = self._get(key, default, within=within)
