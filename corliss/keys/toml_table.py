@@ -82,6 +82,8 @@ class Table:
         self.barometer_Pa = barometer_Pa
         self.keys = keys
         self._read: set[str] = set()
+        #: The bound group's kept reads (:func:`_reads_of`), found at the first read.
+        self._kept: dict | None = None
 
     def bind(self, keys: KeyGroup) -> "Table":
         """Bind the table to the group of keys it may hold (a gear's or governor's,
@@ -99,6 +101,7 @@ class Table:
             This table.
         """
         self.keys = keys
+        self._kept = None
         for k in self._read - {"type"}:
             keys[k]
         return self
@@ -218,7 +221,9 @@ class Table:
         # a float by its repr: -0.0 is not 0.0 (equal, and hashed alike)
         memo_key = (key, type(raw), repr(raw) if type(raw) is float else raw, default,
                     within, self.barometer_Pa)
-        kept = _reads_of(self.keys)
+        kept = self._kept
+        if kept is None:
+            kept = self._kept = _reads_of(self.keys)
         try:
             value = kept.get(memo_key, _MISSING)
         except TypeError:           # a list, or a default that cannot be hashed

@@ -178,7 +178,7 @@ def _crossings_of_samples(gear: ValveGear, s: np.ndarray, ports: np.ndarray,
         # Lagrange in the opening: u(0) = sum_i u_i prod_{j != i} (0 - f_j) / (f_i - f_j)
         diff = f[:, None, :] - f[None, :, :]
         diff[_DIAG] = 1.0
-        num = np.broadcast_to(-f[None, :, :], diff.shape).copy()
+        num = np.negative(f[None, :, :], out=np.empty(diff.shape))
         num[_DIAG] = 1.0
         u = (_NODES[:, None] * (num.prod(axis=1) / diff.prod(axis=1))).sum(axis=0)
         c = a + u * h
