@@ -363,7 +363,7 @@ def assemble(scene, *, tabulated: bool = True) -> Model:
     gear = build_gear(scene)
     pm = _tabulated(scene, gear, fid.portmap_points) if tabulated else None
     ev = valve_events(gear, lambda t: float(geo.fraction(t)), pm.crossings if pm else None,
-                      pm.signed_samples if pm else None)
+                      pm.signed_samples if pm else None, geo.fraction)
     lp_events = None
     if scene.compound is not None:
         lp_geo = lp_geometry_of(scene)

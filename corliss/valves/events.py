@@ -392,7 +392,8 @@ def end_events(gear: ValveGear, end: str, piston_fraction: Callable[[float], flo
 
 
 def events(gear: ValveGear, piston_fraction: Callable[[float], float],
-           table: list | None = None, signed: np.ndarray | None = None) -> dict:
+           table: list | None = None, signed: np.ndarray | None = None,
+           fractions_of: Callable[[np.ndarray], np.ndarray] | None = None) -> dict:
     """Events of both ends: ``{"head": {...}, "crank": {...}}``.
 
     Parameters
@@ -409,6 +410,11 @@ def events(gear: ValveGear, piston_fraction: Callable[[float], float],
         The gear's signed openings [m] at the :data:`_SAMPLES` angles a turn, as
         :func:`sampled_crossings` gives them (a PortMap's ``signed_samples``); found
         here when None.
+    fractions_of : callable, optional
+        ``piston_fraction`` over an array of crank angles at once [rad] -> [-], each
+        angle's fraction the number ``piston_fraction`` gives for it alone (an
+        element-wise function: :meth:`corliss.engine.geometry.CylinderGeometry.fraction`):
+        the events' fractions are then found in one call, not one call each.
 
     Returns
     -------
@@ -419,12 +425,30 @@ def events(gear: ValveGear, piston_fraction: Callable[[float], float],
     if table is None:
         table = crossing_table(gear, np.zeros((4, 1)))
     sampled = _largest(gear, signed)
+    if fractions_of is not None:
+        # the angles end_events reads the fractions at (cut-off, release, compression
+        # of each end), found at once
+        at = [t for steam, exhaust, dead in ((0, 1, 0.0), (2, 3, math.pi))
+              for t in (_interval_near(table[steam][0], dead)[1],
+                        *_interval_near(table[exhaust][0], dead + math.pi))
+              if t is not None]
+        known = dict(zip(at, np.asarray(fractions_of(np.array(at, dtype=float))).tolist()))
+        piston_fraction = _known_first(known, piston_fraction)
     # both ends' leads in one evaluation of the gear (each angle's openings are its
     # own, evaluated beside others or alone)
     dead = gear.signed_openings(_DEAD_CENTRES)
     return {end: end_events(gear, end, piston_fraction, table, sampled,
                             dead[0, 0] if end == "head" else dead[2, 1])
             for end in ("head", "crank")}
+
+
+def _known_first(known: dict, piston_fraction: Callable[[float], float]):
+    """``piston_fraction`` answered from ``known`` (angle [rad] -> fraction [-]) where it
+    holds the angle."""
+    def frac(t):
+        f = known.get(t)
+        return piston_fraction(t) if f is None else f
+    return frac
 
 
 def _sampled(gear: ValveGear, signed: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
