@@ -2,9 +2,10 @@
 Dask cluster.
 
 Each run is the base scene's tables with the run's keys set
-(:func:`corliss.keys.edits.edited`), loaded and checked by the scene loader, made
-steady at its speed and run at the study's fidelity; its row holds the responses
-asked for.  Before any run the scenes of the first runs and of the runs at each key's
+(:func:`corliss.keys.edits.edited`), loaded and checked by the scene loader (the
+sections it edits read and every rule across sections checked; the others' specs
+taken from the base scene, loaded once a process), made steady at its speed and run
+at the study's fidelity; its row holds the responses asked for.  Before any run the scenes of the first runs and of the runs at each key's
 least and greatest value are loaded (every run's, up to :data:`CHECK_ALL_UP_TO`
 runs), so a key or a value the loader refuses is an
 :class:`~corliss.errors.InputError` naming it and nothing runs; a later run whose
