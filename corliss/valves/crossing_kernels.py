@@ -16,9 +16,16 @@ import numpy as np
 from numba import njit
 
 
+#: Samples counted a block in :func:`sign_changes`' first pass.
+BLOCK = 256
+
+
 @njit(cache=True)
 def sign_changes(s: np.ndarray, levels: np.ndarray):
     """Where each port's samples pass from one side of each of its levels to the other.
+
+    Two passes: the changes counted in blocks of :data:`BLOCK` samples (a loop the
+    compiler vectorises), then only the blocks with a change read sample by sample.
 
     Parameters
     ----------
@@ -38,34 +45,42 @@ def sign_changes(s: np.ndarray, levels: np.ndarray):
     """
     n_p, n1 = s.shape
     n_l = levels.shape[1]
-    count = 0
+    nb = (n1 - 1 + BLOCK - 1) // BLOCK
+    cnt = np.zeros((n_p, n_l, nb), dtype=np.int64)
+    total = 0
     for p in range(n_p):
         for li in range(n_l):
             lv = levels[p, li]
-            prev = s[p, 0] > lv
-            for k in range(1, n1):
-                cur = s[p, k] > lv
-                if cur != prev:
-                    count += 1
-                prev = cur
-    ports = np.empty(count, dtype=np.int64)
-    levs = np.empty(count, dtype=np.int64)
-    idx = np.empty(count, dtype=np.int64)
-    rising = np.empty(count, dtype=np.bool_)
+            for b in range(nb):
+                k0 = b * BLOCK
+                k1 = min(k0 + BLOCK, n1 - 1)
+                left = s[p, k0:k1]
+                right = s[p, k0 + 1:k1 + 1]
+                c = 0
+                for k in range(left.size):
+                    c += np.int64(left[k] > lv) ^ np.int64(right[k] > lv)
+                cnt[p, li, b] = c
+                total += c
+    ports = np.empty(total, dtype=np.int64)
+    levs = np.empty(total, dtype=np.int64)
+    idx = np.empty(total, dtype=np.int64)
+    rising = np.empty(total, dtype=np.bool_)
     j = 0
     for p in range(n_p):
         for li in range(n_l):
             lv = levels[p, li]
-            prev = s[p, 0] > lv
-            for k in range(1, n1):
-                cur = s[p, k] > lv
-                if cur != prev:
-                    ports[j] = p
-                    levs[j] = li
-                    idx[j] = k - 1
-                    rising[j] = cur
-                    j += 1
-                prev = cur
+            for b in range(nb):
+                if cnt[p, li, b] == 0:
+                    continue
+                for k in range(b * BLOCK, min(b * BLOCK + BLOCK, n1 - 1)):
+                    here = s[p, k] > lv
+                    after = s[p, k + 1] > lv
+                    if here != after:
+                        ports[j] = p
+                        levs[j] = li
+                        idx[j] = k
+                        rising[j] = after
+                        j += 1
     return ports, levs, idx, rising
 
 
