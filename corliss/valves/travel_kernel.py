@@ -69,3 +69,35 @@ def eccentric_travel(theta: np.ndarray, advance: float, throw: float, rod: float
             x = x + short
         out[k] = x
     return out
+
+
+@njit(cache=True, error_model="numpy")
+def eccentric_signed(theta: np.ndarray, advance: float, throw: float, rod: float,
+                     rod_sq: float, shift: float, sigma: float, has_rod: bool,
+                     laps: np.ndarray) -> np.ndarray:
+    """The four ports' signed openings of a lapped valve on one eccentric [m]:
+    ``x - lap_head``, ``-x - exhaust_lap_head``, ``-x - lap_crank``, ``x -
+    exhaust_lap_crank``, ``x`` as :func:`eccentric_travel` finds it.
+
+    Parameters
+    ----------
+    theta, advance, throw, rod, rod_sq, shift, sigma, has_rod
+        As :func:`eccentric_travel`.
+    laps : ndarray
+        Head steam lap, head exhaust lap, crank steam lap, crank exhaust lap [m],
+        shape ``(4,)``.
+
+    Returns
+    -------
+    ndarray
+        Signed openings [m], shape ``(4, n)``, in the order of
+        :data:`corliss.valves.gear.PORTS`.
+    """
+    x = eccentric_travel(theta, advance, throw, rod, rod_sq, shift, sigma, has_rod)
+    out = np.empty((4, theta.size))
+    for k in range(theta.size):
+        out[0, k] = x[k] - laps[0]
+        out[1, k] = -x[k] - laps[1]
+        out[2, k] = -x[k] - laps[2]
+        out[3, k] = x[k] - laps[3]
+    return out
