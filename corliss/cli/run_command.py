@@ -79,6 +79,14 @@ def _print_walls(s: dict, us: bool) -> None:
         print("  missing water    " + ", ".join(f"{s[f'missing_water_fraction_{e}']:.3f}"
                                               for e in ends)
               + f" of the steam at cut-off ({', '.join(ends)})")
+    wet = [e for e in ends if s.get(f"wet_fraction_at_cutoff_with_film_{e}") is not None]
+    if wet:
+        # both wetness figures: the mixture's own water, and all the water present
+        # with the wall's film (English's "wetness at cut-off")
+        print("  wet at cut-off   " + ", ".join(
+            f"{s[f'wet_fraction_at_cutoff_{e}']:.3f} in the steam, "
+            f"{s[f'wet_fraction_at_cutoff_with_film_{e}']:.3f} with the film" for e in wet)
+              + f" ({', '.join(wet)})")
     if s.get("missing_water_fraction_of_feed") is not None:
         print(f"  of the feed      {s['missing_water_fraction_of_feed']:.3f} missing at "
               "cut-off (condensation and leakage)")
