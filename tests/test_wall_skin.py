@@ -204,39 +204,17 @@ def test_condensation_plus_leakage_rises_with_the_initial_pressure():
     assert m[0] < m[1] < m[2]
 
 
-def test_steam_condenses_on_the_wall_only_at_saturation():
-    """The law that decides whether the steam at the wall condenses
-    (:func:`walls.condensing_share` of :func:`walls.steam_at_wall_superheat`), on
-    IAPWS-95 states at 7.8 bar (saturation 169.4 degC):
-
-    * a cushion 40 K superheated by the compression, no steam entering: no
-      condensation (Callendar and Nicolson, through DPJ 312, 1899, pp. 164-165:
-      compression's superheat prevents condensation in the clearance);
-    * dry saturated steam entering (a radian's inflow the end's mass) a bulk the
-      filling has superheated 40 K: the full coefficient, so that saturated steam
-      condenses as before (Marks Art. 74);
-    * 80 K superheated steam entering: none (Hirn, through DPJ 278 pp. 538-539: heat
-      enters the gas very slowly; Marks Art. 78, eq. 220b);
-    * wet steam: the full coefficient."""
-    heos = HEOSSteam()
-    p = 7.8e5
-    Ts = heos.t_sat(p)
-    L = heos.px(p, 1.0).h - heos.px(p, 0.0).h
-    hot = heos.pt(p, Ts + 40.0)
-    sat = heos.px(p, 1.0)
-    sup80 = heos.pt(p, Ts + 80.0)
-    m = 0.05
-
-    def share(bulk, x, h_in, inflow):
-        return walls.condensing_share(walls.steam_at_wall_superheat(
-            bulk.T if x == 1.0 else Ts, Ts, x, L, bulk.h, h_in, inflow, m))
-
-    assert share(hot, 1.0, 0.0, 0.0) == 0.0
-    assert share(hot, 1.0, sat.h, m * walls.INFLOW_SWEEP_PER_RAD) == 1.0
-    assert share(hot, 1.0, sup80.h, m * walls.INFLOW_SWEEP_PER_RAD) == 0.0
-    wet = heos.px(p, 0.95)
-    assert share(wet, 0.95, 0.0, 0.0) == 1.0
-    assert share(wet, 0.95, sat.h, m * walls.INFLOW_SWEEP_PER_RAD) == 1.0
+def test_the_condensing_share_falls_from_saturation_to_the_band():
+    """A surface below saturation condenses at the full coefficient while the steam at
+    it is saturated or wet, and not at all once it is superheated by
+    :data:`walls.SUPERHEAT_BAND_K` (Hirn, through DPJ 278 pp. 538-539: heat enters the
+    gas very slowly; Marks Art. 78, eq. 220b: the superheat meets the wall's demand
+    first), the cubic step's middle half-way."""
+    assert walls.condensing_share(-5.0) == 1.0
+    assert walls.condensing_share(0.0) == 1.0
+    assert walls.condensing_share(0.5 * walls.SUPERHEAT_BAND_K) == pytest.approx(0.5)
+    assert walls.condensing_share(walls.SUPERHEAT_BAND_K) == 0.0
+    assert walls.condensing_share(80.0) == 0.0
 
 
 def _corliss(**changes):

@@ -218,9 +218,12 @@ def build_network(scene, geo, pm, steam: Steam, chest: State, exhaust: State) ->
     if scene.run.has("wall_heat"):
         eng = scene.engine
         jacket_T = None
+        from corliss.thermo.steam import HEOSSteam
+        t_sat = HEOSSteam().t_sat(scene.supply.pressure_Pa)
         if eng.jacket == "barrel":
-            from corliss.thermo.steam import HEOSSteam
-            jacket_T = HEOSSteam().t_sat(scene.supply.pressure_Pa)
+            jacket_T = t_sat
+        supply_T = scene.supply.temperature_K
+        superheat = supply_T - t_sat if supply_T is not None else 0.0
         model = eng.wall_heat_model
         if model == "skin" and scene.run.mode == "transient":
             # the speed loop restarts every state past the nodes' each turn, which
@@ -233,7 +236,8 @@ def build_network(scene, geo, pm, steam: Steam, chest: State, exhaust: State) ->
                              transport_properties(chest.p, chest.T),
                              condensing_W_m2K=eng.condensing_W_m2K, jacket_T_K=jacket_T,
                              wall_thickness_m=eng.wall_thickness_m,
-                             idle_ends={"both": (), "head": (1,), "crank": (0,)}[eng.steam_ends])
+                             idle_ends={"both": (), "head": (1,), "crank": (0,)}[eng.steam_ends],
+                             supply_superheat_K=superheat)
     return net
 
 

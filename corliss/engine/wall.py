@@ -76,21 +76,28 @@ Superheated steam condenses only once the steam at the wall is at saturation: wh
 it is superheated the wall takes its superheat by convection alone (``h_v``, a few
 hundred W/(m2 K)), and the condensing coefficient is multiplied by a share that
 falls from 1 at saturation to 0 at ``SUPERHEAT_BAND_K`` of superheat
-(:func:`corliss.engine.kernels.walls.condensing_share`).  The steam at the wall is the
-bulk's, but while steam enters: then the jet sweeping the wall is, and its superheat
-is judged from its enthalpy at the end's pressure
-(:func:`~corliss.engine.kernels.walls.steam_at_wall_superheat`).  So saturated steam
-entering a cylinder whose bulk the filling and the cushion superheat still condenses,
-the superheated cushion of the compression does not (Callendar and Nicolson, DPJ
-312 pp. 164-165: compression's superheat prevents condensation in the clearance),
-and steam superheated at the supply condenses only once expansion and the wall have
-taken its superheat: Hirn (through DPJ 278 pp. 538-539): heat enters the gas very
-slowly; Kirsch (DPJ 282 p. 202): once dry the surface may be appreciably warmer than
-the steam; Marks Art. 78 (eq. 220b): the superheat must meet the wall's demand;
-Lineham (A Text-Book of Mechanical Engineering, p. 885): "a 5 % extra heat supply
-will often eliminate a 20 % loss".  On the bundled 20 x 42 in Corliss engine (80 rpm,
-100 psig, about 0.2 cut-off) 80 K of superheat takes the water missing at cut-off
-from 0.14 of the steam to under 0.01; without the rule it rose to 0.18.
+(:func:`corliss.engine.kernels.walls.condensing_share`).  The steam at the wall is
+the bulk's, but while steam enters the jet sweeping the wall is, its superheat judged
+from its enthalpy at the end's pressure
+(:func:`~corliss.engine.kernels.walls.steam_at_wall_superheat`); and it is taken no
+more superheated than the steam supplied: with saturated steam supplied the
+superheat the filling and the compression give the bulk is the mixed steam's, not
+that of the steam touching a wall its own film keeps wet (Kirsch, through DPJ 282,
+1891, p. 202: the surface is nowhere appreciably colder than the steam touching it),
+and a saturated engine condenses as it did.  Steam superheated at the supply
+condenses only once the expansion and the wall have taken its superheat: Hirn
+(Theorie mecanique de la chaleur, 1876, through DPJ 278 pp. 538-539): heat enters
+the gas very slowly, and a dry wall takes little from it; Marks Art. 78 (eq. 220b):
+the superheat must meet the wall's demand; Lineham (A Text-Book of Mechanical
+Engineering, p. 885): "a 5 % extra heat supply will often eliminate a 20 % loss".
+On the bundled 20 x 42 in Corliss engine (80 rpm, 100 psig, about 0.2 cut-off) 80 K
+of superheat takes the water missing at cut-off from 0.157 of the steam (saturated)
+to 0.006; without the rule it was 0.180.  Callendar and Nicolson's finding that the
+compression's superheat prevents condensation in the clearance (DPJ 312, 1899, pp.
+164-165) is kept for superheated supplies only: judging a saturated engine's cushion
+by its bulk left the bundled Meyer engine's wall at its shortest cut-off and at 40
+psia without a periodic state in the fast preset's cycles (the cushion dry in one
+cycle, wet in the next).
 
 ``h_c``, condensation and evaporation on the surface.  Nusselt's laminar film on a
 vertical surface (Z. VDI 60, 1916, pp. 541-546, 569-575)::
@@ -512,7 +519,8 @@ class IdealPortWall:
     Parameters
     ----------
     row : tuple
-        The end's skin row (:func:`skin_row` and the film's ``(h_L, L)``).
+        The end's skin row (:func:`skin_row`, the film's ``(h_L, L)`` and the
+        supply's superheat [K]).
     geometry : CylinderGeometry
         The cylinder's geometry (the exposed wall from the volume).
     end : int
@@ -532,7 +540,7 @@ class IdealPortWall:
     def __init__(self, row, geometry, end: int, omega_rad_s: float, T_deep_K: float,
                  grid_nodes: int | None = None):
         (_, self.h_c, self.k, self.mu, self.pr, self.cap, self.cond, self.area_mean,
-         _, self.ga, self.T_jacket, self.h_L, self.L) = row
+         _, self.ga, self.T_jacket, self.h_L, self.L, self.supply_superheat) = row
         self.a_p = geometry.area_head_m2 if end == 0 else geometry.area_crank_m2
         self.bore = geometry.spec.bore_m
         self.omega = omega_rad_s
@@ -609,8 +617,8 @@ class IdealPortWall:
         sweep = INFLOW_SWEEP_PER_RAD * m if entering is not None else 0.0
         sup = steam_at_wall_superheat(T, Tsat, float(x), self.L, st.h,
                                       entering.h if entering is not None else 0.0, sweep, m)
-        hf, hm = skin_coefficients(Tw, Tsat, self.h_c, float(self.film), Aw, float(x),
-                                   condensing_share(float(sup)))
+        share = condensing_share(min(float(sup), self.supply_superheat))
+        hf, hm = skin_coefficients(Tw, Tsat, self.h_c, float(self.film), Aw, float(x), share)
         lat_c = max(st.h - self.h_L, 0.5 * self.L)     # condensing, per kg [J/kg]
         # the surface, backward Euler; a flow that would take more than there is
         # within the step (the film's water boiling off, the mixture's water, or,

@@ -21,7 +21,8 @@ from corliss.engine.kernels.data import (GEO_AREA_CRANK, GEO_AREA_HEAD, H_CONDUC
                                          H_MODEL, H_MU, H_PRANDTL, H_SKIN_AREA,
                                          H_SKIN_CAPACITY, H_SKIN_DEEP, H_SKIN_FILM_H,
                                          H_SKIN_JACKET_G, H_SKIN_JACKET_T, H_SKIN_LATENT,
-                                         H_SKIN_STATE, WALL_CONDUCTANCE, WALL_MARKS, WALL_SKIN)
+                                         H_SKIN_STATE, H_SKIN_SUPPLY_SUPERHEAT, WALL_CONDUCTANCE,
+                                         WALL_MARKS, WALL_SKIN)
 from corliss.engine.kernels.properties import (PR_DV, PR_H, PR_KAPPA, PR_P, PR_RHO, PR_T,
                                                PR_TSAT, PR_V, PR_X, node_states)
 from corliss.engine.kernels.walls import (FILM_MAX_KG_M2, FILM_WET_KG_M2, adair_h,
@@ -279,8 +280,10 @@ def skin_wall(i, y, pr, dy, net, q0):
     m_in, h_in = dy[q0 + 3], dy[q0 + 4]
     sup = steam_at_wall_superheat(Ts, Tsat, pr[PR_X, i], heat[i, H_SKIN_LATENT], H[i],
                                   h_in / m_in if m_in > 0.0 else 0.0, m_in, y[2 * i])
+    # no more superheated than the steam supplied: saturated steam supplied keeps the
+    # wall's steam saturated however the filling and the compression superheat the bulk
     hf, hm = skin_coefficients(Tw, Tsat, heat[i, H_CONDUCTANCE], mf, Aw, pr[PR_X, i],
-                               condensing_share(sup))
+                               condensing_share(min(sup, heat[i, H_SKIN_SUPPLY_SUPERHEAT])))
     qf = hf * (Tw - Tsat) * A            # [W] from the wall into the film
     qm = hm * (Tw - Tsat) * A            # [W] into the mixture's water
     qc = hv * (Tw - Ts) * A              # [W] into the steam by convection

@@ -41,11 +41,13 @@ H_MARKS_WALL_ADMIT, H_MARKS_WALL_EXPAND = 9, 10
 #: The skin model (:mod:`corliss.engine.wall`): the surface node's capacity
 #: [J/(m2 K)] and conductance to the deep wall [W/(m2 K)], its mean area [m2], the
 #: index of its first state, the jacket's conductance [W/K] and temperature [K], the
-#: film's water's specific enthalpy and the latent heat it takes to evaporate [J/kg].
+#: film's water's specific enthalpy and the latent heat it takes to evaporate [J/kg],
+#: and the superheat of the steam supplied [K] (0 when saturated or wet).
 H_SKIN_CAPACITY, H_SKIN_DEEP, H_SKIN_AREA, H_SKIN_STATE = 5, 6, 7, 8
 H_SKIN_JACKET_G, H_SKIN_JACKET_T, H_SKIN_FILM_H, H_SKIN_LATENT = 9, 10, 11, 12
+H_SKIN_SUPPLY_SUPERHEAT = 13
 #: Columns of the row.
-HEAT_COLUMNS = 13
+HEAT_COLUMNS = 14
 
 #: Rows of :attr:`LoopArrays.trip` (a trip gear's tables, over the settings): the
 #: setting grid [-]; the head end's release angle per setting [rad] (nan: none), the

@@ -34,9 +34,8 @@ FILM_MAX_KG_M2 = 0.1
 WET_BAND = 0.02
 #: The superheat of the steam at the wall over which condensation fades out, from the
 #: full coefficient at saturation to none [K]: a smooth step for the integrators, not
-#: a measured width.  With 2 K the bundled Corliss engine's saturated run (skin wall,
-#: fast preset) was not periodic in 60 cycles, the cushion's condensation switching
-#: on and off from cycle to cycle; with 10 K it is periodic in 41.
+#: a measured width (with 2 K the bundled Corliss engine's runs were not periodic in
+#: the fast preset's 60 cycles).
 SUPERHEAT_BAND_K = 10.0
 #: Specific heat of steam that turns enthalpy over saturated vapour's into kelvin of
 #: superheat [J/(kg K)]: 1.95 kJ/(kg K), at or below steam's mean specific heat from
@@ -132,10 +131,11 @@ def steam_at_wall_superheat(T, Tsat, x, L, h, h_in, inflow, m):
     is the entering steam at the end's pressure, whose excess over saturated vapour
     is the bulk's plus ``h_in - h``; the share goes from the bulk's to the jet's as
     the inflow per radian grows to :data:`INFLOW_SWEEP_PER_RAD` of the end's steam (a
-    cubic step); ``c_p`` is :data:`CP_STEAM_J_KGK`.  So the cushion the compression
-    superheats keeps the clearance's walls from condensing (Callendar and Nicolson,
-    through DPJ 312, 1899, pp. 164-165), and saturated steam entering a cylinder
-    whose bulk the filling superheats still condenses on them.
+    cubic step); ``c_p`` is :data:`CP_STEAM_J_KGK`.  The compiled balances and the
+    ideal-port wall take no more than the supply's superheat
+    (:func:`corliss.engine.network.with_wall_heat`): with saturated steam supplied
+    the steam at the wall stays saturated however the filling and the compression
+    superheat the bulk.
 
     Parameters
     ----------
@@ -186,7 +186,7 @@ def condensing_share(sup):
     ----------
     sup : float
         The superheat of the steam at the wall [K]
-        (:func:`steam_at_wall_superheat`).
+        (:func:`steam_at_wall_superheat`, no more than the supply's).
 
     Returns
     -------
