@@ -13,6 +13,7 @@ import logging
 import math
 from dataclasses import dataclass
 
+from corliss.engine import wall
 from corliss.engine.geometry import CylinderGeometry
 from corliss.engine.scene_specs import SceneSpec
 from corliss.engine.network import (Network, compound, single_cylinder, with_leakage,
@@ -219,9 +220,13 @@ def build_network(scene, geo, pm, steam: Steam, chest: State, exhaust: State) ->
         eng = scene.engine
         jacket_T = None
         from corliss.thermo.steam import HEOSSteam
-        t_sat = HEOSSteam().t_sat(scene.supply.pressure_Pa)
+        heos = HEOSSteam()
+        t_sat = heos.t_sat(scene.supply.pressure_Pa)
         if eng.jacket == "barrel":
-            jacket_T = t_sat
+            # each cylinder's jacket at its own steam's saturation (the LP's at its
+            # receiver's, wall.jacket_pressures_Pa)
+            jacket_T = tuple(heos.t_sat(p) for p in wall.jacket_pressures_Pa(
+                scene.supply.pressure_Pa, scene.exhaust.pressure_Pa, scene.compound is not None))
         supply_T = scene.supply.temperature_K
         superheat = supply_T - t_sat if supply_T is not None else 0.0
         model = eng.wall_heat_model

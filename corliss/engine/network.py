@@ -914,8 +914,8 @@ WALL_MODELS = {"conductance": WALL_CONDUCTANCE, "adair": WALL_ADAIR, "marks": WA
 
 
 def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
-                   condensing_W_m2K: float | None = None, jacket_T_K: float | None = None,
-                   wall_thickness_m: float = 0.025, idle_ends: tuple = (),
+                   condensing_W_m2K: float | None = None,
+                   jacket_T_K: float | tuple | None = None, wall_thickness_m: float = 0.025, idle_ends: tuple = (),
                    supply_superheat_K: float = 0.0) -> Network:
     """Heat exchange between the steam of each cylinder end and its walls.
 
@@ -965,8 +965,9 @@ def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
     condensing_W_m2K : float, optional
         The skin model's coefficient of condensation and evaporation [W/(m2 K)]
         (default :data:`corliss.engine.wall.CONDENSING_W_M2K`).
-    jacket_T_K : float, optional
-        A jacket's temperature [K] (skin model; None: no jacket).
+    jacket_T_K : float or tuple of float, optional
+        A jacket's temperature [K], or one per cylinder (the last for any beyond)
+        (skin model; None: no jacket).
     wall_thickness_m : float
         The barrel's iron between bore and jacket [m] (skin model, with a jacket).
     idle_ends : tuple of int
@@ -992,10 +993,15 @@ def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
         # (constant over a run, so that the film's energy is m_f h_L exactly)
         t0 = 0.5 * (net.reservoirs[0].T + net.reservoirs[-1].T)
         film = film_enthalpies(t0)
+
+        def jacket_of(c):
+            if jacket_T_K is None or isinstance(jacket_T_K, float):
+                return jacket_T_K
+            return jacket_T_K[min(c, len(jacket_T_K) - 1)]
         for i in net.wall_nodes:
             net.node_heat[i] = wall.skin_row(net.geometries[net.node_cyl[i]], net.node_end[i],
                                              net.omega, h_c, steam_props, net.i_wall(i),
-                                             jacket_T_K, wall_thickness_m) + film + (
+                                             jacket_of(net.node_cyl[i]), wall_thickness_m) + film + (
                                                  max(supply_superheat_K, 0.0),)
     return net
 

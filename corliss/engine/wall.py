@@ -339,6 +339,37 @@ def skin_row(geometry, end: int, omega_rad_s: float, h_c: float, steam_props,
     return (WALL_SKIN, h_c, k, mu, pr, cap, cond, area, float(state_index), ga, tj)
 
 
+def jacket_pressures_Pa(supply_Pa: float, exhaust_Pa: float, compound: bool) -> tuple:
+    """The pressure of each cylinder's jacket steam, by default.
+
+    The high-pressure (or only) cylinder's jacket takes the supply's steam; a
+    compound's low-pressure cylinder's takes its own receiver's, at the receiver's
+    starting pressure, the geometric mean of supply and exhaust (the network's
+    :func:`corliss.engine.network.compound`).  A jacket at the supply's saturation on
+    the LP cylinder, far hotter than its own steam, removed nearly all its condensation
+    (0.30 of its supply to 0.007 on the bundled compound), which is not the period's
+    practice (Marks Art. 79: the jacket's steam from the boiler on the first cylinder;
+    Lineham: 10 to 20 % saved).
+
+    Parameters
+    ----------
+    supply_Pa : float
+        The supply's pressure [Pa].
+    exhaust_Pa : float
+        The exhaust's pressure [Pa].
+    compound : bool
+        Whether the engine is a compound (two cylinders, HP then LP).
+
+    Returns
+    -------
+    tuple of float
+        One pressure per cylinder [Pa].
+    """
+    if compound:
+        return (supply_Pa, math.sqrt(supply_Pa * exhaust_Pa))
+    return (supply_Pa,)
+
+
 #: Nodes of the conduction grid under the surface (:class:`ConductionGrid`) [-].
 GRID_NODES = 14
 #: Depth of the grid's held node, in skin depths at the engine's frequency [-].
