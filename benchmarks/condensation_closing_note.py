@@ -9,10 +9,14 @@ measured coefficient"), printed as Markdown.
   series) and the locomotive (the bundled 25 x 28 in Walschaerts engine, 200 rpm, blast
   pipe 5 psig): condensation alone (the water missing at cut-off, of the steam
   supplied, without leakage), the missing water of the feed (Willans's "missing
-  quantity of feed water at cut-off") without and with Callendar and Nicolson's rate
-  of leak by the period's law (3 lb/h per psi, chest to exhaust; DPJ 312, 1899, p.
-  163), the leak as a fraction of the steam, Marks's eq. 221 for the same card, and
-  the head end's surface swing; beside them the superheater makers' table for
+  quantity of feed water at cut-off") without and with leakage by the period's law
+  across each edge of the valve at Callendar and Nicolson's rate of leak (3 lb/h per
+  psi past each closed steam edge and each closed exhaust edge of the reference valve,
+  scaled to the gear's ports and faces, :mod:`corliss.engine.leak_paths`; DPJ 312,
+  1899, p. 163: with the ports blocked, each end's two edges in series and the two ends
+  side by side leak the valve's 3 lb/h per psi chest to exhaust), the leak into the
+  ends past the steam edges as a fraction of the steam, Marks's eq. 221 for the same
+  card, and the head end's surface swing; beside them the superheater makers' table for
   saturated locomotives (S3) and Willans's 1888 missing water (S1), read from
   ``docs/validation/condensation_measurements.csv``.
 * The surface's swing on the bundled single-acting engine after Callendar and
@@ -51,7 +55,8 @@ ENGINES = {"small": ("meyer-cutoff", "Small engine (10 x 16 in Meyer, 150 rpm, 1
                           "200 rpm, 200 psig, blast pipe 5 psig)")}
 CUTOFFS = (0.1, 0.2, 0.3, 0.4, 0.5, 0.6)
 PRESSURES_PSIA = (40, 60, 90, 110)
-#: Callendar and Nicolson's rate of leak of their slide valve (DPJ 312, 1899, p. 163).
+#: Callendar and Nicolson's rate of leak of their slide valve (DPJ 312, 1899, p. 163),
+#: past each closed edge of the reference valve.
 LEAK_RATE = "3 lb/h psi"
 #: The setting of the pressure series where a scene has none of its own.
 PRESSURE_SETTING = {"small": 0.4}
@@ -69,7 +74,8 @@ def _skin(data: dict, leak: bool) -> dict:
     data["run"]["effects"] = effects + ["wall_heat"] + (["leakage"] if leak else [])
     data["run"]["fidelity"] = "fast"
     if leak:
-        data["engine"].update({"leakage_model": "period", "valve_leak_rate": LEAK_RATE})
+        data["engine"].update({"leakage_model": "period", "steam_edge_leak_rate": LEAK_RATE,
+                               "exhaust_edge_leak_rate": LEAK_RATE})
     return data
 
 
@@ -145,7 +151,7 @@ def main() -> int:
     for which, (name, title) in ENGINES.items():
         print(f"\n**{title}**, missing water against cut-off (both ends' mean cut-off):\n")
         print("| cut-off | condensation alone (of the steam) | of the feed, no leak | "
-              "of the feed, with the period's leak | leak (of the steam) | Marks eq. 221 | "
+              "of the feed, with the leak across each edge | leak (of the steam) | Marks eq. 221 | "
               "Elesco table (saturated locomotives) | surface swing [K] |")
         print("|---|---|---|---|---|---|---|---|")
         for c in CUTOFFS:
@@ -165,7 +171,7 @@ def main() -> int:
                   f"{p['swing_K']:.1f} |")
         print(f"\n{title}, against initial pressure (setting held):\n")
         print("| supply [psia] | cut-off | condensation alone | of the feed, no leak | "
-              "of the feed, with the period's leak | leak (of the steam) | Marks eq. 221 | "
+              "of the feed, with the leak across each edge | leak (of the steam) | Marks eq. 221 | "
               "Willans 1888 (simple engine, of the feed) |")
         print("|---|---|---|---|---|---|---|---|")
         for psia in PRESSURES_PSIA:

@@ -64,3 +64,117 @@ def test_the_period_law_needs_a_rate():
     with pytest.raises(InputError, match="engine.valve_leak_rate"):
         make_scene(engine={"leakage_model": "period"},
                    run={"effects": ["port_flow", "rod_angularity", "leakage"]})
+
+
+# --- across each valve edge (corliss.engine.leak_paths) ---------------------------------
+
+def _gear(**valve):
+    from corliss.engine.model import build_gear
+    return build_gear(make_scene(valve_gear=valve))
+
+
+def test_an_edge_leaks_in_proportion_to_its_port_length():
+    """Callendar and Nicolson (DPJ 312, 1899, p. 164): the water a valve leaks is
+    proportional "to the perimeter of the port's opening".  The default slide valve
+    with 9.6 and 19.2 in ports (the overlaps unchanged): every edge's share of the
+    reference rate doubles, to rounding (1e-12)."""
+    from corliss.engine.leak_paths import edge_leak_scales
+    one = edge_leak_scales(_gear(port_length="9.6 in"))
+    two = edge_leak_scales(_gear(port_length="19.2 in"))
+    assert two == pytest.approx(2.0 * one, rel=1e-12)
+
+
+def test_an_edge_leaks_less_as_its_face_widens():
+    """Capper's committee (1905; Lineham, App. VI): leakage "inversely to the lap".  The
+    default slide valve's steam lap from 1 to 1.5 in (the lead held at 0.25 in): its
+    steam edges' faces cover the closed ports by more and leak less, in the inverse
+    ratio of the mean overlap (``closed_face_widths_m``; 1e-12); the exhaust edges, whose
+    lap is unchanged, leak within 15 % of before (the valve's angular advance moves
+    with the lap, and with it where the exhaust edge closes)."""
+    from corliss.engine.leak_paths import closed_face_widths_m, edge_leak_scales
+    small, big = _gear(lap="1 in"), _gear(lap="1.5 in")
+    a, b = edge_leak_scales(small), edge_leak_scales(big)
+    wa, wb = closed_face_widths_m(small), closed_face_widths_m(big)
+    for steam in (0, 2):
+        assert b[steam] < a[steam]
+        assert b[steam] / a[steam] == pytest.approx(wa[steam] / wb[steam], rel=1e-12)
+    for exhaust in (1, 3):
+        assert b[exhaust] == pytest.approx(a[exhaust], rel=0.15)
+
+
+def test_the_face_width_of_a_slide_valve_in_closed_form():
+    """A slide valve driven through an eccentric rod long against its throw moves
+    harmonically, ``x = r sin(phi)``, and its steam edge's signed opening is ``x - l``:
+    shut where ``sin(phi) < l / r``, over ``pi + 2 a`` of the turn (``a = asin(l/r)``),
+    and the mean overlap there is ``l + 2 r cos(a) / (pi + 2 a)`` (the integral of
+    ``l - r sin(phi)`` over the shut arc, ``l (pi + 2 a) + 2 r cos(a)``, over its length).
+    The exhaust edge, lap 0: ``2 r / pi``.  On the default valve (r 3 in, l 1 in) with a
+    600 in eccentric rod: within 0.2 % (the rod's angularity at 600 in, r / L = 0.005,
+    and the 0.25 deg sampling)."""
+    import math
+    from corliss.engine.leak_paths import closed_face_widths_m
+    r, lap = 3.0, 1.0
+    a = math.asin(lap / r)
+    want = lap + 2.0 * r * math.cos(a) / (math.pi + 2.0 * a)
+    w = closed_face_widths_m(_gear(eccentric_rod="600 in")) / 0.0254
+    assert w[0] == pytest.approx(want, rel=2e-3)
+    assert w[2] == pytest.approx(want, rel=2e-3)
+    assert w[1] == pytest.approx(2.0 * r / math.pi, rel=2e-3)
+
+
+def test_the_reference_valve_is_the_bundled_single_acting_engines():
+    """The reference of the edges' rates (``leak_paths.REFERENCE_*``) is the valve of the
+    bundled engine after Callendar and Nicolson's, on which they measured 3 lb/h per
+    psi: its head end's steam edge carries the rate the scene names (scale 1, to the
+    reference's rounding to 0.01 in of 2.11 in: 0.5 %)."""
+    import tomllib
+    from corliss.engine.leak_paths import edge_leak_scales
+    from corliss.engine.model import build_gear
+    from corliss.scene.loader import bundled_scenes, scene_from_dict
+    name = "callendar-nicolson-single-acting"
+    scene = scene_from_dict(tomllib.loads(bundled_scenes()[name].read_text()), name=name)
+    assert edge_leak_scales(build_gear(scene))[0] == pytest.approx(1.0, rel=5e-3)
+
+
+def test_each_edge_leaks_its_rate_times_the_difference_across_it():
+    """The default engine, the supply at 114.7 psia straight to the ports, with 3 lb/h
+    per psi past each closed steam edge and each closed exhaust edge (Callendar and
+    Nicolson's valve): over the last cycle each end's steam-edge leak is ``R s (p_supply
+    - p_end)`` and its exhaust-edge leak ``R s (p_end - p_exhaust)`` integrated in time
+    (``s`` the edge's scale), each to 2 % of the gross flow (the trapezoid on the
+    recorded samples); into the end past the steam edge is net inward (the chest is the
+    highest pressure in the engine), out past the exhaust edge net outward.  The summary
+    reports each path per cycle, per hour and of the steam supplied, and the share of the
+    steam that leaves the steam side is the steam edges' two together."""
+    import numpy as np
+    from corliss.engine.leak_paths import edge_leak_scales
+    r = corliss.simulate(make_scene(
+        engine={"leakage_model": "period", "steam_edge_leak_rate": RATE,
+                "exhaust_edge_leak_rate": RATE},
+        run={"effects": ["port_flow", "rod_angularity", "leakage"], "fidelity": "fast"}))
+    s = r.summary
+    scale = edge_leak_scales(_gear())
+    ts = r.timeseries[r.timeseries["cycle"] == r.timeseries["cycle"].max()]
+    t = ts["time_s"].to_numpy()
+    supplied = float(r.last_cycle["m_supply_kg"])
+    fed = 0.0
+    for e, end in enumerate(("head", "crank")):
+        p = ts[f"p_{end}_Pa"].to_numpy()
+        for path, dp, k in ((f"valve_leak_{end}", r.chest.p - p, 2 * e),
+                            (f"valve_leak_{end}_exhaust", p - r.exhaust.p, 2 * e + 1)):
+            want = float(np.trapezoid(R_SI * scale[k] * dp, t))
+            gross = float(np.trapezoid(R_SI * scale[k] * np.abs(dp), t))
+            got = s["leak_paths"][path]
+            assert want > 0.0
+            assert abs(got["kg_per_cycle"] - want) < 0.02 * gross, (path, got, want)
+            assert got["fraction_of_steam"] == pytest.approx(got["kg_per_cycle"] / supplied,
+                                                             rel=1e-12)
+        fed += s["leak_paths"][f"valve_leak_{end}"]["kg_per_cycle"]
+    assert s["valve_leakage_fraction_of_steam"] == pytest.approx(fed / supplied, rel=1e-12)
+    assert s["mass_balance_error"] < 1e-4
+
+
+def test_a_negative_edge_rate_is_refused():
+    with pytest.raises(InputError, match="engine.exhaust_edge_leak_rate"):
+        make_scene(engine={"leakage_model": "period", "exhaust_edge_leak_rate": "-1 lb/h psi"},
+                   run={"effects": ["port_flow", "rod_angularity", "leakage"]})

@@ -122,8 +122,13 @@ VARIANTS = {
         'piston_leakage_area = "0.05 in2"\n', '"wall_heat", "leakage"'),
     "compound_walls_period_leaks": lambda tmp: _edited(
         "marks-compound-9-14x14", tmp, 'leakage_model = "period"\n'
-        'valve_leak_rate = "3 lb/h psi"\npiston_leak_rate = "1 lb/h psi"\n',
+        'valve_leak_rate = "3 lb/h psi"\npiston_leak_rate = "1 lb/h psi"\n'
+        'steam_edge_leak_rate = "3 lb/h psi"\nexhaust_edge_leak_rate = "3 lb/h psi"\n',
         '"wall_heat", "leakage"'),
+    "twin_edge_leaks": lambda tmp: _edited(
+        "twin-90-degrees", tmp, 'leakage_model = "period"\n'
+        'steam_edge_leak_rate = "3 lb/h psi"\nexhaust_edge_leak_rate = "3 lb/h psi"\n',
+        '"leakage"'),
 }
 
 
@@ -136,7 +141,8 @@ def test_keys_of_effects_no_bundled_scene_asks_are_declared(variant, tmp_path):
     assert not bad, f"{variant}:\n" + "\n".join(bad)
     wanted = {"every_effect": "valve_leak_head_kg_per_h", "jacket": "jacket_heat_W",
               "twin_walls_leaks": "missing_water_fraction_c2_crank",
-              "compound_walls_period_leaks": "heat_to_walls_lp_crank_J_per_cycle"}[variant]
+              "compound_walls_period_leaks": "heat_to_walls_lp_crank_J_per_cycle",
+              "twin_edge_leaks": "valve_leak_c2_crank_exhaust_kg_per_h"}[variant]
     assert wanted in result.summary       # the variant writes what it is here for
 
 

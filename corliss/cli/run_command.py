@@ -73,7 +73,16 @@ def _print_walls(s: dict, us: bool) -> None:
         leak = s["valve_leakage_kg_per_h"]
         print(f"  valve leakage    "
               + (f"{leak / units.POUND_kg:.1f} lb/h" if us else f"{leak:.1f} kg/h")
-              + f", {s['valve_leakage_fraction_of_steam']:.3f} of the steam")
+              + f" past every path; {s['valve_leakage_fraction_of_steam']:.3f} of the steam "
+              "leaves the steam side")
+    for path, v in (s.get("leak_paths") or {}).items():
+        rate = v["kg_per_h"]
+        frac = v.get("fraction_of_steam")
+        print(f"    {path:<26}"
+              + (f"{v['kg_per_cycle'] / units.POUND_kg:.4f} lb a cycle, "
+                 f"{rate / units.POUND_kg:.1f} lb/h" if us else
+                 f"{v['kg_per_cycle']:.4f} kg a cycle, {rate:.1f} kg/h")
+              + ("" if frac is None else f", {frac:.3f} of the steam"))
     ends = [e for e in ("head", "crank") if s.get(f"missing_water_fraction_{e}") is not None]
     if ends:
         print("  missing water    " + ", ".join(f"{s[f'missing_water_fraction_{e}']:.3f}"

@@ -71,6 +71,11 @@ class EngineSpec:
     valve_leak_rate_kg_s_Pa, piston_leak_rate_kg_s_Pa : float
         Rates of leak of the valve (chest to exhaust) and past the piston, flow per
         unit of pressure difference [kg/(s Pa)] (``leakage`` effect, period model).
+    steam_edge_leak_rate_kg_s_Pa, exhaust_edge_leak_rate_kg_s_Pa : float
+        Rates of leak past each closed steam edge (the steam side into the end) and
+        each closed exhaust edge (the end to the exhaust side) of the reference valve
+        (:mod:`corliss.engine.leak_paths`), flow per unit of pressure difference
+        [kg/(s Pa)] (``leakage`` effect, period model).
     """
 
     bore_m: float
@@ -93,6 +98,8 @@ class EngineSpec:
     leakage_model: str = "orifice"
     valve_leak_rate_kg_s_Pa: float = 0.0
     piston_leak_rate_kg_s_Pa: float = 0.0
+    steam_edge_leak_rate_kg_s_Pa: float = 0.0
+    exhaust_edge_leak_rate_kg_s_Pa: float = 0.0
 
 
 @dataclass(frozen=True)

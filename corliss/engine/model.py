@@ -15,6 +15,7 @@ from dataclasses import dataclass
 
 from corliss.engine import wall
 from corliss.engine.geometry import CylinderGeometry
+from corliss.engine.leak_paths import edge_leak_scales
 from corliss.engine.scene_specs import SceneSpec
 from corliss.engine.network import (Network, compound, single_cylinder, with_leakage,
                                     with_period_leakage, with_steam_chest, with_wall_heat)
@@ -211,8 +212,18 @@ def build_network(scene, geo, pm, steam: Steam, chest: State, exhaust: State) ->
     if scene.run.has("steam_chest"):
         net = with_steam_chest(net, scene.supply)
     if scene.run.has("leakage") and scene.engine.leakage_model == "period":
-        net = with_period_leakage(net, scene.engine.valve_leak_rate_kg_s_Pa,
-                                  scene.engine.piston_leak_rate_kg_s_Pa)
+        eng = scene.engine
+        scales = None
+        if eng.steam_edge_leak_rate_kg_s_Pa or eng.exhaust_edge_leak_rate_kg_s_Pa:
+            # each edge's share by its port's length and face's width, at the
+            # scene's setting (corliss.engine.leak_paths)
+            gears = [build_gear(scene)] + ([build_lp_gear(scene)] if scene.compound else [])
+            scales = [edge_leak_scales(g) for g in gears]
+            scales += [scales[0]] * (len(net.geometries) - len(scales))
+        net = with_period_leakage(
+            net, eng.valve_leak_rate_kg_s_Pa, eng.piston_leak_rate_kg_s_Pa,
+            eng.steam_edge_leak_rate_kg_s_Pa, eng.exhaust_edge_leak_rate_kg_s_Pa, scales,
+            idle_ends={"both": (), "head": (1,), "crank": (0,)}[eng.steam_ends])
     elif scene.run.has("leakage"):
         net = with_leakage(net, scene.engine.valve_leakage_area_m2,
                            scene.engine.piston_leakage_area_m2)

@@ -853,7 +853,10 @@ def with_leakage(net: Network, valve_area_m2: float, piston_area_m2: float,
 
 
 def with_period_leakage(net: Network, valve_rate_kg_s_Pa: float,
-                        piston_rate_kg_s_Pa: float) -> Network:
+                        piston_rate_kg_s_Pa: float, steam_edge_rate_kg_s_Pa: float = 0.0,
+                        exhaust_edge_rate_kg_s_Pa: float = 0.0,
+                        edge_scales: list | None = None,
+                        idle_ends: tuple[int, ...] = ()) -> Network:
     """Leakage by the period's law (:mod:`corliss.thermo.leak_law`): a flow equal to a
     rate of leak times the pressure difference, independent of speed.
 
@@ -863,7 +866,20 @@ def with_period_leakage(net: Network, valve_rate_kg_s_Pa: float,
     the path Callendar and Nicolson measured their "rate of leak of the valve" on,
     the steam ports blocked (DPJ 312, 1899, p. 163; their quadruple engine's HP and
     LP valves leaked alike, 17.3 and 18.6 kg/h); past the piston, between the two ends
-    of every cylinder (``piston_leak``).  A zero rate adds no edge.
+    of every cylinder (``piston_leak``); and across each edge of every cylinder's
+    valve: from its steam side into each end past the steam edge
+    (``valve_leak_<end>``, the chest's or a compound LP's receiver) and from each end to
+    its exhaust side past the exhaust edge (``valve_leak_<end>_exhaust``), each at its
+    rate times the edge's scale (:func:`corliss.engine.leak_paths.edge_leak_scales`:
+    the port's length over the reference's, the reference's face width over the
+    edge's).  A zero rate adds no edge.
+
+    The edges' leaks flow all the turn, the port open or shut.  Across an open port
+    the two sides differ by the port's own drop (wire-drawing), so the leak there is
+    a small part of its closed value and a far smaller part of the port's flow;
+    stopping it when the port opens would put a step in the right-hand side at every
+    event for a flow the measurements cannot tell apart (Callendar and Nicolson
+    measured the valve's whole leak, not by the edge's state).
 
     The leak carries the enthalpy of the side it leaves.  Callendar and Nicolson found
     it mostly water: steam condensing on the valve's faces, which the water's
@@ -880,12 +896,37 @@ def with_period_leakage(net: Network, valve_rate_kg_s_Pa: float,
         Rate of leak of the valve, chest to exhaust [kg/(s Pa)].
     piston_rate_kg_s_Pa : float
         Rate of leak past the piston [kg/(s Pa)].
+    steam_edge_rate_kg_s_Pa, exhaust_edge_rate_kg_s_Pa : float
+        Rates of leak of the reference valve past a closed steam edge (steam side into
+        the end) and a closed exhaust edge (the end to the exhaust side) [kg/(s Pa)].
+    edge_scales : list of ndarray, optional
+        Each cylinder's factor on those rates for each of its ports, shape ``(4,)``
+        in port order (:func:`corliss.engine.leak_paths.edge_leak_scales`); 1 when
+        not given.
+    idle_ends : tuple of int
+        Ends (0 head, 1 crank) of every cylinder that take no steam (single-acting):
+        their ports stand open or shut, not past a valve's edge, and leak nothing.
 
     Returns
     -------
     Network
         ``net``.
     """
+    for e in range(net.n_edges):
+        if net.e_kind[e] != PORTMAP_EDGE:
+            continue
+        c, port, node = net.e_cyl[e], net.e_port[e], net.e_b[e]
+        steam = port % 2 == 0
+        rate = steam_edge_rate_kg_s_Pa if steam else exhaust_edge_rate_kg_s_Pa
+        rate *= 1.0 if edge_scales is None else float(edge_scales[c][port])
+        if rate <= 0.0 or net.node_end[node] in idle_ends:
+            continue
+        name = net.node_names[node]
+        if steam:
+            net.add_edge(f"valve_leak_{name}", net.e_a[e], node, 1.0, LINEAR_EDGE, area=rate)
+        else:
+            net.add_edge(f"valve_leak_{name}_exhaust", node, net.e_a[e], 1.0, LINEAR_EDGE,
+                         area=rate)
     src = net.node("chest") if "chest" in net.node_names else reservoir(0)
     if valve_rate_kg_s_Pa > 0.0:
         if "receiver" in net.node_names:

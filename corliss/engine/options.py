@@ -23,7 +23,10 @@ EFFECTS: dict[str, str] = {
                    "through a steam pipe ([supply] pipe_diameter) and its throttle valve "
                    "([supply] throttle, throttle_law)",
     "leakage": "leaks past the valve into each end ([engine] valve_leakage_area) and past the "
-               "piston ([engine] piston_leakage_area), as orifices of equivalent area",
+               "piston ([engine] piston_leakage_area), as orifices of equivalent area; or "
+               "by the period's law (leakage_model = \"period\": a rate of leak times the "
+               "pressure difference, chest to exhaust, past each closed steam and exhaust "
+               "edge of the valve, past the piston)",
     "wall_heat": "heat between the steam and the cylinder walls: initial condensation and "
                  "re-evaporation ([engine] wall_heat_model = \"skin\" (a wall whose surface "
                  "temperature and water film are states, heat only down the temperature "

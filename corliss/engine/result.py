@@ -573,15 +573,29 @@ class SteadyResult(Result[SteadySummary]):
             out["valve_leakage_kg_per_h"] = float(sum(row[k] for k in valve_leaks)) * rev_per_h
             for k in valve_leaks:       # each path's: the period's law has its own names
                 out[f"{k[2:-3]}_kg_per_h"] = float(row[k]) * rev_per_h
-            # the leak that leaves the steam side, as a fraction of the steam supplied
-            # (a compound's HP valve leaks into the receiver; the LP's is the receiver's)
-            fed = (["m_valve_leak_receiver_kg"] if "m_valve_leak_receiver_kg" in row
-                   else valve_leaks)
+            # the leak that leaves the steam side, as a fraction of the steam supplied:
+            # straight to the exhaust (a compound's HP valve into the receiver, the LP's
+            # from there) and into each end past its steam edge (the HP's; an LP end's
+            # comes from the receiver); not an end's past its exhaust edge, steam the
+            # end had already taken
+            fed = [k for k in valve_leaks
+                   if not (k.endswith("_exhaust_kg") and k != "m_valve_leak_exhaust_kg")
+                   and not k.startswith("m_valve_leak_lp_")
+                   and not (k == "m_valve_leak_exhaust_kg"
+                            and "m_valve_leak_receiver_kg" in row)]
             supplied = float(row["m_supply_kg"])
-            if supplied > 0.0:
+            if supplied > 0.0 and fed:
                 out["valve_leakage_fraction_of_steam"] = float(sum(row[k] for k in fed)) / supplied
         if "m_piston_leak_kg" in row:
             out["piston_leakage_net_kg_per_cycle"] = float(row["m_piston_leak_kg"])
+        paths = [k for k in row.index if k.startswith("m_") and k.endswith("_kg")
+                 and ("valve_leak" in k or "piston_leak" in k)]
+        if paths:
+            supplied = float(row["m_supply_kg"])
+            out["leak_paths"] = {
+                k[2:-3]: {"kg_per_cycle": float(row[k]), "kg_per_h": float(row[k]) * rev_per_h}
+                | ({"fraction_of_steam": float(row[k]) / supplied} if supplied > 0.0 else {})
+                for k in paths}
         if "Q_head_J" in row:
             out.update(self._condensation_summary(work_J))
         if "p_chest_Pa" in self.frame("timeseries"):

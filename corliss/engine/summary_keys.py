@@ -103,6 +103,27 @@ class SteadySummary(TypedDict, total=False):
     valve_leak_c5_crank_kg_per_h: float
     valve_leak_c6_head_kg_per_h: float
     valve_leak_c6_crank_kg_per_h: float
+    valve_leak_lp_head_kg_per_h: float      # a compound LP's valve, receiver into the end
+    valve_leak_lp_crank_kg_per_h: float
+    # the period's law past each closed exhaust edge, the end to the exhaust
+    valve_leak_head_exhaust_kg_per_h: float
+    valve_leak_crank_exhaust_kg_per_h: float
+    valve_leak_c2_head_exhaust_kg_per_h: float
+    valve_leak_c2_crank_exhaust_kg_per_h: float
+    valve_leak_c3_head_exhaust_kg_per_h: float
+    valve_leak_c3_crank_exhaust_kg_per_h: float
+    valve_leak_c4_head_exhaust_kg_per_h: float
+    valve_leak_c4_crank_exhaust_kg_per_h: float
+    valve_leak_c5_head_exhaust_kg_per_h: float
+    valve_leak_c5_crank_exhaust_kg_per_h: float
+    valve_leak_c6_head_exhaust_kg_per_h: float
+    valve_leak_c6_crank_exhaust_kg_per_h: float
+    valve_leak_lp_head_exhaust_kg_per_h: float
+    valve_leak_lp_crank_exhaust_kg_per_h: float
+    # every leak path by name (valve_leak_<...>, <cylinder>piston_leak): kg_per_cycle
+    # [kg] (from end a to end b, net), kg_per_h [kg/h], fraction_of_steam (of the
+    # steam supplied) [-]
+    leak_paths: dict[str, dict[str, float]]
     # the steam chest
     chest_pressure_mean_Pa: float
     chest_pressure_min_Pa: float

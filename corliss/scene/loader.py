@@ -297,7 +297,8 @@ def _engine(t: Table) -> EngineSpec:
     jacket = t.get("jacket")
     thickness = t.get("wall_thickness", within=(1e-3, 0.5 * bore))
     leak_model = t.get("leakage_model")
-    rates = [t.get(k) for k in ("valve_leak_rate", "piston_leak_rate")]
+    rates = [t.get(k) for k in ("valve_leak_rate", "piston_leak_rate",
+                                "steam_edge_leak_rate", "exhaust_edge_leak_rate")]
     valve_leak, piston_leak = leaks
     spec = EngineSpec(bore, stroke, rod, prd, _pair_fraction(t, "clearance"), mass, f0, f1,
                       valve_leak, piston_leak, model, marks, crank_angles, condensing, jacket, thickness,
@@ -736,9 +737,12 @@ def _scene_from_dict(data: dict, name: str = "scene", source: str | None = None)
                 raise InputError(f"{sec or 'engine'}.{key}", None, f"a value: the {effect!r} "
                                  "effect named in run.effects needs it")
     if run.has("leakage") and engine.leakage_model == "period":
-        if not (engine.valve_leak_rate_kg_s_Pa or engine.piston_leak_rate_kg_s_Pa):
+        if not (engine.valve_leak_rate_kg_s_Pa or engine.piston_leak_rate_kg_s_Pa
+                or engine.steam_edge_leak_rate_kg_s_Pa
+                or engine.exhaust_edge_leak_rate_kg_s_Pa):
             raise InputError("engine.valve_leak_rate", None, "a rate of leak (or "
-                             "engine.piston_leak_rate): the 'leakage' effect by the period's "
+                             "engine.piston_leak_rate, steam_edge_leak_rate or "
+                             "exhaust_edge_leak_rate): the 'leakage' effect by the period's "
                              "law needs one")
     elif run.has("leakage") and not (engine.valve_leakage_area_m2
                                      or engine.piston_leakage_area_m2):

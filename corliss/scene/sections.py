@@ -66,6 +66,16 @@ ENGINE = group(
         "3 lb/h psi).", default="0 lb/h psi", effect="leakage"),
     Key("piston_leak_rate", "leak_rate", "Rate of leak past the piston per unit of "
         "pressure difference.", default="0 lb/h psi", effect="leakage"),
+    Key("steam_edge_leak_rate", "leak_rate", "Rate of leak past each closed steam edge "
+        "of the valve, the chest (or receiver) into the end, per unit of pressure "
+        "difference, for a valve of 8 in ports whose face covers them by 2.11 in; each "
+        "edge scaled by its port's length and inversely by its face's width (the period's "
+        "law; Callendar and Nicolson's valve: 3 lb/h psi for its whole leak).",
+        default="0 lb/h psi", effect="leakage"),
+    Key("exhaust_edge_leak_rate", "leak_rate", "Rate of leak past each closed exhaust edge "
+        "of the valve, the end to the exhaust, per unit of pressure difference, for the "
+        "same reference valve and scaled the same way.", default="0 lb/h psi",
+        effect="leakage"),
     Key("wall_heat_model", "choice", "How heat passes between steam and cylinder walls.",
         default="skin", choices=WALL_HEAT_MODELS, effect="wall_heat"),
     Key("marks_constant", "heat_transfer", "Marks's constant of condensation (Art. 82), "

@@ -129,7 +129,19 @@ def response_keys(scene) -> tuple[str, ...]:
     run = scene.run
     keys = list(BASE_KEYS)
     eng = scene.engine
+    # a single-acting cylinder's idle end has no wall and no events
+    ends = [e for e in ("head", "crank") if eng.steam_ends in ("both", e)]
+    ends += ["lp_" + e for e in ends] if scene.compound is not None else []
     if run.has("leakage") and eng.leakage_model == "period":
+        # each valve edge's leak (corliss.engine.leak_paths), per hour and of the steam
+        paths = ([f"valve_leak_{e}" for e in ends] if eng.steam_edge_leak_rate_kg_s_Pa
+                 else []) + ([f"valve_leak_{e}_exhaust" for e in ends]
+                             if eng.exhaust_edge_leak_rate_kg_s_Pa else [])
+        if paths:
+            keys += ["valve_leakage_kg_per_h"] + (["valve_leakage_fraction_of_steam"]
+                                                  if eng.steam_edge_leak_rate_kg_s_Pa else [])
+        for path in paths:
+            keys += [f"{path}_kg_per_h", f"leak_paths.{path}.fraction_of_steam"]
         if eng.valve_leak_rate_kg_s_Pa:
             keys += ["valve_leakage_kg_per_h", "valve_leak_exhaust_kg_per_h",
                      "valve_leakage_fraction_of_steam"]
@@ -142,9 +154,6 @@ def response_keys(scene) -> tuple[str, ...]:
             keys.append("valve_leakage_kg_per_h")
         if eng.piston_leakage_area_m2:
             keys.append("piston_leakage_net_kg_per_cycle")
-    # a single-acting cylinder's idle end has no wall and no events
-    ends = [e for e in ("head", "crank") if eng.steam_ends in ("both", e)]
-    ends += ["lp_" + e for e in ends] if scene.compound is not None else []
     if run.has("wall_heat"):
         keys.append("missing_water_fraction_of_feed")
         for end in ends:
