@@ -16,7 +16,9 @@ measured coefficient"), printed as Markdown.
   1899, p. 163: with the ports blocked, each end's two edges in series and the two ends
   side by side leak the valve's 3 lb/h per psi chest to exhaust), the leak into the
   ends past the steam edges as a fraction of the steam, Marks's eq. 221 for the same
-  card, and the head end's surface swing; beside them the superheater makers' table for
+  card, and the head end's surface swing; English's law (``wall_heat_model =
+  "english"``, DPJ 267, 1888, p. 302) run on the same point without leakage, its water
+  missing at cut-off; beside them the superheater makers' table for
   saturated locomotives (S3) and Willans's 1888 missing water (S1), read from
   ``docs/validation/condensation_measurements.csv``.
 * The surface's swing on the bundled single-acting engine after Callendar and
@@ -30,7 +32,7 @@ compound: Marks's law at its scene's ``standard`` preset, as
 ``tests/test_wall_heat.py`` runs it).  Writes ``benchmarks/results/condensation_closing_note.csv``
 (one row a run) as well.
 
-Run: ``python benchmarks/condensation_closing_note.py`` (about 50 runs; some minutes).
+Run: ``python benchmarks/condensation_closing_note.py`` (about 70 runs; some minutes).
 """
 
 from __future__ import annotations
@@ -117,11 +119,24 @@ def _run(data: dict) -> dict:
             "periodic": s["cycles_to_converge"] is not None}
 
 
+def _english(data: dict) -> float:
+    """The water missing at cut-off (both ends' mean, of the steam supplied) under
+    English's law, at the fast preset, without leakage."""
+    data["engine"]["wall_heat_model"] = "english"
+    effects = [e for e in data["run"]["effects"] if e not in ("wall_heat", "leakage")]
+    data["run"]["effects"] = effects + ["wall_heat"]
+    data["run"]["fidelity"] = "fast"
+    s = corliss.simulate(scene_from_dict(data, name="closing-note-english")).summary
+    ends = [e for e in ("head", "crank") if f"missing_water_fraction_{e}" in s]
+    return float(np.mean([s[f"missing_water_fraction_{e}"] for e in ends]))
+
+
 def _pair(data: dict) -> dict:
-    """A point without and with the period's leak."""
+    """A point without and with the period's leak, and under English's law."""
     a = _run(_skin(copy.deepcopy(data), False))
     b = _run(_skin(copy.deepcopy(data), True))
     return {**a, "feed_with_leak_frac": b["feed_frac"], "leak_frac": b["leak_frac"],
+            "english_frac": _english(copy.deepcopy(data)),
             "periodic": a["periodic"] and b["periodic"]}
 
 
@@ -151,14 +166,15 @@ def main() -> int:
     for which, (name, title) in ENGINES.items():
         print(f"\n**{title}**, missing water against cut-off (both ends' mean cut-off):\n")
         print("| cut-off | condensation alone (of the steam) | of the feed, no leak | "
-              "of the feed, with the leak across each edge | leak (of the steam) | Marks eq. 221 | "
-              "Elesco table (saturated locomotives) | surface swing [K] |")
-        print("|---|---|---|---|---|---|---|---|")
+              "of the feed, with the leak across each edge | leak (of the steam) | "
+              "Marks eq. 221 | English's law (its run) | Elesco table (saturated "
+              "locomotives) | surface swing [K] |")
+        print("|---|---|---|---|---|---|---|---|---|")
         for c in CUTOFFS:
             base = _data(name)
             setting = _setting_for(base, c)
             if setting is None:
-                print(f"| {c:.1f} | (the gear does not cut off at {c:.1f}) | | | | | "
+                print(f"| {c:.1f} | (the gear does not cut off at {c:.1f}) | | | | | | "
                       f"{_f(elesco.get(round(c, 2)))} | |")
                 continue
             base["valve_gear"]["setting"] = setting
@@ -166,14 +182,15 @@ def main() -> int:
             rows.append({"series": "cutoff", "engine": which, "target": c, **p})
             print(f"| {p['cutoff_frac']:.2f} | {_f(p['condensation_frac'], not p['periodic'])} "
                   f"| {_f(p['feed_frac'])} | {_f(p['feed_with_leak_frac'])} | "
-                  f"{_f(p['leak_frac'])} | {_f(p['marks_frac'])} | "
+                  f"{_f(p['leak_frac'])} | {_f(p['marks_frac'])} | {_f(p['english_frac'])} | "
                   f"{_f(elesco.get(round(c, 2), elesco.get(0.55) if c == 0.6 else None))} | "
                   f"{p['swing_K']:.1f} |")
         print(f"\n{title}, against initial pressure (setting held):\n")
         print("| supply [psia] | cut-off | condensation alone | of the feed, no leak | "
-              "of the feed, with the leak across each edge | leak (of the steam) | Marks eq. 221 | "
-              "Willans 1888 (simple engine, of the feed) |")
-        print("|---|---|---|---|---|---|---|---|")
+              "of the feed, with the leak across each edge | leak (of the steam) | "
+              "Marks eq. 221 | English's law (its run) | Willans 1888 (simple engine, of "
+              "the feed) |")
+        print("|---|---|---|---|---|---|---|---|---|")
         for psia in PRESSURES_PSIA:
             base = _data(name)
             base["supply"]["pressure"] = f"{psia} psia"
@@ -184,7 +201,8 @@ def main() -> int:
             print(f"| {psia} | {p['cutoff_frac']:.2f} | "
                   f"{_f(p['condensation_frac'], not p['periodic'])} | {_f(p['feed_frac'])} | "
                   f"{_f(p['feed_with_leak_frac'])} | {_f(p['leak_frac'])} | "
-                  f"{_f(p['marks_frac'])} | {_f(willans.get(psia))} |")
+                  f"{_f(p['marks_frac'])} | {_f(p['english_frac'])} | "
+                  f"{_f(willans.get(psia))} |")
 
     cn = pd.read_csv(ROOT / "tests" / "data" / "callendar_nicolson_1897.csv", comment="#")
     theirs = cn[cn["quantity"] == "surface_swing"].set_index("speed_rpm")["value"]

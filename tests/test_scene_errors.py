@@ -27,6 +27,9 @@ from conftest import make_scene
     # ideal ports carry the skin wall only (issue 12)
     ({"engine": {"wall_heat_model": "marks"}, "run": {"effects": ["wall_heat"]}},
      "engine.wall_heat_model", "port_flow"),
+    ({"engine": {"wall_heat_model": "english"}, "run": {"effects": ["wall_heat"]}},
+     "engine.wall_heat_model", "port_flow"),
+    ({"engine": {"wall_heat_model": "englsh"}}, "engine.wall_heat_model", "'english'"),
     ({"run": {"effects": ["wall_heat"], "model": "ideal"}}, "run.model", "crank_resolved"),
     ({"run": {"effects": ["port_flo"]}}, "run.effects", "port_flow"),
     ({"run": {"model": "exact"}}, "run.model", "crank_resolved"),

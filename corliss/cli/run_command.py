@@ -49,7 +49,7 @@ def print_steady(result, files) -> None:
               f"{s['mep_crank_Pa'] / 1e5:.3f}, mean {s['mep_mean_Pa'] / 1e5:.3f} bar")
         print(f"  steam            {s['steam_rate_kg_per_h']:.1f} kg/h, "
               f"{fmt(s['water_rate_kg_per_kWh'], 'kg/kWh')}")
-    _print_walls(s, us)
+    _print_walls(s, us, result.scene.engine.wall_heat_model)
     for end, ev in s["events"].items():
         print(f"  {end:5s} end        cut-off {fmt(ev['cutoff_frac'], '', 3)}, release "
               f"{fmt(ev['release_frac'], '', 3)}, compression {fmt(ev['compression_frac'], '', 3)}"
@@ -67,8 +67,13 @@ def print_steady(result, files) -> None:
     print_files(files)
 
 
-def _print_walls(s: dict, us: bool) -> None:
-    """Initial condensation and the jacket's steam, when the walls exchange heat."""
+#: How the run's text names a wall model whose heat is a period law's schedule.
+SCHEDULE_NAMES = {"marks": "Marks's law (eq. 221)", "english": "English's law"}
+
+
+def _print_walls(s: dict, us: bool, model: str = "skin") -> None:
+    """Initial condensation and the jacket's steam, when the walls exchange heat; the
+    heat a period law's schedule takes from each end's steam."""
     if "valve_leakage_fraction_of_steam" in s:
         leak = s["valve_leakage_kg_per_h"]
         print(f"  valve leakage    "
@@ -96,6 +101,14 @@ def _print_walls(s: dict, us: bool) -> None:
             f"{s[f'wet_fraction_at_cutoff_{e}']:.3f} in the steam, "
             f"{s[f'wet_fraction_at_cutoff_with_film_{e}']:.3f} with the film" for e in wet)
               + f" ({', '.join(wet)})")
+    heat = [k[len("heat_to_walls_"):-len("_J_per_cycle")] for k in s
+            if k.startswith("heat_to_walls_") and s[k] is not None]
+    if heat and model in SCHEDULE_NAMES:
+        unit = "Btu" if us else "kJ"
+        print("  wall heat        " + ", ".join(
+            f"{units.to_unit(s[f'heat_to_walls_{e}_J_per_cycle'], unit):.2f}" for e in heat)
+            + f" {unit} a cycle ({', '.join(heat)}) by {SCHEDULE_NAMES[model]}, taken in "
+            "admission and given back by compression")
     if s.get("missing_water_fraction_of_feed") is not None:
         print(f"  of the feed      {s['missing_water_fraction_of_feed']:.3f} missing at "
               "cut-off (condensation and leakage)")

@@ -40,6 +40,7 @@ from typing import Any
 import numpy as np
 
 from corliss.engine.kernels import cache, dopri5, jacobians, loop, properties, rosenbrock
+from corliss.engine.condensation import SCHEDULED_LAWS
 from corliss.engine.crank_resolved import COMPILED_CODES
 from corliss.engine.model import steady_scene
 from corliss.engine.steady import assemble, run_steady
@@ -59,7 +60,8 @@ JACOBIAN_COMMAND = ("import sys; from corliss.engine.first_run import compile_ja
 def _exact(scene) -> bool:
     """Whether the scene's network has an analytic Jacobian: no wall heat that depends
     on the state (:func:`corliss.engine.kernels.jacobians.exact_jacobian_covers`, from the scene)."""
-    return not (scene.run.has("wall_heat") and scene.engine.wall_heat_model != "marks")
+    return not (scene.run.has("wall_heat")
+                and scene.engine.wall_heat_model not in SCHEDULED_LAWS)
 
 
 def _steady_method(scene) -> str:
@@ -111,7 +113,7 @@ def _steady_variants(scene) -> list:
     for name in PRESETS_REACHED:
         at = sc.with_fidelity(name)
         out.append(at.replace_run(effects=eff))
-        if at.engine.wall_heat_model != "marks":
+        if at.engine.wall_heat_model not in SCHEDULED_LAWS:
             out.append(at.replace_run(effects=eff + ("wall_heat",)))
     return out
 

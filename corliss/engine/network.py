@@ -111,6 +111,10 @@ class Network:
         Each node's wall temperature [K], shape (nodes,) (for the skin model, the deep
         wall's under the skin); set to the mean of supply and exhaust temperatures by
         :meth:`arrays` when None or of another length.
+    schedule_stops : list of float
+        Shaft angles [rad] where a wall-heat schedule switches (Marks's or English's
+        law, :class:`corliss.engine.condensation.ScheduledWallHeat`), stops of the
+        integrators as the ports' kinks are (:meth:`stops`).
     """
 
     omega: float
@@ -139,6 +143,8 @@ class Network:
     #: model, the temperature of the deep wall under the skin).
     node_heat: list = field(default_factory=list)
     wall_T: np.ndarray | None = None
+    #: so that no switch of a schedule falls inside a step
+    schedule_stops: list[float] = field(default_factory=list)
 
     # --- building -----------------------------------------------------------------
     def add_node(self, name, kind, init, cyl=-1, end=-1, volume=0.0) -> int:
@@ -501,10 +507,11 @@ class Network:
         -------
         list of float
             Increasing shaft angles [rad] from ``theta0`` to ``theta0 + 2 pi``, both
-            included, with every breakpoint of every cylinder's PortMap between.
+            included, with every breakpoint of every cylinder's PortMap and every
+            switch of a wall-heat schedule (:attr:`schedule_stops`) between.
         """
         two_pi = 2.0 * math.pi
-        pts = []
+        pts = [s % two_pi for s in self.schedule_stops]
         for pm, ph in zip(self.portmaps, self.phases):
             pts += [(b - ph) % two_pi for b in pm.breakpoints_rad]
         stops = sorted({theta0 + ((p - theta0) % two_pi) for p in pts})
@@ -951,7 +958,7 @@ def with_period_leakage(net: Network, valve_rate_kg_s_Pa: float,
 #: :mod:`corliss.engine.kernels.data`): the model code, then the model's own columns.
 #: The wall models by name, and their codes (``WALL_*`` there).
 WALL_MODELS = {"conductance": WALL_CONDUCTANCE, "adair": WALL_ADAIR, "marks": WALL_MARKS,
-               "skin": WALL_SKIN}
+               "english": WALL_MARKS, "skin": WALL_SKIN}
 
 
 def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
@@ -966,7 +973,11 @@ def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
       condensing the steam eq. 221 gives leaves the steam during admission and is
       given back from cut-off to compression, each spread over the crank angle in
       proportion to the wall exposed; the heat of each cycle and the windows are set
-      by :func:`corliss.engine.condensation.marks_law_rows` from the cycle before;
+      by :class:`corliss.engine.condensation.MarksLaw` from the cycle before;
+    * ``"english"``: English's law (DPJ 267, 1888, p. 302) on Marks's schedule (the same
+      model code): the heat the steam-swept surfaces hold at cut-off leaves the steam
+      during admission and is given back from cut-off to compression, set by
+      :class:`corliss.engine.condensation.EnglishLaw` from the cycle before;
     * ``"conductance"``: Marks's constant of condensation (Art. 82: C = 18.13 Btu per
       ft2, degF and minute, about 6180 W/(m2 K)) as a surface conductance to a wall at
       one temperature per end, its periodic mean, found cycle by cycle so that the
@@ -996,7 +1007,8 @@ def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
     net : Network
         The network, changed in place.
     model : str
-        One of :data:`WALL_MODELS`: ``marks``, ``conductance``, ``adair`` or ``skin``.
+        One of :data:`WALL_MODELS`: ``marks``, ``english``, ``conductance``, ``adair``
+        or ``skin``.
     h_marks : float
         Marks's constant as a surface conductance [W/(m2 K)] (the ``conductance``
         model's coefficient).

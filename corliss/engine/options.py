@@ -31,7 +31,9 @@ EFFECTS: dict[str, str] = {
                  "re-evaporation ([engine] wall_heat_model = \"skin\" (a wall whose surface "
                  "temperature and water film are states, heat only down the temperature "
                  "difference; condensing_coefficient, jacket, wall_thickness), \"marks\" "
-                 "(Marks's law of condensation as a schedule, Arts. 74-75), \"conductance\" "
+                 "(Marks's law of condensation as a schedule, Arts. 74-75), \"english\" "
+                 "(English's law, DPJ 267, 1888, p. 302, on the same schedule; jacket), "
+                 "\"conductance\" "
                  "(his constant as a surface conductance, Art. 82) or \"adair\" (Adair et al. "
                  "1972); without port_flow, the skin wall only)",
     "friction": "engine friction torque ([engine] friction_torque, friction_torque_per_speed): "

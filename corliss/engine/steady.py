@@ -19,7 +19,7 @@ import numpy as np
 from corliss.engine import equilibrium as eq
 from corliss.engine.kernels import jacobians
 from corliss.engine.calibration import marks_coefficient
-from corliss.engine.condensation import MarksLaw
+from corliss.engine.condensation import wall_schedule
 from corliss.engine.crank_resolved import CrankResolved
 from corliss.engine.ideal_card import card_area, hyperbolic_card, indicated_steam_kg
 from corliss.engine.model import assemble
@@ -146,10 +146,9 @@ def _crank_resolved(scene, model, pm, progress, start=None):
     net = model.network(pm)
     heat = scene.run.has("wall_heat")
     wall_nodes = net.wall_nodes
-    marks = None
-    if heat and scene.engine.wall_heat_model == "marks":
-        marks = MarksLaw(net, geo, model.events, omega, model.chest.T, model.exhaust.T,
-                         lp_events=model.lp_events)
+    # Marks's or English's law imposed as a schedule (corliss.engine.condensation)
+    marks = wall_schedule(scene, net, geo, model.events, omega, model.chest.T, model.exhaust.T,
+                          lp_events=model.lp_events)
     arrays = net.arrays()
     method, rtol = fid.steady_integrator(steam.kernel_tier is not None
                                          and jacobians.exact_jacobian_covers(arrays))
@@ -281,7 +280,7 @@ def _layout(net, ends_all, heat: bool, marks) -> _Layout:
         if heat:           # every end's heat, so a compound's balance closes
             names += [f"Q_{end}_J", f"Q_to_wall_{end}_J"]
             index += [net.i_node_quad(i, "heat"), net.i_node_quad(i, "heat_to_wall")]
-            if marks is None:      # Marks's law imposes the heat: the wall has no T
+            if marks is None:      # a period law imposes the heat: the wall has no T
                 names.append(f"T_wall_{end}_K")
                 index.append(net.n_state + i)      # the wall at the cycle's start
     if "steam_pipe" in net.edge_names:

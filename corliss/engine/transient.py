@@ -31,7 +31,7 @@ from corliss.engine.kernels.data import (TRIP_AREA, TRIP_CLOSING, TRIP_GRID, TRI
                                          NetworkArrays, Physics, Tableau)
 from corliss.engine.kernels.stepping import MAX_RHS_PER_CYCLE
 from corliss.engine.kernels.tableaus import ROS_TABLEAUS
-from corliss.engine.condensation import MarksLaw
+from corliss.engine.condensation import wall_schedule
 from corliss.engine.crank_resolved import budget_message
 from corliss.engine.model import assemble, build_network
 from corliss.engine.network import Network, throttle_area_m2
@@ -555,12 +555,11 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
     network = build_network(scene, geo, pm, steam, chest, exhaust)
     tables = build_tables(scene, network, gear, geo)
     net = network.arrays()
-    marks = None
-    if run.has("wall_heat") and scene.engine.wall_heat_model == "marks":
-        # Marks's law from the gear's events at the start, with the supply's saturation
-        # temperature as the cut-off temperature; the heat follows the speed turn by
-        # turn, but not a governor's moving cut-off (the windows stay the start's)
-        marks = MarksLaw(network, geo, model.events, run.speed_rad_s, chest.T, exhaust.T)
+    # Marks's or English's law from the gear's events at the start, with the supply's
+    # saturation temperature as the cut-off temperature; the heat follows the speed
+    # turn by turn, but not a governor's moving cut-off (the windows stay the start's)
+    marks = wall_schedule(scene, network, geo, model.events, run.speed_rad_s, chest.T, exhaust.T)
+    if marks is not None:
         marks.apply(net.heat)
     tab = steam.table.arrays() if hasattr(steam, "table") else _any_table()
     perf = (np.array(steam.perfect_params()) if hasattr(steam, "perfect_params") else np.zeros(3))

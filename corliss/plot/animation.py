@@ -31,6 +31,7 @@ import numpy as np
 from corliss.keys import units
 from corliss.valves.baker import BakerGear
 from corliss.valves.corliss_gear import CorlissGear, CorlissSpec
+from corliss.valves.gear import openings_note
 from corliss.valves.link_motion import LinkMotion, LinkMotionSpec
 from corliss.valves.oscillating import OscillatingCylinder
 from corliss.valves.radial_gear import JoySpec, RadialGear, SimpleRadialSpec, WalschaertsSpec
@@ -855,6 +856,9 @@ def _openings_panel(ax, gear, u: str, moving: list):
     ax.set_xticks(range(0, 361, 90))
     ax.set_xlabel("crank angle [deg]", fontsize=8)
     ax.set_ylabel(f"port opening [{u}]", fontsize=8)
+    note = openings_note(gear)
+    if note:                          # the edges that uncover more than one opening
+        ax.set_title(note, fontsize=7)
     ax.tick_params(labelsize=7)
     ax.legend(fontsize=6, frameon=False, loc="upper right")
     for side in ("top", "right"):

@@ -375,13 +375,20 @@ def plot_porter_allen(gear, fig=None, units_system: str = "US") -> dict:
     ax1.set_ylabel(f"stem displacement, + opens its port [{u}]")
     ax1.set_title("Valve travels", fontsize=10)
     op = units.to_unit(gear.openings(th), u)
+    n = gear.openings_per_edge()
     for port, label, style in ((0, "head steam", dict(color="k", lw=1.3)),
                                (2, "crank steam", dict(color="0.35", lw=1.3, ls="--")),
                                (1, "head exhaust", dict(color="0.55", lw=1.0)),
                                (3, "crank exhaust", dict(color="0.55", lw=1.0, ls="--"))):
         lines[label] = ax2.plot(deg, op[port], label=label, **style)[0]
+        if n[port] > 1:
+            # the steam plate's openings together: the area over one opening's length
+            together = f"{label}, its {n[port]:g} openings together"
+            lines[together] = ax2.plot(deg, n[port] * op[port], label=together,
+                                       **{**style, "lw": 0.8, "color": "#b03a2e"})[0]
     ax2.set_ylabel(f"port opening [{u}]")
-    ax2.set_title("Port openings", fontsize=10)
+    ax2.set_title("Port openings" + (f"\n(each edge's; {gear.spec.steam_openings} openings "
+                                     "a steam valve)" if n[0] > 1 else ""), fontsize=10)
     for ax in (ax1, ax2):
         ax.axhline(0, color="0.8", lw=0.5)
         ax.set_xlim(0, 360)

@@ -25,7 +25,7 @@ RECORD_CHOICES = ("step", "degree", "cycle")
 #: How a governed transient run starts (see :class:`corliss.engine.scene_specs.RunSpec`).
 START_CHOICES = ("equilibrium", "run_speed", "rest")
 #: Wall-heat models of the ``wall_heat`` effect.
-WALL_HEAT_MODELS = ("skin", "marks", "conductance", "adair")
+WALL_HEAT_MODELS = ("skin", "marks", "english", "conductance", "adair")
 #: Models of the ``leakage`` effect.
 LEAKAGE_MODELS = ("orifice", "period")
 #: Cylinder sizes: a model's half-inch cylinder to the largest engines built [m].
@@ -76,7 +76,9 @@ ENGINE = group(
         "of the valve, the end to the exhaust, per unit of pressure difference, for the "
         "same reference valve and scaled the same way.", default="0 lb/h psi",
         effect="leakage"),
-    Key("wall_heat_model", "choice", "How heat passes between steam and cylinder walls.",
+    Key("wall_heat_model", "choice", "How heat passes between steam and cylinder walls: a "
+        "wall with a temperature (skin), or a period law imposed as a schedule (marks, "
+        "english: English's law, its jacketed constant with a jacket), or a conductance.",
         default="skin", choices=WALL_HEAT_MODELS, effect="wall_heat"),
     Key("marks_constant", "heat_transfer", "Marks's constant of condensation (Art. 82), "
         "above zero.", default="18.13 Btu/ft2 degF min", effect="wall_heat"),

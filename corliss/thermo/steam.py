@@ -451,6 +451,23 @@ def latent_heat(T_K: float) -> float:
             - CP.PropsSI("H", "T", T_K, "Q", 0.0, "Water"))
 
 
+def saturated_vapour_density(T_K: float) -> float:
+    """Density of dry saturated steam (IAPWS-95 through CoolProp).
+
+    Parameters
+    ----------
+    T_K : float
+        Saturation temperature [K], below the critical point.
+
+    Returns
+    -------
+    float
+        Density of the saturated vapour [kg/m3].
+    """
+    import CoolProp.CoolProp as CP
+    return CP.PropsSI("D", "T", T_K, "Q", 1.0, "Water")
+
+
 def coolprop_version() -> str:
     """CoolProp version and git revision, for result metadata.
 

@@ -292,6 +292,9 @@ class DoubleValve(ValveGear):
         m = self.spec.main
         return np.full(4, m.port_length_m * m.ports_per_end)
 
+    def openings_per_edge(self):
+        return np.full(4, float(self.spec.main.ports_per_end))
+
     def discharge_coefficients(self):
         return np.full(4, self.spec.main.discharge_coefficient)
 

@@ -47,7 +47,14 @@ from square to its stem moves its valve R_v [sin(phi - beta) + sin beta] from mi
 position, and with lap lambda the port opens by R_v sin(phi - beta) - (lambda - R_v sin
 beta).  Setting beta = asin(lambda / R_v), the arm is square to the stem (the valve at
 its fastest) just as the edge crosses the port: the signed opening is R_v sin(phi -
-beta).  The crank-end valve is worked by its arm the other way (-phi).  The exhaust
+beta).  The crank-end valve is worked by its arm the other way (-phi).  Each steam valve
+is a flat plate "having rectangular openings through them" (Art. 30, p. 31), so as it
+moves it uncovers ``steam_openings`` edges at once, its own end and the near edge of each
+opening through it, every edge moving with the plate: one signed opening s for all of
+them (the events are the first edge's crossings, the same for every n), and the open
+area n L clip(s, 0, w), w the width of each opening along the travel and L its length
+across (the plate's bars wider than its travel, so no opening passes over the next
+port's edge: the double-ported valve's condition, Art. 26).  The exhaust
 stem moves k_e times the exhaust point's travel, reversed by the bell crank (the
 exhaust valves are "indirectly connected", Art. 30): the head exhaust opens by
 -k_e x_e - e_h, the crank exhaust by k_e x_e - e_c.  The governor's setting s runs from
@@ -445,6 +452,10 @@ class PorterAllenSpec:
         Of every port opening [-].
     setting : float, optional
         Governor position s in [0, 1] [-].
+    steam_openings : int, optional
+        n, the openings each steam valve uncovers at once (its plate's end and the
+        openings through it, Spangler Art. 30), each ``steam_port_width_m`` wide and
+        ``steam_port_length_m`` long [-].
     """
 
     link: FinkLink
@@ -462,6 +473,7 @@ class PorterAllenSpec:
     exhaust_port_length_m: float
     discharge_coefficient: float = 0.7
     setting: float = 0.0
+    steam_openings: int = 1
 
     @property
     def block_m(self) -> float:
@@ -591,7 +603,12 @@ class PorterAllenGear(ValveGear):
 
     def port_lengths(self):
         s = self.spec
-        return np.array([s.steam_port_length_m, s.exhaust_port_length_m] * 2)
+        return np.array([s.steam_port_length_m * s.steam_openings,
+                         s.exhaust_port_length_m] * 2)
+
+    def openings_per_edge(self):
+        n = float(self.spec.steam_openings)
+        return np.array([n, 1.0, n, 1.0])
 
     def discharge_coefficients(self):
         return np.full(4, self.spec.discharge_coefficient)
@@ -619,10 +636,14 @@ PORTER_ALLEN_KEYS = group(
         "(the bell crank).", default=1.0, within=(0.05, 20.0)),
     Key("exhaust_lap", "length", "Lap of the exhaust valves; negative: clearance.",
         default="0 in", ends=True, unit="in"),
-    Key("steam_port_width", "length", "Steam ports' width along the valve's travel.",
-        within=POSITIVE_LENGTH, unit="in"),
-    Key("steam_port_length", "length", "Steam ports' length across the valve.",
-        within=POSITIVE_LENGTH, unit="in"),
+    Key("steam_port_width", "length", "Width along the valve's travel of each opening a "
+        "steam valve uncovers.", within=POSITIVE_LENGTH, unit="in"),
+    Key("steam_port_length", "length", "Length across the valve of each opening a steam "
+        "valve uncovers.", within=POSITIVE_LENGTH, unit="in"),
+    Key("steam_openings", "integer", "Openings each steam valve uncovers at once, its "
+        "plate's end and the openings through it (Spangler Art. 30, p. 31): the area that "
+        "many times one opening's, the events the same (other gears: ports_per_end).",
+        default=1, within=(1, 4)),
     Key("exhaust_port_width", "length", "Exhaust ports' width along the valve's travel.",
         within=POSITIVE_LENGTH, unit="in"),
     Key("exhaust_port_length", "length", "Exhaust ports' length across the valve.",
@@ -669,7 +690,7 @@ def parse_porter_allen(t: Table) -> PorterAllenSpec:
     spec = PorterAllenSpec(
         link, blocks[0], blocks[1], rd, rv, lap, blocks[2], ratio, t.get("exhaust_lap"),
         t.get("steam_port_width"), t.get("steam_port_length"), t.get("exhaust_port_width"),
-        t.get("exhaust_port_length"), cd, setting)
+        t.get("exhaust_port_length"), cd, setting, t.get("steam_openings"))
     th = np.linspace(0, 2 * math.pi, 721)
     reach = max(float(np.max(np.abs(link.block_travel(u, th)))) for u in blocks[:2])
     beta = max(spec.arm_angles_rad)

@@ -118,6 +118,20 @@ class ValveGear:
         """
         raise NotImplementedError
 
+    def openings_per_edge(self) -> np.ndarray:
+        """How many openings each port's controlling edge uncovers at once, all moving
+        with the valve (a double-ported valve's two, Spangler Art. 26; a Porter-Allen
+        steam plate's end and the openings through it, Art. 30): :meth:`port_lengths`
+        is one opening's length times this.
+
+        Returns
+        -------
+        ndarray
+            Openings [-], shape ``(4,)``, in the order of
+            :data:`~corliss.valves.gear.PORTS`; one each unless a gear says otherwise.
+        """
+        return np.ones(4)
+
     def discharge_coefficients(self) -> np.ndarray:  # pragma: no cover
         """Discharge coefficient of each port opening.
 
@@ -206,6 +220,37 @@ class ValveGear:
             in the order of :data:`~corliss.valves.gear.PORTS`.
         """
         return self.openings(theta) * self.port_lengths()[:, None]
+
+
+def openings_note(gear: ValveGear) -> str:
+    """What a drawing of one edge's openings says of the ports whose edges uncover more
+    than one opening (:meth:`ValveGear.openings_per_edge`): their areas are that many
+    times the opening drawn.
+
+    Parameters
+    ----------
+    gear : ValveGear
+        The gear drawn.
+
+    Returns
+    -------
+    str
+        E.g. ``"steam ports: 2 openings an edge, the area 2 x the opening drawn"``;
+        empty when every edge uncovers one opening.
+    """
+    n = np.asarray(gear.openings_per_edge(), dtype=float)
+    if np.all(n == 1.0):
+        return ""
+    groups = {"steam": n[[0, 2]], "exhaust": n[[1, 3]]}
+    parts = []
+    for kind, counts in groups.items():
+        if np.all(counts == counts[0]):
+            if counts[0] != 1.0:
+                parts.append(f"{kind} ports: {counts[0]:g} openings an edge")
+        else:
+            parts.append(f"{kind} ports: {counts[0]:g} (head), {counts[1]:g} (crank) "
+                         "openings an edge")
+    return "; ".join(parts) + ", the area that many times the opening drawn"
 
 
 #: The :meth:`ValveGear.openings` methods that are ``_openings_of(signed_openings(theta))``

@@ -181,6 +181,16 @@ class SingleActing(ValveGear):
         """
         return self.inner.port_lengths()
 
+    def openings_per_edge(self) -> np.ndarray:
+        """The inner gear's openings at each edge [-], shape ``(4,)``.
+
+        Returns
+        -------
+        ndarray
+            Openings each port's edge uncovers [-].
+        """
+        return self.inner.openings_per_edge()
+
     def discharge_coefficients(self) -> np.ndarray:
         """The inner gear's discharge coefficients [-], shape ``(4,)``.
 

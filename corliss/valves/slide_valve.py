@@ -230,6 +230,9 @@ class LappedValve(ValveGear):
     def port_lengths(self):
         return np.full(4, self.spec.port_length_m * self.spec.ports_per_end)
 
+    def openings_per_edge(self):
+        return np.full(4, float(self.spec.ports_per_end))
+
     def discharge_coefficients(self):
         return np.full(4, self.spec.discharge_coefficient)
 

@@ -605,6 +605,7 @@ class Workbench:
                                   for c in ("x", "y")})
             _set_data(self.zcircles, {"xs": z["circles"]["x"], "ys": z["circles"]["y"]})
         _set_data(self.psrc, v["ports"])
+        _set(self.ports.title, "text", v["ports_title"])
         _set(self.ports.yaxis[0], "axis_label", f"port opening [{v['card']['x_unit']}]")
         self.toml.value = self.scene_text(edits)      # the scene of the card shown
 

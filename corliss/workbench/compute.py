@@ -22,7 +22,7 @@ from corliss.engine.summary_keys import SteadySummary, end_value
 from corliss.errors import InputError, RunError
 from corliss.keys import units
 from corliss.scene.loader import scene_from_dict
-from corliss.valves.gear import PORTS
+from corliss.valves.gear import PORTS, openings_note
 
 #: The events marked on the card, with their labels (as :func:`corliss.plot.cards.plot_card`).
 EVENT_LABELS = {"admission": "adm", "cutoff": "c/o", "release": "rel", "compression": "comp"}
@@ -234,8 +234,9 @@ def compute_view(data: dict, name: str = "scene", source: str | None = None) -> 
     Returns
     -------
     dict
-        ``{"ok": True, "card", "events", "zeuner", "ports", "summary", "title",
-        "note", "compute_s"}``, or ``{"ok": False, "message", "key"}`` when the loader
+        ``{"ok": True, "card", "events", "zeuner", "ports", "ports_title" (saying
+        which ports' edges uncover more than one opening), "summary", "title", "note",
+        "compute_s"}``, or ``{"ok": False, "message", "key"}`` when the loader
         refuses the scene (the key it names) or the run cannot go on (key None).
     """
     t0 = time.perf_counter()
@@ -258,6 +259,7 @@ def compute_view(data: dict, name: str = "scene", source: str | None = None) -> 
             "events": events_rows(result.events, system),
             "zeuner": zeuner_view(gear, system),
             "ports": ports_view(gear, system),
+            "ports_title": "port openings" + (f" ({n})" if (n := openings_note(gear)) else ""),
             "summary": summary_view(result.summary, system),
             "speed_rpm": result.summary["speed_rpm"],
             "compute_s": time.perf_counter() - t0}
