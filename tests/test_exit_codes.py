@@ -185,3 +185,38 @@ def test_python_dash_m_and_verbose_after_the_subcommand():
     assert cli.build_parser().parse_args(["run", "-v"]).verbose is True
     assert cli.build_parser().parse_args(["-v", "run"]).verbose is True
     assert cli.build_parser().parse_args(["run"]).verbose is False
+
+
+def test_reference_tier_with_marks_law_reads_overheated_steam_at_the_properties_edge(
+        tmp_path, capsys):
+    """Marks's law returns its heat from cut-off to compression whatever steam is left
+    (Art. 75): on the default engine at 120 rpm the thin exhaust steam of the head end
+    reaches 8.2 MJ/kg, beyond any steam property (IAPWS-95 is fitted to 1273 K; CoolProp
+    finds no state beyond 3000 K).  The run goes on with that state's properties read at
+    the greatest energy (docs/limits.md: the one clamp a run goes on with), warning with
+    the key to check; the HEOS reference tier's time series read the sampled states
+    the same way, where they raised ValueError (a traceback, exit 1, no files).  Each
+    sample's temperature is HEOS's at its density and the lesser of its energy and the
+    properties' greatest (4.2 MJ/kg): to 1e-6, the CSV's nine significant figures."""
+    from corliss.engine.kernels.properties import U_MAX
+    from corliss.thermo.steam import HEOSSteam
+    scene = _scene(tmp_path, "marks-heos", _bundled("default"),
+                   ("clearance = 0.08", "clearance = 0.08\nwall_heat_model = \"marks\""),
+                   ('effects = ["port_flow", "rod_angularity"]',
+                    'effects = ["port_flow", "rod_angularity", "wall_heat"]'))
+    out = tmp_path / "out"
+    rc = cli.main(["run", str(scene), "--out", str(out), "--no-plots", "--fidelity",
+                   "reference", "--cycles", "2", "--units", "SI"])
+    err = capsys.readouterr().err
+    assert rc == 0
+    assert "Traceback" not in err and "check engine.wall_heat_model" in err
+    summary = json.loads((out / "marks-heos.SI.summary.json").read_text(encoding="utf-8"))
+    assert summary["clamped_hot_state_evaluations_count"] > 0
+    rows = (out / "marks-heos.SI.timeseries.csv").read_text(encoding="utf-8").splitlines()
+    head = rows[0].split(",")
+    col = {name: head.index(name) for name in ("T_head_degC", "V_head_m3", "m_head_kg")}
+    heos = HEOSSteam()
+    hottest = max((r.split(",") for r in rows[1:]), key=lambda r: float(r[col["T_head_degC"]]))
+    rho = float(hottest[col["m_head_kg"]]) / float(hottest[col["V_head_m3"]])
+    T_K = float(hottest[col["T_head_degC"]]) + 273.15
+    assert T_K == pytest.approx(heos.du(rho, U_MAX).T, rel=1e-6)

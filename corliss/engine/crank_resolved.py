@@ -294,14 +294,14 @@ class CrankResolved:
             self.clamped_trials += int(clamps[CL_REJECTED])
             code = int(clamps[CL_ACCEPTED_CODE])
             if clamps[CL_ACCEPTED] > 0:
+                fatal = bool(code & ~CLAMP_HIGH_ENERGY)
                 message = clamp_message(self.network, code, int(clamps[CL_NODE]),
                                         float(clamps[CL_THETA] + theta0),
-                                        int(clamps[CL_ACCEPTED]))
-                if code & ~CLAMP_HIGH_ENERGY:
+                                        int(clamps[CL_ACCEPTED]), goes_on=not fatal)
+                if fatal:
                     raise RunError(message)
                 if self.clamped_hot == 0:
-                    log.warning("%s (the run goes on with the properties at the table's "
-                                "greatest energy)", message)
+                    log.warning("%s", message)
                 self.clamped_hot += int(clamps[CL_ACCEPTED])
             if not ok and nfev > self.max_rhs:
                 raise RunError(budget_message(self.network, self.max_rhs))
@@ -348,13 +348,13 @@ class CrankResolved:
             if bad.size:
                 k = bad[0]
                 allc = int(np.bitwise_or.reduce(code))
+                fatal = bool(allc & ~CLAMP_HIGH_ENERGY)
                 message = clamp_message(self.network, allc, i, float(out_theta[ok][k]),
-                                        int(bad.size))
-                if allc & ~CLAMP_HIGH_ENERGY:
+                                        int(bad.size), goes_on=not fatal)
+                if fatal:
                     raise RunError(message)
                 if self.clamped_hot == 0:
-                    log.warning("%s (the run goes on with the properties at the greatest "
-                                "energy)", message)
+                    log.warning("%s", message)
                 self.clamped_hot += int(bad.size)
 
 
@@ -374,7 +374,8 @@ CLAMP_CAUSES = {
 }
 
 
-def clamp_message(network, code: int, node: int, theta: float, count: int) -> str:
+def clamp_message(network, code: int, node: int, theta: float, count: int,
+                  goes_on: bool = False) -> str:
     """Why a run stopped: a state it visited needed clamping to the steam properties.
 
     Names the scene quantity that most likely caused it (:data:`CLAMP_CAUSES`; the
@@ -392,6 +393,9 @@ def clamp_message(network, code: int, node: int, theta: float, count: int) -> st
         The shaft angle of the first clamped state [rad].
     count : int
         Clamped evaluations at visited states.
+    goes_on : bool, optional
+        The run goes on (steam heated beyond the properties' greatest energy): the
+        message says so, where by default it says the run was stopped.
 
     Returns
     -------
@@ -408,8 +412,11 @@ def clamp_message(network, code: int, node: int, theta: float, count: int) -> st
     name = network.node_names[node] if 0 <= node < network.n_nodes else "a volume"
     return (f"the steam in the {name} left the range of the steam properties ({what}) at "
             f"{math.degrees(theta) % 360.0:.1f} deg of crank angle, in {count} evaluation(s) "
-            f"at states the run visited: {why}.  The run was stopped rather than continue "
-            f"on clamped properties; check {key}")
+            f"at states the run visited: {why}.  "
+            + ("The run goes on with the properties at their greatest energy (the summary "
+               "counts those evaluations)" if goes_on else
+               "The run was stopped rather than continue on clamped properties")
+            + f"; check {key}")
 
 
 def budget_message(network, max_rhs: int) -> str:

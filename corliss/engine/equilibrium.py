@@ -170,7 +170,7 @@ def _blow_down_sweeping(steam: Steam, st: State, m: float, V: float, p_res: floa
         The state and mass [kg] after, the mass [kg] and energy [J] that left through
         the port (negative), the energy as the enthalpy carried out.
     """
-    m0, U0, swept = m, m * st.u, 0.0
+    m0, U0, swept, given = m, m * st.u, 0.0, 0.0
     ratio = (p_res / st.p) ** (1.0 / BLOW_DOWN_STEPS)
     for k in range(1, BLOW_DOWN_STEPS + 1):
         p_k = p_res if k == BLOW_DOWN_STEPS else st.p * ratio
@@ -182,14 +182,17 @@ def _blow_down_sweeping(steam: Steam, st: State, m: float, V: float, p_res: floa
             st, m = st2, m2
             break
         sw = wall.sweep(share)
+        swept += sw
         if sw > 0.0:
+            # the water at the surface's temperature (the wall's h_film)
+            dH = sw * wall.h_L + wall.take_swept_heat()
+            given += dH
             m3 = m2 + sw
-            st, m = steam.du(m3 / V, (m2 * st2.u + sw * wall.h_L) / m3), m3
+            st, m = steam.du(m3 / V, (m2 * st2.u + dH) / m3), m3
         else:
             st, m = st2, m2
-        swept += sw
     # what left: the mass less the water the wall gave; the energy likewise
-    return st, m, m - m0 - swept, m * st.u - U0 - swept * wall.h_L
+    return st, m, m - m0 - swept, m * st.u - U0 - given
 
 
 def _fill_at_pressure(steam: Steam, H: float, m: float, V1: float, res: State) -> float:

@@ -1042,8 +1042,8 @@ def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
             net.node_heat[i] = (code, h_marks, k, mu, pr) + (0.0,) * (HEAT_COLUMNS - 5)
     if model == "skin":
         h_c = wall.CONDENSING_W_M2K if condensing_W_m2K is None else condensing_W_m2K
-        # the film's water and its latent heat, at the temperature the wall starts from
-        # (constant over a run, so that the film's energy is m_f h_L exactly)
+        # the reference the heat into the steam counts the film's water from (the film
+        # itself is water at the surface's temperature: kernels.walls.film_water)
         t0 = 0.5 * (net.reservoirs[0].T + net.reservoirs[-1].T)
         film = film_enthalpies(t0)
 

@@ -858,7 +858,9 @@ class TransientResult(Result[TransientSummary]):
     ``p_crank_Pa`` or the torques), ``cycles`` (per turn: ``t_start_s``, ``t_end_s``,
     ``mean_speed_rpm``, ``work_J``, ``indicated_power_W``, ``load_work_J``,
     ``load_power_W``, ``friction_work_J``, ``m_supply_kg``, ``steam_rate_kg_per_h``,
-    ``governor_z_frac``, and the throttle opening or gear setting and its cut-off) and
+    ``governor_z_frac``, the throttle opening or gear setting and its cut-off, and with
+    wall heat each end's ``Q_<end>_J`` into the steam and ``Q_to_wall_<end>_J`` taken by
+    the wall over the turn) and
     ``cards`` (the turn before the step and the last: ``phase``, ``end``, ``V_m3``,
     ``p_Pa``).
     """

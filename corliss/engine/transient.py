@@ -25,10 +25,11 @@ import pandas as pd
 
 from corliss.engine.kernels import dopri5, loop, rosenbrock
 from corliss.engine.kernels.cache import announce_compile
-from corliss.engine.kernels.data import (TRIP_AREA, TRIP_CLOSING, TRIP_GRID, TRIP_RELEASE,
-                                         TRIP_SCALARS, TS_CLOSE_ANGLE, TS_CLOSE_TIME,
-                                         TS_N_CLOSING, TS_N_SETTINGS, TS_OPEN_ANGLE, LoopArrays,
-                                         NetworkArrays, Physics, Tableau)
+from corliss.engine.kernels.data import (H_MODEL, TRIP_AREA, TRIP_CLOSING, TRIP_GRID,
+                                         TRIP_RELEASE, TRIP_SCALARS, TS_CLOSE_ANGLE,
+                                         TS_CLOSE_TIME, TS_N_CLOSING, TS_N_SETTINGS,
+                                         TS_OPEN_ANGLE, WALL_NONE, LoopArrays, NetworkArrays,
+                                         Physics, Tableau)
 from corliss.engine.kernels.stepping import MAX_RHS_PER_CYCLE
 from corliss.engine.kernels.tableaus import ROS_TABLEAUS
 from corliss.engine.condensation import wall_schedule
@@ -413,11 +414,14 @@ class TurnRunner:
 
 
 def _frozen_turns(turns: TurnRunner, y: np.ndarray, omega: float, z: float, count: int,
-                  marks, tol: float | None = None) -> tuple[np.ndarray, float]:
+                  marks, steam, tol: float | None = None) -> tuple[np.ndarray, float]:
     """Turns at speed ``omega`` with the governor held at ``z``: ``count`` of them, or with
     ``tol`` [N m] until the turn's mean surplus torque changes by less (at most
-    ``count``).  Returns the state and the last turn's surplus [N m]."""
+    ``count``).  With Marks's law (``marks``) each turn is sampled every degree and its
+    steam temperatures at cut-off (``steam``'s) set the next turn's rows, as a steady
+    run's cycles do.  Returns the state and the last turn's surplus [N m]."""
     network = turns.network
+    out_theta = _out_angles("degree", 0.0, 360) if marks is not None else np.zeros(0)
     nn = network.n_state
     y[nn + loop.X_OMEGA] = omega
     y[nn + loop.X_Z] = z
@@ -431,11 +435,14 @@ def _frozen_turns(turns: TurnRunner, y: np.ndarray, omega: float, z: float, coun
         if marks is not None:
             marks.strokes_per_s = omega / math.pi
             marks.apply(turns.net.heat)
-        y, _, _, _, status = turns.turn(y, 0.0, np.zeros(0), False, math.inf)
+        y, samples, _, _, status = turns.turn(y, 0.0, out_theta, False, math.inf)
         turns.stop_on_failure(status, " (in the warm-up turns before t = 0)",
                               "the integrator failed in the warm-up turns before t = 0")
         if marks is None:
             _update_wall(network, y)
+        else:
+            marks.update(steam, samples, out_theta)
+            marks.apply(turns.net.heat)
         surplus = (y[nn + loop.X_WGAS] - y[nn + loop.X_WFRIC] - y[nn + loop.X_WLOAD]) / TWO_PI
         if tol is not None and turn >= 1 and abs(surplus - last) <= tol:
             break
@@ -443,8 +450,8 @@ def _frozen_turns(turns: TurnRunner, y: np.ndarray, omega: float, z: float, coun
     return y, surplus
 
 
-def _start_at_speed(turns: TurnRunner, y: np.ndarray, scene, tables: LoopTables, marks
-                    ) -> tuple[np.ndarray, OperatingPoint]:
+def _start_at_speed(turns: TurnRunner, y: np.ndarray, scene, tables: LoopTables, marks,
+                    steam) -> tuple[np.ndarray, OperatingPoint]:
     """Warm-up turns at the scene's speed, then (``start = "equilibrium"``) the governor's
     operating point for the load, and the speed at dead centre that gives it as the
     turn's mean.  Returns the state released at t = 0 and the start."""
@@ -452,7 +459,7 @@ def _start_at_speed(turns: TurnRunner, y: np.ndarray, scene, tables: LoopTables,
     nn = turns.network.n_state
     sc = tables.tr.sc
     omega0 = run.speed_rad_s
-    y, _ = _frozen_turns(turns, y, omega0, tables.z0, run.warmup_cycles, marks)
+    y, _ = _frozen_turns(turns, y, omega0, tables.z0, run.warmup_cycles, marks, steam)
     start = OperatingPoint(omega0, tables.z0, math.nan, "run_speed", 0)
     if tables.mechanism is not None and run.start == "equilibrium":
         t_load = abs(sc[loop.S_TREF] * loop.load_factor(0.0, tables.tr.load_t, tables.tr.load_f))
@@ -460,11 +467,11 @@ def _start_at_speed(turns: TurnRunner, y: np.ndarray, scene, tables: LoopTables,
 
         def surplus(omega, z):
             nonlocal y
-            y, s = _frozen_turns(turns, y, omega, z, EQUILIBRIUM_TURNS, marks, tol)
+            y, s = _frozen_turns(turns, y, omega, z, EQUILIBRIUM_TURNS, marks, steam, tol)
             return s
 
         start = find_operating_point(surplus, tables.mechanism, t_load)
-        y, _ = _frozen_turns(turns, y, start.speed_rad_s, start.governor_z, 2, marks)
+        y, _ = _frozen_turns(turns, y, start.speed_rad_s, start.governor_z, 2, marks, steam)
         _report_start(start)
     # The flywheel lets the speed swing within a turn (Marks Art. 62), and the governor
     # balances on the turn's mean speed; released at dead centre at the mean speed, the
@@ -555,10 +562,14 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
     network = build_network(scene, geo, pm, steam, chest, exhaust)
     tables = build_tables(scene, network, gear, geo)
     net = network.arrays()
-    # Marks's or English's law from the gear's events at the start, with the supply's
-    # saturation temperature as the cut-off temperature; the heat follows the speed
-    # turn by turn, but not a governor's moving cut-off (the windows stay the start's)
-    marks = wall_schedule(scene, network, geo, model.events, run.speed_rad_s, chest.T, exhaust.T)
+    # Marks's or English's law from the gears' events at the start (each end's row from
+    # its own cylinder's geometry, events and phase, a compound's LP ends from the LP
+    # gear's, as on a steady run), with the supply's saturation temperature as the first
+    # cut-off temperature, then each end's steam at its cut-off in the warm-up turns (and
+    # in the turns sampled every degree); the heat follows the speed turn by turn, but not
+    # a governor's moving cut-off (the windows stay the start's)
+    marks = wall_schedule(scene, network, geo, model.events, run.speed_rad_s, chest.T, exhaust.T,
+                          lp_events=model.lp_events)
     if marks is not None:
         marks.apply(net.heat)
     tab = steam.table.arrays() if hasattr(steam, "table") else _any_table()
@@ -588,7 +599,7 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
         k = int(round(begun["theta_rad"] / TWO_PI))
         stalled_at_rest = begun["stalled"]
     else:
-        y, start = _start_at_speed(turns, y, scene, tables, marks)
+        y, start = _start_at_speed(turns, y, scene, tables, marks, steam)
     duration = run.duration_s
     record = record_of(run)
     n_out = max(1, int(round(TWO_PI / math.radians(fid.output_step_deg))))
@@ -652,6 +663,8 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
             # a turn the stall cut short is no turn: its row would be a wrong mean
             rows.append(_cycle_row(k, y_start, y, network, tables, nn))
         if marks is not None:
+            if record == "degree" and status == 0:
+                marks.update(steam, samples, out_theta)
             marks.strokes_per_s = 2.0 / (rows[-1]["t_end_s"] - rows[-1]["t_start_s"])
             marks.apply(turns.net.heat)
         else:
@@ -821,6 +834,11 @@ def _cycle_row(k: int, y0: np.ndarray, y: np.ndarray, network, tables: LoopTable
     totals = network.boundary_totals(y)
     row["m_supply_kg"] = totals["m_supply_kg"]
     row["steam_rate_kg_per_h"] = totals["m_supply_kg"] / dt * 3600.0
+    for i in (i for i, h in enumerate(network.node_heat) if h[H_MODEL] != WALL_NONE):
+        # each end's heat over the turn: into the steam, and taken by the wall
+        end = network.node_names[i]
+        row[f"Q_{end}_J"] = y[network.i_node_quad(i, "heat")]
+        row[f"Q_to_wall_{end}_J"] = y[network.i_node_quad(i, "heat_to_wall")]
     act = y[nn + loop.X_ADT] / dt
     mech = tables.mechanism
     if mech is not None:

@@ -147,13 +147,28 @@ steam; and while the steam flows out of the cylinder it sweeps the film beyond t
 thin layer that clings as drops (``FILM_WET_KG_M2``) with it, in the proportion of
 the steam leaving.
 
-The film is water of one specific enthalpy ``h_L``, saturated water at the
-temperature the wall starts from, so that its energy is ``m_f h_L`` exactly and the
-first law closes over the steam, the film and the wall.  Condensing, the steam gives
-up its own enthalpy ``h`` (superheat and all) and the wall takes ``h - h_L`` per
-kilogram; evaporating, the film gives vapour of ``h_L + L``, with ``L`` the latent
-heat at that temperature, which differs from the latent heat at the pressure of the
-moment by under 10 % between 15 and 150 psia.
+The film is thin (under 0.1 mm) and lies on the surface: its water is saturated
+water at the surface's temperature, ``h_L(T_w)``, condensate forms there and vapour
+leaves from there (:func:`corliss.engine.kernels.walls.film_water`).  Condensing, the
+steam gives up its own enthalpy ``h`` (superheat and all) and the wall takes
+``h - h_L(T_w)`` per kilogram; evaporating, the film gives vapour of
+``h_L(T_w) + L(T_w)``.  The film's energy ``m_f h_L(T_w)`` moves with the surface:
+its warming, ``m_f c_f dT_w``, is the surface's heat, so the surface and its film
+have the capacity ``C A_w + m_f c_f``, and the first law closes exactly over the
+steam, the film and the wall.  The heat into the steam (``Q_<end>_J``) counts the
+film's water from a reference enthalpy, saturated water at the mean of supply and
+exhaust temperatures: over a periodic cycle the reference drops out.
+
+So booked, every exchange makes entropy (``tests/test_wall_skin.py`` sums it interval
+by interval over a cycle): condensing, water at ``T_w`` is the state of least
+``h - T_w s`` at the cylinder's pressure, so the steam's availability at ``T_w`` can
+only fall; evaporating, water warmed from ``T_sat`` to ``T_w`` and vapour mixed into
+the steam both make entropy.  Until 2026-11 the film's water was booked at one fixed
+enthalpy, saturated water at the mean of supply and exhaust temperatures (408 K on
+the default engine, above any saturation temperature of its exhaust stroke): with it
+the entropy made went negative on some intervals at 10 rpm, and moving that
+temperature between the exhaust's and the supply's saturation moved the water rate
+by -0.9 to +1.0 %; now by under 1e-4.
 
 Both flows carry heat down their own difference (the film's between surface and
 saturation, the convection's between surface and steam), so the wall never gives
@@ -190,7 +205,8 @@ import math
 from corliss.engine.kernels.data import WALL_SKIN
 from corliss.engine.kernels.walls import (FILM_MAX_KG_M2, FILM_WET_KG_M2,
                                           INFLOW_SWEEP_PER_RAD, adair_h, condensing_share,
-                                          skin_coefficients, steam_at_wall_superheat)
+                                          film_water, skin_coefficients,
+                                          steam_at_wall_superheat)
 from corliss.thermo.wall_cycle import CALLENDAR_NICOLSON_W_M2K
 
 #: Grey cast iron (makeitfrom.com, "Grey Cast Iron"): conductivity [W/(m K)], specific
@@ -531,12 +547,15 @@ class IdealPortWall:
       most what the steam holds, and while closed at most half the steam condenses in
       a step (at 10 rpm a step is 4 ms, against the surface's few milliseconds);
     * the steam: its mass changes by the film's loss, ``dm = q_f dt / lat``, and its
-      energy by ``dm h_L + (q_f + q_m + q_v) dt``, so that steam, film and wall close
-      exactly (condensing, the steam gives up its own enthalpy, ``lat = h - h_L``;
-      evaporating, the vapour has ``h_L + L``).  Closed, the steam's new state is found
-      from its density and internal energy.  Open, the end stays at the reservoir's
-      pressure and the port's step takes the wall's mass and enthalpy with its own
-      flow: ``d(m h) = dm h_L + Q + h_res dm_port`` at constant pressure, the end
+      energy by ``dm h_L + (q_f + q_m + q_v) dt``, ``h_L`` and ``L`` the film's water
+      at the surface's temperature at the step's start (condensing, the steam gives
+      up its own enthalpy, ``lat = h - h_L``; evaporating, the vapour has
+      ``h_L + L``); the film's own warming is the surface's (``C A_w`` above is
+      ``C A_w + m_f c_f``), so that steam, film and wall close as in the kernel.
+      Closed, the steam's new state is found from its density and internal energy.
+      Open, the end stays at the reservoir's pressure and the port's step takes the
+      wall's mass and enthalpy with its own flow: ``d(m h) = dm h_L + Q + h_res
+      dm_port`` at constant pressure, the end
       filled or emptied to its volume, so that the chest makes up at once whatever
       the wall condenses, even more than the end held.
 
@@ -581,6 +600,8 @@ class IdealPortWall:
         #: the share of the steam the last open step let out [-] (its sweep is taken at
         #: the next step's start, :meth:`exchange`)
         self.outflow = 0.0
+        #: heat [J] of water swept (its enthalpy above ``h_L``) not yet in the steam
+        self.swept_heat = 0.0
         #: the deep wall's search (:class:`DeepWallSearch`)
         self.search = DeepWallSearch()
         #: the conduction grid under the surface, or None for the lumped node
@@ -640,6 +661,9 @@ class IdealPortWall:
         A = 2.0 * self.a_p + math.pi * self.bore * V / self.a_p
         Aw = self.area_mean
         Tw = self.T_deep + self.dT
+        # the film's water at the surface's temperature, at the step's start (the
+        # kernel's film_water); the film's own heat moves with the surface
+        h_fw, c_fw, L = film_water(Tw)
         T = st.T
         x = 1.0 if st.superheated else st.x
         Tsat = steam.t_sat(st.p) if st.superheated else T
@@ -650,7 +674,7 @@ class IdealPortWall:
                                       entering.h if entering is not None else 0.0, sweep, m)
         share = condensing_share(min(float(sup), self.supply_superheat))
         hf, hm = skin_coefficients(Tw, Tsat, self.h_c, float(self.film), Aw, float(x), share)
-        lat_c = max(st.h - self.h_L, 0.5 * self.L)     # condensing, per kg [J/kg]
+        lat_c = max(st.h - h_fw, 0.5 * L)     # condensing, per kg [J/kg]
         # the surface, backward Euler; a flow that would take more than there is
         # within the step (the film's water boiling off, the mixture's water, or,
         # while closed, half the steam condensing) is held at that and the surface
@@ -660,9 +684,10 @@ class IdealPortWall:
             cA, gA, T_under = c0 * Aw, g0 * Aw, self.T_deep + th1
         else:
             cA, gA, T_under = self.cap * Aw / dt, self.cond * Aw, self.T_deep
-        limits = {"f": (hf, Tsat, self.film * self.L / dt if Tw > Tsat
+        cA += self.film * c_fw / dt
+        limits = {"f": (hf, Tsat, self.film * L / dt if Tw > Tsat
                         else (-0.5 * m * lat_c / dt if not open_ else -math.inf)),
-                  "m": (hm, Tsat, (1.0 - x) * m * self.L / dt),
+                  "m": (hm, Tsat, (1.0 - x) * m * L / dt),
                   "c": (hv, T, None)}
         fixed: dict[str, float] = {}
         for _ in range(3):
@@ -683,12 +708,15 @@ class IdealPortWall:
             for key in over:
                 fixed[key] = limits[key][2]
         qf, qm, qc = flows["f"], flows["m"], flows["c"]
-        dm = qf * dt / (self.L if qf >= 0.0 else lat_c)
+        dm = qf * dt / (L if qf >= 0.0 else lat_c)
         self.film -= dm
         run = max(self.film - FILM_MAX_KG_M2 * Aw, 0.0)
         self.film -= run
-        dm += run + dm_sw
-        q = (qf + qm + qc) * dt
+        dm += run
+        # the heat into the steam counts its water from the row's reference h_L, as
+        # the kernel's (the sweep's counted in :meth:`sweep`)
+        q = (qf + qm + qc) * dt + dm * (h_fw - self.h_L)
+        dm += dm_sw
         self.dT = Tw1 - self.T_deep
         if self.grid is not None:
             self.grid.advance(self.dT)
@@ -697,7 +725,7 @@ class IdealPortWall:
         self.Q_sat += (qf + qm) * dt
         self.Q_conv += qc * dt
         self.hA += ((hf + hm + hv) * A + self.ga) * dt
-        dH = dm * self.h_L + q
+        dH = dm * self.h_L + q + self.take_swept_heat()
         if open_:
             return st, m, dm, dH
         m1 = m + dm
@@ -722,7 +750,32 @@ class IdealPortWall:
             return 0.0
         sw = extra * min(share, 1.0)
         self.film -= sw
+        # water at the surface's temperature: its enthalpy above the reference h_L
+        # is heat into the steam (kept for the next exchange's, or the blow-down's,
+        # energy: :attr:`swept_heat`)
+        dq = sw * (self.h_film - self.h_L)
+        self.Q += dq
+        if dq < 0.0:
+            self.Q_to_wall -= dq
+        self.swept_heat += dq
         return sw
+
+    def take_swept_heat(self) -> float:
+        """The swept water's heat [J] not yet given to the steam (:meth:`sweep`), now
+        given.
+
+        Returns
+        -------
+        float
+            The heat: the swept water's enthalpy above ``h_L`` [J].
+        """
+        q, self.swept_heat = self.swept_heat, 0.0
+        return q
+
+    @property
+    def h_film(self) -> float:
+        """The film's water now: saturated water at the surface's temperature [J/kg]."""
+        return film_water(self.T_deep + self.dT)[0]
 
     def deep_step(self, apply: bool, heat_scale: float = 0.0, dT_scale: float = 0.0,
                   trusted: bool = True) -> tuple[float, float]:

@@ -171,3 +171,22 @@ def film_enthalpies(T_K: float) -> tuple[float, float]:
         return _film_coolprop(T)
     return (float(np.interp(T, g["T_film"], g["h_f"])),
             float(np.interp(T, g["T_film"], g["h_fg"])))
+
+
+def film_table() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Saturated water's enthalpy and the latent heat on the film's temperatures, the
+    table the compiled wall interpolates linearly at the surface's temperature.
+
+    Returns
+    -------
+    T, h_f, h_fg : numpy.ndarray
+        Temperatures [K] from 280 to 640 K, 0.5 K apart (:data:`FILM_T_RANGE_K`), and
+        saturated water's enthalpy and the latent heat there [J/kg] (IAPWS-95: the
+        shipped grid, or CoolProp without it).
+    """
+    g = _grid()
+    if g is not None:
+        return g["T_film"].copy(), g["h_f"].copy(), g["h_fg"].copy()
+    t = np.arange(FILM_T_RANGE_K[0], FILM_T_RANGE_K[1] + 0.25, 0.5)
+    film = np.array([_film_coolprop(v) for v in t])
+    return t, film[:, 0].copy(), film[:, 1].copy()

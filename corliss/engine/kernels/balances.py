@@ -26,7 +26,7 @@ from corliss.engine.kernels.data import (GEO_AREA_CRANK, GEO_AREA_HEAD, H_CONDUC
 from corliss.engine.kernels.properties import (PR_DV, PR_H, PR_KAPPA, PR_P, PR_RHO, PR_T,
                                                PR_TSAT, PR_V, PR_X, node_states)
 from corliss.engine.kernels.walls import (FILM_MAX_KG_M2, FILM_WET_KG_M2, adair_h,
-                                          condensing_share, skin_coefficients,
+                                          condensing_share, film_water, skin_coefficients,
                                           steam_at_wall_superheat)
 from corliss.thermo.leak_law import linear_leak
 from corliss.thermo.orifice import port_flow
@@ -57,6 +57,43 @@ def edge_side(x, pr, res):
         return pr[PR_P, x], pr[PR_RHO, x], pr[PR_H, x], pr[PR_KAPPA, x]
     r = -1 - x
     return res[r, 0], res[r, 1], res[r, 2], res[r, 3]
+
+
+@njit(cache=True, inline="always")
+def marks_window(th, net, i):
+    """Where a node stands in Marks's schedule (Art. 75; :mod:`corliss.engine.condensation`).
+
+    The heat of eq. 221 leaves the steam during admission and comes back from cut-off
+    to compression, each spread over the crank angle in proportion to the wall
+    exposed: the heat into the steam is ``s Q A / W`` per radian, with ``A`` the wall
+    exposed [m2] and ``W`` that window's integral of it [m2 rad].  The right-hand side
+    and the exact Jacobian's crank-angle derivative both read the window here.
+
+    Parameters
+    ----------
+    th : float
+        Shaft crank angle [rad].
+    net : NetworkArrays
+        The network's arrays (its wall-heat rows and each cylinder's phase).
+    i : int
+        A node whose wall-heat model is Marks's law.
+
+    Returns
+    -------
+    s : float
+        -1 in admission, +1 from cut-off to compression, 0 elsewhere [-].
+    W : float
+        The window's exposed wall integrated over it [m2 rad] (1 where ``s`` is 0).
+    """
+    heat = net.heat
+    t = (th + net.phase[net.node_cyl[i]]) % TWO_PI
+    if ((t - heat[i, H_MARKS_ADMIT]) % TWO_PI
+            < (heat[i, H_MARKS_CUTOFF] - heat[i, H_MARKS_ADMIT]) % TWO_PI):
+        return -1.0, heat[i, H_MARKS_WALL_ADMIT]
+    if ((t - heat[i, H_MARKS_CUTOFF]) % TWO_PI
+            < (heat[i, H_MARKS_COMPRESS] - heat[i, H_MARKS_CUTOFF]) % TWO_PI):
+        return 1.0, heat[i, H_MARKS_WALL_EXPAND]
+    return 0.0, 1.0
 
 
 @njit(cache=True, inline="always")
@@ -159,14 +196,8 @@ def balances(th, y, pr, dy, net, areas):
                 # Marks's law (Art. 75): the heat of eq. 221 leaves the steam during
                 # admission and comes back from cut-off to compression, each spread
                 # over the crank angle in proportion to the wall exposed
-                t = (th + net.phase[c]) % TWO_PI
-                q = 0.0
-                if ((t - heat[i, H_MARKS_ADMIT]) % TWO_PI
-                        < (heat[i, H_MARKS_CUTOFF] - heat[i, H_MARKS_ADMIT]) % TWO_PI):
-                    q = -heat[i, H_MARKS_Q] * A / heat[i, H_MARKS_WALL_ADMIT]
-                elif ((t - heat[i, H_MARKS_CUTOFF]) % TWO_PI
-                      < (heat[i, H_MARKS_COMPRESS] - heat[i, H_MARKS_CUTOFF]) % TWO_PI):
-                    q = heat[i, H_MARKS_Q] * A / heat[i, H_MARKS_WALL_EXPAND]
+                sm, W = marks_window(th, net, i)
+                q = sm * heat[i, H_MARKS_Q] * A / W if sm != 0.0 else 0.0
                 dy[2 * i + 1] += q
                 dy[q0 + 1] = q
                 dy[q0 + 2] = -q if q < 0.0 else 0.0
@@ -238,9 +269,9 @@ def skin_wall(i, y, pr, dy, net, q0):
     down ``T_w - T``; a surface below saturation condenses only as far as the steam at
     it is at saturation (:func:`~corliss.engine.kernels.walls.condensing_share` of
     :func:`~corliss.engine.kernels.walls.steam_at_wall_superheat`, the entering
-    steam's while steam enters: its mass and enthalpy per radian are read from
-    ``dy[q0 + 3]`` and ``dy[q0 + 4]``, where the edges' loop of :func:`balances` left
-    them).
+    steam's while steam enters, no more than the supply's superheat: the entering
+    mass and enthalpy per radian are read from ``dy[q0 + 3]`` and ``dy[q0 + 4]``,
+    where the edges' loop of :func:`balances` left them).
 
     Parameters
     ----------
@@ -280,19 +311,22 @@ def skin_wall(i, y, pr, dy, net, q0):
     m_in, h_in = dy[q0 + 3], dy[q0 + 4]
     sup = steam_at_wall_superheat(Ts, Tsat, pr[PR_X, i], heat[i, H_SKIN_LATENT], H[i],
                                   h_in / m_in if m_in > 0.0 else 0.0, m_in, y[2 * i])
-    # no more superheated than the steam supplied: saturated steam supplied keeps the
-    # wall's steam saturated however the filling and the compression superheat the bulk
+    # no more superheated than the steam supplied: saturated steam supplied
+    # keeps the wall's steam saturated however the filling and the
+    # compression superheat the bulk
     hf, hm = skin_coefficients(Tw, Tsat, heat[i, H_CONDUCTANCE], mf, Aw, pr[PR_X, i],
                                condensing_share(min(sup, heat[i, H_SKIN_SUPPLY_SUPERHEAT])))
     qf = hf * (Tw - Tsat) * A            # [W] from the wall into the film
     qm = hm * (Tw - Tsat) * A            # [W] into the mixture's water
     qc = hv * (Tw - Ts) * A              # [W] into the steam by convection
     qv = qm + qc
-    hL, L = heat[i, H_SKIN_FILM_H], heat[i, H_SKIN_LATENT]
-    # evaporated (+, as vapour of h_L + L) or condensed (-, the steam
-    # giving up its own enthalpy, superheat and all, down to the film's
-    # h_L) [kg/s]; water beyond the film the wall holds runs off into
-    # the steam (its excess per radian)
+    # the film's water is saturated water at the surface's temperature
+    # (corliss.engine.wall, "The water film"): evaporated (+, as vapour
+    # of h_L + L, both at T_w) or condensed (-, the steam giving up its
+    # own enthalpy, superheat and all, down to the film's h_L) [kg/s];
+    # water beyond the film the wall holds runs off into the steam (its
+    # excess per radian)
+    hL, cL, L = film_water(Tw)
     if qf < 0.0:
         lat = max(H[i] - hL, 0.5 * L)
     else:
@@ -303,7 +337,10 @@ def skin_wall(i, y, pr, dy, net, q0):
     dy[2 * i] += (mdot + run) / omega
     dy[2 * i + 1] += ((mdot + run) * hL + qf + qv) / omega
     dy[k + 1] = -(mdot + run) / omega
-    q = (qf + qv) / omega
+    # the heat into the steam counts the film's water from the row's
+    # reference enthalpy (the steam gains q + its water's mass times that
+    # reference): over a periodic cycle it is what surface and film gave
+    q = (qf + qv + (mdot + run) * (hL - heat[i, H_SKIN_FILM_H])) / omega
     dy[q0 + 1] = q
     dy[q0 + 2] = -q if q < 0.0 else 0.0
     # for the deep wall's update (T_deep <- hAT / hA, a Newton step on the
@@ -312,8 +349,11 @@ def skin_wall(i, y, pr, dy, net, q0):
     ga = heat[i, H_SKIN_JACKET_G] / omega
     dy[q0 + 3] = d + ga
     dy[q0 + 4] = d * wallT[i] - q + ga * heat[i, H_SKIN_JACKET_T]
+    # the surface and the film on it, at one temperature: the film's
+    # energy m_f h_L(T_w) moves with the surface (its water comes and
+    # goes at h_L, above)
     dy[k] = (-(qf + qv) + heat[i, H_SKIN_DEEP] * Aw * (wallT[i] - Tw)) / (
-        heat[i, H_SKIN_CAPACITY] * Aw * omega)
+        (heat[i, H_SKIN_CAPACITY] * Aw + mf * cL) * omega)
     dy[k + 2] = (qf + qm) / omega
     dy[k + 3] = qc / omega
 
@@ -362,9 +402,18 @@ def sweep_films(y, pr, dy, net):
         m = y[2 * i]
         if extra > 0.0 and m > 0.0:
             sw = extra * out / m
+            # water at the surface's temperature (film_water), its enthalpy above
+            # the row's reference counted in the heat into the steam, as in
+            # :func:`balances`
+            hL = film_water(net.wall_T[i] + y[k])[0]
+            dq = sw * (hL - heat[i, H_SKIN_FILM_H])
             dy[2 * i] += sw
-            dy[2 * i + 1] += sw * heat[i, H_SKIN_FILM_H]
+            dy[2 * i + 1] += sw * hL
             dy[k + 1] -= sw
+            q0 = 2 * heat.shape[0] + 2 * net.edge_a.shape[0] + 5 * i
+            dy[q0 + 1] += dq
+            dy[q0 + 2] = -dy[q0 + 1] if dy[q0 + 1] < 0.0 else 0.0
+            dy[q0 + 4] -= dq
 
 
 @njit(cache=True, _nrt=False)

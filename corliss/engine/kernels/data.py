@@ -40,9 +40,12 @@ H_MARKS_Q, H_MARKS_ADMIT, H_MARKS_CUTOFF, H_MARKS_COMPRESS = 5, 6, 7, 8
 H_MARKS_WALL_ADMIT, H_MARKS_WALL_EXPAND = 9, 10
 #: The skin model (:mod:`corliss.engine.wall`): the surface node's capacity
 #: [J/(m2 K)] and conductance to the deep wall [W/(m2 K)], its mean area [m2], the
-#: index of its first state, the jacket's conductance [W/K] and temperature [K], the
-#: film's water's specific enthalpy and the latent heat it takes to evaporate [J/kg],
-#: and the superheat of the steam supplied [K] (0 when saturated or wet).
+#: index of its first state, the jacket's conductance [W/K] and temperature [K], and
+#: the reference the heat into the steam counts the film's water from, saturated water
+#: at the mean of supply and exhaust temperatures, with the latent heat there [J/kg]
+#: (the film itself is water at the surface's temperature,
+#: :func:`corliss.engine.kernels.walls.film_water`); and the superheat of the steam
+#: supplied [K] (0 when saturated or wet).
 H_SKIN_CAPACITY, H_SKIN_DEEP, H_SKIN_AREA, H_SKIN_STATE = 5, 6, 7, 8
 H_SKIN_JACKET_G, H_SKIN_JACKET_T, H_SKIN_FILM_H, H_SKIN_LATENT = 9, 10, 11, 12
 H_SKIN_SUPPLY_SUPERHEAT = 13

@@ -7,15 +7,18 @@ columns plus the shaft and governor states).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-from corliss.engine.kernels.balances import edge_side, rhs
+from corliss.engine.kernels.balances import edge_side, marks_window, rhs
 from corliss.engine.kernels.clamps import tally_clamps
 from corliss.engine.kernels.compiled import njit
 from corliss.engine.kernels.loop import N_EXTRA, X_OMEGA, X_Z, X_ZDOT, transient_rhs
 from corliss.engine.kernels.mechanism import (_port_area_slopes, _volume_curvature,
                                               edge_area, node_volume, port_areas)
-from corliss.engine.kernels.data import H_MODEL, WALL_MARKS, WALL_NONE
+from corliss.engine.kernels.data import (GEO_AREA_CRANK, GEO_AREA_HEAD, H_MARKS_Q, H_MODEL,
+                                         WALL_MARKS, WALL_NONE)
 from corliss.engine.kernels.properties import (PERF_CV, PERF_R, PERF_U_REF, PR_AT, PR_CLAMP,
                                                PR_DV, PR_H, PR_KAPPA, PR_P, PR_RHO, PR_SUP, PR_T,
                                                PR_V, TIER_PERFECT, admissible_flagged)
@@ -73,7 +76,10 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
     (in time also through V''); each edge's flow
     (:func:`corliss.thermo.orifice.port_flow_partials`, and in time its area's slope
     on the PortMap table) and the enthalpy it carries (of the side it leaves) move the
-    rows of its two ends and its quadratures.  ``pr`` is written with the properties
+    rows of its two ends and its quadratures.  Marks's schedule
+    (:func:`~corliss.engine.kernels.balances.marks_window`) does not depend on the
+    state but moves in crank angle with the wall exposed, ``pi D V' / A_p`` of it,
+    in the energy row and the heat quadratures.  ``pr`` is written with the properties
     at ``y``, ``jd`` (shape (12, nodes)) with their partials, ``slope`` (shape
     (cylinders, 4)) with the ports' area slopes.
 
@@ -163,6 +169,21 @@ def _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope):
         w_t = jd[8, i] * dV + p * _volume_curvature(t, net, i)
         T[2 * i + 1] = -w_t
         T[q0] = w_t
+        if net.heat[i, H_MODEL] == WALL_MARKS:
+            # Marks's schedule: s Q A / W with A = 2 A_p + pi D V / A_p, the wall
+            # exposed, moves in crank angle with the volume (not with the state); its
+            # steps at the windows' ends are the valve events, where the integrators
+            # stop
+            sm, W = marks_window(t, net, i)
+            if sm != 0.0:
+                c = net.node_cyl[i]
+                ap = net.geometry[c, GEO_AREA_HEAD if net.node_end[i] == 0 else GEO_AREA_CRANK]
+                bore = math.sqrt(4.0 * net.geometry[c, GEO_AREA_HEAD] / math.pi)
+                q_t = sm * net.heat[i, H_MARKS_Q] * math.pi * bore * dV / (ap * W)
+                T[2 * i + 1] += q_t
+                T[q0 + 1] = q_t
+                if sm < 0.0:
+                    T[q0 + 2] = -q_t
     omega, band, res = net.omega[0], net.band, net.reservoirs
     ea, eb, ecd, ekind, ecyl, eport = net.edge_a, net.edge_b, net.edge_cd, net.edge_kind, net.edge_cyl, net.edge_port
     port_areas(t, net, cell)

@@ -22,6 +22,7 @@ both paths follow.
 from __future__ import annotations
 
 from corliss.engine.kernels.compiled import njit
+from corliss.thermo.wall_properties import film_table
 
 #: Film of water over which the wall counts as wetted: 10 microns, where a draining
 #: film breaks into drops and rivulets [kg/m2].
@@ -49,6 +50,11 @@ CP_STEAM_J_KGK = 1950.0
 #: minute", Marks Art. 78); a radian's inflow as large as the end's mass is taken as
 #: the wall swept wholly by it.
 INFLOW_SWEEP_PER_RAD = 1.0
+#: Saturated water's enthalpy and the latent heat [J/kg] on temperatures 0.5 K apart
+#: from 280 K [K] (IAPWS-95, :func:`corliss.thermo.wall_properties.film_table`): the
+#: film's water at the surface's temperature (:func:`film_water`).
+_FILM_T, _FILM_HF, _FILM_HFG = film_table()
+FILM_T0_K, FILM_DT_K = float(_FILM_T[0]), float(_FILM_T[1] - _FILM_T[0])
 
 
 @njit(cache=True, inline="always")
@@ -239,3 +245,42 @@ def skin_coefficients(Tw, Tsat, h_c, film, Aw, x, share=1.0):
         hm = hf * (1.0 - wf) * wetted_share(x)
         hf *= wf
     return hf, hm
+
+
+@njit(cache=True, inline="always")
+def film_water(Tw):
+    """The film's water at the surface's temperature: saturated water there.
+
+    The film is thin (under 0.1 mm, :data:`FILM_MAX_KG_M2`) and lies on the surface:
+    its water is at the surface's temperature, condensate forms there and vapour
+    leaves from there.  Booked so, every exchange of steam, film and surface makes
+    entropy (:mod:`corliss.engine.wall`, "The water film").  Linear on the IAPWS-95
+    table 0.5 K apart (within 1e-5 of it), clamped to 280-640 K; ``c_f`` is the
+    interpolant's own slope, so that the film's energy ``m_f h_f(T_w)`` is followed
+    exactly by the surface's balance.
+
+    Parameters
+    ----------
+    Tw : float
+        The surface's temperature [K].
+
+    Returns
+    -------
+    h_f : float
+        Saturated water's enthalpy at ``Tw`` [J/kg].
+    c_f : float
+        Its slope, d h_f / d T_w [J/(kg K)] (0 outside the table).
+    L : float
+        The latent heat at ``Tw`` [J/kg].
+    """
+    n = _FILM_T.shape[0]
+    z = (Tw - FILM_T0_K) / FILM_DT_K
+    if not z > 0.0:
+        return _FILM_HF[0], 0.0, _FILM_HFG[0]
+    if z >= n - 1:
+        return _FILM_HF[n - 1], 0.0, _FILM_HFG[n - 1]
+    j = int(z)
+    w = z - j
+    slope = (_FILM_HF[j + 1] - _FILM_HF[j]) / FILM_DT_K
+    return (_FILM_HF[j] + w * (_FILM_HF[j + 1] - _FILM_HF[j]), slope,
+            _FILM_HFG[j] + w * (_FILM_HFG[j + 1] - _FILM_HFG[j]))
