@@ -354,33 +354,34 @@ def test_the_condensing_share_falls_from_saturation_to_the_band():
     assert walls.condensing_share(80.0) == 0.0
 
 
-def _corliss(**changes):
-    """The bundled 20 x 42 in Corliss engine (Spangler Arts. 155-157; 80 rpm, 100
-    psig, 1 psig exhaust, cut-off near a fifth) with the skin wall, standard preset."""
-    data = copy.deepcopy(tomllib.loads(bundled_scenes()["corliss-trip-gear"].read_text()))
+def _large_slow(**changes):
+    """Marks's 32 x 48 in stationary engine (the bundled scene, after his Art. 3: 20
+    rpm, 60 psig, 1 psig exhaust) with the skin wall, fast preset."""
+    data = copy.deepcopy(tomllib.loads(bundled_scenes()["marks-32x48-stationary"].read_text()))
     data["engine"]["wall_heat_model"] = "skin"
     data["run"]["effects"] = list(data["run"]["effects"]) + ["wall_heat"]
-    data["run"].update({"fidelity": "standard", "max_cycles": 300})
+    data["run"].update({"fidelity": "fast", "max_cycles": 300})
     for section, values in changes.items():
         data.setdefault(section, {}).update(values)
-    return corliss.simulate(scene_from_dict(data, name="skin-corliss"))
+    return corliss.simulate(scene_from_dict(data, name="skin-large-slow"))
 
 
 def test_superheat_of_80_K_removes_most_initial_condensation_on_a_large_slow_engine():
     """Lineham (A Text-Book of Mechanical Engineering, p. 885): "a 5 % extra heat
     supply will often eliminate a 20 % loss"; Marks Art. 78 (superheat "the most
     efficient expedient"; Hirn's unjacketed cylinder, 14.75 kg of steam per horse-power
-    hour saturated, 10 superheated to 250 degC).  On a large slow Corliss engine (the
-    bundled 20 x 42 in at 80 rpm) 80 K of superheat at the supply (482 degF against
-    the 337.9 degF saturation of 114.7 psia, some 8 % more heat per kilogram) leaves
-    under a fifth of the saturated supply's water missing at cut-off (both ends'
-    mean): the loss "eliminated", where the wall that condensed on any surface below
-    saturation left it 1.1 times as large.  The saturated supply still has more than a
-    tenth of its steam missing (the period's saturated Corliss engines lost more:
-    Hill's Harris-Corliss 0.36 to 0.40, Marks Art. 78), so the fall is the
-    superheat's, not the rule's."""
-    runs = {k: _corliss(supply={"temperature": t})
-            for k, t in (("saturated", "saturated"), ("superheated", "482 degF"))}
+    hour saturated, 10 superheated to 250 degC).  On a large slow engine (the bundled
+    32 x 48 in stationary engine at 20 rpm) 80 K of superheat at the supply (451 degF
+    against the 307 degF saturation of 74.7 psia, some 7 % more heat per kilogram)
+    leaves under a fifth of the saturated supply's water missing at cut-off (both
+    ends' mean): the loss "eliminated".  The saturated supply still has more than a
+    tenth of its steam missing (the period's saturated engines lost more: Hill's
+    Harris-Corliss 0.36 to 0.40, Marks Art. 78), so the fall is the superheat's, not
+    the rule's.  (The bundled 20 x 42 in Corliss engine at 80 rpm shows the same,
+    0.157 saturated and 0.006 superheated before the film's enthalpy followed the surface, but its superheated wall does not settle to
+    the presets' tolerances: docs/validation/condensation.md.)"""
+    runs = {k: _large_slow(supply={"temperature": t})
+            for k, t in (("saturated", "saturated"), ("superheated", "451 degF"))}
     m = {}
     for k, r in runs.items():
         assert r.summary["cycles_to_converge"] is not None, k
