@@ -95,3 +95,60 @@ def test_a_study_gives_the_same_rows_after_other_runs_as_in_a_fresh_process():
     alone = json.loads(out.stdout.strip().splitlines()[-1])
     assert [_bits(here.points.loc[i, RESPONSES]) for i in range(here.runs)] == alone
     assert all(math.isfinite(float(v)) for row in alone for v in row)
+
+
+#: Edits of one or more sections, each loaded with the base scene's specs for the
+#: sections it does not edit: the study's keys, the barometer (every gauge pressure of
+#: the other sections moves with it), the bore (the swept volume the unedited supply's
+#: chest is checked against), pressures, an output key and a value of another kind.
+LIKE_EDITS = [
+    {"valve_gear.lap": "1.1 in", "valve_gear.port_width": "1.3 in"},
+    {"engine.clearance": 0.1, "run.speed": "100 rpm"},
+    {"supply.barometer": "13.2 psia"},
+    {"engine.bore": "11.5 in"},
+    {"supply.pressure": "80 psig", "exhaust.pressure": "2 psig"},
+    {"output.units": "SI"},
+    {"run.fidelity": "fast", "valve_gear.eccentricity": "3.2 in"},
+]
+#: Edits the loader refuses, each for a rule of its own section or one across sections:
+#: a chest too small for the larger bore's swept volume (the supply's rule, on an
+#: unedited supply), lap and lead beyond the eccentricity, a clearance out of range,
+#: an exhaust above the supply (across sections), a key the gear does not take.
+LIKE_REFUSED = [
+    {"engine.bore": "13 in"},
+    {"valve_gear.lap": "2.9 in"},
+    {"engine.clearance": 0.7},
+    {"exhaust.pressure": "120 psig"},
+    {"valve_gear.lapp": "1 in"},
+]
+
+
+def test_a_scene_loaded_like_its_base_is_the_scene_loaded_whole():
+    """:func:`~corliss.scene.loader.scene_from_dict` with ``like`` (the base scene,
+    whose specs it takes for the sections the edited tables share with it) against the
+    same tables loaded whole, field by field (floats compared exactly), and the same
+    error, word for word, for an edit the loader refuses.  The base has a steam chest of
+    150 in3, above the least the loader takes for its 12 in bore (5 % of the swept
+    volume: 0.05 x pi/4 x 12^2 x 24 = 135.7 in3) and below the least for a 13 in bore
+    (159.3 in3): a bore's edit must read the unedited supply again."""
+    from corliss.errors import InputError
+    from corliss.keys.edits import edited, with_keys
+    from corliss.scene.loader import scene_from_dict
+    base = copy.deepcopy(BASE)
+    base["supply"]["chest_volume"] = "150 in3"
+    like = scene_from_dict(base, name="base")
+    for changes in LIKE_EDITS:
+        fast = scene_from_dict(edited(base, changes), name="base", like=like)
+        whole = scene_from_dict(with_keys(base, changes), name="base")
+        assert fast == whole, changes
+        assert repr(fast) == repr(whole), changes      # every float to its last bit
+    assert like.supply.chest_volume_m3 == scene_from_dict(base, name="base").supply.chest_volume_m3
+    for changes in LIKE_REFUSED:
+        got = []
+        for load in (lambda: scene_from_dict(edited(base, changes), name="base", like=like),
+                     lambda: scene_from_dict(with_keys(base, changes), name="base")):
+            try:
+                load()
+            except InputError as exc:
+                got.append(f"{type(exc).__name__}: {exc}")
+        assert len(got) == 2 and got[0] == got[1], (changes, got)

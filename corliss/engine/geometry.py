@@ -157,7 +157,15 @@ class CylinderGeometry:
             ``s = R (1 - cos theta) + L - sqrt(L^2 - R^2 sin^2 theta)`` [m] (without
             rod angularity, ``R (1 - cos theta)``, eq. 239), of ``theta``'s shape.
         """
-        return self._slider_crank(theta)[0]
+        # the displacement alone, by the operations of :meth:`_slider_crank` (the same
+        # bits): the volumes and the events read it alone, a dozen times a run
+        R = self.crank_m
+        th = np.asarray(theta, dtype=float)
+        s = R * (1.0 - np.cos(th))
+        if self.rod_angularity:
+            L = self.spec.connecting_rod_m
+            s = s + L - np.sqrt(L * L - (R * np.sin(th)) ** 2)
+        return s
 
     def dpiston_m_per_rad(self, theta):
         """Derivative of the piston displacement with crank angle.

@@ -165,9 +165,28 @@ def reservoir_states(scene, steam: Steam) -> tuple[State, State]:
         Dry saturated steam at back pressure.
     """
     s = scene.supply
+    # the states are a function of the tier's own data (a table tier's table: the
+    # same object for every run of a process, a stand-in's while one is put in) and of
+    # the four numbers: a study's runs share their reservoirs, found once
+    table = getattr(steam, "table", None)
+    key = (type(steam), id(table), s.pressure_Pa, s.temperature_K, s.dryness,
+           scene.exhaust.pressure_Pa)
+    kept = _RESERVOIRS.get(key)
+    if kept is not None and kept[0] is table:
+        return kept[1]
     chest = (steam.pt(s.pressure_Pa, s.temperature_K) if s.temperature_K is not None
              else steam.px(s.pressure_Pa, s.dryness))
-    return chest, steam.px(scene.exhaust.pressure_Pa, 1.0)
+    states = (chest, steam.px(scene.exhaust.pressure_Pa, 1.0))
+    if len(_RESERVOIRS) >= RESERVOIRS_KEPT:
+        _RESERVOIRS.clear()
+    _RESERVOIRS[key] = (table, states)
+    return states
+
+
+#: Reservoir states kept by :func:`reservoir_states` (the table they came from, kept
+#: beside them so that its id stays its own), and how many.
+_RESERVOIRS: dict = {}
+RESERVOIRS_KEPT = 64
 
 
 def build_network(scene, geo, pm, steam: Steam, chest: State, exhaust: State) -> Network:
@@ -364,7 +383,7 @@ def assemble(scene, *, tabulated: bool = True) -> Model:
     gear = build_gear(scene)
     pm = _tabulated(scene, gear, fid.portmap_points) if tabulated else None
     ev = valve_events(gear, lambda t: float(geo.fraction(t)), pm.crossings if pm else None,
-                      pm.signed_samples if pm else None)
+                      pm.signed_samples if pm else None, geo.fraction)
     lp_events = None
     if scene.compound is not None:
         lp_geo = lp_geometry_of(scene)
@@ -406,9 +425,35 @@ def steady_scene(scene, fidelity: str | None = None):
         if fidelity not in PRESETS:
             raise InputError("run.fidelity", fidelity, "one of " + ", ".join(PRESETS))
         changes["fidelity"] = PRESETS[fidelity]
-    run = dataclasses.replace(scene.run, **changes)
-    return dataclasses.replace(scene, run=run, governor=None, governor_type=None, flywheel=None,
-                               load=None)
+    run = _replaced(scene.run, changes)
+    return _replaced(scene, {"run": run, "governor": None, "governor_type": None,
+                             "flywheel": None, "load": None})
+
+
+#: The field names of each dataclass :func:`_replaced` may copy (empty: one it may not).
+_PLAIN_FIELDS: dict = {}
+
+
+def _replaced(spec, changes: dict):
+    """``dataclasses.replace(spec, **changes)`` for a frozen dataclass that neither
+    checks nor derives anything as it is made (no ``__post_init__``, every field set by
+    ``__init__``: a scene, a run spec), made without its ``__init__``: an equal object,
+    made in a fraction of the time (a study makes two a run)."""
+    names = _PLAIN_FIELDS.get(type(spec))
+    if names is None:
+        fields = dataclasses.fields(spec)
+        plain = (not hasattr(spec, "__post_init__") and hasattr(spec, "__dict__")
+                 and all(f.init for f in fields))
+        names = _PLAIN_FIELDS[type(spec)] = (frozenset(f.name for f in fields) if plain
+                                             else frozenset())
+    if not names or not names.issuperset(changes):
+        return dataclasses.replace(spec, **changes)
+    # a new object holding the fields' values (and nothing else the old one held), the
+    # changed ones set
+    out = object.__new__(type(spec))
+    out.__dict__.update({k: v for k, v in spec.__dict__.items() if k in names})
+    out.__dict__.update(changes)
+    return out
 
 
 def at_knob(scene, knob: str, value: float):

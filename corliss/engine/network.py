@@ -546,16 +546,18 @@ class Network:
                 v = per_cyl[c][self.node_end[i]]
             vmax += float(np.max(v))
         m = vmax * ref.rho
+        nd, q0 = self.n_dyn, self.n_dyn + 2 * self.n_edges
         sc = np.empty(self.n_state)
-        sc[0:self.n_dyn:2] = m
-        sc[1:self.n_dyn:2] = m * ref.u
-        sc[self.n_dyn:self.n_dyn + 2 * self.n_edges:2] = m
-        sc[self.n_dyn + 1:self.n_dyn + 2 * self.n_edges:2] = m * ref.h
-        sc[self.n_dyn + 2 * self.n_edges:] = ref.p * vmax
-        for i in range(self.n_nodes):
-            # diagnostics for the wall temperature: kept out of the step-size control
-            sc[self.i_node_quad(i, "hA")] = 1e12
-            sc[self.i_node_quad(i, "hAT")] = 1e15
+        sc[0:nd:2] = m
+        sc[1:nd:2] = m * ref.u
+        sc[nd:q0:2] = m
+        sc[nd + 1:q0:2] = m * ref.h
+        sc[q0:] = ref.p * vmax
+        # diagnostics for the wall temperature, kept out of the step-size control: each
+        # node's hA and hAT (:meth:`i_node_quad`, every node's at once)
+        nq, q_end = len(self.NODE_QUADS), q0 + len(self.NODE_QUADS) * self.n_nodes
+        sc[q0 + self.NODE_QUADS.index("hA"):q_end:nq] = 1e12
+        sc[q0 + self.NODE_QUADS.index("hAT"):q_end:nq] = 1e15
         for i in self.wall_nodes:
             # the surface temperature's swing is a fraction of supply less exhaust
             sc[self.i_wall(i)] = max(ref.T - min(s.T for s in self.reservoirs), 10.0)
@@ -647,8 +649,6 @@ class Network:
             points) [m2]; ``heat`` the wall-heat rows (nodes, :data:`HEAT_COLUMNS`);
             ``wall_T`` :attr:`wall_T` [K].
         """
-        from corliss.thermo.steam_table import kappa_at, load_table
-        tab = load_table().arrays()
         ncyl = len(self.geometries)
         geo = np.array([[g.crank_m, g.spec.connecting_rod_m, g.spec.stroke_m, g.area_head_m2,
                          g.area_crank_m2, *g.clearance_m3, 1.0 if g.rod_angularity else 0.0]
@@ -665,7 +665,7 @@ class Network:
             npts[c] = n
         # the reservoirs' port-flow exponent is the real fluid's (the kernel puts the
         # perfect tier's own in its place)
-        res = np.array([[s.p, s.rho, s.h, kappa_at(tab, s.rho, s.u)] for s in self.reservoirs])
+        res = _reservoir_rows(self.reservoirs)
         i64 = lambda v: np.asarray(v, dtype=np.int64)  # noqa: E731
         f64 = lambda v: np.asarray(v, dtype=np.float64)  # noqa: E731
         if self.wall_T is None or self.wall_T.size != self.n_nodes:
@@ -679,6 +679,31 @@ class Network:
             edge_cyl=i64(self.e_cyl), edge_port=i64(self.e_port), edge_area=f64(self.e_area),
             edge_cd=f64(self.e_cd), port_grid=grid, port_npts=npts, port_area=area,
             heat=f64(self.node_heat), wall_T=self.wall_T)
+
+
+#: The reservoirs' kernel rows (:func:`_reservoir_rows`) by their states, with the table
+#: their exponents came from; and how many are kept.
+_RESERVOIR_ROWS: dict = {}
+RESERVOIR_ROWS_KEPT = 64
+
+
+def _reservoir_rows(reservoirs) -> np.ndarray:
+    """Each reservoir's row of ``NetworkArrays.reservoirs``: p [Pa], rho [kg/m3],
+    h [J/kg] and the real fluid's port-flow exponent at its state [-], kept by the
+    states and the table (a study's runs share their reservoirs: the compiled
+    exponent's call, which hands the whole table over, made once)."""
+    from corliss.thermo.steam_table import kappa_at, load_table
+    table = load_table()
+    key = (id(table), tuple(reservoirs))
+    kept = _RESERVOIR_ROWS.get(key)
+    if kept is not None and kept[0] is table:
+        return kept[1].copy()
+    tab = table.arrays()
+    rows = np.array([[s.p, s.rho, s.h, kappa_at(tab, s.rho, s.u)] for s in reservoirs])
+    if len(_RESERVOIR_ROWS) >= RESERVOIR_ROWS_KEPT:
+        _RESERVOIR_ROWS.clear()
+    _RESERVOIR_ROWS[key] = (table, rows)
+    return rows.copy()
 
 
 #: The crank angles a network's volumes are sampled at for its states' scales [rad].

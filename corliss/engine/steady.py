@@ -9,6 +9,7 @@ Only the effects the scene names are assembled (:mod:`corliss.engine.model`): wi
 from __future__ import annotations
 
 import dataclasses
+import functools
 import logging
 import math
 import time
@@ -155,8 +156,7 @@ def _crank_resolved(scene, model, pm, progress, start=None):
                                          and jacobians.exact_jacobian_covers(arrays))
     crank = CrankResolved(net, steam, method, rtol, step_deg=fid.step_deg, arrays=arrays)
     ends_all = piston_ends(net)
-    step = math.radians(fid.output_step_deg)
-    out_theta = np.linspace(0.0, TWO_PI, int(round(TWO_PI / step)) + 1)
+    out_theta = _output_angles(fid.output_step_deg)
     y = crank.initial_state()
     if start is not None and start.y.shape == y.shape:
         y = start.y.copy()
@@ -246,6 +246,19 @@ def _crank_resolved(scene, model, pm, progress, start=None):
             "clamped_trials": crank.clamped_trials, "clamped_hot": crank.clamped_hot,
             "cylinders": [(("lp_" if scene.compound and c else cylinder_prefix(c)), g, ph)
                           for c, (g, ph) in enumerate(zip(net.geometries, net.phases))]}
+
+
+def _output_angles(step_deg: float) -> np.ndarray:
+    """The crank angles a cycle's states are sampled at, every ``step_deg`` from 0 to
+    2 pi [rad]: a copy of the run's own (the compiled cycle takes a writable array)."""
+    return _angles_every(step_deg).copy()
+
+
+@functools.lru_cache(maxsize=8)
+def _angles_every(step_deg: float) -> np.ndarray:
+    """:func:`_output_angles`, found once a step."""
+    step = math.radians(step_deg)
+    return np.linspace(0.0, TWO_PI, int(round(TWO_PI / step)) + 1)
 
 
 @dataclasses.dataclass(frozen=True)

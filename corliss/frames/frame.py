@@ -95,7 +95,13 @@ class Frame:
         names: dict[str, None] = {}
         for r in rows:
             names.update(dict.fromkeys(r))
-        return cls({n: _array([r.get(n, np.nan) for r in rows]) for n in names})
+        cols = {n: _array([r.get(n, np.nan) for r in rows]) for n in names}
+        if any(a.ndim != 1 for a in cols.values()):
+            return cls(cols)        # a row holding a sequence: refused as a column is
+        # every column one value a row: what setting them one by one checks holds
+        out = cls()
+        out._cols = cols
+        return out
 
     @classmethod
     def concat(cls, frames: list["Frame"]) -> "Frame":

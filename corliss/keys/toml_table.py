@@ -42,8 +42,9 @@ _READS: dict[int, tuple] = {}
 def _reads_of(group) -> dict:
     """The reads kept for a key group."""
     entry = _READS.get(id(group))
-    if entry is None or entry[0] is not group:
-        entry = _READS[id(group)] = (group, {})
+    if entry is not None and entry[0] is group:
+        return entry[1]
+    entry = _READS[id(group)] = (group, {})
     return entry[1]
 
 
@@ -81,6 +82,8 @@ class Table:
         self.barometer_Pa = barometer_Pa
         self.keys = keys
         self._read: set[str] = set()
+        #: The bound group's kept reads (:func:`_reads_of`), found at the first read.
+        self._kept: dict | None = None
 
     def bind(self, keys: KeyGroup) -> "Table":
         """Bind the table to the group of keys it may hold (a gear's or governor's,
@@ -98,6 +101,7 @@ class Table:
             This table.
         """
         self.keys = keys
+        self._kept = None
         for k in self._read - {"type"}:
             keys[k]
         return self
@@ -217,13 +221,15 @@ class Table:
         # a float by its repr: -0.0 is not 0.0 (equal, and hashed alike)
         memo_key = (key, type(raw), repr(raw) if type(raw) is float else raw, default,
                     within, self.barometer_Pa)
-        kept = _reads_of(self.keys)
+        kept = self._kept
+        if kept is None:
+            kept = self._kept = _reads_of(self.keys)
         try:
             value = kept.get(memo_key, _MISSING)
         except TypeError:           # a list, or a default that cannot be hashed
             return self._get(key, default, within=within)
         if value is not _MISSING:
-            self._declared(key)
+            # (kept only after a read of this group's: the key is declared)
             self._read.add(key)
             return value
         value = self._get(key, default, within=within)

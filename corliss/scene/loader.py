@@ -369,15 +369,21 @@ def _check_states(data: dict, supply: SupplySpec, exhaust: ExhaustSpec, run: Run
     water apart above it), and for the ``table`` tier inside the table's density and
     energy, with room for the exhaust steam to expand a little below back pressure.
     States that passed are kept, and pass again without a look (a refusal is found
-    again each time, to name the key as written)."""
+    again each time, to name the key as written); states that passed on the built
+    table pass without a look at the disk (a study's every run: its file is not asked
+    for again), those that passed on the stand-in are looked at again once the table
+    is built."""
     key = (supply.pressure_Pa, supply.temperature_K, supply.dryness, exhaust.pressure_Pa,
-           run.fidelity.properties, steam_table.table_path().is_file())
-    if key in _STATES_PASSED:
+           run.fidelity.properties)
+    if (key, True) in _STATES_PASSED:
+        return
+    built = steam_table.table_path().is_file()
+    if (key, built) in _STATES_PASSED:
         return
     _check_states_once(data, supply, exhaust, run)
     if len(_STATES_PASSED) >= STATES_KEPT:
         _STATES_PASSED.clear()
-    _STATES_PASSED.add(key)
+    _STATES_PASSED.add((key, built))
 
 
 def _check_states_once(data: dict, supply: SupplySpec, exhaust: ExhaustSpec,
@@ -458,6 +464,25 @@ def _supply(t: Table, swept_m3: float) -> SupplySpec:
     law = t.get("throttle_law")
     t.finish()
     return SupplySpec(p, temperature, dryness, t.barometer_Pa, chest, pipe, cd, throttle, law)
+
+
+def _swept_of(engine: EngineSpec) -> float:
+    """One cylinder's swept volume [m3], as the loader finds it for the supply's checks."""
+    return math.pi / 4.0 * engine.bore_m ** 2 * engine.stroke_m
+
+
+#: The sections whose specs :func:`scene_from_dict` may take from a scene ``like``.
+_REUSABLE = ("supply", "engine", "exhaust", "valve_gear", "run", "output")
+
+
+def _shared_sections(data: dict, like: Scene | None) -> set:
+    """The sections of :data:`_REUSABLE` whose table ``data`` shares with ``like``'s
+    (the same object); none without ``like`` or when ``like`` was not loaded from
+    tables."""
+    if like is None or like.data is None:
+        return set()
+    return {k for k in _REUSABLE
+            if k in data and k in like.data and data[k] is like.data[k]}
 
 
 def _run(t: Table) -> RunSpec:
@@ -561,7 +586,8 @@ def _run(t: Table) -> RunSpec:
     return spec
 
 
-def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) -> Scene:
+def scene_from_dict(data: dict, name: str = "scene", source: str | None = None, *,
+                    like: Scene | None = None) -> Scene:
     """Validate a parsed TOML document into a :class:`Scene`; every mistake at once.
 
     Parameters
@@ -572,6 +598,15 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
         The scene's name.
     source : str, optional
         The path it was read from (a load schedule is found beside it).
+    like : Scene, optional
+        A scene loaded from tables that ``data`` shares sections with, the same
+        objects (:func:`corliss.keys.edits.edited` of ``like.data``: a study's run):
+        each of its sections' specs whose table ``data`` shares, and whose inputs from
+        other sections (the barometer, the swept volume) are the same numbers, is
+        taken as it is instead of being read again (the same spec: a section's spec is
+        a function of those); the tables edited are read and every rule across
+        sections checked as for any scene.  Neither's shared tables may be changed in
+        place.
 
     Returns
     -------
@@ -587,7 +622,7 @@ def scene_from_dict(data: dict, name: str = "scene", source: str | None = None) 
         key, and the first mistake the whole scene's checks found.
     """
     try:
-        return _scene_from_dict(data, name, source)
+        return _scene_from_dict(data, name, source, like)
     except InputError as first:
         if isinstance(first, InputErrors):
             raise
@@ -682,7 +717,8 @@ def key_errors(data: dict) -> list[InputError]:
     return errors
 
 
-def _scene_from_dict(data: dict, name: str = "scene", source: str | None = None) -> Scene:
+def _scene_from_dict(data: dict, name: str = "scene", source: str | None = None,
+                     like: Scene | None = None) -> Scene:
     """Validate a parsed TOML document into a :class:`Scene`.
 
     Parameters
@@ -693,6 +729,8 @@ def _scene_from_dict(data: dict, name: str = "scene", source: str | None = None)
         The scene's name.
     source : str, optional
         The path it was read from (a load schedule is found beside it).
+    like : Scene, optional
+        A scene whose unedited sections' specs are taken (:func:`scene_from_dict`).
 
     Returns
     -------
@@ -710,25 +748,45 @@ def _scene_from_dict(data: dict, name: str = "scene", source: str | None = None)
     for key in SECTIONS[1:6]:
         if key not in data:
             raise InputError(key, None, f"a [{key}] section: it is required")
+    shared = _shared_sections(data, like)
     sup = Table(data["supply"], "supply", keys=SUPPLY)
-    barometer = sup.get("barometer")
+    if like is not None and "supply" in shared:
+        barometer = like.supply.barometer_Pa
+    else:
+        barometer = sup.get("barometer")
     sup.barometer_Pa = barometer
-    engine = _engine(Table(data["engine"], "engine", barometer, ENGINE))
-    supply = _supply(sup, math.pi / 4.0 * engine.bore_m ** 2 * engine.stroke_m)
-    ex = Table(data["exhaust"], "exhaust", barometer, EXHAUST)
-    exhaust = ExhaustSpec(ex.get("pressure"))
-    ex.finish()
+    if like is not None and barometer != like.supply.barometer_Pa:
+        shared = set()          # every gauge pressure read again on the new barometer
+    engine = (like.engine if like is not None and "engine" in shared
+              else _engine(Table(data["engine"], "engine", barometer, ENGINE)))
+    swept = _swept_of(engine)
+    if like is not None and "supply" in shared and swept == _swept_of(like.engine):
+        supply = like.supply
+    else:
+        if "supply" in shared:
+            sup.has("barometer")        # read with the scene ``like``, for the finish
+        supply = _supply(sup, swept)
+    if like is not None and "exhaust" in shared:
+        exhaust = like.exhaust
+    else:
+        ex = Table(data["exhaust"], "exhaust", barometer, EXHAUST)
+        exhaust = ExhaustSpec(ex.get("pressure"))
+        ex.finish()
     if not supply.pressure_Pa > exhaust.pressure_Pa:
         raise InputError("supply.pressure", data["supply"].get("pressure"),
                          f"a supply pressure above the exhaust pressure "
                          f"({data['exhaust'].get('pressure')!r} = "
                          f"{exhaust.pressure_Pa / units.PSI_Pa:.4g} psia)")
-    vg = Table(data["valve_gear"], "valve_gear", barometer)
-    gt = _registered(vg, GEARS)
-    vg.bind(gt.keys)
-    gear = gt.parse(vg)
-    vg.finish({n: e.keys for n, e in GEARS.items()})
-    run = _run(Table(data["run"], "run", barometer, RUN))
+    if like is not None and "valve_gear" in shared:
+        gt, gear = GEARS[like.gear_type], like.gear
+    else:
+        vg = Table(data["valve_gear"], "valve_gear", barometer)
+        gt = _registered(vg, GEARS)
+        vg.bind(gt.keys)
+        gear = gt.parse(vg)
+        vg.finish({n: e.keys for n, e in GEARS.items()})
+    run = (like.run if like is not None and "run" in shared
+           else _run(Table(data["run"], "run", barometer, RUN)))
     _check_states(data, supply, exhaust, run)
     for effect, keys in EFFECT_KEYS.items():
         for k in keys:
@@ -776,9 +834,12 @@ def _scene_from_dict(data: dict, name: str = "scene", source: str | None = None)
                              "\"port_flow\": the receiver fills and empties through ports")
     elif "lp_valve_gear" in data:
         raise InputError("lp_valve_gear", "[...]", "a [compound] section beside it")
-    out = Table(data.get("output", {}), "output", barometer, OUTPUT)
-    output = OutputSpec(out.get("units"), out.get("dir"))
-    out.finish()
+    if like is not None and "output" in shared:
+        output = like.output
+    else:
+        out = Table(data.get("output", {}), "output", barometer, OUTPUT)
+        output = OutputSpec(out.get("units"), out.get("dir"))
+        out.finish()
     title = data.get("title", name)
     if not isinstance(title, str):
         raise InputError("title", title, "a string")

@@ -2,9 +2,10 @@
 Dask cluster.
 
 Each run is the base scene's tables with the run's keys set
-(:func:`corliss.keys.edits.edited`), loaded and checked by the scene loader, made
-steady at its speed and run at the study's fidelity; its row holds the responses
-asked for.  Before any run the scenes of the first runs and of the runs at each key's
+(:func:`corliss.keys.edits.edited`), loaded and checked by the scene loader (the
+sections it edits read and every rule across sections checked; the others' specs
+taken from the base scene, loaded once a process), made steady at its speed and run
+at the study's fidelity; its row holds the responses asked for.  Before any run the scenes of the first runs and of the runs at each key's
 least and greatest value are loaded (every run's, up to :data:`CHECK_ALL_UP_TO`
 runs), so a key or a value the loader refuses is an
 :class:`~corliss.errors.InputError` naming it and nothing runs; a later run whose
@@ -116,9 +117,41 @@ class StudySpec:
     keys: tuple
 
 
-def _scene(base: dict, name: str, fidelity: str | None, changes: dict):
-    """One run's steady scene, loaded and checked."""
-    return steady_scene(scene_from_dict(edited(base, changes), name=name), fidelity)
+def _scene(base: dict, name: str, fidelity: str | None, changes: dict,
+           token: str | None = None):
+    """One run's steady scene, loaded and checked: the base's tables with the run's keys
+    set; given the study's ``token``, the specs of the sections the run does not edit
+    are taken from the base scene, loaded once
+    (:func:`~corliss.scene.loader.scene_from_dict`'s ``like``)."""
+    like = _base_scene(base, name, token) if token is not None else None
+    return steady_scene(scene_from_dict(edited(base, changes), name=name, like=like),
+                        fidelity)
+
+
+#: Base scenes loaded (:func:`_base_scene`) by their study's fingerprint, each with its
+#: tables (the very object the runs' tables share sections with); and how many.
+_BASES: dict = {}
+_KEEP_BASES = 4
+
+
+def _base_scene(base: dict, name: str, token: str) -> Scene | None:
+    """The study's base scene, loaded once a process (None when the base alone is
+    refused: a study may set the key that mends it, and its runs are loaded whole).
+
+    Kept by the study's fingerprint, a hash of the base's tables (tables changed in
+    place between two studies are another study's, loaded again), and taken only for
+    the same tables object, whose sections the runs' tables share."""
+    got = _BASES.get(token)
+    if got is not None and got[0] is base:
+        return got[1]
+    try:
+        scene = scene_from_dict(base, name=name)
+    except InputError:
+        scene = None
+    while len(_BASES) >= _KEEP_BASES:
+        _BASES.pop(next(iter(_BASES)))
+    _BASES[token] = (base, scene)
+    return scene
 
 
 def run_chunk(spec: StudySpec, run_ids, values) -> tuple[list, int, str | None]:
@@ -152,7 +185,8 @@ def run_chunk(spec: StudySpec, run_ids, values) -> tuple[list, int, str | None]:
         try:
             with at_point(f"run {int(run_id)}: "
                           + ", ".join(f"{k} {v}" for k, v in changes.items())):
-                r = run_steady(_scene(spec.base, spec.name, spec.fidelity, changes))
+                r = run_steady(_scene(spec.base, spec.name, spec.fidelity, changes,
+                                      spec.token))
                 part = r.summary_with(responses)
             nfev += r.rhs_evaluations
             tier = r.property_tier
@@ -339,7 +373,7 @@ def _base_of(scene) -> tuple[dict, Scene]:
                      "scene's name")
 
 
-def _check_scenes(design, base, name, fidelity) -> None:
+def _check_scenes(design, base, name, fidelity, token) -> None:
     """Load the scenes of the runs most likely refused before any run: every run's in
     a small study; in a larger one the first runs' and those at each key's extremes."""
     n = design.runs
@@ -353,7 +387,7 @@ def _check_scenes(design, base, name, fidelity) -> None:
     for i in ids:
         changes = design.changes(i)
         try:
-            _scene(base, name, fidelity, changes)
+            _scene(base, name, fidelity, changes, token)
         except InputError as exc:
             raise InputError(exc.key, exc.value, f"{exc.expected} (run {i} of the study "
                              "sets " + ", ".join(f"{k} = {v!r}" for k, v in changes.items())
@@ -471,8 +505,8 @@ def study(scene=None, vary=(), *, grid: bool = False, levels: int = 3,
     if scheduler is None and design.runs > 1:
         # the workers' forkserver loads (the base scene's run) while the scenes are checked
         prestart(workers, lambda: (_scene(base, name, fidelity, {}),), (__name__,))
-    _check_scenes(design, base, name, fidelity)
     token = fingerprint(base, name, fidelity, responses, design)
+    _check_scenes(design, base, name, fidelity, token)
     rows: dict[int, tuple] = {}
     journal = None
     client, own, address = None, False, None

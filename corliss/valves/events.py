@@ -36,6 +36,8 @@ def _fixed(a: np.ndarray) -> np.ndarray:
 #: without its end (the events' largest openings): made once, read by every gear.
 _TURN_CLOSED = _fixed(np.linspace(0.0, TWO_PI, _SAMPLES + 1))
 _TURN_OPEN = _fixed(np.linspace(0.0, TWO_PI, _SAMPLES, endpoint=False))
+#: The head and crank ends' dead centres [rad], where the leads are read.
+_DEAD_CENTRES = _fixed(np.array([0.0, math.pi]))
 
 
 def crossing_table(gear: ValveGear, levels: np.ndarray) -> list[list[list[tuple[float, bool]]]]:
@@ -86,7 +88,10 @@ def sampled_crossings(gear: ValveGear, levels: np.ndarray) -> tuple[list, np.nda
     th = _TURN_CLOSED
     s = gear.signed_openings(th)
     # every port's samples against every one of its levels at once: (port, level, sample)
-    above = (s[:, None, :] - levels[:, :, None]) > 0.0
+    # (above the level: the difference's sign, found without the differences: ``a - b >
+    # 0`` is ``a > b`` for every pair of floats, the difference of two unequal finite
+    # floats never rounding to zero)
+    above = s[:, None, :] > levels[:, :, None]
     # (flat indices: numpy's nonzero of a 3-d array is ten times slower than of a flat one)
     flat = np.flatnonzero(above[:, :, 1:] != above[:, :, :-1])
     ports, rest = np.divmod(flat, levels.shape[1] * _SAMPLES)
@@ -173,7 +178,7 @@ def _crossings_of_samples(gear: ValveGear, s: np.ndarray, ports: np.ndarray,
         # Lagrange in the opening: u(0) = sum_i u_i prod_{j != i} (0 - f_j) / (f_i - f_j)
         diff = f[:, None, :] - f[None, :, :]
         diff[_DIAG] = 1.0
-        num = np.broadcast_to(-f[None, :, :], diff.shape).copy()
+        num = np.negative(f[None, :, :], out=np.empty(diff.shape))
         num[_DIAG] = 1.0
         u = (_NODES[:, None] * (num.prod(axis=1) / diff.prod(axis=1))).sum(axis=0)
         c = a + u * h
@@ -309,7 +314,8 @@ def _interval_near(cross: list[tuple[float, bool]], anchor: float):
 
 
 def end_events(gear: ValveGear, end: str, piston_fraction: Callable[[float], float],
-               table: list | None = None, sampled: tuple | None = None) -> dict:
+               table: list | None = None, sampled: tuple | None = None,
+               lead: float | None = None) -> dict:
     """Events of one end (``"head"`` or ``"crank"``) as the JSON contract names them.
 
     Admission and cut-off are the opening and closing of the steam port nearest the
@@ -332,6 +338,9 @@ def end_events(gear: ValveGear, end: str, piston_fraction: Callable[[float], flo
         ``(gear.openings(th), gear.signed_openings(th))`` over a turn's samples
         (both ends read the same samples: :func:`events` finds them once); found
         here when None.
+    lead : float, optional
+        The steam port's signed opening at the end's dead centre [m] (:func:`events`
+        finds both ends' in one evaluation of the gear); found here when None.
 
     Returns
     -------
@@ -375,14 +384,16 @@ def end_events(gear: ValveGear, end: str, piston_fraction: Callable[[float], flo
         "release_frac": frac(rel),
         "compression_deg": deg(comp),
         "compression_frac": frac(comp),
-        "lead_m": float(gear.signed_openings(np.array([dead]))[steam, 0]),
+        "lead_m": (float(gear.signed_openings(np.array([dead]))[steam, 0]) if lead is None
+                   else float(lead)),
         "max_port_opening_m": float(opening.max()),
         "overtravel_m": float(max(signed_max - width, 0.0)),
     }
 
 
 def events(gear: ValveGear, piston_fraction: Callable[[float], float],
-           table: list | None = None, signed: np.ndarray | None = None) -> dict:
+           table: list | None = None, signed: np.ndarray | None = None,
+           fractions_of: Callable[[np.ndarray], np.ndarray] | None = None) -> dict:
     """Events of both ends: ``{"head": {...}, "crank": {...}}``.
 
     Parameters
@@ -399,6 +410,11 @@ def events(gear: ValveGear, piston_fraction: Callable[[float], float],
         The gear's signed openings [m] at the :data:`_SAMPLES` angles a turn, as
         :func:`sampled_crossings` gives them (a PortMap's ``signed_samples``); found
         here when None.
+    fractions_of : callable, optional
+        ``piston_fraction`` over an array of crank angles at once [rad] -> [-], each
+        angle's fraction the number ``piston_fraction`` gives for it alone (an
+        element-wise function: :meth:`corliss.engine.geometry.CylinderGeometry.fraction`):
+        the events' fractions are then found in one call, not one call each.
 
     Returns
     -------
@@ -409,8 +425,30 @@ def events(gear: ValveGear, piston_fraction: Callable[[float], float],
     if table is None:
         table = crossing_table(gear, np.zeros((4, 1)))
     sampled = _largest(gear, signed)
-    return {end: end_events(gear, end, piston_fraction, table, sampled)
+    if fractions_of is not None:
+        # the angles end_events reads the fractions at (cut-off, release, compression
+        # of each end), found at once
+        at = [t for steam, exhaust, dead in ((0, 1, 0.0), (2, 3, math.pi))
+              for t in (_interval_near(table[steam][0], dead)[1],
+                        *_interval_near(table[exhaust][0], dead + math.pi))
+              if t is not None]
+        known = dict(zip(at, np.asarray(fractions_of(np.array(at, dtype=float))).tolist()))
+        piston_fraction = _known_first(known, piston_fraction)
+    # both ends' leads in one evaluation of the gear (each angle's openings are its
+    # own, evaluated beside others or alone)
+    dead = gear.signed_openings(_DEAD_CENTRES)
+    return {end: end_events(gear, end, piston_fraction, table, sampled,
+                            dead[0, 0] if end == "head" else dead[2, 1])
             for end in ("head", "crank")}
+
+
+def _known_first(known: dict, piston_fraction: Callable[[float], float]):
+    """``piston_fraction`` answered from ``known`` (angle [rad] -> fraction [-]) where it
+    holds the angle."""
+    def frac(t):
+        f = known.get(t)
+        return piston_fraction(t) if f is None else f
+    return frac
 
 
 def _sampled(gear: ValveGear, signed: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:

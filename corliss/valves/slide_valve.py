@@ -172,7 +172,17 @@ class LappedValve(ValveGear):
         x = self.travel(theta)
         lh, lc = self.spec.lap_m
         eh, ec = self.spec.exhaust_lap_m
-        return np.vstack([x - lh, -x - eh, -x - lc, x - ec])
+        if x.ndim != 1:
+            return np.vstack([x - lh, -x - eh, -x - lc, x - ec])
+        # the four rows written in place (the same operations: -x once, each row's
+        # difference), not made apart and stacked: a turn's 7201 samples a run
+        out = np.empty((4, x.size))
+        np.negative(x, out=out[2])
+        np.subtract(out[2], eh, out=out[1])
+        np.subtract(out[2], lc, out=out[2])
+        np.subtract(x, lh, out=out[0])
+        np.subtract(x, ec, out=out[3])
+        return out
 
     def openings(self, theta):
         """Physical opening of each port; an Allen valve's steam ports add the
@@ -276,14 +286,35 @@ class SlideValve(LappedValve):
         """
         s = self.spec
         phase = np.asarray(theta) + s.angular_advance_rad
-        x = s.eccentricity_m * np.sin(phase)
+        if phase.ndim == 0:
+            x = s.eccentricity_m * np.sin(phase)
+            g = s.eccentric_rod_m
+            if g is not None:
+                r = s.eccentricity_m
+                short = g - np.sqrt(g * g - (r * np.cos(phase)) ** 2)
+                if s.setting == "equal_lead":
+                    short = short - (g - math.sqrt(g * g - (r * math.cos(s.angular_advance_rad))
+                                                   ** 2))
+                x = x + s.sigma * short
+            return x
+        # the same operations on arrays, each into the array it reads (a turn's 7201
+        # samples a run: no new array a step)
+        x = np.sin(phase)
+        x *= s.eccentricity_m
         g = s.eccentric_rod_m
         if g is not None:
             r = s.eccentricity_m
-            short = g - np.sqrt(g * g - (r * np.cos(phase)) ** 2)
+            short = np.cos(phase, out=phase)
+            short *= r
+            np.square(short, out=short)
+            np.subtract(g * g, short, out=short)
+            np.sqrt(short, out=short)
+            np.subtract(g, short, out=short)
             if s.setting == "equal_lead":
-                short = short - (g - math.sqrt(g * g - (r * math.cos(s.angular_advance_rad)) ** 2))
-            x = x + s.sigma * short
+                short -= g - math.sqrt(g * g - (r * math.cos(s.angular_advance_rad)) ** 2)
+            if s.sigma != 1:
+                short *= s.sigma
+            x += short
         return x
 
     def zeuner_travel(self, theta: np.ndarray) -> np.ndarray:
