@@ -100,7 +100,8 @@ def test_events_at_settings_and_the_gear_drawing(tmp_path, capsys):
 @pytest.mark.parametrize("system", ["US", "SI"])
 def test_a_jacketed_run_prints_its_condensation_and_the_jackets_steam(tmp_path, capsys,
                                                                       system):
-    """A run with walls prints the missing water of each end and, with a jacket, the
+    """A run with walls prints the missing water of each end, the wetness at cut-off
+    with and without the wall's film, and, with a jacket, the
     jacket's steam and the water rate counting it, in the run's units, the same
     figures as its summary file (Marks Art. 79: the jacket is paid for in steam)."""
     text = (SCENES / "meyer-cutoff.toml").read_text()
@@ -131,6 +132,13 @@ def test_a_jacketed_run_prints_its_condensation_and_the_jackets_steam(tmp_path, 
         assert "kg/kWh" in line
     miss = next(x for x in printed.splitlines() if x.strip().startswith("missing water"))
     assert f"{s['missing_water_fraction_head']:.3f}" in miss
+    # the wetness at cut-off both ways: the mixture's own water, and with the wall's
+    # film counted (English, through DPJ 267, 1888, p. 302: what counts is all the
+    # water present at the end of admission)
+    wet = next(x for x in printed.splitlines() if x.strip().startswith("wet at cut-off"))
+    for end in ("head", "crank"):
+        assert f"{s[f'wet_fraction_at_cutoff_{end}']:.3f} in the steam" in wet
+        assert f"{s[f'wet_fraction_at_cutoff_with_film_{end}']:.3f} with the film" in wet
 
 
 class _Log:

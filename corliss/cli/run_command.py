@@ -93,6 +93,14 @@ def _print_walls(s: dict, us: bool, model: str = "skin") -> None:
         print("  missing water    " + ", ".join(f"{s[f'missing_water_fraction_{e}']:.3f}"
                                               for e in ends)
               + f" of the steam at cut-off ({', '.join(ends)})")
+    wet = [e for e in ends if s.get(f"wet_fraction_at_cutoff_with_film_{e}") is not None]
+    if wet:
+        # both wetness figures: the mixture's own water, and all the water present
+        # with the wall's film (English's "wetness at cut-off")
+        print("  wet at cut-off   " + ", ".join(
+            f"{s[f'wet_fraction_at_cutoff_{e}']:.3f} in the steam, "
+            f"{s[f'wet_fraction_at_cutoff_with_film_{e}']:.3f} with the film" for e in wet)
+              + f" ({', '.join(wet)})")
     heat = [k[len("heat_to_walls_"):-len("_J_per_cycle")] for k in s
             if k.startswith("heat_to_walls_") and s[k] is not None]
     if heat and model in SCHEDULE_NAMES:

@@ -285,7 +285,8 @@ def step_end(steam: Steam, theta: np.ndarray, V: np.ndarray, conn: np.ndarray,
         if wall is not None:
             wall.record()
             st, m, dm_w, dH_w = wall.exchange(steam, st, m, V[i],
-                                              (theta[i + 1] - theta[i]) / omega, c != CLOSED)
+                                              (theta[i + 1] - theta[i]) / omega, c != CLOSED,
+                                              chest if c == STEAM and V[i + 1] > V[i] else None)
         p0 = st.p
         if c == CLOSED:
             st = steam.ds(m / V[i + 1], st.s)

@@ -13,6 +13,7 @@ import logging
 import math
 from dataclasses import dataclass
 
+from corliss.engine import wall
 from corliss.engine.geometry import CylinderGeometry
 from corliss.engine.leak_paths import edge_leak_scales
 from corliss.engine.scene_specs import SceneSpec
@@ -248,9 +249,16 @@ def build_network(scene, geo, pm, steam: Steam, chest: State, exhaust: State) ->
     if scene.run.has("wall_heat"):
         eng = scene.engine
         jacket_T = None
+        from corliss.thermo.steam import HEOSSteam
+        heos = HEOSSteam()
+        t_sat = heos.t_sat(scene.supply.pressure_Pa)
         if eng.jacket == "barrel":
-            from corliss.thermo.steam import HEOSSteam
-            jacket_T = HEOSSteam().t_sat(scene.supply.pressure_Pa)
+            # each cylinder's jacket at its own steam's saturation (the LP's at its
+            # receiver's, wall.jacket_pressures_Pa)
+            jacket_T = tuple(heos.t_sat(p) for p in wall.jacket_pressures_Pa(
+                scene.supply.pressure_Pa, scene.exhaust.pressure_Pa, scene.compound is not None))
+        supply_T = scene.supply.temperature_K
+        superheat = supply_T - t_sat if supply_T is not None else 0.0
         model = eng.wall_heat_model
         if model == "skin" and scene.run.mode == "transient":
             # the speed loop restarts every state past the nodes' each turn, which
@@ -263,7 +271,8 @@ def build_network(scene, geo, pm, steam: Steam, chest: State, exhaust: State) ->
                              transport_properties(chest.p, chest.T),
                              condensing_W_m2K=eng.condensing_W_m2K, jacket_T_K=jacket_T,
                              wall_thickness_m=eng.wall_thickness_m,
-                             idle_ends={"both": (), "head": (1,), "crank": (0,)}[eng.steam_ends])
+                             idle_ends={"both": (), "head": (1,), "crank": (0,)}[eng.steam_ends],
+                             supply_superheat_K=superheat)
     return net
 
 

@@ -987,8 +987,9 @@ WALL_MODELS = {"conductance": WALL_CONDUCTANCE, "adair": WALL_ADAIR, "marks": WA
 
 
 def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
-                   condensing_W_m2K: float | None = None, jacket_T_K: float | None = None,
-                   wall_thickness_m: float = 0.025, idle_ends: tuple = ()) -> Network:
+                   condensing_W_m2K: float | None = None,
+                   jacket_T_K: float | tuple | None = None, wall_thickness_m: float = 0.025, idle_ends: tuple = (),
+                   supply_superheat_K: float = 0.0) -> Network:
     """Heat exchange between the steam of each cylinder end and its walls.
 
     ``model``:
@@ -1016,7 +1017,10 @@ def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
       surface temperature is a state, exchanging heat with the steam by condensation and
       evaporation (``condensing_W_m2K``) and Adair's convection, over a deep wall found
       cycle by cycle; with ``jacket_T_K``, the barrel's outer face (``wall_thickness_m``
-      of iron away) is held at that temperature.  Every cylinder has its own wall.
+      of iron away) is held at that temperature.  Every cylinder has its own wall.  A
+      surface below saturation condenses only where the steam at it is at saturation,
+      its superheat taken as the bulk's but no more than the supply's
+      (``supply_superheat_K``; :func:`corliss.engine.kernels.walls.condensing_share`).
 
     Every cylinder end gets the model's row in :attr:`Network.node_heat` but a
     single-acting cylinder's idle end (``idle_ends``), whose side of the piston stands
@@ -1039,12 +1043,15 @@ def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
     condensing_W_m2K : float, optional
         The skin model's coefficient of condensation and evaporation [W/(m2 K)]
         (default :data:`corliss.engine.wall.CONDENSING_W_M2K`).
-    jacket_T_K : float, optional
-        A jacket's temperature [K] (skin model; None: no jacket).
+    jacket_T_K : float or tuple of float, optional
+        A jacket's temperature [K], or one per cylinder (the last for any beyond)
+        (skin model; None: no jacket).
     wall_thickness_m : float
         The barrel's iron between bore and jacket [m] (skin model, with a jacket).
     idle_ends : tuple of int
         Ends (0 head, 1 crank) of every cylinder that take no steam: no wall heat.
+    supply_superheat_K : float
+        The superheat of the steam supplied [K] (0 when saturated or wet; skin model).
 
     Returns
     -------
@@ -1064,10 +1071,16 @@ def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
         # itself is water at the surface's temperature: kernels.walls.film_water)
         t0 = 0.5 * (net.reservoirs[0].T + net.reservoirs[-1].T)
         film = film_enthalpies(t0)
+
+        def jacket_of(c):
+            if jacket_T_K is None or isinstance(jacket_T_K, float):
+                return jacket_T_K
+            return jacket_T_K[min(c, len(jacket_T_K) - 1)]
         for i in net.wall_nodes:
             net.node_heat[i] = wall.skin_row(net.geometries[net.node_cyl[i]], net.node_end[i],
                                              net.omega, h_c, steam_props, net.i_wall(i),
-                                             jacket_T_K, wall_thickness_m) + film
+                                             jacket_of(net.node_cyl[i]), wall_thickness_m) + film + (
+                                                 max(supply_superheat_K, 0.0),)
     return net
 
 

@@ -37,6 +37,7 @@ from corliss.engine.options import record_of
 from corliss.engine.scene_specs import SceneSpec
 from corliss.engine.speed_metrics import final_turns, load_step_metrics, step_time_of
 from corliss.engine.summary_keys import SteadySummary, TransientSummary
+from corliss.engine.wall import jacket_pressures_Pa
 from corliss.engine.verdict import steady_failures, transient_failures
 from corliss.frames.frame import Frame
 from corliss.thermo.steam import HEOSSteam, State, TableSteam
@@ -688,17 +689,24 @@ class SteadyResult(Result[SteadySummary]):
 
         Over a periodic cycle the walls neither gain nor lose heat, so what the steam in
         the cylinders took from them net, the sum of ``Q_<end>_J``, is what the jacket
-        gave through the iron.  The jacket condenses supply steam and drains it as
-        saturated water at the supply's pressure, so each kilogram gives the latent
-        heat there; the period's trials counted that water with the feed (Marks Art.
+        gave through the iron.  The jacket condenses its steam (the supply's, a
+        compound's LP jacket its receiver's) and drains it as saturated water at that
+        pressure, so each kilogram gives the latent heat there; the period's trials counted that water with the feed (Marks Art.
         79, p. 204), and ``water_rate_with_jacket`` does too.
         """
         rev_per_s = self.scene.run.speed_rad_s / TWO_PI
-        q = sum(float(row[c]) for c in row.index if c.startswith("Q_")
-                and "to_wall" not in c and c.endswith("_J"))
-        p = self.scene.supply.pressure_Pa
-        latent = sat.px(p, 1.0).h - sat.px(p, 0.0).h
-        jacket_kg_h = max(q, 0.0) / latent * rev_per_s * 3600.0
+        # each cylinder's jacket at its own pressure (a compound's LP at its
+        # receiver's, wall.jacket_pressures_Pa): its heat over the latent heat there
+        pj = jacket_pressures_Pa(self.scene.supply.pressure_Pa,
+                                 self.scene.exhaust.pressure_Pa, self.scene.compound is not None)
+        q = jacket_kg = 0.0
+        for c in row.index:
+            if c.startswith("Q_") and "to_wall" not in c and c.endswith("_J"):
+                p = pj[-1] if c.startswith("Q_lp_") else pj[0]
+                qc = float(row[c])
+                q += qc
+                jacket_kg += qc / (sat.px(p, 1.0).h - sat.px(p, 0.0).h)
+        jacket_kg_h = max(jacket_kg, 0.0) * rev_per_s * 3600.0
         steam_kg_h = float(row["m_supply_kg"]) * rev_per_s * 3600.0
         power_kW = work_J * rev_per_s / 1e3
         total = steam_kg_h + jacket_kg_h

@@ -86,7 +86,9 @@ ENGINE = group(
         "on the wall (above zero), or \"marks\" (Marks's eq. 221); the default is Callendar and "
         "Nicolson's measured 4 kcal/s m2 degC.", default="16747.2 W/m2 K",
         choices=("marks",), effect="wall_heat"),
-    Key("jacket", "choice", "A steam jacket round the barrel.", default="none",
+    Key("jacket", "choice", "A steam jacket round the barrel, at its steam's saturation "
+        "temperature: the supply's, a compound's low-pressure cylinder's its receiver's.",
+        default="none",
         choices=("none", "barrel"), effect="wall_heat"),
     Key("wall_thickness", "length", "Cylinder wall thickness, 1 mm to half the bore.",
         default="1 in", within=(1e-3, math.inf), unit="in", effect="wall_heat"),

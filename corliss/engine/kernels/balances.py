@@ -20,12 +20,14 @@ from corliss.engine.kernels.data import (GEO_AREA_CRANK, GEO_AREA_HEAD, H_CONDUC
                                          H_MARKS_Q, H_MARKS_WALL_ADMIT, H_MARKS_WALL_EXPAND,
                                          H_MODEL, H_MU, H_PRANDTL, H_SKIN_AREA,
                                          H_SKIN_CAPACITY, H_SKIN_DEEP, H_SKIN_FILM_H,
-                                         H_SKIN_JACKET_G, H_SKIN_JACKET_T,
-                                         H_SKIN_STATE, WALL_CONDUCTANCE, WALL_MARKS, WALL_SKIN)
+                                         H_SKIN_JACKET_G, H_SKIN_JACKET_T, H_SKIN_LATENT,
+                                         H_SKIN_STATE, H_SKIN_SUPPLY_SUPERHEAT, WALL_CONDUCTANCE,
+                                         WALL_MARKS, WALL_SKIN)
 from corliss.engine.kernels.properties import (PR_DV, PR_H, PR_KAPPA, PR_P, PR_RHO, PR_T,
                                                PR_TSAT, PR_V, PR_X, node_states)
 from corliss.engine.kernels.walls import (FILM_MAX_KG_M2, FILM_WET_KG_M2, adair_h,
-                                          film_water, skin_coefficients)
+                                          condensing_share, film_water, skin_coefficients,
+                                          steam_at_wall_superheat)
 from corliss.thermo.leak_law import linear_leak
 from corliss.thermo.orifice import port_flow
 
@@ -187,56 +189,8 @@ def balances(th, y, pr, dy, net, areas):
             A = 2.0 * ap + math.pi * bore * V / ap
             Ts = pr[PR_T, i]
             if model == WALL_SKIN:
-                # the skin model (corliss.engine.wall): states y[k] = T_w - T_deep and
-                # y[k + 1] = the film's water; the film's flow goes down T_w - T_sat,
-                # the convection's down T_w - T
-                k = int(heat[i, H_SKIN_STATE])
-                Tw = wallT[i] + y[k]
-                mf = y[k + 1]
-                Aw = heat[i, H_SKIN_AREA]
-                Tsat = pr[PR_TSAT, i]
-                hv = adair_h(RHO[i], omega, V, A, heat[i, H_MU], heat[i, H_K], heat[i, H_PRANDTL])
-                hf, hm = skin_coefficients(Tw, Tsat, heat[i, H_CONDUCTANCE], mf, Aw, pr[PR_X, i])
-                qf = hf * (Tw - Tsat) * A            # [W] from the wall into the film
-                qm = hm * (Tw - Tsat) * A            # [W] into the mixture's water
-                qc = hv * (Tw - Ts) * A              # [W] into the steam by convection
-                qv = qm + qc
-                # the film's water is saturated water at the surface's temperature
-                # (corliss.engine.wall, "The water film"): evaporated (+, as vapour
-                # of h_L + L, both at T_w) or condensed (-, the steam giving up its
-                # own enthalpy, superheat and all, down to the film's h_L) [kg/s];
-                # water beyond the film the wall holds runs off into the steam (its
-                # excess per radian)
-                hL, cL, L = film_water(Tw)
-                if qf < 0.0:
-                    lat = max(H[i] - hL, 0.5 * L)
-                else:
-                    lat = L
-                mdot = qf / lat
-                held = FILM_MAX_KG_M2 * Aw
-                run = (mf - held) * omega if mf > held else 0.0
-                dy[2 * i] += (mdot + run) / omega
-                dy[2 * i + 1] += ((mdot + run) * hL + qf + qv) / omega
-                dy[k + 1] = -(mdot + run) / omega
-                # the heat into the steam counts the film's water from the row's
-                # reference enthalpy (the steam gains q + its water's mass times that
-                # reference): over a periodic cycle it is what surface and film gave
-                q = (qf + qv + (mdot + run) * (hL - heat[i, H_SKIN_FILM_H])) / omega
-                dy[q0 + 1] = q
-                dy[q0 + 2] = -q if q < 0.0 else 0.0
-                # for the deep wall's update (T_deep <- hAT / hA, a Newton step on the
-                # wall's, or with a jacket the wall and jacket's, balance over a cycle)
-                d = (hv + hf + hm) * A / omega
-                ga = heat[i, H_SKIN_JACKET_G] / omega
-                dy[q0 + 3] = d + ga
-                dy[q0 + 4] = d * wallT[i] - q + ga * heat[i, H_SKIN_JACKET_T]
-                # the surface and the film on it, at one temperature: the film's
-                # energy m_f h_L(T_w) moves with the surface (its water comes and
-                # goes at h_L, above)
-                dy[k] = (-(qf + qv) + heat[i, H_SKIN_DEEP] * Aw * (wallT[i] - Tw)) / (
-                    (heat[i, H_SKIN_CAPACITY] * Aw + mf * cL) * omega)
-                dy[k + 2] = (qf + qm) / omega
-                dy[k + 3] = qc / omega
+                # after the flows (skin_wall): the steam entering decides the steam
+                # at the wall
                 continue
             if model == WALL_MARKS:
                 # Marks's law (Art. 75): the heat of eq. 221 leaves the steam during
@@ -289,9 +243,119 @@ def balances(th, y, pr, dy, net, areas):
         if b >= 0:
             dy[2 * b] += md
             dy[2 * b + 1] += hd
+        # the steam entering a skin wall's end, mass and enthalpy per radian, kept in
+        # its node's last two quadratures until skin_wall reads them (and writes
+        # those quadratures)
+        t = b if md > 0.0 else a
+        if t >= 0 and heat[t, H_MODEL] == WALL_SKIN:
+            qt = ndyn + 2 * ne + 5 * t
+            dy[qt + 3] += abs(md)
+            dy[qt + 4] += abs(hd)
         dy[ndyn + 2 * e] = md
         dy[ndyn + 2 * e + 1] = hd
+    for i in range(nv):
+        if heat[i, H_MODEL] == WALL_SKIN:
+            skin_wall(i, y, pr, dy, net, ndyn + 2 * ne + 5 * i)
     sweep_films(y, pr, dy, net)
+
+
+@njit(cache=True, inline="always")
+def skin_wall(i, y, pr, dy, net, q0):
+    """The skin model's wall heat of node ``i`` (:mod:`corliss.engine.wall`), after the
+    flows through its edges.
+
+    The surface's temperature ``T_w = T_deep + y[k]`` and the film ``y[k + 1]`` are
+    states; the film's flow goes down ``T_w - T_sat``, the convection's (Adair's)
+    down ``T_w - T``; a surface below saturation condenses only as far as the steam at
+    it is at saturation (:func:`~corliss.engine.kernels.walls.condensing_share` of
+    :func:`~corliss.engine.kernels.walls.steam_at_wall_superheat`, the entering
+    steam's while steam enters, no more than the supply's superheat: the entering
+    mass and enthalpy per radian are read from ``dy[q0 + 3]`` and ``dy[q0 + 4]``,
+    where the edges' loop of :func:`balances` left them).
+
+    Parameters
+    ----------
+    i : int
+        The node.
+    y : ndarray
+        The state, shape (n_state,).
+    pr : ndarray
+        Node properties, shape (:data:`PR_ROWS`, nodes) (:func:`balances`).
+    dy : ndarray
+        The derivatives with respect to crank angle (per radian), shape (n_state,),
+        updated in place.
+    net : NetworkArrays
+        The network's arrays (:meth:`corliss.engine.network.Network.arrays`).
+    q0 : int
+        The index of the node's first quadrature in ``dy``.
+    """
+    omega = net.omega[0]
+    geo, heat, wallT = net.geometry, net.heat, net.wall_T
+    H = pr[PR_H]
+    c = net.node_cyl[i]
+    ap = geo[c, GEO_AREA_HEAD] if net.node_end[i] == 0 else geo[c, GEO_AREA_CRANK]
+    bore = math.sqrt(4.0 * geo[c, GEO_AREA_HEAD] / math.pi)
+    V = pr[PR_V, i]
+    A = 2.0 * ap + math.pi * bore * V / ap
+    Ts = pr[PR_T, i]
+    RHO = pr[PR_RHO]
+    # the skin model (corliss.engine.wall): states y[k] = T_w - T_deep and
+    # y[k + 1] = the film's water; the film's flow goes down T_w - T_sat,
+    # the convection's down T_w - T
+    k = int(heat[i, H_SKIN_STATE])
+    Tw = wallT[i] + y[k]
+    mf = y[k + 1]
+    Aw = heat[i, H_SKIN_AREA]
+    Tsat = pr[PR_TSAT, i]
+    hv = adair_h(RHO[i], omega, V, A, heat[i, H_MU], heat[i, H_K], heat[i, H_PRANDTL])
+    m_in, h_in = dy[q0 + 3], dy[q0 + 4]
+    sup = steam_at_wall_superheat(Ts, Tsat, pr[PR_X, i], heat[i, H_SKIN_LATENT], H[i],
+                                  h_in / m_in if m_in > 0.0 else 0.0, m_in, y[2 * i])
+    # no more superheated than the steam supplied: saturated steam supplied
+    # keeps the wall's steam saturated however the filling and the
+    # compression superheat the bulk
+    hf, hm = skin_coefficients(Tw, Tsat, heat[i, H_CONDUCTANCE], mf, Aw, pr[PR_X, i],
+                               condensing_share(min(sup, heat[i, H_SKIN_SUPPLY_SUPERHEAT])))
+    qf = hf * (Tw - Tsat) * A            # [W] from the wall into the film
+    qm = hm * (Tw - Tsat) * A            # [W] into the mixture's water
+    qc = hv * (Tw - Ts) * A              # [W] into the steam by convection
+    qv = qm + qc
+    # the film's water is saturated water at the surface's temperature
+    # (corliss.engine.wall, "The water film"): evaporated (+, as vapour
+    # of h_L + L, both at T_w) or condensed (-, the steam giving up its
+    # own enthalpy, superheat and all, down to the film's h_L) [kg/s];
+    # water beyond the film the wall holds runs off into the steam (its
+    # excess per radian)
+    hL, cL, L = film_water(Tw)
+    if qf < 0.0:
+        lat = max(H[i] - hL, 0.5 * L)
+    else:
+        lat = L
+    mdot = qf / lat
+    held = FILM_MAX_KG_M2 * Aw
+    run = (mf - held) * omega if mf > held else 0.0
+    dy[2 * i] += (mdot + run) / omega
+    dy[2 * i + 1] += ((mdot + run) * hL + qf + qv) / omega
+    dy[k + 1] = -(mdot + run) / omega
+    # the heat into the steam counts the film's water from the row's
+    # reference enthalpy (the steam gains q + its water's mass times that
+    # reference): over a periodic cycle it is what surface and film gave
+    q = (qf + qv + (mdot + run) * (hL - heat[i, H_SKIN_FILM_H])) / omega
+    dy[q0 + 1] = q
+    dy[q0 + 2] = -q if q < 0.0 else 0.0
+    # for the deep wall's update (T_deep <- hAT / hA, a Newton step on the
+    # wall's, or with a jacket the wall and jacket's, balance over a cycle)
+    d = (hv + hf + hm) * A / omega
+    ga = heat[i, H_SKIN_JACKET_G] / omega
+    dy[q0 + 3] = d + ga
+    dy[q0 + 4] = d * wallT[i] - q + ga * heat[i, H_SKIN_JACKET_T]
+    # the surface and the film on it, at one temperature: the film's
+    # energy m_f h_L(T_w) moves with the surface (its water comes and
+    # goes at h_L, above)
+    dy[k] = (-(qf + qv) + heat[i, H_SKIN_DEEP] * Aw * (wallT[i] - Tw)) / (
+        (heat[i, H_SKIN_CAPACITY] * Aw + mf * cL) * omega)
+    dy[k + 2] = (qf + qm) / omega
+    dy[k + 3] = qc / omega
 
 
 @njit(cache=True, inline="always")

@@ -44,11 +44,13 @@ H_MARKS_WALL_ADMIT, H_MARKS_WALL_EXPAND = 9, 10
 #: the reference the heat into the steam counts the film's water from, saturated water
 #: at the mean of supply and exhaust temperatures, with the latent heat there [J/kg]
 #: (the film itself is water at the surface's temperature,
-#: :func:`corliss.engine.kernels.walls.film_water`).
+#: :func:`corliss.engine.kernels.walls.film_water`); and the superheat of the steam
+#: supplied [K] (0 when saturated or wet).
 H_SKIN_CAPACITY, H_SKIN_DEEP, H_SKIN_AREA, H_SKIN_STATE = 5, 6, 7, 8
 H_SKIN_JACKET_G, H_SKIN_JACKET_T, H_SKIN_FILM_H, H_SKIN_LATENT = 9, 10, 11, 12
+H_SKIN_SUPPLY_SUPERHEAT = 13
 #: Columns of the row.
-HEAT_COLUMNS = 13
+HEAT_COLUMNS = 14
 
 #: Rows of :attr:`LoopArrays.trip` (a trip gear's tables, over the settings): the
 #: setting grid [-]; the head end's release angle per setting [rad] (nan: none), the
