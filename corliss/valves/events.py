@@ -92,7 +92,9 @@ def sampled_crossings(gear: ValveGear, levels: np.ndarray) -> tuple[list, np.nda
     # the level: the difference's sign, found without the differences: ``a - b > 0`` is
     # ``a > b`` for every pair of floats, the difference of two unequal finite floats
     # never rounding to zero)
-    ports, levs, idx, rising = sign_changes(s, levels)
+    # (float64 C arrays whatever the gear gives: one compiled version for every gear)
+    s = np.ascontiguousarray(s, dtype=np.float64)
+    ports, levs, idx, rising = sign_changes(s, np.ascontiguousarray(levels))
     out: list[list[list[tuple[float, bool]]]] = [[[] for _ in range(levels.shape[1])]
                                                  for _ in range(4)]
     if not ports.size:
