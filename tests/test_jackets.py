@@ -194,3 +194,38 @@ def test_englishs_jacketed_constant_applies_with_any_jacket(jacket):
     for end in ("head", "crank"):
         want = englishs_heat_from_the_card(r, end, True)
         assert float(r.last_cycle[f"Q_to_wall_{end}_J"]) == pytest.approx(want, rel=0.02)
+
+
+def test_a_compounds_jackets_each_take_the_pressure_set():
+    """The bundled 9 & 14 x 14 in compound (skin walls, fast preset), both barrels
+    jacketed: the HP's jacket at the exhaust's 15 psia, colder than the HP's walls,
+    gives them nothing (each HP end's heat over a cycle under 2e-3 of the LP ends':
+    the fast preset balances each wall to 1e-3 of the enthalpy supplied, several
+    times the LP's heat; 6.5e-4 measured), and the LP's at 30 psia (below its
+    receiver's starting sqrt(supply x exhaust), 38.7 psia) is booked at the latent
+    heat of 30 psia: the jacket's steam is each end's heat over its own jacket's
+    latent heat (1e-6, as
+    ``test_wall_skin.test_a_compounds_lp_jacket_takes_its_receivers_steam``)."""
+    data = copy.deepcopy(tomllib.loads(bundled_scenes()["marks-compound-9-14x14"].read_text()))
+    data["engine"].update({"wall_heat_model": "skin", "jacket": "barrel",
+                           "lp_jacket_pressure": "30 psia"})
+    if "wall_heat" not in data["run"]["effects"]:
+        data["run"]["effects"] = list(data["run"]["effects"]) + ["wall_heat"]
+    data["run"]["fidelity"] = "fast"
+    exhaust = scene_from_dict(data, name="c").exhaust.pressure_Pa
+    data["engine"]["jacket_pressure"] = f"{exhaust / units.PSI_Pa!r} psia"
+    sc = scene_from_dict(data, name="compound-jackets")
+    r = corliss.simulate(sc)
+    assert r.summary["cycles_to_converge"] is not None
+    row = r.last_cycle
+    lp = sum(float(row[f"Q_lp_{e}_J"]) for e in ("head", "crank"))
+    assert lp > 0.0
+    for e in ("head", "crank"):
+        assert abs(float(row[f"Q_{e}_J"])) < 2e-3 * lp, e
+    steam = HEOSSteam()
+    rev_per_h = sc.run.speed_rad_s / (2.0 * math.pi) * 3600.0
+    want = 0.0
+    for e, p in (("head", exhaust), ("crank", exhaust), ("lp_head", 30.0 * units.PSI_Pa),
+                 ("lp_crank", 30.0 * units.PSI_Pa)):
+        want += float(row[f"Q_{e}_J"]) / (steam.px(p, 1.0).h - steam.px(p, 0.0).h)
+    assert r.summary["jacket_steam_kg_per_h"] == pytest.approx(want * rev_per_h, rel=1e-6)
