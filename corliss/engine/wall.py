@@ -211,6 +211,9 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
+from corliss.engine.condensation import exposed_wall_m2
 from corliss.engine.kernels.data import WALL_SKIN
 from corliss.engine.kernels.walls import (FILM_MAX_KG_M2, FILM_WET_KG_M2,
                                           INFLOW_SWEEP_PER_RAD, adair_h, condensing_share,
@@ -317,9 +320,6 @@ def mean_exposed_area_m2(geometry, end: int, n: int = 361) -> float:
     float
         The mean area [m2].
     """
-    import numpy as np
-
-    from corliss.engine.condensation import exposed_wall_m2
     th = np.linspace(0.0, 2.0 * math.pi, n)
     return float(np.mean(exposed_wall_m2(geometry, end, th)))
 
@@ -348,7 +348,6 @@ def jacketed_area_m2(geometry, end: int, jacket: str) -> float:
     float
         The jacketed area [m2].
     """
-    import numpy as np
     if jacket not in JACKET_PARTS:
         raise ValueError(f"jacket {jacket!r}: one of {', '.join(JACKET_PARTS)}")
     ap = geometry.area_head_m2 if end == 0 else geometry.area_crank_m2
