@@ -549,8 +549,9 @@ def test_the_jacket_is_paid_for_in_steam():
     saving under 20 % (the period's greatest).  The model's saving, 1.8 % (2.2 % with
     the film's water at a fixed 410 K, before it was booked at the surface's
     temperature), is below the 3 to 5 % the period called well authenticated: the
-    jacket's physics is issue 31's (a jacket per cylinder and on the covers), and
-    this test holds only its sign and the period's ceiling until then."""
+    jacket's physics is issue 31's (with the covers jacketed too, 2.2 %:
+    ``tests/test_jackets.py``), and this test holds only its sign and the period's
+    ceiling until then."""
     from corliss.engine import wall
     from corliss.thermo.steam import HEOSSteam
     bare = _run("cut0.4", valve_gear={"setting": 0.4})

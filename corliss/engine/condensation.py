@@ -66,7 +66,10 @@ from __future__ import annotations
 import logging
 import math
 
+import numpy as np
+
 from corliss.engine.kernels.data import H_MARKS_Q, H_MARKS_WALL_EXPAND, H_MODEL, WALL_MARKS
+from corliss.engine.kernels.properties import visited_states
 from corliss.keys import units
 from corliss.thermo.steam import HEOSSteam, latent_heat, saturated_vapour_density
 
@@ -160,7 +163,6 @@ def exposed_wall_m2(geometry, end: int, theta):
     float or numpy.ndarray
         The exposed wall [m2], shaped as ``theta``.
     """
-    import numpy as np
     ap = geometry.area_head_m2 if end == 0 else geometry.area_crank_m2
     V = geometry.volumes_m3(np.asarray(theta, dtype=float))[end]
     return 2.0 * ap + math.pi * geometry.spec.bore_m * V / ap
@@ -193,7 +195,6 @@ def schedule_row(geometry, end: int, events: dict, heat_J: float):
         [m2 rad].  None when the end has no admission, cut-off or compression (the
         schedule needs all three).
     """
-    import numpy as np
     from scipy.integrate import simpson
     ev = events
     if ev["cutoff_deg"] is None or ev["compression_deg"] is None or ev["admission_deg"] is None:
@@ -492,7 +493,6 @@ class ScheduledWallHeat:
         out_theta : numpy.ndarray
             Crank angles of the samples [rad].
         """
-        import numpy as np
         net = self.network
         # the samples' angles from the first (a turn of the speed loop may start at
         # any multiple of 2 pi)
@@ -515,8 +515,10 @@ class ScheduledWallHeat:
                 U = (1.0 - w) * samples[2 * i + 1, k - 1] + w * samples[2 * i + 1, k]
                 if not (m > 0.0 and np.isfinite(U)):
                     continue
-                st = steam.du(m / V, U / m)
-                kept[i] = self._heos.t_sat(min(st.p, 2.2e7))
+                # read as the run read it: Marks's heat given back into the thin
+                # exhaust steam can lift it beyond the properties' greatest energy
+                p = float(visited_states(steam, np.array([m / V]), np.array([U / m]))[0][0])
+                kept[i] = self._heos.t_sat(min(p, 2.2e7))
 
 
 class MarksLaw(ScheduledWallHeat):

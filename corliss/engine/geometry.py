@@ -57,10 +57,12 @@ class EngineSpec:
         [W/(m2 K)] (:mod:`corliss.engine.wall`); None: set by Marks's eq. 221
         (:mod:`corliss.engine.calibration`).
     jacket : str
-        ``"none"`` or ``"barrel"``: the barrel's outer face held at the supply's
-        saturation temperature (skin model).
+        ``"none"``, ``"barrel"``, ``"covers"`` or ``"barrel_and_covers"``: the parts of
+        the wall whose outer face is held at the jacket steam's saturation temperature
+        (skin model; :func:`corliss.engine.wall.jacketed_area_m2`).
     wall_thickness_m : float
-        The barrel's wall between bore and jacket [m] (skin model, with a jacket).
+        The wall between bore (or cover's face) and jacket [m] (skin model, with a
+        jacket).
     steam_ends : str
         The ends that take steam: ``"both"`` (double-acting), ``"head"`` or ``"crank"``
         (single-acting: the other end's exhaust port stands open,
@@ -76,6 +78,10 @@ class EngineSpec:
         each closed exhaust edge (the end to the exhaust side) of the reference valve
         (:mod:`corliss.engine.leak_paths`), flow per unit of pressure difference
         [kg/(s Pa)] (``leakage`` effect, period model).
+    jacket_pressure_Pa, lp_jacket_pressure_Pa : float or None
+        The jacket steam's absolute pressure [Pa] on the high-pressure (or only)
+        cylinder and on a compound's low-pressure cylinder; None: the defaults of
+        :func:`corliss.engine.wall.jacket_pressures_Pa`.
     """
 
     bore_m: float
@@ -100,6 +106,8 @@ class EngineSpec:
     piston_leak_rate_kg_s_Pa: float = 0.0
     steam_edge_leak_rate_kg_s_Pa: float = 0.0
     exhaust_edge_leak_rate_kg_s_Pa: float = 0.0
+    jacket_pressure_Pa: float | None = None
+    lp_jacket_pressure_Pa: float | None = None
 
 
 @dataclass(frozen=True)

@@ -252,11 +252,12 @@ def build_network(scene, geo, pm, steam: Steam, chest: State, exhaust: State) ->
         from corliss.thermo.steam import HEOSSteam
         heos = HEOSSteam()
         t_sat = heos.t_sat(scene.supply.pressure_Pa)
-        if eng.jacket == "barrel":
-            # each cylinder's jacket at its own steam's saturation (the LP's at its
-            # receiver's, wall.jacket_pressures_Pa)
+        if eng.jacket != "none":
+            # each cylinder's jacket at its own steam's saturation (the scene's pressure,
+            # or the supply's, the LP's its receiver's: wall.jacket_pressures_Pa)
             jacket_T = tuple(heos.t_sat(p) for p in wall.jacket_pressures_Pa(
-                scene.supply.pressure_Pa, scene.exhaust.pressure_Pa, scene.compound is not None))
+                scene.supply.pressure_Pa, scene.exhaust.pressure_Pa, scene.compound is not None,
+                eng.jacket_pressure_Pa, eng.lp_jacket_pressure_Pa))
         supply_T = scene.supply.temperature_K
         superheat = supply_T - t_sat if supply_T is not None else 0.0
         model = eng.wall_heat_model
@@ -272,7 +273,8 @@ def build_network(scene, geo, pm, steam: Steam, chest: State, exhaust: State) ->
                              condensing_W_m2K=eng.condensing_W_m2K, jacket_T_K=jacket_T,
                              wall_thickness_m=eng.wall_thickness_m,
                              idle_ends={"both": (), "head": (1,), "crank": (0,)}[eng.steam_ends],
-                             supply_superheat_K=superheat)
+                             supply_superheat_K=superheat,
+                             jacket=eng.jacket if eng.jacket != "none" else "barrel")
     return net
 
 

@@ -989,7 +989,7 @@ WALL_MODELS = {"conductance": WALL_CONDUCTANCE, "adair": WALL_ADAIR, "marks": WA
 def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
                    condensing_W_m2K: float | None = None,
                    jacket_T_K: float | tuple | None = None, wall_thickness_m: float = 0.025, idle_ends: tuple = (),
-                   supply_superheat_K: float = 0.0) -> Network:
+                   supply_superheat_K: float = 0.0, jacket: str = "barrel") -> Network:
     """Heat exchange between the steam of each cylinder end and its walls.
 
     ``model``:
@@ -1016,8 +1016,9 @@ def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
     * ``"skin"``: a wall with a temperature (:mod:`corliss.engine.wall`): each end's
       surface temperature is a state, exchanging heat with the steam by condensation and
       evaporation (``condensing_W_m2K``) and Adair's convection, over a deep wall found
-      cycle by cycle; with ``jacket_T_K``, the barrel's outer face (``wall_thickness_m``
-      of iron away) is held at that temperature.  Every cylinder has its own wall.  A
+      cycle by cycle; with ``jacket_T_K``, the outer face of the jacketed parts
+      (``jacket``: barrel, covers or both; ``wall_thickness_m`` of iron away) is held
+      at that temperature.  Every cylinder has its own wall.  A
       surface below saturation condenses only where the steam at it is at saturation,
       its superheat taken as the bulk's but no more than the supply's
       (``supply_superheat_K``; :func:`corliss.engine.kernels.walls.condensing_share`).
@@ -1052,6 +1053,9 @@ def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
         Ends (0 head, 1 crank) of every cylinder that take no steam: no wall heat.
     supply_superheat_K : float
         The superheat of the steam supplied [K] (0 when saturated or wet; skin model).
+    jacket : str
+        The parts jacketed with ``jacket_T_K``: ``"barrel"``, ``"covers"`` or
+        ``"barrel_and_covers"`` (:func:`corliss.engine.wall.jacketed_area_m2`).
 
     Returns
     -------
@@ -1079,7 +1083,8 @@ def with_wall_heat(net: Network, model: str, h_marks: float, steam_props, *,
         for i in net.wall_nodes:
             net.node_heat[i] = wall.skin_row(net.geometries[net.node_cyl[i]], net.node_end[i],
                                              net.omega, h_c, steam_props, net.i_wall(i),
-                                             jacket_of(net.node_cyl[i]), wall_thickness_m) + film + (
+                                             jacket_of(net.node_cyl[i]), wall_thickness_m,
+                                             jacket) + film + (
                                                  max(supply_superheat_K, 0.0),)
     return net
 

@@ -689,16 +689,18 @@ class SteadyResult(Result[SteadySummary]):
 
         Over a periodic cycle the walls neither gain nor lose heat, so what the steam in
         the cylinders took from them net, the sum of ``Q_<end>_J``, is what the jacket
-        gave through the iron.  The jacket condenses its steam (the supply's, a
-        compound's LP jacket its receiver's) and drains it as saturated water at that
+        gave through the iron.  The jacket condenses its steam (the scene's
+        ``jacket_pressure``, or the supply's; a compound's LP jacket its receiver's) and drains it as saturated water at that
         pressure, so each kilogram gives the latent heat there; the period's trials counted that water with the feed (Marks Art.
         79, p. 204), and ``water_rate_with_jacket`` does too.
         """
         rev_per_s = self.scene.run.speed_rad_s / TWO_PI
         # each cylinder's jacket at its own pressure (a compound's LP at its
         # receiver's, wall.jacket_pressures_Pa): its heat over the latent heat there
+        eng = self.scene.engine
         pj = jacket_pressures_Pa(self.scene.supply.pressure_Pa,
-                                 self.scene.exhaust.pressure_Pa, self.scene.compound is not None)
+                                 self.scene.exhaust.pressure_Pa, self.scene.compound is not None,
+                                 eng.jacket_pressure_Pa, eng.lp_jacket_pressure_Pa)
         q = jacket_kg = 0.0
         for c in row.index:
             if c.startswith("Q_") and "to_wall" not in c and c.endswith("_J"):

@@ -19,7 +19,7 @@ import numpy as np
 
 from corliss.engine import equilibrium as eq
 from corliss.engine.kernels import jacobians
-from corliss.engine.kernels.properties import U_MAX
+from corliss.engine.kernels.properties import visited_states
 from corliss.engine.calibration import marks_coefficient
 from corliss.engine.condensation import wall_schedule
 from corliss.engine.crank_resolved import CrankResolved
@@ -348,7 +348,7 @@ def _crank_timeseries(net, steam, ends_all, out_theta, omega: float, samples_all
         i = net.node(end)
         V = each_cycle(net.volume(i, out_theta))
         m, U = s[2 * i], s[2 * i + 1]
-        cols[f"p_{end}_Pa"], cols[f"T_{end}_K"], cols[f"x_{end}_frac"] = _visited_states(
+        cols[f"p_{end}_Pa"], cols[f"T_{end}_K"], cols[f"x_{end}_frac"] = visited_states(
             steam, m / V, U / m)
         cols[f"V_{end}_m3"], cols[f"m_{end}_kg"] = V, m
     for i in net.wall_nodes:
@@ -364,24 +364,9 @@ def _crank_timeseries(net, steam, ends_all, out_theta, omega: float, samples_all
         if vessel in net.node_names:
             i = net.node(vessel)
             V = each_cycle(net.volume(i, out_theta))
-            cols[f"p_{vessel}_Pa"] = _visited_states(steam, s[2 * i] / V,
+            cols[f"p_{vessel}_Pa"] = visited_states(steam, s[2 * i] / V,
                                                      s[2 * i + 1] / s[2 * i])[0]
     return Frame(cols)
-
-
-def _visited_states(steam, rho: np.ndarray, u: np.ndarray):
-    """Pressure [Pa], temperature [K] and dryness [-] of states a run visited, as its
-    right-hand side read them.
-
-    The one clamp a run goes on with (:mod:`corliss.engine.crank_resolved`) is steam
-    heated beyond the properties' greatest energy (Marks's law heating the thin
-    exhaust steam): the right-hand side read such a state at that energy, the table
-    tier's lookup answers it there too, and on a tier that asks CoolProp (HEOS, which
-    finds no state beyond 3000 K) it is read there as well, not left to fail.
-    """
-    if steam.kernel_tier is None:
-        u = np.minimum(u, U_MAX)
-    return steam.states(rho, u)
 
 
 def _periodicity(lay: _Layout, wall_T, y0, y1, samples, wall0, dT_scale: float, row: dict,

@@ -55,7 +55,9 @@ its lowest point (docs/validation/condensation.md).  The lumped node is kept.
 The deep node's temperature is found cycle by cycle (:meth:`update_wall` of the
 runners): without a jacket, so that the wall neither gains nor loses heat over a
 cycle; with a jacket, so that what the steam leaves in the wall over a cycle is what
-the jacket gives through the wall's thickness, ``k / L (T_jacket - T_deep)``.
+the jacket gives through the wall's thickness, ``k / L (T_jacket - T_deep)`` where the
+deep wall is below the jacket's saturation, nothing where it is above
+(:func:`jacket_heat_J`: the jacket's steam condenses, or does nothing).
 
 Exchange between steam, film and surface
 ----------------------------------------
@@ -193,15 +195,25 @@ Without ``port_flow`` the same wall steps beside the ideal-port model
 
 Jackets
 -------
-A jacket holds the outer face of the barrel at the supply's saturation temperature;
-its heat reaches the deep node through the wall's thickness, ``k / L`` per unit of
-the barrel's mean exposed area (Marks Art. 79: the heads are usually not jacketed).
+A jacket holds the outer face of the jacketed parts at its steam's saturation
+temperature (by default the supply's; a compound's LP at its receiver's; or the
+scene's ``jacket_pressure``, ``lp_jacket_pressure``); its heat reaches the deep node
+through the wall's thickness, ``k / L`` per unit of jacketed area
+(:func:`jacketed_area_m2`).  Each end's wall is one lumped area, cover, piston face
+and the barrel the steam touches, ``2 A_p + pi D V / A_p`` (:func:`mean_exposed_area_m2`);
+a barrel jacket covers the barrel's mean share ``pi D mean(V) / A_p``, a cover jacket
+the cover's face ``A_p``.  The piston's face is never jacketed: it moves, and no steam
+can be led to it (Marks Art. 79: the heads, that is the covers, are usually not
+jacketed, but may be).
 """
 
 from __future__ import annotations
 
 import math
 
+import numpy as np
+
+from corliss.engine.condensation import exposed_wall_m2
 from corliss.engine.kernels.data import WALL_SKIN
 from corliss.engine.kernels.walls import (FILM_MAX_KG_M2, FILM_WET_KG_M2,
                                           INFLOW_SWEEP_PER_RAD, adair_h, condensing_share,
@@ -215,6 +227,9 @@ CAST_IRON_K, CAST_IRON_C, CAST_IRON_RHO = 46.0, 490.0, 7500.0
 #: Coefficient of condensation and evaporation on the surface [W/(m2 K)]: Callendar and
 #: Nicolson's, 4 kcal/(s m2 degC) (DPJ 312, 1899, p. 164; see the module docstring).
 CONDENSING_W_M2K = CALLENDAR_NICOLSON_W_M2K
+#: The parts each ``engine.jacket`` covers: (barrel, covers).
+JACKET_PARTS = {"none": (False, False), "barrel": (True, False), "covers": (False, True),
+                "barrel_and_covers": (True, True)}
 #: Skin-model columns of a node's wall-heat row (after code, h_c, k, mu, Pr).
 COL_CAPACITY, COL_CONDUCTANCE, COL_AREA, COL_STATE, COL_JACKET_GA, COL_JACKET_T = 5, 6, 7, 8, 9, 10
 
@@ -305,16 +320,48 @@ def mean_exposed_area_m2(geometry, end: int, n: int = 361) -> float:
     float
         The mean area [m2].
     """
-    import numpy as np
-
-    from corliss.engine.condensation import exposed_wall_m2
     th = np.linspace(0.0, 2.0 * math.pi, n)
     return float(np.mean(exposed_wall_m2(geometry, end, th)))
 
 
+def jacketed_area_m2(geometry, end: int, jacket: str) -> float:
+    """The area of one end's wall that a jacket covers [m2].
+
+    The end's wall is one lumped area, ``2 A_p + pi D V / A_p`` (cover, piston face and
+    the barrel the steam touches, the clearance as its equivalent length); the barrel's
+    share over a cycle is ``pi D mean(V) / A_p`` and the cover's ``A_p`` (the crank
+    end's cover an annulus round the rod, as its piston face).  The piston's face is
+    never jacketed.  So ``"barrel"`` gives ``pi D mean(V) / A_p``, ``"covers"`` ``A_p``,
+    ``"barrel_and_covers"`` their sum and ``"none"`` zero.
+
+    Parameters
+    ----------
+    geometry : CylinderGeometry
+        The cylinder's geometry.
+    end : int
+        0 head, 1 crank.
+    jacket : str
+        ``"none"``, ``"barrel"``, ``"covers"`` or ``"barrel_and_covers"``.
+
+    Returns
+    -------
+    float
+        The jacketed area [m2].
+    """
+    if jacket not in JACKET_PARTS:
+        raise ValueError(f"jacket {jacket!r}: one of {', '.join(JACKET_PARTS)}")
+    ap = geometry.area_head_m2 if end == 0 else geometry.area_crank_m2
+    barrel, covers = JACKET_PARTS[jacket]
+    area = ap if covers else 0.0
+    if barrel:
+        th = np.linspace(0.0, 2.0 * math.pi, 361)
+        area += math.pi * geometry.spec.bore_m * float(np.mean(geometry.volumes_m3(th)[end])) / ap
+    return area
+
+
 def skin_row(geometry, end: int, omega_rad_s: float, h_c: float, steam_props,
              state_index: int, jacket_T_K: float | None = None,
-             wall_thickness_m: float = 0.025) -> tuple:
+             wall_thickness_m: float = 0.025, jacket: str = "barrel") -> tuple:
     """A node's wall-heat row for the skin model (columns as
     :data:`corliss.engine.network.HEAT_COLUMNS`, less the film's two).
 
@@ -335,28 +382,28 @@ def skin_row(geometry, end: int, omega_rad_s: float, h_c: float, steam_props,
     jacket_T_K : float, optional
         The jacket's temperature [K], or None.
     wall_thickness_m : float
-        The barrel's wall between bore and jacket [m].
+        The wall between bore (or cover's face) and jacket [m].
+    jacket : str
+        The parts jacketed (:func:`jacketed_area_m2`), with ``jacket_T_K``.
 
     Returns
     -------
     tuple
         The row's first eleven columns.
     """
-    import numpy as np
     k, mu, pr = steam_props
     cap, cond = surface_node(omega_rad_s)
     area = mean_exposed_area_m2(geometry, end)
     ga, tj = 0.0, 0.0
     if jacket_T_K is not None:
-        ap = geometry.area_head_m2 if end == 0 else geometry.area_crank_m2
-        th = np.linspace(0.0, 2.0 * math.pi, 361)
-        barrel = math.pi * geometry.spec.bore_m * float(np.mean(geometry.volumes_m3(th)[end])) / ap
-        ga, tj = CAST_IRON_K / wall_thickness_m * barrel, jacket_T_K
+        ga = CAST_IRON_K / wall_thickness_m * jacketed_area_m2(geometry, end, jacket)
+        tj = jacket_T_K
     return (WALL_SKIN, h_c, k, mu, pr, cap, cond, area, float(state_index), ga, tj)
 
 
-def jacket_pressures_Pa(supply_Pa: float, exhaust_Pa: float, compound: bool) -> tuple:
-    """The pressure of each cylinder's jacket steam, by default.
+def jacket_pressures_Pa(supply_Pa: float, exhaust_Pa: float, compound: bool,
+                        hp_Pa: float | None = None, lp_Pa: float | None = None) -> tuple:
+    """The pressure of each cylinder's jacket steam: the scene's, or by default these.
 
     The high-pressure (or only) cylinder's jacket takes the supply's steam; a
     compound's low-pressure cylinder's takes its own receiver's, at the receiver's
@@ -375,15 +422,19 @@ def jacket_pressures_Pa(supply_Pa: float, exhaust_Pa: float, compound: bool) -> 
         The exhaust's pressure [Pa].
     compound : bool
         Whether the engine is a compound (two cylinders, HP then LP).
+    hp_Pa, lp_Pa : float, optional
+        The scene's ``jacket_pressure`` and ``lp_jacket_pressure`` [Pa]; None: the
+        defaults above.
 
     Returns
     -------
     tuple of float
         One pressure per cylinder [Pa].
     """
+    hp = supply_Pa if hp_Pa is None else hp_Pa
     if compound:
-        return (supply_Pa, math.sqrt(supply_Pa * exhaust_Pa))
-    return (supply_Pa,)
+        return (hp, math.sqrt(supply_Pa * exhaust_Pa) if lp_Pa is None else lp_Pa)
+    return (hp,)
 
 
 #: Nodes of the conduction grid under the surface (:class:`ConductionGrid`) [-].
@@ -780,7 +831,7 @@ class IdealPortWall:
     def deep_step(self, apply: bool, heat_scale: float = 0.0, dT_scale: float = 0.0,
                   trusted: bool = True) -> tuple[float, float]:
         """The deep wall's step on its balance over the cycle just run,
-        ``r = -Q + G_j A_j P (T_j - T_d)`` (:class:`DeepWallSearch`, as the
+        ``r = -Q + G_j A_j P max(T_j - T_d, 0)`` (:class:`DeepWallSearch`, as the
         crank-resolved runner's,
         :meth:`corliss.engine.crank_resolved.CrankResolved.update_wall`).
 
@@ -814,10 +865,39 @@ class IdealPortWall:
         return step, imbalance
 
 
+def jacket_heat_J(gap_J_K: float, T_jacket_K: float, T_deep_K: float) -> float:
+    """The heat a jacket gives the deep wall over a cycle [J].
+
+    ``G_j A_j P (T_j - T_d)`` where the deep wall is below the jacket's saturation
+    temperature, else nothing: the jacket gives heat by condensing its steam on the
+    iron (Marks Art. 79), and an outer face hotter than the steam's saturation
+    condenses none.  The heat the iron would then give the jacket's steam, by
+    convection to a vapour that is not renewed (the jacket is fed only as its steam
+    condenses), is left out, so a jacket at or below the wall's own temperature, one at
+    the exhaust's pressure, does nothing.
+
+    Parameters
+    ----------
+    gap_J_K : float
+        The jacket's conductance over the cycle, ``G_j A_j P`` [J/K] (0 without one).
+    T_jacket_K : float
+        The jacket steam's saturation temperature [K].
+    T_deep_K : float
+        The deep wall's temperature over the cycle [K].
+
+    Returns
+    -------
+    float
+        The heat into the wall [J], zero or more.
+    """
+    return gap_J_K * max(T_jacket_K - T_deep_K, 0.0)
+
+
 class DeepWallSearch:
     """The deep wall's temperature, found cycle by cycle: the root of its balance over
-    a cycle, ``r(T) = -Q(T) + G_j A_j P (T_j - T)`` (the heat the steam leaves in the
-    wall, and the jacket's through its thickness), by a secant held inside a bracket.
+    a cycle, ``r(T) = -Q(T) + G_j A_j P max(T_j - T, 0)`` (the heat the steam leaves in
+    the wall, and the jacket's through its thickness, :func:`jacket_heat_J`), by a
+    secant held inside a bracket.
 
     The first step uses the slope the kernel integrates (every coefficient's ``h A``),
     which overstates it, since water condensed on a cooler wall evaporates from it later
@@ -884,11 +964,14 @@ class DeepWallSearch:
         tuple of float
             The step [K] and the balance ``r`` [J].
         """
-        r = -Q + gap * (T_jacket - T)
+        # the jacket gives heat only by condensing its steam: an outer face hotter than
+        # the jacket's saturation condenses none, and the jacket then takes no heat
+        # (jacket_heat_J)
+        r = -Q + jacket_heat_J(gap, T_jacket, T)
         slope = d_full
         if self.prev is not None and abs(T - self.prev[0]) > 1e-9:
             slope = min(max((Q - self.prev[1]) / (T - self.prev[0]), 0.01 * d_full), d_full)
-        step = min(max(r / (slope + gap), -20.0), 20.0)
+        step = min(max(r / (slope + (gap if T < T_jacket else 0.0)), -20.0), 20.0)
         lo, hi = self._bracket(T, r) if trusted else (self.lo, self.hi)
         target = T + step
         if target >= hi:

@@ -295,6 +295,11 @@ def _engine(t: Table) -> EngineSpec:
             raise InputError(t.key("condensing_coefficient"), t.raw("condensing_coefficient"),
                              "a coefficient above 0, or \"marks\"")
     jacket = t.get("jacket")
+    jacket_pressures = tuple(t.get(k) for k in ("jacket_pressure", "lp_jacket_pressure"))
+    for k, p in zip(("jacket_pressure", "lp_jacket_pressure"), jacket_pressures):
+        if p is not None and jacket == "none":
+            raise InputError(t.key(k), t.raw(k), "no value without a jacket: set engine.jacket "
+                             "to \"barrel\", \"covers\" or \"barrel_and_covers\"")
     thickness = t.get("wall_thickness", within=(1e-3, 0.5 * bore))
     leak_model = t.get("leakage_model")
     rates = [t.get(k) for k in ("valve_leak_rate", "piston_leak_rate",
@@ -302,9 +307,48 @@ def _engine(t: Table) -> EngineSpec:
     valve_leak, piston_leak = leaks
     spec = EngineSpec(bore, stroke, rod, prd, _pair_fraction(t, "clearance"), mass, f0, f1,
                       valve_leak, piston_leak, model, marks, crank_angles, condensing, jacket, thickness,
-                      t.get("steam_ends"), leak_model, *rates)
+                      t.get("steam_ends"), leak_model, *rates, *jacket_pressures)
     t.finish()
     return spec
+
+
+def _check_jacket_pressures(data: dict, engine: EngineSpec, supply, exhaust,
+                            compound: bool) -> None:
+    """Refuse a jacket's steam pressure above the supply's or below the exhaust's (a
+    jacket is fed from the boiler's main or a receiver, and drains against at least
+    the exhaust), and ``lp_jacket_pressure`` on an engine without a low-pressure
+    cylinder.
+
+    Parameters
+    ----------
+    data : dict
+        The scene's TOML tables (for the values as written).
+    engine : EngineSpec
+        The engine, its jacket pressures read.
+    supply : SupplySpec
+        The supply.
+    exhaust : ExhaustSpec
+        The exhaust.
+    compound : bool
+        Whether the scene is a compound.
+
+    Returns
+    -------
+    None
+    """
+    raw = data.get("engine", {})
+    lo, hi = exhaust.pressure_Pa, supply.pressure_Pa
+    for k, p in (("jacket_pressure", engine.jacket_pressure_Pa),
+                 ("lp_jacket_pressure", engine.lp_jacket_pressure_Pa)):
+        if p is None:
+            continue
+        if k == "lp_jacket_pressure" and not compound:
+            raise InputError(f"engine.{k}", raw.get(k), "no value: only a compound has a "
+                             "low-pressure cylinder (engine.jacket_pressure sets this one's)")
+        if not lo <= p <= hi:
+            raise InputError(f"engine.{k}", raw.get(k), f"a pressure from the exhaust's "
+                             f"{lo / units.PSI_Pa:.4g} psia up to the supply's "
+                             f"{hi / units.PSI_Pa:.4g} psia")
 
 
 def _registered(t: Table, registry):
@@ -834,6 +878,7 @@ def _scene_from_dict(data: dict, name: str = "scene", source: str | None = None,
                              "\"port_flow\": the receiver fills and empties through ports")
     elif "lp_valve_gear" in data:
         raise InputError("lp_valve_gear", "[...]", "a [compound] section beside it")
+    _check_jacket_pressures(data, engine, supply, exhaust, compound is not None)
     if like is not None and "output" in shared:
         output = like.output
     else:

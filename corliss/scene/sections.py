@@ -28,6 +28,8 @@ START_CHOICES = ("equilibrium", "run_speed", "rest")
 WALL_HEAT_MODELS = ("skin", "marks", "english", "conductance", "adair")
 #: Models of the ``leakage`` effect.
 LEAKAGE_MODELS = ("orifice", "period")
+#: The parts of the wall a steam jacket may cover (corliss.engine.wall.jacketed_area_m2).
+JACKETS = ("none", "barrel", "covers", "barrel_and_covers")
 #: Cylinder sizes: a model's half-inch cylinder to the largest engines built [m].
 CYLINDER_RANGE = (1e-3, 5.0)
 
@@ -86,10 +88,20 @@ ENGINE = group(
         "on the wall (above zero), or \"marks\" (Marks's eq. 221); the default is Callendar and "
         "Nicolson's measured 4 kcal/s m2 degC.", default="16747.2 W/m2 K",
         choices=("marks",), effect="wall_heat"),
-    Key("jacket", "choice", "A steam jacket round the barrel, at its steam's saturation "
-        "temperature: the supply's, a compound's low-pressure cylinder's its receiver's.",
+    Key("jacket", "choice", "A steam jacket on the barrel, on the covers (the cylinder's two "
+        "end covers; the piston's faces are never jacketed), or on both, at its steam's "
+        "saturation temperature (jacket_pressure, lp_jacket_pressure).",
         default="none",
-        choices=("none", "barrel"), effect="wall_heat"),
+        choices=JACKETS, effect="wall_heat"),
+    Key("jacket_pressure", "pressure", "Pressure of the jacket's steam on the high-pressure "
+        "(or only) cylinder, absolute or gauge stated; from the exhaust pressure up to the "
+        "supply pressure; unset: the supply's.", default=None, unit="psia",
+        when="with a jacket", effect="wall_heat"),
+    Key("lp_jacket_pressure", "pressure", "Pressure of the jacket's steam on a compound's "
+        "low-pressure cylinder, absolute or gauge stated; from the exhaust pressure up to "
+        "the supply pressure; unset: the receiver's starting pressure, sqrt(supply x "
+        "exhaust).", default=None, unit="psia", when="with a jacket, in a compound",
+        effect="wall_heat"),
     Key("wall_thickness", "length", "Cylinder wall thickness, 1 mm to half the bore.",
         default="1 in", within=(1e-3, math.inf), unit="in", effect="wall_heat"),
     Key("steam_ends", "choice", "The ends that take steam: both (double-acting), or head or "

@@ -6,6 +6,7 @@ the perfect gas), and the rows of the node-property scratch ``pr`` (``PR_*``).
 
 from __future__ import annotations
 
+import numpy as np
 
 from corliss.engine.kernels.compiled import njit
 from corliss.engine.kernels.data import H_MODEL, WALL_NONE
@@ -36,6 +37,35 @@ U_MIN = PARAMS["kappa_u_min"]   # [J/kg], saturated water at the triple point
 
 
 U_MAX = PARAMS["u_max"]         # [J/kg], superheated steam beyond 1273 K
+
+
+def visited_states(steam, rho, u):
+    """Pressure, temperature and dryness of states a run visited, as its right-hand
+    side read them.
+
+    The one clamp a run goes on with (:mod:`corliss.engine.crank_resolved`) is steam
+    heated beyond the properties' greatest energy (Marks's law heating the thin
+    exhaust steam): the right-hand side read such a state at that energy, the table
+    tier's lookup answers it there too, and on a tier that asks CoolProp (HEOS, which
+    finds no state beyond 3000 K) it is read there as well, not left to fail.
+
+    Parameters
+    ----------
+    steam : corliss.thermo.steam.Steam
+        The run's steam properties.
+    rho : numpy.ndarray
+        Densities [kg/m3].
+    u : numpy.ndarray
+        Specific internal energies [J/kg].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Pressure [Pa], temperature [K] and dryness [-] of each state.
+    """
+    if steam.kernel_tier is None:
+        u = np.minimum(u, U_MAX)
+    return steam.states(rho, u)
 
 
 #: Rows of the node-property scratch ``pr`` (see :func:`node_states`).
