@@ -21,6 +21,7 @@ from typing import Callable
 
 import numpy as np
 
+from corliss.valves.crossing_kernels import inverse_quintic, sign_changes
 from corliss.valves.gear import OPENINGS_OF_SIGNED, ValveGear
 
 TWO_PI = 2.0 * math.pi
@@ -87,20 +88,17 @@ def sampled_crossings(gear: ValveGear, levels: np.ndarray) -> tuple[list, np.nda
     levels = np.atleast_2d(np.asarray(levels, dtype=float))
     th = _TURN_CLOSED
     s = gear.signed_openings(th)
-    # every port's samples against every one of its levels at once: (port, level, sample)
-    # (above the level: the difference's sign, found without the differences: ``a - b >
-    # 0`` is ``a > b`` for every pair of floats, the difference of two unequal finite
-    # floats never rounding to zero)
-    above = s[:, None, :] > levels[:, :, None]
-    # (flat indices: numpy's nonzero of a 3-d array is ten times slower than of a flat one)
-    flat = np.flatnonzero(above[:, :, 1:] != above[:, :, :-1])
-    ports, rest = np.divmod(flat, levels.shape[1] * _SAMPLES)
-    levs, idx = np.divmod(rest, _SAMPLES)
+    # every port's samples against every one of its levels, in one compiled pass (above
+    # the level: the difference's sign, found without the differences: ``a - b > 0`` is
+    # ``a > b`` for every pair of floats, the difference of two unequal finite floats
+    # never rounding to zero)
+    # (float64 C arrays whatever the gear gives: one compiled version for every gear)
+    s = np.ascontiguousarray(s, dtype=np.float64)
+    ports, levs, idx, rising = sign_changes(s, np.ascontiguousarray(levels))
     out: list[list[list[tuple[float, bool]]]] = [[[] for _ in range(levels.shape[1])]
                                                  for _ in range(4)]
     if not ports.size:
         return out, s[:, :_SAMPLES]
-    rising = above[ports, levs, idx + 1]
     lev = levels[ports, levs]
     t = _crossings_of_samples(gear, s, ports, lev, idx, th) % TWO_PI
     for k, (port, li) in enumerate(zip(ports.tolist(), levs.tolist())):
@@ -116,10 +114,7 @@ CROSSING_TOL_RAD = 1e-13
 #: The samples the crossing of a bracket ``[idx, idx + 1]`` is read from, in steps from
 #: ``idx`` (:func:`_crossings_of_samples`).
 CROSSING_NODES = (-2, -1, 0, 1, 2, 3)
-_STEPS = np.array(CROSSING_NODES)
-_NODES = _STEPS.astype(float)
-_AT0 = CROSSING_NODES.index(0)
-_DIAG = (np.arange(len(CROSSING_NODES)), np.arange(len(CROSSING_NODES)))
+_STEPS = np.array(CROSSING_NODES, dtype=np.int64)
 #: Half the width of the bracket that proves a crossing found from the samples
 #: (:func:`_crossings_of_samples`), as a fraction of :data:`CROSSING_TOL_RAD` [-].
 CROSSING_PROOF_HALF = 0.4
@@ -169,19 +164,15 @@ def _crossings_of_samples(gear: ValveGear, s: np.ndarray, ports: np.ndarray,
     n = th.size - 1
     h = th[1] - th[0]
     a, b = th[idx], th[idx + 1]
-    # the samples idx + k, k in CROSSING_NODES, less the level: shape (nodes, crossings)
-    f = s[ports[None, :], (idx[None, :] + _STEPS[:, None]) % n] - lev[None, :]
-    f0, f1 = f[_AT0], f[_AT0 + 1]
+    # the bracket's two samples less the level
+    f0 = s[ports, idx] - lev
+    f1 = s[ports, (idx + 1) % n] - lev
     left_above = f0 > 0.0
     half = CROSSING_PROOF_HALF * CROSSING_TOL_RAD
+    # Lagrange in the opening: u(0) = sum_i u_i prod_{j != i} (0 - f_j) / (f_i - f_j),
+    # compiled (:func:`~corliss.valves.crossing_kernels.inverse_quintic`)
+    c = inverse_quintic(s, ports, lev, idx, _STEPS, a, h)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        # Lagrange in the opening: u(0) = sum_i u_i prod_{j != i} (0 - f_j) / (f_i - f_j)
-        diff = f[:, None, :] - f[None, :, :]
-        diff[_DIAG] = 1.0
-        num = np.negative(f[None, :, :], out=np.empty(diff.shape))
-        num[_DIAG] = 1.0
-        u = (_NODES[:, None] * (num.prod(axis=1) / diff.prod(axis=1))).sum(axis=0)
-        c = a + u * h
         proved, c = _prove(gear, ports, lev, c, a, b, left_above, half)
     if not proved.all():
         rest = np.flatnonzero(~proved)

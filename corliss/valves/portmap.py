@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from corliss.valves.crossing_kernels import merged_grid
 from corliss.valves.events import sampled_crossings
 from corliss.valves.gear import PORTS, ValveGear
 
@@ -27,6 +28,18 @@ def _uniform(n: int) -> np.ndarray:
     grid = np.linspace(0.0, TWO_PI, n + 1)
     grid.setflags(write=False)
     return grid
+
+
+def _rounded_unique(angles: list[float]) -> list[float]:
+    """``np.unique(np.round(np.asarray(angles) % TWO_PI, 12))`` as a list, on Python
+    floats (a tabulation's dozen crossings: no array calls) [rad].
+
+    The same numbers: Python's ``%`` on floats is numpy's (``fmod``, then the divisor
+    added to a remainder of the other sign); ``np.round(x, 12)`` is ``rint(x * 1e12) /
+    1e12``, and Python's ``round`` of a float rounds half to even as ``rint`` does, to
+    an integer that is exactly a float here (below 2**53); equal numbers are kept once,
+    in increasing order."""
+    return sorted({float(round((t % TWO_PI) * 1e12)) / 1e12 for t in angles})
 
 
 @dataclass(frozen=True)
@@ -149,16 +162,16 @@ def tabulate(gear: ValveGear, n: int = 1440) -> PortMap:
         as breakpoints and the crossing table (from which the events are read).
     """
     table, signed = sampled_crossings(gear, gear.kink_levels())
-    kink_list = [t for row in table for lst in row for t, _ in lst]
-    kinks = np.unique(np.round(np.asarray(kink_list, dtype=float) % TWO_PI, 12))
-    grid = np.union1d(_uniform(n), kinks)
+    kinks = np.array(_rounded_unique([t for row in table for lst in row for t, _ in lst]),
+                     dtype=float)
+    # the uniform grid and the kinks merged (np.union1d's array), and whether no point
+    # but the kink itself lies within 2e-9 rad of any kink, in one compiled pass
+    grid, alone = merged_grid(_uniform(n), kinks, 2e-9)
     # drop uniform points closer than 1e-9 rad to a kink (keep the kink itself: the
     # point nearest it), every kink at once; where no point but the kink itself lies
     # within twice that of any kink (the usual grid: its step is 9e-3 rad at the fast
     # preset's 720 intervals), none is dropped, and the distances need not be found
-    lo = np.searchsorted(grid, kinks - 2e-9, "left")
-    hi = np.searchsorted(grid, kinks + 2e-9, "right")
-    if not (hi - lo == 1).all():
+    if not alone:
         dist = np.abs(grid[None, :] - kinks[:, None])
         near = dist < 1e-9
         near[np.arange(kinks.size), np.argmin(dist, axis=1)] = False

@@ -50,6 +50,7 @@ of opening (h the grid's step; 0.16 % of a locomotive port's full area on the de
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -58,6 +59,7 @@ import numpy as np
 from corliss.keys import units
 from corliss.errors import InputError
 from corliss.valves.gear import OPENINGS_OF_SIGNED, GearType, ValveGear, register
+from corliss.valves.travel_kernel import eccentric_signed, eccentric_travel
 from corliss.keys.declared import POSITIVE_LENGTH, Key, group
 from corliss.keys.toml_table import DISCHARGE_COEFFICIENT, Table
 
@@ -285,7 +287,12 @@ class SlideValve(LappedValve):
             of ``theta``.
         """
         s = self.spec
-        phase = np.asarray(theta) + s.angular_advance_rad
+        theta = np.asarray(theta)
+        if theta.ndim == 1 and theta.dtype == np.float64:
+            # the same operations as on other arrays below, angle by angle, in one
+            # compiled loop (a turn's 7201 samples a run)
+            return eccentric_travel(np.ascontiguousarray(theta), *self._travel_args)
+        phase = theta + s.angular_advance_rad
         if phase.ndim == 0:
             x = s.eccentricity_m * np.sin(phase)
             g = s.eccentric_rod_m
@@ -297,8 +304,7 @@ class SlideValve(LappedValve):
                                                    ** 2))
                 x = x + s.sigma * short
             return x
-        # the same operations on arrays, each into the array it reads (a turn's 7201
-        # samples a run: no new array a step)
+        # the same operations on arrays, each into the array it reads
         x = np.sin(phase)
         x *= s.eccentricity_m
         g = s.eccentric_rod_m
@@ -316,6 +322,30 @@ class SlideValve(LappedValve):
                 short *= s.sigma
             x += short
         return x
+
+    @functools.cached_property
+    def _travel_args(self) -> tuple:
+        """:func:`~corliss.valves.travel_kernel.eccentric_travel`'s arguments after the
+        angles, from the spec (found once a gear: the spec is frozen)."""
+        s = self.spec
+        g = s.eccentric_rod_m
+        r = s.eccentricity_m
+        shift = 0.0
+        if g is not None and s.setting == "equal_lead":
+            shift = g - math.sqrt(g * g - (r * math.cos(s.angular_advance_rad)) ** 2)
+        return (s.angular_advance_rad, r, 0.0 if g is None else g,
+                0.0 if g is None else g * g, shift, float(s.sigma), g is not None)
+
+    def signed_openings(self, theta):
+        theta = np.asarray(theta)
+        if (theta.ndim == 1 and theta.dtype == np.float64
+                and type(self).travel is SlideValve.travel):
+            # the travel and the four rows in one compiled loop, the same operations
+            # (:meth:`LappedValve.signed_openings` of :meth:`travel`)
+            (lh, lc), (eh, ec) = self.spec.lap_m, self.spec.exhaust_lap_m
+            return eccentric_signed(np.ascontiguousarray(theta), *self._travel_args,
+                                    np.array([lh, eh, lc, ec], dtype=np.float64))
+        return super().signed_openings(theta)
 
     def zeuner_travel(self, theta: np.ndarray) -> np.ndarray:
         """Valve displacement of the Zeuner (infinite rod) motion,
