@@ -46,6 +46,7 @@ from corliss.engine.model import steady_scene
 from corliss.engine.steady import assemble, run_steady
 from corliss.logs import NOTICE
 from corliss.thermo import steam_table
+from corliss.valves import travel_kernel
 
 log = logging.getLogger(__name__)
 
@@ -212,8 +213,19 @@ def compile_reachable(data: bytes) -> None:
         mini = steam_table.mini_table()
         for sc in _others(scene):
             _compile_on(mini, sc)
+        _compile_valve_kernels()
         if governed is not None and transient_uncached():
             _compile_transient(mini, governed)
+
+
+def _compile_valve_kernels() -> None:
+    """Compile (and cache) the slide valve's travel kernels, which a first run of a
+    scene with another gear does not reach: one call each on two angles (the values
+    are no result)."""
+    theta = np.zeros(2)
+    args = (0.5, 0.05, 1.0, 1.0, 0.0, 1.0, True)
+    travel_kernel.eccentric_travel(theta, *args)
+    travel_kernel.eccentric_signed(theta, *args, np.zeros(4))
 
 
 def _compile_transient(table, base) -> None:
