@@ -58,7 +58,7 @@ def sign_changes(s: np.ndarray, levels: np.ndarray):
                 right = s[p, k0 + 1:k1 + 1]
                 c = 0
                 for k in range(left.size):
-                    c += np.int64(left[k] > lv) ^ np.int64(right[k] > lv)
+                    c += int(left[k] > lv) ^ int(right[k] > lv)
                 cnt[p, li, b] = c
                 total += c
     ports = np.empty(total, dtype=np.int64)
