@@ -826,7 +826,8 @@ class IdealPortWall:
     @property
     def h_film(self) -> float:
         """The film's water now: saturated water at the surface's temperature [J/kg]."""
-        return film_water(self.T_deep + self.dT)[0]
+        h_f, _, _ = film_water(self.T_deep + self.dT)
+        return h_f
 
     def deep_step(self, apply: bool, heat_scale: float = 0.0, dT_scale: float = 0.0,
                   trusted: bool = True) -> tuple[float, float]:

@@ -405,7 +405,7 @@ def sweep_films(y, pr, dy, net):
             # water at the surface's temperature (film_water), its enthalpy above
             # the row's reference counted in the heat into the steam, as in
             # :func:`balances`
-            hL = film_water(net.wall_T[i] + y[k])[0]
+            hL, _, _ = film_water(net.wall_T[i] + y[k])
             dq = sw * (hL - heat[i, H_SKIN_FILM_H])
             dy[2 * i] += sw
             dy[2 * i + 1] += sw * hL
