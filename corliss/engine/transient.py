@@ -345,6 +345,10 @@ class TurnRunner:
         Absolute tolerance of each state [its unit].
     nfev : int
         Right-hand-side evaluations so far.
+    stops_rad : numpy.ndarray or None
+        Shaft angles [rad] where each turn restarts its step: a wall-heat schedule's
+        switches (:attr:`corliss.engine.network.Network.schedule_stops`); None for
+        none (:func:`corliss.engine.kernels.loop.turn_stops`).
     """
 
     integrate: Callable
@@ -357,6 +361,7 @@ class TurnRunner:
     rtol: float
     atol: np.ndarray
     nfev: int = 0
+    stops_rad: np.ndarray | None = None
 
     def turn(self, y: np.ndarray, th0: float, out_theta: np.ndarray, steps: bool,
              t_end: float) -> tuple:
@@ -384,7 +389,7 @@ class TurnRunner:
         """
         y, samples, rec, n_rec, nf, status = self.integrate(
             y, th0, out_theta, self.rtol, self.atol, self.net, self.tier, self.tab, self.perf,
-            self.tr, steps, t_end)
+            self.tr, steps, t_end, self.stops_rad)
         self.nfev += nf
         return y, samples, rec, n_rec, status
 
@@ -583,7 +588,9 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
                            fid.rtol * np.array([omega0, 1.0, 1.0, 1.0, 1e3, 1e3, 1e3, 1.0, 1.0])])
     sc = tables.tr.sc
     turns = TurnRunner(_turn_integrator(method, network), network, net, steam.kernel_tier, tab,
-                       perf, tables.tr, fid.rtol, atol)
+                       perf, tables.tr, fid.rtol, atol,
+                       stops_rad=(np.array(network.schedule_stops, dtype=float)
+                                  if marks is not None else None))
     # warm-up: speed and governor held, time held at zero
     announce_compile(turn=method)
     sc[loop.S_FREEZE] = 1.0
@@ -724,10 +731,11 @@ def _turn_integrator(method: str, network) -> Callable:
     color, owner = network.column_colors()
     tableau = ROS_TABLEAUS[method]
 
-    def turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, record, t_end):
+    def turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, record, t_end,
+             inner=None):
         return rosenbrock.integrate_turn_ros(y0, th0, out_theta, rtol, atol,
                                              Physics(net, tier, tab, perf), tr, record, t_end,
-                                             color, owner, Tableau(*tableau))
+                                             color, owner, Tableau(*tableau), inner)
     return turn
 
 
