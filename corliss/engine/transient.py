@@ -34,6 +34,7 @@ from corliss.engine.kernels.stepping import MAX_RHS_PER_CYCLE
 from corliss.engine.kernels.tableaus import ROS_TABLEAUS
 from corliss.engine.condensation import wall_schedule
 from corliss.engine.crank_resolved import budget_message
+from corliss.engine.leak_paths import SettingLeakScales
 from corliss.engine.model import assemble, build_network
 from corliss.engine.network import Network, throttle_area_m2
 from corliss.governors.operating_point import (BALANCED, LOAD_TOO_HEAVY, SURPLUS_TOL,
@@ -318,6 +319,94 @@ def build_tables(scene, net, gear, geo) -> LoopTables:
 
 
 @dataclass
+class GovernedEdgeLeaks:
+    """The period law's valve-edge leaks of the cylinders a governor sets, their scales
+    following the setting turn by turn.
+
+    An edge leaks the reference valve's rate times its scale, the port's length over
+    the reference's and the reference's face width over the edge's mean overlap while
+    closed (:mod:`corliss.engine.leak_paths`), both of which the setting moves.  Each
+    turn takes the scales at the setting the governor stands at when it starts, read
+    between the loop's tabulated settings as its port areas are; within the turn they
+    stay (the leak is a small flow, the setting's change in a turn small).
+
+    Parameters
+    ----------
+    scales : SettingLeakScales
+        The governed gear's scales over the loop's setting grid.
+    edges : list of tuple
+        ``(edge, port, rate)`` of each governed edge's leak: its index, its port and
+        the reference rate [kg/(s Pa)] (:attr:`corliss.engine.network.Network.edge_leaks`).
+    sc : numpy.ndarray
+        The loop's scalars (the actuator's range and safety cams, ``S_*``).
+    """
+
+    scales: SettingLeakScales
+    edges: list
+    sc: np.ndarray
+
+    def setting(self, z: float) -> float:
+        """The gear's setting with the governor at ``z``, as the loop finds it.
+
+        Parameters
+        ----------
+        z : float
+            The governor's coordinate [-].
+
+        Returns
+        -------
+        float
+            The actuator's value, the gear's setting [-].
+        """
+        sc = self.sc
+        zc = min(max(z, 0.0), 1.0)
+        if zc < sc[loop.S_SAFE_Z]:
+            return float(sc[loop.S_SAFE_A])
+        return float(sc[loop.S_A0] + (sc[loop.S_A1] - sc[loop.S_A0]) * zc)
+
+    def apply(self, z: float, edge_area: np.ndarray) -> None:
+        """Set each governed edge's rate for the setting at ``z``.
+
+        Parameters
+        ----------
+        z : float
+            The governor's coordinate [-].
+        edge_area : numpy.ndarray
+            The compiled network's edge areas (a linear edge's is its rate of leak
+            [kg/(s Pa)]), written in place.
+        """
+        scale = self.scales.at(self.setting(z))
+        for e, port, rate in self.edges:
+            edge_area[e] = rate * scale[port]
+
+
+def governed_edge_leaks(network: Network, tables: LoopTables) -> GovernedEdgeLeaks | None:
+    """The edge leaks a governed gear's setting moves, or None.
+
+    Parameters
+    ----------
+    network : Network
+        The run's network (its :attr:`~corliss.engine.network.Network.edge_leaks`).
+    tables : LoopTables
+        The loop's tables: the governed gear, the setting grid and the governed
+        cylinders.
+
+    Returns
+    -------
+    GovernedEdgeLeaks or None
+        None without a governed gear or without edge leaks on a governed cylinder.
+    """
+    if tables.governed_gear is None or tables.setting_grid is None:
+        return None
+    edges = [(e, port, rate) for e, c, port, rate in network.edge_leaks
+             if tables.tr.governed[c]]
+    if not edges:
+        return None
+    return GovernedEdgeLeaks(SettingLeakScales(tables.governed_gear, tables.setting_grid),
+                             edges, tables.tr.sc)
+
+
+@dataclass
 class TurnRunner:
     """The compiled turn of one transient run, with everything it reads: the network's,
     the steam table's and the loop's arrays, the tolerances, and the evaluations counted.
@@ -349,6 +438,9 @@ class TurnRunner:
         Shaft angles [rad] where each turn restarts its step: a wall-heat schedule's
         switches (:attr:`corliss.engine.network.Network.schedule_stops`); None for
         none (:func:`corliss.engine.kernels.loop.turn_stops`).
+    edge_leaks : GovernedEdgeLeaks or None
+        The valve-edge leaks whose scales follow the governed gear's setting, set
+        at each turn's start (None: the scene's setting's, as built).
     """
 
     integrate: Callable
@@ -362,6 +454,7 @@ class TurnRunner:
     atol: np.ndarray
     nfev: int = 0
     stops_rad: np.ndarray | None = None
+    edge_leaks: GovernedEdgeLeaks | None = None
 
     def turn(self, y: np.ndarray, th0: float, out_theta: np.ndarray, steps: bool,
              t_end: float) -> tuple:
@@ -387,6 +480,9 @@ class TurnRunner:
             the samples at ``out_theta``, the steps recorded and their count, and the
             status (0 a whole turn, 2 stalled or ``t_end``, 1 failed, 4 over budget).
         """
+        if self.edge_leaks is not None:
+            self.edge_leaks.apply(float(y[self.network.n_state + loop.X_Z]),
+                                  self.net.edge_area)
         y, samples, rec, n_rec, nf, status = self.integrate(
             y, th0, out_theta, self.rtol, self.atol, self.net, self.tier, self.tab, self.perf,
             self.tr, steps, t_end, self.stops_rad)
@@ -590,7 +686,8 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
     turns = TurnRunner(_turn_integrator(method, network), network, net, steam.kernel_tier, tab,
                        perf, tables.tr, fid.rtol, atol,
                        stops_rad=(np.array(network.schedule_stops, dtype=float)
-                                  if marks is not None else None))
+                                  if marks is not None else None),
+                       edge_leaks=governed_edge_leaks(network, tables))
     # warm-up: speed and governor held, time held at zero
     announce_compile(turn=method)
     sc[loop.S_FREEZE] = 1.0
@@ -841,6 +938,9 @@ def _cycle_row(k: int, y0: np.ndarray, y: np.ndarray, network, tables: LoopTable
            "governor_z_frac": y[nn + loop.X_ZDT] / dt, "governor_z_end_frac": y[nn + loop.X_Z]}
     totals = network.boundary_totals(y)
     row["m_supply_kg"] = totals["m_supply_kg"]
+    for name, e in network.leak_edges():
+        # each leakage path's mass over the turn, from its side a to its side b
+        row[f"m_{name}_kg"] = y[network.i_edge_mass(e)]
     row["steam_rate_kg_per_h"] = totals["m_supply_kg"] / dt * 3600.0
     for i in (i for i, h in enumerate(network.node_heat) if h[H_MODEL] != WALL_NONE):
         # each end's heat over the turn: into the steam, and taken by the wall
