@@ -318,6 +318,76 @@ def build_tables(scene, net, gear, geo) -> LoopTables:
                       z0, mech)
 
 
+def setting_at(sc: np.ndarray, z: float) -> float:
+    """The governor's actuator value at ``z``, as the loop finds it
+    (:func:`corliss.engine.kernels.loop.transient_rhs`): a gear's setting.
+
+    Parameters
+    ----------
+    sc : numpy.ndarray
+        The loop's scalars (the actuator's range and safety cams, ``S_*``).
+    z : float
+        The governor's coordinate [-].
+
+    Returns
+    -------
+    float
+        The actuator's value [-].
+    """
+    zc = min(max(z, 0.0), 1.0)
+    if zc < sc[loop.S_SAFE_Z]:
+        return float(sc[loop.S_SAFE_A])
+    return float(sc[loop.S_A0] + (sc[loop.S_A1] - sc[loop.S_A0]) * zc)
+
+
+@dataclass
+class GovernedSchedule:
+    """A period law's schedule (:class:`~corliss.engine.condensation.ScheduledWallHeat`)
+    whose windows follow a governed gear's setting turn by turn.
+
+    Each turn takes the events of the gear at the setting the governor stands at when
+    it starts (:func:`corliss.valves.events` of the gear at that setting, as the turn's
+    row reports its cut-off), its rows and the turn's stops from them; within the turn
+    they stay.  A compound's LP gear is not governed: its ends keep their events.
+
+    Parameters
+    ----------
+    schedule : ScheduledWallHeat
+        The run's schedule.
+    gear : ValveGear
+        The governed gear.
+    frac : callable
+        Crank angle [rad] -> piston position as a fraction of the stroke [-].
+    sc : numpy.ndarray
+        The loop's scalars (:func:`setting_at`).
+    """
+
+    schedule: object
+    gear: ValveGear
+    frac: Callable
+    sc: np.ndarray
+
+    def apply(self, z: float, heat: np.ndarray) -> np.ndarray:
+        """Set the schedule's events and rows for the setting at ``z``.
+
+        Parameters
+        ----------
+        z : float
+            The governor's coordinate [-].
+        heat : numpy.ndarray
+            The compiled network's wall-heat rows, written in place.
+
+        Returns
+        -------
+        numpy.ndarray
+            The turn's stops, the schedule's switches as shaft angles [rad].
+        """
+        self.schedule.set_events(gear_events(self.gear.with_setting(setting_at(self.sc, z)),
+                                             self.frac))
+        self.schedule.apply(heat)
+        return np.array(self.schedule.stops_rad(), dtype=float)
+
+
 @dataclass
 class GovernedEdgeLeaks:
     """The period law's valve-edge leaks of the cylinders a governor sets, their scales
@@ -345,25 +415,6 @@ class GovernedEdgeLeaks:
     edges: list
     sc: np.ndarray
 
-    def setting(self, z: float) -> float:
-        """The gear's setting with the governor at ``z``, as the loop finds it.
-
-        Parameters
-        ----------
-        z : float
-            The governor's coordinate [-].
-
-        Returns
-        -------
-        float
-            The actuator's value, the gear's setting [-].
-        """
-        sc = self.sc
-        zc = min(max(z, 0.0), 1.0)
-        if zc < sc[loop.S_SAFE_Z]:
-            return float(sc[loop.S_SAFE_A])
-        return float(sc[loop.S_A0] + (sc[loop.S_A1] - sc[loop.S_A0]) * zc)
-
     def apply(self, z: float, edge_area: np.ndarray) -> None:
         """Set each governed edge's rate for the setting at ``z``.
 
@@ -375,7 +426,7 @@ class GovernedEdgeLeaks:
             The compiled network's edge areas (a linear edge's is its rate of leak
             [kg/(s Pa)]), written in place.
         """
-        scale = self.scales.at(self.setting(z))
+        scale = self.scales.at(setting_at(self.sc, z))
         for e, port, rate in self.edges:
             edge_area[e] = rate * scale[port]
 
@@ -441,6 +492,9 @@ class TurnRunner:
     edge_leaks : GovernedEdgeLeaks or None
         The valve-edge leaks whose scales follow the governed gear's setting, set
         at each turn's start (None: the scene's setting's, as built).
+    schedule : GovernedSchedule or None
+        A period law's schedule whose windows follow the governed gear's setting, its
+        rows and :attr:`stops_rad` set at each turn's start (None: they stay).
     """
 
     integrate: Callable
@@ -455,6 +509,7 @@ class TurnRunner:
     nfev: int = 0
     stops_rad: np.ndarray | None = None
     edge_leaks: GovernedEdgeLeaks | None = None
+    schedule: GovernedSchedule | None = None
 
     def turn(self, y: np.ndarray, th0: float, out_theta: np.ndarray, steps: bool,
              t_end: float) -> tuple:
@@ -480,9 +535,11 @@ class TurnRunner:
             the samples at ``out_theta``, the steps recorded and their count, and the
             status (0 a whole turn, 2 stalled or ``t_end``, 1 failed, 4 over budget).
         """
+        z = float(y[self.network.n_state + loop.X_Z])
         if self.edge_leaks is not None:
-            self.edge_leaks.apply(float(y[self.network.n_state + loop.X_Z]),
-                                  self.net.edge_area)
+            self.edge_leaks.apply(z, self.net.edge_area)
+        if self.schedule is not None:
+            self.stops_rad = self.schedule.apply(z, self.net.heat)
         y, samples, rec, n_rec, nf, status = self.integrate(
             y, th0, out_theta, self.rtol, self.atol, self.net, self.tier, self.tab, self.perf,
             self.tr, steps, t_end, self.stops_rad)
@@ -667,8 +724,8 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
     # its own cylinder's geometry, events and phase, a compound's LP ends from the LP
     # gear's, as on a steady run), with the supply's saturation temperature as the first
     # cut-off temperature, then each end's steam at its cut-off in the warm-up turns (and
-    # in the turns sampled every degree); the heat follows the speed turn by turn, but not
-    # a governor's moving cut-off (the windows stay the start's)
+    # in the turns sampled every degree); the heat follows the speed turn by turn, and a
+    # governed gear's windows its setting at each turn's start (GovernedSchedule)
     marks = wall_schedule(scene, network, geo, model.events, run.speed_rad_s, chest.T, exhaust.T,
                           lp_events=model.lp_events)
     if marks is not None:
@@ -687,7 +744,11 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
                        perf, tables.tr, fid.rtol, atol,
                        stops_rad=(np.array(network.schedule_stops, dtype=float)
                                   if marks is not None else None),
-                       edge_leaks=governed_edge_leaks(network, tables))
+                       edge_leaks=governed_edge_leaks(network, tables),
+                       schedule=(GovernedSchedule(marks, tables.governed_gear,
+                                                  lambda t: float(geo.fraction(t)), tables.tr.sc)
+                                 if marks is not None and tables.governed_gear is not None
+                                 else None))
     # warm-up: speed and governor held, time held at zero
     announce_compile(turn=method)
     sc[loop.S_FREEZE] = 1.0
