@@ -27,6 +27,10 @@ scene (8 in ports; its head end's steam edge covered by 2.11 in on the mean whil
 closed), the engine Callendar and Nicolson measured 3 lb/h per lbf/in2 on (their
 valve's own dimensions are not in the report; the scene's are a plain slide valve
 set to their cut-off): a scene of that engine leaks the rate it names.
+
+A governor that moves the gear's setting moves both ``l`` (a gear whose opening's
+edge changes with it) and ``w`` (the valve's travel): a governed transient run takes
+each turn the scales at the setting it starts at (:class:`SettingLeakScales`).
 """
 
 from __future__ import annotations
