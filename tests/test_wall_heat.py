@@ -163,8 +163,7 @@ def test_marks_law_on_a_compound_transient_returns_each_ends_heat_over_a_turn(me
     (the step's last stages read the next window at random, by a rounding of the shaft
     angle).  rodas4: under 5e-5; with the stops the ends net up to 2.7e-5, the same in
     every turn and proportional to rtol (2.3e-7 at 1e-8): the method's own error on
-    the quadrature, through the finite-difference Jacobian's crank-angle derivative;
-    without them up to 1.45e-4.  The heat taken within 1 % of the steady run's: the two differ by
+    the heat's quadrature; without them up to 1.45e-4.  The heat taken within 1 % of the steady run's: the two differ by
     the speed's swing within the turn and the receiver's not yet periodic state after
     ten turns (6e-4 measured)."""
     data = _marks_compound_data()
