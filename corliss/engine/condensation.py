@@ -409,7 +409,7 @@ class ScheduledWallHeat:
             Each kept end's admission, cut-off and compression, as shaft angles in
             [0, 2 pi) [rad] (the cylinder's own angle less its phase).
         """
-        out = []
+        out: list[float] = []
         for i, end in self.ends:
             _, ev, phase = self._end(i, end)
             out.extend((math.radians(ev[k]) - phase) % (2 * math.pi)

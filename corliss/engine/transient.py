@@ -32,7 +32,7 @@ from corliss.engine.kernels.data import (H_MODEL, TRIP_AREA, TRIP_CLOSING, TRIP_
                                          Physics, Tableau)
 from corliss.engine.kernels.stepping import MAX_RHS_PER_CYCLE
 from corliss.engine.kernels.tableaus import ROS_TABLEAUS
-from corliss.engine.condensation import wall_schedule
+from corliss.engine.condensation import ScheduledWallHeat, wall_schedule
 from corliss.engine.crank_resolved import budget_message
 from corliss.engine.leak_paths import SettingLeakScales
 from corliss.engine.model import assemble, build_network
@@ -362,7 +362,7 @@ class GovernedSchedule:
         The loop's scalars (:func:`setting_at`).
     """
 
-    schedule: object
+    schedule: ScheduledWallHeat
     gear: ValveGear
     frac: Callable
     sc: np.ndarray
