@@ -385,10 +385,11 @@ def test_throttled_steam_lifts_the_missing_water_with_the_initial_pressure_as_wi
     (``_willans_run``).  Throttled from 115 psia, his steam is superheated by 21.6 K at 40
     psia, 4.2 K at 90 and 0.7 K at 110 (``_throttled``, HEOS): at 40 psia the superheat
     keeps the steam off the wall (of superheating, Lineham p. 885: "a 5 % extra heat
-    supply will often eliminate a 20 % loss"), so on his conditions the water missing at cut-off without
-    leakage rises with the pressure (0.003, 0.074, 0.078 of the steam here) and the
-    missing water of the feed with the leak rises too (0.225, 0.270, 0.272), the
-    direction he found.  Both runs must be periodic and each of the higher pressures
+    supply will often eliminate a 20 % loss"), so on his conditions the water missing
+    at cut-off without leakage rises with the pressure (0.003, 0.074, 0.078 of the
+    steam here) and the missing water of the feed with the leak rises too (0.225,
+    0.270, 0.272), the direction he found (the sign only: his level and expansion were
+    not found).  Both runs must be periodic and each of the higher pressures
     must lose more than the 40 psia point; the same runs on dry saturated steam fall
     (0.147, 0.090, 0.079 alone; 0.312, 0.280, 0.272 with the leak).  The size is held
     by the strict xfail below."""
