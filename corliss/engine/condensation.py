@@ -389,11 +389,7 @@ class ScheduledWallHeat:
         # the integrators restart where a window opens or shuts, as at the ports'
         # kinks: a switch inside a step is integrated to the step's error only, and
         # the heat taken and given back would not balance to round-off
-        for i, end in self.ends:
-            _, ev, phase = self._end(i, end)
-            network.schedule_stops.extend(
-                (math.radians(ev[k]) - phase) % (2 * math.pi)
-                for k in ("admission_deg", "cutoff_deg", "compression_deg") if ev[k] is not None)
+        network.schedule_stops.extend(self.stops_rad())
         if self.ends:
             log.warning("wall_heat_model = \"%s\" imposes %s heat as a schedule, "
                         "whatever the steam's temperature: the heat given back after release "
@@ -403,6 +399,36 @@ class ScheduledWallHeat:
 
     #: What the law's heat is, for the warning.
     what = ""
+
+    def stops_rad(self) -> list[float]:
+        """The shaft angles where the schedule's windows open or shut.
+
+        Returns
+        -------
+        list of float
+            Each kept end's admission, cut-off and compression, as shaft angles in
+            [0, 2 pi) [rad] (the cylinder's own angle less its phase).
+        """
+        out: list[float] = []
+        for i, end in self.ends:
+            _, ev, phase = self._end(i, end)
+            out.extend((math.radians(ev[k]) - phase) % (2 * math.pi)
+                       for k in ("admission_deg", "cutoff_deg", "compression_deg")
+                       if ev[k] is not None)
+        return out
+
+    def set_events(self, events: dict) -> None:
+        """Take the (first or high-pressure) gear's events at another setting.
+
+        The rows (:meth:`rows`, :meth:`apply`) and the stops (:meth:`stops_rad`) then
+        follow them; a compound's LP ends keep their own gear's.
+
+        Parameters
+        ----------
+        events : dict
+            Valve events by end (``"head"``, ``"crank"``), as :func:`schedule_row` reads.
+        """
+        self.events = events
 
     @staticmethod
     def latent(T: float) -> float:

@@ -27,6 +27,10 @@ scene (8 in ports; its head end's steam edge covered by 2.11 in on the mean whil
 closed), the engine Callendar and Nicolson measured 3 lb/h per lbf/in2 on (their
 valve's own dimensions are not in the report; the scene's are a plain slide valve
 set to their cut-off): a scene of that engine leaks the rate it names.
+
+A governor that moves the gear's setting moves both ``l`` (a gear whose opening's
+edge changes with it) and ``w`` (the valve's travel): a governed transient run takes
+each turn the scales at the setting it starts at (:class:`SettingLeakScales`).
 """
 
 from __future__ import annotations
@@ -86,3 +90,52 @@ def edge_leak_scales(gear) -> np.ndarray:
     length = np.asarray(gear.port_lengths(), dtype=float)
     scale = (length / REFERENCE_PORT_LENGTH_M) * (REFERENCE_FACE_WIDTH_M / w)
     return np.where(np.isfinite(scale), scale, 0.0)
+
+
+class SettingLeakScales:
+    """A governed gear's edge scales (:func:`edge_leak_scales`) over its settings.
+
+    Found at each of the loop's tabulated settings when first needed (each costs the
+    gear's openings over a turn) and read linearly between them, as the loop reads
+    its port areas over the same grid (clamped to the grid's ends).
+
+    Parameters
+    ----------
+    gear : ValveGear
+        The governed gear.
+    settings : ndarray
+        The settings tabulated [-], uniform and increasing (the loop's setting grid).
+    """
+
+    def __init__(self, gear, settings):
+        self.gear = gear
+        self.settings = np.asarray(settings, dtype=float)
+        self.values = np.full((self.settings.size, 4), np.nan)
+
+    def _row(self, j: int) -> np.ndarray:
+        if np.isnan(self.values[j, 0]):
+            self.values[j] = edge_leak_scales(self.gear.with_setting(float(self.settings[j])))
+        return self.values[j]
+
+    def at(self, setting: float) -> np.ndarray:
+        """Each port's scale at a setting, linear between the tabulated settings.
+
+        Parameters
+        ----------
+        setting : float
+            The gear's setting [-]; beyond the table, its end's.
+
+        Returns
+        -------
+        ndarray
+            ``(l / l_ref) (w_ref / w)`` for each port in
+            :data:`~corliss.valves.gear.PORTS` order [-], shape ``(4,)``.
+        """
+        n = self.settings.size
+        if n < 2:
+            return self._row(0).copy()
+        s0, s1 = self.settings[0], self.settings[-1]
+        f = min(max((setting - s0) / (s1 - s0) * (n - 1), 0.0), n - 1.0)
+        k = min(int(f), n - 2)
+        w = f - k
+        return (1.0 - w) * self._row(k) + w * self._row(k + 1)

@@ -235,7 +235,8 @@ def build_network(scene, geo, pm, steam: Steam, chest: State, exhaust: State) ->
         scales = None
         if eng.steam_edge_leak_rate_kg_s_Pa or eng.exhaust_edge_leak_rate_kg_s_Pa:
             # each edge's share by its port's length and face's width, at the
-            # scene's setting (corliss.engine.leak_paths)
+            # scene's setting (corliss.engine.leak_paths); a governed transient run
+            # sets the governed gear's turn by turn (transient.GovernedEdgeLeaks)
             gears = [build_gear(scene)] + ([build_lp_gear(scene)] if scene.compound else [])
             scales = [edge_leak_scales(g) for g in gears]
             scales += [scales[0]] * (len(net.geometries) - len(scales))

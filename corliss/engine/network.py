@@ -115,6 +115,12 @@ class Network:
         Shaft angles [rad] where a wall-heat schedule switches (Marks's or English's
         law, :class:`corliss.engine.condensation.ScheduledWallHeat`), stops of the
         integrators as the ports' kinks are (:meth:`stops`).
+    edge_leaks : list of tuple
+        The period law's leaks past a closed valve edge
+        (:func:`with_period_leakage`): ``(edge, cylinder, port, rate)``, the rate of
+        the reference valve [kg/(s Pa)] that the edge's scale multiplies
+        (:func:`corliss.engine.leak_paths.edge_leak_scales`), so that a governed run can
+        set the scale for the gear's setting turn by turn.
     """
 
     omega: float
@@ -145,6 +151,8 @@ class Network:
     wall_T: np.ndarray | None = None
     #: so that no switch of a schedule falls inside a step
     schedule_stops: list[float] = field(default_factory=list)
+    #: (edge, cylinder, port, reference rate [kg/(s Pa)]) of each valve edge's leak
+    edge_leaks: list[tuple] = field(default_factory=list)
 
     # --- building -----------------------------------------------------------------
     def add_node(self, name, kind, init, cyl=-1, end=-1, volume=0.0) -> int:
@@ -949,16 +957,18 @@ def with_period_leakage(net: Network, valve_rate_kg_s_Pa: float,
             continue
         c, port, node = net.e_cyl[e], net.e_port[e], net.e_b[e]
         steam = port % 2 == 0
-        rate = steam_edge_rate_kg_s_Pa if steam else exhaust_edge_rate_kg_s_Pa
-        rate *= 1.0 if edge_scales is None else float(edge_scales[c][port])
+        reference = steam_edge_rate_kg_s_Pa if steam else exhaust_edge_rate_kg_s_Pa
+        rate = reference * (1.0 if edge_scales is None else float(edge_scales[c][port]))
         if rate <= 0.0 or net.node_end[node] in idle_ends:
             continue
         name = net.node_names[node]
         if steam:
-            net.add_edge(f"valve_leak_{name}", net.e_a[e], node, 1.0, LINEAR_EDGE, area=rate)
+            k = net.add_edge(f"valve_leak_{name}", net.e_a[e], node, 1.0, LINEAR_EDGE,
+                             area=rate)
         else:
-            net.add_edge(f"valve_leak_{name}_exhaust", node, net.e_a[e], 1.0, LINEAR_EDGE,
-                         area=rate)
+            k = net.add_edge(f"valve_leak_{name}_exhaust", node, net.e_a[e], 1.0,
+                             LINEAR_EDGE, area=rate)
+        net.edge_leaks.append((k, c, port, reference))
     src = net.node("chest") if "chest" in net.node_names else reservoir(0)
     if valve_rate_kg_s_Pa > 0.0:
         if "receiver" in net.node_names:

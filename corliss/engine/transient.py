@@ -32,8 +32,9 @@ from corliss.engine.kernels.data import (H_MODEL, TRIP_AREA, TRIP_CLOSING, TRIP_
                                          Physics, Tableau)
 from corliss.engine.kernels.stepping import MAX_RHS_PER_CYCLE
 from corliss.engine.kernels.tableaus import ROS_TABLEAUS
-from corliss.engine.condensation import wall_schedule
+from corliss.engine.condensation import ScheduledWallHeat, wall_schedule
 from corliss.engine.crank_resolved import budget_message
+from corliss.engine.leak_paths import SettingLeakScales
 from corliss.engine.model import assemble, build_network
 from corliss.engine.network import Network, throttle_area_m2
 from corliss.governors.operating_point import (BALANCED, LOAD_TOO_HEAVY, SURPLUS_TOL,
@@ -317,6 +318,145 @@ def build_tables(scene, net, gear, geo) -> LoopTables:
                       z0, mech)
 
 
+def setting_at(sc: np.ndarray, z: float) -> float:
+    """The governor's actuator value at ``z``, as the loop finds it
+    (:func:`corliss.engine.kernels.loop.transient_rhs`): a gear's setting.
+
+    Parameters
+    ----------
+    sc : numpy.ndarray
+        The loop's scalars (the actuator's range and safety cams, ``S_*``).
+    z : float
+        The governor's coordinate [-].
+
+    Returns
+    -------
+    float
+        The actuator's value [-].
+    """
+    zc = min(max(z, 0.0), 1.0)
+    if zc < sc[loop.S_SAFE_Z]:
+        return float(sc[loop.S_SAFE_A])
+    return float(sc[loop.S_A0] + (sc[loop.S_A1] - sc[loop.S_A0]) * zc)
+
+
+@dataclass
+class GovernedSchedule:
+    """A period law's schedule (:class:`~corliss.engine.condensation.ScheduledWallHeat`)
+    whose windows follow a governed gear's setting turn by turn.
+
+    Each turn takes the events of the gear at the setting the governor stands at when
+    it starts (:func:`corliss.valves.events` of the gear at that setting, as the turn's
+    row reports its cut-off), its rows and the turn's stops from them; within the turn
+    they stay.  A compound's LP gear is not governed: its ends keep their events.
+
+    Parameters
+    ----------
+    schedule : ScheduledWallHeat
+        The run's schedule.
+    gear : ValveGear
+        The governed gear.
+    frac : callable
+        Crank angle [rad] -> piston position as a fraction of the stroke [-].
+    sc : numpy.ndarray
+        The loop's scalars (:func:`setting_at`).
+    """
+
+    schedule: ScheduledWallHeat
+    gear: ValveGear
+    frac: Callable
+    sc: np.ndarray
+
+    def apply(self, z: float, heat: np.ndarray) -> np.ndarray:
+        """Set the schedule's events and rows for the setting at ``z``.
+
+        Parameters
+        ----------
+        z : float
+            The governor's coordinate [-].
+        heat : numpy.ndarray
+            The compiled network's wall-heat rows, written in place.
+
+        Returns
+        -------
+        numpy.ndarray
+            The turn's stops, the schedule's switches as shaft angles [rad].
+        """
+        self.schedule.set_events(gear_events(self.gear.with_setting(setting_at(self.sc, z)),
+                                             self.frac))
+        self.schedule.apply(heat)
+        return np.array(self.schedule.stops_rad(), dtype=float)
+
+
+@dataclass
+class GovernedEdgeLeaks:
+    """The period law's valve-edge leaks of the cylinders a governor sets, their scales
+    following the setting turn by turn.
+
+    An edge leaks the reference valve's rate times its scale, the port's length over
+    the reference's and the reference's face width over the edge's mean overlap while
+    closed (:mod:`corliss.engine.leak_paths`), both of which the setting moves.  Each
+    turn takes the scales at the setting the governor stands at when it starts, read
+    between the loop's tabulated settings as its port areas are; within the turn they
+    stay (the leak is a small flow, the setting's change in a turn small).
+
+    Parameters
+    ----------
+    scales : SettingLeakScales
+        The governed gear's scales over the loop's setting grid.
+    edges : list of tuple
+        ``(edge, port, rate)`` of each governed edge's leak: its index, its port and
+        the reference rate [kg/(s Pa)] (:attr:`corliss.engine.network.Network.edge_leaks`).
+    sc : numpy.ndarray
+        The loop's scalars (the actuator's range and safety cams, ``S_*``).
+    """
+
+    scales: SettingLeakScales
+    edges: list
+    sc: np.ndarray
+
+    def apply(self, z: float, edge_area: np.ndarray) -> None:
+        """Set each governed edge's rate for the setting at ``z``.
+
+        Parameters
+        ----------
+        z : float
+            The governor's coordinate [-].
+        edge_area : numpy.ndarray
+            The compiled network's edge areas (a linear edge's is its rate of leak
+            [kg/(s Pa)]), written in place.
+        """
+        scale = self.scales.at(setting_at(self.sc, z))
+        for e, port, rate in self.edges:
+            edge_area[e] = rate * scale[port]
+
+
+def governed_edge_leaks(network: Network, tables: LoopTables) -> GovernedEdgeLeaks | None:
+    """The edge leaks a governed gear's setting moves, or None.
+
+    Parameters
+    ----------
+    network : Network
+        The run's network (its :attr:`~corliss.engine.network.Network.edge_leaks`).
+    tables : LoopTables
+        The loop's tables: the governed gear, the setting grid and the governed
+        cylinders.
+
+    Returns
+    -------
+    GovernedEdgeLeaks or None
+        None without a governed gear or without edge leaks on a governed cylinder.
+    """
+    if tables.governed_gear is None or tables.setting_grid is None:
+        return None
+    edges = [(e, port, rate) for e, c, port, rate in network.edge_leaks
+             if tables.tr.governed[c]]
+    if not edges:
+        return None
+    return GovernedEdgeLeaks(SettingLeakScales(tables.governed_gear, tables.setting_grid),
+                             edges, tables.tr.sc)
+
+
 @dataclass
 class TurnRunner:
     """The compiled turn of one transient run, with everything it reads: the network's,
@@ -345,6 +485,16 @@ class TurnRunner:
         Absolute tolerance of each state [its unit].
     nfev : int
         Right-hand-side evaluations so far.
+    stops_rad : numpy.ndarray or None
+        Shaft angles [rad] where each turn restarts its step: a wall-heat schedule's
+        switches (:attr:`corliss.engine.network.Network.schedule_stops`); None for
+        none (:func:`corliss.engine.kernels.loop.turn_stops`).
+    edge_leaks : GovernedEdgeLeaks or None
+        The valve-edge leaks whose scales follow the governed gear's setting, set
+        at each turn's start (None: the scene's setting's, as built).
+    schedule : GovernedSchedule or None
+        A period law's schedule whose windows follow the governed gear's setting, its
+        rows and :attr:`stops_rad` set at each turn's start (None: they stay).
     """
 
     integrate: Callable
@@ -357,6 +507,9 @@ class TurnRunner:
     rtol: float
     atol: np.ndarray
     nfev: int = 0
+    stops_rad: np.ndarray | None = None
+    edge_leaks: GovernedEdgeLeaks | None = None
+    schedule: GovernedSchedule | None = None
 
     def turn(self, y: np.ndarray, th0: float, out_theta: np.ndarray, steps: bool,
              t_end: float) -> tuple:
@@ -382,9 +535,14 @@ class TurnRunner:
             the samples at ``out_theta``, the steps recorded and their count, and the
             status (0 a whole turn, 2 stalled or ``t_end``, 1 failed, 4 over budget).
         """
+        z = float(y[self.network.n_state + loop.X_Z])
+        if self.edge_leaks is not None:
+            self.edge_leaks.apply(z, self.net.edge_area)
+        if self.schedule is not None:
+            self.stops_rad = self.schedule.apply(z, self.net.heat)
         y, samples, rec, n_rec, nf, status = self.integrate(
             y, th0, out_theta, self.rtol, self.atol, self.net, self.tier, self.tab, self.perf,
-            self.tr, steps, t_end)
+            self.tr, steps, t_end, self.stops_rad)
         self.nfev += nf
         return y, samples, rec, n_rec, status
 
@@ -566,8 +724,8 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
     # its own cylinder's geometry, events and phase, a compound's LP ends from the LP
     # gear's, as on a steady run), with the supply's saturation temperature as the first
     # cut-off temperature, then each end's steam at its cut-off in the warm-up turns (and
-    # in the turns sampled every degree); the heat follows the speed turn by turn, but not
-    # a governor's moving cut-off (the windows stay the start's)
+    # in the turns sampled every degree); the heat follows the speed turn by turn, and a
+    # governed gear's windows its setting at each turn's start (GovernedSchedule)
     marks = wall_schedule(scene, network, geo, model.events, run.speed_rad_s, chest.T, exhaust.T,
                           lp_events=model.lp_events)
     if marks is not None:
@@ -583,7 +741,14 @@ def run_transient(scene, *, progress: Callable[[float, float], None] | None = No
                            fid.rtol * np.array([omega0, 1.0, 1.0, 1.0, 1e3, 1e3, 1e3, 1.0, 1.0])])
     sc = tables.tr.sc
     turns = TurnRunner(_turn_integrator(method, network), network, net, steam.kernel_tier, tab,
-                       perf, tables.tr, fid.rtol, atol)
+                       perf, tables.tr, fid.rtol, atol,
+                       stops_rad=(np.array(network.schedule_stops, dtype=float)
+                                  if marks is not None else None),
+                       edge_leaks=governed_edge_leaks(network, tables),
+                       schedule=(GovernedSchedule(marks, tables.governed_gear,
+                                                  lambda t: float(geo.fraction(t)), tables.tr.sc)
+                                 if marks is not None and tables.governed_gear is not None
+                                 else None))
     # warm-up: speed and governor held, time held at zero
     announce_compile(turn=method)
     sc[loop.S_FREEZE] = 1.0
@@ -724,10 +889,11 @@ def _turn_integrator(method: str, network) -> Callable:
     color, owner = network.column_colors()
     tableau = ROS_TABLEAUS[method]
 
-    def turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, record, t_end):
+    def turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, record, t_end,
+             inner=None):
         return rosenbrock.integrate_turn_ros(y0, th0, out_theta, rtol, atol,
                                              Physics(net, tier, tab, perf), tr, record, t_end,
-                                             color, owner, Tableau(*tableau))
+                                             color, owner, Tableau(*tableau), inner)
     return turn
 
 
@@ -833,6 +999,9 @@ def _cycle_row(k: int, y0: np.ndarray, y: np.ndarray, network, tables: LoopTable
            "governor_z_frac": y[nn + loop.X_ZDT] / dt, "governor_z_end_frac": y[nn + loop.X_Z]}
     totals = network.boundary_totals(y)
     row["m_supply_kg"] = totals["m_supply_kg"]
+    for name, e in network.leak_edges():
+        # each leakage path's mass over the turn, from its side a to its side b
+        row[f"m_{name}_kg"] = y[network.i_edge_mass(e)]
     row["steam_rate_kg_per_h"] = totals["m_supply_kg"] / dt * 3600.0
     for i in (i for i, h in enumerate(network.node_heat) if h[H_MODEL] != WALL_NONE):
         # each end's heat over the turn: into the steam, and taken by the wall

@@ -18,7 +18,7 @@ from corliss.engine.kernels.compiled import njit
 from corliss.engine.kernels.data import DopriScratch, LoopTurn, Physics, StepControl
 from corliss.engine.kernels.loop import (N_EXTRA, N_REC, S_MAX_RHS, S_WMIN, X_OMEGA,
                                          _turn_end, _visited_clamps, transient_rhs,
-                                         turn_accepted, turn_start)
+                                         turn_accepted, turn_restart, turn_start, turn_stops)
 from corliss.engine.kernels.mechanism import TWO_PI
 from corliss.engine.kernels.properties import PR_ROWS
 from corliss.engine.kernels.stepping import (copy_into, emit_samples, initial_step,
@@ -106,9 +106,11 @@ def _dopri5_steps(y, samples, stops, out_theta, ctl, phys, scratch, cycle, turn)
     from :func:`initial_step` (or the last segment's step), a step whose end needed the
     properties clamped retried shorter, and no more.  A turn (``cycle`` None, ``turn``
     the loop's :class:`~corliss.engine.kernels.data.LoopTurn`): one segment (``stops``
-    the turn's start and end), the loop's right-hand side
+    the turn's start and end) or more (a wall-heat schedule's switches between,
+    :func:`~corliss.engine.kernels.loop.turn_stops`), the loop's right-hand side
     :func:`~corliss.engine.kernels.loop.transient_rhs`, the first step
-    :func:`turn_first_step`'s, a visited state's clamp stopping the run
+    :func:`turn_first_step`'s (a later segment's the last one's, its start's
+    derivative evaluated afresh, :func:`~corliss.engine.kernels.loop.turn_restart`), a visited state's clamp stopping the run
     (:func:`~corliss.engine.kernels.loop._visited_clamps`), the governor's stops after
     each accepted step (the derivative evaluated again where one was struck), each
     accepted step recorded, and the run stopped where the engine stalls.
@@ -186,8 +188,14 @@ def _dopri5_steps(y, samples, stops, out_theta, ctl, phys, scratch, cycle, turn)
             segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att)
             h = min(h_prev, b - a) if h_prev > 0.0 else initial_step(f0, y, atol, rtol, b - a)
         if turn is not None:
-            n_rec = turn_start(t, y, f0, phys, pr, cell, turn, att, clamps)
-            h = turn_first_step(f0, y, atol, rtol, 0.2)
+            if seg == 0:
+                n_rec = turn_start(t, y, f0, phys, pr, cell, turn, att, clamps)
+                h = turn_first_step(f0, y, atol, rtol, 0.2)
+            else:
+                # a schedule's switch (loop.turn_stops): the derivative afresh, the
+                # step carried on as a steady cycle's segment carries it
+                turn_restart(t, y, f0, phys, pr, cell, turn, att, clamps)
+                h = min(h_prev, b - a)
         nfev += 1
         while t < b:
             if t + h > b or b - (t + h) < 1e-12:
@@ -366,7 +374,8 @@ def cycle_rk4(y0, stops, out_theta, step, net, tier, tab, perf, max_rhs):
     return y, samples, nfev, True, clamps
 
 
-def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, record, t_end):
+def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, record, t_end,
+                   inner=None):
     """Integrate one turn, from ``th0`` to ``th0 + 2 pi`` (dopri5, dense Hermite output).
 
     Allocates the scratch (in Python, as :func:`cycle_dopri5`: a compiled caller
@@ -410,6 +419,10 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
         Whether to record every accepted step.
     t_end : float
         The run's end time [s].
+    inner : array_like, optional
+        Shaft angles [rad] where the turn restarts its step
+        (:func:`~corliss.engine.kernels.loop.turn_stops`): a wall-heat schedule's
+        switches.  None (the default) for one segment.
 
     Returns
     -------
@@ -440,7 +453,7 @@ def integrate_turn(y0, th0, out_theta, rtol, atol, net, tier, tab, perf, tr, rec
     samples = np.full((n, out_theta.shape[0]), np.nan)
     nv = net.node_kind.shape[0]
     rec = np.empty((N_REC, 40000 if record else 1))
-    stops = np.array([th0, th0 + TWO_PI])
+    stops = turn_stops(th0, inner)
     scratch = DopriScratch(np.empty((3, n)), np.empty((7, n)),
                            np.full((PR_ROWS, nv), np.nan),
                            np.empty((net.port_npts.shape[0], 4)), np.zeros(6),

@@ -37,7 +37,9 @@ read bilinearly.  Integration: Dormand-Prince 5(4)
 (:func:`corliss.engine.kernels.dopri5.integrate_turn`), or a Rosenbrock tableau of
 :data:`corliss.engine.kernels.tableaus.ROS_TABLEAUS`
 (:func:`corliss.engine.kernels.rosenbrock.integrate_turn_ros`, the ``fast`` preset's
-``ros4``), with no stops inside a cycle (port kinks move with the setting).
+``ros4``), with no stops inside a cycle at the ports' kinks (they move with the
+setting), but at a wall-heat schedule's switches where a run has one
+(:func:`turn_stops`).
 
 :func:`transient_rhs` is compiled without numba's reference counting
 (``_nrt=False``), as :func:`corliss.engine.kernels.balances.rhs` is and for its reason: it
@@ -540,6 +542,76 @@ def turn_start(t, y, f0, phys, pr, cell, turn, att, clamps):
         _record(turn.rec, 0, t, y, y.shape[0] - N_EXTRA, out)
         return 1
     return 0
+
+
+@njit(cache=True, inline="always")
+def turn_restart(t, y, f0, phys, pr, cell, turn, att, clamps):
+    """A segment's start after a stop inside a turn (:func:`turn_stops`), for both step
+    loops: as :func:`turn_start`, the derivative there afresh (the right-hand side
+    switches at the stop, so the last step's end derivative may be the other side's),
+    its clamps settled as a visited state's and the node torques taken, but nothing
+    recorded (the stop's state is the last accepted step's end, recorded already).
+
+    Parameters
+    ----------
+    t : float
+        The stop [rad].
+    y : ndarray
+        The state there.
+    f0 : ndarray
+        Written: the derivative there (per radian).
+    phys, pr, cell, turn, att, clamps
+        As :func:`turn_start`'s.
+    """
+    # read past the switch (the stop is SWITCH_MARGIN_RAD short of it): the segment's
+    # first stage must see the window it integrates
+    te = t + 2.0 * SWITCH_MARGIN_RAD
+    transient_rhs(te, y, f0, phys.net, phys.tier, phys.tab, phys.perf, pr, cell, turn.tr,
+                  turn.out[0])
+    _node_torques(pr, turn.tq[0])
+    tally_clamps(pr, te, att)
+    settle_visited(att, clamps)
+
+
+#: How far short of a schedule's switch a turn's stop is put [rad] (:func:`turn_stops`):
+#: the step that ends there evaluates its last stages at the stop, which must read the
+#: window the step integrates, and the kernel's window test
+#: (:func:`corliss.engine.kernels.balances.marks_window`) at the switch itself reads
+#: either side by a rounding of the shaft angle (an ulp, 1.5e-11 rad at 1e5 rad: an hour
+#: at 300 rpm).  A stop at the switch gave a step's end stages the next window's heat
+#: at random, the ends of a turn netting 1.5e-4 of the heat taken at rtol 1e-6.  The
+#: sliver between the stop and the switch is integrated on the next window's heat,
+#: 1e-9 rad of a window of a radian or more.
+SWITCH_MARGIN_RAD = 1e-9
+
+
+def turn_stops(th0: float, inner_rad) -> np.ndarray:
+    """The stops of a turn from ``th0``: its start and end, and between them each of
+    ``inner_rad`` (shaft angles, any multiple of 2 pi) that falls inside the turn.
+
+    The step loops restart at each stop (a steady cycle's
+    :meth:`corliss.engine.network.Network.stops`): a wall-heat schedule switches there,
+    and a switch inside a step is integrated only to the step's error.
+
+    Parameters
+    ----------
+    th0 : float
+        The turn's start [rad].
+    inner_rad : array_like or None
+        Shaft angles of the switches [rad]; None or empty for none.
+
+    Returns
+    -------
+    ndarray
+        Increasing shaft angles [rad], ``th0`` first and ``th0 + 2 pi`` last, each switch
+        between put :data:`SWITCH_MARGIN_RAD` short of it; just the two ends without
+        switches (the loop's one segment).
+    """
+    if inner_rad is None or len(inner_rad) == 0:
+        return np.array([th0, th0 + TWO_PI])
+    rel = sorted({float(p - th0 - SWITCH_MARGIN_RAD) % TWO_PI for p in inner_rad})
+    inner = [th0 + r for r in rel if 1e-8 < r < TWO_PI - 1e-8]
+    return np.array([th0] + inner + [th0 + TWO_PI])
 
 
 @njit(cache=True, inline="always")

@@ -22,7 +22,8 @@ from corliss.engine.kernels.jacobians import (LOOP_COLUMNS, _exact_jacobian_hold
                                               _w_solve)
 from corliss.engine.kernels.loop import (N_EXTRA, N_REC, S_MAX_RHS, S_STEP, S_WMIN,
                                          X_OMEGA, _node_torques, _turn_end, _visited_clamps,
-                                         transient_rhs, turn_accepted, turn_start)
+                                         transient_rhs, turn_accepted, turn_restart,
+                                         turn_start, turn_stops)
 from corliss.engine.kernels.mechanism import TWO_PI
 from corliss.engine.kernels.properties import PR_ROWS
 from corliss.engine.kernels.stepping import (copy_into, emit_samples, initial_step,
@@ -292,11 +293,17 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, fin
             else:
                 h = initial_step(f0, y, atol, rtol, b - a)
         if turn is not None:
-            n_rec = turn_start(t, y, f0, phys, pr, cell, turn, att, clamps)
-            nfev += 1
-            h = sc[S_STEP]
-            if not (h > 0.0):
-                h = turn_first_step(f0, y, atol, rtol, 0.25)
+            if seg == 0:
+                n_rec = turn_start(t, y, f0, phys, pr, cell, turn, att, clamps)
+                nfev += 1
+                h = sc[S_STEP]
+                if not (h > 0.0):
+                    h = turn_first_step(f0, y, atol, rtol, 0.25)
+            else:
+                # a schedule's switch (loop.turn_stops): the derivative afresh
+                turn_restart(t, y, f0, phys, pr, cell, turn, att, clamps)
+                nfev += 1
+                h = min(h_prev, b - a)
         age = jac_age          # accepted steps since J and T were computed
         h_w = -1.0             # the step W was inverted for
         while t < b:
@@ -472,7 +479,7 @@ _ODE23S_ARGS = Tableau(_D, np.zeros((4, 4)), np.zeros((4, 4)), np.zeros(4), np.z
 
 
 def integrate_turn_ros(y0, th0, out_theta, rtol, atol, phys, tr, record, t_end, color, owner,
-                       tableau):
+                       tableau, inner=None):
     """Integrate one turn as :func:`integrate_turn`, with a Rosenbrock method.
 
     The tableau's method of :func:`cycle_ros` (one of
@@ -526,6 +533,9 @@ def integrate_turn_ros(y0, th0, out_theta, rtol, atol, phys, tr, record, t_end, 
         stage coefficients a_ij and c_ij, stage angles, coefficients of the derivative
         in crank angle, weights of the solution and of the error, which stages are
         evaluated, and the exponent of the step's ratio to its error [-].
+    inner : array_like, optional
+        Shaft angles [rad] where the turn restarts its step, as
+        :func:`integrate_turn`'s.
 
     Returns
     -------
@@ -556,7 +566,7 @@ def integrate_turn_ros(y0, th0, out_theta, rtol, atol, phys, tr, record, t_end, 
     y = y0.copy()
     samples = np.full((n, out_theta.shape[0]), np.nan)
     rec = np.empty((N_REC, 40000 if record else 1))
-    stops = np.array([th0, th0 + TWO_PI])
+    stops = turn_stops(th0, inner)
     # jd: none (the analytic Jacobian and the pair's starting step are a cycle's)
     scratch = RosScratch(np.empty((10, n)), np.empty((tableau.b.shape[0], n)),
                          np.zeros((n, m)), np.empty((2, m, m)), np.empty(ndyn),
