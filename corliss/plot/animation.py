@@ -993,8 +993,8 @@ def animate_gear(gear, result=None, *, frames: int = 72, stroke_m: float | None 
         them to the metre; the Corliss valves' ``valve_edges``, each (Line2D from the
         spindle to the working edge, spindle, the edge's angle at mid position [rad],
         +1 or -1 the sense it turns to open); the Porter-Allen's ``plates``, a
-        :class:`~corliss.plot.plate_valves.PlateValvesPanel`), and ``rods``, which gives the rods drawn
-        in the frame last drawn, ``{name: (Line2D, the spec's length [m])}``; a lapped
+        :class:`~corliss.plot.plate_valves.PlateValvesPanel`), and ``rods``, which
+        gives the rods drawn in the frame last drawn, ``{name: (Line2D, the spec's length [m])}``; a lapped
         valve's ``seat_m``, the edges of its steam ports (``head``, ``crank``: (from, to)
         [m]) and whether it takes steam ``inside``.
     """
