@@ -3,9 +3,10 @@ Fig. 22), for :func:`~corliss.plot.animation.animate_gear`.
 
 Each valve is a plate sliding on its seat, the steam valves above (the chest's steam
 over them, as in Fig. 22), the exhaust valves below; the head end's on the left, the
-crank end's on the right drawn as its mirror image, so that the two exhaust valves, on
-one stem, move together across the page, and the two steam valves, worked by arms on
-opposite sides of the rock shaft, move against each other.  Each valve is drawn in its
+crank end's on the right drawn as its mirror image, each valve opening towards the
+page's middle (Fig. 22's left-hand steam valve "moves to the right to admit steam on
+the left", its right-hand exhaust valve "to the left to exhaust on its right"), so that
+the two exhaust valves, on one stem, move together across the page.  Each valve is drawn in its
 own frame, x along its travel in the sense that opens its port, the port's first edge
 at x = 0:
 
