@@ -1030,7 +1030,7 @@ def animate_gear(gear, result=None, *, frames: int = 72, stroke_m: float | None 
     ax_card = fig.add_subplot(gs[1, 2]) if has_card else None
     ax_link.set_aspect("equal")
     ax_link.axis("off")
-    artists = {}
+    artists: dict = {}
     linkage = {"eccentric": _Eccentric, "stephenson": _Stephenson, "walschaerts": _Walschaerts,
                "gooch_allen": _GoochAllen, "radial": _Radial, "travel": _Travel,
                "oscillating": _Oscillating, "porter_allen": _RockShaft}

@@ -166,7 +166,7 @@ def plate_layout(gear) -> list[PlateValve]:
     laps = (s.steam_lap_m[0], s.exhaust_lap_m[0], s.steam_lap_m[1], s.exhaust_lap_m[1])
     widths = (s.steam_port_width_m, s.exhaust_port_width_m) * 2
     counts = (s.steam_openings, 1) * 2
-    rows = [dict() for _ in range(4)]
+    rows: list[dict] = [{} for _ in range(4)]
     for p in range(4):
         w, lap = widths[p], laps[p]
         reach = float(np.max(np.abs(x[p])))
