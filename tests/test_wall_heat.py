@@ -134,15 +134,16 @@ def test_marks_law_on_a_compound_returns_each_ends_heat_over_a_cycle():
     shares with the receiver).
 
     Tolerance: each end's net heat under 1e-8 of what it takes, at the standard
-    preset (dopri5, rtol 1e-6).  The heat is imposed at a rate that integrates over its
-    windows to the cycle's heat exactly, so the net is the integrator's error on it.
-    The cycle stops 1e-9 rad short of each switch of the schedule and reads the next
-    segment's first derivative just past it
-    (:data:`corliss.engine.kernels.balances.SWITCH_MARGIN_RAD`): the ends net 5e-10 to
-    6.3e-10, the same at rtol 1e-8 (the 1e-9 rad slivers integrated on the next
-    window's heat, a window being a radian or more).  With the stops at the switches
-    themselves they netted up to 2.9e-4 (2.2e-6 at rtol 1e-8): a step's last stages and
-    the next segment's first read either window by a rounding of the shaft angle."""
+    preset (here its exact method, rodas4 at rtol 2e-6).  The heat is imposed at a rate
+    that integrates over its windows to the cycle's heat exactly, so the net is the
+    integrator's error on it.  The cycle stops 1e-9 rad short of each switch of the
+    schedule and reads the next segment's first derivative just past it
+    (:data:`corliss.engine.kernels.balances.SWITCH_MARGIN_RAD`): the ends net 4.7e-10
+    to 5.5e-10, and 5e-10 to 6.3e-10 with dopri5 or rodas4 at rtol 1e-6 or 1e-8 alike
+    (the 1e-9 rad slivers integrated on the next window's heat, a window being a radian
+    or more).  With the stops at the switches themselves they netted up to 3.0e-5 here,
+    2.9e-4 with dopri5 at rtol 1e-6 (2.2e-6 at 1e-8): a step's last stages and the next
+    segment's first read either window by a rounding of the shaft angle."""
     row = _marks_compound_steady().last_cycle
     for end in ("head", "crank", "lp_head", "lp_crank"):
         taken = float(row[f"Q_to_wall_{end}_J"])
