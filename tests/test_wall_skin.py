@@ -449,6 +449,41 @@ def test_the_condensing_share_falls_from_saturation_to_the_band():
     assert walls.condensing_share(80.0) == 0.0
 
 
+#: Superheated supplies whose skin wall has no periodic state (issue 31): the bundled
+#: 20 x 42 in Corliss engine at 80 K of superheat (482 degF against 338 degF at 114.7
+#: psia); the Meyer engine at 0.4 of the screw with 150 degF of superheat (488 degF);
+#: the Meyer engine on 40 psia of steam throttled from 140 psia dry saturated
+#: (isenthalpic, IAPWS-95: 312.7 degF, 25 K of superheat).
+SUPERHEATED_UNSETTLED = {
+    "corliss-80K": ("corliss-trip-gear", {"supply": {"temperature": "482 degF"}}),
+    "meyer-150degF": ("meyer-cutoff", {"valve_gear": {"setting": 0.4},
+                                       "supply": {"temperature": "488 degF"}}),
+    "meyer-40psia-throttled": ("meyer-cutoff", {"supply": {"pressure": "40 psia",
+                                                           "temperature": "312.7 degF"}}),
+}
+
+
+@pytest.mark.xfail(strict=True, raises=AssertionError,
+                   reason="issue 31: at a fixed deep wall the superheated skin wall has a "
+                   "dry and a wet periodic state, and the deep wall's balance changes sign "
+                   "between them without a root (docs/validation/condensation.md, "
+                   "\"Superheated walls that do not settle\")")
+@pytest.mark.parametrize("case", sorted(SUPERHEATED_UNSETTLED))
+def test_a_superheated_supply_settles_with_the_skin_wall(case):
+    """A superheated supply with the skin wall reaches a periodic state in the fast
+    preset's cycles (60 with the wall), and its water missing at cut-off is not
+    negative at either end (the steam read at cut-off cannot exceed the steam
+    supplied and the cushion's).  The period's engines ran steadily on superheated
+    steam, with less condensation than on saturated (Lineham p. 885; Marks Art. 78).
+    Strict: this fails once the model settles them."""
+    name, changes = SUPERHEATED_UNSETTLED[case]
+    r = corliss.simulate(_scene(name=name, **changes))
+    s = r.summary
+    assert s["cycles_to_converge"] is not None, s["periodicity_residuals"]
+    assert s["missing_water_fraction_head"] >= 0.0
+    assert s["missing_water_fraction_crank"] >= 0.0
+
+
 def _large_slow(**changes):
     """Marks's 32 x 48 in stationary engine (the bundled scene, after his Art. 3: 20
     rpm, 60 psig, 1 psig exhaust) with the skin wall, fast preset."""
@@ -640,13 +675,15 @@ def test_the_jacket_is_paid_for_in_steam():
     mean exposed area times the difference (the wall update's balance, to the fast
     preset's 1e-3 of the enthalpy supplied, 2 % of the jacket's heat); its steam,
     drained at the supply's saturation, is that heat over the latent heat there; and
-    counting it, the jacketed engine still uses less steam than the bare one, by a
-    saving under 20 % (the period's greatest).  The model's saving, 1.8 % (2.2 % with
-    the film's water at a fixed 410 K, before it was booked at the surface's
-    temperature), is below the 3 to 5 % the period called well authenticated: the
-    jacket's physics is issue 31's (with the covers jacketed too, 2.2 %:
-    ``tests/test_jackets.py``), and this test holds only its sign and the period's
-    ceiling until then."""
+    counting it, the jacketed engine still uses less steam than the bare one, by no
+    more than Marks's 5 %.  The period disagrees with itself on the jacket: Marks
+    (Art. 79, p. 204) cites 3 to 5 % as "well authenticated" and doubts even those
+    ("error is more than probable in the use of indicators"), "very doubtful if any
+    very great gain is made in the case of well-covered engines", and concludes "the
+    steam-jacket is not so efficient as is ordinarily assumed" (p. 237); Lineham (App.
+    II, p. 884) reports 10 to 20 %.  The model's saving, 1.8 % (2.2 % with the covers
+    jacketed too: ``tests/test_jackets.py``), takes Marks's side, and this test holds
+    it there: above nothing and not above his 5 % (the validation page, "Jackets")."""
     from corliss.engine import wall
     from corliss.thermo.steam import HEOSSteam
     bare = _run("cut0.4", valve_gear={"setting": 0.4})
@@ -670,7 +707,7 @@ def test_the_jacket_is_paid_for_in_steam():
                                                        rel=1e-6)
     saving = 1.0 - s["water_rate_with_jacket_kg_per_kWh"] / bare.summary["water_rate_kg_per_kWh"]
     assert s["water_rate_with_jacket_kg_per_kWh"] > s["water_rate_kg_per_kWh"]
-    assert 0.0 < saving < 0.20
+    assert 0.0 < saving <= 0.05
 
 
 def test_the_skin_matches_a_semi_infinite_wall_at_the_engine_frequency():
