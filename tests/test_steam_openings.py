@@ -104,11 +104,52 @@ def test_area_is_n_times_one_openings_up_to_the_full_port(n, setting):
 @pytest.mark.parametrize("setting", [0.0, 0.5, 0.75, 1.0])
 def test_the_events_are_the_first_edges_and_do_not_change_with_n(setting):
     """Every edge moves with the plate, so the events are the crossings of the one
-    signed opening: equal to the last bit for n = 1 and 3, the port map's kinks too."""
+    signed opening: equal to the last bit for n = 1 and 3, the port map's kinks too
+    (the largest opening, the port's whole, is the next test's)."""
     one, three = _gear(1, setting), _gear(3, setting)
-    assert events(one, HARMONIC) == events(three, HARMONIC)
+    e1, e3 = events(one, HARMONIC), events(three, HARMONIC)
+    for end in ("head", "crank"):
+        e1[end].pop("max_port_opening_m")
+        e3[end].pop("max_port_opening_m")
+    assert e1 == e3
     assert np.array_equal(tabulate(one, 720).breakpoints_rad,
                           tabulate(three, 720).breakpoints_rad)
+
+
+@pytest.mark.parametrize("n", [1, 2, 3])
+@pytest.mark.parametrize("setting", [0.0, 0.75])
+def test_the_largest_opening_reported_is_the_ports_whole_of_n_edges(n, setting):
+    """The events' ``max_port_opening_m`` is the steam port's whole opening: n edges each
+    open by min(s_max, w), s_max the plate's largest signed opening, so n min(s_max, w)
+    (module doc: A_n = n L clip(s, 0, w)).  s_max in closed form from the rock shaft
+    (fink_motion's module doc): the valve's edge opens by R_v sin(phi - beta) with
+    phi = asin(x_s / R_d), greatest at the radius rod's greatest throw towards the
+    port, x_s max for the head valve and -x_s max for the crank valve (its arm worked
+    the other way), x_s over 1/4 deg samples of the Fink motion's block travel.  At the
+    governor's rest the plate overtravels the 1/2 in opening (s_max about 1 in), so
+    the width bounds it; at 0.75 it does not.  Tolerance 1e-6 in (2.5e-8 m): the events
+    take the largest over their own samples of the turn, the closed form over 1/40 deg
+    samples; the edge's opening is flat at its top (its derivative zero there), so each
+    falls short of the true top by the curvature times its half-step squared (with 1/4
+    deg samples the two differed by 1.5e-8 m an edge)."""
+    g = _gear(n, setting)
+    sp = g.spec
+    xs = sp.link.block_travel(sp.block_m, np.linspace(0.0, 2 * math.pi, 14401))
+    bh, bc = sp.arm_angles_rad
+    w = sp.steam_port_width_m
+    top = {"head": sp.valve_arm_m * math.sin(math.asin(xs.max() / sp.drive_arm_m) - bh),
+           "crank": sp.valve_arm_m * math.sin(math.asin(-xs.min() / sp.drive_arm_m) - bc)}
+    ev = events(g, HARMONIC)
+    for end in ("head", "crank"):
+        want = n * min(top[end], w)
+        assert ev[end]["max_port_opening_m"] == pytest.approx(want, abs=1e-6 * 0.0254), end
+        # n times one edge's, as the one-opening gear reports it
+        one = events(_gear(1, setting), HARMONIC)[end]["max_port_opening_m"]
+        assert ev[end]["max_port_opening_m"] == pytest.approx(n * one, rel=1e-15)
+    if setting == 0.0:
+        assert top["head"] > w          # the width bounds it at rest
+    else:
+        assert top["head"] < w
 
 
 def _mid_admission_drop(result) -> dict:
@@ -143,7 +184,12 @@ def test_two_openings_wire_draw_less_and_the_card_comes_nearer_the_ideal():
     m1, m2 = r1.summary["mep_mean_Pa"], r2.summary["mep_mean_Pa"]
     assert m1 < m2 < ideal
     assert abs(ideal - m2) < abs(ideal - m1)
-    assert r1.events == r2.events
+    e1, e2 = r1.events, r2.events
+    for end in ("head", "crank"):     # the same events; the port's whole opening twice
+        assert e2[end]["max_port_opening_m"] == pytest.approx(
+            2.0 * e1[end]["max_port_opening_m"], rel=1e-15)
+    assert ({e: {k: v for k, v in e1[e].items() if k != "max_port_opening_m"} for e in e1}
+            == {e: {k: v for k, v in e2[e].items() if k != "max_port_opening_m"} for e in e2})
 
 
 @pytest.mark.parametrize("value, why", [
@@ -173,7 +219,8 @@ def test_a_gear_without_separate_steam_plates_refuses_the_key(capsys, tmp_path):
 
 
 def test_the_commands_on_a_scene_with_two_openings(tmp_path, capsys):
-    """``corliss events`` gives the same events for 1 and 2 openings; ``corliss run``
+    """``corliss events`` gives the same events for 1 and 2 openings, the largest
+    opening the port's whole (twice one edge's with two); ``corliss run``
     reports the larger mean effective pressure of two; ``corliss gear`` draws the
     port openings marked with the openings."""
     text = SCENE.read_text()
@@ -185,6 +232,9 @@ def test_the_commands_on_a_scene_with_two_openings(tmp_path, capsys):
     for name, path in (("one", one), ("two", two)):
         assert cli.main(["events", str(path), "--json"]) == 0
         ev[name] = json.loads(capsys.readouterr().out)
+    for end in ("head", "crank"):     # the same events; the port's whole opening twice
+        assert ev["two"][end].pop("max_port_opening_m") == pytest.approx(
+            2.0 * ev["one"][end].pop("max_port_opening_m"), rel=1e-15)
     assert ev["one"] == ev["two"]
     mep = {}
     for name, path in (("one", one), ("two", two)):

@@ -158,9 +158,11 @@ class Design:
             ref = 1 if v.end == "crank" else 0
             ev = (v.events["head"], v.events["crank"])
             leads = (ev[0]["lead_m"], ev[1]["lead_m"])
-            # the signed opening's greatest: the port's width and the overtravel past it
-            openings = (ev[0]["max_port_opening_m"] + ev[0]["overtravel_m"],
-                        ev[1]["max_port_opening_m"] + ev[1]["overtravel_m"])
+            # the signed opening's greatest: one edge's opening (the port's whole one
+            # over its openings an edge) and the overtravel past it
+            n = v.gear.openings_per_edge()
+            openings = (ev[0]["max_port_opening_m"] / n[0] + ev[0]["overtravel_m"],
+                        ev[1]["max_port_opening_m"] / n[2] + ev[1]["overtravel_m"])
             steam_ports = v.gear.port_widths()
             widths = (float(steam_ports[0]), float(steam_ports[2]))
             lead_why = (f"at the {ENDS[ref]} end (the gear's linkage gives each end its "

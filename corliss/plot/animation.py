@@ -12,7 +12,11 @@ ports over the standard's), the Corliss wrist plate with its four
 valves and trip), the same solve its valve travel and
 port openings come from; any other gear with one lapped valve is drawn from its travel
 alone (the crank, its virtual eccentric and the valve over its ports, the linkage not
-drawn).  A gear of two valves (the double valves, the Porter-Allen gear) is not drawn.  The valve
+drawn).  The Porter-Allen gear is drawn from its own rock shaft and valve travels: the
+crank, the rock shaft's arms at the gear's angle, and its four flat valves over their
+ports, each steam plate uncovering its ``steam_openings`` ports at once
+(:mod:`corliss.plot.plate_valves`); its Fink link is not drawn.  A gear of a main and a
+cut-off valve (the double valves) is not drawn.  The valve
 section is schematic in its proportions (bridges and exhaust port) but exact in its
 edges: the laps, the port widths and the valve's displacement are the gear's.
 
@@ -30,7 +34,9 @@ import numpy as np
 
 from corliss.keys import units
 from corliss.valves.baker import BakerGear
+from corliss.plot.plate_valves import PlateValvesPanel
 from corliss.valves.corliss_gear import CorlissGear, CorlissSpec
+from corliss.valves.fink_motion import PorterAllenGear
 from corliss.valves.gear import openings_note
 from corliss.valves.link_motion import LinkMotion, LinkMotionSpec
 from corliss.valves.oscillating import OscillatingCylinder
@@ -58,15 +64,15 @@ def linkage_kind(gear) -> str:
         ``"eccentric"`` (a plain slide valve), ``"stephenson"`` (the exact Stephenson
         link), ``"gooch_allen"`` (the exact Gooch or Allen link), ``"walschaerts"`` (the
         exact Walschaerts gear), ``"radial"`` (the exact Hackworth, Marshall, Angstrom or
-        Joy gear), ``"corliss"``, or ``"travel"`` (a lapped valve drawn from its travel,
-        the linkage not drawn).
+        Joy gear), ``"corliss"``, ``"porter_allen"`` (the rock shaft and the four flat
+        valves, the Fink link not drawn), or ``"travel"`` (a lapped valve drawn from its
+        travel, the linkage not drawn).
 
     Raises
     ------
     ValueError
         For a gear with neither joints nor one valve's travel (the double valves, the
-        Porter-Allen gear, the Corliss gear's harmonic motion: see
-        :func:`exact_linkage_spec`).
+        Corliss gear's harmonic motion: see :func:`exact_linkage_spec`).
     """
     gear = working_gear(gear)
     if isinstance(gear, CorlissGear) and gear.spec.motion == "exact":
@@ -81,6 +87,8 @@ def linkage_kind(gear) -> str:
         return "radial"
     if isinstance(gear, OscillatingCylinder):
         return "oscillating"
+    if isinstance(gear, PorterAllenGear):
+        return "porter_allen"
     if isinstance(gear, LappedValve):
         return "travel"
     raise ValueError(f"the {gear.name} gear has no single valve to animate")
@@ -653,6 +661,51 @@ class _Travel(_Linkage):
         return None
 
 
+class _RockShaft(_Linkage):
+    """The Porter-Allen's crank and rock shaft: the driving arm the radius rod works at
+    the gear's own angle phi (:meth:`~corliss.valves.fink_motion.PorterAllenGear.rock_angle`),
+    the two valve arms set beta from square to their stems, and the stems (the head's
+    above, the crank's below, worked the other way).  The Fink link and its eccentric
+    are not drawn: the travels come from the gear's solve of them."""
+
+    def __init__(self, ax, gear, scale, stroke_m):
+        super().__init__(ax, gear, scale, stroke_m)
+        s = gear.spec
+        self.rd, self.rv = s.drive_arm_m * scale, s.valve_arm_m * scale
+        crank_r = 0.5 * (stroke_m or 0.0) * scale
+        self.shaft = (1.6 * crank_r + 2.0 * self.rd, 0.0)
+        ax.plot([0], [0], "o", color=_FIXED, ms=5)
+        ax.plot([self.shaft[0]], [0], "o", color=_FIXED, ms=7)
+        if crank_r:
+            self._circle((0, 0), 0.5 * stroke_m, color=_FIXED, lw=0.6, ls=":")
+        mv = self.moving
+        self.crank = _line(ax, lw=3.0, moving=mv)
+        self.drive = _line(ax, lw=2.6, moving=mv)
+        self.arms = [_line(ax, color=_STEAM, lw=2.2, moving=mv) for _ in range(2)]
+        self.stems = [_line(ax, color=_STEAM, lw=1.4, moving=mv) for _ in range(2)]
+        big = max(crank_r, self.rd, self.rv)
+        ax.set_xlim(-1.3 * big, self.shaft[0] + 3.5 * big)
+        ax.set_ylim(-1.6 * big, 1.6 * big)
+        ax.text(0.5, 0.97, "the crank and the rock shaft at the gear's angle:\n"
+                "driving arm black, steam-valve arms red\n(the Fink link not drawn)",
+                transform=ax.transAxes, ha="center", va="top", fontsize=7, color="0.4")
+
+    def update(self, theta):
+        c = self._crank(math.pi - theta)
+        if c is not None:
+            _set(self.crank, (0, 0), c)
+        phi = float(self.gear.rock_angle(np.array([theta]))[0])
+        bh, bc = self.gear.spec.arm_angles_rad
+        o = self.shaft
+        # the driving arm hangs down, swung phi by the radius rod's travel
+        _set(self.drive, o, (o[0] + self.rd * math.sin(phi), o[1] - self.rd * math.cos(phi)))
+        for k, (ang, up) in enumerate(((phi - bh, 1.0), (-phi - bc, -1.0))):
+            tip = (o[0] + self.rv * math.sin(ang) * up, o[1] + up * self.rv * math.cos(ang))
+            _set(self.arms[k], o, tip)
+            _set(self.stems[k], tip, (tip[0] + 2.5 * self.rv, tip[1]))
+        return None
+
+
 class _Corliss(_Linkage):
     """The wrist plate, its studs and rods, the four rotary valves over their ports, the
     trip and the dash-pots; the eccentric and hook rod drawn in ``ax_shaft``."""
@@ -902,7 +955,8 @@ def animate_gear(gear, result=None, *, frames: int = 72, stroke_m: float | None 
 
     Panels: the linkage (from ``gear.joints`` where the gear solves one, see
     :func:`linkage_kind`), the valve in section over its ports (a lapped valve; the
-    Corliss valves are drawn on their spindles), the four port openings against crank
+    Corliss valves are drawn on their spindles, the Porter-Allen's four flat valves over
+    their ports), the four port openings against crank
     angle with a marker at the crank's angle, and, with a steady ``result``, the
     indicator card of both ends traced as the crank turns.  What does not move is drawn
     once, into an image behind the moving parts, at the figure's ``dpi``: frames saved at
@@ -938,8 +992,9 @@ def animate_gear(gear, result=None, *, frames: int = 72, stroke_m: float | None 
         and ``valve_sense`` the sign of its motion, drawn in ``length_unit``, ``scale`` of
         them to the metre; the Corliss valves' ``valve_edges``, each (Line2D from the
         spindle to the working edge, spindle, the edge's angle at mid position [rad],
-        +1 or -1 the sense it turns to open)), and ``rods``, which gives the rods drawn
-        in the frame last drawn, ``{name: (Line2D, the spec's length [m])}``; a lapped
+        +1 or -1 the sense it turns to open); the Porter-Allen's ``plates``, a
+        :class:`~corliss.plot.plate_valves.PlateValvesPanel`), and ``rods``, which
+        gives the rods drawn in the frame last drawn, ``{name: (Line2D, the spec's length [m])}``; a lapped
         valve's ``seat_m``, the edges of its steam ports (``head``, ``crank``: (from, to)
         [m]) and whether it takes steam ``inside``.
     """
@@ -964,6 +1019,10 @@ def animate_gear(gear, result=None, *, frames: int = 72, stroke_m: float | None 
         ax_link = fig.add_subplot(gs[0, 1])
         ax_valves = fig.add_subplot(gs[0, 2])
         ax_valve = None
+    elif kind == "porter_allen":      # the four valves take the wider panel
+        ax_link = fig.add_subplot(gs[0, 0])
+        ax_valves = fig.add_subplot(gs[0, 1:3])
+        ax_valve = None
     else:
         ax_link = fig.add_subplot(gs[0, 0:2])
         ax_valve = fig.add_subplot(gs[0, 2])
@@ -971,10 +1030,10 @@ def animate_gear(gear, result=None, *, frames: int = 72, stroke_m: float | None 
     ax_card = fig.add_subplot(gs[1, 2]) if has_card else None
     ax_link.set_aspect("equal")
     ax_link.axis("off")
-    artists = {}
+    artists: dict = {}
     linkage = {"eccentric": _Eccentric, "stephenson": _Stephenson, "walschaerts": _Walschaerts,
                "gooch_allen": _GoochAllen, "radial": _Radial, "travel": _Travel,
-               "oscillating": _Oscillating}
+               "oscillating": _Oscillating, "porter_allen": _RockShaft}
     drawer: _Linkage
     if kind == "corliss":
         cd = _Corliss(ax_link, gear, scale, stroke_m, ax_shaft, ax_valves)
@@ -985,6 +1044,10 @@ def animate_gear(gear, result=None, *, frames: int = 72, stroke_m: float | None 
     else:
         drawer = linkage[kind](ax_link, gear, scale, stroke_m)
     moving = list(drawer.moving)
+    plates = None
+    if kind == "porter_allen":
+        plates = PlateValvesPanel(ax_valves, gear, scale, u, moving)
+        artists["plates"] = plates
     valve_rest, valve_sense, lay = None, None, None
     if ax_valve is not None and kind == "oscillating":
         artists["cylinder_ports"] = _draw_port_face(ax_valve, gear, scale)
@@ -1015,6 +1078,8 @@ def animate_gear(gear, result=None, *, frames: int = 72, stroke_m: float | None 
     def update(i):
         theta = float(angles[i % frames])
         joints = drawer.update(theta)
+        if plates is not None:
+            plates.update(theta)
         label.set_text(f"crank {math.degrees(theta):5.1f} deg")
         if ax_valve is not None:
             x_m = joints.valve_m if joints is not None else float(gear.travel(np.array([theta]))[0])

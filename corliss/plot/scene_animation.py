@@ -40,7 +40,7 @@ def animate_scene(scene, *, frames: int = 72, card: bool = True) -> dict:
     ------
     InputError
         ``--frames`` out of range, or a gear with no single valve to animate (the
-        double valves, the Porter-Allen gear).
+        double valves).
     """
     if not 2 <= frames <= 720:
         raise InputError("--frames", frames, "a whole number of frames from 2 to 720")

@@ -341,9 +341,13 @@ def end_events(gear: ValveGear, end: str, piston_fraction: Callable[[float], flo
         ``release_frac``, ``compression_frac``: piston travel from this end's own dead
         centre as a fraction of the stroke [-] (each None for an event that never
         happens); ``lead_m``: signed opening of the steam port at the end's dead
-        centre [m]; ``max_port_opening_m``: largest physical opening of the steam port
-        [m]; ``overtravel_m``: how far the valve edge travels past full opening [m]
-        (0 when it never does).
+        centre [m]; ``max_port_opening_m``: largest physical opening of the steam port,
+        the openings its edge uncovers at once taken together
+        (:meth:`~corliss.valves.gear.ValveGear.openings_per_edge` times one edge's
+        largest opening: a Porter-Allen plate's ``steam_openings``, a double-ported
+        valve's ``ports_per_end``), so that times one opening's length is the port's
+        largest area [m]; ``overtravel_m``: how far the valve edge travels past full
+        opening [m] (0 when it never does; one edge's).
     """
     steam, exhaust = (0, 1) if end == "head" else (2, 3)
     dead = 0.0 if end == "head" else math.pi
@@ -377,7 +381,8 @@ def end_events(gear: ValveGear, end: str, piston_fraction: Callable[[float], flo
         "compression_frac": frac(comp),
         "lead_m": (float(gear.signed_openings(np.array([dead]))[steam, 0]) if lead is None
                    else float(lead)),
-        "max_port_opening_m": float(opening.max()),
+        # the port's whole opening: every edge the valve uncovers at once opens alike
+        "max_port_opening_m": float(gear.openings_per_edge()[steam]) * float(opening.max()),
         "overtravel_m": float(max(signed_max - width, 0.0)),
     }
 

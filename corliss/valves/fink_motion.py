@@ -642,7 +642,8 @@ PORTER_ALLEN_KEYS = group(
         "valve uncovers.", within=POSITIVE_LENGTH, unit="in"),
     Key("steam_openings", "integer", "Openings each steam valve uncovers at once, its "
         "plate's end and the openings through it (Spangler Art. 30, p. 31): the area that "
-        "many times one opening's, the events the same (other gears: ports_per_end).",
+        "many times one opening's, the events the same, the largest opening reported the n "
+        "openings' together (other gears: ports_per_end).",
         default=1, within=(1, 4)),
     Key("exhaust_port_width", "length", "Exhaust ports' width along the valve's travel.",
         within=POSITIVE_LENGTH, unit="in"),

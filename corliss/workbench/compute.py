@@ -105,7 +105,7 @@ def events_rows(events: dict, system: str) -> dict:
             ("release, fraction of stroke", "release_frac", 1.0, 3),
             ("compression, fraction of stroke", "compression_frac", 1.0, 3),
             (f"lead [{u}]", "lead_m", None, 3),
-            (f"greatest opening [{u}]", "max_port_opening_m", None, 3)]
+            (f"greatest opening, all its edges [{u}]", "max_port_opening_m", None, 3)]
     out: dict[str, list] = {"event": [], "head": [], "crank": []}
     for label, key, _, digits in rows:
         out["event"].append(label)
