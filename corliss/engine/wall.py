@@ -923,6 +923,14 @@ class WallJump:
     balance_high_J: float
 
 
+#: How many tolerances of the wall's heat each edge of a jump must exceed
+#: (:meth:`DeepWallSearch.jump`): the runner trusts a cycle whose other states are
+#: within one tolerance of periodic, and the wall's balance on such cycles still
+#: differs by some of them at one temperature (the Meyer engine with the skin wall
+#: through 4 times its ports, fast preset: +20 J and -20 J within 1e-13 K, 1.6
+#: tolerances of its 12.6 kJ), noise the bracket's width was made to absorb.
+JUMP_TOLERANCES = 10.0
+
 #: The summary's ``wall_periodic_state`` where a deep wall's balance jumps
 #: (:class:`WallJump`).
 NO_PERIODIC_STATE_JUMP = "none: the balance jumps"
@@ -1074,9 +1082,11 @@ class DeepWallSearch:
         """The wall's imbalance as a fraction: ``|r|`` over ``heat_scale``, or the
         bracket's width over ``dT_scale`` where that is smaller (the root is then
         located to the tolerance in temperature, however the balance's kink or the
-        cycles' noise leaves ``r``) and the bracket holds no jump (:meth:`jump`: a
-        bracket closed across a jump locates no root); the bracket with the last
-        measurement (:meth:`step`), kept or not.
+        cycles' noise leaves ``r``); where the bracket holds a jump (:meth:`jump`),
+        the larger of its width's and its smaller edge's balance over
+        :data:`JUMP_TOLERANCES` times ``heat_scale`` (a bracket closed across a jump
+        locates no root); the bracket with the last measurement (:meth:`step`), kept
+        or not.
 
         Parameters
         ----------
@@ -1095,14 +1105,22 @@ class DeepWallSearch:
         self.heat_scale = heat_scale
         out = abs(r) / max(heat_scale, 1e-300)
         lo, hi = self.measured
-        if dT_scale > 0.0 and math.isfinite(hi - lo) and not self._jumps():
-            out = min(out, (hi - lo) / dT_scale)
+        if dT_scale > 0.0 and math.isfinite(hi - lo):
+            closed = (hi - lo) / dT_scale
+            if self._jumps():
+                # across a jump the bracket counts only while an edge's balance is
+                # within the noise (JUMP_TOLERANCES): a jump larger locates no root
+                (r_lo, _), (r_hi, _) = self.measured_edges
+                closed = max(closed, min(r_lo, -r_hi)
+                             / (JUMP_TOLERANCES * max(heat_scale, 1e-300)))
+            out = min(out, closed)
         return out
 
     def jump(self, tolerance: float) -> WallJump | None:
         """The jump the bracket with the last measurement holds, if any: both edges
-        measured, each edge's balance larger than ``tolerance`` of the heat scale
-        (:meth:`imbalance`'s last), and the two differing by more than the larger
+        measured, each edge's balance larger than :data:`JUMP_TOLERANCES` times
+        ``tolerance`` of the heat scale (:meth:`imbalance`'s last, the noise of a
+        trusted cycle's balance), and the two differing by more than the larger
         edge's slope (the kernel's ``h A``, an upper bound on a continuous balance's:
         the heat a cooler wall takes in condensing it partly gives back the same cycle)
         times the bracket's width.  Then no temperature in the bracket balances the
@@ -1124,7 +1142,7 @@ class DeepWallSearch:
             return None
         lo, hi = self.measured
         (r_lo, _), (r_hi, _) = self.measured_edges
-        heat_tol = tolerance * self.heat_scale
+        heat_tol = JUMP_TOLERANCES * tolerance * self.heat_scale
         if min(r_lo, -r_hi) <= heat_tol:
             return None
         return WallJump(lo, hi, r_lo, r_hi)
