@@ -675,13 +675,15 @@ def test_the_jacket_is_paid_for_in_steam():
     mean exposed area times the difference (the wall update's balance, to the fast
     preset's 1e-3 of the enthalpy supplied, 2 % of the jacket's heat); its steam,
     drained at the supply's saturation, is that heat over the latent heat there; and
-    counting it, the jacketed engine still uses less steam than the bare one, by a
-    saving under 20 % (the period's greatest).  The model's saving, 1.8 % (2.2 % with
-    the film's water at a fixed 410 K, before it was booked at the surface's
-    temperature), is below the 3 to 5 % the period called well authenticated: the
-    jacket's physics is issue 31's (with the covers jacketed too, 2.2 %:
-    ``tests/test_jackets.py``), and this test holds only its sign and the period's
-    ceiling until then."""
+    counting it, the jacketed engine still uses less steam than the bare one, by no
+    more than Marks's 5 %.  The period disagrees with itself on the jacket: Marks
+    (Art. 79, p. 204) cites 3 to 5 % as "well authenticated" and doubts even those
+    ("error is more than probable in the use of indicators"), "very doubtful if any
+    very great gain is made in the case of well-covered engines", and concludes "the
+    steam-jacket is not so efficient as is ordinarily assumed" (p. 237); Lineham (App.
+    II, p. 884) reports 10 to 20 %.  The model's saving, 1.8 % (2.2 % with the covers
+    jacketed too: ``tests/test_jackets.py``), takes Marks's side, and this test holds
+    it there: above nothing and not above his 5 % (the validation page, "Jackets")."""
     from corliss.engine import wall
     from corliss.thermo.steam import HEOSSteam
     bare = _run("cut0.4", valve_gear={"setting": 0.4})
@@ -705,7 +707,7 @@ def test_the_jacket_is_paid_for_in_steam():
                                                        rel=1e-6)
     saving = 1.0 - s["water_rate_with_jacket_kg_per_kWh"] / bare.summary["water_rate_kg_per_kWh"]
     assert s["water_rate_with_jacket_kg_per_kWh"] > s["water_rate_kg_per_kWh"]
-    assert 0.0 < saving < 0.20
+    assert 0.0 < saving <= 0.05
 
 
 def test_the_skin_matches_a_semi_infinite_wall_at_the_engine_frequency():
