@@ -341,7 +341,11 @@ class CrankResolved:
         for a, b in zip(stops[:-1], stops[1:]):
             sel = np.nonzero((out_theta >= a) & (out_theta <= b))[0]
             t_eval = np.unique(np.append(out_theta[sel], b))
-            sol = solve_ivp(self.rhs, (a, b), y, method=self.method, rtol=self.rtol,
+            # a segment from just short of a schedule's switch reads past it, as the
+            # compiled loops' (kernels.balances.past_switch)
+            ta = float(balances.past_switch(a, self.net))
+            fun = self.rhs if ta == a else (lambda th, yy, ta=ta: self.rhs(max(th, ta), yy))
+            sol = solve_ivp(fun, (a, b), y, method=self.method, rtol=self.rtol,
                             atol=self.atol, t_eval=t_eval)
             if not sol.success:
                 raise RuntimeError(f"integration failed between {math.degrees(a):.2f} and "

@@ -28,6 +28,7 @@ import numpy as np
 
 from corliss.engine.kernels.data import (HEAT_COLUMNS, H_MODEL, WALL_ADAIR, WALL_CONDUCTANCE,
                                          WALL_MARKS, WALL_SKIN, NetworkArrays)
+from corliss.engine.kernels.loop import turn_stops
 
 PISTON, FIXED = 0, 1
 #: Edge kinds: a cylinder's port (area from the PortMap), an orifice of fixed area, and
@@ -516,14 +517,24 @@ class Network:
         list of float
             Increasing shaft angles [rad] from ``theta0`` to ``theta0 + 2 pi``, both
             included, with every breakpoint of every cylinder's PortMap and every
-            switch of a wall-heat schedule (:attr:`schedule_stops`) between.
+            switch of a wall-heat schedule (:attr:`schedule_stops`) between, each
+            switch :data:`~corliss.engine.kernels.balances.SWITCH_MARGIN_RAD` short of
+            it (:func:`~corliss.engine.kernels.loop.turn_stops`).
         """
         two_pi = 2.0 * math.pi
-        pts = [s % two_pi for s in self.schedule_stops]
+        pts = []
         for pm, ph in zip(self.portmaps, self.phases):
             pts += [(b - ph) % two_pi for b in pm.breakpoints_rad]
         stops = sorted({theta0 + ((p - theta0) % two_pi) for p in pts})
         stops = [s for s in stops if 1e-9 < s - theta0 < two_pi - 1e-9]
+        if self.schedule_stops:
+            # each switch SWITCH_MARGIN_RAD short of it, as a turn's; the segment from
+            # it reads its first derivative past the switch (kernels.balances.past_switch),
+            # so a kink within 1e-8 of it (an admission where the port opens) is passed by
+            # it rather than cutting a sliver
+            switches = [float(w) for w in turn_stops(theta0, self.schedule_stops)[1:-1]]
+            stops = sorted([s for s in stops if all(abs(s - w) > 1e-8 for w in switches)]
+                           + switches)
         return [theta0] + stops + [theta0 + two_pi]
 
     def scales(self) -> np.ndarray:

@@ -96,6 +96,48 @@ def marks_window(th, net, i):
     return 0.0, 1.0
 
 
+#: How far short of a schedule's switch the integrators stop [rad]: the steady cycle's
+#: (:meth:`corliss.engine.network.Network.stops`) and a turn's
+#: (:func:`corliss.engine.kernels.loop.turn_stops`).  The step that ends at a stop
+#: evaluates its last stages there, which must read the window the step integrates,
+#: and the window test (:func:`marks_window`) at the switch itself reads either side by
+#: a rounding of the shaft angle (an ulp, 1.5e-11 rad at 1e5 rad: an hour at 300 rpm).
+#: A stop at the switch gave a step's end stages the next window's heat at random, the
+#: ends of a turn netting 1.5e-4 of the heat taken at rtol 1e-6.  The segment after the
+#: stop reads its first derivative :data:`SWITCH_MARGIN_RAD` past the switch
+#: (:func:`past_switch`), and its sliver short of the switch is integrated on the next
+#: window's heat, 1e-9 rad of a window of a radian or more.
+SWITCH_MARGIN_RAD = 1e-9
+
+
+@njit(cache=True, inline="always")
+def past_switch(th, net):
+    """Where a segment that starts at ``th`` reads its first derivative: past the switch
+    of a wall-heat schedule (Marks's or English's law) that lies within
+    ``2 SWITCH_MARGIN_RAD`` after ``th`` (a stop put :data:`SWITCH_MARGIN_RAD` short of
+    it), so that the segment's first stage sees the window it integrates; ``th`` itself
+    where none does (a port's kink, a run without a schedule).
+
+    Parameters
+    ----------
+    th : float
+        The segment's start, a stop [rad].
+    net : NetworkArrays
+        The network's arrays (its wall-heat rows and each cylinder's phase).
+
+    Returns
+    -------
+    float
+        The shaft angle to read the derivative at [rad].
+    """
+    te = th + 2.0 * SWITCH_MARGIN_RAD
+    for i in range(net.heat.shape[0]):
+        if net.heat[i, H_MODEL] == WALL_MARKS:
+            if marks_window(te, net, i)[0] != marks_window(th, net, i)[0]:
+                return te
+    return th
+
+
 @njit(cache=True, inline="always")
 def derivatives(th, y, pr, dy, net, pa):
     """Derivatives with respect to crank angle, given each node's properties.

@@ -54,7 +54,7 @@ import math
 
 import numpy as np
 
-from corliss.engine.kernels.balances import balances
+from corliss.engine.kernels.balances import SWITCH_MARGIN_RAD, balances
 from corliss.engine.kernels.clamps import (CL_ACCEPTED, CL_ACCEPTED_CODE, CL_REJECTED,
                                            CL_REJECTED_CODE, settle_visited, tally_clamps)
 from corliss.engine.kernels.compiled import njit
@@ -571,18 +571,6 @@ def turn_restart(t, y, f0, phys, pr, cell, turn, att, clamps):
     _node_torques(pr, turn.tq[0])
     tally_clamps(pr, te, att)
     settle_visited(att, clamps)
-
-
-#: How far short of a schedule's switch a turn's stop is put [rad] (:func:`turn_stops`):
-#: the step that ends there evaluates its last stages at the stop, which must read the
-#: window the step integrates, and the kernel's window test
-#: (:func:`corliss.engine.kernels.balances.marks_window`) at the switch itself reads
-#: either side by a rounding of the shaft angle (an ulp, 1.5e-11 rad at 1e5 rad: an hour
-#: at 300 rpm).  A stop at the switch gave a step's end stages the next window's heat
-#: at random, the ends of a turn netting 1.5e-4 of the heat taken at rtol 1e-6.  The
-#: sliver between the stop and the switch is integrated on the next window's heat,
-#: 1e-9 rad of a window of a radian or more.
-SWITCH_MARGIN_RAD = 1e-9
 
 
 def turn_stops(th0: float, inner_rad) -> np.ndarray:

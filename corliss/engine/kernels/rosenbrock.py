@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from corliss.engine.kernels.balances import rhs
+from corliss.engine.kernels.balances import past_switch, rhs
 from corliss.engine.kernels.clamps import (CL_ACCEPTED, CL_NODE, settle_clamps,
                                            settle_trial, tally_clamps, visited_clamp_off)
 from corliss.engine.kernels.compiled import njit
@@ -278,11 +278,14 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, fin
         if b - a <= 0.0:
             continue
         t = a
+        ta = a                 # where the segment reads its first derivative and Jacobian
         if cycle is not None:
-            if not (predictive and t_end == a):
+            ta = past_switch(a, net)
+            if not (predictive and t_end == a and ta == a):
                 # (the ode23s pair's last step ended on this stop: f0 is the derivative
                 # at this angle and state, evaluated and its clamps settled as a visited
-                # state's; the area's kink changes the derivative's slope, not its value)
+                # state's; the area's kink changes the derivative's slope, not its value;
+                # a schedule's switch changes its value: read afresh past it)
                 segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att)
                 nfev += 1
             if h_prev > 0.0:
@@ -321,9 +324,10 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, fin
                         # call cost 2.2 us against 0.7 us (the default scene; numba's
                         # handling of a function that passes the network and table tuples
                         # on, it seems)
-                        _jacobian_exact(t, y, J, T, net, tier, tab, perf, pr, cell, jd, slope)
+                        _jacobian_exact(max(t, ta), y, J, T, net, tier, tab, perf, pr, cell,
+                                        jd, slope)
                     else:
-                        nfev += _jacobian(t, y, f0, J, T, yscale, cols, phys, steps)
+                        nfev += _jacobian(max(t, ta), y, f0, J, T, yscale, cols, phys, steps)
                 age = 0
                 h_w = -1.0
             hd = h * gam

@@ -5,7 +5,7 @@ and the samples written at the output angles.
 
 from __future__ import annotations
 
-from corliss.engine.kernels.balances import rhs
+from corliss.engine.kernels.balances import past_switch, rhs
 from corliss.engine.kernels.clamps import settle_visited, tally_clamps
 from corliss.engine.kernels.compiled import njit
 from corliss.engine.kernels.tableaus import hermite
@@ -302,6 +302,9 @@ def predictive_factor(err, h, err_acc, h_acc, safety, expo):
 def segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att):
     """The derivative at the start of a segment between kinks, a visited state.
 
+    Read past a wall-heat schedule's switch where the segment starts just short of one
+    (:func:`~corliss.engine.kernels.balances.past_switch`).
+
     Its clamps are settled as a visited state's.
 
     Parameters
@@ -338,6 +341,7 @@ def segment_start(t, y, f0, net, tier, tab, perf, pr, cell, clamps, att):
         A step attempt's clamp tally, shape (4,), used and cleared: clamped
         evaluations, the OR of their codes, shaft angle [rad] and node of the first.
     """
-    rhs(t, y, f0, net, tier, tab, perf, pr, cell)
-    tally_clamps(pr, t, att)
+    te = past_switch(t, net)
+    rhs(te, y, f0, net, tier, tab, perf, pr, cell)
+    tally_clamps(pr, te, att)
     settle_visited(att, clamps)
