@@ -63,7 +63,9 @@ def print_steady(result, files) -> None:
           + (f", periodic after {conv}" if conv else
              "" if fixed or not res else
              f", NOT periodic (largest residual {max(res.values()):.2g}, tolerance "
-             f"{s['convergence_tolerance']:.2g})") + f"; {s['wall_time_s']:.2f} s")
+             f"{s['convergence_tolerance']:.2g}"
+             + ("; the wall has no periodic state" if s.get("wall_periodic_state") else "")
+             + ")") + f"; {s['wall_time_s']:.2f} s")
     print_files(files)
 
 
@@ -266,9 +268,11 @@ def cmd_run(args) -> int:
     physical = report_failures(result.summary.get("failures") or [])
     failed = None if transient else balance_failure(result.summary)
     if failed and scene.run.cycles is None:
-        print(f"corliss: the run is NOT a result: {failed}; it did not converge (a tighter "
-              "fidelity, or more max_cycles, may settle it). Its files are written, for a "
-              "look.", file=sys.stderr)
+        why = ("its wall has no periodic state (its balance over a cycle jumps: more "
+               "cycles will not settle it)" if result.summary.get("wall_periodic_state") else
+               "a tighter fidelity, or more max_cycles, may settle it")
+        print(f"corliss: the run is NOT a result: {failed}; it did not converge ({why}). "
+              "Its files are written, for a look.", file=sys.stderr)
         return EXIT_BALANCE_FAILED
     if failed:
         log.warning("%s after the %d cycles asked for (--cycles): the run is not periodic",

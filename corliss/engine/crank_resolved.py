@@ -41,7 +41,7 @@ from corliss.engine.kernels.data import (H_MODEL, H_SKIN_JACKET_G, H_SKIN_JACKET
                                          WALL_SKIN)
 from corliss.engine.network import Network
 from corliss.engine.options import COMPILED_METHODS
-from corliss.engine.wall import DeepWallSearch
+from corliss.engine.wall import DeepWallSearch, WallJump
 from corliss.errors import RunError
 from corliss.thermo.steam import Steam
 from corliss.thermo.steam_table import CLAMP_CODES, CLAMP_HIGH_ENERGY, kappa_at
@@ -233,6 +233,31 @@ class CrankResolved:
             if apply:
                 wall_T[i] = T + step
         return largest, imbalance
+
+    def wall_jumps(self, tolerance: float) -> dict[str, WallJump]:
+        """The skin walls whose deep wall's balance over a cycle jumps across its
+        bracket without a root (:meth:`corliss.engine.wall.DeepWallSearch.jump`), from
+        the measurements :meth:`update_wall` has made: no periodic state of that wall
+        lies in the bracket, and more cycles will not find one.
+
+        Parameters
+        ----------
+        tolerance : float
+            The run's periodicity tolerance [-].
+
+        Returns
+        -------
+        dict
+            End name to its :class:`~corliss.engine.wall.WallJump`; empty where none
+            jumps (or no skin wall was stepped).
+        """
+        searches = self.__dict__.get("_wall_searches", {})
+        out = {}
+        for i, search in sorted(searches.items()):
+            jump = search.jump(tolerance)
+            if jump is not None:
+                out[self.network.node_names[i]] = jump
+        return out
 
     def initial_state(self) -> np.ndarray:
         """The cold start: :meth:`Network.initial_state`.

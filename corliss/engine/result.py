@@ -37,7 +37,7 @@ from corliss.engine.options import record_of
 from corliss.engine.scene_specs import SceneSpec
 from corliss.engine.speed_metrics import final_turns, load_step_metrics, step_time_of
 from corliss.engine.summary_keys import SteadySummary, TransientSummary
-from corliss.engine.wall import jacket_pressures_Pa
+from corliss.engine.wall import NO_PERIODIC_STATE_JUMP, jacket_pressures_Pa
 from corliss.engine.verdict import steady_failures, transient_failures
 from corliss.frames.frame import Frame
 from corliss.thermo.steam import HEOSSteam, State, TableSteam
@@ -363,6 +363,10 @@ class SteadyResult(Result[SteadySummary]):
     final_state : SteadyStart or None
         Where a crank-resolved run ended: the ``start`` of a neighbouring run
         (``corliss.engine.steady.run_steady``); None for the other models.
+    wall_jumps : dict
+        End name to its :class:`~corliss.engine.wall.WallJump` where a skin wall's
+        deep wall has no periodic state (its balance over a cycle jumps across its
+        bracket); empty otherwise.
 
     Notes
     -----
@@ -390,6 +394,18 @@ class SteadyResult(Result[SteadySummary]):
     clamped_trials: int | None = None
     clamped_hot: int | None = None
     final_state: object = None
+    wall_jumps: dict = field(default_factory=dict)
+
+    def _wall_jump_keys(self) -> dict:
+        """``wall_periodic_state`` and ``wall_balance_jumps`` where a deep wall's
+        balance jumps (:attr:`wall_jumps`), else nothing."""
+        if not self.wall_jumps:
+            return {}
+        return {"wall_periodic_state": NO_PERIODIC_STATE_JUMP,
+                "wall_balance_jumps": [
+                    {"end": end, "T_low_K": j.T_low_K, "T_high_K": j.T_high_K,
+                     "balance_low_J": j.balance_low_J, "balance_high_J": j.balance_high_J}
+                    for end, j in self.wall_jumps.items()]}
 
     def _end_condensation(self, end, ev, geo, e_idx, shift_deg, row, ts, at, sat) -> dict:
         """The condensation summary of one end (``end`` with its cylinder's prefix; its
@@ -805,6 +821,7 @@ class SteadyResult(Result[SteadySummary]):
             "cycles_to_converge": self.cycles_to_converge,
             "convergence_tolerance": run.fidelity.convergence_tolerance,
             "periodicity_residuals": dict(self.periodicity),
+            **self._wall_jump_keys(),
             "mass_balance_error": mass_err,
             "energy_balance_error": energy_err,
             "rhs_evaluations": self.rhs_evaluations,

@@ -29,7 +29,7 @@ from corliss.engine.network import cylinder_prefix, piston_ends
 from corliss.engine.options import record_of
 from corliss.engine.output_size import EQUILIBRIUM_STEP_DEG, WALL_CYCLES_FACTOR
 from corliss.engine.result import Deferred, SteadyResult
-from corliss.engine.wall import IdealPortWall
+from corliss.engine.wall import IdealPortWall, wall_jump_text
 from corliss.frames.frame import Frame
 from corliss.thermo.steam import HEOSSteam
 
@@ -231,7 +231,13 @@ def _crank_resolved(scene, model, pm, progress, start=None):
             converged = k
             break
         w_prev = w
-    if converged is None and scene.run.cycles is None:
+    # a deep wall whose balance jumps across its bracket has no periodic state there
+    # (DeepWallSearch.jump): the run says so instead of asking for more cycles
+    jumps = (crank.wall_jumps(fid.convergence_tolerance)
+             if converged is None and scene.run.cycles is None and heat and wall_nodes else {})
+    if jumps:
+        log.warning("not periodic after %d cycles: %s", n_max, wall_jump_text(jumps))
+    elif converged is None and scene.run.cycles is None:
         log.warning("not periodic after %d cycles: the largest residual is %.2g (%s) against "
                     "a tolerance of %.2g; the card is the last cycle's (a tighter fidelity, or "
                     "more max_cycles, may settle it)", n_max, change,
@@ -244,6 +250,7 @@ def _crank_resolved(scene, model, pm, progress, start=None):
     return {"timeseries": timeseries, "cycles": Frame.from_rows(rows), "final_state": final,
             "cycles_to_converge": converged, "periodicity": residuals, "portmap": pm, "nfev": crank.nfev,
             "clamped_trials": crank.clamped_trials, "clamped_hot": crank.clamped_hot,
+            "wall_jumps": jumps,
             "cylinders": [(("lp_" if scene.compound and c else cylinder_prefix(c)), g, ph)
                           for c, (g, ph) in enumerate(zip(net.geometries, net.phases))]}
 

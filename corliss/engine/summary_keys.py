@@ -65,6 +65,10 @@ class SteadySummary(TypedDict, total=False):
     cycles_to_converge: int | None          # None when the cycle count is fixed
     convergence_tolerance: float            # relative change of the state per cycle [-]
     periodicity_residuals: dict[str, float]  # state name to its relative residual [-]
+    # only where a skin wall's deep wall has no periodic state (corliss.engine.wall.WallJump):
+    # "none: the balance jumps", and each such end's band [K] and balances at its edges [J]
+    wall_periodic_state: str
+    wall_balance_jumps: list[dict[str, str | float]]
     mass_balance_error: float | None        # |supply + exhaust| / supply [-]
     energy_balance_error: float | None      # first-law residual / supply enthalpy [-]
     rhs_evaluations: int                    # right-hand-side evaluations of the ODE

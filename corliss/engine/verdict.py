@@ -62,9 +62,11 @@ def steady_failures(summary: Mapping[str, Any], fixed_cycles: bool = False) -> l
                          f"({m:.4g} kg/h): the cylinder pumps"))
     res = summary.get("periodicity_residuals") or {}
     if not fixed_cycles and summary.get("cycles_to_converge") is None and res:
+        wall = ("; the wall has no periodic state: its balance over a cycle jumps"
+                if summary.get("wall_periodic_state") else "")
         out.append(_fail("not_periodic", f"the cycle did not become periodic (largest "
                          f"residual {max(res.values()):.2g}, tolerance "
-                         f"{summary['convergence_tolerance']:.2g})"))
+                         f"{summary['convergence_tolerance']:.2g}{wall})"))
     return out
 
 

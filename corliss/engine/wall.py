@@ -210,6 +210,7 @@ jacketed, but may be).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -894,6 +895,68 @@ def jacket_heat_J(gap_J_K: float, T_jacket_K: float, T_deep_K: float) -> float:
     return gap_J_K * max(T_jacket_K - T_deep_K, 0.0)
 
 
+@dataclass(frozen=True)
+class WallJump:
+    """A deep wall's balance over a cycle that changes sign across a band without a
+    root: the warmest wall measured to gain heat over a cycle and the coolest measured
+    to lose it, each balance larger than the tolerance and their difference larger
+    than any continuous balance could change across the band
+    (:meth:`DeepWallSearch.jump`).  On a superheated supply with the skin wall, a wet
+    state of the film below the band and a dry one above it
+    (docs/validation/condensation.md, "Superheated walls that do not settle").
+
+    Parameters
+    ----------
+    T_low_K : float
+        The band's cool edge, the warmest wall measured to gain heat [K].
+    T_high_K : float
+        The band's warm edge, the coolest wall measured to lose heat [K].
+    balance_low_J : float
+        The heat the wall kept over the cycle at ``T_low_K``, ``r > 0`` [J].
+    balance_high_J : float
+        The heat the wall kept over the cycle at ``T_high_K``, ``r < 0`` [J].
+    """
+
+    T_low_K: float
+    T_high_K: float
+    balance_low_J: float
+    balance_high_J: float
+
+
+#: How many tolerances of the wall's heat each edge of a jump must exceed
+#: (:meth:`DeepWallSearch.jump`): the runner trusts a cycle whose other states are
+#: within one tolerance of periodic, and the wall's balance on such cycles still
+#: differs by some of them at one temperature (the Meyer engine with the skin wall
+#: through 4 times its ports, fast preset: +20 J and -20 J within 1e-13 K, 1.6
+#: tolerances of its 12.6 kJ), noise the bracket's width was made to absorb.
+JUMP_TOLERANCES = 10.0
+
+#: The summary's ``wall_periodic_state`` where a deep wall's balance jumps
+#: (:class:`WallJump`).
+NO_PERIODIC_STATE_JUMP = "none: the balance jumps"
+
+
+def wall_jump_text(jumps: dict[str, WallJump]) -> str:
+    """The words a run whose deep walls' balances jump says in its warning.
+
+    Parameters
+    ----------
+    jumps : dict
+        End name to its :class:`WallJump`.
+
+    Returns
+    -------
+    str
+        One sentence, each end's jump in it: the balances [J] and the band [K].
+    """
+    each = "; ".join(f"{end} end: its balance over a cycle jumps from "
+                     f"{j.balance_low_J:+,.0f} J to {j.balance_high_J:+,.0f} J between "
+                     f"{j.T_low_K:.2f} and {j.T_high_K:.2f} K"
+                     for end, j in jumps.items())
+    return (f"no periodic state of the wall: {each} (a wet and a dry state of the film); "
+            "more cycles will not settle it")
+
+
 class DeepWallSearch:
     """The deep wall's temperature, found cycle by cycle: the root of its balance over
     a cycle, ``r(T) = -Q(T) + G_j A_j P max(T_j - T, 0)`` (the heat the steam leaves in
@@ -913,6 +976,12 @@ class DeepWallSearch:
     give the wrong sign near the root: a measurement that contradicts an edge (a gain
     at or above ``hi``, a loss at or below ``lo``) drops that edge, so that the bracket
     never closes on noise.
+
+    Each edge keeps the balance measured there and the largest slope a continuous
+    balance could have there (the kernel's ``h A``, and the jacket's): where the two
+    edges' balances differ by more than that slope carries across the bracket, the
+    bracket holds a jump, not a root, and its width no longer counts as the wall's
+    imbalance (:meth:`imbalance`, :meth:`jump`).  The steps are the same either way.
     """
 
     def __init__(self) -> None:
@@ -920,19 +989,39 @@ class DeepWallSearch:
         self.prev: tuple[float, float] | None = None
         #: the bracket [K]
         self.lo, self.hi = -math.inf, math.inf
+        #: the balance [J] and the largest slope [J/K] measured at each edge (nan at
+        #: an open one)
+        self.edges = ((math.nan, math.nan), (math.nan, math.nan))
         self.measured = (self.lo, self.hi)
+        #: the edges with the last measurement, kept or not
+        self.measured_edges = self.edges
+        #: the heat scale of the last imbalance asked [J]
+        self.heat_scale = 0.0
 
-    def _bracket(self, T: float, r: float) -> tuple[float, float]:
+    def _bracket(self, T: float, r: float, slope: float):
         lo, hi = self.lo, self.hi
+        e_lo, e_hi = self.edges
+        none = (math.nan, math.nan)
         if r > 0.0:
             if T >= hi:
-                hi = math.inf
-            lo = max(lo, T)
+                hi, e_hi = math.inf, none
+            if T >= lo:
+                lo, e_lo = T, (r, slope)
         elif r < 0.0:
             if T <= lo:
-                lo = -math.inf
-            hi = min(hi, T)
-        return lo, hi
+                lo, e_lo = -math.inf, none
+            if T <= hi:
+                hi, e_hi = T, (r, slope)
+        return lo, hi, (e_lo, e_hi)
+
+    def _jumps(self) -> bool:
+        """Whether the measured bracket's edges differ by more than a continuous balance
+        could change across it (a jump, not a root)."""
+        lo, hi = self.measured
+        (r_lo, d_lo), (r_hi, d_hi) = self.measured_edges
+        if not (math.isfinite(lo) and math.isfinite(hi)):
+            return False
+        return r_lo - r_hi > max(d_lo, d_hi) * (hi - lo)
 
     def step(self, T: float, Q: float, d_full: float, gap: float, T_jacket: float,
              apply: bool, trusted: bool = True) -> tuple[float, float]:
@@ -973,7 +1062,8 @@ class DeepWallSearch:
         if self.prev is not None and abs(T - self.prev[0]) > 1e-9:
             slope = min(max((Q - self.prev[1]) / (T - self.prev[0]), 0.01 * d_full), d_full)
         step = min(max(r / (slope + (gap if T < T_jacket else 0.0)), -20.0), 20.0)
-        lo, hi = self._bracket(T, r) if trusted else (self.lo, self.hi)
+        lo, hi, edges = (self._bracket(T, r, d_full + (gap if T < T_jacket else 0.0))
+                         if trusted else (self.lo, self.hi, self.edges))
         target = T + step
         if target >= hi:
             target = 0.5 * (T + hi)
@@ -981,17 +1071,22 @@ class DeepWallSearch:
             target = 0.5 * (T + lo)
         #: the bracket with this cycle's measurement (:meth:`imbalance`) [K]
         self.measured = (lo, hi)
+        self.measured_edges = edges
         if apply:
             self.prev = (T, Q)
             self.lo, self.hi = lo, hi
+            self.edges = edges
         return target - T, r
 
     def imbalance(self, r: float, heat_scale: float, dT_scale: float = 0.0) -> float:
         """The wall's imbalance as a fraction: ``|r|`` over ``heat_scale``, or the
         bracket's width over ``dT_scale`` where that is smaller (the root is then
         located to the tolerance in temperature, however the balance's kink or the
-        cycles' noise leaves ``r``); the bracket with the last measurement
-        (:meth:`step`), kept or not.
+        cycles' noise leaves ``r``); where the bracket holds a jump (:meth:`jump`),
+        the larger of its width's and its smaller edge's balance over
+        :data:`JUMP_TOLERANCES` times ``heat_scale`` (a bracket closed across a jump
+        locates no root); the bracket with the last measurement (:meth:`step`), kept
+        or not.
 
         Parameters
         ----------
@@ -1007,8 +1102,47 @@ class DeepWallSearch:
         float
             The imbalance [-].
         """
+        self.heat_scale = heat_scale
         out = abs(r) / max(heat_scale, 1e-300)
         lo, hi = self.measured
         if dT_scale > 0.0 and math.isfinite(hi - lo):
-            out = min(out, (hi - lo) / dT_scale)
+            closed = (hi - lo) / dT_scale
+            if self._jumps():
+                # across a jump the bracket counts only while an edge's balance is
+                # within the noise (JUMP_TOLERANCES): a jump larger locates no root
+                (r_lo, _), (r_hi, _) = self.measured_edges
+                closed = max(closed, min(r_lo, -r_hi)
+                             / (JUMP_TOLERANCES * max(heat_scale, 1e-300)))
+            out = min(out, closed)
         return out
+
+    def jump(self, tolerance: float) -> WallJump | None:
+        """The jump the bracket with the last measurement holds, if any: both edges
+        measured, each edge's balance larger than :data:`JUMP_TOLERANCES` times
+        ``tolerance`` of the heat scale (:meth:`imbalance`'s last, the noise of a
+        trusted cycle's balance), and the two differing by more than the larger
+        edge's slope (the kernel's ``h A``, an upper bound on a continuous balance's:
+        the heat a cooler wall takes in condensing it partly gives back the same cycle)
+        times the bracket's width.  Then no temperature in the bracket balances the
+        wall, and more cycles will not find one; a bracket that has not closed decides
+        it as well as a closed one, from its measured edges.
+
+        Parameters
+        ----------
+        tolerance : float
+            The run's periodicity tolerance [-].
+
+        Returns
+        -------
+        WallJump or None
+            The band and its edges' balances; None where the bracket is open, an edge
+            balances to the tolerance, or a continuous balance could join the edges.
+        """
+        if not self._jumps():
+            return None
+        lo, hi = self.measured
+        (r_lo, _), (r_hi, _) = self.measured_edges
+        heat_tol = JUMP_TOLERANCES * tolerance * self.heat_scale
+        if min(r_lo, -r_hi) <= heat_tol:
+            return None
+        return WallJump(lo, hi, r_lo, r_hi)
