@@ -193,6 +193,33 @@ def test_marks_law_on_a_compound_transient_returns_each_ends_heat_over_a_turn(me
             assert abs(float(row[f"Q_{end}_J"])) < net * taken, end
 
 
+def test_marks_law_on_a_compound_keeps_each_ends_heat_over_a_long_transient():
+    """As the test above, the bundled compound under Marks's law (Art. 75) run
+    ungoverned at rtol 1e-6 with a heavy flywheel, here for 6 s with rodas4, the speed
+    falling slowly under the load: each end returns over every turn what it took, late
+    in the run as early.
+
+    Tolerance: each end's net heat under 2e-9 of what it took in every turn; measured
+    2.2e-10 to 5.1e-10 in each of 128 turns of a 60 s run (dopri5 6.3e-10).  The
+    Rosenbrock step's time derivative is a finite difference of the right-hand side
+    in crank angle (kernels/jacobians.py); its step was 1e-7 of the angle, growing
+    with the run, and the turns' nets grew with it, linearly in the angle: 1.7e-9 at
+    the 7th turn, 4.3e-9 at the 15th, 1.1e-8 at the 39th and up to 7.3e-7 later, where
+    the step also reached across the schedule's switch."""
+    data = _marks_compound_data()
+    data["run"].update({"mode": "transient", "duration": "6 s", "warmup_cycles": 10,
+                        "method": "rodas4", "rtol": 1e-6})
+    data["flywheel"] = {"moment_of_inertia": "20000 lb ft2"}
+    data["load"] = {"torque": "1500 lbf ft"}
+    r = corliss.simulate(scene_from_dict(data, name="marks-compound-long"))
+    assert len(r.cycles) >= 12
+    for _, row in r.cycles.iterrows():
+        for end in ("head", "crank", "lp_head", "lp_crank"):
+            taken = float(row[f"Q_to_wall_{end}_J"])
+            assert taken > 0.0, end
+            assert abs(float(row[f"Q_{end}_J"])) < 2e-9 * taken, (end, row.name)
+
+
 def test_marks_laws_windows_follow_a_governors_setting():
     """Marks's law (Art. 75) takes its heat over the admission and gives it back from
     cut-off to compression, of the valve's own events: under a governor that moves the
