@@ -320,7 +320,8 @@ def build_tables(scene, net, gear, geo) -> LoopTables:
 
 def setting_at(sc: np.ndarray, z: float) -> float:
     """The governor's actuator value at ``z``, as the loop finds it
-    (:func:`corliss.engine.kernels.loop.transient_rhs`): a gear's setting.
+    (:func:`corliss.engine.kernels.loop.actuator`, which the compiled turn calls): a
+    gear's setting.
 
     Parameters
     ----------
@@ -334,10 +335,7 @@ def setting_at(sc: np.ndarray, z: float) -> float:
     float
         The actuator's value [-].
     """
-    zc = min(max(z, 0.0), 1.0)
-    if zc < sc[loop.S_SAFE_Z]:
-        return float(sc[loop.S_SAFE_A])
-    return float(sc[loop.S_A0] + (sc[loop.S_A1] - sc[loop.S_A0]) * zc)
+    return float(loop.actuator(float(z), sc))
 
 
 @dataclass

@@ -133,7 +133,9 @@ def past_switch(th, net):
     te = th + 2.0 * SWITCH_MARGIN_RAD
     for i in range(net.heat.shape[0]):
         if net.heat[i, H_MODEL] == WALL_MARKS:
-            if marks_window(te, net, i)[0] != marks_window(th, net, i)[0]:
+            s_past, _ = marks_window(te, net, i)
+            s_here, _ = marks_window(th, net, i)
+            if s_past != s_here:
                 return te
     return th
 

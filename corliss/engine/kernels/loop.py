@@ -296,6 +296,30 @@ def trip_areas(t, s, omega, tr, c, pa):
             pa[c, port] = lim
 
 
+@njit(cache=True, inline="always")
+def actuator(z, sc):
+    """The governor's actuator value at its coordinate ``z``: a gear's setting or a
+    throttle's opening, linear over the actuator's range, or the safety cams' value
+    where a Corliss governor has fallen below its range.
+
+    Parameters
+    ----------
+    z : float
+        The governor's coordinate [-] (clipped to 0 to 1).
+    sc : ndarray
+        The loop's scalars (``S_A0``, ``S_A1``, ``S_SAFE_Z``, ``S_SAFE_A``).
+
+    Returns
+    -------
+    float
+        The actuator's value [-].
+    """
+    zc = min(max(z, 0.0), 1.0)
+    if zc < sc[S_SAFE_Z]:      # the safety cams (a Corliss governor fallen below its range)
+        return sc[S_SAFE_A]
+    return sc[S_A0] + (sc[S_A1] - sc[S_A0]) * zc
+
+
 @njit(cache=True, _nrt=False)
 def transient_rhs(th, y, dy, net, tier, tab, perf, pr, pa, tr, out):
     """Derivatives with respect to crank angle of the whole loop.
@@ -348,9 +372,7 @@ def transient_rhs(th, y, dy, net, tier, tab, perf, pr, pa, tr, out):
     z = y[nn + X_Z]
     zd = y[nn + X_ZDOT]
     zc = min(max(z, 0.0), 1.0)
-    act = sc[S_A0] + (sc[S_A1] - sc[S_A0]) * zc
-    if zc < sc[S_SAFE_Z]:      # the safety cams (a Corliss governor fallen below its range)
-        act = sc[S_SAFE_A]
+    act = actuator(z, sc)
     net.omega[0] = omega
     node_states(th, y, net, tier, tab, perf, pr)
     port_areas(th, net, pa)
