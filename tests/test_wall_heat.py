@@ -176,9 +176,9 @@ def test_marks_law_on_a_compound_transient_returns_each_ends_heat_over_a_turn(me
     random, by a rounding of the shaft angle).  rodas4 with the stops but a segment's
     first Jacobian read at the stop (the window before) while its derivative was read
     past the switch netted up to 2.7e-5, proportional to rtol (2.3e-7 at 1e-8): each
-    finite difference carried the heat's jump.  The heat taken within 1 % of the steady run's: the two differ by
-    the speed's swing within the turn and the receiver's not yet periodic state after
-    ten turns (6e-4 measured)."""
+    finite difference carried the heat's jump.  The heat taken within 1 % of the
+    steady run's: the two differ by the speed's swing within the turn and the
+    receiver's not yet periodic state after ten turns (6e-4 measured)."""
     data = _marks_compound_data()
     data["run"].update({"mode": "transient", "duration": "0.2 s", "warmup_cycles": 10,
                         "method": method, "rtol": 1e-6})

@@ -262,7 +262,7 @@ LOOP_COLUMNS = np.array([X_OMEGA, X_Z, X_ZDOT])
 
 
 @njit(cache=True, inline="always")
-def _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, cycle, turn, t_lo, t_hi):
+def _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, cycle, turn, span):
     """Jacobian of the dynamic columns, and the time derivative, by finite differences,
     for the Rosenbrock step loop, over a steady cycle (``cycle`` True, ``turn`` None,
     through :func:`_jacobian`) and over a turn of the governed loop (``cycle`` None,
@@ -289,11 +289,11 @@ def _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, cycle, turn, t_lo,
     (tests/test_speed_loop.py).
 
     The time derivative is a one-sided difference of a step of 1e-7 of the angle,
-    at least 1e-7 rad and at most 1e-6 rad, taken within the segment ``t_lo`` to
-    ``t_hi`` (from where its derivative was read to its end): forward, backward where
-    the forward one would pass the segment's end, and shorter where neither fits.  A
-    wall-heat schedule switches at the segment's end, so a difference across it took
-    the heat's jump over the step; and a step of 1e-7 of the angle alone grew with a
+    at least 1e-7 rad and at most 1e-6 rad, taken within the segment ``span``, a
+    pair of angles [rad] (from where its derivative was read to its end): forward,
+    backward where the forward one would pass the segment's end, and shorter where
+    neither fits.  A wall-heat schedule switches at the segment's end, so a difference
+    across it took the heat's jump over the step; and a step of 1e-7 of the angle alone grew with a
     long run (1e-4 rad at 1,000 rad) until its truncation spoilt the derivative.  On
     the bundled compound under Marks's law, slowing over 128 turns at rtol 1e-6, the
     turns' ends netted up to 7e-7 of the heat taken with the step of 1e-7 of the angle
@@ -363,6 +363,7 @@ def _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, cycle, turn, t_lo,
                 J[i, ndyn + k] = (fp[i] - f0[i]) / d
         nfev += LOOP_COLUMNS.shape[0]
     dt = 1e-7 * min(max(abs(t), 1.0), 10.0)
+    t_lo, t_hi = span
     if t + dt > t_hi:
         if t - dt >= t_lo:
             dt = -dt
@@ -381,18 +382,17 @@ def _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, cycle, turn, t_lo,
 
 
 @njit(cache=True, _nrt=False, no_cpython_wrapper=True)
-def _jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, t_lo, t_hi):
+def _jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, span):
     """A steady cycle's Jacobian of the dynamic columns, and the time derivative:
     analytic (:func:`_jacobian_exact`, no evaluation of :func:`rhs`) where it covers
     the network, else :func:`_fd_jacobian`'s.  Arguments and return as
     :func:`_fd_jacobian`'s (``jd`` and ``slope`` of ``scratch`` the analytic one's;
-    ``t_lo`` and ``t_hi`` the finite differences' segment)."""
+    ``span`` the finite differences' segment)."""
     if _exact_jacobian_holds(phys.net):
         _jacobian_exact(t, y, J, T, phys.net, phys.tier, phys.tab, phys.perf, scratch.pr,
                         scratch.cell, scratch.jd, scratch.slope)
         return 0
-    return _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, True, None, t_lo,
-                        t_hi)
+    return _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, True, None, span)
 
 
 @njit(cache=True, _nrt=False)

@@ -325,7 +325,7 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, fin
                     # inlined here: compiled apart, the loop's right-hand side linked into
                     # it was optimised once more by LLVM, seconds of a first run
                     nfev += _fd_jacobian(max(t, ta), y, f0, J, T, yscale, cols, phys,
-                                         steps, None, turn, ta, b)
+                                         steps, None, turn, (ta, b))
                 if cycle is not None:
                     if finite is None:
                         # called from here, not through :func:`_jacobian`: through it, a
@@ -335,8 +335,8 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, fin
                         _jacobian_exact(max(t, ta), y, J, T, net, tier, tab, perf, pr, cell,
                                         jd, slope)
                     else:
-                        nfev += _jacobian(max(t, ta), y, f0, J, T, yscale, cols, phys, steps, ta,
-                                          b)
+                        nfev += _jacobian(max(t, ta), y, f0, J, T, yscale, cols, phys, steps,
+                                          (ta, b))
                 age = 0
                 h_w = -1.0
             hd = h * gam
