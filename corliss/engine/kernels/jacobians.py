@@ -262,7 +262,7 @@ LOOP_COLUMNS = np.array([X_OMEGA, X_Z, X_ZDOT])
 
 
 @njit(cache=True, inline="always")
-def _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, cycle, turn):
+def _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, cycle, turn, span):
     """Jacobian of the dynamic columns, and the time derivative, by finite differences,
     for the Rosenbrock step loop, over a steady cycle (``cycle`` True, ``turn`` None,
     through :func:`_jacobian`) and over a turn of the governed loop (``cycle`` None,
@@ -287,6 +287,19 @@ def _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, cycle, turn):
     Without them the method lost its order: the flywheel's energy and the work
     integrals parted by 1e-5 of the change even at rtol 1e-7
     (tests/test_speed_loop.py).
+
+    The time derivative is a one-sided difference of a step of 1e-7 of the angle,
+    at least 1e-7 rad and at most 1e-6 rad, taken within the segment ``span``, a
+    pair of angles [rad] (from where its derivative was read to its end): forward,
+    backward where the forward one would pass the segment's end, and shorter where
+    neither fits.  A wall-heat schedule switches at the segment's end, so a difference
+    across it took the heat's jump over the step; and a step of 1e-7 of the angle alone grew with a
+    long run (1e-4 rad at 1,000 rad) until its truncation spoilt the derivative.  On
+    the bundled compound under Marks's law, slowing over 128 turns at rtol 1e-6, the
+    turns' ends netted up to 7e-7 of the heat taken with the step of 1e-7 of the angle
+    across the switch, 1.4e-8 with it kept short of the switch, and 5e-10 with it also
+    capped (dopri5: 6e-10).  The cap's rounding: an ulp of the angle over 1e-6 rad,
+    1.5e-5 of the difference at 1e5 rad (hours of a run).
 
     Clamped evaluations go into the step's tally ``att``; ``yp``, ``fp`` (length of
     the state) and ``dl`` (of the dynamic states) are scratch, fields of ``scratch``
@@ -349,7 +362,15 @@ def _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, cycle, turn):
             for i in range(n):
                 J[i, ndyn + k] = (fp[i] - f0[i]) / d
         nfev += LOOP_COLUMNS.shape[0]
-    dt = 1e-7 * max(abs(t), 1.0)
+    dt = 1e-7 * min(max(abs(t), 1.0), 10.0)
+    t_lo, t_hi = span
+    if t + dt > t_hi:
+        if t - dt >= t_lo:
+            dt = -dt
+        elif t_hi - t >= t - t_lo:
+            dt = 0.5 * (t_hi - t)
+        else:
+            dt = -0.5 * (t - t_lo)
     if cycle is not None:
         rhs(t + dt, y, fp, net, tier, tab, perf, pr, cell)
     if turn is not None:
@@ -361,16 +382,17 @@ def _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, cycle, turn):
 
 
 @njit(cache=True, _nrt=False, no_cpython_wrapper=True)
-def _jacobian(t, y, f0, J, T, yscale, cols, phys, scratch):
+def _jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, span):
     """A steady cycle's Jacobian of the dynamic columns, and the time derivative:
     analytic (:func:`_jacobian_exact`, no evaluation of :func:`rhs`) where it covers
     the network, else :func:`_fd_jacobian`'s.  Arguments and return as
-    :func:`_fd_jacobian`'s (``jd`` and ``slope`` of ``scratch`` the analytic one's)."""
+    :func:`_fd_jacobian`'s (``jd`` and ``slope`` of ``scratch`` the analytic one's;
+    ``span`` the finite differences' segment)."""
     if _exact_jacobian_holds(phys.net):
         _jacobian_exact(t, y, J, T, phys.net, phys.tier, phys.tab, phys.perf, scratch.pr,
                         scratch.cell, scratch.jd, scratch.slope)
         return 0
-    return _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, True, None)
+    return _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, scratch, True, None, span)
 
 
 @njit(cache=True, _nrt=False)

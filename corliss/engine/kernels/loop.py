@@ -584,6 +584,13 @@ def turn_restart(t, y, f0, phys, pr, cell, turn, att, clamps):
         Written: the derivative there (per radian).
     phys, pr, cell, turn, att, clamps
         As :func:`turn_start`'s.
+
+    Returns
+    -------
+    float
+        The shaft angle the derivative was read at [rad], past the switch: where the
+        segment's Jacobian must be read too, so that its differences are taken from
+        ``f0``'s window (:func:`corliss.engine.kernels.rosenbrock._ros_steps`).
     """
     # read past the switch (the stop is SWITCH_MARGIN_RAD short of it): the segment's
     # first stage must see the window it integrates
@@ -593,6 +600,7 @@ def turn_restart(t, y, f0, phys, pr, cell, turn, att, clamps):
     _node_torques(pr, turn.tq[0])
     tally_clamps(pr, te, att)
     settle_visited(att, clamps)
+    return te
 
 
 def turn_stops(th0: float, inner_rad) -> np.ndarray:

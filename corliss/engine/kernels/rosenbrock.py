@@ -179,10 +179,17 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, fin
     the turn's are each guarded by their own argument).  A steady cycle: the network's right-hand side
     :func:`~corliss.engine.kernels.balances.rhs` between the stops, a step whose end
     needed the properties clamped retried shorter.  A turn (a tableau's method on the
-    finite-difference Jacobian): one segment (``stops`` the turn's start and end), the
-    loop's right-hand side :func:`~corliss.engine.kernels.loop.transient_rhs` and its
-    Jacobian (:func:`_fd_jacobian` with ``turn``, one a step), the first step carried over
-    from the turn before (``sc[S_STEP]``) or :func:`turn_first_step`'s, a visited
+    finite-difference Jacobian): one segment (``stops`` the turn's start and end) or
+    more (a wall-heat schedule's switches between,
+    :func:`~corliss.engine.kernels.loop.turn_stops`), the loop's right-hand side
+    :func:`~corliss.engine.kernels.loop.transient_rhs` and its Jacobian
+    (:func:`_fd_jacobian` with ``turn``, one a step), the first step carried over from
+    the turn before (``sc[S_STEP]``) or :func:`turn_first_step`'s (a later segment's
+    the last one's), a later segment's derivative and first Jacobian both read past
+    its switch (:func:`~corliss.engine.kernels.loop.turn_restart`, as a cycle's read at
+    :func:`~corliss.engine.kernels.balances.past_switch`: a Jacobian read at the stop,
+    on the window before, took its differences against the derivative of the window
+    after, the jump of the heat over each column's perturbation), a visited
     state's clamp stopping the run (but for the greatest energy's), the governor's
     stops after each accepted step, each accepted step recorded, and the run stopped
     where the engine stalls.
@@ -303,8 +310,9 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, fin
                 if not (h > 0.0):
                     h = turn_first_step(f0, y, atol, rtol, 0.25)
             else:
-                # a schedule's switch (loop.turn_stops): the derivative afresh
-                turn_restart(t, y, f0, phys, pr, cell, turn, att, clamps)
+                # a schedule's switch (loop.turn_stops): the derivative afresh, read
+                # past the switch, and the segment's first Jacobian read there too
+                ta = turn_restart(t, y, f0, phys, pr, cell, turn, att, clamps)
                 nfev += 1
                 h = min(h_prev, b - a)
         age = jac_age          # accepted steps since J and T were computed
@@ -316,8 +324,8 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, fin
                 if turn is not None:
                     # inlined here: compiled apart, the loop's right-hand side linked into
                     # it was optimised once more by LLVM, seconds of a first run
-                    nfev += _fd_jacobian(t, y, f0, J, T, yscale, cols, phys, steps, None,
-                                         turn)
+                    nfev += _fd_jacobian(max(t, ta), y, f0, J, T, yscale, cols, phys,
+                                         steps, None, turn, (ta, b))
                 if cycle is not None:
                     if finite is None:
                         # called from here, not through :func:`_jacobian`: through it, a
@@ -327,7 +335,8 @@ def _ros_steps(y, samples, stops, out_theta, ctl, phys, cols, tableau, pair, fin
                         _jacobian_exact(max(t, ta), y, J, T, net, tier, tab, perf, pr, cell,
                                         jd, slope)
                     else:
-                        nfev += _jacobian(max(t, ta), y, f0, J, T, yscale, cols, phys, steps)
+                        nfev += _jacobian(max(t, ta), y, f0, J, T, yscale, cols, phys, steps,
+                                          (ta, b))
                 age = 0
                 h_w = -1.0
             hd = h * gam
