@@ -543,7 +543,8 @@ class ScheduledWallHeat:
                     continue
                 # read as the run read it: Marks's heat given back into the thin
                 # exhaust steam can lift it beyond the properties' greatest energy
-                p = float(visited_states(steam, np.array([m / V]), np.array([U / m]))[0][0])
+                p_Pa, _, _ = visited_states(steam, np.array([m / V]), np.array([U / m]))
+                p = float(p_Pa[0])
                 kept[i] = self._heos.t_sat(min(p, 2.2e7))
 
 

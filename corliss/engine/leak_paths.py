@@ -30,12 +30,14 @@ set to their cut-off): a scene of that engine leaks the rate it names.
 
 A governor that moves the gear's setting moves both ``l`` (a gear whose opening's
 edge changes with it) and ``w`` (the valve's travel): a governed transient run takes
-each turn the scales at the setting it starts at (:class:`SettingLeakScales`).
+each turn the scales at the setting it starts at (:func:`setting_leak_scales`).
 """
 
 from __future__ import annotations
 
 import numpy as np
+
+from corliss.engine.setting_table import SettingTable
 
 #: Length of the reference valve's port opening, 8 in [m] (module docstring).
 REFERENCE_PORT_LENGTH_M = 8.0 * 0.0254
@@ -92,50 +94,23 @@ def edge_leak_scales(gear) -> np.ndarray:
     return np.where(np.isfinite(scale), scale, 0.0)
 
 
-class SettingLeakScales:
-    """A governed gear's edge scales (:func:`edge_leak_scales`) over its settings.
-
-    Found at each of the loop's tabulated settings when first needed (each costs the
-    gear's openings over a turn) and read linearly between them, as the loop reads
-    its port areas over the same grid (clamped to the grid's ends).
+def setting_leak_scales(gear, settings) -> SettingTable:
+    """A governed gear's edge scales (:func:`edge_leak_scales`) over its settings:
+    found at each of the loop's tabulated settings when first needed (each costs the
+    gear's openings over a turn) and read linearly between them, as the loop reads its
+    port areas over the same grid (clamped to the grid's ends).
 
     Parameters
     ----------
     gear : ValveGear
         The governed gear.
     settings : ndarray
-        The settings tabulated [-], uniform and increasing (the loop's setting grid).
+        The settings tabulated [-], increasing (the loop's setting grid).
+
+    Returns
+    -------
+    SettingTable
+        ``(l / l_ref) (w_ref / w)`` for each port in :data:`~corliss.valves.gear.PORTS`
+        order [-], shape ``(4,)``, at a setting.
     """
-
-    def __init__(self, gear, settings):
-        self.gear = gear
-        self.settings = np.asarray(settings, dtype=float)
-        self.values = np.full((self.settings.size, 4), np.nan)
-
-    def _row(self, j: int) -> np.ndarray:
-        if np.isnan(self.values[j, 0]):
-            self.values[j] = edge_leak_scales(self.gear.with_setting(float(self.settings[j])))
-        return self.values[j]
-
-    def at(self, setting: float) -> np.ndarray:
-        """Each port's scale at a setting, linear between the tabulated settings.
-
-        Parameters
-        ----------
-        setting : float
-            The gear's setting [-]; beyond the table, its end's.
-
-        Returns
-        -------
-        ndarray
-            ``(l / l_ref) (w_ref / w)`` for each port in
-            :data:`~corliss.valves.gear.PORTS` order [-], shape ``(4,)``.
-        """
-        n = self.settings.size
-        if n < 2:
-            return self._row(0).copy()
-        s0, s1 = self.settings[0], self.settings[-1]
-        f = min(max((setting - s0) / (s1 - s0) * (n - 1), 0.0), n - 1.0)
-        k = min(int(f), n - 2)
-        w = f - k
-        return (1.0 - w) * self._row(k) + w * self._row(k + 1)
+    return SettingTable(settings, lambda s: edge_leak_scales(gear.with_setting(s)))

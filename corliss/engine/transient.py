@@ -34,7 +34,8 @@ from corliss.engine.kernels.stepping import MAX_RHS_PER_CYCLE
 from corliss.engine.kernels.tableaus import ROS_TABLEAUS
 from corliss.engine.condensation import ScheduledWallHeat, wall_schedule
 from corliss.engine.crank_resolved import budget_message
-from corliss.engine.leak_paths import SettingLeakScales
+from corliss.engine.leak_paths import setting_leak_scales
+from corliss.engine.setting_table import SettingTable
 from corliss.engine.model import assemble, build_network
 from corliss.engine.network import Network, throttle_area_m2
 from corliss.governors.operating_point import (BALANCED, LOAD_TOO_HEAVY, SURPLUS_TOL,
@@ -89,7 +90,7 @@ class LoopTables:
         governor).
     setting_grid : ndarray or None
         The settings tabulated [-], with a governed gear.
-    cutoff_table : CutoffTable or None
+    cutoff_table : SettingTable or None
         Head and crank cut-off over the settings, fractions of the stroke [-].
     z0 : float
         The governor's equilibrium coordinate at the run's speed [-] (0 without one).
@@ -100,7 +101,7 @@ class LoopTables:
     tr: LoopArrays
     governed_gear: ValveGear | None
     setting_grid: np.ndarray | None
-    cutoff_table: CutoffTable | None     # head and crank cut-off over the settings
+    cutoff_table: SettingTable | None    # head and crank cut-off over the settings
     z0: float
     mechanism: GovernorMechanism | None
 
@@ -113,7 +114,7 @@ def _governor_arrays(mech):
     return np.vstack([mech.M, mech.dM_dz, mech.G, mech.R, mech.J]).astype(float)
 
 
-class CutoffTable:
+def cutoff_table(gear, settings: np.ndarray, frac: Callable) -> SettingTable:
     """The cut-off of each end over the tabulated settings of a governed gear, each
     setting's found from the gear's events when a turn first needs it.
 
@@ -129,46 +130,18 @@ class CutoffTable:
         The settings tabulated [-], increasing.
     frac : callable
         Crank angle [rad] -> piston position as a fraction of the stroke [-].
+
+    Returns
+    -------
+    SettingTable
+        Head and crank cut-off, fractions of the stroke [-] (NaN where an end has
+        none), at a setting.
     """
-
-    def __init__(self, gear, settings: np.ndarray, frac: Callable):
-        self.gear = gear
-        self.settings = np.asarray(settings, dtype=float)
-        self.frac = frac
-        self.values = np.full((2, self.settings.size), np.nan)
-        self.known = np.zeros(self.settings.size, dtype=bool)
-
-    def _find(self, j: int) -> None:
-        ev = gear_events(self.gear.with_setting(float(self.settings[j])), self.frac)
-        for e, end in enumerate(("head", "crank")):
-            v = ev[end]["cutoff_frac"]
-            self.values[e, j] = np.nan if v is None else v
-        self.known[j] = True
-
-    def at(self, setting: float) -> tuple[float, float]:
-        """Head and crank cut-off at a setting, linear between the tabulated ones.
-
-        Parameters
-        ----------
-        setting : float
-            The gear's setting [-]; beyond the table, its end's.
-
-        Returns
-        -------
-        head, crank : float
-            Cut-off, fractions of the stroke [-] (NaN where an end has none).
-        """
-        n = self.settings.size
-        k = min(max(int(np.searchsorted(self.settings, setting, side="right")) - 1, 0),
-                max(n - 2, 0))
-        for j in range(k, min(k + 2, n)):
-            if not self.known[j]:
-                self._find(j)
-        if n == 1:
-            return float(self.values[0, 0]), float(self.values[1, 0])
-        g = self.settings[k:k + 2]
-        return (float(np.interp(setting, g, self.values[0, k:k + 2])),
-                float(np.interp(setting, g, self.values[1, k:k + 2])))
+    def find(setting: float) -> list:
+        ev = gear_events(gear.with_setting(setting), frac)
+        return [np.nan if ev[end]["cutoff_frac"] is None else ev[end]["cutoff_frac"]
+                for end in ("head", "crank")]
+    return SettingTable(settings, find)
 
 
 def _gear_tables(gear, lo: float, hi: float, ncyl: int, governed: np.ndarray, nth: int,
@@ -180,7 +153,7 @@ def _gear_tables(gear, lo: float, hi: float, ncyl: int, governed: np.ndarray, nt
     for c in range(ncyl):
         if governed[c]:
             area[c] = np.transpose(spm.area_m2, (1, 0, 2))
-    return spm.settings, area, CutoffTable(gear, spm.settings, frac)
+    return spm.settings, area, cutoff_table(gear, spm.settings, frac)
 
 
 def _trip_tables(gear, grid: np.ndarray, nth: int):
@@ -400,7 +373,7 @@ class GovernedEdgeLeaks:
 
     Parameters
     ----------
-    scales : SettingLeakScales
+    scales : SettingTable
         The governed gear's scales over the loop's setting grid.
     edges : list of tuple
         ``(edge, port, rate)`` of each governed edge's leak: its index, its port and
@@ -409,7 +382,7 @@ class GovernedEdgeLeaks:
         The loop's scalars (the actuator's range and safety cams, ``S_*``).
     """
 
-    scales: SettingLeakScales
+    scales: SettingTable
     edges: list
     sc: np.ndarray
 
@@ -451,7 +424,7 @@ def governed_edge_leaks(network: Network, tables: LoopTables) -> GovernedEdgeLea
              if tables.tr.governed[c]]
     if not edges:
         return None
-    return GovernedEdgeLeaks(SettingLeakScales(tables.governed_gear, tables.setting_grid),
+    return GovernedEdgeLeaks(setting_leak_scales(tables.governed_gear, tables.setting_grid),
                              edges, tables.tr.sc)
 
 
@@ -1014,7 +987,8 @@ def _cycle_row(k: int, y0: np.ndarray, y: np.ndarray, network, tables: LoopTable
         else:
             row["gear_setting_frac"] = act
             assert tables.cutoff_table is not None      # tabulated for a governed gear
-            row["cutoff_head_frac"], row["cutoff_crank_frac"] = tables.cutoff_table.at(act)
+            head, crank = tables.cutoff_table.at(act)
+            row["cutoff_head_frac"], row["cutoff_crank_frac"] = float(head), float(crank)
     return row
 
 
